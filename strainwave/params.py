@@ -1,0 +1,401 @@
+"""The parameter schema: TOML parsed once, at the boundary, into frozen dataclasses.
+
+Units live in the field names (as in the TOML). Everything past ``load_params`` is
+plain floats, ints, bools, tuples and enums. Impossible values raise
+``InputError(key, value, allowed)``; values that are possible but outside a seed's
+recommended range emit a ``RangeWarning`` naming the range and its source.
+"""
+from __future__ import annotations
+
+import dataclasses
+import enum
+import math
+import tomllib
+import typing
+import warnings
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+
+from .errors import InputError, RangeWarning
+
+
+class CupShape(enum.Enum):
+    CYLINDRICAL = "cylindrical"
+    BELL = "bell"
+
+
+class WaveGeneratorKind(enum.Enum):
+    CAM = "cam"
+    ROLLERS = "rollers"
+
+
+class EwgGenerator(enum.Enum):
+    ROLLERS = "rollers"
+    CAM_RING = "cam_ring"
+
+
+def _positive(key: str, value: float) -> None:
+    if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+        raise InputError(key, value, "must be a finite number > 0")
+
+
+def _in_open(key: str, value: float, lo: float, hi: float, why: str = "") -> None:
+    if not (math.isfinite(value) and lo < value < hi):
+        raise InputError(key, value, f"must lie in ({lo:g}, {hi:g}){why}")
+
+
+def _recommend(key: str, value: float, lo: float, hi: float, source: str) -> None:
+    if not lo <= value <= hi:
+        warnings.warn(f"{key} = {value:g} is outside the recommended {lo:g}..{hi:g} ({source}); running anyway",
+                      RangeWarning, stacklevel=3)
+
+
+@dataclass(frozen=True)
+class Material:
+    youngs_modulus_MPa: float
+    shear_modulus_MPa: float
+    poisson_ratio: float
+    fatigue_limit_MPa: float
+
+    def __post_init__(self):
+        _positive("material.youngs_modulus_MPa", self.youngs_modulus_MPa)
+        _positive("material.shear_modulus_MPa", self.shear_modulus_MPa)
+        _positive("material.fatigue_limit_MPa", self.fatigue_limit_MPa)
+        _in_open("material.poisson_ratio", self.poisson_ratio, 0.0, 0.5)
+        implied = self.implied_shear_modulus_MPa
+        if abs(implied / self.shear_modulus_MPa - 1.0) > 0.005:
+            warnings.warn(
+                f"material: E/(2(1+nu)) = {implied:.0f} MPa differs from shear_modulus_MPa = "
+                f"{self.shear_modulus_MPa:g} by {100 * (implied / self.shear_modulus_MPa - 1):+.2f} %; "
+                "seed-000 closed forms use mu = shear_modulus_MPa, FEA uses E and nu",
+                RangeWarning, stacklevel=3)
+
+    @property
+    def implied_shear_modulus_MPa(self) -> float:
+        return self.youngs_modulus_MPa / (2.0 * (1.0 + self.poisson_ratio))
+
+
+@dataclass(frozen=True)
+class Gear:
+    wave_number: int
+    gear_ratio: float
+    radial_deformation_mm: float
+    force_coefficient: float
+    output_torque_Nmm: float
+
+    def __post_init__(self):
+        if self.wave_number < 1:
+            raise InputError("gear.wave_number", self.wave_number, "must be an integer >= 1")
+        for name in ("gear_ratio", "radial_deformation_mm", "force_coefficient", "output_torque_Nmm"):
+            _positive(f"gear.{name}", getattr(self, name))
+
+
+@dataclass(frozen=True)
+class FlexsplineCup:
+    pitch_diameter_mm: float
+    wall_thickness_mm: float
+    length_mm: float
+    shape: CupShape
+    cup: bool
+    teeth: int
+    module_mm: float
+
+    def __post_init__(self):
+        for name in ("pitch_diameter_mm", "wall_thickness_mm", "length_mm", "module_mm"):
+            _positive(f"flexspline_cup.{name}", getattr(self, name))
+        if self.wall_thickness_mm >= self.pitch_diameter_mm / 2:
+            raise InputError("flexspline_cup.wall_thickness_mm", self.wall_thickness_mm,
+                             f"must be < pitch_diameter_mm/2 = {self.pitch_diameter_mm / 2:g}")
+        if self.teeth < 4:
+            raise InputError("flexspline_cup.teeth", self.teeth, "must be an integer >= 4")
+        if self.module_mm * 2.35 >= self.pitch_diameter_mm / 2 - self.wall_thickness_mm:
+            raise InputError("flexspline_cup.module_mm", self.module_mm,
+                             "teeth taller than the cup radius: need 2.35 module < d1/2 - delta")
+        _recommend("flexspline_cup.wall_thickness_mm / pitch_diameter_mm",
+                   self.wall_thickness_mm / self.pitch_diameter_mm, 0.005, 0.03, "usual thin flexspline range")
+
+
+@dataclass(frozen=True)
+class OutputShaft:
+    outer_diameter_mm: float
+    inner_diameter_mm: float
+    length_mm: float
+
+    def __post_init__(self):
+        _positive("output_shaft.outer_diameter_mm", self.outer_diameter_mm)
+        _positive("output_shaft.length_mm", self.length_mm)
+        if not (isinstance(self.inner_diameter_mm, float) and 0.0 <= self.inner_diameter_mm < self.outer_diameter_mm):
+            raise InputError("output_shaft.inner_diameter_mm", self.inner_diameter_mm,
+                             f"must be >= 0 and < outer_diameter_mm = {self.outer_diameter_mm:g}")
+
+    @property
+    def wall_mm(self) -> float:
+        return 0.5 * (self.outer_diameter_mm - self.inner_diameter_mm)
+
+
+@dataclass(frozen=True)
+class WaveGenerator:
+    kind: WaveGeneratorKind
+    bearing_inner_ring_thickness_mm: float
+    contact_semi_axes_mm: tuple[float, float]
+    beta: float
+    uncracked_radial_stiffness_N_per_mm: float
+
+    def __post_init__(self):
+        _positive("wave_generator.bearing_inner_ring_thickness_mm", self.bearing_inner_ring_thickness_mm)
+        if len(self.contact_semi_axes_mm) != 2:
+            raise InputError("wave_generator.contact_semi_axes_mm", list(self.contact_semi_axes_mm),
+                             "must be two numbers [a', b'] > 0")
+        for v in self.contact_semi_axes_mm:
+            _positive("wave_generator.contact_semi_axes_mm", v)
+        _positive("wave_generator.beta", self.beta)
+        _positive("wave_generator.uncracked_radial_stiffness_N_per_mm", self.uncracked_radial_stiffness_N_per_mm)
+        _recommend("wave_generator.beta", self.beta, 0.4278, 0.5, "seed 000, from a'/b'")
+
+
+@dataclass(frozen=True)
+class Cracks:
+    depth_mm: float
+    surface_crack_shape_factor: float
+    stress_nonuniformity: float
+    dynamic_load_factor: float
+    flexspline_crack_angle_deg: float
+
+    def __post_init__(self):
+        _positive("cracks.depth_mm", self.depth_mm)
+        if not (math.isfinite(self.surface_crack_shape_factor) and self.surface_crack_shape_factor >= 1.0):
+            raise InputError("cracks.surface_crack_shape_factor", self.surface_crack_shape_factor,
+                             "Q = 1 + 1.464 (a/c)^1.65 must be >= 1")
+        _positive("cracks.stress_nonuniformity", self.stress_nonuniformity)
+        _positive("cracks.dynamic_load_factor", self.dynamic_load_factor)
+        _in_open("cracks.flexspline_crack_angle_deg", self.flexspline_crack_angle_deg, 0.0, 90.0)
+
+
+@dataclass(frozen=True)
+class EwgDrive:
+    tooth_difference: int
+    flexspline_teeth: int
+    module_mm: float
+    rim_thickness_ratio: float
+    face_width_mm: float
+    dedendum_coefficient: float
+    pressure_angle_deg: float
+    tooth_influence: float
+    stress_concentration: float
+    mean_stress_influence: float
+    permissible_safety: float
+    generator: EwgGenerator
+
+    def __post_init__(self):
+        if self.tooth_difference < 1:
+            raise InputError("ewg_drive.tooth_difference", self.tooth_difference, "must be an integer >= 1")
+        if self.flexspline_teeth < 2 * self.tooth_difference:
+            raise InputError("ewg_drive.flexspline_teeth", self.flexspline_teeth,
+                             f"must be >= 2 x tooth_difference = {2 * self.tooth_difference}")
+        for name in ("module_mm", "rim_thickness_ratio", "face_width_mm", "dedendum_coefficient",
+                     "tooth_influence", "stress_concentration", "permissible_safety"):
+            _positive(f"ewg_drive.{name}", getattr(self, name))
+        _in_open("ewg_drive.pressure_angle_deg", self.pressure_angle_deg, 0.0, 45.0)
+        if not 0.0 <= self.mean_stress_influence < 1.0:
+            raise InputError("ewg_drive.mean_stress_influence", self.mean_stress_influence, "must lie in [0, 1)")
+        if self.rim_thickness_ratio >= 0.5:
+            raise InputError("ewg_drive.rim_thickness_ratio", self.rim_thickness_ratio,
+                             "must be < 0.5 (the rim would close the bore)")
+        _recommend("ewg_drive.rim_thickness_ratio", self.rim_thickness_ratio, 0.01, 0.015, "seed 003, eq 6 text")
+        _recommend("ewg_drive.tooth_influence", self.tooth_influence, 1.05, 1.10, "seed 003, eq 10")
+        _recommend("ewg_drive.stress_concentration", self.stress_concentration, 1.8, 2.0, "seed 003, eq 13")
+        _recommend("ewg_drive.mean_stress_influence", self.mean_stress_influence, 0.10, 0.15, "seed 003, eq 13")
+        _recommend("ewg_drive.permissible_safety", self.permissible_safety, 1.3, 1.5, "seed 003, eq 12")
+
+    @property
+    def reference_diameter_mm(self) -> float:
+        return self.module_mm * self.flexspline_teeth
+
+    @property
+    def rim_thickness_mm(self) -> float:
+        return self.rim_thickness_ratio * self.reference_diameter_mm
+
+
+@dataclass(frozen=True)
+class CrackGeometry:
+    slot_width_mm: float
+    shaft_axial_position_ratio: float
+    shaft_arc_deg: float
+    flexspline_tooth_index: int
+    flexspline_axial_position_ratio: float
+
+    def __post_init__(self):
+        _positive("crack_geometry.slot_width_mm", self.slot_width_mm)
+        _in_open("crack_geometry.shaft_axial_position_ratio", self.shaft_axial_position_ratio, 0.0, 1.0)
+        if not 0.0 < self.shaft_arc_deg <= 360.0:
+            raise InputError("crack_geometry.shaft_arc_deg", self.shaft_arc_deg, "must lie in (0, 360]")
+        if self.flexspline_tooth_index < 0:
+            raise InputError("crack_geometry.flexspline_tooth_index", self.flexspline_tooth_index, "must be >= 0")
+        _in_open("crack_geometry.flexspline_axial_position_ratio", self.flexspline_axial_position_ratio, 0.0, 1.0)
+
+
+@dataclass(frozen=True)
+class Params:
+    material: Material
+    gear: Gear
+    flexspline_cup: FlexsplineCup
+    output_shaft: OutputShaft
+    wave_generator: WaveGenerator
+    cracks: Cracks
+    ewg_drive: EwgDrive
+    crack_geometry: CrackGeometry
+
+    def __post_init__(self):
+        # Checks that need two sections: a crack must fit inside the wall it cuts.
+        a = self.cracks.depth_mm
+        walls = {
+            "output_shaft wall (outer - inner)/2": self.output_shaft.wall_mm,
+            "flexspline_cup.wall_thickness_mm": self.flexspline_cup.wall_thickness_mm,
+            "wave_generator.bearing_inner_ring_thickness_mm": self.wave_generator.bearing_inner_ring_thickness_mm,
+        }
+        for name, wall in walls.items():
+            if a >= wall:
+                raise InputError("cracks.depth_mm", a, f"must be < {name} = {wall:g} mm")
+        if self.crack_geometry.slot_width_mm > a / 5:
+            raise InputError("crack_geometry.slot_width_mm", self.crack_geometry.slot_width_mm,
+                             f"must be <= cracks.depth_mm/5 = {a / 5:g} mm (a slot, not a notch)")
+        if self.crack_geometry.flexspline_tooth_index >= self.flexspline_cup.teeth:
+            raise InputError("crack_geometry.flexspline_tooth_index", self.crack_geometry.flexspline_tooth_index,
+                             f"must be < flexspline_cup.teeth = {self.flexspline_cup.teeth}")
+
+    # Modifiers return copies (the dataclasses are frozen).
+    def with_value(self, dotted_key: str, value: object) -> "Params":
+        """A copy with one dotted key (``section.key``) replaced, validated like a file value."""
+        return params_from_dict(_set_dotted(self.to_dict(), dotted_key, value))
+
+    def to_dict(self) -> dict:
+        """Plain TOML-like dict (enums as their strings, tuples as lists)."""
+        out = {}
+        for f in dataclasses.fields(self):
+            section = getattr(self, f.name)
+            out[f.name] = {k.name: _plain(getattr(section, k.name)) for k in dataclasses.fields(section)}
+        return out
+
+
+def _plain(value):
+    if isinstance(value, enum.Enum):
+        return value.value
+    if isinstance(value, tuple):
+        return list(value)
+    return value
+
+
+def _set_dotted(data: dict, dotted_key: str, value: object) -> dict:
+    section, _, key = dotted_key.partition(".")
+    if section not in data or not key:
+        raise InputError(dotted_key, value, f"unknown key; sections are {', '.join(data)}")
+    if key not in data[section]:
+        raise InputError(dotted_key, value, f"unknown key; {section} has {', '.join(data[section])}")
+    new = {s: dict(v) for s, v in data.items()}
+    new[section][key] = value
+    return new
+
+
+_SECTIONS = {f.name: f.type for f in dataclasses.fields(Params)}
+
+
+def _coerce(key: str, value: object, annotation: object):
+    """Check one TOML value against the field's annotation and convert it."""
+    if isinstance(annotation, type) and issubclass(annotation, enum.Enum):
+        allowed = [m.value for m in annotation]
+        if value not in allowed:
+            raise InputError(key, value, f"must be one of {', '.join(map(repr, allowed))}")
+        return annotation(value)
+    if annotation is bool:
+        if not isinstance(value, bool):
+            raise InputError(key, value, "must be true or false")
+        return value
+    if annotation is int:
+        if isinstance(value, float) and value.is_integer():
+            value = int(value)
+        if isinstance(value, bool) or not isinstance(value, int):
+            raise InputError(key, value, "must be an integer")
+        return value
+    if annotation is float:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise InputError(key, value, "must be a number")
+        value = float(value)
+        if not math.isfinite(value):
+            raise InputError(key, value, "must be a finite number")
+        return value
+    if typing.get_origin(annotation) is tuple:
+        if not isinstance(value, (list, tuple)):
+            raise InputError(key, value, "must be a list of numbers")
+        return tuple(_coerce(key, v, float) for v in value)
+    raise TypeError(f"no coercion for {annotation!r}")  # a schema bug, not user input
+
+
+def params_from_dict(data: dict) -> Params:
+    """Build validated ``Params`` from a complete TOML-like dict."""
+    if not isinstance(data, dict):
+        raise InputError("<file>", type(data).__name__, "must be a TOML table")
+    sections = {}
+    for name, cls in _SECTIONS.items():
+        cls = _resolve(cls)
+        table = data.get(name)
+        if not isinstance(table, dict):
+            raise InputError(name, table, "must be a [section] table")
+        hints = typing.get_type_hints(cls)
+        kwargs = {}
+        for f in dataclasses.fields(cls):
+            if f.name not in table:
+                raise InputError(f"{name}.{f.name}", None, "missing")
+            kwargs[f.name] = _coerce(f"{name}.{f.name}", table[f.name], hints[f.name])
+        sections[name] = cls(**kwargs)
+    return Params(**sections)
+
+
+def _resolve(cls):
+    return typing.get_type_hints(Params)[cls] if isinstance(cls, str) else cls
+
+
+def default_dict() -> dict:
+    text = resources.files("strainwave").joinpath("data/defaults.toml").read_text(encoding="utf-8")
+    return tomllib.loads(text)
+
+
+def merge_overrides(base: dict, overrides: dict, source: str = "params") -> dict:
+    """Deep-merge a partial user table into the defaults, refusing unknown sections and keys."""
+    merged = {s: dict(v) for s, v in base.items()}
+    if not isinstance(overrides, dict):
+        raise InputError(source, overrides, "must be a TOML table of [sections]")
+    for section, table in overrides.items():
+        if section not in merged:
+            raise InputError(f"[{section}]", "section", f"unknown section; allowed: {', '.join(merged)}")
+        if not isinstance(table, dict):
+            raise InputError(section, table, "must be a [section] table")
+        for key, value in table.items():
+            if key not in merged[section]:
+                raise InputError(f"{section}.{key}", value,
+                                 f"unknown key; {section} has {', '.join(merged[section])}")
+            merged[section][key] = value
+    return merged
+
+
+def read_toml(path: Path) -> dict:
+    try:
+        raw = Path(path).read_bytes()
+    except OSError as exc:
+        raise InputError("--params", str(path), f"cannot read file ({exc.strerror})") from None
+    try:
+        return tomllib.loads(raw.decode("utf-8-sig"))
+    except UnicodeDecodeError:
+        raise InputError("--params", str(path), "must be a UTF-8 TOML text file") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"{path}", "malformed TOML", str(exc)) from None
+
+
+def load_params(path: Path | str | None = None, overrides: dict | None = None) -> Params:
+    """The embedded default, updated by an optional partial TOML file and an optional dict."""
+    data = default_dict()
+    if path is not None:
+        data = merge_overrides(data, read_toml(Path(path)), str(path))
+    if overrides:
+        data = merge_overrides(data, overrides)
+    return params_from_dict(data)
