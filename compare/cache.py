@@ -23,8 +23,8 @@ def code_version() -> str:
     digest = hashlib.sha256()
     for package in (strainwave, analytic, compare, fea, geometry):
         root = Path(package.__file__).parent
-        for path in sorted(root.glob("*.py")) + sorted(root.glob("data/*.toml")):
-            digest.update(path.name.encode())
+        for path in sorted(root.rglob("*.py")) + sorted(root.glob("data/*.toml")):
+            digest.update(str(path.relative_to(root)).encode())
             digest.update(path.read_bytes())
     return digest.hexdigest()[:16]
 
