@@ -52,8 +52,9 @@ def _write_json(data: dict, out: Path | None) -> None:
 # ---- subcommands: each is a thin layer over one library function -------------------------------
 
 def _cmd_analytic(args) -> int:
+    params = _params(args)
     from .analytic.summary import analytic_summary, format_summary
-    summary = analytic_summary(_params(args))
+    summary = analytic_summary(params)
     if args.json:
         print(json.dumps(summary, indent=2))
     else:
@@ -173,7 +174,7 @@ def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     debug = "--debug" in argv
     with warnings.catch_warnings():
-        warnings.simplefilter("always", RangeWarning)
+        warnings.simplefilter("default", RangeWarning)  # each distinct warning once
         warnings.showwarning = lambda msg, cat, *a, **k: print(f"warning: {msg}", file=sys.stderr)
         try:
             args = build_parser().parse_args(argv)

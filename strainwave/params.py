@@ -297,9 +297,6 @@ def _set_dotted(data: dict, dotted_key: str, value: object) -> dict:
     return new
 
 
-_SECTIONS = {f.name: f.type for f in dataclasses.fields(Params)}
-
-
 def _coerce(key: str, value: object, annotation: object):
     """Check one TOML value against the field's annotation and convert it."""
     if isinstance(annotation, type) and issubclass(annotation, enum.Enum):
@@ -336,8 +333,7 @@ def params_from_dict(data: dict) -> Params:
     if not isinstance(data, dict):
         raise InputError("<file>", type(data).__name__, "must be a TOML table")
     sections = {}
-    for name, cls in _SECTIONS.items():
-        cls = _resolve(cls)
+    for name, cls in typing.get_type_hints(Params).items():
         table = data.get(name)
         if not isinstance(table, dict):
             raise InputError(name, table, "must be a [section] table")
@@ -349,10 +345,6 @@ def params_from_dict(data: dict) -> Params:
             kwargs[f.name] = _coerce(f"{name}.{f.name}", table[f.name], hints[f.name])
         sections[name] = cls(**kwargs)
     return Params(**sections)
-
-
-def _resolve(cls):
-    return typing.get_type_hints(Params)[cls] if isinstance(cls, str) else cls
 
 
 def default_dict() -> dict:
