@@ -1,0 +1,46 @@
+"""The GCI machinery on sequences whose exact limit and order are known."""
+import math
+
+import pytest
+
+from strainwave.fea.convergence import grid_convergence
+
+
+@pytest.mark.parametrize("p_true,ratios", [(2.0, (2.0, 2.0)), (3.0, (1.5, 1.5)), (2.0, (1.3, 1.7)), (1.0, (2.0, 1.4))])
+def test_recovers_order_and_limit_of_a_power_law(p_true, ratios):
+    f_exact, c = 1.2345, 0.37
+    h1 = 0.1
+    hs = [h1, h1 * ratios[0], h1 * ratios[0] * ratios[1]]
+    values = [f_exact + c * h ** p_true for h in hs]
+    conv = grid_convergence(hs, values)
+    # An exact power law: the implicit order equation is solved to its iteration tolerance (1e-10).
+    assert conv.observed_order == pytest.approx(p_true, rel=1e-8)
+    assert conv.extrapolated == pytest.approx(f_exact, rel=1e-9)
+    assert conv.monotone
+    # GCI = 1.25 |e21| / (r^p - 1): here that is 1.25 times the true error of the finest value.
+    true_rel_error = abs(values[0] - f_exact) / abs(values[0])
+    assert conv.gci_fine == pytest.approx(1.25 * true_rel_error, rel=1e-6)
+
+
+def test_order_independent_of_input_order():
+    hs, values = [0.4, 0.1, 0.2], [1.16, 1.01, 1.04]
+    a = grid_convergence(hs, values)
+    b = grid_convergence(sorted(hs), [1.01, 1.04, 1.16])
+    assert a == b and a.h_mm == (0.1, 0.2, 0.4)
+
+
+def test_oscillatory_sequence_reports_the_spread():
+    conv = grid_convergence([0.1, 0.2, 0.4], [1.00, 1.02, 0.99])
+    assert not conv.monotone
+    # Richardson cannot be trusted when the sign of the change flips: the band covers the spread of all three.
+    assert conv.gci_fine >= 1.25 * 0.03 - 1e-12
+
+
+def test_identical_fine_values_mean_no_resolvable_error():
+    conv = grid_convergence([0.1, 0.2, 0.4], [2.0, 2.0, 2.1])
+    assert conv.gci_fine == 0.0 and math.isinf(conv.observed_order)
+
+
+def test_needs_three_distinct_sizes():
+    with pytest.raises(ValueError):
+        grid_convergence([0.1, 0.1, 0.2], [1.0, 1.1, 1.2])
