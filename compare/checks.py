@@ -1,0 +1,124 @@
+"""Check records: one FEA number confronted with the published and corrected closed forms.
+
+A check asserts agreement with ONE named variant (usually ``corrected``); the other variant is
+reported with its relative error so the verdict can say which one the FEA supports. A check that
+cannot be evaluated (study missing or failed, closed form missing) is reported as such and does not
+pass: a number that was not computed is never replaced by a guess.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+VARIANTS = ("published", "corrected")
+
+
+@dataclass(frozen=True)
+class Tolerance:
+    """Relative tolerance on |fea/analytic - 1| and the reason it has that size."""
+
+    relative: float
+    reason: str
+
+    def to_dict(self) -> dict:
+        return {"relative": _finite_or_none(self.relative), "reason": self.reason}
+
+
+def fea_tolerance(fea: float | None, fea_uncertainty: float | None, *, allowances: dict[str, float],
+                  gci_factor: float = 3.0) -> Tolerance:
+    """Tolerance = ``gci_factor`` x relative FEA uncertainty + named modelling allowances.
+
+    Each allowance is a relative size with the reason as its key, e.g.
+    ``{"mu = 8e4 vs E/2(1+nu) = 80769 (seed 000, audit 18)": 0.0096}``.
+    """
+    rel_u = 0.0
+    if fea not in (None, 0.0) and fea_uncertainty is not None and math.isfinite(fea_uncertainty):
+        rel_u = abs(fea_uncertainty / fea)
+    total = gci_factor * rel_u + sum(allowances.values())
+    parts = [f"{gci_factor:g} x GCI ({100 * rel_u:.3g} %)"]
+    parts += [f"{100 * v:.3g} % {why}" for why, v in allowances.items()]
+    return Tolerance(total, " + ".join(parts))
+
+
+@dataclass(frozen=True)
+class Check:
+    id: str
+    quantity: str
+    unit: str
+    fea: float | None
+    fea_uncertainty: float | None
+    analytic: dict[str, float]                   # variant -> value (published / corrected where both exist)
+    asserts: str                                 # the variant the check requires agreement with
+    tolerance: Tolerance
+    rel_error: dict[str, float] = field(default_factory=dict)
+    verdict: str = "not evaluated"               # published | corrected | both | neither | not evaluated
+    passed: bool = False
+    note: str = ""                               # what is FEA, what is analytic, caveats
+    sources: dict[str, str] = field(default_factory=dict)   # ingredient -> "FEA ..." / "analytic ..."
+    reason_not_evaluated: str = ""
+
+    @property
+    def component(self) -> str:
+        return self.id.split(".", 1)[0]
+
+    def to_dict(self) -> dict:
+        return {"id": self.id, "component": self.component, "quantity": self.quantity, "unit": self.unit,
+                "fea": _finite_or_none(self.fea), "fea_uncertainty": _finite_or_none(self.fea_uncertainty),
+                "analytic": {k: _finite_or_none(v) for k, v in self.analytic.items()},
+                "asserts": self.asserts,
+                "rel_error": {k: _finite_or_none(v) for k, v in self.rel_error.items()},
+                "tolerance": self.tolerance.to_dict(), "verdict": self.verdict, "passed": self.passed,
+                "note": self.note, "sources": dict(self.sources),
+                "reason_not_evaluated": self.reason_not_evaluated}
+
+
+def _finite_or_none(value):
+    if value is None:
+        return None
+    value = float(value)
+    return value if math.isfinite(value) else None
+
+
+def relative_error(fea: float, reference: float) -> float:
+    """(fea - reference) / |reference|; signed so the report shows which side FEA lies on."""
+    if reference == 0.0:
+        return math.inf if fea != 0.0 else 0.0
+    return (fea - reference) / abs(reference)
+
+
+def verdict_of(rel_error: dict[str, float], tolerance: float) -> str:
+    """Which variant the FEA supports: the one(s) inside the tolerance, else ``neither``."""
+    inside = [v for v in VARIANTS if v in rel_error and abs(rel_error[v]) <= tolerance]
+    if len(inside) == 2:
+        return "both"
+    return inside[0] if inside else "neither"
+
+
+def evaluate(check: Check) -> Check:
+    """Fill ``rel_error``, ``verdict`` and ``passed`` of a check whose inputs are set."""
+    if check.fea is None or not math.isfinite(check.fea):
+        return replace(check, verdict="not evaluated", passed=False,
+                       reason_not_evaluated=check.reason_not_evaluated or "no FEA value")
+    analytic = {k: v for k, v in check.analytic.items() if v is not None and math.isfinite(v)}
+    if check.asserts not in analytic:
+        return replace(check, verdict="not evaluated", passed=False,
+                       reason_not_evaluated=check.reason_not_evaluated or f"no {check.asserts} closed form")
+    errors = {k: relative_error(check.fea, v) for k, v in analytic.items()}
+    verdict = verdict_of(errors, check.tolerance.relative)
+    passed = abs(errors[check.asserts]) <= check.tolerance.relative
+    return replace(check, rel_error=errors, verdict=verdict, passed=passed, reason_not_evaluated="")
+
+
+def not_evaluated(check_id: str, quantity: str, unit: str, why: str, *, analytic: dict | None = None,
+                  asserts: str = "corrected") -> Check:
+    """A required check whose inputs do not exist; it is listed and counted as failed."""
+    return Check(check_id, quantity, unit, None, None, dict(analytic or {}), asserts,
+                 Tolerance(math.nan, "not evaluated"), verdict="not evaluated", passed=False,
+                 reason_not_evaluated=why)
+
+
+REQUIRED_IDS = (
+    "shaft.flexibility", "shaft.crack_compliance", "cup.flexibility", "cup.crack_compliance",
+    "bearing.radial_compliance", "bearing.crack_compliance", "ring.delta_cd", "ring.delta_ab",
+    "ring.sigma_max", "ring.sigma_min", "ring.tooth_influence", "ring.stress_concentration", "gear.stiffness",
+)

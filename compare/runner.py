@@ -1,0 +1,96 @@
+"""Run the FEA cases of a validation, reusing finished ones from the result cache.
+
+Each case is one ``run_study`` call. A finished case is stored as ``StudyResult.to_dict()`` under a
+key of (study, crack depth, quick, order, parameters, code version); a rerun rebuilds the result
+from it as long as the VTU files it names still exist. A case that fails is recorded with the stage
+and message, never dropped: the checks that needed it say why they were not evaluated.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+from ..fea.convergence import Convergence
+from ..fea.result import MeshQuality, Quantity, StudyResult
+from .cache import ResultCache, case_key
+
+
+@dataclass(frozen=True)
+class Case:
+    """One FEA study run: ``label`` names it in the report and in ``fields/<label>.vtu``."""
+
+    label: str
+    study: str
+    crack_depth_mm: float | None = None
+
+    def payload(self, params, quick: bool, order: int) -> dict:
+        return {"study": self.study, "crack_depth_mm": self.crack_depth_mm, "quick": quick, "order": order,
+                "params": params.to_dict()}
+
+
+@dataclass(frozen=True)
+class CaseOutcome:
+    case: Case
+    result: StudyResult | None
+    seconds: float          # wall time of the computation (of the original run when cached)
+    cached: bool
+    error: str = ""
+
+    @property
+    def ok(self) -> bool:
+        return self.result is not None
+
+
+def study_from_dict(data: dict) -> StudyResult:
+    """Inverse of ``StudyResult.to_dict`` (for cached cases)."""
+    quantities = {}
+    for name, q in data["quantities"].items():
+        conv = q.get("convergence")
+        convergence = None if conv is None else Convergence(
+            tuple(conv["h_mm"]), tuple(conv["values"]), conv["observed_order"], conv["extrapolated"],
+            conv["gci_fine"], conv["monotone"])
+        quantities[name] = Quantity(q["name"], q["value"], q["unit"], convergence)
+    mesh = MeshQuality(**data["mesh"])
+    return StudyResult(data["study"], quantities, mesh, dict(data.get("timings_s", {})),
+                       tuple(Path(p) for p in data.get("fields", [])), dict(data.get("meta", {})))
+
+
+def _describe(case: Case) -> str:
+    depth = "" if case.crack_depth_mm is None else f", crack {case.crack_depth_mm:g} mm"
+    return f"{case.study}{depth}"
+
+
+def run_case(case: Case, params, *, fields_dir: Path, cache: ResultCache, quick: bool, order: int = 2,
+             progress: Callable[[str], None]) -> CaseOutcome:
+    """Solve one case, or reuse it from the cache (and say so)."""
+    from ..fea.studies import run_study
+
+    key = case_key("validate-case", case.payload(params, quick, order))
+    hit = cache.get(key)
+    if hit is not None:
+        try:
+            result = study_from_dict(hit["result"])
+            if all(Path(p).exists() for p in result.fields):
+                progress(f"  {case.label}: reusing cached {_describe(case)} (computed in {hit['seconds']:.1f} s)")
+                return CaseOutcome(case, result, float(hit["seconds"]), True)
+        except (KeyError, TypeError, ValueError):
+            pass  # an entry from an older layout is recomputed
+    progress(f"  {case.label}: solving {_describe(case)} ...")
+    start = time.perf_counter()
+    try:
+        result = run_study(case.study, params, mesh_size_mm=None, order=order, crack_depth_mm=case.crack_depth_mm,
+                           vtu=Path(fields_dir) / f"{case.label}.vtu", quick=quick,
+                           progress=lambda msg: progress(f"    {msg}"))
+    except Exception as exc:  # noqa: BLE001
+        # One failed study (mesher, solver, or a module not yet there) must not hide the others:
+        # it is recorded with its message and every check that needed it is reported as failed.
+        seconds = time.perf_counter() - start
+        message = f"{type(exc).__name__}: {exc}"
+        progress(f"  {case.label}: FAILED after {seconds:.1f} s ({message})")
+        return CaseOutcome(case, None, seconds, False, message)
+    seconds = time.perf_counter() - start
+    cache.put(key, {"case": case.label, "seconds": seconds, "result": result.to_dict()})
+    progress(f"  {case.label}: done in {seconds:.1f} s ({result.mesh.dofs} dofs)")
+    return CaseOutcome(case, result, seconds, False)
