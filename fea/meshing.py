@@ -1,0 +1,270 @@
+"""Mesh build123d parts (3D) and plane sections (2D) with gmsh inside a session.
+
+The solid is handed over as BREP (unitless, so millimetres stay millimetres) and imported with OCC;
+named faces from ``geometry/`` are matched to gmsh surfaces by centre of mass and area and become
+physical groups. Quadratic meshes keep gmsh's geometry-following mid nodes (``Mesh.SecondOrderLinear``
+= 0): on the hollow shaft, curved P2 reaches -0.0014 % twist error where straight P2 needs far more dofs.
+"""
+from __future__ import annotations
+
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable, Mapping, Sequence
+
+import numpy as np
+
+from .mesh_data import MeshData
+from .result import MeshQuality
+
+# gmsh element type ids
+_CELL_TYPES = {(3, 1): 4, (3, 2): 11, (2, 1): 2, (2, 2): 9}
+_FACET_TYPES = {(3, 1): 2, (3, 2): 9, (2, 1): 1, (2, 2): 8}
+
+
+class MeshingFailed(RuntimeError):
+    """gmsh could not import, match or mesh the geometry; studies turn it into a StageError."""
+
+
+@dataclass(frozen=True)
+class Refine:
+    """Local size: ``size_mm`` within ``dist_min_mm`` of the targets, growing to the global size at
+    ``dist_max_mm`` (gmsh Distance + Threshold fields). Targets: points and/or named groups."""
+
+    size_mm: float
+    dist_min_mm: float
+    dist_max_mm: float
+    points_mm: tuple[tuple[float, float, float], ...] = ()
+    groups: tuple[str, ...] = ()
+
+
+def _export_brep(shape, path: Path) -> None:
+    if hasattr(shape, "wrapped"):
+        import build123d as bd
+        if not bd.export_brep(shape, str(path)):
+            raise MeshingFailed("BREP export of the build123d shape failed")
+    else:  # a bare OCP TopoDS_Shape
+        from OCP.BRepTools import BRepTools
+        BRepTools.Write_s(shape, str(path))
+
+
+def _import_shape(model, shape) -> None:
+    with tempfile.TemporaryDirectory(prefix="strainwave-brep-") as tmp:
+        path = Path(tmp) / "shape.brep"
+        _export_brep(shape, path)
+        model.occ.importShapes(str(path), highestDimOnly=False)
+    model.occ.synchronize()
+
+
+def _match(model, dim: int, refs, tol_mm: float, rel_tol: float = 1e-3) -> list[int]:
+    """Entity tags of dimension ``dim`` whose centre of mass and measure match ``refs``.
+
+    A ref is a FaceRef (centre, area or length) or a callable taking the entity centre (3,) -> bool."""
+    tags = []
+    entities = [(t, np.array(model.occ.getCenterOfMass(dim, t)), model.occ.getMass(dim, t))
+                for _, t in model.getEntities(dim)]
+    if callable(refs):
+        return [t for t, c, _ in entities if refs(c)]
+    for ref in refs:
+        c_ref = np.asarray(ref.center_mm, float)
+        hits = [t for t, c, m in entities
+                if np.linalg.norm(c - c_ref) <= tol_mm and abs(m - ref.area_mm2) <= rel_tol * max(ref.area_mm2, 1e-12)]
+        if not hits:
+            best = min(entities, key=lambda e: np.linalg.norm(e[1] - c_ref))
+            raise MeshingFailed(f"no gmsh entity (dim {dim}) matches centre {tuple(c_ref)} measure {ref.area_mm2:g}; "
+                                f"nearest: centre {tuple(np.round(best[1], 4))} measure {best[2]:g}")
+        tags.extend(hits)
+    return sorted(set(tags))
+
+
+def _size_fields(model, size_mm: float, refine: Sequence[Refine], group_tags: Mapping[str, list[int]],
+                 dim: int) -> None:
+    thresholds = []
+    for r in refine:
+        fd = model.mesh.field.add("Distance")
+        if r.points_mm:
+            pts = [model.occ.addPoint(*p) for p in r.points_mm]
+            model.occ.synchronize()
+            model.mesh.field.setNumbers(fd, "PointsList", pts)
+            # the curves through the points (crack-front edges) refine along their whole length
+            near = []
+            for _, c in model.getEntities(1):
+                d = min(np.linalg.norm(np.array(model.getClosestPoint(1, c, p)[0]) - p) for p in r.points_mm)
+                if d <= 0.5 * r.size_mm:
+                    near.append(c)
+            if near:
+                model.mesh.field.setNumbers(fd, "CurvesList", near)
+                model.mesh.field.setNumber(fd, "Sampling", 100)
+        tags = [t for g in r.groups for t in group_tags[g]]
+        if tags:
+            model.mesh.field.setNumbers(fd, "SurfacesList" if dim == 3 else "CurvesList", tags)
+        ft = model.mesh.field.add("Threshold")
+        model.mesh.field.setNumber(ft, "InField", fd)
+        model.mesh.field.setNumber(ft, "SizeMin", r.size_mm)
+        model.mesh.field.setNumber(ft, "SizeMax", size_mm)
+        model.mesh.field.setNumber(ft, "DistMin", r.dist_min_mm)
+        model.mesh.field.setNumber(ft, "DistMax", r.dist_max_mm)
+        thresholds.append(ft)
+    if thresholds:
+        fm = model.mesh.field.add("Min")
+        model.mesh.field.setNumbers(fm, "FieldsList", thresholds)
+        model.mesh.field.setAsBackgroundMesh(fm)
+        import gmsh
+        gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
+        gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
+
+
+def _options(size_mm: float) -> None:
+    import gmsh
+    gmsh.option.setNumber("Mesh.MeshSizeMax", size_mm)
+    gmsh.option.setNumber("Mesh.MeshSizeMin", 0.0)
+    gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)     # mid nodes on the true geometry
+    gmsh.option.setNumber("Mesh.Algorithm", 6)             # Frontal-Delaunay 2D
+    gmsh.option.setNumber("Mesh.Algorithm3D", 1)           # Delaunay: deterministic in one thread
+    gmsh.option.setNumber("Mesh.Optimize", 1)
+
+
+def _generate(model, dim: int, order: int) -> None:
+    import gmsh
+    model.mesh.generate(dim)
+    if order == 2:
+        model.mesh.setOrder(2)
+        types, tags, _ = model.mesh.getElements(dim)
+        q = gmsh.model.mesh.getElementQualities(np.concatenate(tags), "minSJ")
+        if q.min() <= 0.0:  # curved mid nodes inverted an element: let gmsh untangle them
+            gmsh.option.setNumber("Mesh.HighOrderOptimize", 2)
+            model.mesh.optimize("HighOrder")
+
+
+def _extract(model, dim: int, order: int, group_tags: Mapping[str, tuple[int, list[int]]], h_mm: float) -> MeshData:
+    import gmsh
+    node_tags, coords, _ = model.mesh.getNodes()
+    coords = coords.reshape(-1, 3)
+    tag_to_row = np.full(int(node_tags.max()) + 1, -1, dtype=np.int64)
+    tag_to_row[node_tags] = np.arange(node_tags.size)
+    etypes, etags, enodes = model.mesh.getElements(dim)
+    want = _CELL_TYPES[(dim, order)]
+    if want not in list(etypes):
+        raise MeshingFailed(f"gmsh produced no {dim}D elements of order {order} (types {list(etypes)})")
+    k = list(etypes).index(want)
+    cell_tags = etags[k]
+    cells = tag_to_row[enodes[k]].reshape(cell_tags.size, -1)
+    used = np.unique(cells)
+    compact = np.full(node_tags.size, -1, dtype=np.int64)
+    compact[used] = np.arange(used.size)
+    cells = compact[cells]
+    groups = {}
+    for name, (gdim, tags) in group_tags.items():
+        blocks = []
+        for t in tags:
+            ft, _, fn = model.mesh.getElements(gdim, t)
+            for typ, nodes in zip(ft, fn):
+                n_per = gmsh.model.mesh.getElementProperties(typ)[3]
+                blocks.append(compact[tag_to_row[nodes]].reshape(-1, n_per))
+        if blocks:
+            arr = np.vstack(blocks) if len({b.shape[1] for b in blocks}) == 1 else np.vstack([b[:, :1] for b in blocks])
+            if (arr < 0).any():
+                raise MeshingFailed(f"group {name!r} has nodes outside the {dim}D mesh")
+            groups[name] = arr
+    q = gmsh.model.mesh.getElementQualities(cell_tags, "minSICN")
+    quality = MeshQuality(elements=int(cell_tags.size), nodes=int(used.size), dofs=int(used.size * dim),
+                          order=order, min_quality=float(q.min()), mean_quality=float(q.mean()))
+    nodes = coords[used]
+    return MeshData(nodes_mm=nodes, cells=cells, dim=dim, order=order, groups=groups, quality=quality, h_mm=h_mm)
+
+
+def mesh_part(model, part, *, size_mm: float, order: int = 2, refine: Sequence[Refine] | None = None,
+              match_tol_mm: float | None = None) -> MeshData:
+    """Tetrahedral mesh of ``part.solid`` with one physical group per entry of ``part.named_faces``.
+
+    Parameters
+    ----------
+    model : the ``gmsh.model`` yielded by ``gmsh_session``.
+    part : ``geometry.part.Part`` (solid in mm, named faces as FaceRef tuples).
+    size_mm : global element size; ``refine`` adds local sizes (crack front points, named faces).
+    order : 1 (straight P1) or 2 (curved P2).
+    """
+    _import_shape(model, part.solid)
+    if not model.getEntities(3):
+        raise MeshingFailed(f"{part.name}: the BREP holds no volume")
+    bbox = np.array(model.getBoundingBox(-1, -1))
+    tol = match_tol_mm if match_tol_mm is not None else 1e-4 * np.linalg.norm(bbox[3:] - bbox[:3]) + 1e-6
+    group_tags = {}
+    for name, refs in part.named_faces.items():
+        tags = _match(model, 2, refs, tol)
+        model.addPhysicalGroup(2, tags, name=name)
+        group_tags[name] = tags
+    model.addPhysicalGroup(3, [t for _, t in model.getEntities(3)], name="solid")
+    _options(size_mm)
+    _size_fields(model, size_mm, refine or (), group_tags, 3)
+    try:
+        _generate(model, 3, order)
+    except Exception as exc:  # gmsh raises plain Exception with its log message
+        raise MeshingFailed(f"gmsh meshing failed: {exc}") from exc
+    return _extract(model, 3, order, {n: (2, t) for n, t in group_tags.items()}, size_mm)
+
+
+def _surface_from_loops(model, loops: Sequence[np.ndarray]) -> int:
+    curve_loops = []
+    for loop in loops:
+        loop = np.asarray(loop, float)
+        pts = [model.occ.addPoint(x, y, 0.0) for x, y in loop[:, :2]]
+        lines = [model.occ.addLine(pts[i], pts[(i + 1) % len(pts)]) for i in range(len(pts))]
+        curve_loops.append(model.occ.addCurveLoop(lines))
+    return model.occ.addPlaneSurface(curve_loops)
+
+
+def mesh_section(model, face=None, *, loops: Sequence[np.ndarray] | None = None, size_mm: float, order: int = 2,
+                 named_edges: Mapping[str, object] | None = None,
+                 named_points: Mapping[str, Sequence[tuple[float, float]]] | None = None,
+                 refine: Sequence[Refine] | None = None, match_tol_mm: float | None = None) -> MeshData:
+    """Triangle mesh of a plane section in the xy plane (plane stress / strain problems).
+
+    Parameters
+    ----------
+    face : a build123d Face (exact curves, so P2 nodes follow circles), or None to use ``loops``.
+    loops : polylines (n, 2); the first is the outer boundary, the others holes.
+    named_edges : name -> tuple of FaceRef (centre, LENGTH in ``area_mm2``) or a predicate on the edge's
+        centre of mass (3,) -> bool. Each becomes a group of boundary edges (line2/line3 node rows).
+    named_points : name -> points; each point is fragmented into the geometry (split boundary curves or
+        embedded inside), so a node sits exactly there; the group holds those nodes as (k, 1) rows.
+    """
+    if face is not None:
+        _import_shape(model, face)
+    elif loops:
+        _surface_from_loops(model, loops)
+        model.occ.synchronize()
+    else:
+        raise ValueError("mesh_section needs a face or loops")
+    point_tags = {}
+    if named_points:
+        surfaces = model.getEntities(2)
+        new = {name: [model.occ.addPoint(x, y, 0.0) for x, y in pts] for name, pts in named_points.items()}
+        out, out_map = model.occ.fragment(surfaces, [(0, t) for ts in new.values() for t in ts])
+        model.occ.synchronize()
+        flat = [t for ts in new.values() for t in ts]
+        for name, ts in new.items():
+            point_tags[name] = sorted({dt[1] for t in ts for dt in out_map[len(surfaces) + flat.index(t)]})
+    if not model.getEntities(2):
+        raise MeshingFailed("the section holds no surface")
+    bbox = np.array(model.getBoundingBox(-1, -1))
+    tol = match_tol_mm if match_tol_mm is not None else 1e-4 * np.linalg.norm(bbox[3:] - bbox[:3]) + 1e-6
+    group_tags = {}
+    for name, refs in (named_edges or {}).items():
+        tags = _match(model, 1, refs, tol)
+        if not tags:
+            raise MeshingFailed(f"named edge set {name!r} matches no curve")
+        model.addPhysicalGroup(1, tags, name=name)
+        group_tags[name] = tags
+    for name, tags in point_tags.items():
+        model.addPhysicalGroup(0, tags, name=name)
+    model.addPhysicalGroup(2, [t for _, t in model.getEntities(2)], name="section")
+    _options(size_mm)
+    _size_fields(model, size_mm, refine or (), group_tags, 2)
+    try:
+        _generate(model, 2, order)
+    except Exception as exc:
+        raise MeshingFailed(f"gmsh meshing failed: {exc}") from exc
+    groups = {n: (1, t) for n, t in group_tags.items()}
+    groups.update({n: (0, t) for n, t in point_tags.items()})
+    return _extract(model, 2, order, groups, size_mm)
