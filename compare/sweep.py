@@ -1,0 +1,170 @@
+"""``strainwave sweep``: a parameter sweep of one study on dask.distributed.
+
+Each point is one independent task (``compare/sweep_task.run_point``) submitted with ``client.map`` under
+a key derived from its cache hash. By default the client drives an embedded ``LocalCluster`` of worker
+*processes* (one thread each, ``OMP_NUM_THREADS=1``) sized to the machine; ``scheduler="tcp://host:8786"``
+sends the very same tasks to an existing cluster (whose workers must see the same strainwave sources
+and the output directory). Cached points are read on the driver and never resubmitted, so an
+interrupted sweep resumes where it stopped and a repeated one costs nothing.
+"""
+from __future__ import annotations
+
+import logging
+import os
+import time
+from contextlib import contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable, Iterator
+
+from ..errors import InputError
+from ..params import load_params
+from .cache import ResultCache
+from .sweep_grid import build_points
+from .sweep_outputs import plot_sweep, records_frame, departures, write_markdown, write_records, write_table
+from .sweep_task import CRACK_KEY, PointSpec, TaskFn, point_key, run_point, task_name
+
+WORKER_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """What a sweep did and where it wrote it."""
+
+    study: str
+    out_dir: Path
+    n_points: int
+    n_ok: int
+    n_failed: int
+    n_cached: int          # read back from the cache instead of solved
+    workers: int
+    wall_s: float
+    files: tuple[Path, ...]
+    departures: tuple[str, ...]
+
+    def summary(self) -> str:
+        lines = [f"sweep {self.study}: {self.n_points} points, {self.n_ok} ok, {self.n_failed} failed, "
+                 f"{self.n_cached} from cache; {self.workers} workers, {self.wall_s:.1f} s",
+                 *(f"  {line}" for line in self.departures),
+                 f"  wrote {self.out_dir}/ (sweep.parquet, sweep.csv, summary.md, points.json, "
+                 f"{sum(p.suffix == '.png' for p in self.files)} plots)"]
+        return "\n".join(lines)
+
+
+@contextmanager
+def dask_client(scheduler: str | None, workers: int | None) -> Iterator[tuple[object, int]]:
+    """A connected ``distributed.Client`` and its worker count; whatever it started is closed on exit."""
+    from distributed import Client, LocalCluster
+
+    if scheduler:
+        try:
+            client = Client(scheduler, timeout="15s")
+        except (OSError, TimeoutError, ValueError) as exc:
+            raise InputError("--scheduler", scheduler, f"no Dask scheduler answered ({exc})") from None
+        try:
+            yield client, max(1, len(client.scheduler_info().get("workers", {})))
+        finally:
+            client.close()
+        return
+    n = workers or os.cpu_count() or 1
+    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+                           silence_logs=logging.ERROR, env=WORKER_ENV)
+    try:
+        client = Client(cluster)
+        try:
+            yield client, n
+        finally:
+            client.close()
+    finally:
+        cluster.close()
+
+
+def _eta(started: float, computed: int, remaining: int) -> str:
+    if computed == 0:
+        return "time left unknown"
+    return f"~{(time.perf_counter() - started) / computed * remaining:.0f} s left"
+
+
+def _failed(spec: PointSpec, key: str, exc: BaseException, task: TaskFn | None) -> dict:
+    """A point whose task never returned (worker killed, cancelled): recorded, not cached."""
+    return {"status": "failed", "error": f"{type(exc).__name__}: {exc}", "key": key, "study": spec.study,
+            "inputs": spec.inputs, "task": task_name(task), "fea": {}, "analytic": {}, "cached": False}
+
+
+def _compute(client, specs: dict[str, PointSpec], cache_root: Path, task: TaskFn | None,
+             progress: Callable[[str], None], already: int, total: int, counts: dict) -> dict[str, dict]:
+    from distributed import as_completed
+
+    keys = list(specs)
+    futures = client.map(run_point, [specs[k] for k in keys], keys, cache_root=str(cache_root), task=task,
+                         key=[f"strainwave-sweep-{k}" for k in keys])
+    by_future = dict(zip(futures, keys))
+    done: dict[str, dict] = {}
+    started = time.perf_counter()
+    for future in as_completed(futures):
+        key = by_future[future]
+        try:
+            record = future.result()
+        except Exception as exc:  # noqa: BLE001 - a lost worker fails its point, not the sweep
+            record = _failed(specs[key], key, exc, task)
+        done[key] = record
+        counts["failed"] += record["status"] != "ok"
+        progress(f"sweep: {already + len(done)}/{total} points done, {counts['failed']} failed, "
+                 f"{counts['cached']} from cache; {_eta(started, len(done), len(keys) - len(done))}")
+    return done
+
+
+def run_sweep(study: str, *, vary: list[str], params_path: str | Path | None = None,
+              sample_file: str | Path | None = None, scheduler: str | None = None, workers: int | None = None,
+              out_dir: Path = Path("reports/sweep"), quick: bool = False, tolerance: float = 0.05,
+              progress: Callable[[str], None] | None = None, task: TaskFn | None = None) -> Outcome:
+    """Sweep ``study`` over a grid (``vary``) or sample rows (``sample_file``) of dotted parameter keys.
+
+    ``task`` replaces the FEA study by another module-level function ``(study, params, quick) -> dict``
+    (see ``sweep_task.TaskFn``); tests and the benchmark use it to exercise the Dask machinery cheaply.
+    Results are cached in ``out_dir/cache``.
+    """
+    progress = progress or (lambda msg: None)
+    if workers is not None and workers < 1:
+        raise InputError("--workers", workers, "must be an integer >= 1")
+    if not (tolerance > 0 and tolerance < float("inf")):
+        raise InputError("--tolerance", tolerance, "must be a finite relative tolerance > 0, e.g. 0.05")
+    out_dir = Path(out_dir)
+    base = load_params(params_path).to_dict()
+    varied, points = build_points(list(vary), Path(sample_file) if sample_file else None, base)
+    seed_crack = CRACK_KEY in varied
+    specs = [PointSpec(study, tuple(point.items()), base, quick, seed_crack) for point in points]
+    keys = [point_key(spec, task) for spec in specs]
+    cache = ResultCache(out_dir / "cache")
+    started = time.perf_counter()
+
+    by_key: dict[str, dict] = {}
+    for key in keys:
+        hit = cache.get(key)
+        if hit is not None:
+            by_key[key] = {**hit, "cached": True}
+    todo = {key: spec for key, spec in zip(keys, specs) if key not in by_key}
+    counts = {"failed": sum(r["status"] != "ok" for r in by_key.values()), "cached": len(by_key)}
+    progress(f"sweep {study}: {len(points)} points over {', '.join(varied)}; {len(by_key)} cached, "
+             f"{len(todo)} to compute")
+    n_workers = 0
+    if todo:
+        with dask_client(scheduler, workers) as (client, n_workers):
+            progress(f"sweep: {n_workers} Dask workers at {client.scheduler.address}")
+            by_key.update(_compute(client, todo, out_dir / "cache", task, progress, len(by_key), len(points), counts))
+
+    records = [{**by_key[key], "index": index, "inputs": spec.inputs}
+               for index, (key, spec) in enumerate(zip(keys, specs))]
+    frame = records_frame(records, varied)
+    files = [*write_table(frame, out_dir), write_records(records, out_dir),
+             *plot_sweep(frame, varied, out_dir, lines=sample_file is None,
+                        value_label="FEA" if task is None else "task")]
+    wall = time.perf_counter() - started
+    n_ok = sum(r["status"] == "ok" for r in records)
+    header = {"study": study, "points": len(records), "ok": n_ok, "failed": len(records) - n_ok,
+              "from cache": sum(r.get("cached", False) for r in records), "quick meshes": quick,
+              "task": task_name(task), "workers": n_workers or "none needed (all cached)",
+              "wall time": f"{wall:.1f} s", "varied": ", ".join(varied)}
+    files.append(write_markdown(frame, varied, tolerance, header, out_dir))
+    return Outcome(study, out_dir, len(records), n_ok, len(records) - n_ok, header["from cache"], n_workers, wall,
+                   tuple(files), tuple(departures(frame, varied, tolerance)))

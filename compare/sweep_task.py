@@ -1,0 +1,184 @@
+"""One sweep point as one Dask task: parameters -> mesh -> solve -> a record with the closed forms beside it.
+
+A task is pure in its inputs and idempotent: the record is cached on disk under a hash of the full
+parameter table, the study, the mesh level, the task function and the code version
+(``compare/cache.py``), so a rerun or a resumed sweep reads it back instead of solving again.
+Errors are caught per point: the record says ``failed`` with the one-line message and the sweep goes on.
+Deterministic refusals (``StrainwaveError``: geometry refused, mesher or solver failed) are cached like
+results; anything unexpected (a crashed library, memory) is recorded but *not* cached, so a rerun retries it.
+"""
+from __future__ import annotations
+
+import math
+import os
+import socket
+import time
+import warnings
+from dataclasses import dataclass, field
+from datetime import datetime, timezone
+from pathlib import Path
+from typing import Callable
+
+from ..errors import StrainwaveError
+from .cache import ResultCache, case_key
+
+# A task computes the quantities of one point: (study, params, quick) -> a ``StudyResult.to_dict()``-shaped
+# dict (``{"quantities": {name: {"value", "unit", "uncertainty"}}, "mesh": {"dofs": ...} | None}``).
+# The default is the FEA study; run_sweep accepts another one (the seam tests and benchmarks use to
+# exercise the Dask machinery without meshing). It must be a module-level function, so workers can import it.
+TaskFn = Callable[[str, object, bool], dict]
+
+# Which closed form of ``analytic_summary(params)`` (dotted path to a {published, corrected} entry)
+# stands beside each FEA quantity of a study. A quantity missing here gets no analytic column.
+ANALYTIC_KEYS: dict[str, dict[str, str]] = {
+    "shaft-torsion": {
+        "flexibility_rad_per_Nmm": "seed000.lambda_so0",
+        "crack_flexibility_rad_per_Nmm": "seed000.delta_lambda_so",
+    },
+    "cup-torsion": {
+        "flexibility_rad_per_Nmm": "seed000.lambda_f0",
+        "crack_flexibility_rad_per_Nmm": "seed000.delta_lambda_f",
+    },
+    "bearing-ring": {
+        "radial_stiffness_N_per_mm": "seed000.k_g",
+    },
+    "ring-compression": {
+        "deflection_cd_mm": "seed003.delta_cd_mm",
+        "deflection_ab_mm": "seed003.delta_ab_mm",
+    },
+}
+
+# The varied key whose value is the seeded crack: only a sweep over it meshes a crack.
+CRACK_KEY = "cracks.depth_mm"
+
+
+@dataclass(frozen=True)
+class PointSpec:
+    """Everything a worker needs for one point; small and picklable."""
+
+    study: str
+    values: tuple[tuple[str, object], ...]    # the varied dotted keys and their values at this point
+    base: dict = field(hash=False)              # Params.to_dict() of the sweep's base parameters
+    quick: bool = False
+    seed_crack: bool = False                    # mesh a crack of depth cracks.depth_mm
+
+    @property
+    def inputs(self) -> dict:
+        return dict(self.values)
+
+    def merged(self) -> dict:
+        """The full parameter table of this point (not yet validated)."""
+        table = {section: dict(keys) for section, keys in self.base.items()}
+        for dotted, value in self.values:
+            section, _, key = dotted.partition(".")
+            table[section][key] = value
+        return table
+
+
+def task_name(task: TaskFn | None) -> str:
+    """Stable identity of a task function, part of the cache key (an FEA record never answers a probe)."""
+    if task is None:
+        return "fea.run_study"
+    inner = getattr(task, "func", task)   # functools.partial keeps its arguments in the name
+    args = getattr(task, "keywords", None)
+    return f"{inner.__module__}.{inner.__qualname__}" + (f"{sorted(args.items())}" if args else "")
+
+
+def point_key(spec: PointSpec, task: TaskFn | None) -> str:
+    return case_key(f"sweep:{spec.study}", {"params": spec.merged(), "quick": spec.quick,
+                                            "crack": spec.seed_crack, "task": task_name(task)})
+
+
+def fea_task(study: str, params, quick: bool, *, crack_depth_mm: float | None = None) -> dict:
+    """The default task: the FEA study of ``fea/studies.py`` on this point's parameters."""
+    from ..fea.studies import run_study
+    return run_study(study, params, quick=quick, crack_depth_mm=crack_depth_mm).to_dict()
+
+
+def closed_form_probe(study: str, params, quick: bool, *, delay_s: float = 0.0) -> dict:
+    """A cheap, real task for testing the sweep machinery: the hollow-shaft torsional compliance.
+
+    lambda = 32 L / (pi mu (D^4 - d^4)) (Seed 000, lambda_so0, with the bore; see the formula audit).
+    It is *not* an FEA result and is labelled ``probe_`` so it never stands in for one; ``delay_s``
+    stands for the cost of a solve when timing the scheduler. Refuses a crack as deep as the wall,
+    like a real study would.
+    """
+    shaft, mu = params.output_shaft, params.material.shear_modulus_MPa
+    if delay_s:
+        time.sleep(delay_s)
+    compliance = 32.0 * shaft.length_mm / (math.pi * mu * (shaft.outer_diameter_mm ** 4 - shaft.inner_diameter_mm ** 4))
+    return {"quantities": {"probe_shaft_compliance_rad_per_Nmm": {
+        "value": compliance, "unit": "rad/(N mm)", "uncertainty": 0.0}}, "mesh": None}
+
+
+def _lookup(summary: dict, dotted: str) -> dict | None:
+    node = summary
+    for part in dotted.split("."):
+        if not isinstance(node, dict) or part not in node:
+            return None
+        node = node[part]
+    return node if isinstance(node, dict) else None
+
+
+def analytic_beside(study: str, params, names) -> dict:
+    """{quantity: {key, published, corrected}} from ``analytic_summary`` for the FEA quantities ``names``."""
+    table = ANALYTIC_KEYS.get(study, {})
+    wanted = [name for name in names if name in table]
+    if not wanted:
+        return {}
+    from ..analytic.summary import analytic_summary
+    summary = analytic_summary(params)
+    out = {}
+    for name in wanted:
+        entry = _lookup(summary, table[name]) or {}
+        out[name] = {"key": table[name], "published": entry.get("published"), "corrected": entry.get("corrected")}
+    return out
+
+
+def _compute(spec: PointSpec, task: TaskFn | None) -> dict:
+    from ..params import params_from_dict
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        params = params_from_dict(spec.merged())      # InputError here: the point is impossible
+        if task is None:
+            crack = params.cracks.depth_mm if spec.seed_crack else None
+            result = fea_task(spec.study, params, spec.quick, crack_depth_mm=crack)
+        else:
+            result = task(spec.study, params, spec.quick)
+        fea = {name: {"value": q["value"], "unit": q["unit"], "uncertainty": q.get("uncertainty")}
+               for name, q in result["quantities"].items()}
+        analytic = analytic_beside(spec.study, params, fea)
+    mesh = result.get("mesh") or {}
+    return {"status": "ok", "error": None, "fea": fea, "analytic": analytic, "dofs": mesh.get("dofs"),
+            "warnings": sorted({str(w.message) for w in caught})}
+
+
+def run_point(spec: PointSpec, key: str, cache_root: str, task: TaskFn | None = None) -> dict:
+    """Solve one point (or read it back from the cache under ``key``); never raises for a bad point.
+
+    ``key`` is ``point_key(spec, task)`` computed once by the driver: the code version is hashed there,
+    so a worker that started on other sources still writes where the driver will look.
+    """
+    # One BLAS/OpenMP thread per worker process; a remote cluster should also start its workers so.
+    os.environ.setdefault("OMP_NUM_THREADS", "1")
+    cache = ResultCache(Path(cache_root))
+    cached = cache.get(key)
+    if cached is not None:
+        return {**cached, "cached": True}
+    started = time.perf_counter()
+    keep = True
+    try:
+        record = _compute(spec, task)
+    except StrainwaveError as exc:
+        record = {"status": "failed", "error": f"{type(exc).__name__}: {exc}"}
+    except Exception as exc:  # noqa: BLE001 - one bad point must not stop the sweep; recorded, not cached
+        record = {"status": "failed", "error": f"{type(exc).__name__}: {exc}"}
+        keep = False
+    record.update({"key": key, "study": spec.study, "inputs": spec.inputs, "task": task_name(task),
+                   "elapsed_s": time.perf_counter() - started, "host": socket.gethostname(), "pid": os.getpid(),
+                   "computed_at": datetime.now(timezone.utc).isoformat()})
+    record.setdefault("fea", {})
+    record.setdefault("analytic", {})
+    if keep:
+        cache.put(key, record)
+    return {**record, "cached": False}
