@@ -1,0 +1,119 @@
+"""Report plots with matplotlib's Agg backend (no display): convergence, crack sweeps, the ring's mid-layer.
+
+Each function takes plain arrays and writes one PNG through a temporary name.
+"""
+from __future__ import annotations
+
+import io
+from pathlib import Path
+
+import numpy as np
+
+from ..io_atomic import atomic_write_bytes
+from .ring_shape import radial_displacement_mm
+
+
+def _figure(width: float = 7.0, height: float = 4.5):
+    import matplotlib
+
+    matplotlib.use("Agg", force=True)
+    from matplotlib.figure import Figure  # a Figure without pyplot keeps no global state
+
+    fig = Figure(figsize=(width, height), dpi=110)
+    return fig
+
+
+def _save(fig, png: Path) -> Path:
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png", bbox_inches="tight", facecolor="white")
+    return atomic_write_bytes(png, buffer.getvalue())
+
+
+def convergence_plot(png: Path, *, title: str, unit: str, h_mm, values, extrapolated: float,
+                     gci_fine: float, observed_order: float, analytic: dict[str, float] | None = None) -> Path:
+    """Headline value against element size, Richardson value at h = 0, GCI band, closed forms as lines."""
+    fig = _figure()
+    ax = fig.add_subplot(1, 1, 1)
+    h = np.asarray(h_mm, dtype=float)
+    v = np.asarray(values, dtype=float)
+    ax.plot(h, v, "o-", color="tab:blue", label="FEA (three refinements)")
+    ax.plot([0.0], [extrapolated], "s", color="tab:blue", mfc="white",
+            label=f"Richardson extrapolated (p = {observed_order:.2f})")
+    band = abs(gci_fine * v[np.argmin(h)])
+    ax.errorbar([h.min()], [v[np.argmin(h)]], yerr=[band], color="tab:red", capsize=5,
+                label=f"GCI fine = {100 * gci_fine:.3g} %")
+    styles = {"published": ("--", "tab:orange"), "corrected": (":", "tab:green")}
+    for variant, value in (analytic or {}).items():
+        if value is not None and np.isfinite(value):
+            style, color = styles.get(variant, ("-.", "gray"))
+            ax.axhline(value, ls=style, color=color, label=f"{variant} closed form")
+    ax.set_xlim(left=-0.05 * h.max())
+    ax.set_xlabel("element size h (mm)")
+    ax.set_ylabel(unit)
+    ax.set_title(title)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    return _save(fig, png)
+
+
+def crack_sweep_plot(png: Path, *, title: str, unit: str, depths_mm, fea, fea_uncertainty,
+                     curves: dict[str, tuple[np.ndarray, np.ndarray]], fit_label: str = "") -> Path:
+    """delta_lambda(a) on log-log axes: FEA points with error bars against each closed form's curve."""
+    fig = _figure()
+    ax = fig.add_subplot(1, 1, 1)
+    a = np.asarray(depths_mm, dtype=float)
+    y = np.asarray(fea, dtype=float)
+    err = np.nan_to_num(np.asarray(fea_uncertainty, dtype=float))
+    positive = y > 0
+    ax.errorbar(a[positive], y[positive], yerr=np.minimum(err[positive], 0.999 * y[positive]), fmt="o",
+                color="tab:blue", capsize=3, label="FEA" + (f" ({fit_label})" if fit_label else ""))
+    if np.any(~positive):
+        ax.plot(a[~positive], np.full((~positive).sum(), np.nan), "x", color="tab:blue",
+                label=f"FEA <= 0 at {np.count_nonzero(~positive)} depth(s) (unresolved)")
+    styles = {"published": ("--", "tab:orange"), "corrected": ("-", "tab:green")}
+    for name, (xa, ya) in curves.items():
+        style, color = styles.get(name, ("-.", "gray"))
+        ax.plot(xa, ya, style, color=color, label=f"{name} closed form")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("crack depth a (mm)")
+    ax.set_ylabel(unit)
+    ax.set_title(title)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    return _save(fig, png)
+
+
+def ring_midlayer_plot(png: Path, *, r_m_mm: float, theta, u_r_fea, delta_cd_fea: float, delta_ab_fea: float,
+                       delta_cd_analytic: float, delta_ab_analytic: float, load_angle_rad: float) -> Path:
+    """The ring's deformed mid-layer, FEA against the thin-ring shape, radial displacements exaggerated."""
+    u_max = max(np.max(np.abs(u_r_fea)), abs(delta_cd_analytic) / 2, 1e-30)
+    scale = float(10 ** np.floor(np.log10(0.25 * r_m_mm / u_max)))
+    fig = _figure(6.5, 6.5)
+    ax = fig.add_subplot(1, 1, 1)
+    t = np.linspace(0, 2 * np.pi, 721)
+    ax.plot(r_m_mm * np.cos(t), r_m_mm * np.sin(t), color="lightgray", lw=1, label="undeformed mid-layer")
+    r_an = r_m_mm + scale * radial_displacement_mm(t, delta_cd_analytic, load_angle_rad)
+    ax.plot(r_an * np.cos(t), r_an * np.sin(t), "--", color="tab:green",
+            label=f"thin ring (eqs 3-4): dCD {delta_cd_analytic:.4g}, dAB {delta_ab_analytic:.4g} mm")
+    order = np.argsort(theta)
+    th = np.append(np.asarray(theta)[order], np.asarray(theta)[order][0] + 2 * np.pi)
+    ur = np.append(np.asarray(u_r_fea)[order], np.asarray(u_r_fea)[order][0])
+    r_fea = r_m_mm + scale * ur
+    ax.plot(r_fea * np.cos(th), r_fea * np.sin(th), color="tab:blue",
+            label=f"FEA: dCD {delta_cd_fea:.4g}, dAB {delta_ab_fea:.4g} mm")
+    for angle, name in ((load_angle_rad, "D"), (load_angle_rad + np.pi, "C"),
+                        (load_angle_rad + np.pi / 2, "A"), (load_angle_rad - np.pi / 2, "B")):
+        ax.annotate(name, (1.12 * r_m_mm * np.cos(angle), 1.12 * r_m_mm * np.sin(angle)), ha="center",
+                    va="center", fontsize=12, fontweight="bold")
+    for angle in (load_angle_rad, load_angle_rad + np.pi / 2):
+        ax.plot([-r_m_mm * np.cos(angle), r_m_mm * np.cos(angle)], [-r_m_mm * np.sin(angle),
+                r_m_mm * np.sin(angle)], ":", color="gray", lw=0.8)
+    ax.set_aspect("equal")
+    ax.set_xlim(-1.3 * r_m_mm, 1.3 * r_m_mm)
+    ax.set_ylim(-1.3 * r_m_mm, 1.3 * r_m_mm)
+    ax.set_title(f"ring mid-layer r_m = {r_m_mm:.4g} mm, radial displacement x {scale:g}")
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("y (mm)")
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.1))
+    return _save(fig, png)
