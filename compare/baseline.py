@@ -1,0 +1,124 @@
+"""The simulated baseline a recording is compared with: one linear compliance per specimen.
+
+Analytic (default), from strainwave.analytic's corrected closed forms:
+- torsion / output_shaft: hollow shaft 32 L/(pi G (d^4 - d_i^4)), G = E/(2(1+nu)) (seed 000, lambda_so0 corrected);
+- torsion / flexspline_cup: seed 000 lambda_f0 with pi/32 instead of 0.1 (corrected), G = E/(2(1+nu));
+- torsion / gear: K_HD-type series sum lambda_H + lambda_f0 + lambda_so0 (seed 000, first equation);
+- ring_compression / ewg_ring: thin ring delta_CD = 0.148778 F r_m^3/(E I) (seed 003, eqs 1 and 3).
+G is taken from E and nu (not shear_modulus_MPa) so the analytic and FEA baselines see the same material.
+A header key ``baseline_stiffness_Nmm_per_rad`` / ``baseline_stiffness_N_per_mm`` replaces the
+simulation by a given linear stiffness (e.g. a catalogue K1), with the same relative uncertainty.
+
+``fea`` runs the matching study of strainwave.fea with quick meshes and reads its compliance.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ..errors import InputError
+from .recording import Recording, TestKind
+
+FEA_STUDY = {"output_shaft": "shaft-torsion", "flexspline_cup": "cup-torsion", "ewg_ring": "ring-compression"}
+
+
+@dataclass(frozen=True)
+class Baseline:
+    """Linear model response = compliance * load, with a relative uncertainty of the compliance."""
+
+    compliance: float           # rad/(N*mm) for torsion, mm/N for ring compression
+    unit: str
+    uncertainty: float          # relative (1 sigma)
+    source: str                 # what produced it, quoted in the report
+    geometry: dict              # specimen facts an effect model may need (r_m_mm, thick-ring factor, ...)
+
+    @property
+    def stiffness(self) -> float:
+        return 1.0 / self.compliance
+
+
+def analytic_baseline(rec: Recording, params) -> Baseline:
+    """Closed-form baseline for the recording's specimen (see module docstring for the formulas)."""
+    geometry = ring_geometry(params) if rec.kind is TestKind.RING_COMPRESSION else {}
+    if rec.baseline_stiffness is not None:
+        unit = "rad/(N*mm)" if rec.kind is TestKind.TORSION else "mm/N"
+        return Baseline(1.0 / rec.baseline_stiffness, unit, rec.baseline_uncertainty,
+                        f"given linear stiffness {rec.baseline_stiffness:.6g} ({'N*mm/rad' if unit[0] == 'r' else 'N/mm'})",
+                        geometry)
+    if rec.kind is TestKind.RING_COMPRESSION:
+        return Baseline(geometry["thin_compliance_mm_per_N"], "mm/N", rec.baseline_uncertainty,
+                        "thin ring, seed 003 eq 3 (delta_CD = 0.148778 F r_m^3/EI)", geometry)
+    compliance, source = torsion_compliance(rec.specimen, params)
+    return Baseline(compliance, "rad/(N*mm)", rec.baseline_uncertainty, source, geometry)
+
+
+def torsion_compliance(specimen: str, params) -> tuple[float, str]:
+    """Corrected seed-000 flexibility of the torsion specimen, rad/(N*mm)."""
+    from ..analytic import torsion as tor
+    from ..analytic.variant import Variant
+    G = params.material.implied_shear_modulus_MPa
+    sh, cup, gear, wg = params.output_shaft, params.flexspline_cup, params.gear, params.wave_generator
+    shaft = tor.shaft_flexibility(sh.length_mm, sh.outer_diameter_mm, sh.inner_diameter_mm, G, Variant.CORRECTED)
+    flex = tor.flexspline_flexibility(cup.pitch_diameter_mm, cup.wall_thickness_mm, cup.length_mm, G,
+                                      tor.shape_coefficient(cup.shape.value == "bell"),
+                                      tor.structure_coefficient(cup.cup), Variant.CORRECTED)
+    if specimen == "output_shaft":
+        return shaft, "hollow shaft 32L/(pi G (d^4 - d_i^4)) (seed 000 lambda_so0, corrected)"
+    if specimen == "flexspline_cup":
+        return flex, "flexspline cup lambda_f0 with pi/32 (seed 000, corrected)"
+    lam_h = tor.wave_generator_flexibility(gear.force_coefficient, wg.uncracked_radial_stiffness_N_per_mm,
+                                           cup.pitch_diameter_mm, gear.wave_number, gear.radial_deformation_mm,
+                                           gear.gear_ratio)
+    return tor.total_flexibility(lam_h, flex, shaft), "gear K_HD = 1/(lambda_H + lambda_f0 + lambda_so0) (seed 000)"
+
+
+def ring_geometry(params) -> dict:
+    """Thin-ring compliance (seed 003 eqs 1, 3) and Roark's thick-ring factor for the EWG rim."""
+    from ..analytic import ring, thick_ring
+    d = params.ewg_drive
+    E, nu = params.material.youngs_modulus_MPa, params.material.poisson_ratio
+    delta = d.rim_thickness_mm
+    r_m = ring.mid_layer_radius_mm(d.module_mm, d.flexspline_teeth, delta, d.dedendum_coefficient)
+    I = ring.second_moment_mm4(d.face_width_mm, delta)
+    thin = ring.delta_cd_mm(1.0, r_m, E, I)
+    section = thick_ring.RingSection(r_m, delta, d.face_width_mm)
+    thick_dv, _ = thick_ring.deflections_mm(1.0, section, E, nu, thick=True)
+    return {"r_m_mm": r_m, "rim_thickness_mm": delta, "face_width_mm": d.face_width_mm, "E_MPa": E,
+            "poisson_ratio": nu, "I_mm4": I, "thin_compliance_mm_per_N": thin,
+            "thick_ring_factor": thick_dv / thin}
+
+
+def fea_baseline(rec: Recording, params) -> Baseline:
+    """Compliance from the FEA study with quick meshes; InputError when no study models the specimen."""
+    if rec.baseline_stiffness is not None:
+        return analytic_baseline(rec, params)
+    study = FEA_STUDY.get(rec.specimen)
+    if study is None:
+        raise InputError("--baseline", "fea", f"no FEA study models specimen {rec.specimen!r}; "
+                         f"use --baseline analytic or give baseline_stiffness in the header")
+    try:
+        from ..fea.studies import run_study
+        result = run_study(study, params, quick=True)
+    except (ImportError, ModuleNotFoundError) as exc:
+        raise InputError("--baseline", "fea", f"the FEA study {study!r} is not available in this build ({exc})") from None
+    compliance, name = _compliance_from(result, rec.kind)
+    unc = result[name].uncertainty or 0.0
+    geometry = ring_geometry(params) if rec.kind is TestKind.RING_COMPRESSION else {}
+    return Baseline(compliance, "rad/(N*mm)" if rec.kind is TestKind.TORSION else "mm/N",
+                    math.hypot(rec.baseline_uncertainty, unc), f"FEA {study} (quick mesh), {name}", geometry)
+
+
+def _compliance_from(result, kind: TestKind) -> tuple[float, str]:
+    """Find the study's linear compliance among its quantities (by unit, then by name)."""
+    want = ("rad/(N*mm)", "rad/(N mm)", "rad/N/mm") if kind is TestKind.TORSION else ("mm/N",)
+    for name, q in result.quantities.items():
+        if q.unit.replace(" ", "") in {w.replace(" ", "") for w in want}:
+            return q.value, name
+    for name, q in result.quantities.items():
+        lname = name.lower()
+        if kind is TestKind.TORSION and ("stiffness" in lname and "rad" in q.unit):
+            return 1.0 / q.value, name
+        if kind is TestKind.RING_COMPRESSION and "delta_cd" in lname and "force" in result.meta:
+            return q.value / float(result.meta["force"]), name
+    raise InputError("--baseline", "fea", f"study {result.study!r} reports no compliance "
+                     f"(quantities: {', '.join(result.quantities)})")

@@ -1,0 +1,17 @@
+"""The physics catalogue: one module per effect, stable ids (issue 6)."""
+from __future__ import annotations
+
+from . import (compliance_offset, crack_closure, hysteresis, large_deflection, lost_motion, nonlinear_stiffness,
+               plasticity, thick_ring)
+from .base import Context, Effect, Param
+
+CATALOGUE = {m.EFFECT.id: m.EFFECT for m in (compliance_offset, nonlinear_stiffness, hysteresis, lost_motion,
+                                             crack_closure, thick_ring, large_deflection, plasticity)}
+
+
+def effects_for(kind: str) -> tuple[Effect, ...]:
+    """The catalogue entries that apply to a test kind, in catalogue order."""
+    return tuple(e for e in CATALOGUE.values() if kind in e.kinds)
+
+
+__all__ = ["CATALOGUE", "Context", "Effect", "Param", "effects_for"]

@@ -1,0 +1,65 @@
+"""What every catalogue effect provides: a model in normalised units, bounded parameters, a reading in SI units.
+
+Normalisation (``Context``): load u = x/X with X = max|x|, response in units of Y = c0 X, so the
+baseline is y = u and every parameter is O(1). An effect adds ``contribution(ctx, theta)`` to
+y = b0 + b1 t + s u, where b0, b1 (zero offset, drift) and s (stiffness scale, prior 1 +/- uncertainty)
+are the always-fitted nuisance parameters.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Param:
+    """One free parameter in normalised units: bounds and a few starting values for multistart."""
+
+    name: str
+    lo: float
+    hi: float
+    starts: tuple[float, ...]
+
+
+@dataclass(frozen=True)
+class Context:
+    """A recording in normalised form plus what the models need about its history and specimen."""
+
+    u: np.ndarray            # load / X
+    y: np.ndarray            # response / Y
+    t: np.ndarray            # acquisition time (or sample index) scaled to [0, 1]
+    X: float                 # load scale, N*mm or N
+    Y: float                 # response scale c0 X, rad or mm
+    c0: float                # baseline compliance
+    load_unit: str
+    response_unit: str
+    direction: np.ndarray    # +1 while the load increases, -1 while it decreases
+    segments: tuple[tuple[int, int, int], ...]   # (start, stop, direction) between load reversals
+    geometry: dict = field(default_factory=dict)
+
+    @property
+    def two_sided(self) -> bool:
+        return bool(self.u.min() < -0.2 and self.u.max() > 0.2)
+
+    @property
+    def reversals(self) -> int:
+        return max(len(self.segments) - 1, 0)
+
+
+@dataclass(frozen=True)
+class Effect:
+    """A catalogue entry: stable id, model, parameters, and the sentence the report quotes."""
+
+    id: str
+    kinds: tuple[str, ...]
+    params: tuple[Param, ...]
+    contribution: Callable[[Context, np.ndarray], np.ndarray]
+    report: Callable[[Context, np.ndarray, float], dict]   # (ctx, theta, s) -> {name: (value, unit)}
+    explanation: str
+    applicable: Callable[[Context], bool] = lambda ctx: True
+
+    @property
+    def n_params(self) -> int:
+        return len(self.params)

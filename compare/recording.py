@@ -1,0 +1,290 @@
+"""Parse a self-describing recording: a TOML header in ``#`` lines, then CSV in acquisition order.
+
+Format (docs/recordings.md)::
+
+    # [test]
+    # kind = "torsion"              # torsion | ring_compression
+    # specimen = "output_shaft"     # torsion: output_shaft | flexspline_cup | gear; ring_compression: ewg_ring
+    # baseline_uncertainty = 0.02   # relative uncertainty of the simulated linear stiffness
+    # [params.output_shaft]         # optional overrides of the parameter schema
+    # outer_diameter_mm = 50.0
+    torque_Nmm,twist_rad
+    0.0,1.2e-7
+
+Every defect raises ``InputError`` whose key is ``<file>:<line>`` so the user can go straight to it.
+Spreadsheet exports (BOM, CRLF, trailing commas, blank lines) are accepted.
+"""
+from __future__ import annotations
+
+import enum
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputError
+
+MIN_ROWS = 20
+
+
+class TestKind(enum.Enum):
+    TORSION = "torsion"
+    RING_COMPRESSION = "ring_compression"
+
+
+SPECIMENS = {TestKind.TORSION: ("output_shaft", "flexspline_cup", "gear"),
+             TestKind.RING_COMPRESSION: ("ewg_ring",)}
+# (load column, response column), optional columns
+COLUMNS = {TestKind.TORSION: (("torque_Nmm", "twist_rad"), ("time_s",)),
+           TestKind.RING_COMPRESSION: (("force_N", "delta_cd_mm"), ("delta_ab_mm", "time_s"))}
+TEST_KEYS = {"kind", "specimen", "baseline_uncertainty", "baseline_stiffness_Nmm_per_rad",
+             "baseline_stiffness_N_per_mm", "description"}
+TOP_TABLES = {"test", "params", "meta"}
+
+
+@dataclass(frozen=True)
+class Recording:
+    """One parsed recording. ``load`` drives the test (torque or force), ``response`` is measured."""
+
+    source: str
+    kind: TestKind
+    specimen: str
+    load: np.ndarray
+    response: np.ndarray
+    time_s: np.ndarray | None
+    load_name: str
+    response_name: str
+    baseline_uncertainty: float = 0.02
+    baseline_stiffness: float | None = None     # N*mm/rad (torsion) or N/mm (ring), replaces the simulation
+    param_overrides: dict = field(default_factory=dict)
+    extra: dict = field(default_factory=dict)   # optional channels, e.g. delta_ab_mm
+    description: str = ""
+
+    @property
+    def n(self) -> int:
+        return len(self.load)
+
+    @property
+    def load_unit(self) -> str:
+        return "N*mm" if self.kind is TestKind.TORSION else "N"
+
+    @property
+    def response_unit(self) -> str:
+        return "rad" if self.kind is TestKind.TORSION else "mm"
+
+
+def parse_recording(path: Path | str) -> Recording:
+    """Read and parse one recording file; any defect is an ``InputError`` naming the file and line."""
+    path = Path(path)
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise InputError(str(path), "recording", f"cannot read file ({exc.strerror})") from None
+    return parse_bytes(raw, path.name)
+
+
+def parse_bytes(raw: bytes, name: str = "recording.csv") -> Recording:
+    if b"\x00" in raw[:4096]:
+        raise InputError(f"{name}:1", "binary data", "a recording must be a UTF-8 text file (CSV with # header)")
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        line = raw[:exc.start].count(b"\n") + 1
+        raise InputError(f"{name}:{line}", "undecodable bytes", "a recording must be a UTF-8 text file") from None
+    return parse_text(text, name)
+
+
+def parse_text(text: str, name: str = "recording.csv") -> Recording:
+    lines = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
+    header_lines, body_start = [], len(lines)
+    for i, line in enumerate(lines):
+        if line.startswith("#"):
+            header_lines.append((i + 1, line[2:] if line.startswith("# ") else line[1:]))
+        elif line.strip() == "":
+            continue
+        else:
+            body_start = i
+            break
+    header = _parse_header(header_lines, name)
+    kind, specimen, test = _parse_test(header, header_lines, name)
+    (load_col, resp_col), optional = COLUMNS[kind]
+    if body_start >= len(lines):
+        raise InputError(f"{name}:{len(lines)}", "end of file", f"expected a CSV header row '{load_col},{resp_col}'")
+    columns = _split(lines[body_start])
+    hline = body_start + 1
+    allowed = (load_col, resp_col) + optional
+    for col in columns:
+        if col not in allowed:
+            raise InputError(f"{name}:{hline}", col, f"unknown column for kind {kind.value!r}; allowed: {', '.join(allowed)}")
+    if len(set(columns)) != len(columns):
+        raise InputError(f"{name}:{hline}", ",".join(columns), "duplicate column name")
+    for col in (load_col, resp_col):
+        if col not in columns:
+            raise InputError(f"{name}:{hline}", ",".join(columns), f"missing column {col!r} (kind {kind.value!r})")
+    data = _parse_rows(lines, body_start + 1, columns, name)
+    if data.shape[0] < MIN_ROWS:
+        raise InputError(f"{name}:{len(lines)}", f"{data.shape[0]} data rows", f"need at least {MIN_ROWS} rows")
+    col = {c: data[:, j] for j, c in enumerate(columns)}
+    load, resp = col[load_col], col[resp_col]
+    if np.ptp(load) <= 0:
+        raise InputError(f"{name}:{hline + 1}", load_col, "the load column is constant; nothing to compare")
+    time_s = col.get("time_s")
+    if time_s is not None and np.any(np.diff(time_s) < 0):
+        bad = int(np.argmax(np.diff(time_s) < 0)) + 1
+        raise InputError(f"{name}:{_row_line(lines, body_start, bad)}", float(time_s[bad]),
+                         "time_s must not decrease (rows are in acquisition order)")
+    return Recording(source=name, kind=kind, specimen=specimen, load=load, response=resp, time_s=time_s,
+                     load_name=load_col, response_name=resp_col,
+                     baseline_uncertainty=test["baseline_uncertainty"],
+                     baseline_stiffness=test.get("baseline_stiffness"),
+                     param_overrides=header.get("params", {}),
+                     extra={c: v for c, v in col.items() if c not in (load_col, resp_col, "time_s")},
+                     description=str(test.get("description", "")))
+
+
+def _parse_header(header_lines: list[tuple[int, str]], name: str) -> dict:
+    if not header_lines:
+        raise InputError(f"{name}:1", "no header", "a recording starts with '# [test]' lines (kind, specimen)")
+    doc = "\n".join(text for _, text in header_lines)
+    try:
+        header = tomllib.loads(doc)
+    except tomllib.TOMLDecodeError as exc:
+        # tomllib reports "(at line N, column M)" counted inside the header document
+        msg = str(exc)
+        lineno = header_lines[0][0]
+        if "line " in msg:
+            try:
+                k = int(msg.rsplit("line ", 1)[1].split(",")[0].split(")")[0])
+                lineno = header_lines[min(k, len(header_lines)) - 1][0]
+            except ValueError:
+                pass
+        raise InputError(f"{name}:{lineno}", "header", f"the '#' header is not valid TOML ({msg})") from None
+    for key in header:
+        if key not in TOP_TABLES:
+            raise InputError(f"{name}:{_find(header_lines, key)}", key,
+                             f"unknown header table; allowed: {', '.join(sorted(TOP_TABLES))}")
+    return header
+
+
+def _parse_test(header: dict, header_lines, name: str):
+    test = header.get("test")
+    if not isinstance(test, dict):
+        raise InputError(f"{name}:{header_lines[0][0]}", "header", "missing the [test] table (kind, specimen)")
+    for key in test:
+        if key not in TEST_KEYS:
+            raise InputError(f"{name}:{_find(header_lines, key)}", key,
+                             f"unknown [test] key; allowed: {', '.join(sorted(TEST_KEYS))}")
+    kinds = [k.value for k in TestKind]
+    if test.get("kind") not in kinds:
+        raise InputError(f"{name}:{_find(header_lines, 'kind')}", test.get("kind"), f"test.kind must be one of {kinds}")
+    kind = TestKind(test["kind"])
+    if test.get("specimen") not in SPECIMENS[kind]:
+        raise InputError(f"{name}:{_find(header_lines, 'specimen')}", test.get("specimen"),
+                         f"test.specimen for {kind.value} must be one of {list(SPECIMENS[kind])}")
+    out = {"baseline_uncertainty": 0.02, "description": test.get("description", "")}
+    u = test.get("baseline_uncertainty", 0.02)
+    if isinstance(u, bool) or not isinstance(u, (int, float)) or not (0.0 < u < 1.0):
+        raise InputError(f"{name}:{_find(header_lines, 'baseline_uncertainty')}", u,
+                         "test.baseline_uncertainty must be a number in (0, 1)")
+    out["baseline_uncertainty"] = float(u)
+    stiff_key = "baseline_stiffness_Nmm_per_rad" if kind is TestKind.TORSION else "baseline_stiffness_N_per_mm"
+    wrong_key = "baseline_stiffness_N_per_mm" if kind is TestKind.TORSION else "baseline_stiffness_Nmm_per_rad"
+    if wrong_key in test:
+        raise InputError(f"{name}:{_find(header_lines, wrong_key)}", wrong_key, f"for {kind.value} use {stiff_key}")
+    if stiff_key in test:
+        k = test[stiff_key]
+        if isinstance(k, bool) or not isinstance(k, (int, float)) or not (math.isfinite(k) and k > 0):
+            raise InputError(f"{name}:{_find(header_lines, stiff_key)}", k, f"test.{stiff_key} must be a number > 0")
+        out["baseline_stiffness"] = float(k)
+    return kind, test["specimen"], out
+
+
+def _find(header_lines, key: str) -> int:
+    for lineno, text in header_lines:
+        stripped = text.strip()
+        if stripped.startswith(key) or stripped.startswith(f"[{key}"):
+            return lineno
+    return header_lines[0][0] if header_lines else 1
+
+
+def _split(line: str) -> list[str]:
+    cells = [c.strip() for c in line.split(",")]
+    while cells and cells[-1] == "":   # trailing commas from spreadsheets
+        cells.pop()
+    return cells
+
+
+def _parse_rows(lines: list[str], start: int, columns: list[str], name: str) -> np.ndarray:
+    rows = []
+    ncol = len(columns)
+    for i in range(start, len(lines)):
+        line = lines[i]
+        if line.strip() == "" or line.startswith("#"):
+            continue
+        cells = _split(line)
+        if len(cells) != ncol:
+            raise InputError(f"{name}:{i + 1}", line.strip()[:60], f"expected {ncol} cells ({','.join(columns)})")
+        try:
+            values = [float(c) for c in cells]
+        except ValueError:
+            bad = next(c for c in cells if not _is_float(c))
+            raise InputError(f"{name}:{i + 1}", bad, "every cell must be a number") from None
+        if not all(math.isfinite(v) for v in values):
+            raise InputError(f"{name}:{i + 1}", line.strip()[:60], "NaN or infinite values are not allowed")
+        rows.append(values)
+    return np.asarray(rows, dtype=float).reshape(-1, ncol)
+
+
+def _is_float(text: str) -> bool:
+    try:
+        float(text)
+        return True
+    except ValueError:
+        return False
+
+
+def _row_line(lines: list[str], start: int, row: int) -> int:
+    """1-based line number of data row ``row`` (0-based) after the CSV header at ``start``."""
+    seen = -1
+    for i in range(start + 1, len(lines)):
+        if lines[i].strip() == "" or lines[i].startswith("#"):
+            continue
+        seen += 1
+        if seen == row:
+            return i + 1
+    return len(lines)
+
+
+def format_recording(kind: TestKind, specimen: str, load: np.ndarray, response: np.ndarray, *,
+                     baseline_uncertainty: float | None = None, baseline_stiffness: float | None = None,
+                     params: dict | None = None, time_s: np.ndarray | None = None, description: str = "") -> str:
+    """Write a recording in the documented format (the inverse of ``parse_text``)."""
+    (load_col, resp_col), _ = COLUMNS[kind]
+    head = ["[test]", f'kind = "{kind.value}"', f'specimen = "{specimen}"']
+    if description:
+        head.append(f'description = "{description}"')
+    if baseline_uncertainty is not None:
+        head.append(f"baseline_uncertainty = {baseline_uncertainty!r}")
+    if baseline_stiffness is not None:
+        key = "baseline_stiffness_Nmm_per_rad" if kind is TestKind.TORSION else "baseline_stiffness_N_per_mm"
+        head.append(f"{key} = {float(baseline_stiffness)!r}")
+    for section, table in (params or {}).items():
+        head.append(f"[params.{section}]")
+        head.extend(f"{k} = {_toml_value(v)}" for k, v in table.items())
+    cols = [load_col, resp_col] + (["time_s"] if time_s is not None else [])
+    out = ["# " + h for h in head] + [",".join(cols)]
+    stack = [load, response] + ([time_s] if time_s is not None else [])
+    out.extend(",".join(f"{v:.9g}" for v in row) for row in zip(*stack))
+    return "\n".join(out) + "\n"
+
+
+def _toml_value(v) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, str):
+        return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
+    return repr(float(v)) if isinstance(v, float) else repr(v)
