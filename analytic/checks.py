@@ -1,0 +1,88 @@
+"""Analytic reference values for each comparison check id (what the FEA is compared with).
+
+Each entry names the public functions behind it, the unit, and the PUBLISHED and
+CORRECTED values for ``params``. The comparison stage should read these rather than
+re-deriving formulas.
+"""
+from __future__ import annotations
+
+from .seed000 import seed000_summary
+from .seed003 import seed003_summary
+
+CHECK_FUNCTIONS = {
+    "shaft.flexibility": ("torsion.shaft_flexibility", "torsion.shaft_flexibility_table_reconstruction"),
+    "shaft.crack_compliance": ("cracks.shaft_crack_flexibility", "cracks.shaft_crack_flexibility_growing",
+                               "cracks.crack_compliance_integral"),
+    "cup.flexibility": ("torsion.flexspline_flexibility",),
+    "cup.crack_compliance": ("cracks.flexspline_crack_flexibility", "cracks.crack_compliance_integral"),
+    "bearing.radial_compliance": ("torsion.wave_generator_flexibility", "torsion.cracked_radial_stiffness_N_per_mm"),
+    "bearing.crack_compliance": ("cracks.bearing_displacement_mm", "cracks.bearing_crack_stiffness"),
+    "ring.delta_cd": ("ring.delta_cd_mm", "thick_ring.deflections_mm"),
+    "ring.delta_ab": ("ring.delta_ab_mm", "thick_ring.deflections_mm"),
+    "ring.sigma_max": ("ring.sigma_max_MPa", "thick_ring.winkler_bach_stress_MPa"),
+    "ring.sigma_min": ("ring.sigma_min_MPa", "thick_ring.winkler_bach_stress_MPa"),
+    "ring.tooth_influence": ("fatigue.stress_MPa",),
+    "ring.stress_concentration": ("fatigue.normal_safety_factor",),
+    "gear.stiffness": ("torsion.drive_stiffness_Nmm_per_rad", "torsion.total_flexibility"),
+}
+
+
+def reference_values(params, s000: dict | None = None, s003: dict | None = None) -> dict:
+    """{check_id: {unit, published, corrected, functions, note, ...}} for ``params``."""
+    s000 = s000 or seed000_summary(params)
+    s003 = s003 or seed003_summary(params)
+    g, th, st = s003["geometry"], s003["thick_ring"], s003["stresses_MPa"]
+    F_r = s000["F_r_N"]
+    e = params.ewg_drive
+
+    def entry(cid, unit, published, corrected, note="", **extra):
+        return {"unit": unit, "published": published, "corrected": corrected,
+                "functions": list(CHECK_FUNCTIONS[cid]), "note": note, **extra}
+
+    lso, dlso = s000["lambda_so0"], s000["delta_lambda_so"]
+    lf = s000["lambda_f0_variants"]
+    wb = th["winkler_bach_stress_MPa"]
+    out = {
+        "shaft.flexibility": entry("shaft.flexibility", "rad/(N*mm)", lso["published"], lso["corrected"],
+                                   "corrected_E_nu uses G = E/(2(1+nu)) like the FEA",
+                                   corrected_E_nu=lso["corrected_E_nu"], table_reconstruction=lso["table_reconstruction"]),
+        "shaft.crack_compliance": entry("shaft.crack_compliance", "rad/(N*mm)", dlso["published"], dlso["corrected"],
+                                        "solid-bar K_III; growing-crack integral alongside",
+                                        corrected_growing_crack=dlso["corrected_growing_crack"]),
+        "cup.flexibility": entry("cup.flexibility", "rad/(N*mm)", lf["published"], lf["corrected"],
+                                 "includes k_f k_G (0.83 for a cup)", corrected_E_nu=lf["corrected_E_nu"]),
+        "cup.crack_compliance": entry("cup.crack_compliance", "rad/(N*mm)", s000["delta_lambda_f"]["published"],
+                                      s000["delta_lambda_f"]["corrected"], "r_m = mid-wall radius (d1 - delta)/2"),
+        "bearing.radial_compliance": entry("bearing.radial_compliance", "mm/N",
+                                           1.0 / s000["K_G0_N_per_mm"], 1.0 / s000["K_G0_N_per_mm"],
+                                           "K_G0 is an input (not derivable from seed 000)"),
+        "bearing.crack_compliance": entry("bearing.crack_compliance", "mm/N",
+                                          s000["delta_u_H_mm"]["published"] / F_r, s000["delta_u_H_mm"]["corrected"] / F_r,
+                                          "du_H / F_r; published is load-dependent (F_r^2)", F_r_N=F_r),
+        "ring.delta_cd": entry("ring.delta_cd", "mm", s003["delta_CD_mm"],
+                               th["delta_CD_mm"] * s003["force_for_W0_N"] / th["force_for_W0_N"],
+                               "at the thin-ring force F for W0; corrected = Roark thick ring",
+                               force_N=s003["force_for_W0_N"], coefficient_published=s003["coefficients"]["delta_CD"],
+                               coefficient_corrected=th["D_V_coefficient"]),
+        "ring.delta_ab": entry("ring.delta_ab", "mm", s003["delta_AB_mm"],
+                               th["delta_AB_mm"] * s003["force_for_W0_N"] / th["force_for_W0_N"],
+                               "at the thin-ring force F for W0; corrected = Roark thick ring",
+                               force_N=s003["force_for_W0_N"], coefficient_published=s003["coefficients"]["delta_AB"],
+                               coefficient_corrected=th["D_H_coefficient"]),
+        "ring.sigma_max": entry("ring.sigma_max", "MPa", st["sigma_max"], wb["D_outer"],
+                                "outer fibre at the load point for prescribed W0; corrected = Winkler-Bach thick ring",
+                                inner_fibre_corrected=wb["D_inner"], W0_mm=g["W0_mm"]),
+        "ring.sigma_min": entry("ring.sigma_min", "MPa", st["sigma_min"], wb["B_outer"],
+                                "outer fibre at the free point for prescribed W0; corrected = Winkler-Bach thick ring",
+                                inner_fibre_corrected=wb["B_inner"], W0_mm=g["W0_mm"]),
+        "ring.tooth_influence": entry("ring.tooth_influence", "1", e.tooth_influence, e.tooth_influence,
+                                      "K_delta: toothed / smooth rim stress; seed range 1.05..1.10",
+                                      seed_range=[1.05, 1.10]),
+        "ring.stress_concentration": entry("ring.stress_concentration", "1", e.stress_concentration,
+                                           e.stress_concentration, "K_sigma at the tooth root; seed range 1.8..2.0",
+                                           seed_range=[1.8, 2.0]),
+        "gear.stiffness": entry("gear.stiffness", "N*mm/rad", s000["K_HD"]["published"], s000["K_HD"]["corrected"],
+                                "uncracked; printed seed value is 1e3 too small",
+                                printed_by_seed=s000["K_HD"]["printed_by_seed"]["uncracked"]),
+    }
+    return out

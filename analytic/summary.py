@@ -1,0 +1,104 @@
+"""Every analytic quantity of both seeds for a parameter set, as JSON-able dict or text table.
+
+Called by ``strainwave analytic [--params FILE] [--json]``.
+"""
+from __future__ import annotations
+
+import math
+
+from .audit import audit_as_dicts
+from .checks import reference_values
+from .seed000 import seed000_summary
+from .seed003 import seed003_summary
+
+
+def analytic_summary(params) -> dict:
+    """{seed000, seed003, checks, audit} for ``params``: plain floats, ints, strings, lists, None."""
+    s000 = seed000_summary(params)
+    s003 = seed003_summary(params)
+    return {
+        "units": {"flexibility": "rad/(N*mm)", "stiffness": "N*mm/rad", "length": "mm", "stress": "MPa",
+                  "force": "N"},
+        "seed000": s000,
+        "seed003": s003,
+        "checks": reference_values(params, s000, s003),
+        "audit": audit_as_dicts(params, s000, s003),
+    }
+
+
+def _fmt(v) -> str:
+    if v is None:
+        return "n/a"
+    if isinstance(v, bool):
+        return "yes" if v else "no"
+    if isinstance(v, int):
+        return str(v)
+    if isinstance(v, float):
+        return "nan" if math.isnan(v) else f"{v:.6g}"
+    return str(v)
+
+
+_ROWS_000 = [
+    ("lambda_f0 (published 0.1)", ("lambda_f0_variants", "published"), ("lambda_f0_variants", "corrected"), "rad/(N mm)"),
+    ("lambda_so0", ("lambda_so0", "published"), ("lambda_so0", "corrected"), "rad/(N mm)"),
+    ("lambda_H0", ("lambda_H0",), ("lambda_H0",), "rad/(N mm)"),
+    ("du_H", ("delta_u_H_mm", "published"), ("delta_u_H_mm", "corrected"), "mm"),
+    ("dK_G", ("delta_K_G", "published"), ("delta_K_G", "corrected"), "1/mm | N/mm"),
+    ("K_G", ("K_G_N_per_mm", "published"), ("K_G_N_per_mm", "corrected"), "N/mm"),
+    ("dlambda_H", ("delta_lambda_H", "published"), ("delta_lambda_H", "corrected"), "rad/(N mm)"),
+    ("dlambda_f", ("delta_lambda_f", "published"), ("delta_lambda_f", "corrected"), "rad/(N mm)"),
+    ("dlambda_so", ("delta_lambda_so", "published"), ("delta_lambda_so", "corrected"), "rad/(N mm)"),
+    ("lambda_sum uncracked", ("lambda_sum", "published", "uncracked"), ("lambda_sum", "corrected", "uncracked"),
+     "rad/(N mm)"),
+    ("lambda_sum cracked", ("lambda_sum", "published", "cracked"), ("lambda_sum", "corrected", "cracked"), "rad/(N mm)"),
+    ("K_HD uncracked", ("K_HD", "published"), ("K_HD", "corrected"), "N mm/rad"),
+    ("K_HD cracked", ("K_HD", "published_cracked"), ("K_HD", "corrected_cracked"), "N mm/rad"),
+]
+
+
+def _get(d: dict, path: tuple):
+    for k in path:
+        d = d[k]
+    return d
+
+
+def format_summary(summary: dict) -> str:
+    """Readable text tables: seed 000 (published | corrected), seed 003, audit list."""
+    s0, s3 = summary["seed000"], summary["seed003"]
+    lines = ["SEED 000: crack effects on torsional stiffness (r_m = %s mm, %s)" % (
+        _fmt(s0["r_m_mm"]["chosen"]), s0["r_m_mm"]["choice"]),
+        f"{'quantity':<24}{'published':>16}{'corrected':>16}  unit"]
+    for name, p, c, unit in _ROWS_000:
+        lines.append(f"{name:<24}{_fmt(_get(s0, p)):>16}{_fmt(_get(s0, c)):>16}  {unit}")
+    lines.append(f"{'F_r':<24}{_fmt(s0['F_r_N']):>16}{'':>16}  N")
+    pr = s0["K_HD"]["printed_by_seed"]
+    lines.append(f"seed prints K_HD = {_fmt(pr['uncracked'])} / {_fmt(pr['cracked'])}; 1/lambda_sum of its table = "
+                 f"{_fmt(pr['from_table_uncracked'])} (x{pr['slip_factor']:.0f})")
+    lines.append("material: " + s0["material"]["note"])
+
+    co, tn, ge, stv = s3["coefficients"], s3["tooth_number_min"], s3["geometry"], s3["stresses_MPa"]
+    lines += ["", "SEED 003: HGD with external wave generator",
+              f"Z_R = {s3['inputs']['Z_R']}, dZ = {s3['inputs']['tooth_difference']}, Z_G = {s3['inputs']['Z_G']}, "
+              f"r_m = {_fmt(ge['r_m_mm'])} mm, delta = {_fmt(s3['inputs']['rim_thickness_mm'])} mm, "
+              f"I = {_fmt(ge['I_mm4'])} mm^4, W0 = {_fmt(ge['W0_mm'])} mm, F(W0) = {_fmt(s3['force_for_W0_N'])} N"]
+    for k in ("delta_CD", "delta_AB", "sigma_max", "sigma_min", "sigma_m", "sigma_a",
+              "sigma_m_published_literal", "sigma_a_published_literal"):
+        lines.append(f"  coefficient {k:<28}{co[k]:>12.6f}")
+    for k in ("sigma_max", "sigma_min", "sigma_m", "sigma_a"):
+        lines.append(f"  stress {k:<33}{stv[k]:>12.3f} MPa")
+    sf = s3["safety"]
+    lines.append(f"  n_sigma = {sf['n_sigma_abs_mean']:.4f} (|sigma_m|), {sf['n_sigma_signed_mean']:.4f} (signed); "
+                 f"[n] = {sf['permissible']}: {'OK' if sf['ok'] else 'NOT OK'}")
+    lines.append(f"  eq 14: C = {tn['constant']:.6f} (signed {tn['constant_signed_mean']:.6f}), c = {tn['offset']:.6f}")
+    sg = tn["signed_mean_stress"]
+    lines.append(f"  minimal Z_R roots: dZ=2 {_fmt(tn['dZ2'])} (signed {_fmt(sg['dZ2'])}), "
+                 f"dZ=4 {_fmt(tn['dZ4'])} (signed {_fmt(sg['dZ4'])}); paper {tn['paper_roots']['dZ2']} / "
+                 f"{tn['paper_roots']['dZ4']} imply C = {tn['paper_implied_constant']['dZ2']:.4f}")
+    th = s3["thick_ring"]
+    lines.append(f"  thick ring (Roark): D_V coef {th['D_V_coefficient']:.6f}, D_H coef {th['D_H_coefficient']:.6f}, "
+                 f"curvature factors inner {th['curvature_factor_inner']:.4f} / outer {th['curvature_factor_outer']:.4f}")
+    lines += ["", "AUDIT (id, seed, equation: what is wrong -> effect) [FEA check]"]
+    for rec in summary["audit"]:
+        lines.append(f"{rec['id']:>3} {rec['seed']} {rec['equation']}: {rec['what_is_wrong']} -> "
+                     f"{rec['effect_on_example']} [{rec['fea_check'] or '-'}]")
+    return "\n".join(lines)

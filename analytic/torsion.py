@@ -1,0 +1,133 @@
+"""Uncracked torsional flexibilities and the drive stiffness: seed 000.
+
+Flexibilities in rad/(N*mm), stiffnesses in N*mm/rad, lengths in mm, moduli in MPa.
+Seed 000 uses the shear modulus mu directly (8e4 MPa), not E/(2(1+nu)).
+"""
+from __future__ import annotations
+
+import math
+
+from .variant import Variant
+
+# Seed 000's printed numerical example (units 1e-10 rad/(N*mm) and N*mm/rad), kept as data.
+SEED000_TABLE = {
+    "lambda_H0": 3.4071e-10, "delta_lambda_H": 0.1514e-10,
+    "lambda_f0": 2.3588e-10, "delta_lambda_f": 0.0000023e-10,
+    "lambda_so0": 6.9063e-10, "delta_lambda_so": 0.000039e-10,
+    "lambda_sum": 12.8236e-10, "lambda_sum0": 12.6722e-10,
+    "K_HD_printed": 7.7981e5, "K_HD0_printed": 7.8913e5,
+    "reduction_percent": 1.2, "shares_percent": (28.0, 19.0, 53.0),
+}
+
+
+def polar_factor(variant: Variant) -> float:
+    """J = factor * (D^4 - d^4): 0.1 as printed in seed 000, pi/32 = 0.098175 exactly."""
+    return 0.1 if variant is Variant.PUBLISHED else math.pi / 32.0
+
+
+def shape_coefficient(bell: bool) -> float:
+    """k_f: 0.83 for a bell-shaped flexspline, 1.0 for cylindrical (seed 000, lambda_f0)."""
+    return 0.83 if bell else 1.0
+
+
+def structure_coefficient(cup: bool) -> float:
+    """k_G: 0.83 for a cup-shaped flexspline, 1.0 otherwise (seed 000, lambda_f0)."""
+    return 0.83 if cup else 1.0
+
+
+def flexspline_flexibility(d1_mm: float, wall_mm: float, length_mm: float, mu_MPa: float,
+                           k_f: float, k_G: float, variant: Variant = Variant.PUBLISHED) -> float:
+    """lambda_f0 = k_f k_G c_L / (0.1 mu [1 - (1 - 2 c_delta)^4] d1^3) (seed 000, lambda_f0).
+
+    c_L = L/d1, c_delta = delta/d1: a tube of outer diameter d1 and wall delta.
+    PUBLISHED uses 0.1 (compliance 1.83 % low); CORRECTED uses pi/32.
+    Default seed-000 example: 2.3588e-10 rad/(N*mm) with k_f = 1, k_G = 0.83.
+    """
+    c_L = length_mm / d1_mm
+    c_d = wall_mm / d1_mm
+    return k_f * k_G * c_L / (polar_factor(variant) * mu_MPa * (1.0 - (1.0 - 2.0 * c_d) ** 4) * d1_mm ** 3)
+
+
+def shaft_flexibility(length_mm: float, outer_mm: float, inner_mm: float, mu_MPa: float,
+                      variant: Variant = Variant.PUBLISHED) -> float:
+    """Output-shaft flexibility (seed 000, lambda_so0).
+
+    PUBLISHED: L_s/(0.1 mu d_s^4), the bore ignored (10.4123e-10 for the example).
+    CORRECTED: 32 L_s/(pi mu (d_s^4 - d_s2^4)), the hollow shaft (12.790e-10).
+    """
+    if variant is Variant.PUBLISHED:
+        return length_mm / (0.1 * mu_MPa * outer_mm ** 4)
+    return 32.0 * length_mm / (math.pi * mu_MPa * (outer_mm ** 4 - inner_mm ** 4))
+
+
+def shaft_flexibility_table_reconstruction(length_mm: float, outer_mm: float, inner_mm: float,
+                                           mu_MPa: float) -> float:
+    """L_s/(0.1 mu (d_s^4 - d_s2^4)): the only reading that gives seed 000's table value.
+
+    Reproduces 6.9063e-10 only with L_s = 110 mm (the seed states 200 mm).
+    """
+    return length_mm / (0.1 * mu_MPa * (outer_mm ** 4 - inner_mm ** 4))
+
+
+def shaft_length_implied_mm(flexibility: float, outer_mm: float, inner_mm: float, mu_MPa: float) -> float:
+    """L_s that makes ``shaft_flexibility_table_reconstruction`` equal to ``flexibility`` (audit item 13)."""
+    return flexibility * 0.1 * mu_MPa * (outer_mm ** 4 - inner_mm ** 4)
+
+
+def radial_force_N(force_coefficient: float, torque_Nmm: float, d1_mm: float) -> float:
+    """F_r = 1.15 k_r T / d1 (seed 000, wave generator section)."""
+    return 1.15 * force_coefficient * torque_Nmm / d1_mm
+
+
+def wave_generator_kinematic_factor(d1_mm: float, wave_number: int, w0_mm: float, gear_ratio: float) -> float:
+    """pi / (2 d1 U w0 i_h), the radial-to-torsional conversion in lambda_H (seed 000)."""
+    return math.pi / (2.0 * d1_mm * wave_number * w0_mm * gear_ratio)
+
+
+def wave_generator_flexibility(force_coefficient: float, K_G_N_per_mm: float, d1_mm: float, wave_number: int,
+                               w0_mm: float, gear_ratio: float) -> float:
+    """lambda_H = (k_r / K_G) * pi / (2 d1 U w0 i_h) (seed 000).
+
+    Units check but the relation is not derived in the seed; K_G0 is never given
+    (6.303e4 N/mm reproduces the table's 3.4071e-10).
+    """
+    return force_coefficient / K_G_N_per_mm * wave_generator_kinematic_factor(d1_mm, wave_number, w0_mm, gear_ratio)
+
+
+def radial_stiffness_implied_N_per_mm(lambda_H: float, force_coefficient: float, d1_mm: float,
+                                      wave_number: int, w0_mm: float, gear_ratio: float) -> float:
+    """K_G0 implied by a lambda_H (inverse of ``wave_generator_flexibility``)."""
+    return force_coefficient * wave_generator_kinematic_factor(d1_mm, wave_number, w0_mm, gear_ratio) / lambda_H
+
+
+def cracked_radial_stiffness_N_per_mm(K_G0_N_per_mm: float, delta_K_G: float,
+                                      variant: Variant = Variant.CORRECTED) -> float:
+    """Radial stiffness of the cracked wave generator (seed 000, K_G = K_G0 - dK_G).
+
+    PUBLISHED: K_G0 - dK_G (subtracts stiffnesses; negative for the example).
+    CORRECTED: springs in series, 1/K_G = 1/K_G0 + 1/dK_G.
+    """
+    if variant is Variant.PUBLISHED:
+        return K_G0_N_per_mm - delta_K_G
+    return 1.0 / (1.0 / K_G0_N_per_mm + 1.0 / delta_K_G)
+
+
+def total_flexibility(lambda_H: float, lambda_f: float, lambda_so: float) -> float:
+    """lambda_sum = lambda_H + lambda_f + lambda_so (seed 000, first equation)."""
+    return lambda_H + lambda_f + lambda_so
+
+
+def drive_stiffness_Nmm_per_rad(lambda_sum: float) -> float:
+    """K_HD = 1/lambda_sum in N*mm/rad (seed 000). The seed prints 1e3 too small."""
+    return 1.0 / lambda_sum
+
+
+def printed_stiffness_slip(lambda_sum: float, printed_K_HD: float) -> float:
+    """Ratio of 1/lambda_sum to the seed's printed K_HD: 1e3 for both table rows (audit item 14)."""
+    return drive_stiffness_Nmm_per_rad(lambda_sum) / printed_K_HD
+
+
+def shares(lambda_H: float, lambda_f: float, lambda_so: float) -> tuple[float, float, float]:
+    """Fractions of lambda_sum carried by wave generator, flexspline and output shaft."""
+    total = total_flexibility(lambda_H, lambda_f, lambda_so)
+    return lambda_H / total, lambda_f / total, lambda_so / total
