@@ -1,0 +1,69 @@
+"""Seed 000 uncracked flexibilities and drive stiffness against the seed's own table."""
+import math
+
+import pytest
+
+from strainwave.analytic import torsion
+from strainwave.analytic.variant import Variant
+from strainwave.errors import RangeWarning
+from strainwave.params import load_params
+
+MU = 8e4
+
+
+def test_lambda_f0_from_defaults():
+    with pytest.warns(RangeWarning, match="0.96"):   # the seed's E, nu, mu disagree (audit 18)
+        p = load_params()
+    cup = p.flexspline_cup
+    lam = torsion.flexspline_flexibility(cup.pitch_diameter_mm, cup.wall_thickness_mm, cup.length_mm,
+                                         p.material.shear_modulus_MPa, torsion.shape_coefficient(False),
+                                         torsion.structure_coefficient(cup.cup))
+    # Table value printed to 5 significant digits.
+    assert lam == pytest.approx(2.3588e-10, abs=5e-15)
+    # pi/32 instead of 0.1: exactly 3.2/pi more compliant (1.86 % more = published 1.83 % low).
+    corr = torsion.flexspline_flexibility(cup.pitch_diameter_mm, cup.wall_thickness_mm, cup.length_mm, MU, 1.0,
+                                          0.83, Variant.CORRECTED)
+    assert corr / lam == pytest.approx(3.2 / math.pi, rel=1e-14)
+    assert 1 - lam / corr == pytest.approx(0.0183, abs=5e-5)
+
+
+def test_lambda_so0_reproduces_table_only_with_bore_and_110mm():
+    table = 6.9063e-10
+    # 5 significant digits in the table -> abs 5e-15.
+    assert torsion.shaft_flexibility_table_reconstruction(110.0, 70.0, 45.0, MU) == pytest.approx(table, abs=5e-15)
+    assert torsion.shaft_length_implied_mm(table, 70.0, 45.0, MU) == pytest.approx(110.0, abs=0.01)
+    # Printed formula with the stated 200 mm: 10.4123; with the bore: 12.5569 (audit, 5 digits).
+    assert torsion.shaft_flexibility(200.0, 70.0, 45.0, MU) == pytest.approx(10.4123e-10, abs=5e-15)
+    assert torsion.shaft_flexibility_table_reconstruction(200.0, 70.0, 45.0, MU) == pytest.approx(12.5569e-10, abs=5e-15)
+    for L in (110.0, 200.0):   # neither the printed formula nor the exact hollow one hits the table
+        assert abs(torsion.shaft_flexibility(L, 70.0, 45.0, MU) / table - 1) > 0.01
+        assert abs(torsion.shaft_flexibility(L, 70.0, 45.0, MU, Variant.CORRECTED) / table - 1) > 0.01
+    # Corrected = exact hollow-shaft torsion 32 L/(pi mu (D^4 - d^4)).
+    assert torsion.shaft_flexibility(200.0, 70.0, 45.0, MU, Variant.CORRECTED) == pytest.approx(
+        200.0 / (MU * math.pi * (70 ** 4 - 45 ** 4) / 32), rel=1e-14)
+
+
+def test_lambda_H0_and_implied_K_G0():
+    lam = torsion.wave_generator_flexibility(0.35, 6.303e4, 160.0, 2, 0.8, 100.0)
+    # K_G0 = 6.303e4 is itself rounded to 4 digits: 3.4071 reproduced to 1e-4 relative.
+    assert lam == pytest.approx(3.4071e-10, rel=1e-4)
+    assert torsion.radial_stiffness_implied_N_per_mm(3.4071e-10, 0.35, 160.0, 2, 0.8, 100.0) == pytest.approx(6.303e4, rel=1e-4)
+    assert torsion.radial_force_N(0.35, 1000.0, 160.0) == pytest.approx(1.15 * 0.35 * 1000 / 160, rel=1e-15)
+
+
+def test_K_HD_printed_with_1e3_slip_and_shares():
+    t = torsion.SEED000_TABLE
+    # Table rows sum correctly (to the 4 decimals printed).
+    assert t["lambda_H0"] + t["lambda_f0"] + t["lambda_so0"] == pytest.approx(t["lambda_sum0"], abs=1e-14)
+    for lam, printed in ((t["lambda_sum0"], t["K_HD0_printed"]), (t["lambda_sum"], t["K_HD_printed"])):
+        # The printed stiffness is 1/lambda_sum divided by 1000 (5-digit rounding of both numbers).
+        assert torsion.printed_stiffness_slip(lam, printed) == pytest.approx(1000.0, rel=1e-4)
+    sh = torsion.shares(t["lambda_H0"] + t["delta_lambda_H"], t["lambda_f0"], t["lambda_so0"])
+    assert [round(100 * s, 2) for s in sh] == [27.75, 18.39, 53.86]
+    assert [round(100 * s) for s in sh] != list(t["shares_percent"])   # the paper's 28/19/53 do not follow
+
+
+def test_series_vs_subtractive_radial_stiffness():
+    # Series springs are softer than either; the published subtraction goes negative for a stiff crack term.
+    assert torsion.cracked_radial_stiffness_N_per_mm(100.0, 300.0) == pytest.approx(75.0, rel=1e-14)
+    assert torsion.cracked_radial_stiffness_N_per_mm(6.303e4, 6.4e9, Variant.PUBLISHED) < 0
