@@ -1,0 +1,171 @@
+"""Every image of the report for one run: stress renders, crack-tip close-ups, ring shape, plots.
+
+A picture that cannot be made is recorded with its reason (it is not silently left out), so the report
+can say what is missing and why.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from . import plots
+from .check_set import CheckSet
+from .fea_book import FeaBook
+from .plan import Plan
+
+COMPONENT_TITLES = {"shaft": "output shaft", "cup": "flexspline cup", "bearing": "bearing inner ring",
+                    "ring": "EWG flexspline ring"}
+
+
+@dataclass(frozen=True)
+class Image:
+    path: Path           # relative to the output folder
+    caption: str
+    component: str       # shaft | cup | bearing | ring | gear
+    kind: str            # stress | closeup | ring-shape | convergence | crack-sweep
+
+    def to_dict(self) -> dict:
+        return {"path": self.path.as_posix(), "caption": self.caption, "component": self.component,
+                "kind": self.kind}
+
+
+@dataclass(frozen=True)
+class Missing:
+    what: str
+    reason: str
+
+    def to_dict(self) -> dict:
+        return {"what": self.what, "reason": self.reason}
+
+
+class _Collector:
+    def __init__(self, out_dir: Path, progress):
+        self.out_dir, self.progress = Path(out_dir), progress
+        self.images: list[Image] = []
+        self.missing: list[Missing] = []
+
+    def attempt(self, what: str, component: str, kind: str, make: Callable[[Path], str], name: str) -> None:
+        target = self.out_dir / "images" / name
+        try:
+            caption = make(target)
+        except Exception as exc:  # noqa: BLE001 - a failed picture is reported, the run goes on
+            self.missing.append(Missing(what, f"{type(exc).__name__}: {exc}"))
+            self.progress(f"  image {name}: FAILED ({type(exc).__name__}: {exc})")
+            return
+        self.images.append(Image(target.relative_to(self.out_dir), caption, component, kind))
+
+
+def _vtu(book: FeaBook, label: str) -> Path | None:
+    outcome = book.outcomes.get(label)
+    if outcome is None or outcome.result is None:
+        return None
+    files = [Path(p) for p in outcome.result.fields if str(p).endswith(".vtu") and Path(p).exists()]
+    return files[0] if files else None
+
+
+def _require(path):
+    if path is None:
+        raise FileNotFoundError("the case wrote no VTU field (or it failed)")
+    return path
+
+
+def make_images(out_dir: Path, book: FeaBook, plan: Plan, check_set: CheckSet, summary: dict,
+                progress: Callable[[str], None]) -> tuple[list[Image], list[Missing]]:
+    from . import images  # pyvista only here
+
+    col = _Collector(out_dir, progress)
+    for component, case in list(plan.headline.items()) + [("ring", plan.ring)]:
+        title = COMPONENT_TITLES[component]
+        vtu = _vtu(book, case.label)
+        col.attempt(f"{title} stress", component, "stress",
+                    lambda t, v=vtu, ti=title: images.render_stress(_require(v), t, label=ti).caption,
+                    f"{component}_von_mises.png")
+    for component, cases in plan.sweeps.items():
+        if not cases:
+            continue
+        deepest = cases[-1]
+        vtu = _vtu(book, deepest.label)
+        title = f"{COMPONENT_TITLES[component]}, crack a = {deepest.crack_depth_mm:g} mm"
+        col.attempt(f"{title} close-up", component, "closeup",
+                    lambda t, v=vtu, ti=title: images.render_closeup(_require(v), t, label=ti).caption,
+                    f"{component}_crack_tip.png")
+    col.attempt("ring mid-layer", "ring", "ring-shape",
+                lambda t: _ring_shape(t, book, plan, check_set, summary), "ring_mid_layer.png")
+    for check in check_set.checks:
+        label = _case_of(check, plan)
+        if label is None:
+            continue
+        col.attempt(f"{check.id} convergence", check.component, "convergence",
+                    lambda t, c=check, lb=label: _convergence(t, c, book, lb), f"{check.id.replace('.', '_')}_convergence.png")
+    for component, report in check_set.sweeps.items():
+        col.attempt(f"{component} crack sweep", component, "crack-sweep",
+                    lambda t, r=report, c=component: _sweep(t, r, c), f"{component}_crack_sweep.png")
+    return col.images, col.missing
+
+
+# quantity name per check whose convergence history is plotted
+CONVERGENCE_OF = {"shaft.flexibility": ("shaft", "flexibility_rad_per_Nmm"),
+                  "cup.flexibility": ("cup", "flexibility_rad_per_Nmm"),
+                  "bearing.radial_compliance": ("bearing", "radial_compliance_mm_per_N"),
+                  "ring.delta_cd": ("ring", "delta_cd_mm"), "ring.delta_ab": ("ring", "delta_ab_mm"),
+                  "ring.sigma_max": ("ring", "sigma_D_outer_MPa"), "ring.sigma_min": ("ring", "sigma_B_outer_MPa"),
+                  "ring.tooth_influence": ("ring", "tooth_influence"),
+                  "ring.stress_concentration": ("ring", "stress_concentration")}
+
+
+def _case_of(check, plan: Plan) -> str | None:
+    spec = CONVERGENCE_OF.get(check.id)
+    if spec is None or check.fea is None:
+        return None
+    return plan.ring.label if spec[0] == "ring" else plan.headline[spec[0]].label
+
+
+def _convergence(target: Path, check, book: FeaBook, label: str) -> str:
+    q, why = book.quantity(label, CONVERGENCE_OF[check.id][1])
+    if q is None or q.convergence is None:
+        raise ValueError(why or f"{check.id}: the study gave no three-mesh convergence data")
+    c = q.convergence
+    plots.convergence_plot(target, title=f"{check.id}: {q.name}", unit=q.unit, h_mm=c.h_mm, values=c.values,
+                           extrapolated=c.extrapolated, gci_fine=c.gci_fine, observed_order=c.observed_order,
+                           analytic=check.analytic if check.id not in ("gear.stiffness",) else None)
+    return (f"{check.id}: {q.name} on three meshes (h = {', '.join(f'{h:.3g}' for h in c.h_mm)} mm), observed "
+            f"order {c.observed_order:.2f}, GCI {100 * c.gci_fine:.3g} %, against the closed forms")
+
+
+def _sweep(target: Path, report, component: str) -> str:
+    sw = report.sweep
+    curves = {}
+    for variant, values in report.analytic.items():
+        curves[variant] = (np.asarray(sw.depths_mm), np.asarray(values))
+    fit = report.fit
+    label = "" if fit is None else f"fitted a^{fit.exponent:.2f}"
+    plots.crack_sweep_plot(target, title=f"{COMPONENT_TITLES[component]}: crack compliance vs depth",
+                           unit=sw.unit, depths_mm=sw.depths_mm, fea=sw.values, fea_uncertainty=sw.uncertainties,
+                           curves=curves, fit_label=label)
+    exps = ", ".join(f"{k} a^{v:.2f}" for k, v in report.analytic_fits.items())
+    return (f"{COMPONENT_TITLES[component]}: {sw.quantity} against crack depth, FEA (with GCI bars) and both closed "
+            f"forms" + (f"; FEA {label}, closed forms {exps}" if label else ""))
+
+
+def _ring_shape(target: Path, book: FeaBook, plan: Plan, check_set: CheckSet, summary: dict) -> str:
+    from .images import sample_circle
+
+    vtu = _require(_vtu(book, plan.ring.label))
+    checks = check_set.by_id()
+    cd, ab = checks["ring.delta_cd"], checks["ring.delta_ab"]
+    if cd.fea is None or ab.fea is None or "published" not in cd.analytic:
+        raise ValueError("ring delta_CD/delta_AB not evaluated")
+    r_m = summary["seed003"]["geometry"]["r_m_mm"]
+    sampled = sample_circle(vtu, r_m)
+    if sampled is None or len(sampled[0]) < 10:
+        raise ValueError(f"{vtu}: the mid-layer circle r = {r_m:g} mm does not cross the mesh")
+    theta, u_r, _ = sampled
+    load_angle = float(theta[np.argmin(u_r)])  # the loaded points move inward the most
+    plots.ring_midlayer_plot(target, r_m_mm=r_m, theta=theta, u_r_fea=u_r, delta_cd_fea=cd.fea, delta_ab_fea=ab.fea,
+                             delta_cd_analytic=cd.analytic["published"], delta_ab_analytic=ab.analytic["published"],
+                             load_angle_rad=load_angle)
+    return ("EWG ring: deformed mid-layer from the FEA field against the thin-ring shape (seed 003 eqs 3-4), "
+            "delta_CD and delta_AB marked at C, D and A, B")

@@ -1,0 +1,108 @@
+"""All checks of a validation run, plus the crack sweeps and fitted exponents they rest on."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .checks import REQUIRED_IDS, Check, not_evaluated
+from .crack_scaling import PowerFit, fit_power_law
+from .fea_book import FeaBook, Sweep
+from .plan import Plan
+from .ring_checks import applied_force_N, ring_checks
+from .torsion_checks import (FLEX_UNIT, bearing_crack_curve, bearing_radial_compliance, crack_check,
+                             cup_crack_curve, cup_flexibility, gear_stiffness, mu_gap, shaft_crack_curve,
+                             shaft_flexibility)
+
+DELTA_NAMES = {"shaft": "delta_flexibility_rad_per_Nmm", "cup": "delta_flexibility_rad_per_Nmm",
+               "bearing": "delta_radial_compliance_mm_per_N"}
+
+
+@dataclass(frozen=True)
+class SweepReport:
+    sweep: Sweep
+    fit: PowerFit | None                       # over the resolved depths
+    analytic: dict[str, list[float]]           # variant -> closed form at each depth
+    analytic_fits: dict[str, float] = field(default_factory=dict)   # variant -> exponent over resolved depths
+
+    def to_dict(self) -> dict:
+        return {**self.sweep.to_dict(), "fit": None if self.fit is None else self.fit.to_dict(),
+                "analytic": self.analytic, "analytic_exponents": self.analytic_fits}
+
+
+@dataclass(frozen=True)
+class CheckSet:
+    checks: tuple[Check, ...]
+    sweeps: dict[str, SweepReport]
+
+    def by_id(self) -> dict[str, Check]:
+        return {c.id: c for c in self.checks}
+
+
+def _curves(params, s000: dict, book: FeaBook, plan: Plan):
+    """component -> (depth -> {variant: closed form}) under the FEA's load conditions."""
+    r_m = s000.get("r_m_mm", {}).get("chosen", 0.5 * params.flexspline_cup.pitch_diameter_mm)
+    unit_params = params.with_value("cracks.stress_nonuniformity", 1.0).with_value("cracks.dynamic_load_factor", 1.0)
+    F_r = applied_force_N(book.meta(plan.headline["bearing"].label)) or s000.get("F_r_N", 1.0)
+    return {"shaft": lambda a: shaft_crack_curve(params, a),
+            "cup": lambda a: cup_crack_curve(unit_params, a, r_m),
+            "bearing": lambda a: bearing_crack_curve(params, a, F_r)}
+
+
+def _sweep_report(sweep: Sweep, curve) -> SweepReport:
+    analytic = {}
+    for depth in sweep.depths_mm:
+        for variant, value in curve(depth).items():
+            analytic.setdefault(variant, []).append(value)
+    ok = sweep.resolved(3.0)
+    depths = np.asarray(sweep.depths_mm)[ok]
+    fit = fit_power_law(depths, np.asarray(sweep.values)[ok])
+    analytic_fits = {}
+    if fit is not None:
+        for variant, values in analytic.items():
+            f = fit_power_law(depths, np.asarray(values)[ok])
+            if f is not None:
+                analytic_fits[variant] = f.exponent
+    return SweepReport(sweep, fit, analytic, analytic_fits)
+
+
+CRACK_TEXT = {
+    "shaft": ("shaft.crack_compliance", "added torsional flexibility of the circumferential shaft crack", FLEX_UNIT,
+              "published 512 M_M^2 a^3/(3 mu d_e^6) (penny-crack area), corrected 128 M_M^2 a^2/(mu d_e^5) "
+              "(circumferential crack); both solid-bar K_III (Tada), so the hollow shaft's higher nominal stress "
+              "is not in them (audit 12)"),
+    "cup": ("cup.crack_compliance", "added torsional flexibility of the tooth-root crack", FLEX_UNIT,
+            "closed forms evaluated with K_u = K_d = 1 because the FEA load is static and uniform (the seed's "
+            "1.2 x 1.1 are load factors, audit 17); published a^2/(2 pi E r_m^4 delta), corrected "
+            "a^2/(4 pi E r_m^4 delta)"),
+    "bearing": ("bearing.crack_compliance", "added radial compliance of the bearing-ring surface crack", "mm/N",
+                "du_H/F_r; published carries F_r^2 (load-dependent), corrected F_r (audit 7)"),
+}
+
+
+def build_checks(book: FeaBook, plan: Plan, summary: dict, params) -> CheckSet:
+    s000 = summary.get("seed000", {})
+    refs = summary.get("checks", {})
+    labels = {c: case.label for c, case in plan.headline.items()}
+    checks = [shaft_flexibility(book, labels["shaft"], s000, params),
+              cup_flexibility(book, labels["cup"], s000, params),
+              bearing_radial_compliance(book, labels["bearing"], s000, params)]
+    sweeps = {}
+    curves = _curves(params, s000, book, plan)
+    for component, (check_id, quantity, unit, note) in CRACK_TEXT.items():
+        case_labels = [plan.headline[component].label] + [c.label for c in plan.sweeps[component]]
+        sweep = book.sweep(component, case_labels, DELTA_NAMES[component])
+        if sweep is not None:
+            sweeps[component] = _sweep_report(sweep, curves[component])
+        allowances = dict([mu_gap(params)]) if component == "shaft" else {}
+        checks.append(crack_check(check_id, quantity, unit, sweep, curves[component], allowances, note,
+                                  {"fea": "FEA " + ", ".join(case_labels), "analytic": "seed 000"},
+                                  params.cracks.depth_mm))
+    checks += ring_checks(book, plan.ring.label, refs, params)
+    checks.append(gear_stiffness(book, labels, s000, params))
+    present = {c.id for c in checks}
+    checks += [not_evaluated(cid, cid, "", "no builder produced this check") for cid in REQUIRED_IDS
+               if cid not in present]
+    order = {cid: i for i, cid in enumerate(REQUIRED_IDS)}
+    checks.sort(key=lambda c: order.get(c.id, len(order)))
+    return CheckSet(tuple(checks), sweeps)

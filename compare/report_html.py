@@ -1,0 +1,99 @@
+"""report.html: the validation report as one HTML page with relative links (opens from its folder).
+
+Inline CSS, no scripts, no network: images, STEP, VTU and results.json are linked by relative paths
+inside the output folder, so the folder can be moved or zipped and still opens in any browser.
+"""
+from __future__ import annotations
+
+from html import escape
+from pathlib import Path
+
+from ..io_atomic import atomic_write_text
+from . import report_text as rt
+
+CSS = """
+body{font-family:system-ui,-apple-system,"Segoe UI",sans-serif;margin:2em auto;max-width:1200px;color:#222;
+line-height:1.4;padding:0 1em}
+h1{margin-bottom:.2em} h2{border-bottom:2px solid #ddd;padding-bottom:.2em;margin-top:2em}
+table{border-collapse:collapse;margin:1em 0;font-size:.85em;width:100%}
+th,td{border:1px solid #ccc;padding:4px 6px;vertical-align:top;text-align:left}
+th{background:#f2f2f2} td.num{text-align:right;white-space:nowrap}
+.verdict{font-size:1.3em;padding:.6em 1em;border-radius:6px;margin:1em 0}
+.pass{background:#e3f6e3;border:1px solid #6c6} .fail{background:#fde8e8;border:1px solid #d66}
+td.PASS{background:#e3f6e3;font-weight:bold} td.FAIL{background:#fde8e8;font-weight:bold}
+td.NOT{background:#fff4d6;font-weight:bold}
+figure{display:inline-block;margin:.5em;max-width:48%;vertical-align:top}
+figure img{max-width:100%;border:1px solid #ddd} figcaption{font-size:.8em;color:#555}
+.notes{font-size:.8em;color:#444} code{background:#f5f5f5;padding:0 3px}
+"""
+
+
+def _table(columns, rows, *, result_col: int | None = None) -> str:
+    head = "".join(f"<th>{escape(c)}</th>" for c in columns)
+    body = []
+    for row in rows:
+        cells = []
+        for i, cell in enumerate(row):
+            cls = f' class="{escape(str(cell).split()[0])}"' if i == result_col else ""
+            cells.append(f"<td{cls}>{escape(str(cell))}</td>")
+        body.append("<tr>" + "".join(cells) + "</tr>")
+    return f"<table><thead><tr>{head}</tr></thead><tbody>{''.join(body)}</tbody></table>"
+
+
+def _figure(image: dict) -> str:
+    path = escape(image["path"], quote=True)
+    caption = escape(image["caption"])
+    return (f'<figure><a href="{path}"><img src="{path}" alt="{caption}" loading="eager"></a>'
+            f"<figcaption>{caption}</figcaption></figure>")
+
+
+def render_html(doc: dict) -> str:
+    passed = doc["passed"]
+    parts = ["<!DOCTYPE html>", '<html lang="en"><head><meta charset="utf-8">',
+             '<meta name="viewport" content="width=device-width, initial-scale=1">',
+             "<title>strainwave validation report</title>", f"<style>{CSS}</style></head><body>",
+             "<h1>strainwave validation report</h1>",
+             f'<div class="verdict {"pass" if passed else "fail"}" id="verdict">{escape(rt.headline(doc))}</div>',
+             f"<p>{escape(rt.run_line(doc))}</p>"]
+    failing = [c for c in doc["checks"] if not c["passed"]]
+    if failing:
+        parts.append("<h2>Failing checks</h2><ul>")
+        parts += [f"<li><code>{escape(c['id'])}</code>: {escape(c['reason_not_evaluated'] or rt.check_row(c)[6])}"
+                  "</li>" for c in failing]
+        parts.append("</ul>")
+    for component, title in rt.COMPONENTS:
+        checks = [c for c in doc["checks"] if c["component"] == component]
+        parts.append(f'<h2 id="{component}">{escape(title)}</h2>')
+        parts.append(_table(rt.CHECK_COLUMNS, [rt.check_row(c) for c in checks], result_col=7))
+        parts.append('<ul class="notes">' + "".join(
+            f"<li><code>{escape(c['id'])}</code>: {escape(rt.check_notes(c))}</li>" for c in checks) + "</ul>")
+        sweep = doc["crack_sweeps"].get(component)
+        if sweep:
+            parts.append(f"<h3>Crack-depth sweep ({escape(sweep['quantity'])}, {escape(sweep['unit'])})</h3>")
+            parts.append(_table(rt.SWEEP_COLUMNS, rt.sweep_rows(sweep)))
+            parts.append(f"<p>{escape(rt.sweep_fit_line(sweep))}</p>")
+        figures = [_figure(i) for i in doc["images"] if i["component"] == component]
+        if figures:
+            parts.append("<div>" + "".join(figures) + "</div>")
+    parts.append('<h2 id="audit">Seed audit</h2><p>Every inconsistency found in the seeds, with the FEA evidence '
+                 "where the FEA can settle it.</p>")
+    parts.append(_table(rt.AUDIT_COLUMNS, [rt.audit_row(a) for a in doc["audit"]]))
+    meta = doc["metadata"]
+    parts.append('<h2 id="cases">FEA cases and timings</h2>')
+    parts.append(_table(rt.CASE_COLUMNS, [rt.case_row(c) for c in meta["cases"]]))
+    parts.append("<p>Time per stage: " + escape(", ".join(f"{k} {v:.1f} s" for k, v in meta["timings_s"].items()))
+                 + "</p>")
+    if doc.get("missing_images"):
+        parts.append("<h2>Images that could not be made</h2><ul>" + "".join(
+            f"<li>{escape(m['what'])}: {escape(m['reason'])}</li>" for m in doc["missing_images"]) + "</ul>")
+    links = [(Path(p).name, p) for p in doc["files"]["step"] + doc["files"]["fields"]] + [("results.json",
+                                                                                         "results.json")]
+    parts.append('<h2 id="files">Files</h2><ul>' + "".join(
+        f'<li><a href="{escape(p, quote=True)}">{escape(n)}</a></li>' for n, p in links) + "</ul>")
+    parts.append("<h2>Versions</h2>" + _table(("package", "version"), list(meta["versions"].items())))
+    parts.append("</body></html>")
+    return "\n".join(parts)
+
+
+def write_html(path: Path, doc: dict) -> Path:
+    return atomic_write_text(path, render_html(doc))

@@ -1,0 +1,56 @@
+"""report.md: the validation report as Markdown (summary verdict first), from the results document."""
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..io_atomic import atomic_write_text
+from . import report_text as rt
+
+
+def _table(columns, rows) -> list[str]:
+    def cell(text: str) -> str:
+        return str(text).replace("|", "\\|").replace("\n", " ")
+
+    lines = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+    lines += ["| " + " | ".join(cell(c) for c in row) + " |" for row in rows]
+    return lines
+
+
+def render_markdown(doc: dict) -> str:
+    lines = ["# strainwave validation report", "", f"**{rt.headline(doc)}**", "", rt.run_line(doc), ""]
+    failing = [c for c in doc["checks"] if not c["passed"]]
+    if failing:
+        lines += ["## Failing checks", ""]
+        lines += [f"- `{c['id']}`: {c['reason_not_evaluated'] or rt.check_row(c)[6]}" for c in failing] + [""]
+    images = doc["images"]
+    for component, title in rt.COMPONENTS:
+        checks = [c for c in doc["checks"] if c["component"] == component]
+        lines += [f"## {title}", ""]
+        lines += _table(rt.CHECK_COLUMNS, [rt.check_row(c) for c in checks]) + [""]
+        lines += [f"- `{c['id']}`: {rt.check_notes(c)}" for c in checks] + [""]
+        sweep = doc["crack_sweeps"].get(component)
+        if sweep:
+            lines += [f"### Crack-depth sweep ({sweep['quantity']}, {sweep['unit']})", ""]
+            lines += _table(rt.SWEEP_COLUMNS, rt.sweep_rows(sweep)) + ["", rt.sweep_fit_line(sweep), ""]
+        for image in (i for i in images if i["component"] == component):
+            lines += [f"![{image['caption']}]({image['path']})", "", f"*{image['caption']}*", ""]
+    lines += ["## Seed audit", "", "Every inconsistency found in the seeds, with the FEA evidence where the FEA can "
+              "settle it.", ""]
+    lines += _table(rt.AUDIT_COLUMNS, [rt.audit_row(a) for a in doc["audit"]]) + [""]
+    meta = doc["metadata"]
+    lines += ["## FEA cases and timings", ""]
+    lines += _table(rt.CASE_COLUMNS, [rt.case_row(c) for c in meta["cases"]]) + [""]
+    lines += ["Time per stage: " + ", ".join(f"{k} {v:.1f} s" for k, v in meta["timings_s"].items()), ""]
+    if doc.get("missing_images"):
+        lines += ["## Images that could not be made", ""]
+        lines += [f"- {m['what']}: {m['reason']}" for m in doc["missing_images"]] + [""]
+    lines += ["## Files", ""]
+    lines += [f"- STEP: [{Path(p).name}]({p})" for p in doc["files"]["step"]]
+    lines += [f"- VTU: [{Path(p).name}]({p})" for p in doc["files"]["fields"]]
+    lines += ["- [results.json](results.json)", ""]
+    lines += ["## Versions", ""] + [f"- {k}: {v}" for k, v in meta["versions"].items()] + [""]
+    return "\n".join(lines)
+
+
+def write_markdown(path: Path, doc: dict) -> Path:
+    return atomic_write_text(path, render_markdown(doc))

@@ -1,0 +1,112 @@
+"""What both reports say, as plain rows: the Markdown and HTML writers only lay these out.
+
+Everything is read from the results document (the dict written to results.json), so the reports can
+never show a number the JSON does not have.
+"""
+from __future__ import annotations
+
+COMPONENTS = (("shaft", "Output shaft (seed 000)"), ("cup", "Flexspline cup (seed 000)"),
+              ("bearing", "Wave-generator bearing inner ring (seed 000)"),
+              ("ring", "EWG flexspline ring (seed 003)"), ("gear", "Drive stiffness (seed 000)"))
+
+CHECK_COLUMNS = ("check", "quantity", "FEA +/- U", "published (err)", "corrected (err)", "tolerance", "verdict",
+                 "result")
+
+
+def num(value, digits: int = 5) -> str:
+    if value is None:
+        return "n/a"
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if isinstance(value, int):
+        return str(value)
+    return f"{value:.{digits}g}"
+
+
+def pct(value) -> str:
+    return "n/a" if value is None else f"{100 * value:+.3g} %"
+
+
+def headline(doc: dict) -> str:
+    s = doc["summary"]
+    verdict = "PASS" if doc["passed"] else "FAIL"
+    text = f"{verdict}: {s['passed']} of {s['checks']} checks pass"
+    if s["failed"]:
+        text += f"; failing: {', '.join(s['failed'])}"
+    if s["not_evaluated"]:
+        text += f" (not evaluated: {', '.join(s['not_evaluated'])})"
+    return text
+
+
+def run_line(doc: dict) -> str:
+    m = doc["metadata"]
+    mode = "--quick (coarse meshes, fewer sweep points)" if m["settings"]["quick"] else "full"
+    cached = sum(1 for c in m["cases"] if c["cached"])
+    return (f"{mode} run, {len(m['cases'])} FEA cases ({cached} reused from the cache), P{m['settings']['order']} "
+            f"elements, total {m['total_s']:.1f} s, {m['created_utc']}, strainwave {m['versions']['strainwave']} "
+            f"(code {m['versions']['code_version']})")
+
+
+def check_row(c: dict) -> tuple[str, ...]:
+    fea = "not evaluated" if c["fea"] is None else (
+        f"{num(c['fea'])} +/- {num(c['fea_uncertainty'], 2)}" if c["fea_uncertainty"] is not None else num(c["fea"]))
+    cells = []
+    for variant in ("published", "corrected"):
+        value = c["analytic"].get(variant)
+        err = c["rel_error"].get(variant)
+        cells.append(f"{num(value)} ({pct(err)})" if err is not None else num(value))
+    tol = c["tolerance"]
+    tolerance = "n/a" if tol["relative"] is None else f"{100 * tol['relative']:.3g} %: {tol['reason']}"
+    result = "PASS" if c["passed"] else ("NOT EVALUATED" if c["verdict"] == "not evaluated" else "FAIL")
+    verdict = c["verdict"] if c["verdict"] != "not evaluated" else c["reason_not_evaluated"]
+    return (c["id"], f"{c['quantity']} [{c['unit']}]", fea, *cells, tolerance, verdict, result)
+
+
+def check_notes(c: dict) -> str:
+    parts = [c["note"]] if c["note"] else []
+    if c["sources"]:
+        parts.append("sources: " + "; ".join(f"{k} = {v}" for k, v in c["sources"].items()))
+    parts.append(f"asserts agreement with the {c['asserts']} form")
+    return " | ".join(parts)
+
+
+def sweep_rows(sweep: dict) -> list[tuple[str, ...]]:
+    rows = []
+    for i, depth in enumerate(sweep["depths_mm"]):
+        row = [num(depth, 3), num(sweep["fea"][i], 4), num(sweep["fea_uncertainty"][i], 2),
+               "yes" if sweep["resolved"][i] else "no"]
+        for variant in ("published", "corrected"):
+            values = sweep["analytic"].get(variant)
+            row.append(num(values[i], 4) if values else "n/a")
+        rows.append(tuple(row))
+    return rows
+
+
+SWEEP_COLUMNS = ("a (mm)", "FEA", "U (GCI)", "resolved", "published", "corrected")
+
+
+def sweep_fit_line(sweep: dict) -> str:
+    fit = sweep.get("fit")
+    if not fit:
+        return "exponent: not fitted (fewer than two resolved depths)"
+    err = f" +/- {fit['stderr']:.2f}" if fit["stderr"] is not None else ""
+    exps = ", ".join(f"{k} a^{v:.2f}" for k, v in sweep.get("analytic_exponents", {}).items())
+    return (f"np.polyfit of log(delta) vs log(a) over {fit['points']} resolved depths: FEA a^{fit['exponent']:.2f}"
+            f"{err}; closed forms over the same depths: {exps}")
+
+
+AUDIT_COLUMNS = ("#", "seed", "where", "what is wrong", "effect on the example", "FEA check", "FEA evidence")
+
+
+def audit_row(a: dict) -> tuple[str, ...]:
+    return (str(a["id"]), a["seed"], a["equation"], a["what_is_wrong"], a["effect_on_example"],
+            a["fea_check"] or "-", a["settled"])
+
+
+CASE_COLUMNS = ("case", "study", "crack (mm)", "status", "dofs", "time (s)")
+
+
+def case_row(c: dict) -> tuple[str, ...]:
+    status = ("cached" if c["cached"] else "solved") if c["ok"] else f"FAILED: {c['error']}"
+    dofs = num(c["result"]["mesh"]["dofs"]) if c.get("result") else "-"
+    return (c["label"], c["study"], num(c["crack_depth_mm"], 3), status, dofs, f"{c['seconds']:.1f}")

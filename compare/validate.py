@@ -1,0 +1,166 @@
+"""``strainwave validate``: every study on the parameters, confronted with both seeds' closed forms.
+
+Stages (each timed, progress on the terminal): analytic model -> STEP of every part -> FEA cases
+(headline per component, crack-depth sweeps, the ring) -> checks -> seed audit with FEA evidence ->
+images and plots -> results.json (schema-validated), report.md, report.html. Every file is written under
+a temporary name and renamed; finished FEA cases and STEP files are reused from ``<out>/cache`` on a
+rerun with the same parameters and code. The run passes only if every required check passes.
+"""
+from __future__ import annotations
+
+import time
+from contextlib import contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+from .audit_evidence import audit_with_evidence, exponent_evidence
+from .cache import ResultCache
+from .check_set import CheckSet, build_checks
+from .checks import Check
+from .fea_book import FeaBook
+from .plan import make_plan
+from .report_html import write_html
+from .report_md import write_markdown
+from .results import now_utc, plain, versions, write_results
+from .runner import CaseOutcome, run_case
+
+ORDER = 2   # quadratic elements, the fea/ default (curved P2)
+
+
+@dataclass(frozen=True)
+class Outcome:
+    out_dir: Path
+    checks: tuple[Check, ...]
+    timings_s: dict[str, float]
+    cases: tuple[CaseOutcome, ...]
+
+    @property
+    def passed(self) -> bool:
+        return bool(self.checks) and all(c.passed for c in self.checks)
+
+    def summary(self) -> str:
+        width = max(len(c.id) for c in self.checks)
+        lines = [f"{'check':<{width}}  {'FEA':>11}  {'published':>11} {'err':>9}  {'corrected':>11} {'err':>9}  "
+                 f"{'tol':>7}  {'verdict':<13} result"]
+        for c in self.checks:
+            def val(v):
+                return f"{v:11.4g}" if v is not None else f"{'n/a':>11}"
+
+            def err(v):
+                return f"{100 * v:+8.3g}%" if v is not None else f"{'':>9}"
+
+            tol = f"{100 * c.tolerance.relative:6.3g}%" if c.tolerance.relative == c.tolerance.relative else " " * 7
+            result = "PASS" if c.passed else ("NOT EVALUATED" if c.verdict == "not evaluated" else "FAIL")
+            lines.append(f"{c.id:<{width}}  {val(c.fea)}  {val(c.analytic.get('published'))} "
+                         f"{err(c.rel_error.get('published'))}  {val(c.analytic.get('corrected'))} "
+                         f"{err(c.rel_error.get('corrected'))}  {tol}  {c.verdict:<13} {result}")
+        failing = [c for c in self.checks if not c.passed]
+        if failing:
+            lines.append(f"FAILING ({len(failing)}):")
+            lines += [f"  {c.id}: " + (c.reason_not_evaluated or
+                                        f"FEA differs from the {c.asserts} form by "
+                                        f"{100 * c.rel_error.get(c.asserts, float('nan')):+.3g} % "
+                                        f"(tolerance {100 * c.tolerance.relative:.3g} %)") for c in failing]
+        cached = sum(1 for c in self.cases if c.cached)
+        lines.append(f"{sum(c.passed for c in self.checks)}/{len(self.checks)} checks pass; "
+                     f"{len(self.cases)} FEA cases ({cached} reused from cache); time per stage: "
+                     + ", ".join(f"{k} {v:.1f} s" for k, v in self.timings_s.items()))
+        lines.append(f"report: {self.out_dir / 'report.html'}  ({'PASS' if self.passed else 'FAIL'})")
+        return "\n".join(lines)
+
+
+@contextmanager
+def _stage(name: str, timings: dict, progress: Callable[[str], None], number: int, total: int):
+    progress(f"[{number}/{total}] {name} ...")
+    start = time.perf_counter()
+    yield
+    timings[name] = time.perf_counter() - start
+    progress(f"[{number}/{total}] {name} done in {timings[name]:.1f} s")
+
+
+def _case_record(outcome: CaseOutcome, out_dir: Path) -> dict:
+    result = None
+    if outcome.result is not None:
+        result = outcome.result.to_dict()
+        result["fields"] = [_relative(p, out_dir) for p in outcome.result.fields]
+    return {"label": outcome.case.label, "study": outcome.case.study, "crack_depth_mm": outcome.case.crack_depth_mm,
+            "ok": outcome.ok, "cached": outcome.cached, "seconds": outcome.seconds, "error": outcome.error,
+            "result": result}
+
+
+def _relative(path, out_dir: Path) -> str:
+    path = Path(path)
+    try:
+        return path.resolve().relative_to(out_dir.resolve()).as_posix()
+    except ValueError:
+        return path.as_posix()
+
+
+def _shaft_exponent(check_set: CheckSet) -> dict | None:
+    report = check_set.sweeps.get("shaft")
+    if report is None:
+        return None
+    return exponent_evidence(report.fit, report.analytic_fits or {"published": 3.0, "corrected": 2.0})
+
+
+def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str], None]) -> Outcome:
+    """Run the whole validation into ``out_dir``; returns the checks and timings (see module docstring)."""
+    from ..analytic.summary import analytic_summary
+    from .artifacts import make_images
+    from .step_export import export_steps
+
+    start = time.perf_counter()
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    cache = ResultCache(out_dir / "cache")
+    timings: dict[str, float] = {}
+    total = 6
+    with _stage("analytic", timings, progress, 1, total):
+        summary = analytic_summary(params)
+    with _stage("step", timings, progress, 2, total):
+        steps = export_steps(params, out_dir / "step", cache, progress)
+    plan = make_plan(params, quick=quick)
+    with _stage("fea", timings, progress, 3, total):
+        outcomes = {case.label: run_case(case, params, fields_dir=out_dir / "fields", cache=cache, quick=quick,
+                                         order=ORDER, progress=progress) for case in plan.all_cases()}
+    book = FeaBook(outcomes)
+    with _stage("checks", timings, progress, 4, total):
+        check_set = build_checks(book, plan, summary, params)
+        audit = audit_with_evidence(summary.get("audit", []), check_set.by_id(),
+                                    shaft_exponent=_shaft_exponent(check_set))
+    with _stage("images", timings, progress, 5, total):
+        images, missing = make_images(out_dir, book, plan, check_set, summary, progress)
+    with _stage("reports", timings, progress, 6, total):
+        checks = [c.to_dict() for c in check_set.checks]
+        failed = [c["id"] for c in checks if not c["passed"]]
+        fields = sorted({_relative(p, out_dir) for o in outcomes.values() if o.result for p in o.result.fields})
+        doc = {
+            "schema_version": 1,
+            "passed": bool(checks) and not failed,
+            "summary": {"checks": len(checks), "passed": len(checks) - len(failed), "failed": failed,
+                        "not_evaluated": [c["id"] for c in checks if c["verdict"] == "not evaluated"]},
+            "metadata": {
+                "created_utc": now_utc(), "params": params.to_dict(), "versions": versions(),
+                "settings": {"quick": quick, "order": ORDER, "mesh": "study defaults (quick: coarse), 3 refinements",
+                             "solver": "fea/ default (see each case's meta)",
+                             "sweep_depths_mm": {k: [c.crack_depth_mm for c in v] for k, v in plan.sweeps.items()}},
+                "cases": [_case_record(o, out_dir) for o in outcomes.values()],
+                "steps": [{"part": s.part, "files": [_relative(p, out_dir) for p in s.files], "seconds": s.seconds,
+                           "cached": s.cached, "error": s.error} for s in steps],
+                "timings_s": dict(timings), "total_s": 0.0,
+            },
+            "checks": checks, "audit": audit,
+            "crack_sweeps": {k: r.to_dict() for k, r in check_set.sweeps.items()},
+            "images": [i.to_dict() for i in images], "missing_images": [m.to_dict() for m in missing],
+            "files": {"step": [_relative(p, out_dir) for s in steps for p in s.files], "fields": fields,
+                      "report_html": "report.html", "report_md": "report.md"},
+        }
+        doc["metadata"]["total_s"] = time.perf_counter() - start
+        doc = plain(doc)
+        # The reports are written before results.json so that results.json appearing marks a complete run.
+        write_markdown(out_dir / "report.md", doc)
+        write_html(out_dir / "report.html", doc)
+        write_results(out_dir / "results.json", doc)
+    timings["total"] = time.perf_counter() - start
+    return Outcome(out_dir, check_set.checks, timings, tuple(outcomes.values()))
