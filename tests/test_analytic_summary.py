@@ -7,6 +7,7 @@ import pytest
 
 from strainwave.analytic import checks, cracks, summary
 from strainwave.analytic.audit import AuditRecord, audit_records
+from strainwave.cli import main
 from strainwave.errors import RangeWarning
 from strainwave.params import load_params
 
@@ -110,7 +111,7 @@ def test_format_summary_is_a_table(s):
     assert "2.3588e-10" in text and "71.1794" in text and text.count("\n") > 40
 
 
-def test_cli_analytic_json_end_to_end(strainwave_cmd, tmp_path):
+def test_cli_analytic_json_end_to_end(strainwave_cmd):
     out = subprocess.run([*strainwave_cmd, "analytic", "--json"], capture_output=True, text=True, timeout=60)
     assert out.returncode == 0, out.stderr
     data = json.loads(out.stdout)
@@ -118,9 +119,12 @@ def test_cli_analytic_json_end_to_end(strainwave_cmd, tmp_path):
         assert _get(data, path) is not None, path
     assert _get(data, "seed000.lambda_f0") == pytest.approx(2.3588e-10, abs=5e-15)
     assert _get(data, "seed003.tooth_number_min.dZ4") == pytest.approx(147.85, abs=5e-3)
-    # A partial parameter file changes what it sets and nothing else.
+
+
+def test_cli_analytic_table_with_partial_params(tmp_path, capsys):
+    # In-process (the subprocess route is covered above): a partial file changes only what it sets.
     f = tmp_path / "p.toml"
     f.write_text("[ewg_drive]\ntooth_difference = 4\nflexspline_teeth = 148\n")
-    out2 = subprocess.run([*strainwave_cmd, "analytic", "--params", str(f)], capture_output=True, text=True,
-                          timeout=60)
-    assert out2.returncode == 0 and "Z_R = 148, dZ = 4, Z_G = 144" in out2.stdout
+    assert main(["analytic", "--params", str(f)]) == 0
+    text = capsys.readouterr().out
+    assert "Z_R = 148, dZ = 4, Z_G = 144" in text and "2.3588e-10" in text
