@@ -1,0 +1,113 @@
+"""Unit tests of the comparison machinery: verdicts, tolerances, exponent fits, the ring shape, the schema."""
+from __future__ import annotations
+
+import copy
+import math
+
+import jsonschema
+import numpy as np
+import pytest
+
+from strainwave.compare.audit_evidence import exponent_evidence
+from strainwave.compare.checks import Check, Tolerance, evaluate, fea_tolerance, not_evaluated, verdict_of
+from strainwave.compare.crack_scaling import fit_power_law
+from strainwave.compare.plan import make_plan, sweep_depths_mm
+from strainwave.compare.results import plain, validate_results
+from strainwave.compare.ring_shape import thin_ring_shape
+from strainwave.params import load_params
+
+
+def _check(fea, published, corrected, tol):
+    return evaluate(Check("shaft.flexibility", "q", "rad/(N*mm)", fea, 0.0,
+                          {"published": published, "corrected": corrected}, "corrected", Tolerance(tol, "test")))
+
+
+def test_check_passes_on_corrected_and_reports_published_error():
+    # Seed 000 example: solid-shaft 1.0412e-9 vs hollow 1.2790e-9; FEA 0.5 % below the hollow value.
+    c = _check(1.2726e-9, 1.0412e-9, 1.2790e-9, 0.0105)
+    assert c.passed
+    assert c.verdict == "corrected"
+    assert c.rel_error["corrected"] == pytest.approx(1.2726 / 1.2790 - 1, rel=1e-12)
+    assert c.rel_error["published"] == pytest.approx(1.2726 / 1.0412 - 1, rel=1e-12)
+
+
+def test_check_fails_honestly_when_fea_contradicts_the_asserted_form():
+    c = _check(1.0412e-9, 1.0412e-9, 1.2790e-9, 0.0105)
+    assert not c.passed
+    assert c.verdict == "published"
+
+
+def test_verdict_both_and_neither():
+    # 0.1 vs pi/32 differ by 1.83 %: a 3 % tolerance cannot tell them apart, a 0.5 % one can.
+    assert verdict_of({"published": -0.018, "corrected": 0.0003}, 0.03) == "both"
+    assert verdict_of({"published": -0.018, "corrected": 0.0003}, 0.005) == "corrected"
+    assert verdict_of({"published": 0.4, "corrected": -0.3}, 0.05) == "neither"
+
+
+def test_tolerance_states_its_reason_and_adds_up():
+    tol = fea_tolerance(2.0, 0.002, allowances={"mu vs E/2(1+nu)": 0.0096})
+    # 3 x (0.002/2) + 0.0096
+    assert tol.relative == pytest.approx(3e-3 + 0.0096, rel=1e-12)
+    assert "3 x GCI" in tol.reason and "mu vs E/2(1+nu)" in tol.reason
+
+
+def test_not_evaluated_check_does_not_pass_and_serialises_without_nan():
+    c = not_evaluated("ring.delta_cd", "q", "mm", "case ring failed")
+    d = c.to_dict()
+    assert d["passed"] is False and d["verdict"] == "not evaluated"
+    assert d["tolerance"]["relative"] is None  # NaN never reaches JSON
+
+
+def test_power_law_fit_recovers_exponents():
+    a = np.array([0.8, 1.6, 3.1, 6.25])
+    fit2 = fit_power_law(a, 7e-16 * a ** 2)
+    fit3 = fit_power_law(a, 7e-16 * a ** 3 * (1 + 0.01 * np.array([1, -1, 1, -1])))
+    assert fit2.exponent == pytest.approx(2.0, abs=1e-10)
+    # 1 % alternating noise moves the slope by well under 0.02 over a factor-8 depth range
+    assert fit3.exponent == pytest.approx(3.0, abs=0.02)
+    assert fit3.stderr is not None and fit3.stderr < 0.02
+    assert fit_power_law([1.0], [2.0]) is None
+
+
+def test_exponent_evidence_picks_the_closer_closed_form():
+    fit = fit_power_law(np.array([1.0, 2.0, 4.0, 8.0]), np.array([1.0, 4.3, 18.1, 80.0]))
+    ev = exponent_evidence(fit, {"published": 3.04, "corrected": 2.02})
+    assert ev["settles"] == "corrected"
+    assert "a^2.1" in ev["finding"] or "a^2.2" in ev["finding"]
+
+
+def test_thin_ring_shape_reproduces_seed_003_eqs_3_and_4():
+    # delta_AB/delta_CD = (2/pi - 1/2) / ((pi^2 - 8)/(4 pi)) = 0.918277 (audit item 5: not an ellipse)
+    ratio = (2 / math.pi - 0.5) / ((math.pi ** 2 - 8) / (4 * math.pi))
+    assert thin_ring_shape(0.0) == pytest.approx(-1.0, abs=1e-12)
+    # 400 even harmonics: the series tail is below 1e-9
+    assert thin_ring_shape(math.pi / 2) == pytest.approx(ratio, rel=1e-8)
+    assert thin_ring_shape(math.pi) == pytest.approx(-1.0, abs=1e-12)
+
+
+def test_plan_sweeps_reach_half_the_wall_and_stay_inside_it():
+    params = load_params()
+    plan = make_plan(params, quick=True)
+    wall = params.output_shaft.wall_mm
+    depths = [c.crack_depth_mm for c in plan.sweeps["shaft"]]
+    assert max(depths) == pytest.approx(wall / 2, rel=1e-2)
+    assert all(d < wall for d in depths)
+    assert len(sweep_depths_mm(wall, 5)) == 5
+    labels = [c.label for c in plan.all_cases()]
+    assert len(labels) == len(set(labels))  # every case writes its own fields/<label>.vtu
+
+
+def test_schema_rejects_a_check_without_a_tolerance_reason():
+    check = not_evaluated("shaft.flexibility", "q", "rad/(N*mm)", "missing").to_dict()
+    doc = {"schema_version": 1, "passed": False,
+           "summary": {"checks": 13, "passed": 0, "failed": [], "not_evaluated": []},
+           "metadata": {"created_utc": "x", "params": {}, "versions": {"strainwave": "0", "code_version": "0",
+                                                                        "python": "3"},
+                        "settings": {"quick": True, "order": 2}, "cases": [], "timings_s": {}, "total_s": 0.0},
+           "checks": [check] * 13, "audit": [], "crack_sweeps": {}, "images": [],
+           "files": {"step": [], "fields": [], "report_html": "report.html", "report_md": "report.md"}}
+    validate_results(plain(doc))
+    broken = copy.deepcopy(doc)
+    broken["checks"][0]["tolerance"]["reason"] = ""
+    with pytest.raises(jsonschema.ValidationError):
+        validate_results(broken)

@@ -1,0 +1,185 @@
+"""`strainwave validate --quick` end to end in a temporary folder, and its HTML report in headless Chromium.
+
+One quick run is shared by every test of this module (module fixture); a second run into the same
+folder checks that finished cases are reused from the cache.
+"""
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+from html.parser import HTMLParser
+from pathlib import Path
+
+import jsonschema
+import numpy as np
+import pytest
+from PIL import Image
+
+from strainwave.compare.checks import REQUIRED_IDS
+from strainwave.compare.results import load_schema
+
+CHROMIUM = "/usr/bin/chromium"
+CHROMIUM_FLAGS = ("--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+                  "--disable-background-networking", "--disable-component-update", "--disable-sync")
+
+
+def _validate(out: Path) -> subprocess.CompletedProcess:
+    env = {**os.environ, "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
+    return subprocess.run([sys.executable, "-m", "strainwave.cli", "validate", "--quick", "--out", str(out)],
+                          capture_output=True, text=True, env=env, timeout=600)
+
+
+@pytest.fixture(scope="module")
+def quick_run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("validate") / "out"
+    proc = _validate(out)
+    return out, proc
+
+
+@pytest.fixture(scope="module")
+def results(quick_run):
+    out, _ = quick_run
+    return json.loads((out / "results.json").read_text(encoding="utf-8"))
+
+
+def test_exit_status_matches_the_checks_and_failures_are_listed(quick_run, results):
+    _, proc = quick_run
+    assert "Traceback" not in proc.stderr
+    assert proc.returncode == (0 if results["passed"] else 1), proc.stderr[-2000:]
+    failing = [c["id"] for c in results["checks"] if not c["passed"]]
+    assert results["passed"] == (not failing)
+    for check_id in failing:  # every failing check is named on the terminal, never hidden
+        assert check_id in proc.stdout
+    assert ("FAILING" in proc.stdout) == bool(failing)
+
+
+def test_files_exist_and_results_validate_against_the_schema(quick_run, results):
+    out, _ = quick_run
+    for name in ("results.json", "report.html", "report.md"):
+        assert (out / name).stat().st_size > 0
+    jsonschema.validate(results, load_schema(), cls=jsonschema.Draft202012Validator)
+    assert [c["id"] for c in results["checks"]][:len(REQUIRED_IDS)] == list(REQUIRED_IDS)
+    for path in results["files"]["step"] + results["files"]["fields"] + [i["path"] for i in results["images"]]:
+        assert (out / path).is_file(), path
+    # every case that solved wrote its VTU, every part that was built wrote its STEP
+    for case in results["metadata"]["cases"]:
+        if case["ok"]:
+            assert case["result"]["fields"], case["label"]
+    for step in results["metadata"]["steps"]:
+        assert bool(step["files"]) != bool(step["error"]), step
+    # no temporary file of an atomic write is left behind
+    assert not [p for p in out.rglob("*.tmp")]
+
+
+def test_every_check_states_its_tolerance_reason_and_verdict(results):
+    for c in results["checks"]:
+        if c["verdict"] == "not evaluated":
+            assert c["reason_not_evaluated"] and not c["passed"]
+            continue
+        assert c["tolerance"]["reason"] and c["tolerance"]["relative"] > 0
+        assert c["verdict"] in ("published", "corrected", "both", "neither")
+        # the pass flag is exactly the asserted variant's error against the stated tolerance
+        assert c["passed"] == (abs(c["rel_error"][c["asserts"]]) <= c["tolerance"]["relative"])
+
+
+def test_audit_lists_every_seed_inconsistency(results):
+    from strainwave.analytic.audit import audit_records
+    from strainwave.params import load_params
+
+    ids = [a["id"] for a in results["audit"]]
+    assert ids == [r.id for r in audit_records(load_params())]
+    assert all(a["settled"] for a in results["audit"])
+
+
+def test_timings_per_stage_recorded(results):
+    timings = results["metadata"]["timings_s"]
+    for stage in ("analytic", "step", "fea", "checks", "images"):
+        assert stage in timings and timings[stage] >= 0
+    assert results["metadata"]["total_s"] >= sum(timings.values()) * 0.99
+
+
+def test_every_image_is_non_blank(quick_run, results):
+    out, _ = quick_run
+    pngs = sorted((out / "images").glob("*.png")) if (out / "images").exists() else []
+    assert len(pngs) == len(results["images"])
+    for png in pngs:
+        pixels = np.asarray(Image.open(png).convert("RGB"), dtype=float)
+        # a blank render is one colour: std 0. A real plot or render has a std of tens of grey levels;
+        # 5 is far above JPEG-like noise (none in PNG) and far below any drawn content.
+        assert pixels.std() > 5.0, png.name
+        assert len(np.unique(pixels.reshape(-1, 3), axis=0)) > 8, png.name
+
+
+class _Links(HTMLParser):
+    def __init__(self):
+        super().__init__()
+        self.links: list[str] = []
+        self.images: list[str] = []
+
+    def handle_starttag(self, tag, attrs):
+        attrs = dict(attrs)
+        if tag == "img":
+            self.images.append(attrs["src"])
+        for key in ("src", "href"):
+            if attrs.get(key):
+                self.links.append(attrs[key])
+
+
+def test_html_references_only_existing_relative_files(quick_run, results):
+    out, _ = quick_run
+    parser = _Links()
+    parser.feed((out / "report.html").read_text(encoding="utf-8"))
+    assert len(parser.images) == len(results["images"])
+    for link in parser.links:
+        assert "://" not in link and not link.startswith("/"), link  # relative: the folder opens anywhere
+        assert (out / link).is_file(), link
+
+
+def test_rerun_reuses_finished_cases_and_says_so(quick_run):
+    out, first = quick_run
+    solved = [c for c in json.loads((out / "results.json").read_text())["metadata"]["cases"] if c["ok"]]
+    proc = _validate(out)
+    assert proc.returncode == first.returncode
+    rerun = json.loads((out / "results.json").read_text())
+    cached = {c["label"] for c in rerun["metadata"]["cases"] if c["cached"]}
+    assert cached == {c["label"] for c in solved}
+    for label in cached:
+        assert f"{label}: reusing cached" in proc.stderr
+
+
+def _chromium() -> str:
+    if not Path(CHROMIUM).exists():
+        # The test set-up installs Debian's chromium when it is missing (root in the CI container).
+        subprocess.run(["apt-get", "install", "-y", "chromium"], check=True, capture_output=True, timeout=900)
+    return CHROMIUM
+
+
+def test_report_opens_in_headless_chromium_and_every_image_loads(quick_run, results, tmp_path):
+    out, _ = quick_run
+    chromium = _chromium()
+    # A copy of the report with a probe script next to it (same folder, so relative links resolve); the report
+    # itself stays script-free.
+    probe = out / "report_probe.html"
+    html = (out / "report.html").read_text(encoding="utf-8")
+    script = ("<script>window.addEventListener('load',function(){var im=[].slice.call(document.images);"
+              "var ok=im.filter(function(i){return i.complete&&i.naturalWidth>0;}).length;"
+              "var d=document.createElement('div');d.id='probe';d.textContent='IMAGES '+ok+' OF '+im.length;"
+              "document.body.appendChild(d);});</script>")
+    probe.write_text(html.replace("</body>", script + "</body>"), encoding="utf-8")
+    try:
+        base = [chromium, *CHROMIUM_FLAGS, f"--user-data-dir={tmp_path / 'profile'}", "--virtual-time-budget=10000"]
+        dom = subprocess.run(base + ["--dump-dom", probe.as_uri()], capture_output=True, text=True, timeout=120)
+        shot = tmp_path / "report.png"
+        subprocess.run(base + [f"--screenshot={shot}", "--window-size=1200,2000", (out / "report.html").as_uri()],
+                       capture_output=True, text=True, timeout=120)
+    finally:
+        probe.unlink()
+    n = len(results["images"])
+    assert f"IMAGES {n} OF {n}" in dom.stdout, dom.stdout[-500:] + dom.stderr[-500:]
+    assert "strainwave validation report" in dom.stdout
+    pixels = np.asarray(Image.open(shot).convert("RGB"), dtype=float)
+    assert pixels.std() > 5.0  # the page rendered text and tables, not a blank canvas
+    shutil.rmtree(tmp_path / "profile", ignore_errors=True)
