@@ -31,10 +31,11 @@ def headline(doc: dict) -> str:
     s = doc["summary"]
     verdict = "PASS" if doc["passed"] else "FAIL"
     text = f"{verdict}: {s['passed']} of {s['checks']} checks pass"
-    if s["failed"]:
-        text += f"; failing: {', '.join(s['failed'])}"
+    contradicted = [c for c in s["failed"] if c not in s["not_evaluated"]]
+    if contradicted:
+        text += f"; FEA contradicts the asserted form in: {', '.join(contradicted)}"
     if s["not_evaluated"]:
-        text += f" (not evaluated: {', '.join(s['not_evaluated'])})"
+        text += f"; not evaluated (counted as failed): {', '.join(s['not_evaluated'])}"
     return text
 
 
