@@ -13,6 +13,13 @@ from ..io_atomic import atomic_write_bytes
 from .ring_shape import radial_displacement_mm
 
 
+def nice_scale(raw: float) -> float:
+    """The largest of 1, 2, 5 x 10^k not above ``raw`` (an exaggeration factor a reader can use)."""
+    exponent = np.floor(np.log10(raw))
+    mantissa = raw / 10 ** exponent
+    return float((5.0 if mantissa >= 5 else 2.0 if mantissa >= 2 else 1.0) * 10 ** exponent)
+
+
 def _figure(width: float = 7.0, height: float = 4.5):
     import matplotlib
 
@@ -88,7 +95,7 @@ def ring_midlayer_plot(png: Path, *, r_m_mm: float, theta, u_r_fea, delta_cd_fea
                        delta_cd_analytic: float, delta_ab_analytic: float, load_angle_rad: float) -> Path:
     """The ring's deformed mid-layer, FEA against the thin-ring shape, radial displacements exaggerated."""
     u_max = max(np.max(np.abs(u_r_fea)), abs(delta_cd_analytic) / 2, 1e-30)
-    scale = float(10 ** np.floor(np.log10(0.25 * r_m_mm / u_max)))
+    scale = nice_scale(0.2 * r_m_mm / u_max)
     fig = _figure(6.5, 6.5)
     ax = fig.add_subplot(1, 1, 1)
     t = np.linspace(0, 2 * np.pi, 721)
