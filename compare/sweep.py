@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import Callable, Iterator
 
 from ..errors import InputError
-from ..params import load_params
+from ..params import default_dict, load_params
 from .cache import ResultCache
 from .sweep_grid import build_points
 from .sweep_outputs import plot_sweep, records_frame, departures, write_markdown, write_records, write_table
@@ -130,8 +130,10 @@ def run_sweep(study: str, *, vary: list[str], params_path: str | Path | None = N
     if not (tolerance > 0 and tolerance < float("inf")):
         raise InputError("--tolerance", tolerance, "must be a finite relative tolerance > 0, e.g. 0.05")
     out_dir = Path(out_dir)
+    # The grid is checked against the schema before the parameters are validated, so a bad --vary is
+    # refused in one line before any RangeWarning of the base parameters is printed.
+    varied, points = build_points(list(vary), Path(sample_file) if sample_file else None, default_dict())
     base = load_params(params_path).to_dict()
-    varied, points = build_points(list(vary), Path(sample_file) if sample_file else None, base)
     seed_crack = CRACK_KEY in varied
     specs = [PointSpec(study, tuple(point.items()), base, quick, seed_crack) for point in points]
     keys = [point_key(spec, task) for spec in specs]

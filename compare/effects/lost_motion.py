@@ -1,6 +1,7 @@
 """lost_motion: a narrow dead band around zero torque (clearance / backlash), smooth backlash model.
 
 Model: twist += b tanh((T - T0)/w): crossing zero torque takes up a clearance 2 b within a torque band w.
+The band is narrow by definition (w <= 10 % of the largest torque); a wider smooth S-shape is stiffening.
 T0 is the torque channel's zero offset (nuisance, reported for completeness).
 """
 from __future__ import annotations
@@ -32,7 +33,7 @@ def _report(ctx: Context, theta, s: float) -> dict:
 EFFECT = Effect(
     id="lost_motion",
     kinds=("torsion",),
-    params=(Param("b", 0.0, 1.0, (0.02,)), Param("log10_w", -3.0, -0.5, (-2.0, -1.2)),
+    params=(Param("b", 0.0, 1.0, (0.02,)), Param("log10_w", -3.0, -1.0, (-2.0, -1.3)),
             Param("u0", -0.1, 0.1, (0.0,))),
     contribution=_contribution,
     report=_report,

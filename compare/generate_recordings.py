@@ -1,0 +1,182 @@
+"""Concealed recordings for `strainwave benchmark-diagnose`: effects from higher-fidelity models, no labels.
+
+Each recording is produced in physical units from the default parameter set (plus header overrides
+where the specimen must change, e.g. a thick rim), with
+- a true linear stiffness off the simulated one by a random error within the stated uncertainty,
+- an effect from diagnose_hifi_torsion / diagnose_hifi_ring (or none: clean),
+- white noise + encoder quantization on the response, white noise on the load,
+- a linear thermal drift and zero offsets on both channels,
+- sample counts and signal-to-noise ratios drawn over a wide range, down to the detection limit.
+The truth (effect ids, signal-to-noise) is returned next to the file text, never inside it.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import lsq_linear
+
+from . import diagnose_hifi_ring as hr
+from . import diagnose_hifi_torsion as ht
+from .baseline import ring_geometry, torsion_compliance
+from .recording import TestKind, format_recording
+
+UNCERTAINTY = 0.02
+PRIOR_SIGMAS = 4.5
+TORSION_CLASSES = ("clean_torsion", "compliance_offset", "nonlinear_stiffness", "hysteresis", "lost_motion",
+                   "crack_closure", "nonlinear_stiffness+hysteresis", "hysteresis+lost_motion")
+RING_CLASSES = ("clean_ring", "compliance_offset_ring", "thick_ring", "large_deflection", "plasticity")
+CLASSES = TORSION_CLASSES + RING_CLASSES
+
+
+@dataclass(frozen=True)
+class Concealed:
+    name: str                   # the class (see CLASSES)
+    text: str
+    truth: tuple[str, ...]      # effect ids; () for a clean recording
+    snr: float                  # peak of the effect left after the baseline fit / total noise std
+    kind: str
+
+
+def projected_peak(u: np.ndarray, t: np.ndarray, effect: np.ndarray, uncertainty: float = UNCERTAINTY) -> float:
+    """Peak of what remains of a noise-free effect after the baseline fit (offset, drift, stiffness within
+    +/- PRIOR_SIGMAS uncertainties): the part of the effect a diagnosis can possibly see (units of Y).
+
+    4.5 sigmas because a pure stiffness change must beat the prior by the decision threshold:
+    (d/u)^2 > 10 + ln N, i.e. d > 4.0..4.4 u for N = 200..2000, before it is evidence of anything."""
+    A = np.column_stack([np.ones_like(u), t, u])
+    b = PRIOR_SIGMAS * uncertainty
+    sol = lsq_linear(A, effect, bounds=([-np.inf, -np.inf, -b], [np.inf, np.inf, b]))
+    return float(np.max(np.abs(effect - A @ sol.x)))
+
+
+def _torsion_path(rng, n: int) -> np.ndarray:
+    cycles = int(rng.integers(1, 3))
+    knots = [0.0] + [1.0, -1.0] * cycles + [1.0, 0.0] if rng.random() < 0.5 else [0.0] + [1.0, -1.0] * cycles + [0.0]
+    s = np.linspace(0.0, len(knots) - 1, n)
+    return np.interp(s, np.arange(len(knots)), knots)
+
+
+def _ring_path(rng, n: int) -> tuple[np.ndarray, np.ndarray, list[float]]:
+    """(u, path coordinate s, knots): load, unload, or two cycles with a growing peak."""
+    knots = [0.0, 1.0, 0.0] if rng.random() < 0.5 else [0.0, 0.6, 0.05, 1.0, 0.0]
+    s = np.linspace(0.0, len(knots) - 1, n)
+    return np.interp(s, np.arange(len(knots)), knots), s, knots
+
+
+def _noisy(rng, u_true, y_true_Y, effect_Y, snr, clean_noise, n):
+    """Add noise (white + quantization), drift and offsets; returns (load u, response y) in units of X, Y."""
+    t = np.linspace(0.0, 1.0, n)
+    if effect_Y is None:
+        sigma = clean_noise
+        peak = 0.0
+    else:
+        peak = projected_peak(u_true, t, effect_Y)
+        sigma = peak / snr
+    q = sigma * rng.uniform(0.0, 2.5)
+    white = math.sqrt(max(sigma ** 2 - q ** 2 / 12.0, 0.25 * sigma ** 2))
+    y = y_true_Y + (0.0 if effect_Y is None else effect_Y) + white * rng.standard_normal(n)
+    y += rng.uniform(-5.0, 5.0) * sigma * t + rng.uniform(-50.0, 50.0) * sigma   # drift, zero offset
+    if q > 0:
+        y = np.round(y / q) * q
+    u = u_true + 2e-4 * rng.standard_normal(n) + rng.uniform(-0.003, 0.003)
+    return u, y, math.sqrt(white ** 2 + q ** 2 / 12.0) if q else white, peak
+
+
+def generate(cls: str, rng: np.random.Generator, params, *, rows: tuple[int, int] = (200, 2000),
+             elastica_table=None) -> Concealed:
+    """One concealed recording of class ``cls`` (see CLASSES)."""
+    n = int(rng.integers(rows[0], rows[1] + 1))
+    snr = float(math.exp(rng.uniform(math.log(1.5), math.log(40.0))))
+    clean_noise = 10.0 ** rng.uniform(-3.5, -2.0)
+    eps = float(np.clip(rng.normal(0.0, 0.5 * UNCERTAINTY), -UNCERTAINTY, UNCERTAINTY))
+    if cls in TORSION_CLASSES:
+        return _torsion(cls, rng, params, n, snr, clean_noise, eps)
+    return _ring(cls, rng, params, n, snr, clean_noise, eps, elastica_table)
+
+
+def _torsion(cls, rng, params, n, snr, clean_noise, eps) -> Concealed:
+    specimen = str(rng.choice(["output_shaft", "flexspline_cup", "gear"]))
+    c0, _ = torsion_compliance(specimen, params)
+    X = 1.0e6
+    u = _torsion_path(rng, n)
+    T = u * X
+    c = c0 * (1.0 + eps)
+    Y = c0 * X
+    parts = cls.split("+")
+    effect = np.zeros(n)
+    for p in parts:
+        if p == "compliance_offset":
+            effect += ht.series_compliance_twist(T, c0 * rng.choice([-1, 1]) * rng.uniform(0.06, 0.4))
+        elif p == "nonlinear_stiffness":
+            K1 = 1.0 / c
+            effect += ht.contact_spread_twist(T, K1, K1 * rng.uniform(1.1, 1.8), X * rng.uniform(0.15, 0.5),
+                                              rng.uniform(1.0, 2.5))
+        elif p == "hysteresis":
+            effect += ht.maxwell_slip_twist(T, Y * rng.uniform(0.005, 0.08), rng.uniform(0.05, 0.4))
+        elif p == "lost_motion":
+            band = X * rng.uniform(0.01, 0.08)
+            effect += ht.backlash_twist(T, Y * rng.uniform(0.005, 0.08), band, band * rng.uniform(0.0, 0.2))
+        elif p == "crack_closure":
+            effect += ht.breathing_crack_twist(T, c0 * rng.uniform(0.05, 0.4), X * rng.uniform(0.005, 0.05),
+                                               int(rng.choice([-1, 1])))
+    clean = cls.startswith("clean")
+    un, yn, noise, peak = _noisy(rng, u, c * T / Y, None if clean else effect / Y, snr, clean_noise, n)
+    text = format_recording(TestKind.TORSION, specimen, un * X, yn * Y, baseline_uncertainty=UNCERTAINTY)
+    return Concealed(cls, text, () if clean else tuple(parts), peak / noise if not clean else 0.0, "torsion")
+
+
+def _ring(cls, rng, params, n, snr, clean_noise, eps, table) -> Concealed:
+    ratio = 0.012
+    if cls == "thick_ring":
+        ratio = float(rng.uniform(0.12, 0.3))
+    elif cls == "plasticity":
+        ratio = float(rng.uniform(0.02, 0.05))
+    elif cls in ("clean_ring", "compliance_offset_ring", "large_deflection"):
+        ratio = float(rng.uniform(0.01, 0.015))
+    p = params.with_value("ewg_drive.rim_thickness_ratio", ratio)
+    g = ring_geometry(p)
+    R, h, b, E = g["r_m_mm"], g["rim_thickness_mm"], g["face_width_mm"], g["E_MPa"]
+    c0 = g["thin_compliance_mm_per_N"]
+    c = c0 * (1.0 + eps)
+    u, s_path, knots = _ring_path(rng, n)
+    truth: tuple[str, ...] = ()
+    if cls == "large_deflection" or cls == "clean_ring":
+        d_max = R * (rng.uniform(0.03, 0.25) if cls == "large_deflection" else min(0.01, 0.3 * clean_noise))
+        X = d_max / c
+        lin = c * u * X
+        total = hr.elastica_deflection(u * X, R, g["E_MPa"] * g["I_mm4"] / (1.0 + eps), table)
+        effect = total - lin
+        truth = ("large_deflection",) if cls == "large_deflection" else ()
+    elif cls == "plasticity":
+        sy = rng.uniform(400.0, 1200.0)
+        F_y = math.pi * sy * b * h ** 2 / 6.0 / R
+        X = F_y * rng.uniform(1.15, 1.6)
+        F = u * X
+        # the path-dependent model runs on 16 steps per leg (turning points exact), then is interpolated
+        s_fine = np.linspace(0.0, len(knots) - 1, 16 * (len(knots) - 1) + 1)
+        F_fine = np.interp(s_fine, np.arange(len(knots)), knots) * X
+        total = np.interp(s_path, s_fine, hr.fibre_ring_deflection(F_fine, R, h, b, E / (1.0 + eps), sy))
+        lin = c * F
+        effect = total - lin
+        truth = ("plasticity",)
+    else:
+        X = R * 0.02 / c
+        lin = c * u * X
+        if cls == "thick_ring":
+            effect = (hr.curved_beam_factor(R, h, b, g["poisson_ratio"]) - 1.0) * lin
+            truth = ("thick_ring",)
+        else:
+            effect = c0 * rng.choice([-1, 1]) * rng.uniform(0.06, 0.4) * u * X
+            truth = ("compliance_offset",)
+    Y = c0 * X
+    clean = not truth
+    un, yn, noise, peak = _noisy(rng, u, lin / Y, None if clean else effect / Y,
+                                 snr, clean_noise, n)
+    if clean:
+        yn = yn + effect / Y
+    overrides = {"ewg_drive": {"rim_thickness_ratio": ratio}}
+    text = format_recording(TestKind.RING_COMPRESSION, "ewg_ring", un * X, yn * Y,
+                            baseline_uncertainty=UNCERTAINTY, params=overrides)
+    return Concealed(cls, text, truth, peak / noise if not clean else 0.0, "ring_compression")
