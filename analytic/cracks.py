@@ -170,3 +170,28 @@ def shaft_crack_flexibility_growing(d_s_mm: float, a_mm: float, mu_MPa: float,
     """Eq 4 with d_e and M_M following the growing circumferential crack (no frozen-geometry shortcut)."""
     return crack_compliance_integral(shaft_k_per_torque(d_s_mm, None, variant),
                                      circumferential_area_element(d_s_mm, None), a_mm, 1.0, mu_MPa)
+
+
+# ---- stress intensity factors at a load (the K/P functions times the load) ----
+
+def bearing_K_I(radial_force_N: float, beta: float, semi_axes_mm: tuple[float, float], a_mm: float,
+                Q: float) -> float:
+    """K_I = 1.95 sigma sqrt(a/Q), sigma = beta sigma_max/2, sigma_max = 3F_r/(2 pi a'b') (seed 000), MPa sqrt(mm)."""
+    return radial_force_N * bearing_k_per_load(beta, semi_axes_mm, Q)(a_mm)[0]
+
+
+def flexspline_K(torque_Nmm: float, r_m_mm: float, wall_mm: float, K_u: float, K_d: float, angle_deg: float,
+                 a_mm: float) -> tuple[float, float]:
+    """(K_I, K_II) = K_u K_d tau sqrt(pi a) (sin 2beta, cos 2beta), tau = T/(2 pi r_m^2 delta) (seed 000)."""
+    kI, kII, _ = flexspline_k_per_load(r_m_mm, wall_mm, K_u, K_d, angle_deg)(a_mm)
+    return torque_Nmm * kI, torque_Nmm * kII
+
+
+def shaft_K_III(torque_Nmm: float, d_s_mm: float, a_mm: float, variant: Variant = Variant.CORRECTED) -> float:
+    """K_III = M_M 16 T sqrt(pi a)/(pi d_e^3), d_e = d_s - 2a (seed 000, output shaft)."""
+    return torque_Nmm * shaft_k_per_torque(d_s_mm, a_mm, variant)(a_mm)[2]
+
+
+def shaft_K_I(axial_force_N: float, d_s_mm: float, a_mm: float, variant: Variant = Variant.CORRECTED) -> float:
+    """K_I = M_P 4 P sqrt(pi a)/(pi d_e^2) (seed 000, output shaft)."""
+    return axial_force_N * shaft_k_per_axial_force(d_s_mm, a_mm, variant)(a_mm)[0]

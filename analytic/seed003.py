@@ -84,7 +84,7 @@ def seed003_summary(params) -> dict:
 
     phi_deg = np.arange(0.0, 91.0, 10.0)
     w = ring.radial_displacement_mm(np.radians(phi_deg), F, r_m, E, I)
-    roots = {dz: tooth_numbers(params, dz) for dz in (2, 4)}
+    roots = {dz: tooth_numbers(params, dz) for dz in sorted({2, 4, dZ})}
     return {
         "inputs": {"module_mm": m, "Z_R": Z_R, "tooth_difference": dZ, "Z_G": Z_G, "rim_thickness_mm": delta,
                    "face_width_mm": e.face_width_mm, "youngs_modulus_MPa": E, "K_delta": K_delta,
@@ -118,6 +118,9 @@ def seed003_summary(params) -> dict:
             "signed_mean_stress": {"dZ2": roots[2]["signed"], "dZ4": roots[4]["signed"],
                                    "Z_R_min_dZ2": _ceil(roots[2]["signed"]),
                                    "Z_R_min_dZ4": _ceil(roots[4]["signed"])},
+            "for_params": {"tooth_difference": dZ, "root": roots[dZ]["abs"], "Z_R_min": _ceil(roots[dZ]["abs"]),
+                           "root_signed_mean": roots[dZ]["signed"], "Z_R_min_signed": _ceil(roots[dZ]["signed"]),
+                           "Z_R_given": Z_R},
             "paper_roots": {"dZ2": fatigue.PAPER_ROOTS[2], "dZ4": fatigue.PAPER_ROOTS[4]},
             "paper_implied_constant": {f"dZ{dz}": fatigue.constant_implied_by_root(
                 r, dz, fatigue.PAPER_EXAMPLE["permissible_safety"], fatigue.PAPER_EXAMPLE["fatigue_limit_MPa"],

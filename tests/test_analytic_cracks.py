@@ -101,3 +101,16 @@ def test_general_integral_handles_mixed_modes_and_lower_limit():
     k = lambda a: (2.0, 3.0, 5.0)
     val = cracks.crack_compliance_integral(k, lambda a: 1.0, 2.0, 4.0, 10.0, a0_mm=0.5)
     assert val == pytest.approx(1.5 * (2 / 4.0 * (4 + 9) + 25 / 10.0), rel=1e-12)
+
+
+def test_stress_intensity_factors_at_load():
+    # K = load * (K/P): the solid-bar torsion edge-crack limit K_III -> tau_gross sqrt(pi a) for a tiny crack.
+    T, d_s, a = 1.0e5, 70.0, 1e-4
+    tau = 16 * T / (math.pi * d_s ** 3)
+    assert cracks.shaft_K_III(T, d_s, a) == pytest.approx(tau * math.sqrt(math.pi * a) * cs.m_m(1.0), rel=1e-4)
+    # Mode I of the bearing ring: 1.95 * (beta/2) * 3F/(2 pi a'b') * sqrt(a/Q), exact.
+    K = cracks.bearing_K_I(100.0, 0.45, (5.0, 3.0), 0.1, 1.5)
+    assert K == pytest.approx(1.95 * 0.225 * 300 / (2 * math.pi * 15) * math.sqrt(0.1 / 1.5), rel=1e-14)
+    kI, kII = cracks.flexspline_K(1000.0, 78.88, 2.24, 1.2, 1.1, 45.0, 0.1)
+    assert kII == pytest.approx(0.0, abs=1e-12 * kI)   # beta = 45 deg is pure mode I (seed 000 text)
+    assert cracks.shaft_K_I(10.0, 70.0, 0.1, Variant.PUBLISHED) > cracks.shaft_K_I(10.0, 70.0, 0.1)

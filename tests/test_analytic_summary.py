@@ -115,6 +115,7 @@ def test_cli_analytic_json_end_to_end(strainwave_cmd):
     out = subprocess.run([*strainwave_cmd, "analytic", "--json"], capture_output=True, text=True, timeout=60)
     assert out.returncode == 0, out.stderr
     data = json.loads(out.stdout)
+    json.dumps(data, allow_nan=False)                     # strict JSON: no NaN or inf anywhere
     for path in REQUIRED:
         assert _get(data, path) is not None, path
     assert _get(data, "seed000.lambda_f0") == pytest.approx(2.3588e-10, abs=5e-15)
@@ -152,3 +153,24 @@ def test_ring_references_share_one_force(params, s):
         tr.winkler_bach_stress_MPa(M_B, -0.5 * F, sec.r_outer_mm, sec), rel=1e-12)
     # Thin and thick stress references differ by < 1 % for this thin rim (audit: corrections below 1 %).
     assert ch["ring.sigma_max"]["corrected"] / ch["ring.sigma_max"]["published"] == pytest.approx(1.0, abs=0.01)
+
+
+from hypothesis import HealthCheck, given, settings, strategies as st  # noqa: E402
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(depth=st.floats(0.1, 2.0), teeth=st.integers(10, 400), dz=st.integers(1, 4),
+       ratio=st.floats(0.004, 0.2), inner=st.floats(0.0, 60.0))
+def test_summary_is_strict_json_for_any_valid_params(params, depth, teeth, dz, ratio, inner):
+    # depth >= 0.1: the default slot width 0.02 mm must stay <= depth/5 (params rule, not analytic).
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RangeWarning)     # out-of-range values run with a warning by design
+        p = params.with_value("cracks.depth_mm", depth).with_value("ewg_drive.flexspline_teeth", max(teeth, 2 * dz))
+        p = p.with_value("ewg_drive.tooth_difference", dz).with_value("ewg_drive.rim_thickness_ratio", ratio)
+        p = p.with_value("output_shaft.inner_diameter_mm", inner)
+    out = summary.analytic_summary(p)
+    json.dumps(out, allow_nan=False)
+    tn = out["seed003"]["tooth_number_min"]["for_params"]
+    assert tn["tooth_difference"] == dz and (tn["root"] is None or tn["root"] > 0)
+    assert out["seed000"]["lambda_so0"]["corrected"] > out["seed000"]["lambda_so0"]["published"] * 0.98
