@@ -1,0 +1,137 @@
+"""``strainwave sweep`` on a real 2-worker dask.distributed LocalCluster: outputs, a bad point, resume after kill.
+
+The machinery tests inject ``closed_form_probe`` (the hollow-shaft compliance, a real closed form that
+costs nothing) through run_sweep's ``task`` seam, so they exercise Dask, the cache and the outputs
+without meshing; ``test_sweep_fea.py`` runs the FEA study itself.
+"""
+import functools
+import json
+import math
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import pandas as pd
+
+from strainwave.compare import cache
+from strainwave.compare.sweep import run_sweep
+from strainwave.compare.sweep_task import PointSpec, closed_form_probe, point_key
+from strainwave.params import default_dict
+
+PROBE = "probe_shaft_compliance_rad_per_Nmm"
+
+
+def _compliance(inner_mm, length_mm=200.0, outer_mm=70.0, mu_MPa=8.0e4):
+    """lambda_so0 with the bore (Seed 000; formula audit): 32 L / (pi mu (D^4 - d^4))."""
+    return 32 * length_mm / (math.pi * mu_MPa * (outer_mm ** 4 - inner_mm ** 4))
+
+
+def test_outputs_bad_point_and_cached_rerun(tmp_path):
+    out = tmp_path / "sweep"
+    vary = ["output_shaft.inner_diameter_mm=30,45,75", "output_shaft.length_mm=100,200"]
+    outcome = run_sweep("shaft-torsion", vary=vary, workers=2, out_dir=out, task=closed_form_probe)
+    # inner 75 >= outer 70: refused by the schema for both lengths, and the other four still finish
+    assert (outcome.n_points, outcome.n_ok, outcome.n_failed, outcome.n_cached) == (6, 4, 2, 0)
+    assert outcome.workers == 2
+
+    frame = pd.read_parquet(out / "sweep.parquet")
+    assert len(frame) == 6
+    for column in ("point", "status", "error", "output_shaft.inner_diameter_mm", "output_shaft.length_mm",
+                   "quantity", "unit", "fea", "published", "corrected", "published_rel_error"):
+        assert column in frame.columns
+    csv = pd.read_csv(out / "sweep.csv")
+    assert csv.shape == frame.shape
+    ok = frame[frame["status"] == "ok"].set_index("point")
+    # the probe is a closed form evaluated on the worker: bit-for-bit up to float formatting
+    assert ok.loc[0, "fea"] == _compliance(30.0, 100.0)
+    assert ok.loc[3, "fea"] == _compliance(45.0, 200.0)
+    failed = frame[frame["status"] == "failed"]
+    assert list(failed["point"]) == [4, 5]
+    assert all("inner_diameter_mm" in e and "outer_diameter_mm = 70" in e for e in failed["error"])
+
+    summary = (out / "summary.md").read_text()
+    assert "## Failed points (2)" in summary and "point 4 (output_shaft.inner_diameter_mm = 75.0" in summary
+    plots = sorted(p.name for p in (out / "plots").glob("*.png"))
+    assert plots == [f"{PROBE}__vs__output_shaft_inner_diameter_mm.png", f"{PROBE}__vs__output_shaft_length_mm.png"]
+    assert all((out / "plots" / p).stat().st_size > 10_000 for p in plots)  # a real figure, not an empty file
+    assert len(json.loads((out / "points.json").read_text())) == 6
+
+    again = run_sweep("shaft-torsion", vary=vary, workers=2, out_dir=out, task=closed_form_probe)
+    # everything, including the refused points, comes from the cache: no cluster is started at all
+    assert (again.n_points, again.n_ok, again.n_cached, again.workers) == (6, 4, 6, 0)
+
+
+_SCRIPT = """
+import functools, sys
+from pathlib import Path
+from strainwave.compare import cache
+from strainwave.compare.sweep import run_sweep
+from strainwave.compare.sweep_task import closed_form_probe
+
+if __name__ == "__main__":
+    cache.code_version = lambda: "pinned-for-the-resume-test"
+    run_sweep("shaft-torsion", vary=["output_shaft.inner_diameter_mm=20:50:6"], workers=1,
+              out_dir=Path(sys.argv[1]), task=functools.partial(closed_form_probe, delay_s=float(sys.argv[2])),
+              progress=lambda msg: print(msg, file=sys.stderr, flush=True))
+"""
+
+
+def test_resume_after_kill_recomputes_nothing_cached(tmp_path, monkeypatch):
+    # Both runs pin the code version: in the shared tree other sources change every few seconds, which
+    # rightly invalidates the cache; this test is about resuming, not about invalidation.
+    monkeypatch.setattr(cache, "code_version", lambda: "pinned-for-the-resume-test")
+    out, script = tmp_path / "sweep", tmp_path / "sweep_script.py"
+    script.write_text(textwrap.dedent(_SCRIPT))
+    delay_s = 0.8   # long enough that the kill lands after the first points and well before the sixth
+    proc = subprocess.Popen([sys.executable, str(script), str(out), str(delay_s)], start_new_session=True,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env={**os.environ, "OMP_NUM_THREADS": "1"})
+    cache_dir = out / "cache"
+    deadline = time.monotonic() + 60
+    try:
+        while time.monotonic() < deadline and len(list(cache_dir.glob("*.json"))) < 2:
+            time.sleep(0.05)
+    finally:
+        os.killpg(proc.pid, signal.SIGKILL)   # the sweep, its nanny and its worker: the group this test started
+        proc.wait(timeout=30)
+    before = {p.name: p.read_bytes() for p in cache_dir.glob("*.json")}
+    assert 2 <= len(before) < 6, "the kill must land part-way"
+    assert not (out / "sweep.parquet").exists()
+
+    partial = functools.partial(closed_form_probe, delay_s=delay_s)
+    outcome = run_sweep("shaft-torsion", vary=["output_shaft.inner_diameter_mm=20:50:6"], workers=2,
+                        out_dir=out, task=partial)
+    assert (outcome.n_points, outcome.n_ok, outcome.n_cached) == (6, 6, len(before))
+    after = {p.name: p.read_bytes() for p in cache_dir.glob("*.json")}
+    assert len(after) == 6
+    # the points cached before the kill are untouched (same pid and timestamp inside), the rest are new
+    assert all(after[name] == data for name, data in before.items())
+    records = json.loads((out / "points.json").read_text())
+    killed_pids = {json.loads(data)["pid"] for data in before.values()}
+    assert sum(r["cached"] for r in records) == len(before)
+    assert all(r["pid"] not in killed_pids for r in records if not r["cached"])
+    frame = pd.read_parquet(out / "sweep.parquet")
+    assert frame["output_shaft.inner_diameter_mm"].tolist() == [20.0, 26.0, 32.0, 38.0, 44.0, 50.0]
+    assert frame["fea"].tolist() == [_compliance(d) for d in (20.0, 26.0, 32.0, 38.0, 44.0, 50.0)]
+
+
+def test_code_version_is_part_of_the_point_key(monkeypatch):
+    spec = PointSpec("shaft-torsion", (("cracks.depth_mm", 0.2),), default_dict())
+    monkeypatch.setattr(cache, "code_version", lambda: "A")
+    first, same = point_key(spec, None), point_key(spec, None)
+    probe = point_key(spec, closed_form_probe)
+    monkeypatch.setattr(cache, "code_version", lambda: "B")
+    assert first == same and first != point_key(spec, None)
+    assert probe != first   # a probe record never answers for an FEA point
+
+
+def test_bad_vary_exits_2_with_one_line(strainwave_cmd, tmp_path):
+    for vary, fragment in (("output_shaft.bore_mm=1:2:3", "unknown key"),
+                           ("output_shaft.length_mm=100:50:-1", "N after the second ':'")):
+        run = subprocess.run([*strainwave_cmd, "sweep", "shaft-torsion", "--vary", vary, "--out", str(tmp_path)],
+                             capture_output=True, text=True, timeout=60)
+        assert run.returncode == 2
+        assert run.stderr.count("\n") == 1 and fragment in run.stderr and "Traceback" not in run.stderr
+        assert run.stdout == ""
