@@ -112,6 +112,16 @@ def cracked_radial_stiffness_N_per_mm(K_G0_N_per_mm: float, delta_K_G: float,
     return 1.0 / (1.0 / K_G0_N_per_mm + 1.0 / delta_K_G)
 
 
+def radial_stiffness_with_crack_N_per_mm(K_G0_N_per_mm: float, delta_u_H_mm: float, radial_force_N: float,
+                                         variant: Variant = Variant.CORRECTED) -> float:
+    """K_G from K_G0 and the crack's extra radial displacement du_H at F_r (seed 000).
+
+    PUBLISHED: K_G0 - F_r/du_H (stiffnesses subtracted). CORRECTED: compliances added,
+    1/K_G = 1/K_G0 + du_H/F_r.
+    """
+    return cracked_radial_stiffness_N_per_mm(K_G0_N_per_mm, radial_force_N / delta_u_H_mm, variant)
+
+
 def total_flexibility(lambda_H: float, lambda_f: float, lambda_so: float) -> float:
     """lambda_sum = lambda_H + lambda_f + lambda_so (seed 000, first equation)."""
     return lambda_H + lambda_f + lambda_so

@@ -67,3 +67,11 @@ def test_series_vs_subtractive_radial_stiffness():
     # Series springs are softer than either; the published subtraction goes negative for a stiff crack term.
     assert torsion.cracked_radial_stiffness_N_per_mm(100.0, 300.0) == pytest.approx(75.0, rel=1e-14)
     assert torsion.cracked_radial_stiffness_N_per_mm(6.303e4, 6.4e9, Variant.PUBLISHED) < 0
+
+
+def test_K_G_from_crack_displacement():
+    # Series: the crack's displacement adds to the ring's own (exact algebra).
+    K0, du, F = 6.303e4, 1.557e-10, 2.515625
+    K = torsion.radial_stiffness_with_crack_N_per_mm(K0, du, F)
+    assert F / K == pytest.approx(F / K0 + du, rel=1e-12)
+    assert torsion.radial_stiffness_with_crack_N_per_mm(K0, du, F, Variant.PUBLISHED) == pytest.approx(K0 - F / du, rel=1e-12)
