@@ -28,25 +28,29 @@ from .cache import ResultCache, case_key
 # exercise the Dask machinery without meshing). It must be a module-level function, so workers can import it.
 TaskFn = Callable[[str, object, bool], dict]
 
-# Which closed form of ``analytic_summary(params)`` (dotted path to a {published, corrected} entry)
-# stands beside each FEA quantity of a study. A quantity missing here gets no analytic column.
+# Which closed form of ``analytic_summary(params)["checks"]`` (a {unit, published, corrected} entry) stands
+# beside each FEA quantity of a study; the FEA names are the ones ``compare/validate`` reads too.
+# A quantity missing here gets no analytic column.
 ANALYTIC_KEYS: dict[str, dict[str, str]] = {
-    "shaft-torsion": {
-        "flexibility_rad_per_Nmm": "seed000.lambda_so0",
-        "crack_flexibility_rad_per_Nmm": "seed000.delta_lambda_so",
-    },
-    "cup-torsion": {
-        "flexibility_rad_per_Nmm": "seed000.lambda_f0",
-        "crack_flexibility_rad_per_Nmm": "seed000.delta_lambda_f",
-    },
-    "bearing-ring": {
-        "radial_stiffness_N_per_mm": "seed000.k_g",
-    },
-    "ring-compression": {
-        "deflection_cd_mm": "seed003.delta_cd_mm",
-        "deflection_ab_mm": "seed003.delta_ab_mm",
-    },
+    "shaft-torsion": {"flexibility_rad_per_Nmm": "shaft.flexibility",
+                      "delta_flexibility_rad_per_Nmm": "shaft.crack_compliance"},
+    "cup-torsion": {"flexibility_rad_per_Nmm": "cup.flexibility",
+                    "delta_flexibility_rad_per_Nmm": "cup.crack_compliance"},
+    "bearing-ring": {"radial_compliance_mm_per_N": "bearing.radial_compliance",
+                     "delta_radial_compliance_mm_per_N": "bearing.crack_compliance"},
+    "ring-compression": {"delta_cd_mm": "ring.delta_cd", "delta_ab_mm": "ring.delta_ab",
+                         "sigma_D_outer_MPa": "ring.sigma_max", "sigma_B_outer_MPa": "ring.sigma_min"},
 }
+
+# The closed forms are evaluated under the FEA's load conditions: the cup FEA load is static and uniform,
+# so seed 000's load factors K_u, K_d (audit 17) are set to 1 for its crack compliance, as validate does.
+ANALYTIC_OVERRIDES: dict[str, dict[str, float]] = {
+    "cup-torsion": {"cracks.stress_nonuniformity": 1.0, "cracks.dynamic_load_factor": 1.0},
+}
+
+# Keys under which a study's meta may state the force it applied (N); the ring closed forms are linear in
+# it and are given at the thin-ring force for W0 (their ``force_N``), so they are scaled to the FEA force.
+FORCE_KEYS = ("force_N", "applied_force_N", "load_N", "F_N")
 
 # The varied key whose value is the seeded crack: only a sweep over it meshes a crack.
 CRACK_KEY = "cracks.depth_mm"
@@ -111,27 +115,32 @@ def closed_form_probe(study: str, params, quick: bool, *, delay_s: float = 0.0) 
         "value": compliance, "unit": "rad/(N mm)", "uncertainty": 0.0}}, "mesh": None}
 
 
-def _lookup(summary: dict, dotted: str) -> dict | None:
-    node = summary
-    for part in dotted.split("."):
-        if not isinstance(node, dict) or part not in node:
-            return None
-        node = node[part]
-    return node if isinstance(node, dict) else None
+def _applied_force_N(meta: dict) -> float | None:
+    for key in FORCE_KEYS:
+        value = meta.get(key)
+        if isinstance(value, (int, float)) and not isinstance(value, bool) and value > 0:
+            return float(value)
+    return None
 
 
-def analytic_beside(study: str, params, names) -> dict:
+def analytic_beside(study: str, params, names, meta: dict | None = None) -> dict:
     """{quantity: {key, published, corrected}} from ``analytic_summary`` for the FEA quantities ``names``."""
     table = ANALYTIC_KEYS.get(study, {})
     wanted = [name for name in names if name in table]
     if not wanted:
         return {}
     from ..analytic.summary import analytic_summary
-    summary = analytic_summary(params)
+    for dotted, value in ANALYTIC_OVERRIDES.get(study, {}).items():
+        params = params.with_value(dotted, value)
+    checks = analytic_summary(params).get("checks", {})
+    force = _applied_force_N(meta or {})
     out = {}
     for name in wanted:
-        entry = _lookup(summary, table[name]) or {}
-        out[name] = {"key": table[name], "published": entry.get("published"), "corrected": entry.get("corrected")}
+        entry = checks.get(table[name]) or {}
+        scale = force / entry["force_N"] if force and entry.get("force_N") else 1.0
+        out[name] = {"key": f"checks.{table[name]}", "unit": entry.get("unit"), **{
+            variant: None if not isinstance(entry.get(variant), (int, float)) else float(entry[variant]) * scale
+            for variant in ("published", "corrected")}}
     return out
 
 
@@ -147,7 +156,7 @@ def _compute(spec: PointSpec, task: TaskFn | None) -> dict:
             result = task(spec.study, params, spec.quick)
         fea = {name: {"value": q["value"], "unit": q["unit"], "uncertainty": q.get("uncertainty")}
                for name, q in result["quantities"].items()}
-        analytic = analytic_beside(spec.study, params, fea)
+        analytic = analytic_beside(spec.study, params, fea, result.get("meta"))
     mesh = result.get("mesh") or {}
     return {"status": "ok", "error": None, "fea": fea, "analytic": analytic, "dofs": mesh.get("dofs"),
             "warnings": sorted({str(w.message) for w in caught})}

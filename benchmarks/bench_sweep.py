@@ -1,0 +1,93 @@
+"""Scaling of ``strainwave sweep`` on dask.distributed: the same 16-point sweep on 1 and 2 workers, and the
+per-task overhead of Dask against a plain loop.
+
+1. Speed-up: ``run_sweep`` of a 16-point FEA sweep (``--study``, quick meshes; a 4 x 4 grid of shaft bore
+   and crack depth by default) with a cold cache, on a 1-worker and a 2-worker LocalCluster. Wall time
+   includes starting the cluster, as a user sees it.
+2. Overhead: ``--overhead-tasks`` near-free tasks (``closed_form_probe``: a closed form and a cache
+   write) run by a plain loop and by ``client.map`` on an already running 1-worker cluster; the
+   difference per task is what Dask adds to every point (serialisation, scheduling, result transfer).
+
+    python benchmarks/bench_sweep.py [--study shaft-torsion] [--points 16] [--json OUT.json]
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+
+from strainwave.compare.sweep import _compute, dask_client, run_sweep  # noqa: E402
+from strainwave.compare.sweep_task import PointSpec, closed_form_probe, point_key, run_point  # noqa: E402
+from strainwave.params import load_params  # noqa: E402
+
+DEFAULT_VARY = {
+    # 4 x 4 = 16 points; depths stay below the 12.5 mm wall of the thinnest bore (50 mm in a 70 mm shaft)
+    "shaft-torsion": ["output_shaft.inner_diameter_mm=35:50:4", "cracks.depth_mm=0.5:2:4"],
+}
+
+
+def sweep_timing(study: str, vary: list[str], workers: int, root: Path) -> dict:
+    started = time.perf_counter()
+    outcome = run_sweep(study, vary=vary, workers=workers, out_dir=root / f"w{workers}", quick=True,
+                        progress=lambda msg: print(f"  [{workers}w] {msg}", file=sys.stderr, flush=True))
+    wall = time.perf_counter() - started
+    records = json.loads((root / f"w{workers}" / "points.json").read_text())
+    task_s = sum(r.get("elapsed_s") or 0.0 for r in records)
+    return {"workers": workers, "points": outcome.n_points, "ok": outcome.n_ok, "failed": outcome.n_failed,
+            "wall_s": wall, "sum_task_s": task_s, "mean_task_s": task_s / max(1, outcome.n_points)}
+
+
+def overhead(n: int, root: Path) -> dict:
+    base = load_params().to_dict()
+    specs = [PointSpec("shaft-torsion", (("output_shaft.length_mm", 100.0 + i),), base) for i in range(n)]
+    loop_dir, dask_dir = root / "loop-cache", root / "dask-cache"
+    started = time.perf_counter()
+    for spec in specs:
+        run_point(spec, point_key(spec, closed_form_probe), str(loop_dir), closed_form_probe)
+    loop_s = time.perf_counter() - started
+    started = time.perf_counter()
+    with dask_client(None, 1) as (client, _):
+        up_s = time.perf_counter() - started
+        todo = {point_key(spec, closed_form_probe): spec for spec in specs}
+        started = time.perf_counter()
+        _compute(client, todo, dask_dir, closed_form_probe, lambda msg: None, 0, n, {"failed": 0, "cached": 0})
+        dask_s = time.perf_counter() - started
+    return {"tasks": n, "loop_s": loop_s, "dask_s": dask_s, "cluster_start_s": up_s,
+            "loop_per_task_ms": 1e3 * loop_s / n, "dask_per_task_ms": 1e3 * dask_s / n,
+            "overhead_per_task_ms": 1e3 * (dask_s - loop_s) / n}
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--study", default="shaft-torsion", choices=sorted(DEFAULT_VARY))
+    parser.add_argument("--overhead-tasks", type=int, default=200)
+    parser.add_argument("--json", type=Path, default=None)
+    args = parser.parse_args(argv)
+    with tempfile.TemporaryDirectory(prefix="bench-sweep-") as tmp:
+        root = Path(tmp)
+        one = sweep_timing(args.study, DEFAULT_VARY[args.study], 1, root)
+        two = sweep_timing(args.study, DEFAULT_VARY[args.study], 2, root)
+        cost = overhead(args.overhead_tasks, root)
+    result = {"study": args.study, "cores": os.cpu_count(), "one_worker": one, "two_workers": two,
+              "speedup": one["wall_s"] / two["wall_s"], "overhead": cost}
+    print(f"{args.study}, 16 points, quick meshes, {os.cpu_count()} cores")
+    for r in (one, two):
+        print(f"  {r['workers']} worker(s): {r['wall_s']:.1f} s wall ({r['ok']} ok, {r['failed']} failed; "
+              f"mean task {r['mean_task_s']:.2f} s)")
+    print(f"  speed-up 1 -> 2 workers: {result['speedup']:.2f}x")
+    print(f"overhead, {cost['tasks']} near-free tasks: loop {cost['loop_per_task_ms']:.2f} ms/task, Dask "
+          f"{cost['dask_per_task_ms']:.2f} ms/task -> {cost['overhead_per_task_ms']:.2f} ms per task added "
+          f"(cluster start {cost['cluster_start_s']:.1f} s)")
+    if args.json:
+        args.json.write_text(json.dumps(result, indent=2) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
