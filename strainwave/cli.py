@@ -111,7 +111,8 @@ def _cmd_sweep(args) -> int:
                         quick=args.quick, tolerance=args.tolerance,
                         progress=lambda msg: print(msg, file=sys.stderr))
     print(outcome.summary())
-    return 0
+    # Failed points are results (recorded with their error); only a sweep with no good point at all fails.
+    return 0 if outcome.n_ok else 1
 
 
 def build_parser() -> argparse.ArgumentParser:
