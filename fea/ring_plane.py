@@ -1,0 +1,160 @@
+"""One plane-stress solve of a ring cross-section (seed 003, Fig. 3): force-controlled or EWG-controlled.
+
+The whole ring is meshed (the toothed ring is doubly symmetric only when Z_R is a multiple of 4), with
+nodes forced onto A, B (+/-x) and D (+y) of the outer circle and onto the ends of the two contact arcs,
+so the arcs carry exactly their pressure and the three rigid-body constraints sit on the symmetry axes:
+u_y(A) = u_y(B) = 0 and u_x(D) = 0 hold in the exact symmetric solution, so they carry no reaction, and
+C (-y) is left free for the symmetry check delta_C = delta_D.
+"""
+from __future__ import annotations
+
+import contextlib
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from .assembly import Lame, elasticity_stiffness, facet_vector_basis, scalar_basis, traction_load, vector_basis_of
+from .mesh_data import MeshData, SkfemMesh, facet_indices, to_skfem
+from .meshing import Refine, mesh_section
+from .ring_loads import ArcLoad
+from .ring_sections import (MidLayer, boundary_stress_MPa, hoop_at, mid_layer, peak_near, section_hoop_MPa,
+                            signed_principal)
+from .session import gmsh_session
+from .solver import solve_elasticity
+
+
+@dataclass(frozen=True)
+class RingGeometry:
+    """Radii of the rim (root circle to outer circle), the mid-layer radius and the width B."""
+
+    r_root_mm: float          # inner fibre of the rim: root circle of the internal teeth (or the bore)
+    r_outer_mm: float
+    r_m_mm: float             # seed 003, eq 1
+    width_mm: float
+
+    @property
+    def thickness_mm(self) -> float:
+        return self.r_outer_mm - self.r_root_mm
+
+
+@dataclass(frozen=True)
+class PlaneSolution:
+    """What one 2D solve yields, in the units of its load (force case: per ``force_N``)."""
+
+    h_mm: float
+    force_N: float            # applied (force case) or reaction (EWG case) on one arc, along y
+    mid: MidLayer
+    sigma_B: tuple[float, float]    # (outer, inner) hoop stress at section B
+    sigma_D: tuple[float, float]
+    root_B_MPa: float         # signed peak principal stress on the inner boundary within a pitch of B
+    root_D_MPa: float
+    outer_B_MPa: float        # peak outer-fibre hoop stress within a pitch of B (the rim's nominal stress)
+    outer_D_MPa: float
+    mesh: MeshData
+    timings_s: dict
+    solver: dict
+    fields: tuple = ()        # (sk, u, lame) for VTU output
+
+
+@contextlib.contextmanager
+def _tri_edges_are_facets():
+    """fea/mesh_data.to_skfem reads ``MeshTri1.edges``, which scikit-fem only defines in 3D; in 2D the
+    edges are the facets. Reported to the FEA core; this shim is scoped to the conversion call."""
+    import skfem
+    saved = skfem.MeshTri1.__dict__.get("edges")
+    skfem.MeshTri1.edges = property(lambda self: self.facets)
+    try:
+        yield
+    finally:
+        if saved is None:
+            del skfem.MeshTri1.edges
+        else:
+            skfem.MeshTri1.edges = saved
+
+
+def section_to_skfem(md: MeshData) -> SkfemMesh:
+    try:
+        return to_skfem(md)
+    except np.exceptions.AxisError:
+        with _tri_edges_are_facets():
+            return to_skfem(md)
+
+
+def mesh_ring_section(face, geo: RingGeometry, load: ArcLoad, *, size_mm: float, order: int) -> MeshData:
+    """Mesh the section with the contact arcs resolved (8 elements per arc) and named."""
+    r_o, th = geo.r_outer_mm, load.half_angle_rad
+    ends = [(r_o * np.cos(c + s * th), r_o * np.sin(c + s * th)) for c in (0.5 * np.pi, -0.5 * np.pi) for s in (-1, 1)]
+    arc_mm = 2.0 * th * r_o
+    contact = lambda com: abs(com[0]) < arc_mm and abs(com[1]) > geo.r_m_mm      # noqa: E731
+    refine = Refine(size_mm=min(size_mm, arc_mm / 8), dist_min_mm=arc_mm, dist_max_mm=6 * geo.thickness_mm,
+                    points_mm=((0.0, r_o, 0.0), (0.0, -r_o, 0.0)))
+    with gmsh_session() as model:
+        return mesh_section(model, face, size_mm=size_mm, order=order,
+                            named_edges={"contact": contact},
+                            named_points={"A": [(-r_o, 0.0)], "B": [(r_o, 0.0)], "D": [(0.0, r_o)],
+                                          "C": [(0.0, -r_o)], "arc_ends": ends},
+                            refine=[refine])
+
+
+def solve_ring_section(face, geo: RingGeometry, load: ArcLoad, lame: Lame, *, size_mm: float, order: int,
+                       ewg_w0_mm: float | None = None, pitch_rad: float | None = None,
+                       keep_fields: bool = False) -> dict[str, PlaneSolution]:
+    """Mesh and assemble once; solve the arc load ("force") and, if ``ewg_w0_mm`` is given, the EWG case
+    ("ewg"): rigid flat contact strips pushed in radially by W0 (u_y = -W0 on the arc at D, +W0 at C),
+    tangential motion free. Both come back with the same mesh."""
+    t0 = time.perf_counter()
+    md = mesh_ring_section(face, geo, load, size_mm=size_mm, order=order)
+    t1 = time.perf_counter()
+    sk = section_to_skfem(md)
+    sb = scalar_basis(sk.mesh, sk.element, intorder=4)    # curved P2: order 4 integrates the mapping well
+    K = elasticity_stiffness(sb, lame, thickness_mm=geo.width_mm)
+    vb = vector_basis_of(sb)
+    t2 = time.perf_counter()
+    dof = lambda name, c: 2 * sk.node_to_dof[md.group_nodes(name)] + c     # noqa: E731
+    base_fixed = np.concatenate([dof("A", 1), dof("B", 1), dof("D", 0)])
+    arc = np.unique(sk.node_to_dof[md.group_nodes("contact")])
+    arc_top, arc_bottom = arc[sb.doflocs[1, arc] > 0], arc[sb.doflocs[1, arc] < 0]
+    fb = facet_vector_basis(sk.mesh, sk.element, facet_indices(sk, md, "contact"), intorder=8)
+    f = traction_load(fb, lambda x: -load.pressure_MPa(x[0], x[1]) * x / np.hypot(x[0], x[1]) * geo.width_mm)
+    # each arc's y-resultant is F up to the quadrature of the square-root profile: make it exact
+    top = sb.doflocs[1] > 0
+    fy = f[1::2]
+    fy[top] *= load.force_N / -fy[top].sum()
+    fy[~top] *= load.force_N / fy[~top].sum()
+    f[1::2] = fy
+    cases = {"force": (f, base_fixed, np.zeros(base_fixed.size))}
+    if ewg_w0_mm is not None:
+        fixed = np.concatenate([base_fixed, 2 * arc_top + 1, 2 * arc_bottom + 1])
+        vals = np.concatenate([np.zeros(base_fixed.size), np.full(arc_top.size, -ewg_w0_mm),
+                               np.full(arc_bottom.size, ewg_w0_mm)])
+        cases["ewg"] = (np.zeros_like(f), fixed, vals)
+    # the inner boundary (bore or tooth flanks and roots) and the outer circle, told apart by radius
+    radius = lambda x: np.hypot(x[0], x[1])                                  # noqa: E731
+    inner = sk.mesh.facets_satisfying(lambda x: radius(x) < geo.r_m_mm, boundaries_only=True)
+    outer = sk.mesh.facets_satisfying(lambda x: radius(x) > geo.r_m_mm, boundaries_only=True)
+    fb_in = facet_vector_basis(sk.mesh, sk.element, inner, intorder=4)
+    fb_out = facet_vector_basis(sk.mesh, sk.element, outer, intorder=4)
+    window = 0.5 * pitch_rad if pitch_rad else 0.5 * geo.thickness_mm / geo.r_root_mm
+    out = {}
+    for name, (rhs, fixed, vals) in cases.items():
+        ts = time.perf_counter()
+        u, info = solve_elasticity(K, rhs, fixed_dofs=fixed, fixed_values=vals, coords=sb.doflocs, dim=2, method="direct",
+                                   study="ring-compression")
+        te = time.perf_counter()
+        force = -float((K @ u - rhs)[2 * arc_top + 1].sum()) if name == "ewg" else load.force_N
+        sig_in, xyz = boundary_stress_MPa(fb_in, u, lame)
+        vals_in = signed_principal(sig_in)
+        sig_out, xyz_out = boundary_stress_MPa(fb_out, u, lame)
+        hoop_out = hoop_at(sig_out, xyz_out)
+        out[name] = PlaneSolution(
+            h_mm=size_mm, force_N=force, mid=mid_layer(vb, u, geo.r_m_mm),
+            sigma_B=section_hoop_MPa(vb, u, 0.0, geo.r_root_mm, geo.r_outer_mm, lame),
+            sigma_D=section_hoop_MPa(vb, u, 0.5 * np.pi, geo.r_root_mm, geo.r_outer_mm, lame),
+            root_B_MPa=peak_near(vals_in, xyz, 0.0, window), root_D_MPa=peak_near(vals_in, xyz, 0.5 * np.pi, window),
+            outer_B_MPa=peak_near(hoop_out, xyz_out, 0.0, window),
+            outer_D_MPa=peak_near(hoop_out, xyz_out, 0.5 * np.pi, window),
+            mesh=md, timings_s={"mesh": t1 - t0, "assemble": t2 - t1, "solve": te - ts,
+                                "extract": time.perf_counter() - te},
+            solver=info.to_dict(), fields=(sk, u) if keep_fields else ())
+    return out
