@@ -33,8 +33,16 @@ class AuditRecord:
         return d
 
 
+class _Undefined:
+    """Stands in for a value the formulas cannot give for these parameters (e.g. eq 14 has no real root)."""
+
+    def __format__(self, spec: str) -> str:
+        return "undefined"
+
+
 def _rec(id_, seed, eq, wrong, fmt, values: dict, check):
-    return AuditRecord(id_, seed, eq, wrong, fmt.format(**values), tuple(values.items()), check)
+    shown = {k: _Undefined() if v is None else v for k, v in values.items()}
+    return AuditRecord(id_, seed, eq, wrong, fmt.format(**shown), tuple(values.items()), check)
 
 
 def audit_records(params, s000: dict | None = None, s003: dict | None = None) -> tuple[AuditRecord, ...]:
