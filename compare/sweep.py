@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Iterator
 
-from ..errors import InputError
+from ..errors import InputError, StageError
 from ..params import default_dict, load_params
 from .cache import ResultCache
 from .sweep_grid import build_points
@@ -67,8 +67,11 @@ def dask_client(scheduler: str | None, workers: int | None) -> Iterator[tuple[ob
             client.close()
         return
     n = workers or os.cpu_count() or 1
-    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
-                           silence_logs=logging.ERROR, env=WORKER_ENV)
+    try:
+        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+                               silence_logs=logging.ERROR, env=WORKER_ENV)
+    except (OSError, RuntimeError, TimeoutError) as exc:
+        raise StageError("start LocalCluster", "sweep", f"{type(exc).__name__}: {exc}") from exc
     try:
         client = Client(cluster)
         try:

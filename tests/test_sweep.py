@@ -15,6 +15,7 @@ import textwrap
 import time
 
 import pandas as pd
+from distributed import LocalCluster
 
 from strainwave.compare import cache
 from strainwave.compare.sweep import run_sweep
@@ -32,7 +33,10 @@ def _compliance(inner_mm, length_mm=200.0, outer_mm=70.0, mu_MPa=8.0e4):
 def test_outputs_bad_point_and_cached_rerun(tmp_path):
     out = tmp_path / "sweep"
     vary = ["output_shaft.inner_diameter_mm=30,45,75", "output_shaft.length_mm=100,200"]
-    outcome = run_sweep("shaft-torsion", vary=vary, workers=2, out_dir=out, task=closed_form_probe)
+    # an already running cluster reached by address: the --scheduler path (the resume test covers the default)
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        outcome = run_sweep("shaft-torsion", vary=vary, scheduler=cluster.scheduler_address, out_dir=out,
+                            task=closed_form_probe)
     # inner 75 >= outer 70: refused by the schema for both lengths, and the other four still finish
     assert (outcome.n_points, outcome.n_ok, outcome.n_failed, outcome.n_cached) == (6, 4, 2, 0)
     assert outcome.workers == 2
