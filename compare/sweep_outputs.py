@@ -83,10 +83,12 @@ def plot_sweep(frame: pd.DataFrame, varied: list[str], out_dir: Path, *, lines: 
     for quantity, rows in ok.groupby("quantity", sort=True):
         unit = rows["unit"].iloc[0]
         for x in varied:
-            others = [k for k in varied if k != x]
+            # A grid: colours per value of a second input, the remaining inputs held at their first value.
+            # Sample rows are no grid: all points in one colour.
+            others = [k for k in varied if k != x] if lines else []
             second = others[0] if others else None
             held = rows
-            for key in others[1:]:      # hold the remaining inputs at their first value
+            for key in others[1:]:
                 held = held[held[key] == held[key].iloc[0]]
             groups = list(held.groupby(second, sort=True)) if second else [(None, held)]
             fig, ax = plt.subplots(figsize=(6.4, 4.4))

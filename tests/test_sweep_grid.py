@@ -124,3 +124,20 @@ def test_tidy_rows_relative_errors_and_named_departures():
     assert "cracks.depth_mm in [0.1, 0.2]" in published
     assert "corrected departs by more than 0.05 at 1/2 points" in corrected
     assert "cracks.depth_mm in [0.2, 0.2]" in corrected and "worst +0.1 at point 1" in corrected
+
+
+def test_plots_one_per_quantity_and_varied_input(tmp_path):
+    from strainwave.compare.sweep_outputs import plot_sweep
+    records = []
+    for index, (a, d) in enumerate([(0.1, 30.0), (0.2, 30.0), (0.1, 45.0), (0.2, 45.0)]):
+        rec = _record(index, a, 1.0 + a + d / 100, 1.0, 1.1)
+        rec["inputs"]["output_shaft.inner_diameter_mm"] = d
+        records.append(rec)
+    varied = ["cracks.depth_mm", "output_shaft.inner_diameter_mm"]
+    frame = records_frame(records, varied)
+    grid = plot_sweep(frame, varied, tmp_path / "grid")
+    scatter = plot_sweep(frame, varied, tmp_path / "samples", lines=False)
+    names = ["flexibility_rad_per_Nmm__vs__cracks_depth_mm.png",
+             "flexibility_rad_per_Nmm__vs__output_shaft_inner_diameter_mm.png"]
+    assert [p.name for p in grid] == names and [p.name for p in scatter] == names
+    assert all(p.stat().st_size > 10_000 for p in grid + scatter)   # a drawn figure, not an empty canvas
