@@ -1,0 +1,191 @@
+"""Study `ring-compression` (seed 003): the EWG flexspline ring squeezed by two diametral forces.
+
+Smooth ring (seed 003's model: rim of thickness delta between the root circle and the outer circle,
+mid-layer radius r_m of eq 1) and toothed ring, 2D plane stress on ``Part.section`` (and 3D, coarser,
+in ``fea/ring_solid.py``). Loads: the force pair F spread over a small arc (``fea/ring_loads.py``)
+and the EWG's prescribed deformation (rigid contact strips pushed in by W0).
+
+Definitions (every ratio at the SAME prescribed mid-layer deformation W0 = 0.5 m dZ, seed 003 eq 7;
+linear problem, so each force solution is scaled to delta_CD = 2 W0):
+- ``force_for_W0_N``: the F that gives delta_CD = 2 W0 (seed 003, eqs 3, 5).
+- ``sigma_B/D_outer/inner_MPa``: hoop stress at sections B (phi = 0) and D (under the load), smooth ring;
+  thin-ring values: eq 9 (B, outer, tensile) and eq 8 (D, outer, compressive); inner fibres opposite.
+- ``tooth_influence`` K_delta: seed 003 eqs 10-11 multiply the smooth-shell stresses at given W0 by
+  K_delta, so K_delta = (sigma_D - sigma_B)_toothed / (sigma_D - sigma_B)_smooth at the outer fibre
+  (the smooth surface of an internally toothed ring: the rim's nominal stress, free of notch effects;
+  peak within half a pitch of each section). The stiffness ratio F_toothed/F_smooth at equal W0 (the
+  "delta" reading of K_delta) is reported in meta as ``tooth_stiffness_ratio``.
+- ``stress_concentration`` K_sigma: (root_D - root_B)_toothed / (inner_D - inner_B)_smooth, the peak
+  signed principal stress on the tooth-root fillets within half a pitch of each section over the
+  smooth ring's inner-fibre stress at the same W0 (the amplitude form that eq 13 multiplies).
+"""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from ..errors import StageError
+from .assembly import Lame
+from .convergence import grid_convergence
+from .meshing import MeshingFailed
+from .result import Quantity, StudyResult
+from .ring_loads import ArcLoad, point_load_factors, thin_ring_deflections_mm, thin_ring_moment_Nmm
+from .ring_plane import RingGeometry, solve_ring_section
+
+STUDY = "ring-compression"
+REFINEMENT_RATIO = 1.5      # h, 1.5 h, 2.25 h: r > 1.3 as the GCI procedure asks
+
+
+def ring_geometry(params) -> RingGeometry:
+    """Rim radii from seed 003, eq 1: root circle 0.5 d_R + h_fR, r_m = root + delta/2, outer = root + delta."""
+    e = params.ewg_drive
+    r_root = 0.5 * e.module_mm * e.flexspline_teeth + e.dedendum_coefficient * e.module_mm
+    return RingGeometry(r_root, r_root + e.rim_thickness_mm, r_root + 0.5 * e.rim_thickness_mm, e.face_width_mm)
+
+
+def prescribed_w0_mm(params) -> float:
+    """Seed 003, eq 7: W0 = 0.5 m dZ."""
+    return 0.5 * params.ewg_drive.module_mm * params.ewg_drive.tooth_difference
+
+
+def reference_force_N(params, geo: RingGeometry) -> float:
+    """Thin-ring force for delta_CD = 2 W0 (seed 003, eqs 3 and 5 inverted); the FEA applies this F."""
+    ei = params.material.youngs_modulus_MPa * geo.width_mm * geo.thickness_mm ** 3 / 12.0
+    return 2.0 * prescribed_w0_mm(params) * ei / (point_load_factors()["delta_cd"] * geo.r_m_mm ** 3)
+
+
+def contact_load(geo: RingGeometry, force_N: float) -> ArcLoad:
+    """Each force spread over an arc of half-width delta/2 at the outer surface (a roller's contact is
+    narrower still; delta/2 keeps the arc resolvable and moves M_D by only ~pi c/(4 r), see meta)."""
+    return ArcLoad(force_N, 0.5 * geo.thickness_mm / geo.r_outer_mm, geo.r_outer_mm, geo.width_mm)
+
+
+def section_face(params, *, teeth: bool):
+    """The ring's 2D cross-section from geometry/ (``Part.section``)."""
+    from ..geometry.parts import build_part
+    return build_part("ewg-flexspline-ring", params, teeth=teeth).section
+
+
+def mesh_sizes_mm(geo: RingGeometry, mesh_size_mm: float | None, quick: bool) -> tuple[float, float, float]:
+    """Fine, medium, coarse. Default fine size delta/3 (delta/1.5 quick): curved P2 through 3 layers."""
+    fine = mesh_size_mm if mesh_size_mm else geo.thickness_mm / (1.5 if quick else 3.0)
+    return fine, fine * REFINEMENT_RATIO, fine * REFINEMENT_RATIO ** 2
+
+
+def _scaled(sol, w0: float) -> dict[str, float]:
+    """Force-case values scaled to delta_CD = 2 W0 (linear elasticity)."""
+    k = 2.0 * w0 / sol.mid.delta_cd_mm
+    return {"force_for_W0_N": sol.force_N * k,
+            "sigma_B_outer_MPa": sol.sigma_B[0] * k, "sigma_B_inner_MPa": sol.sigma_B[1] * k,
+            "sigma_D_outer_MPa": sol.sigma_D[0] * k, "sigma_D_inner_MPa": sol.sigma_D[1] * k,
+            "outer_B_MPa": sol.outer_B_MPa * k, "outer_D_MPa": sol.outer_D_MPa * k,
+            "root_B_MPa": sol.root_B_MPa * k, "root_D_MPa": sol.root_D_MPa * k}
+
+
+def _series(face, geo, load, lame, sizes, order, w0, pitch, progress, label):
+    out = []
+    for h in sizes:
+        progress(f"{STUDY}: {label} ring, 2D plane stress, h = {h:.3g} mm")
+        try:
+            out.append(solve_ring_section(face, geo, load, lame, size_mm=h, order=order, ewg_w0_mm=w0,
+                                          pitch_rad=pitch))
+        except MeshingFailed as exc:
+            raise StageError("mesh", STUDY, f"{label} ring section, h = {h:g} mm: {exc}") from exc
+    return out
+
+
+def _quantity(name: str, unit: str, sizes, values) -> Quantity:
+    conv = grid_convergence(list(sizes), list(values))
+    return Quantity(name, float(values[0]), unit, conv)
+
+
+def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, progress=lambda m: None,
+        quick=False) -> StudyResult:
+    t_start = time.perf_counter()
+    geo = ring_geometry(params)
+    w0 = prescribed_w0_mm(params)
+    f_ref = reference_force_N(params, geo)
+    load = contact_load(geo, f_ref)
+    mat = params.material
+    lame = Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio, plane_stress=True)
+    pitch = 2.0 * np.pi / params.ewg_drive.flexspline_teeth
+    sizes = mesh_sizes_mm(geo, mesh_size_mm, quick)
+    timings = {}
+    t0 = time.perf_counter()
+    smooth_face, toothed_face = section_face(params, teeth=False), section_face(params, teeth=True)
+    timings["geometry"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    smooth = _series(smooth_face, geo, load, lame, sizes, order, w0, pitch, progress, "smooth")
+    timings["smooth_2d"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    toothed = _series(toothed_face, geo, load, lame, sizes, order, w0, pitch, progress, "toothed")
+    timings["toothed_2d"] = time.perf_counter() - t0
+
+    q: dict[str, Quantity] = {}
+    add = lambda name, unit, vals: q.__setitem__(name, _quantity(name, unit, sizes, vals))   # noqa: E731
+    add("delta_cd_mm", "mm", [s["force"].mid.delta_cd_mm for s in smooth])
+    add("delta_ab_mm", "mm", [s["force"].mid.delta_ab_mm for s in smooth])
+    sc = [_scaled(s["force"], w0) for s in smooth]
+    tc = [_scaled(s["force"], w0) for s in toothed]
+    for key in ("force_for_W0_N", "sigma_B_outer_MPa", "sigma_B_inner_MPa", "sigma_D_outer_MPa", "sigma_D_inner_MPa"):
+        add(key, "N" if key.endswith("_N") else "MPa", [v[key] for v in sc])
+    add("tooth_influence", "1", [(t["outer_D_MPa"] - t["outer_B_MPa"]) / (s["outer_D_MPa"] - s["outer_B_MPa"])
+                                 for t, s in zip(tc, sc)])
+    add("stress_concentration", "1", [(t["root_D_MPa"] - t["root_B_MPa"]) / (s["root_D_MPa"] - s["root_B_MPa"])
+                                      for t, s in zip(tc, sc)])
+    ewg = [s["ewg"] for s in smooth]
+    add("ewg_force_N", "N", [e.force_N for e in ewg])
+    for key, idx, sec in (("ewg_sigma_B_outer_MPa", 0, "B"), ("ewg_sigma_B_inner_MPa", 1, "B"),
+                          ("ewg_sigma_D_outer_MPa", 0, "D"), ("ewg_sigma_D_inner_MPa", 1, "D")):
+        add(key, "MPa", [(e.sigma_B if sec == "B" else e.sigma_D)[idx] for e in ewg])
+    add("toothed_force_for_W0_N", "N", [t["force_for_W0_N"] for t in tc])
+    add("toothed_ewg_force_N", "N", [s["ewg"].force_N for s in toothed])
+
+    meta = _meta(params, geo, load, lame, smooth, toothed, sc, tc, w0, f_ref, sizes)
+    fine = smooth[0]["force"]
+    timings["total"] = time.perf_counter() - t_start
+    return StudyResult(STUDY, q, fine.mesh.quality, timings, (), meta)
+
+
+def _meta(params, geo, load, lame, smooth, toothed, sc, tc, w0, f_ref, sizes) -> dict:
+    """Everything a reader needs to reproduce or interpret the numbers: load, BCs, thin-ring references."""
+    mat = params.material
+    ei = mat.youngs_modulus_MPa * geo.width_mm * geo.thickness_mm ** 3 / 12.0
+    cd_arc, ab_arc = thin_ring_deflections_mm(load, geo.r_m_mm, ei)
+    m_arc = thin_ring_moment_Nmm(np.array([0.0, 0.5 * np.pi]), load, geo.r_m_mm)
+    pf = point_load_factors()
+    fs, ft = smooth[0], toothed[0]
+    return {
+        "model": "2D plane stress, whole ring, curved P2 triangles, thickness = face width B",
+        "geometry": {"r_root_mm": geo.r_root_mm, "r_outer_mm": geo.r_outer_mm, "r_m_mm": geo.r_m_mm,
+                     "rim_thickness_mm": geo.thickness_mm, "width_mm": geo.width_mm,
+                     "r_m_over_delta": geo.r_m_mm / geo.thickness_mm,
+                     "smooth_equivalent": "rim between root circle and outer circle (seed 003 eq 1); teeth ignored"},
+        "material": {"E_MPa": mat.youngs_modulus_MPa, "nu": mat.poisson_ratio,
+                     "G_implied_MPa": mat.implied_shear_modulus_MPa, "G_seed_MPa": mat.shear_modulus_MPa},
+        "W0_mm": w0, "reference_force_N": f_ref,
+        "load": {"profile": "elliptical pressure, normal to the outer surface", "half_angle_rad": load.half_angle_rad,
+                 "half_width_mm": load.half_angle_rad * load.radius_mm, "peak_pressure_MPa": load.peak_pressure_MPa},
+        "supports": "u_y(A) = u_y(B) = 0, u_x(D) = 0 at outer-surface nodes on the symmetry axes (no reaction "
+                    "in the symmetric solution); C free",
+        "ewg_case": "rigid flat contact strips (the load arcs) pushed radially by W0 at the outer surface, "
+                    "tangential motion free",
+        "thin_ring_arc_load": {"delta_cd_mm": cd_arc, "delta_ab_mm": ab_arc, "moment_B_Nmm": float(m_arc[0]),
+                               "moment_D_Nmm": float(m_arc[1]),
+                               "moment_D_over_point_load": float(m_arc[1] / (pf["moment_D"] * f_ref * geo.r_m_mm)),
+                               "delta_cd_over_point_load": cd_arc / (pf["delta_cd"] * f_ref * geo.r_m_mm ** 3 / ei)},
+        "symmetry_uy_C_plus_D_mm": float(fs["force"].mid.u_C_mm[1] + fs["force"].mid.u_D_mm[1]),
+        "ewg_mid_layer_W0_mm": float(fs["ewg"].mid.delta_cd_mm / 2),
+        "tooth_stiffness_ratio": tc[0]["force_for_W0_N"] / sc[0]["force_for_W0_N"],
+        "toothed_delta_cd_mm": ft["force"].mid.delta_cd_mm, "toothed_delta_ab_mm": ft["force"].mid.delta_ab_mm,
+        "per_section_factors": {
+            "K_delta_B": tc[0]["outer_B_MPa"] / sc[0]["outer_B_MPa"],
+            "K_delta_D": tc[0]["outer_D_MPa"] / sc[0]["outer_D_MPa"],
+            "K_sigma_B": tc[0]["root_B_MPa"] / sc[0]["root_B_MPa"],
+            "K_sigma_D": tc[0]["root_D_MPa"] / sc[0]["root_D_MPa"]},
+        "toothed_scaled_to_W0_MPa": {k: v for k, v in tc[0].items() if k != "force_for_W0_N"},
+        "mesh_sizes_mm": list(sizes),
+        "toothed_mesh": ft["force"].mesh.quality.to_dict(),
+        "solver": fs["force"].solver,
+    }
