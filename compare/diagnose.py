@@ -99,6 +99,14 @@ def diagnose(rec: Recording, params, baseline: str = "analytic") -> tuple[Diagno
     if baseline not in ("analytic", "fea"):
         raise InputError("--baseline", baseline, "must be analytic or fea")
     base = analytic_baseline(rec, params) if baseline == "analytic" else fea_baseline(rec, params)
+    from threadpoolctl import threadpool_limits
+    # The fits are thousands of tiny (N x 4) linear-algebra calls: BLAS threads only add overhead
+    # (measured 15x slower with threads on a shared 2-core machine).
+    with threadpool_limits(limits=1):
+        return _diagnose(rec, base)
+
+
+def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     ctx = build_context(rec, base)
     u_rel = base.uncertainty
     # first pass: noise from the residual of a free linear fit (any smooth trend is cancelled anyway)
