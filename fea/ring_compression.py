@@ -68,8 +68,9 @@ def section_face(params, *, teeth: bool):
 
 
 def mesh_sizes_mm(geo: RingGeometry, mesh_size_mm: float | None, quick: bool) -> tuple[float, float, float]:
-    """Fine, medium, coarse. Default fine size delta/3 (delta/1.5 quick): curved P2 through 3 layers."""
-    fine = mesh_size_mm if mesh_size_mm else geo.thickness_mm / (1.5 if quick else 3.0)
+    """Fine, medium, coarse. Default fine size delta/4 (delta/1.5 quick): a fibre stress sampled at h = delta/4
+    is within 0.12 % of Winkler-Bach (0.67 % at delta/2), delta_CD within 1e-5 already at delta/2."""
+    fine = mesh_size_mm if mesh_size_mm else geo.thickness_mm / (1.5 if quick else 4.0)
     return fine, fine * REFINEMENT_RATIO, fine * REFINEMENT_RATIO ** 2
 
 

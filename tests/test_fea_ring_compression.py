@@ -1,0 +1,146 @@
+"""Ring under two diametral forces (seed 003, eqs 3, 4, 8, 9): 2D plane-stress FEA against exact answers.
+
+The default EWG ring (Z_R = 72, m = 1, delta = 0.012 d_R) has r_m/delta = 43.7 >= 40, the thin-ring
+regime of the issue's 0.5 % delta_CD check. The section is built here from two circles (the FEA is
+under test, not the geometry); mesh size delta/2 keeps each solve near one second.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from strainwave.analytic.thick_ring import RingSection, deflections_mm, winkler_bach_stress_MPa
+from strainwave.fea.assembly import Lame
+from strainwave.fea.convergence import Convergence
+from strainwave.fea.ring_compression import contact_load, ring_geometry, reference_force_N, run
+from strainwave.fea.ring_loads import ArcLoad, point_load_factors, thin_ring_deflections_mm, thin_ring_moment_Nmm
+from strainwave.fea.ring_plane import solve_ring_section
+from strainwave.params import load_params
+
+E_MPA, NU = 2.1e5, 0.3
+
+
+def _annulus(r_in, r_out):
+    from build123d import Edge, Face, Wire
+    return Face(Wire([Edge.make_circle(r_out)])).cut(Face(Wire([Edge.make_circle(r_in)]))).faces()[0]
+
+
+@pytest.fixture(scope="module")
+def ring():
+    params = load_params()
+    geo = ring_geometry(params)
+    f = reference_force_N(params, geo)
+    load = contact_load(geo, f)
+    lame = Lame.from_young(E_MPA, NU, plane_stress=True)
+    sols = solve_ring_section(_annulus(geo.r_root_mm, geo.r_outer_mm), geo, load, lame,
+                              size_mm=geo.thickness_mm / 2, order=2, ewg_w0_mm=1.0)
+    ei = E_MPA * geo.width_mm * geo.thickness_mm ** 3 / 12
+    return geo, load, ei, sols
+
+
+def _roark_factor(geo, which: int) -> float:
+    """Thick-ring over thin-ring deflection (Roark Table 9.2 case 1: normal force and shear)."""
+    sec = RingSection(geo.r_m_mm, geo.thickness_mm, geo.width_mm)
+    return deflections_mm(1.0, sec, E_MPA, NU, thick=False)[which] / (
+        point_load_factors()["delta_cd" if which == 0 else "delta_ab"] * geo.r_m_mm ** 3 / (E_MPA * sec.I_mm4))
+
+
+def test_thin_ring_delta_cd_within_half_percent(ring):
+    geo, load, ei, sols = ring
+    assert geo.r_m_mm / geo.thickness_mm >= 40
+    exact = point_load_factors()["delta_cd"] * load.force_N * geo.r_m_mm ** 3 / ei    # 0.148778 F r^3/EI
+    fea = sols["force"].mid.delta_cd_mm
+    # The tolerance 0.5 % (issue 4) must cover the physics the thin formula leaves out; Roark's
+    # normal-force and shear terms are 2.94 alpha/0.1488 = 0.086 % here and the arc load -0.007 %:
+    thick = _roark_factor(geo, 0) - 1.0
+    assert 0.0 < thick < 0.001
+    assert abs(fea / exact - 1.0) < 0.005
+    # and the FEA must see that correction: against thin-ring-for-the-arc x Roark it agrees to 0.03 %
+    # (discretization at h = delta/2 is ~1e-4, from the GCI of the study)
+    arc_cd, _ = thin_ring_deflections_mm(load, geo.r_m_mm, ei)
+    assert fea / (arc_cd * (1.0 + thick)) == pytest.approx(1.0, abs=3e-4)
+
+
+def test_thin_ring_delta_ab(ring):
+    geo, load, ei, sols = ring
+    exact = 0.136620 * load.force_N * geo.r_m_mm ** 3 / ei
+    fea = sols["force"].mid.delta_ab_mm
+    # same budget as delta_CD: Roark's D_H correction is +0.025 % here
+    assert abs(fea / exact - 1.0) < 0.005
+    _, arc_ab = thin_ring_deflections_mm(load, geo.r_m_mm, ei)
+    assert fea / (arc_ab * _roark_factor(geo, 1)) == pytest.approx(1.0, abs=3e-4)
+
+
+def test_symmetry_delta_at_C_equals_D(ring):
+    _, _, _, sols = ring
+    mid = sols["force"].mid
+    # C is unconstrained: only the load and mesh symmetry make u_y(C) = -u_y(D); 1e-6 relative is far
+    # below discretization error yet far above round-off of the direct solve
+    assert mid.u_C_mm[1] == pytest.approx(-mid.u_D_mm[1], rel=1e-6)
+    assert abs(mid.u_D_mm[0]) < 1e-6 * abs(mid.u_D_mm[1])
+    assert mid.u_B_mm[0] == pytest.approx(-mid.u_A_mm[0], rel=1e-6)
+
+
+def test_section_stresses_against_eqs_8_9(ring):
+    geo, load, ei, sols = ring
+    s = sols["force"]
+    k = 2.0 / s.mid.delta_cd_mm                         # scale to W0 = 1 mm
+    d_m = 2 * geo.r_m_mm
+    eq8 = -8.557960 * 1.0 * E_MPA * geo.thickness_mm / d_m ** 2     # outer fibre at D
+    eq9 = 4.884852 * 1.0 * E_MPA * geo.thickness_mm / d_m ** 2      # outer fibre at B
+    sec = RingSection(geo.r_m_mm, geo.thickness_mm, geo.width_mm)
+    # Tolerance from what eqs 8/9 leave out, computed for this ring:
+    # - curvature (Winkler-Bach) changes a fibre stress by ~delta/(3 r) = 0.8 %;
+    # - the hoop force F/2 at B adds F/(2 B delta) = delta/(2.18 r) = 1.05 % of the bending stress;
+    # - the arc load lowers M_D by pi c/(4 r) = 0.9 % (c = delta/2).
+    m_arc = thin_ring_moment_Nmm(np.array([0.0, 0.5 * np.pi]), load, geo.r_m_mm)
+    c = geo.thickness_mm / 2
+    budget_B = abs(winkler_bach_stress_MPa(m_arc[0], -load.force_N / 2, geo.r_outer_mm, sec)
+                   / (m_arc[0] * c / sec.I_mm4) - 1.0) + 0.01
+    # + 1 % discretization of a fibre stress at h = delta/2 (measured: 0.67 % at delta/2, 0.12 % at
+    # delta/4, 0.03 % at delta/8 against Winkler-Bach at B)
+    budget_D = abs(m_arc[1] / (-load.force_N * geo.r_m_mm / math.pi) - 1.0) + 0.008 + 0.01
+    assert abs(s.sigma_B[0] * k / eq9 - 1.0) < budget_B
+    assert abs(s.sigma_D[0] * k / eq8 - 1.0) < budget_D
+    # inner fibres: the curved-beam model of the actual load within 1 % (the discretization above; the
+    # contact stress under the load decays before the inner fibre)
+    for sig, m, n in ((s.sigma_B[1], m_arc[0], -load.force_N / 2), (s.sigma_D[1], m_arc[1], 0.0)):
+        wb = winkler_bach_stress_MPa(m, n, geo.r_root_mm, sec)
+        assert sig == pytest.approx(wb, rel=0.01)
+
+
+def test_ewg_prescribed_deformation_reaches_W0(ring):
+    _, _, _, sols = ring
+    e = sols["ewg"]
+    # the rigid strips move the outer surface by W0 = 1 mm; the mid-layer follows within the local
+    # through-thickness compression (< 0.1 % of W0 for this load)
+    assert e.mid.delta_cd_mm / 2 == pytest.approx(1.0, abs=1e-3)
+    assert e.force_N > 0
+
+
+def test_study_quick_carries_gci(monkeypatch):
+    import strainwave.fea.ring_compression as rc
+    from strainwave.geometry.involute import ToothSpec, gear_face
+
+    params = load_params().with_value("ewg_drive.flexspline_teeth", 40)   # fewer teeth: fast geometry
+    geo = rc.ring_geometry(params)
+
+    def section(p, *, teeth):
+        if not teeth:
+            return _annulus(geo.r_root_mm, geo.r_outer_mm)
+        return gear_face(ToothSpec(40, 1.0, internal=True), outer_radius_mm=geo.r_outer_mm)
+
+    monkeypatch.setattr(rc, "section_face", section)
+    res = run(params, quick=True)
+    for name in ("delta_cd_mm", "delta_ab_mm", "force_for_W0_N", "sigma_B_outer_MPa", "sigma_D_outer_MPa",
+                 "sigma_B_inner_MPa", "sigma_D_inner_MPa", "tooth_influence", "stress_concentration"):
+        conv = res[name].convergence
+        assert isinstance(conv, Convergence) and len(conv.values) == 3
+        assert np.isfinite(conv.gci_fine)
+    # thin ring at W0 = 1 mm: delta_CD = 2 mm at the thin-ring force within the 0.5 % thin-ring budget
+    assert res["delta_cd_mm"].value == pytest.approx(2.0, rel=0.005)
+    assert res["delta_cd_mm"].convergence.gci_fine < 0.002
+    # teeth make the ring stiffer and the root a notch: both factors exceed 1
+    assert res["tooth_influence"].value > 1.0 and res["stress_concentration"].value > 1.0
