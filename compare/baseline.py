@@ -17,7 +17,7 @@ import math
 from dataclasses import dataclass
 
 from ..errors import InputError
-from .recording import Recording, TestKind
+from .recording import Recording, RecordingKind
 
 FEA_STUDY = {"output_shaft": "shaft-torsion", "flexspline_cup": "cup-torsion", "ewg_ring": "ring-compression"}
 
@@ -39,13 +39,13 @@ class Baseline:
 
 def analytic_baseline(rec: Recording, params) -> Baseline:
     """Closed-form baseline for the recording's specimen (see module docstring for the formulas)."""
-    geometry = ring_geometry(params) if rec.kind is TestKind.RING_COMPRESSION else {}
+    geometry = ring_geometry(params) if rec.kind is RecordingKind.RING_COMPRESSION else {}
     if rec.baseline_stiffness is not None:
-        unit = "rad/(N*mm)" if rec.kind is TestKind.TORSION else "mm/N"
+        unit = "rad/(N*mm)" if rec.kind is RecordingKind.TORSION else "mm/N"
         return Baseline(1.0 / rec.baseline_stiffness, unit, rec.baseline_uncertainty,
                         f"given linear stiffness {rec.baseline_stiffness:.6g} ({'N*mm/rad' if unit[0] == 'r' else 'N/mm'})",
                         geometry)
-    if rec.kind is TestKind.RING_COMPRESSION:
+    if rec.kind is RecordingKind.RING_COMPRESSION:
         return Baseline(geometry["thin_compliance_mm_per_N"], "mm/N", rec.baseline_uncertainty,
                         "thin ring, seed 003 eq 3 (delta_CD = 0.148778 F r_m^3/EI)", geometry)
     compliance, source = torsion_compliance(rec.specimen, params)
@@ -103,22 +103,22 @@ def fea_baseline(rec: Recording, params) -> Baseline:
         raise InputError("--baseline", "fea", f"the FEA study {study!r} is not available in this build ({exc})") from None
     compliance, name = _compliance_from(result, rec.kind)
     unc = result[name].uncertainty or 0.0
-    geometry = ring_geometry(params) if rec.kind is TestKind.RING_COMPRESSION else {}
-    return Baseline(compliance, "rad/(N*mm)" if rec.kind is TestKind.TORSION else "mm/N",
+    geometry = ring_geometry(params) if rec.kind is RecordingKind.RING_COMPRESSION else {}
+    return Baseline(compliance, "rad/(N*mm)" if rec.kind is RecordingKind.TORSION else "mm/N",
                     math.hypot(rec.baseline_uncertainty, unc), f"FEA {study} (quick mesh), {name}", geometry)
 
 
-def _compliance_from(result, kind: TestKind) -> tuple[float, str]:
+def _compliance_from(result, kind: RecordingKind) -> tuple[float, str]:
     """Find the study's linear compliance among its quantities (by unit, then by name)."""
-    want = ("rad/(N*mm)", "rad/(N mm)", "rad/N/mm") if kind is TestKind.TORSION else ("mm/N",)
+    want = ("rad/(N*mm)", "rad/(N mm)", "rad/N/mm") if kind is RecordingKind.TORSION else ("mm/N",)
     for name, q in result.quantities.items():
         if q.unit.replace(" ", "") in {w.replace(" ", "") for w in want}:
             return q.value, name
     for name, q in result.quantities.items():
         lname = name.lower()
-        if kind is TestKind.TORSION and ("stiffness" in lname and "rad" in q.unit):
+        if kind is RecordingKind.TORSION and ("stiffness" in lname and "rad" in q.unit):
             return 1.0 / q.value, name
-        if kind is TestKind.RING_COMPRESSION and "delta_cd" in lname and "force" in result.meta:
+        if kind is RecordingKind.RING_COMPRESSION and "delta_cd" in lname and "force" in result.meta:
             return q.value / float(result.meta["force"]), name
     raise InputError("--baseline", "fea", f"study {result.study!r} reports no compliance "
                      f"(quantities: {', '.join(result.quantities)})")

@@ -21,7 +21,7 @@ from importlib import resources
 import numpy as np
 
 from .diagnose_hifi_torsion import maxwell_slip_twist
-from .recording import TestKind, format_recording
+from .recording import RecordingKind, format_recording
 
 ARCMIN = math.pi / (180.0 * 60.0)
 ENCODER_STEP_RAD = 2.0 * math.pi / 2 ** 20     # a 20-bit output encoder
@@ -80,6 +80,6 @@ def cha_recording(row: ChaRow, *, hysteresis: bool, n: int = 2000, seed: int = 0
     twist = twist + 0.5 * ENCODER_STEP_RAD * rng.standard_normal(n) + 3.0 * ENCODER_STEP_RAD
     twist = np.round(twist / ENCODER_STEP_RAD) * ENCODER_STEP_RAD
     T_meas = T + 5e-4 * T_max * rng.standard_normal(n)
-    return format_recording(TestKind.TORSION, "gear", T_meas, twist, baseline_uncertainty=0.3,
+    return format_recording(RecordingKind.TORSION, "gear", T_meas, twist, baseline_uncertainty=0.3,
                             baseline_stiffness=row.K1_Nmm_per_rad,
                             description=f"CHA-{row.size} ratio {row.ratio}{' with hysteresis' if hysteresis else ''}")

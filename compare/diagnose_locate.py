@@ -2,8 +2,8 @@
 
 The baseline-fit residual is averaged in 20 load bins separately for each branch (loading/unloading x
 positive/negative load). A bin is significant when its mean exceeds 3 sigma/sqrt(n) (3 standard errors)
-and a quarter of the largest bin mean, so a strong effect is not reported as "everywhere" because of
-its faint tails.
+and half the largest bin mean, so a strong effect is not reported as "everywhere" because of
+its tails. ``peak_at`` is the load of the largest deviation.
 """
 from __future__ import annotations
 
@@ -22,10 +22,11 @@ class Located:
     ranges: tuple[tuple[float, float], ...]
     branch: str
     description: str
+    peak_at: float | None = None
 
     def to_dict(self) -> dict:
         return {"variable": self.variable, "ranges": [list(r) for r in self.ranges], "branch": self.branch,
-                "description": self.description}
+                "description": self.description, "peak_at": self.peak_at}
 
 
 def locate(ctx: Context, residual: np.ndarray, sigma: float, variable: str, mismatch: bool) -> Located:
@@ -48,7 +49,7 @@ def locate(ctx: Context, residual: np.ndarray, sigma: float, variable: str, mism
         return Located(variable, (), "none", "too few samples per load bin to locate the residual")
     peak = max(abs(m) for m, _ in means.values())
     hits = {(key, b): m for (key, b), (m, cnt) in means.items()
-            if abs(m) > 3.0 * sigma / np.sqrt(cnt) and abs(m) >= 0.25 * peak}
+            if abs(m) > 3.0 * sigma / np.sqrt(cnt) and abs(m) >= 0.5 * peak}
     bins = sorted({b for (_, b) in hits})
     ranges = []
     for b in bins:
@@ -68,4 +69,5 @@ def locate(ctx: Context, residual: np.ndarray, sigma: float, variable: str, mism
             f"{pm * ctx.Y:.3g} {ctx.response_unit} = {abs(pm) / sigma:.1f} x noise near {variable} = "
             f"{0.5 * (edges[pb] + edges[pb + 1]) * ctx.X:.4g} {ctx.load_unit}" if hits
             else "mismatch spread thinly over the whole range (no single bin stands out)")
-    return Located(variable, tuple(ranges), branch, desc)
+    peak_at = float(0.5 * (edges[pb] + edges[pb + 1]) * ctx.X) if hits else None
+    return Located(variable, tuple(ranges), branch, desc, peak_at)

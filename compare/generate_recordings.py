@@ -20,7 +20,7 @@ from scipy.optimize import lsq_linear
 from . import diagnose_hifi_ring as hr
 from . import diagnose_hifi_torsion as ht
 from .baseline import ring_geometry, torsion_compliance
-from .recording import TestKind, format_recording
+from .recording import RecordingKind, format_recording
 
 UNCERTAINTY = 0.02
 PRIOR_SIGMAS = 4.5
@@ -123,7 +123,7 @@ def _torsion(cls, rng, params, n, snr, clean_noise, eps) -> Concealed:
                                                int(rng.choice([-1, 1])))
     clean = cls.startswith("clean")
     un, yn, noise, peak = _noisy(rng, u, c * T / Y, None if clean else effect / Y, snr, clean_noise, n)
-    text = format_recording(TestKind.TORSION, specimen, un * X, yn * Y, baseline_uncertainty=UNCERTAINTY)
+    text = format_recording(RecordingKind.TORSION, specimen, un * X, yn * Y, baseline_uncertainty=UNCERTAINTY)
     return Concealed(cls, text, () if clean else tuple(parts), peak / noise if not clean else 0.0, "torsion")
 
 
@@ -177,6 +177,6 @@ def _ring(cls, rng, params, n, snr, clean_noise, eps, table) -> Concealed:
     if clean:
         yn = yn + effect / Y
     overrides = {"ewg_drive": {"rim_thickness_ratio": ratio}}
-    text = format_recording(TestKind.RING_COMPRESSION, "ewg_ring", un * X, yn * Y,
+    text = format_recording(RecordingKind.RING_COMPRESSION, "ewg_ring", un * X, yn * Y,
                             baseline_uncertainty=UNCERTAINTY, params=overrides)
     return Concealed(cls, text, truth, peak / noise if not clean else 0.0, "ring_compression")

@@ -29,16 +29,16 @@ from ..errors import InputError
 MIN_ROWS = 20
 
 
-class TestKind(enum.Enum):
+class RecordingKind(enum.Enum):
     TORSION = "torsion"
     RING_COMPRESSION = "ring_compression"
 
 
-SPECIMENS = {TestKind.TORSION: ("output_shaft", "flexspline_cup", "gear"),
-             TestKind.RING_COMPRESSION: ("ewg_ring",)}
+SPECIMENS = {RecordingKind.TORSION: ("output_shaft", "flexspline_cup", "gear"),
+             RecordingKind.RING_COMPRESSION: ("ewg_ring",)}
 # (load column, response column), optional columns
-COLUMNS = {TestKind.TORSION: (("torque_Nmm", "twist_rad"), ("time_s",)),
-           TestKind.RING_COMPRESSION: (("force_N", "delta_cd_mm"), ("delta_ab_mm", "time_s"))}
+COLUMNS = {RecordingKind.TORSION: (("torque_Nmm", "twist_rad"), ("time_s",)),
+           RecordingKind.RING_COMPRESSION: (("force_N", "delta_cd_mm"), ("delta_ab_mm", "time_s"))}
 TEST_KEYS = {"kind", "specimen", "baseline_uncertainty", "baseline_stiffness_Nmm_per_rad",
              "baseline_stiffness_N_per_mm", "description"}
 TOP_TABLES = {"test", "params", "meta"}
@@ -49,7 +49,7 @@ class Recording:
     """One parsed recording. ``load`` drives the test (torque or force), ``response`` is measured."""
 
     source: str
-    kind: TestKind
+    kind: RecordingKind
     specimen: str
     load: np.ndarray
     response: np.ndarray
@@ -68,11 +68,11 @@ class Recording:
 
     @property
     def load_unit(self) -> str:
-        return "N*mm" if self.kind is TestKind.TORSION else "N"
+        return "N*mm" if self.kind is RecordingKind.TORSION else "N"
 
     @property
     def response_unit(self) -> str:
-        return "rad" if self.kind is TestKind.TORSION else "mm"
+        return "rad" if self.kind is RecordingKind.TORSION else "mm"
 
 
 def parse_recording(path: Path | str) -> Recording:
@@ -101,7 +101,9 @@ def parse_text(text: str, name: str = "recording.csv") -> Recording:
     header_lines, body_start = [], len(lines)
     for i, line in enumerate(lines):
         if line.startswith("#"):
-            header_lines.append((i + 1, line[2:] if line.startswith("# ") else line[1:]))
+            # spreadsheets pad every row with commas, the header rows included
+            text = line.rstrip().rstrip(",").rstrip()
+            header_lines.append((i + 1, text[2:] if text.startswith("# ") else text[1:]))
         elif line.strip() == "":
             continue
         else:
@@ -176,10 +178,10 @@ def _parse_test(header: dict, header_lines, name: str):
         if key not in TEST_KEYS:
             raise InputError(f"{name}:{_find(header_lines, key)}", key,
                              f"unknown [test] key; allowed: {', '.join(sorted(TEST_KEYS))}")
-    kinds = [k.value for k in TestKind]
+    kinds = [k.value for k in RecordingKind]
     if test.get("kind") not in kinds:
         raise InputError(f"{name}:{_find(header_lines, 'kind')}", test.get("kind"), f"test.kind must be one of {kinds}")
-    kind = TestKind(test["kind"])
+    kind = RecordingKind(test["kind"])
     if test.get("specimen") not in SPECIMENS[kind]:
         raise InputError(f"{name}:{_find(header_lines, 'specimen')}", test.get("specimen"),
                          f"test.specimen for {kind.value} must be one of {list(SPECIMENS[kind])}")
@@ -189,8 +191,8 @@ def _parse_test(header: dict, header_lines, name: str):
         raise InputError(f"{name}:{_find(header_lines, 'baseline_uncertainty')}", u,
                          "test.baseline_uncertainty must be a number in (0, 1)")
     out["baseline_uncertainty"] = float(u)
-    stiff_key = "baseline_stiffness_Nmm_per_rad" if kind is TestKind.TORSION else "baseline_stiffness_N_per_mm"
-    wrong_key = "baseline_stiffness_N_per_mm" if kind is TestKind.TORSION else "baseline_stiffness_Nmm_per_rad"
+    stiff_key = "baseline_stiffness_Nmm_per_rad" if kind is RecordingKind.TORSION else "baseline_stiffness_N_per_mm"
+    wrong_key = "baseline_stiffness_N_per_mm" if kind is RecordingKind.TORSION else "baseline_stiffness_Nmm_per_rad"
     if wrong_key in test:
         raise InputError(f"{name}:{_find(header_lines, wrong_key)}", wrong_key, f"for {kind.value} use {stiff_key}")
     if stiff_key in test:
@@ -257,7 +259,7 @@ def _row_line(lines: list[str], start: int, row: int) -> int:
     return len(lines)
 
 
-def format_recording(kind: TestKind, specimen: str, load: np.ndarray, response: np.ndarray, *,
+def format_recording(kind: RecordingKind, specimen: str, load: np.ndarray, response: np.ndarray, *,
                      baseline_uncertainty: float | None = None, baseline_stiffness: float | None = None,
                      params: dict | None = None, time_s: np.ndarray | None = None, description: str = "") -> str:
     """Write a recording in the documented format (the inverse of ``parse_text``)."""
@@ -268,7 +270,7 @@ def format_recording(kind: TestKind, specimen: str, load: np.ndarray, response: 
     if baseline_uncertainty is not None:
         head.append(f"baseline_uncertainty = {baseline_uncertainty!r}")
     if baseline_stiffness is not None:
-        key = "baseline_stiffness_Nmm_per_rad" if kind is TestKind.TORSION else "baseline_stiffness_N_per_mm"
+        key = "baseline_stiffness_Nmm_per_rad" if kind is RecordingKind.TORSION else "baseline_stiffness_N_per_mm"
         head.append(f"{key} = {float(baseline_stiffness)!r}")
     for section, table in (params or {}).items():
         head.append(f"[params.{section}]")

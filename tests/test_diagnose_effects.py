@@ -1,0 +1,107 @@
+"""Each catalogue effect is named and its parameters recovered from data made by its own model;
+clean data and a stiffness error within the stated uncertainty raise no alarm."""
+import warnings
+
+import numpy as np
+import pytest
+
+from strainwave.compare.baseline import analytic_baseline
+from strainwave.compare.diagnose import diagnose
+from strainwave.compare.diagnose_context import build_context
+from strainwave.compare.effects import CATALOGUE
+from strainwave.compare.recording import RecordingKind, format_recording, parse_text
+from strainwave.errors import RangeWarning
+from strainwave.params import load_params
+
+NOISE = 2e-3      # white noise, fraction of the full-scale response
+
+
+@pytest.fixture(scope="module")
+def params():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RangeWarning)
+        return load_params()
+
+
+def _path(kind, n):
+    knots = [0, 1, -1, 1, -1, 0] if kind is RecordingKind.TORSION else [0, 0.6, 0.05, 1.0, 0.0]
+    return np.interp(np.linspace(0, len(knots) - 1, n), np.arange(len(knots)), knots)
+
+
+def _synth(params, kind, effect_id, theta, *, n=800, seed=0, scale=1.0, overrides=None):
+    """A recording whose response is baseline x scale + the catalogue effect + offset + drift + noise."""
+    rng = np.random.default_rng(seed)
+    specimen = "output_shaft" if kind is RecordingKind.TORSION else "ewg_ring"
+    X = 1e6 if kind is RecordingKind.TORSION else 50.0
+    u = _path(kind, n)
+    probe = parse_text(format_recording(kind, specimen, u * X, u, params=overrides))
+    base = analytic_baseline(probe, params if not overrides else load_params(overrides=overrides))
+    ctx = build_context(probe, base)
+    y = scale * ctx.u + 0.01 + 0.003 * ctx.t
+    if effect_id:
+        y = y + CATALOGUE[effect_id].contribution(ctx, np.asarray(theta, dtype=float))
+    y = y + NOISE * rng.standard_normal(n)
+    text = format_recording(kind, specimen, u * X, y * ctx.Y, params=overrides)
+    rec = parse_text(text)
+    return diagnose(rec, params if not overrides else load_params(overrides=overrides))[0], ctx
+
+
+CASES = [  # (kind, effect, normalised parameters, {reported parameter: expected value in SI})
+    (RecordingKind.TORSION, "compliance_offset", [0.15], {"compliance_change_percent": 15.0}),
+    (RecordingKind.TORSION, "nonlinear_stiffness", [0.15, 0.2, 0.25, 0.35], {"T1": 2.5e5, "T2": 6.0e5}),
+    (RecordingKind.TORSION, "hysteresis", [0.02, -1.3], {"friction_saturation_load": 10 ** -1.3 * 1e6}),
+    (RecordingKind.TORSION, "lost_motion", [0.02, -1.7, 0.0], {"band_width": 10 ** -1.7 * 1e6}),
+    (RecordingKind.TORSION, "crack_closure", [0.08, 0.0], {}),
+    (RecordingKind.RING_COMPRESSION, "large_deflection", [0.05], {}),
+    (RecordingKind.RING_COMPRESSION, "plasticity", [0.3, 0.6, 1.5], {"hardening_exponent": 1.5}),
+]
+
+
+@pytest.mark.parametrize("kind, effect_id, theta, expected", CASES, ids=[c[1] for c in CASES])
+def test_effect_named_and_recovered(params, kind, effect_id, theta, expected):
+    diag, ctx = _synth(params, kind, effect_id, theta)
+    assert diag.mismatch
+    assert diag.effects[0].id == effect_id, [e.id for e in diag.effects[:3]]
+    # the fit leaves white noise: RMS after within 10 % of the injected noise (chi-square spread at
+    # N = 800 is ~5 %, plus the estimated offsets and drift)
+    assert diag.rms_after == pytest.approx(NOISE * ctx.Y, rel=0.10)
+    assert diag.noise_std == pytest.approx(NOISE * ctx.Y, rel=0.10)
+    for name, value in expected.items():
+        # 5 %: the parameter's standard error at this signal-to-noise is ~1 % (Fisher information)
+        assert diag.effects[0].parameters[name][0] == pytest.approx(value, rel=0.05), name
+
+
+def test_thick_ring_predicted_from_geometry(params):
+    over = {"ewg_drive": {"rim_thickness_ratio": 0.25}}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RangeWarning)
+        diag, ctx = _synth(params, RecordingKind.RING_COMPRESSION, "thick_ring", [], overrides=over)
+    rho = ctx.geometry["thick_ring_factor"]
+    assert rho > 1.1     # a 0.25 d_R rim: Roark's thick-ring compliance is > 10 % above thin-ring theory
+    assert diag.mismatch and diag.effects[0].id == "thick_ring"
+    # zero free parameters beat the one-parameter compliance_offset by about ln N = 6.7
+    assert diag.effects[0].delta_bic - next(e.delta_bic for e in diag.effects if e.id == "compliance_offset") > 5
+
+
+@pytest.mark.parametrize("kind", [RecordingKind.TORSION, RecordingKind.RING_COMPRESSION])
+@pytest.mark.parametrize("seed", range(4))
+def test_no_false_alarm_on_clean_data(params, kind, seed):
+    diag, ctx = _synth(params, kind, None, [], seed=seed, scale=1.0 + 0.01 * (seed - 1.5))
+    assert not diag.mismatch and diag.effects == () and diag.located.ranges == ()
+    assert diag.rms_after == diag.rms_before
+
+
+def test_stiffness_error_within_uncertainty_is_absorbed_beyond_it_named(params):
+    inside, _ = _synth(params, RecordingKind.TORSION, None, [], scale=1.03)     # 1.5 sigma of the 2 % prior
+    assert not inside.mismatch
+    outside, _ = _synth(params, RecordingKind.TORSION, None, [], scale=1.15)    # 7.5 sigma
+    assert outside.mismatch and outside.effects[0].id == "compliance_offset"
+    assert outside.effects[0].parameters["compliance_change_percent"][0] == pytest.approx(15.0, abs=0.5)
+
+
+def test_location_of_a_dead_band_is_around_zero(params):
+    diag, _ = _synth(params, RecordingKind.TORSION, "lost_motion", [0.03, -1.5, 0.0])
+    # the band is 3 % of full scale wide; the largest deviation is in a bin (10 % wide) next to zero
+    assert abs(diag.located.peak_at) <= 1.5e5
+    assert any(lo <= 0.0 <= hi for lo, hi in diag.located.ranges)
+    assert diag.located.branch == "loading and unloading, both load signs"
