@@ -99,26 +99,33 @@ def fea_baseline(rec: Recording, params) -> Baseline:
     try:
         from ..fea.studies import run_study
         result = run_study(study, params, quick=True)
-    except (ImportError, ModuleNotFoundError) as exc:
+    except ModuleNotFoundError as exc:
         raise InputError("--baseline", "fea", f"the FEA study {study!r} is not available in this build ({exc})") from None
     compliance, name = _compliance_from(result, rec.kind)
-    unc = result[name].uncertainty or 0.0
+    key = "delta_cd_mm" if rec.kind is RecordingKind.RING_COMPRESSION else name
+    q = result[key]
+    unc = (q.uncertainty or 0.0) / abs(q.value)     # relative GCI discretization uncertainty, in quadrature
     geometry = ring_geometry(params) if rec.kind is RecordingKind.RING_COMPRESSION else {}
     return Baseline(compliance, "rad/(N*mm)" if rec.kind is RecordingKind.TORSION else "mm/N",
                     math.hypot(rec.baseline_uncertainty, unc), f"FEA {study} (quick mesh), {name}", geometry)
 
 
 def _compliance_from(result, kind: RecordingKind) -> tuple[float, str]:
-    """Find the study's linear compliance among its quantities (by unit, then by name)."""
-    want = ("rad/(N*mm)", "rad/(N mm)", "rad/N/mm") if kind is RecordingKind.TORSION else ("mm/N",)
-    for name, q in result.quantities.items():
-        if q.unit.replace(" ", "") in {w.replace(" ", "") for w in want}:
-            return q.value, name
-    for name, q in result.quantities.items():
-        lname = name.lower()
-        if kind is RecordingKind.TORSION and ("stiffness" in lname and "rad" in q.unit):
-            return 1.0 / q.value, name
-        if kind is RecordingKind.RING_COMPRESSION and "delta_cd" in lname and "force" in result.meta:
-            return q.value / float(result.meta["force"]), name
-    raise InputError("--baseline", "fea", f"study {result.study!r} reports no compliance "
-                     f"(quantities: {', '.join(result.quantities)})")
+    """The study's linear compliance: ring = delta_cd_mm / reference_force_N (meta); torsion = the
+    quantity in rad/(N*mm) (a flexibility), else 1/stiffness in N*mm/rad."""
+    q = result.quantities
+    if kind is RecordingKind.RING_COMPRESSION:
+        force = result.meta.get("reference_force_N")
+        if "delta_cd_mm" in q and force:
+            return q["delta_cd_mm"].value / float(force), "delta_cd_mm / reference_force_N"
+    else:
+        for name, quantity in q.items():
+            unit = quantity.unit.replace(" ", "").replace("*", "")
+            if unit in ("rad/(Nmm)", "rad/N/mm", "rad/Nmm"):
+                return quantity.value, name
+        for name, quantity in q.items():
+            unit = quantity.unit.replace(" ", "").replace("*", "")
+            if unit in ("Nmm/rad",):
+                return 1.0 / quantity.value, name
+    raise InputError("--baseline", "fea", f"study {result.study!r} reports no linear compliance "
+                     f"(quantities: {', '.join(q)})")

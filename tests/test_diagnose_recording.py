@@ -122,3 +122,30 @@ def test_cli_good_recording_writes_json_with_stable_keys_and_png(strainwave_cmd,
     assert data["mismatch"] is True and data["effects"][0]["id"].startswith("hysteresis")
     assert {"id", "parameters", "delta_bic"} <= set(data["effects"][0])
     assert (tmp_path / "d.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_fea_baseline_reads_the_ring_study_compliance(monkeypatch):
+    """Wiring of --baseline fea: delta_cd_mm / reference_force_N of the study, GCI added to the uncertainty."""
+    from strainwave.compare import baseline as bl
+    from strainwave.fea import studies
+    from strainwave.fea.convergence import grid_convergence
+    from strainwave.fea.result import MeshQuality, Quantity, StudyResult
+    from strainwave.params import load_params
+
+    conv = grid_convergence([1.0, 1.5, 2.25], [2.0, 2.002, 2.0065])
+    fake = StudyResult("ring-compression", {"delta_cd_mm": Quantity("delta_cd_mm", 2.0, "mm", conv)},
+                       MeshQuality(1, 1, 1, 2, 1.0, 1.0), meta={"reference_force_N": 40.0})
+    monkeypatch.setattr(studies, "run_study", lambda study, params, **kw: fake)
+    T = np.linspace(0.0, 30.0, 25)
+    rec = parse_text(format_recording(RecordingKind.RING_COMPRESSION, "ewg_ring", T, 0.05 * T))
+    b = bl.fea_baseline(rec, load_params())
+    assert b.compliance == pytest.approx(0.05) and b.source.startswith("FEA ring-compression")
+    assert b.uncertainty == pytest.approx(float(np.hypot(0.02, conv.gci_fine)))   # both relative
+
+
+def test_fea_baseline_for_gear_is_refused():
+    from strainwave.compare.baseline import fea_baseline
+    from strainwave.params import load_params
+    rec = parse_text(_good().replace('"output_shaft"', '"gear"'))
+    with pytest.raises(InputError, match="no FEA study models specimen 'gear'"):
+        fea_baseline(rec, load_params())
