@@ -1,0 +1,90 @@
+"""Wave-generator bearing inner ring (seed 000): thickness t_i, raceway, contact patch, surface crack.
+
+Geometry choices (the seed gives t_i and the contact ellipse a' x b' only):
+- the ring sits inside the flexspline bore: race (outer) radius R = d1/2 - delta - 1.5 t_i (room for
+  balls and outer ring), bore R - t_i, width 4 a' (the contact ellipse's major semi-axis a' lies along z);
+- the raceway is the outer cylinder (a roller-type race; a ball groove would only change the contact
+  geometry, which the FEA prescribes as a pressure patch anyway);
+- ``contact``: a patch imprinted on the race at +x, the rectangle of the contact ellipse's area
+  (half sides sqrt(pi)/2 a' axially and sqrt(pi)/2 b' circumferentially), centred at z = width/2;
+- crack: semi-elliptical surface crack at +x in the plane y = 0 (normal to the circumferential stress),
+  depth a, half length c from Q = 1 + 1.464 (a/c)^1.65 (seed 000), centred at z = width/2.
+"""
+from __future__ import annotations
+
+import math
+
+from strainwave.errors import InputError
+
+from . import faces as F
+from .cracks import check_crack, half_length_from_q, semi_elliptical_slot
+from .occ import cut, imprint
+from .part import Part, PartName
+
+WIDTH_OVER_A = 4.0
+RACE_GAP_OVER_T = 1.5
+
+
+def _patch_face(r_mm: float, half_theta_rad: float, z0_mm: float, z1_mm: float):
+    """A face on the cylinder r = r_mm over |theta| <= half_theta and z0 <= z <= z1 (for imprinting)."""
+    from build123d import Face
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
+    from OCP.Geom import Geom_CylindricalSurface
+    from OCP.gp import gp_Ax3, gp_Dir, gp_Pnt
+
+    surf = Geom_CylindricalSurface(gp_Ax3(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)), r_mm)
+    return Face(BRepBuilderAPI_MakeFace(surf, -half_theta_rad, half_theta_rad, z0_mm, z1_mm, 1e-7).Face())
+
+
+def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) -> Part:
+    from build123d import Axis, Solid
+
+    wg, fc, cg = params.wave_generator, params.flexspline_cup, params.crack_geometry
+    t_i = wg.bearing_inner_ring_thickness_mm
+    a_c, b_c = wg.contact_semi_axes_mm
+    r_race = fc.pitch_diameter_mm / 2 - fc.wall_thickness_mm - RACE_GAP_OVER_T * t_i
+    r_bore = r_race - t_i
+    if r_bore <= 0:
+        raise InputError("wave_generator.bearing_inner_ring_thickness_mm", t_i,
+                         f"the ring would close its bore: need 2.5 t_i < d1/2 - delta = "
+                         f"{fc.pitch_diameter_mm / 2 - fc.wall_thickness_mm:g} mm")
+    width = WIDTH_OVER_A * a_c
+    # cylinder seams at -x, away from the contact patch and the crack at +x (no face split there)
+    solid = cut(Solid.make_cylinder(r_race, width), Solid.make_cylinder(r_bore, width)).rotate(Axis.Z, 180)
+    hz, hs = 0.5 * math.sqrt(math.pi) * a_c, 0.5 * math.sqrt(math.pi) * b_c
+    if hs >= 0.5 * math.pi * r_race:
+        raise InputError("wave_generator.contact_semi_axes_mm", list(wg.contact_semi_axes_mm),
+                         "b' is too large for the race circumference")
+    z_mid = width / 2
+    solid = imprint(solid, _patch_face(r_race, hs / r_race, z_mid - hz, z_mid + hz))
+    meta = {"race_radius_mm": r_race, "bore_radius_mm": r_bore, "thickness_mm": t_i, "width_mm": width,
+            "contact_half_sides_mm": (hz, hs), "contact_patch_area_mm2": 4 * hz * hs,
+            "contact_ellipse_area_mm2": math.pi * a_c * b_c,
+            "volume_closed_form_mm3": math.pi * (r_race ** 2 - r_bore ** 2) * width}
+    slot = None
+    if crack_depth_mm is not None:
+        check_crack(crack_depth_mm, t_i, "wave_generator.bearing_inner_ring_thickness_mm", cg.slot_width_mm)
+        c = half_length_from_q(crack_depth_mm, params.cracks.surface_crack_shape_factor)
+        if c >= hz:
+            raise InputError("cracks.surface_crack_shape_factor", params.cracks.surface_crack_shape_factor,
+                             f"gives a crack half length c = {c:g} mm longer than the contact patch ({hz:g} mm)")
+        slot = semi_elliptical_slot(r_race, crack_depth_mm, c, z_mid, cg.slot_width_mm)
+        solid = cut(solid, slot.tool)
+        meta.update(slot.meta, crack_depth_mm=crack_depth_mm, slot_width_mm=cg.slot_width_mm,
+                    slot_volume_mm3=slot.volume_mm3)
+        meta["volume_closed_form_mm3"] -= slot.volume_mm3
+
+    infos = F.face_infos(solid)
+    race_all = F.select(infos, F.is_cylinder(r_race))
+    contact = F.select(race_all, lambda fi: fi.center_mm[0] > 0 and abs(fi.center_mm[1]) < hs + 1e-9
+                       and fi.bbox_min[2] > 1e-6 and fi.bbox_max[2] < width - 1e-6)
+    named = {"bore": F.refs(F.select(infos, F.is_cylinder(r_bore))),
+             "race": F.refs(F.select(race_all, F.without(lambda fi: True, contact))),
+             "contact": F.refs(contact),
+             "side_bottom": F.refs(F.select(infos, F.is_zplane(0.0))),
+             "side_top": F.refs(F.select(infos, F.is_zplane(width)))}
+    if slot is not None:
+        inside = F.select(infos, F.in_box(slot.box_lo, slot.box_hi))
+        named["crack_face"] = F.refs(F.select(inside, lambda fi: fi.kind == "plane"))
+        named["crack_front"] = F.refs(F.select(inside, lambda fi: fi.kind != "plane"))
+    return Part(PartName.WG_BEARING_RING, solid, named, slot.front_mm if slot else (), None, meta)

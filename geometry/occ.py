@@ -1,0 +1,49 @@
+"""Thin wrappers over OCC booleans that do NOT unify same-domain faces.
+
+build123d's operators call ``clean()`` (ShapeUpgrade_UnifySameDomain) after a boolean, which merges
+coplanar or co-cylindrical faces. The parts rely on split faces (the torque band of the cup, the
+contact strips and patches), so fusing and cutting go through these helpers instead.
+"""
+from __future__ import annotations
+
+
+def _run(op, a, tools):
+    from OCP.collections import List_TopoDS_Shape
+    from build123d import Shape
+
+    args, tls = List_TopoDS_Shape(), List_TopoDS_Shape()
+    args.Append(a.wrapped)
+    for t in tools:
+        tls.Append(t.wrapped)
+    op.SetArguments(args)
+    op.SetTools(tls)
+    op.SetRunParallel(False)
+    op.Build()
+    if not op.IsDone():
+        raise RuntimeError(f"OCC boolean {type(op).__name__} failed")
+    return Shape.cast(op.Shape())
+
+
+def single_solid(shape):
+    """The one Solid inside ``shape`` (a boolean result is often a Compound of one Solid)."""
+    solids = shape.solids()
+    if len(solids) != 1:
+        raise RuntimeError(f"expected one solid, got {len(solids)}")
+    return solids[0]
+
+
+def fuse(a, *tools):
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Fuse
+    return single_solid(_run(BRepAlgoAPI_Fuse(), a, tools))
+
+
+def cut(a, *tools):
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut
+    return single_solid(_run(BRepAlgoAPI_Cut(), a, tools))
+
+
+def imprint(a, *faces):
+    """Split the faces of solid ``a`` by faces lying on its surface (an imprint; the solid stays whole)."""
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Splitter
+    result = _run(BRepAlgoAPI_Splitter(), a, faces)
+    return max(result.solids(), key=lambda s: s.volume)

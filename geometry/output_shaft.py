@@ -1,0 +1,59 @@
+"""Hollow output shaft (seed 000): d_s / d_s2, length L_s, optional circumferential crack.
+
+z runs from 0 (end face ``fixed``) to L_s (end face ``loaded``); ``outer`` and ``bore`` are the
+cylinders. The crack is a slot of depth a from the outer surface at z = ratio * L_s, centred on +x,
+over ``crack_geometry.shaft_arc_deg`` (360 = full circumferential crack).
+"""
+from __future__ import annotations
+
+import math
+
+from strainwave.errors import InputError
+
+from . import faces as F
+from .cracks import check_crack, circumferential_slot
+from .occ import cut
+from .part import Part, PartName
+
+
+def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) -> Part:
+    from build123d import Solid
+
+    sh, cg = params.output_shaft, params.crack_geometry
+    r_o, r_i, length = sh.outer_diameter_mm / 2, sh.inner_diameter_mm / 2, sh.length_mm
+    solid = Solid.make_cylinder(r_o, length)
+    if r_i > 0:
+        solid = cut(solid, Solid.make_cylinder(r_i, length))
+    meta = {"outer_radius_mm": r_o, "inner_radius_mm": r_i, "length_mm": length,
+            "volume_closed_form_mm3": math.pi * (r_o ** 2 - r_i ** 2) * length}
+    slot = None
+    if crack_depth_mm is not None:
+        check_crack(crack_depth_mm, sh.wall_mm, "output_shaft wall (outer - inner)/2", cg.slot_width_mm)
+        z_c = cg.shaft_axial_position_ratio * length
+        if not cg.slot_width_mm < z_c < length - cg.slot_width_mm:
+            raise InputError("crack_geometry.shaft_axial_position_ratio", cg.shaft_axial_position_ratio,
+                             "the slot must lie inside the shaft length")
+        slot = circumferential_slot(r_o, crack_depth_mm, z_c, cg.slot_width_mm, cg.shaft_arc_deg)
+        solid = cut(solid, slot.tool)
+        meta.update(slot.meta, crack_depth_mm=crack_depth_mm, slot_width_mm=cg.slot_width_mm,
+                    slot_volume_mm3=slot.volume_mm3)
+        meta["volume_closed_form_mm3"] -= slot.volume_mm3
+
+    infos = F.face_infos(solid)
+    named = {
+        "fixed": F.refs(F.select(infos, F.is_zplane(0.0))),
+        "loaded": F.refs(F.select(infos, F.is_zplane(length))),
+        "outer": F.refs(F.select(infos, F.is_cylinder(r_o))),
+        "bore": F.refs(F.select(infos, F.is_cylinder(r_i))) if r_i > 0 else (),
+    }
+    front: tuple = ()
+    if slot is not None:
+        zc, w = meta["crack_z_mm"], cg.slot_width_mm
+        walls = F.select(infos, lambda fi: (F.is_zplane(zc - w / 2)(fi) or F.is_zplane(zc + w / 2)(fi)))
+        bottom = F.select(infos, F.is_cylinder(r_o - crack_depth_mm))
+        # a part-through arc also has two radial end faces: they belong to the front
+        ends = F.select(infos, lambda fi: fi.kind == "plane" and abs(fi.normal[2]) < 1e-9)
+        named["crack_face"] = F.refs(walls)
+        named["crack_front"] = F.refs(bottom + ends)
+        front = slot.front_mm
+    return Part(PartName.OUTPUT_SHAFT, solid, named, front, None, meta)

@@ -1,0 +1,40 @@
+"""``build_part``: one entry point that dispatches to one module per part."""
+from __future__ import annotations
+
+from strainwave.errors import InputError
+
+from . import bearing_ring, ewg, ewg_ring, flexspline_cup, output_shaft
+from .part import Part, PartName
+
+_BUILDERS = {
+    PartName.FLEXSPLINE_CUP: flexspline_cup.build,
+    PartName.EWG_FLEXSPLINE_RING: ewg_ring.build,
+    PartName.EWG: ewg.build,
+    PartName.OUTPUT_SHAFT: output_shaft.build,
+    PartName.WG_BEARING_RING: bearing_ring.build,
+}
+CRACKABLE = (PartName.FLEXSPLINE_CUP, PartName.OUTPUT_SHAFT, PartName.WG_BEARING_RING)
+
+
+def part_name(name: PartName | str) -> PartName:
+    if isinstance(name, PartName):
+        return name
+    try:
+        return PartName(name)
+    except ValueError:
+        raise InputError("part", name, f"must be one of {', '.join(p.value for p in PartName)}") from None
+
+
+def build_part(name: PartName | str, params, *, crack_depth_mm: float | None = None, teeth: bool = True) -> Part:
+    """Build one part in mm, axis z, with named faces (see the package docstring for conventions).
+
+    ``crack_depth_mm=None`` gives the uncracked part; a value seeds the part's crack slot with that
+    depth (other crack data from ``params.cracks`` and ``params.crack_geometry``). Parts without a
+    seeded crack (the EWG ring and the EWG) refuse a crack depth.
+    """
+    pn = part_name(name)
+    if crack_depth_mm is not None and pn not in CRACKABLE:
+        raise InputError("crack_depth_mm", crack_depth_mm,
+                         f"part {pn.value} has no seeded crack; cracks exist on "
+                         f"{', '.join(p.value for p in CRACKABLE)}")
+    return _BUILDERS[pn](params, crack_depth_mm=crack_depth_mm, teeth=teeth)

@@ -1,0 +1,96 @@
+"""Off-screen PNG preview of a part (pyvista/VTK; no display needed, VTK falls back to EGL).
+
+Left: the whole part (grey), with the crack faces in red and contact/load faces in blue.
+Right: a close-up on the crack front (or, for an uncracked part, on the contact or loaded faces).
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from strainwave.io_atomic import atomic_path
+
+from .faces import find_faces
+from .part import Part
+
+
+def _polydata(shapes, tol_mm: float):
+    import pyvista as pv
+
+    pts, tris, offset = [], [], 0
+    for shape in shapes:
+        verts, triangles = shape.tessellate(tol_mm, 0.3)
+        if not triangles:
+            continue
+        pts.append(np.array([(v.X, v.Y, v.Z) for v in verts]))
+        tris.append(np.asarray(triangles, dtype=np.int64) + offset)
+        offset += len(verts)
+    if not pts:
+        return None
+    t = np.vstack(tris)
+    cells = np.hstack([np.full((t.shape[0], 1), 3, dtype=np.int64), t]).ravel()
+    return pv.PolyData(np.vstack(pts), cells)
+
+
+def _focus(part: Part):
+    """Centre and size of the region the close-up shows."""
+    if part.crack_front_mm:
+        pts = np.asarray(part.crack_front_mm)
+        depth = float(part.meta.get("crack_depth_mm", 1.0))
+        # the front's middle sample (a full circle's mean would be the axis, far from the crack)
+        return pts[len(pts) // 2], 10 * depth
+    for key in ("contact", "loaded", "outer"):
+        refs = part.named_faces.get(key)
+        if refs:
+            c = np.asarray(refs[0].center_mm)
+            return c, 3.0 * float(np.sqrt(refs[0].area_mm2))
+    return np.zeros(3), 10.0
+
+
+def render_preview(part: Part, png_path: Path | str, size: tuple[int, int] = (1400, 700)) -> Path:
+    """Render ``part`` off-screen to ``png_path`` (written atomically) and return the path."""
+    import pyvista as pv
+
+    pv.OFF_SCREEN = True
+    bb = part.solid.bounding_box()
+    span = max(bb.size.X, bb.size.Y, bb.size.Z)
+    body = _polydata([part.solid], 2e-3 * span)
+    crack = _polydata(find_faces(part.solid, part.named_faces.get("crack_face", ())
+                                 + part.named_faces.get("crack_front", ())), 1e-3)
+    loads = _polydata(find_faces(part.solid, part.named_faces.get("contact", ())), 1e-3 * span)
+    if loads is not None:  # lift the patch off the body surface so that it does not z-fight
+        radial = loads.points * np.array([1.0, 1.0, 0.0])
+        norm = np.linalg.norm(radial, axis=1, keepdims=True)
+        loads.points = loads.points + 2e-3 * span * radial / np.maximum(norm, 1e-12)
+    centre, extent = _focus(part)
+
+    plotter = pv.Plotter(off_screen=True, shape=(1, 2), window_size=size)
+    for col in (0, 1):
+        plotter.subplot(0, col)
+        plotter.set_background("white")
+        plotter.add_mesh(body, color="lightsteelblue", smooth_shading=False, show_edges=False)
+        if crack is not None:
+            plotter.add_mesh(crack, color="red")
+        if loads is not None:
+            plotter.add_mesh(loads, color="royalblue")
+    plotter.subplot(0, 0)
+    plotter.add_text(f"{part.name.value}", font_size=10, color="black")
+    plotter.view_isometric()
+    plotter.reset_camera()
+    plotter.subplot(0, 1)
+    radial = np.array([centre[0], centre[1], 0.0])
+    direction = radial / np.linalg.norm(radial) if np.linalg.norm(radial) > 1e-9 else np.array([1.0, 0, 0])
+    direction = direction + np.array([0.0, 0.0, 0.35])
+    plotter.camera.focal_point = tuple(centre)
+    plotter.camera.position = tuple(centre + 4.0 * extent * direction)
+    plotter.camera.up = (0.0, 0.0, 1.0)
+    plotter.camera.view_angle = 30.0
+    plotter.camera.clipping_range = (1e-3 * extent, 100.0 * extent + span)
+    plotter.add_text("close-up: crack" if part.crack_front_mm else "close-up", font_size=10, color="black")
+    png_path = Path(png_path)
+    with atomic_path(png_path) as tmp:
+        plotter.screenshot(str(tmp.with_suffix(".png")))
+        tmp.with_suffix(".png").replace(tmp)
+    plotter.close()
+    return png_path
