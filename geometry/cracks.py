@@ -69,7 +69,7 @@ def inclined_root_slot(r_root_mm: float, theta_rad: float, depth_mm: float, angl
                        z_mm: float, half_length_mm: float, width_mm: float, opening_mm: float) -> Slot:
     """Planar slot from the root circle inwards, its plane containing z and inclined at beta to the surface.
 
-    The radial depth below the root circle is ``depth_mm`` (length a/sin beta along the plane); the
+    The front lies ``depth_mm`` below the root circle (length ~ a/sin beta along the plane); the
     slot starts ``opening_mm`` outside the root so that it opens into the tooth space.
     """
     from build123d import Box, Location
@@ -79,7 +79,10 @@ def inclined_root_slot(r_root_mm: float, theta_rad: float, depth_mm: float, angl
     et = np.array([-math.sin(theta_rad), math.cos(theta_rad), 0.0])
     u = -er * math.sin(beta) + et * math.cos(beta)          # into the wall
     n = np.cross(np.array([0.0, 0.0, 1.0]), u)
-    length = depth_mm / math.sin(beta)
+    # the front lies at depth a below the root circle: |P + L u| = r_f - a, so L is slightly more than
+    # a / sin(beta) (the front also moves tangentially by L cos(beta))
+    r = r_root_mm
+    length = r * math.sin(beta) - math.sqrt((r * math.sin(beta)) ** 2 - (2 * r * depth_mm - depth_mm ** 2))
     p = r_root_mm * er + np.array([0.0, 0.0, z_mm])
     centre = p + u * (length - opening_mm) / 2
     box = Box(length + opening_mm, width_mm, 2 * half_length_mm)

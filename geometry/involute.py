@@ -132,7 +132,7 @@ def _fillet_offset(spec: ToothSpec, rho_mm: float) -> tuple[float, float, float]
     return hi, r_t, float(half_angle_rad(spec, r_t))
 
 
-def gear_wire(spec: ToothSpec, n_flank: int = 7):
+def gear_wire(spec: ToothSpec, n_flank: int = 9):
     """The closed toothed outline as a build123d Wire.
 
     Per tooth: two spline flanks (exact involute points), a tip arc, two root-fillet arcs and a root
@@ -152,7 +152,15 @@ def gear_wire(spec: ToothSpec, n_flank: int = 7):
             rho *= 0.7
     else:
         dphi, r_t, psi_t = None, r_f, None
-    radii = np.linspace(r_t, r_a, n_flank)
+    r_b = spec.base_radius_mm
+    # below the base circle the flank is a radial line: a separate straight edge, because one spline
+    # through the kink at r_b would smear it (5e-5 area error for Z = 30)
+    radial = (not spec.internal) and r_t < r_b
+    # flank points uniform in the involute roll angle t (r = r_b sqrt(1 + t^2)): uniform radii crowd the
+    # spline's error near the base circle, where the involute turns fastest
+    t0, t1 = (math.sqrt(max((r / r_b) ** 2 - 1.0, 0.0)) for r in (r_b if radial else r_t, r_a))
+    radii = r_b * np.sqrt(1.0 + np.linspace(t0, t1, n_flank) ** 2)
+    radii[0], radii[-1] = (r_b if radial else r_t), r_a
     psi = half_angle_rad(spec, radii)
     if dphi is None:
         dphi = float(psi[0])
@@ -172,7 +180,7 @@ def gear_wire(spec: ToothSpec, n_flank: int = 7):
         ang_c = th + side * dphi
         centre = np.array([r_c * math.cos(ang_c), r_c * math.sin(ang_c)])
         p_root = np.array(pt(r_f, ang_c)[:2])
-        p_flank = np.array(pt(r_t, th + side * float(psi[0]))[:2])
+        p_flank = np.array(pt(r_t, th + side * float(psi[0]))[:2])  # psi is constant below r_b
         u0, u1 = p_root - centre, p_flank - centre
         um = u0 / np.linalg.norm(u0) + u1 / np.linalg.norm(u1)
         pm = centre + rho * um / np.linalg.norm(um)
@@ -184,15 +192,20 @@ def gear_wire(spec: ToothSpec, n_flank: int = 7):
         th = j * pitch
         right = [pt(r, th - p) for r, p in zip(radii, psi)]
         left = [pt(r, th + p) for r, p in zip(radii[::-1], psi[::-1])]
+        foot_r, foot_l = pt(r_t, th - float(psi[0])), pt(r_t, th + float(psi[0]))
         if filleted:
             a, m, b = fillet(th, -1)
-            edges.append(arc(a, m, right[0]))
+            edges.append(arc(a, m, foot_r))
+        if radial:
+            edges.append(Edge.make_line(foot_r, right[0]))
         edges.append(Edge.make_spline(right))
         edges.append(arc(pt(r_a, th - float(psi[-1])), pt(r_a, th), pt(r_a, th + float(psi[-1]))))
         edges.append(Edge.make_spline(left))
+        if radial:
+            edges.append(Edge.make_line(left[-1], foot_l))
         if filleted:
             a, m, b = fillet(th, +1)
-            edges.append(arc(left[-1], m, a))
+            edges.append(arc(foot_l, m, a))
         a0, a1 = th + dphi, th + pitch - dphi
         edges.append(arc(pt(r_f, a0), pt(r_f, 0.5 * (a0 + a1)), pt(r_f, a1)))
     return Wire(edges)
