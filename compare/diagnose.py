@@ -39,9 +39,10 @@ class RankedEffect:
     parameters: dict            # name -> (value, unit)
     delta_bic: float
     rms: float                  # physical units
+    model: str = ""             # id with the model variant, e.g. nonlinear_stiffness[two-slope]
 
     def to_dict(self) -> dict:
-        return {"id": self.id, "components": list(self.components),
+        return {"id": self.id, "model": self.model or self.id, "components": list(self.components),
                 "parameters": {k: {"value": v, "unit": u} for k, (v, u) in self.parameters.items()},
                 "delta_bic": self.delta_bic, "rms": self.rms}
 
@@ -87,7 +88,7 @@ class Diagnosis:
         if self.mismatch:
             lines.append(f"  located: {self.located.description}")
             for e in self.effects[:5]:
-                lines.append(f"  {e.id:<40s} delta BIC {e.delta_bic:9.1f}")
+                lines.append(f"  {e.model or e.id:<52s} delta BIC {e.delta_bic:9.1f}")
             for name, (v, u) in self.effects[0].parameters.items():
                 lines.append(f"    {name:<38s} {v:.6g} {u}")
         lines.append(f"  {self.explanation}")
@@ -114,12 +115,11 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     base_fit = fit_effects(ctx, (), sigma, u_rel)
     singles = [fit_effects(ctx, (e,), sigma, u_rel) for e in effects_for(rec.kind.value) if e.applicable(ctx)]
     singles.sort(key=lambda f: f.bic)
-    own = {f.effects[0].id: base_fit.bic - f.bic for f in singles}
     pairs = []
     for a, b in itertools.combinations(singles[:4], 2):
-        if frozenset({a.id, b.id}) in _DEGENERATE:
+        if frozenset({a.id, b.id}) in _DEGENERATE or a.id == b.id:   # degenerate, or two variants of one effect
             continue
-        first, second = (a, b) if own[a.id] >= own[b.id] else (b, a)
+        first, second = (a, b) if a.bic <= b.bic else (b, a)      # primary = the better single
         start = np.concatenate([first.theta, second.theta])
         pairs.append(fit_effects(ctx, first.effects + second.effects, sigma, u_rel, starts=[start]))
     ranked = sorted(singles + pairs, key=lambda f: f.bic)
@@ -148,7 +148,7 @@ def _ranked(ctx, fit: Fit, base_fit: Fit, n: int) -> RankedEffect:
             parameters[f"{e.id}.{k}" if multi else k] = (float(v[0]), v[1])
     parameters["stiffness_scale_within_prior" if not multi else "baseline.stiffness_scale"] = (fit.scale, "1")
     return RankedEffect(fit.id, tuple(e.id for e in fit.effects), parameters, float(base_fit.bic - fit.bic),
-                        fit.rms(n) * ctx.Y)
+                        fit.rms(n) * ctx.Y, "+".join(e.label for e in fit.effects))
 
 
 def _with_explanation(diag: Diagnosis, best: Fit | None, ranked: list[Fit]) -> Diagnosis:

@@ -25,7 +25,8 @@ def build_context(rec: Recording, baseline: Baseline) -> Context:
         direction[start:stop] = d
     return Context(u=u, y=rec.response / Y, t=t, X=X, Y=Y, c0=baseline.compliance,
                    load_unit=rec.load_unit, response_unit=rec.response_unit, direction=direction,
-                   segments=tuple(segments), geometry=dict(baseline.geometry))
+                   segments=tuple(segments), geometry=dict(baseline.geometry),
+                   uncertainty=baseline.uncertainty)
 
 
 def reversal_threshold(u: np.ndarray) -> float:

@@ -72,7 +72,8 @@ def _noisy(rng, u_true, y_true_Y, effect_Y, snr, clean_noise, n):
         sigma = clean_noise
         peak = 0.0
     else:
-        peak = projected_peak(u_true, t, effect_Y)
+        # what the diagnosis sees is the effect plus the stiffness error, which may cancel part of it
+        peak = projected_peak(u_true, t, effect_Y + (y_true_Y - u_true))
         sigma = peak / snr
     q = sigma * rng.uniform(0.0, 2.5)
     white = math.sqrt(max(sigma ** 2 - q ** 2 / 12.0, 0.25 * sigma ** 2))
@@ -88,7 +89,7 @@ def generate(cls: str, rng: np.random.Generator, params, *, rows: tuple[int, int
              elastica_table=None) -> Concealed:
     """One concealed recording of class ``cls`` (see CLASSES)."""
     n = int(rng.integers(rows[0], rows[1] + 1))
-    snr = float(math.exp(rng.uniform(math.log(1.5), math.log(40.0))))
+    snr = float(math.exp(rng.uniform(math.log(0.3), math.log(40.0))))
     clean_noise = 10.0 ** rng.uniform(-3.5, -2.0)
     eps = float(np.clip(rng.normal(0.0, 0.5 * UNCERTAINTY), -UNCERTAINTY, UNCERTAINTY))
     if cls in TORSION_CLASSES:

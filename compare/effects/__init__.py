@@ -9,9 +9,12 @@ CATALOGUE = {m.EFFECT.id: m.EFFECT for m in (compliance_offset, nonlinear_stiffn
                                              crack_closure, thick_ring, large_deflection, plasticity)}
 
 
+VARIANTS = (nonlinear_stiffness.TWO_SLOPE,)
+
+
 def effects_for(kind: str) -> tuple[Effect, ...]:
-    """The catalogue entries that apply to a test kind, in catalogue order."""
-    return tuple(e for e in CATALOGUE.values() if kind in e.kinds)
+    """The catalogue entries (and their smaller variants) that apply to a test kind, in catalogue order."""
+    return tuple(e for e in (*CATALOGUE.values(), *VARIANTS) if kind in e.kinds)
 
 
 __all__ = ["CATALOGUE", "Context", "Effect", "Param", "effects_for"]

@@ -38,6 +38,7 @@ class Context:
     direction: np.ndarray    # +1 while the load increases, -1 while it decreases
     segments: tuple[tuple[int, int, int], ...]   # (start, stop, direction) between load reversals
     geometry: dict = field(default_factory=dict)
+    uncertainty: float = 0.02  # relative 1-sigma uncertainty of the baseline compliance
 
     @property
     def two_sided(self) -> bool:
@@ -59,6 +60,11 @@ class Effect:
     report: Callable[[Context, np.ndarray, float], dict]   # (ctx, theta, s) -> {name: (value, unit)}
     explanation: str
     applicable: Callable[[Context], bool] = lambda ctx: True
+    variant: str = ""          # a second, smaller model of the same effect (BIC picks between them)
+
+    @property
+    def label(self) -> str:
+        return f"{self.id}[{self.variant}]" if self.variant else self.id
 
     @property
     def n_params(self) -> int:

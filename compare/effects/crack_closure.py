@@ -1,7 +1,10 @@
 """crack_closure: a breathing crack, open (compliant) for one torque sign and closed for the other.
 
-Bilinear model: twist = c+ T for T > T0 and c- T for T < T0; with the scale s this is
-y += d |u - u0|, so c+ = (s + d) c0 and c- = (s - d) c0 (up to the offsets).
+Bilinear model: the closed crack transmits torque like intact material (baseline compliance s c0);
+the open crack adds a compliance c_x on one side of the load zero T0 only:
+    y += d max(sgn(d) (u - u0), 0)
+(d > 0: open under positive torque, extra twist d u for u > u0; d < 0: open under negative torque,
+extra twist |d| u for u < u0). K_open = 1/((s + |d|) c0), K_closed = 1/(s c0).
 """
 from __future__ import annotations
 
@@ -12,15 +15,17 @@ from .base import Context, Effect, Param
 
 def _contribution(ctx: Context, theta):
     d, u0 = theta
-    return d * np.abs(ctx.u - u0)
+    side = 1.0 if d >= 0 else -1.0
+    return d * np.maximum(side * (ctx.u - u0), 0.0)
 
 
 def _report(ctx: Context, theta, s: float) -> dict:
     d, u0 = theta
     inv = "N*mm/rad" if ctx.response_unit == "rad" else "N/mm"
-    kp, kn = 1.0 / ((s + d) * ctx.c0), 1.0 / ((s - d) * ctx.c0)
-    return {"stiffness_positive_load": (kp, inv), "stiffness_negative_load": (kn, inv),
-            "stiffness_ratio_open_to_closed": (min(kp, kn) / max(kp, kn), "1"),
+    k_open, k_closed = 1.0 / ((s + abs(d)) * ctx.c0), 1.0 / (s * ctx.c0)
+    return {"stiffness_crack_open": (k_open, inv), "stiffness_crack_closed": (k_closed, inv),
+            "open_under_load_sign": (1.0 if d >= 0 else -1.0, "1"),
+            "stiffness_ratio_open_to_closed": (k_open / k_closed, "1"),
             "load_zero_offset": (u0 * ctx.X, ctx.load_unit)}
 
 

@@ -3,7 +3,9 @@
 Zero free parameters: the correction is predicted from the geometry by Roark's thick-ring formula
 (Table 9.2 case 1, alpha = e/R, beta = 2F(1+nu)e/R, I -> A e R; strainwave.analytic.thick_ring):
     delta_CD = rho * delta_CD,thin,   y += (rho - 1) u.
-Only a compliance change matching this prediction (within the baseline uncertainty) earns the name.
+Only a compliance change matching this prediction (within the baseline uncertainty) earns the name, and
+only where the prediction itself exceeds the baseline uncertainty: for a thinner rim, thin-ring theory is
+adequate by definition and a free zero-parameter shift would be picked up for nothing.
 """
 from __future__ import annotations
 
@@ -34,5 +36,6 @@ EFFECT = Effect(
     report=_report,
     explanation=("the rim is too thick for thin-ring theory: shear and hoop-force deformation and the "
                  "curved-beam neutral-axis shift add compliance that Roark's thick-ring formula predicts"),
-    applicable=lambda ctx: "thick_ring_factor" in ctx.geometry,
+    applicable=lambda ctx: ("thick_ring_factor" in ctx.geometry
+                            and abs(ctx.geometry["thick_ring_factor"] - 1.0) >= ctx.uncertainty),
 )
