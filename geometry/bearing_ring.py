@@ -37,8 +37,6 @@ def _patch_face(r_mm: float, half_theta_rad: float, z0_mm: float, z1_mm: float):
 
 
 def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) -> Part:
-    from build123d import Axis, Solid
-
     wg, fc, cg = params.wave_generator, params.flexspline_cup, params.crack_geometry
     t_i = wg.bearing_inner_ring_thickness_mm
     a_c, b_c = wg.contact_semi_axes_mm
@@ -49,13 +47,21 @@ def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) ->
                          f"the ring would close its bore: need 2.5 t_i < d1/2 - delta = "
                          f"{fc.pitch_diameter_mm / 2 - fc.wall_thickness_mm:g} mm")
     width = WIDTH_OVER_A * a_c
-    # cylinder seams at -x, away from the contact patch and the crack at +x (no face split there)
-    solid = cut(Solid.make_cylinder(r_race, width), Solid.make_cylinder(r_bore, width)).rotate(Axis.Z, 180)
     hz, hs = 0.5 * math.sqrt(math.pi) * a_c, 0.5 * math.sqrt(math.pi) * b_c
     if hs >= 0.5 * math.pi * r_race:
         raise InputError("wave_generator.contact_semi_axes_mm", list(wg.contact_semi_axes_mm),
                          "b' is too large for the race circumference")
     z_mid = width / 2
+    if crack_depth_mm is not None:  # refuse bad cracks before any CAD work
+        check_crack(crack_depth_mm, t_i, "wave_generator.bearing_inner_ring_thickness_mm", cg.slot_width_mm)
+        c = half_length_from_q(crack_depth_mm, params.cracks.surface_crack_shape_factor)
+        if c >= hz:
+            raise InputError("cracks.surface_crack_shape_factor", params.cracks.surface_crack_shape_factor,
+                             f"gives a crack half length c = {c:g} mm longer than the contact patch ({hz:g} mm)")
+    from build123d import Axis, Solid
+
+    # cylinder seams at -x, away from the contact patch and the crack at +x (no face split there)
+    solid = cut(Solid.make_cylinder(r_race, width), Solid.make_cylinder(r_bore, width)).rotate(Axis.Z, 180)
     solid = imprint(solid, _patch_face(r_race, hs / r_race, z_mid - hz, z_mid + hz))
     meta = {"race_radius_mm": r_race, "bore_radius_mm": r_bore, "thickness_mm": t_i, "width_mm": width,
             "contact_half_sides_mm": (hz, hs), "contact_patch_area_mm2": 4 * hz * hs,
@@ -63,11 +69,6 @@ def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) ->
             "volume_closed_form_mm3": math.pi * (r_race ** 2 - r_bore ** 2) * width}
     slot = None
     if crack_depth_mm is not None:
-        check_crack(crack_depth_mm, t_i, "wave_generator.bearing_inner_ring_thickness_mm", cg.slot_width_mm)
-        c = half_length_from_q(crack_depth_mm, params.cracks.surface_crack_shape_factor)
-        if c >= hz:
-            raise InputError("cracks.surface_crack_shape_factor", params.cracks.surface_crack_shape_factor,
-                             f"gives a crack half length c = {c:g} mm longer than the contact patch ({hz:g} mm)")
         slot = semi_elliptical_slot(r_race, crack_depth_mm, c, z_mid, cg.slot_width_mm)
         solid = cut(solid, slot.tool)
         meta.update(slot.meta, crack_depth_mm=crack_depth_mm, slot_width_mm=cg.slot_width_mm,

@@ -83,8 +83,6 @@ def tooth_spec(params) -> ToothSpec:
 
 
 def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) -> Part:
-    from build123d import Axis, Location, extrude, revolve
-
     fc, cg = params.flexspline_cup, params.crack_geometry
     d1, t, length = fc.pitch_diameter_mm, fc.wall_thickness_mm, fc.length_mm
     r_o, r_i = d1 / 2, d1 / 2 - t
@@ -99,6 +97,18 @@ def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) ->
         raise InputError("flexspline_cup.module_mm", fc.module_mm,
                          f"pointed teeth: with m Z = {2 * spec.pitch_radius_mm:g} mm on d1 = {d1:g} mm the profile "
                          f"shift {spec.shift_coef:.3f} leaves a tip of {tip_thickness_mm(spec):.3f} mm (< 0.2 m)")
+    if crack_depth_mm is not None:  # refuse bad cracks before any CAD work
+        # teeth stand on the wall (root circle = d1/2), so the wall under the root is delta either way
+        check_crack(crack_depth_mm, t, "flexspline_cup.wall_thickness_mm (wall under the tooth root)",
+                    cg.slot_width_mm)
+        c = crack_depth_mm / CRACK_ASPECT
+        z_c = cg.flexspline_axial_position_ratio * length
+        if not (z_b + c < z_c < length - c):
+            raise InputError("crack_geometry.flexspline_axial_position_ratio", cg.flexspline_axial_position_ratio,
+                             f"the crack (half length {c:g} mm) must lie inside the tooth band "
+                             f"z = {z_b:g}..{length:g} mm, i.e. ratio in ({(z_b + c) / length:.4f}, {(length - c) / length:.4f})")
+    from build123d import Axis, Location, extrude, revolve
+
     if teeth:
         ring = extrude(gear_face(spec, inner_radius_mm=r_i), amount=band).solids()[0].moved(Location((0, 0, z_b)))
         solid = fuse(revolve(_profile(fc, z_b, None), Axis.Z).solids()[0], ring)
@@ -115,14 +125,6 @@ def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) ->
             "shift_coef": spec.shift_coef, "rim_under_teeth_mm": t}
     slot = None
     if crack_depth_mm is not None:
-        wall = r_surface - r_i
-        check_crack(crack_depth_mm, wall, "flexspline wall under the tooth root", cg.slot_width_mm)
-        c = crack_depth_mm / CRACK_ASPECT
-        z_c = cg.flexspline_axial_position_ratio * length
-        if not (z_b + c < z_c < length - c):
-            raise InputError("crack_geometry.flexspline_axial_position_ratio", cg.flexspline_axial_position_ratio,
-                             f"the crack (half length {c:g} mm) must lie inside the tooth band "
-                             f"z = {z_b:g}..{length:g} mm, i.e. ratio in ({(z_b + c) / length:.4f}, {(length - c) / length:.4f})")
         theta = (cg.flexspline_tooth_index + 0.5) * 2 * math.pi / fc.teeth
         opening = 0.5 * spec.root_fillet_mm if teeth else crack_depth_mm
         slot = inclined_root_slot(r_surface, theta, crack_depth_mm, params.cracks.flexspline_crack_angle_deg,

@@ -17,10 +17,15 @@ from .part import Part, PartName
 
 
 def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) -> Part:
-    from build123d import Solid
-
     sh, cg = params.output_shaft, params.crack_geometry
     r_o, r_i, length = sh.outer_diameter_mm / 2, sh.inner_diameter_mm / 2, sh.length_mm
+    if crack_depth_mm is not None:  # refuse bad cracks before any CAD work
+        check_crack(crack_depth_mm, sh.wall_mm, "output_shaft wall (outer - inner)/2", cg.slot_width_mm)
+        if not cg.slot_width_mm < cg.shaft_axial_position_ratio * length < length - cg.slot_width_mm:
+            raise InputError("crack_geometry.shaft_axial_position_ratio", cg.shaft_axial_position_ratio,
+                             "the slot must lie inside the shaft length")
+    from build123d import Solid
+
     solid = Solid.make_cylinder(r_o, length)
     if r_i > 0:
         solid = cut(solid, Solid.make_cylinder(r_i, length))
@@ -28,11 +33,7 @@ def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) ->
             "volume_closed_form_mm3": math.pi * (r_o ** 2 - r_i ** 2) * length}
     slot = None
     if crack_depth_mm is not None:
-        check_crack(crack_depth_mm, sh.wall_mm, "output_shaft wall (outer - inner)/2", cg.slot_width_mm)
         z_c = cg.shaft_axial_position_ratio * length
-        if not cg.slot_width_mm < z_c < length - cg.slot_width_mm:
-            raise InputError("crack_geometry.shaft_axial_position_ratio", cg.shaft_axial_position_ratio,
-                             "the slot must lie inside the shaft length")
         slot = circumferential_slot(r_o, crack_depth_mm, z_c, cg.slot_width_mm, cg.shaft_arc_deg)
         solid = cut(solid, slot.tool)
         meta.update(slot.meta, crack_depth_mm=crack_depth_mm, slot_width_mm=cg.slot_width_mm,

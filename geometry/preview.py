@@ -70,8 +70,9 @@ def render_preview(part: Part, png_path: Path | str, size: tuple[int, int] = (14
         plotter.subplot(0, col)
         plotter.set_background("white")
         plotter.add_mesh(body, color="lightsteelblue", smooth_shading=False, show_edges=False)
-        if crack is not None:
-            plotter.add_mesh(crack, color="red")
+        if crack is not None:  # a 0.02 mm slot is seen edge-on: draw its edges too, unlit pure red
+            plotter.add_mesh(crack, color="red", lighting=False)
+            plotter.add_mesh(crack.extract_feature_edges(), color="red", line_width=4, lighting=False)
         if loads is not None:
             plotter.add_mesh(loads, color="royalblue")
     plotter.subplot(0, 0)
