@@ -1,0 +1,153 @@
+"""Study ``shaft-torsion``: flexibility of the hollow output shaft, uncracked and with its crack.
+
+Load (seed 000's output shaft): end z = 0 (``fixed``) clamped, torque T on z = L (``loaded``) as the
+Saint-Venant shear traction tau = T r / J (tangential). For a circular section that is the exact
+solution, and the clamped end is compatible with it (u = theta(z) e_z x r vanishes at z = 0), so the
+uncracked FEA must reproduce lambda = 32 L / (pi G (d^4 - d_i^4)) with G = E / (2 (1 + nu)).
+Twist = area-weighted mean rotation (x u_y - y u_x) / r^2 of the loaded face; lambda = twist / T.
+"""
+from __future__ import annotations
+
+import math
+import time
+from typing import Callable, Sequence
+
+import numpy as np
+
+from ..errors import InputError, StageError
+from .assembly import Lame
+from .fields import nodal_displacement, nodal_stress, von_mises, write_vtu
+from .meshing import MeshingFailed, Refine, mesh_part
+from .refinement import DEFAULT_RATIO, converged_quantity, refinement_sizes
+from .result import Quantity, StudyResult
+from .session import gmsh_session
+from .static import StaticSolution, solve_static
+
+STUDY = "shaft-torsion"
+UNIT = "rad/(N*mm)"
+
+
+def exact_flexibility(params) -> float:
+    """lambda = 32 L / (pi G (d^4 - d_i^4)), G = E/(2(1+nu)): exact Saint-Venant torsion of a tube."""
+    sh, mat = params.output_shaft, params.material
+    return 32.0 * sh.length_mm / (math.pi * mat.implied_shear_modulus_MPa
+                                  * (sh.outer_diameter_mm ** 4 - sh.inner_diameter_mm ** 4))
+
+
+def default_size_mm(params, quick: bool) -> float:
+    """Finest global size: wall / 1.5 (wall / 1 with --quick); curved P2 is exact to ~1e-5 there."""
+    return params.output_shaft.wall_mm / (1.0 if quick else 1.5)
+
+
+def crack_refine(part, h_mm: float, depth_mm: float) -> Refine:
+    """Crack-front refinement: a/2 at the front (never below h/16, so shallow cracks stay affordable;
+    their GCI then says how well they are resolved), growing to h over a few crack depths."""
+    tip = max(min(h_mm, depth_mm / 2.0), h_mm / 16.0)
+    return Refine(size_mm=tip, dist_min_mm=max(depth_mm / 2.0, tip), dist_max_mm=depth_mm + 3.0 * h_mm,
+                  points_mm=part.crack_front_mm)
+
+
+def _torsion_traction(torque_Nmm: float, J_mm4: float):
+    def traction(x):
+        return np.stack([-torque_Nmm * x[1] / J_mm4, torque_Nmm * x[0] / J_mm4, np.zeros_like(x[0])])
+    return traction
+
+
+def mean_rotation_rad(sol: StaticSolution, group: str) -> float:
+    """Area-weighted mean rotation about z of a face: int (x u_y - y u_x)/r^2 dA / A."""
+    from skfem import Functional
+    fb = sol.facet_basis(group)
+    uh = fb.interpolate(sol.u)
+    rot = Functional(lambda w: (w.x[0] * w.u[1] - w.x[1] * w.u[0]) / (w.x[0] ** 2 + w.x[1] ** 2))
+    area = Functional(lambda w: np.ones_like(w.x[0]))
+    return float(rot.assemble(fb, u=uh) / area.assemble(fb))
+
+
+def solve_once(part, params, *, h_mm: float, order: int, refine: Sequence[Refine] = (),
+               progress: Callable[[str], None] = lambda m: None) -> tuple[float, StaticSolution, float]:
+    """Mesh ``part`` at h, solve the torsion case, return (lambda, solution, mesh time)."""
+    sh, mat = params.output_shaft, params.material
+    T = params.gear.output_torque_Nmm
+    J = math.pi / 32.0 * (sh.outer_diameter_mm ** 4 - sh.inner_diameter_mm ** 4)
+    t0 = time.perf_counter()
+    progress(f"{STUDY}: meshing h = {h_mm:.3g} mm")
+    try:
+        with gmsh_session() as model:
+            md = mesh_part(model, part, size_mm=h_mm, order=order, refine=list(refine))
+    except MeshingFailed as exc:
+        raise StageError("mesh", STUDY, str(exc)) from exc
+    t_mesh = time.perf_counter() - t0
+    sol = solve_static(md, Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio), fixed={"fixed": 0.0},
+                       tractions={"loaded": _torsion_traction(T, J)}, study=STUDY, progress=progress)
+    return mean_rotation_rad(sol, "loaded") / T, sol, t_mesh
+
+
+def _write_fields(vtu, sol: StaticSolution) -> tuple:
+    if vtu is None:
+        return ()
+    s = nodal_stress(sol.md, sol.sk, sol.u, sol.lame)
+    path = write_vtu(vtu, sol.md, {"displacement_mm": nodal_displacement(sol.md, sol.sk, sol.u),
+                                   "von_mises_MPa": von_mises(s), "stress_MPa": s})
+    return (path,)
+
+
+def _build(params, depth_mm):
+    from strainwave.geometry.parts import build_part
+    return build_part("output-shaft", params, crack_depth_mm=depth_mm)
+
+
+def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, progress=lambda m: None,
+        quick=False, ratio: float = DEFAULT_RATIO, _uncracked_cache: dict | None = None) -> StudyResult:
+    """Flexibility on three meshes (GCI); with a crack also delta lambda = cracked - uncracked per mesh."""
+    h = mesh_size_mm or default_size_mm(params, quick)
+    if h >= params.output_shaft.length_mm / 2:
+        raise InputError("--mesh-size-mm", h, f"must be < L_s/2 = {params.output_shaft.length_mm / 2:g} mm")
+    sizes = refinement_sizes(h, ratio)
+    timings = {"geometry": 0.0, "mesh": 0.0, "assembly": 0.0, "solve": 0.0}
+    t0 = time.perf_counter()
+    plain = _build(params, None)
+    cracked = _build(params, crack_depth_mm) if crack_depth_mm is not None else None
+    timings["geometry"] = time.perf_counter() - t0
+    cache = {} if _uncracked_cache is None else _uncracked_cache
+    lam0, lam1, finest = [], [], None
+    for k, hk in enumerate(reversed(sizes)):        # coarse to fine
+        progress(f"{STUDY}: refinement {k + 1}/3, h = {hk:.3g} mm")
+        key = (hk, order)
+        if key not in cache:
+            lam, sol, tm = solve_once(plain, params, h_mm=hk, order=order, progress=progress)
+            cache[key] = (lam, sol.md.quality, sol.solver)
+            timings["mesh"] += tm
+            timings["assembly"] += sol.timings_s["assembly"]
+            timings["solve"] += sol.timings_s["solve"]
+            finest = sol
+        lam0.append(cache[key][0])
+        if cracked is not None:
+            lam, sol, tm = solve_once(cracked, params, h_mm=hk, order=order,
+                                      refine=[crack_refine(cracked, hk, crack_depth_mm)], progress=progress)
+            lam1.append(lam)
+            timings["mesh"] += tm
+            timings["assembly"] += sol.timings_s["assembly"]
+            timings["solve"] += sol.timings_s["solve"]
+            finest = sol
+    lam0, lam1 = lam0[::-1], lam1[::-1]             # finest first, like ``sizes``
+    quantities = {"flexibility_rad_per_Nmm": converged_quantity("flexibility_rad_per_Nmm", UNIT, sizes, lam0)}
+    if cracked is not None:
+        quantities["cracked_flexibility_rad_per_Nmm"] = converged_quantity(
+            "cracked_flexibility_rad_per_Nmm", UNIT, sizes, lam1)
+        quantities["delta_flexibility_rad_per_Nmm"] = converged_quantity(
+            "delta_flexibility_rad_per_Nmm", UNIT, sizes, [c - u for c, u in zip(lam1, lam0)])
+    fields = _write_fields(vtu, finest) if finest is not None else ()
+    mesh_q = finest.md.quality if finest is not None else cache[(sizes[0], order)][1]
+    mat = params.material
+    meta = {"torque_Nmm": params.gear.output_torque_Nmm, "load": "Saint-Venant shear traction tau = T r / J on 'loaded'",
+            "bc": "'fixed' clamped (all components)", "twist": "area-weighted mean rotation of 'loaded'",
+            "exact_flexibility_rad_per_Nmm": exact_flexibility(params),
+            "exact_formula": "32 L / (pi G (d^4 - d_i^4)), G = E/(2(1+nu))",
+            "G_fea_MPa": mat.implied_shear_modulus_MPa, "mu_seed_MPa": mat.shear_modulus_MPa,
+            "rel_error_vs_exact": lam0[0] / exact_flexibility(params) - 1.0,
+            "order": order, "refinement_ratio": ratio, "mesh_sizes_mm": list(sizes),
+            "solver": None if finest is None else finest.solver.to_dict(), "crack_depth_mm": crack_depth_mm}
+    if cracked is not None:
+        meta["crack"] = {k: v for k, v in cracked.meta.items() if isinstance(v, (int, float, str))}
+    timings["total"] = time.perf_counter() - t0
+    return StudyResult(STUDY, quantities, mesh_q, timings, fields, meta)
