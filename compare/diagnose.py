@@ -9,6 +9,7 @@
 """
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import json
 from dataclasses import dataclass
@@ -21,7 +22,7 @@ from ..io_atomic import atomic_write_text
 from .baseline import Baseline, analytic_baseline, fea_baseline
 from .diagnose_context import build_context
 from .diagnose_explain import explain
-from .diagnose_fit import Fit, fit_effects
+from .diagnose_fit import NOISE_FLOOR, Fit, fit_effects
 from .diagnose_locate import Located, locate
 from .diagnose_noise import noise_std
 from .effects import effects_for
@@ -111,7 +112,7 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     ctx = build_context(rec, base)
     u_rel = base.uncertainty
     # first pass: noise from the residual of a free linear fit (any smooth trend is cancelled anyway)
-    sigma = noise_std(ctx.y - np.polyval(np.polyfit(ctx.u, ctx.y, 1), ctx.u))
+    sigma = max(noise_std(ctx.y - np.polyval(np.polyfit(ctx.u, ctx.y, 1), ctx.u)), NOISE_FLOOR)
     base_fit = fit_effects(ctx, (), sigma, u_rel)
     singles = [fit_effects(ctx, (e,), sigma, u_rel) for e in effects_for(rec.kind.value) if e.applicable(ctx)]
     singles.sort(key=lambda f: f.bic)
@@ -134,7 +135,7 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
                      effects=effects if mismatch else (), rms_before=base_fit.rms(n) * ctx.Y,
                      rms_after=after.rms(n) * ctx.Y, bic_before=base_fit.bic, bic_after=after.bic,
                      explanation="", n_samples=n)
-    diag = _with_explanation(diag, best if mismatch else None, ranked)
+    diag = dataclasses.replace(diag, explanation=explain(diag))
     arrays = {"load": rec.load, "response": rec.response, "baseline": base_fit.model * ctx.Y,
               "augmented": after.model * ctx.Y, "model_label": after.id}
     return diag, arrays
@@ -149,11 +150,6 @@ def _ranked(ctx, fit: Fit, base_fit: Fit, n: int) -> RankedEffect:
     parameters["stiffness_scale_within_prior" if not multi else "baseline.stiffness_scale"] = (fit.scale, "1")
     return RankedEffect(fit.id, tuple(e.id for e in fit.effects), parameters, float(base_fit.bic - fit.bic),
                         fit.rms(n) * ctx.Y, "+".join(e.label for e in fit.effects))
-
-
-def _with_explanation(diag: Diagnosis, best: Fit | None, ranked: list[Fit]) -> Diagnosis:
-    import dataclasses
-    return dataclasses.replace(diag, explanation=explain(diag, best))
 
 
 def diagnose_file(path: Path, *, params_path=None, baseline: str = "analytic", json_out: Path | None = None,

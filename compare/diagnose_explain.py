@@ -4,7 +4,7 @@ from __future__ import annotations
 from .effects import CATALOGUE
 
 
-def explain(diag, best) -> str:
+def explain(diag) -> str:
     noise = diag.noise_std
     if not diag.mismatch:
         return (f"The recording agrees with the baseline ({diag.baseline.source}) within the noise "

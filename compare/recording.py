@@ -132,6 +132,10 @@ def parse_text(text: str, name: str = "recording.csv") -> Recording:
     load, resp = col[load_col], col[resp_col]
     if np.ptp(load) <= 0:
         raise InputError(f"{name}:{hline + 1}", load_col, "the load column is constant; nothing to compare")
+    if kind is RecordingKind.RING_COMPRESSION and np.any(load < -0.01 * np.max(np.abs(load))):
+        bad = int(np.argmax(load < -0.01 * np.max(np.abs(load))))
+        raise InputError(f"{name}:{_row_line(lines, body_start, bad)}", float(load[bad]),
+                         "force_N is a compression force and must be >= 0 (beyond 1 % of full scale noise)")
     time_s = col.get("time_s")
     if time_s is not None and np.any(np.diff(time_s) < 0):
         bad = int(np.argmax(np.diff(time_s) < 0)) + 1
@@ -266,7 +270,7 @@ def format_recording(kind: RecordingKind, specimen: str, load: np.ndarray, respo
     (load_col, resp_col), _ = COLUMNS[kind]
     head = ["[test]", f'kind = "{kind.value}"', f'specimen = "{specimen}"']
     if description:
-        head.append(f'description = "{description}"')
+        head.append(f"description = {_toml_value(description)}")
     if baseline_uncertainty is not None:
         head.append(f"baseline_uncertainty = {baseline_uncertainty!r}")
     if baseline_stiffness is not None:
