@@ -1,0 +1,157 @@
+"""Study `bearing-ring` (seed 000): radial compliance of the wave-generator bearing inner ring, with and
+without the semi-elliptical surface crack at the ball contact.
+
+Load: F_r = 1.15 k_r T / d1 (seed 000) as a Hertzian pressure p = p0 sqrt(1 - (s/b')^2 - (z'/a')^2),
+p0 = 3 F_r/(2 pi a' b') (seed 000), on the race around the contact centre (+x); a' along the ring axis
+(across the race), b' along the circumference (rolling direction). The resultant is made exactly F_r.
+Support: the whole bore fixed. The inner ring sits on the wave generator's cam, which is far stiffer
+than the ring locally and carries it all round; a bonded bore is that rigid-cam limit (it also removes
+every rigid-body mode without a point constraint that would add its own compliance).
+Compliance: the work-conjugate displacement of the load, C = f.u / F_r^2 (what the crack-compliance
+integral of seed 000 is conjugate to). Crack effect: C(cracked) - C(uncracked) on meshes with the same
+size field (refined at the crack location in both) so that their discretization errors largely cancel.
+"""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from ..errors import StageError
+from .assembly import Lame, elasticity_stiffness, facet_vector_basis, scalar_basis, traction_load
+from .convergence import grid_convergence
+from .mesh_data import facet_indices, group_dofs, to_skfem
+from .meshing import MeshingFailed, Refine, mesh_part
+from .result import Quantity, StudyResult
+from .session import gmsh_session
+from .solver import solve_elasticity
+
+STUDY = "bearing-ring"
+PART = "wg-bearing-ring"
+REFINEMENT_RATIO = 1.5
+
+
+def radial_force_N(params) -> float:
+    """Seed 000: F_r = 1.15 k_r T / d1."""
+    return 1.15 * params.gear.force_coefficient * params.gear.output_torque_Nmm / params.flexspline_cup.pitch_diameter_mm
+
+
+def hertz_pressure(force_N: float, semi_axes_mm: tuple[float, float], centre_mm, race_radius_mm: float):
+    """Callable x (3, ...) -> pressure (MPa); a' along z, b' along the arc s = R (psi - psi_c)."""
+    a_ax, b_circ = semi_axes_mm
+    p0 = 3.0 * force_N / (2.0 * np.pi * a_ax * b_circ)
+    psi_c = np.arctan2(centre_mm[1], centre_mm[0])
+
+    def p(x):
+        s = race_radius_mm * np.angle(np.exp(1j * (np.arctan2(x[1], x[0]) - psi_c)))
+        rho2 = (s / b_circ) ** 2 + ((x[2] - centre_mm[2]) / a_ax) ** 2
+        return p0 * np.sqrt(np.clip(1.0 - rho2, 0.0, None))
+    return p
+
+
+def contact_centre_mm(part, contact_name: str) -> np.ndarray:
+    """Centre of the contact on the race: the named patch's centre projected radially onto the race
+    (its centre of mass lies inside the curved surface), or +x at mid-width when only ``race`` is named."""
+    bb = part.solid.bounding_box()
+    r_out = float(bb.max.X)
+    if contact_name == "contact":
+        c = np.asarray(part.named_faces["contact"][0].center_mm, float)
+        psi = np.arctan2(c[1], c[0])
+        return np.array([r_out * np.cos(psi), r_out * np.sin(psi), c[2]])
+    return np.array([r_out, 0.0, 0.5 * (bb.min.Z + bb.max.Z)])
+
+
+def solve_compliance(part, params, lame, *, size_mm, order, refine_points, local_mm, force_N):
+    """Mesh, load (Hertzian patch, resultant F_r), fix the bore, solve once.
+
+    Returns (work-conjugate compliance f.u/F^2 in mm/N, mesh quality, timings, solver info)."""
+    t0 = time.perf_counter()
+    a_ax, b_circ = params.wave_generator.contact_semi_axes_mm
+    contact_name = "contact" if "contact" in part.named_faces else "race"
+    centre = contact_centre_mm(part, contact_name)
+    refine = [Refine(size_mm=min(size_mm, b_circ / 3), dist_min_mm=max(a_ax, b_circ), dist_max_mm=3 * max(a_ax, b_circ),
+                     points_mm=(tuple(centre),))]
+    if refine_points:
+        refine.append(Refine(size_mm=local_mm, dist_min_mm=2 * local_mm, dist_max_mm=max(a_ax, b_circ),
+                             points_mm=tuple(refine_points)))
+    try:
+        with gmsh_session() as model:
+            md = mesh_part(model, part, size_mm=size_mm, order=order, refine=refine)
+    except MeshingFailed as exc:
+        raise StageError("mesh", STUDY, str(exc)) from exc
+    t1 = time.perf_counter()
+    sk = to_skfem(md)
+    sb = scalar_basis(sk.mesh, sk.element)
+    K = elasticity_stiffness(sb, lame)
+    race_nodes = group_dofs(sk, md, contact_name)
+    r_race = float(np.median(np.hypot(*sb.doflocs[:2, race_nodes])))
+    p = hertz_pressure(force_N, (a_ax, b_circ), centre, r_race)
+    fb = facet_vector_basis(sk.mesh, sk.element, facet_indices(sk, md, contact_name), intorder=6)
+    f = traction_load(fb, lambda x: -p(x) * np.stack([x[0], x[1], 0 * x[2]]) / np.hypot(x[0], x[1]))
+    fx = f[0::3].sum() * np.cos(np.arctan2(centre[1], centre[0])) + f[1::3].sum() * np.sin(np.arctan2(centre[1], centre[0]))
+    f *= force_N / -fx                  # the resultant is F_r exactly (quadrature of the sqrt profile)
+    fixed = (3 * group_dofs(sk, md, "bore")[:, None] + np.arange(3)).ravel()
+    u, info = solve_elasticity(K, f, fixed_dofs=fixed, coords=sb.doflocs, dim=3, study=STUDY)
+    t2 = time.perf_counter()
+    return float(f @ u) / force_N ** 2, md.quality, {"mesh": t1 - t0, "assemble+solve": t2 - t1}, info.to_dict()
+
+
+def analytic_crack_displacement(params, force_N: float, a_mm: float) -> dict:
+    """Seed 000's du_H, published (F_r^2) and corrected (F_r), and the compliances they imply."""
+    from ..analytic.cracks import bearing_displacement_mm
+    from ..analytic.variant import Variant
+    wg, cr = params.wave_generator, params.cracks
+    out = {}
+    for v in (Variant.PUBLISHED, Variant.CORRECTED):
+        du = bearing_displacement_mm(force_N, wg.bearing_inner_ring_thickness_mm, wg.beta,
+                                     tuple(wg.contact_semi_axes_mm), a_mm, params.material.youngs_modulus_MPa,
+                                     cr.surface_crack_shape_factor, v)
+        out[v.name.lower()] = {"delta_u_H_mm": du, "delta_compliance_mm_per_N": du / force_N}
+    return out
+
+
+def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, progress=lambda m: None,
+        quick=False) -> StudyResult:
+    from ..geometry.parts import build_part
+    t_start = time.perf_counter()
+    a = crack_depth_mm if crack_depth_mm is not None else params.cracks.depth_mm
+    force = radial_force_N(params)
+    mat = params.material
+    lame = Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio)
+    t_i = params.wave_generator.bearing_inner_ring_thickness_mm
+    fine = mesh_size_mm if mesh_size_mm else t_i / (2.0 if quick else 3.0)
+    sizes = [fine * REFINEMENT_RATIO ** k for k in range(3)]
+    t0 = time.perf_counter()
+    smooth, cracked = build_part(PART, params), build_part(PART, params, crack_depth_mm=a)
+    timings = {"geometry": time.perf_counter() - t0}
+    front = list(cracked.crack_front_mm) or [tuple(f.center_mm) for f in cracked.named_faces.get("crack_front", ())]
+    slot = params.crack_geometry.slot_width_mm
+    c_unc, c_cr, qual, info = [], [], None, None
+    for k, h in enumerate(sizes):
+        local = max(a / 3.0, slot) * REFINEMENT_RATIO ** k     # the crack-tip size refines with the mesh
+        for part, store, label in ((smooth, c_unc, "uncracked"), (cracked, c_cr, f"crack a = {a:g} mm")):
+            progress(f"{STUDY}: {label}, h = {h:.3g} mm")
+            c, q, tm, inf = solve_compliance(part, params, lame, size_mm=h, order=order, refine_points=front,
+                                   local_mm=local, force_N=force)
+            store.append(c)
+            for key, v in tm.items():
+                timings[f"{key}_{label.split()[0]}"] = timings.get(f"{key}_{label.split()[0]}", 0.0) + v
+            if k == 0 and store is c_unc:
+                qual, info = q, inf
+    delta = [cc - cu for cc, cu in zip(c_cr, c_unc)]
+    q = {"radial_compliance_mm_per_N": Quantity("radial_compliance_mm_per_N", c_unc[0], "mm/N",
+                                                grid_convergence(sizes, c_unc)),
+         "cracked_radial_compliance_mm_per_N": Quantity("cracked_radial_compliance_mm_per_N", c_cr[0], "mm/N",
+                                                        grid_convergence(sizes, c_cr)),
+         "delta_radial_compliance_mm_per_N": Quantity("delta_radial_compliance_mm_per_N", delta[0], "mm/N",
+                                                      grid_convergence(sizes, delta))}
+    timings["total"] = time.perf_counter() - t_start
+    meta = {"radial_force_N": force, "crack_depth_mm": a,
+            "load": "Hertzian ellipsoidal pressure on the race, a' axial x b' circumferential, p0 = 3F/(2 pi a'b')",
+            "support": "bore fixed (rigid cam, bonded)", "compliance": "work-conjugate f.u/F^2",
+            "seed_uncracked_stiffness_N_per_mm": params.wave_generator.uncracked_radial_stiffness_N_per_mm,
+            "fea_uncracked_stiffness_N_per_mm": 1.0 / c_unc[0],
+            "analytic": analytic_crack_displacement(params, force, a),
+            "mesh_sizes_mm": sizes, "solver": info,
+            "E_MPa": mat.youngs_modulus_MPa, "nu": mat.poisson_ratio, "G_implied_MPa": mat.implied_shear_modulus_MPa}
+    return StudyResult(STUDY, q, qual, timings, (), meta)
