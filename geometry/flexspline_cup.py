@@ -110,8 +110,8 @@ def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) ->
     from build123d import Axis, Location, extrude, revolve
 
     if teeth:
-        ring = extrude(gear_face(spec, inner_radius_mm=r_i), amount=band).solids()[0].moved(Location((0, 0, z_b)))
-        solid = fuse(revolve(_profile(fc, z_b, None), Axis.Z).solids()[0], ring)
+        ring = extrude(gear_face(spec, inner_radius_mm=r_i), amount=band, clean=False).solids()[0].moved(Location((0, 0, z_b)))
+        solid = fuse(revolve(_profile(fc, z_b, None), Axis.Z).solids()[0], ring, touching=True)
         r_surface = spec.root_radius_mm
     else:
         solid = revolve(_profile(fc, length, z_b), Axis.Z, clean=False).solids()[0]

@@ -7,7 +7,7 @@ contact strips and patches), so fusing and cutting go through these helpers inst
 from __future__ import annotations
 
 
-def _run(op, a, tools):
+def _run(op, a, tools, glue: bool = False):
     from OCP.collections import List_TopoDS_Shape
     from build123d import Shape
 
@@ -17,7 +17,13 @@ def _run(op, a, tools):
         tls.Append(t.wrapped)
     op.SetArguments(args)
     op.SetTools(tls)
-    op.SetRunParallel(False)
+    op.SetRunParallel(False)      # the machine's two cores are shared; OCC threads do not pay here
+    op.SetUseOBB(True)            # oriented boxes prune face pairs better on the 1400-face toothed cup
+    if glue:
+        # shapes that only touch on (partially) coincident faces: "shift" gluing skips the
+        # face/face intersection, halving the toothed cup's fuse (22 s -> 11 s on a loaded machine)
+        from OCP.BOPAlgo import BOPAlgo_GlueEnum
+        op.SetGlue(BOPAlgo_GlueEnum.BOPAlgo_GlueShift)
     op.Build()
     if not op.IsDone():
         raise RuntimeError(f"OCC boolean {type(op).__name__} failed")
@@ -32,9 +38,10 @@ def single_solid(shape):
     return solids[0]
 
 
-def fuse(a, *tools):
+def fuse(a, *tools, touching: bool = False):
+    """Union; ``touching=True`` when the solids share faces but do not overlap in volume (glue mode)."""
     from OCP.BRepAlgoAPI import BRepAlgoAPI_Fuse
-    return single_solid(_run(BRepAlgoAPI_Fuse(), a, tools))
+    return single_solid(_run(BRepAlgoAPI_Fuse(), a, tools, glue=touching))
 
 
 def cut(a, *tools):
