@@ -1,6 +1,8 @@
 """``build_part``: one entry point that dispatches to one module per part."""
 from __future__ import annotations
 
+import dataclasses
+
 from strainwave.errors import InputError
 
 from . import bearing_ring, ewg, ewg_ring, flexspline_cup, output_shaft
@@ -37,4 +39,6 @@ def build_part(name: PartName | str, params, *, crack_depth_mm: float | None = N
         raise InputError("crack_depth_mm", crack_depth_mm,
                          f"part {pn.value} has no seeded crack; cracks exist on "
                          f"{', '.join(p.value for p in CRACKABLE)}")
-    return _BUILDERS[pn](params, crack_depth_mm=crack_depth_mm, teeth=teeth)
+    part = _BUILDERS[pn](params, crack_depth_mm=crack_depth_mm, teeth=teeth)
+    # an empty set (e.g. the bore of a solid shaft) would become an empty gmsh physical group: drop it
+    return dataclasses.replace(part, named_faces={k: v for k, v in part.named_faces.items() if v})
