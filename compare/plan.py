@@ -2,11 +2,14 @@
 
 The seed's default crack (0.1 mm) changes a flexibility by parts per million, below what a mesh
 resolves; the sweep therefore runs from a small fraction of the wall to about half of it, where the
-crack compliance is measurable and its growth with depth (a^2 or a^3) can be fitted.
+crack compliance is measurable and its growth with depth (a^2 or a^3) can be fitted. --quick runs two
+sweep depths per component, the full run four.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
+
+import math
 
 import numpy as np
 
@@ -34,18 +37,38 @@ def walls_mm(params) -> dict[str, float]:
             "bearing": params.wave_generator.bearing_inner_ring_thickness_mm}
 
 
-def sweep_depths_mm(wall_mm: float, points: int) -> tuple[float, ...]:
-    """Geometric depths from wall/16 (quick: wall/8) to wall/2, rounded to 3 significant digits."""
-    lo = wall_mm / (8.0 if points <= 3 else 16.0)
-    depths = np.geomspace(lo, 0.5 * wall_mm, points)
+def bearing_depth_limit_mm(params) -> float:
+    """Deepest bearing crack whose surface half-length c still fits the contact patch.
+
+    geometry/bearing_ring.py refuses c >= 0.5 sqrt(pi) a' (the patch half-length across the race), with
+    c from Q = 1 + 1.464 (a/c)^1.65 (seed 000); c/a is fixed by Q, so the depth is bounded.
+    """
+    from ..geometry.cracks import half_length_from_q
+
+    patch_half_mm = 0.5 * math.sqrt(math.pi) * params.wave_generator.contact_semi_axes_mm[0]
+    c_per_a = half_length_from_q(1.0, params.cracks.surface_crack_shape_factor)
+    return patch_half_mm / c_per_a
+
+
+def sweep_limits_mm(params) -> dict[str, float]:
+    """Deepest crack per component: half the wall, and for the bearing 90 % of the contact-patch limit."""
+    limits = {k: 0.5 * w for k, w in walls_mm(params).items()}
+    limits["bearing"] = min(limits["bearing"], 0.9 * bearing_depth_limit_mm(params))
+    return limits
+
+
+def sweep_depths_mm(deepest_mm: float, points: int) -> tuple[float, ...]:
+    """Geometric depths from deepest/8 (quick: /4) to ``deepest_mm``, rounded to 3 significant digits."""
+    lo = deepest_mm / (4.0 if points <= 2 else 8.0)
+    depths = np.geomspace(lo, deepest_mm, points)
     return tuple(float(f"{d:.3g}") for d in depths)
 
 
 def make_plan(params, *, quick: bool) -> Plan:
     depth = params.cracks.depth_mm
-    points = 3 if quick else 5
+    points = 2 if quick else 4
     headline = {c: Case(f"{c}-a{depth:g}", study, depth) for c, study in COMPONENT_STUDY.items()}
     sweeps = {c: tuple(Case(f"{c}-a{d:g}", COMPONENT_STUDY[c], d)
-                       for d in sweep_depths_mm(wall, points) if d > depth)
-              for c, wall in walls_mm(params).items()}
+                       for d in sweep_depths_mm(deepest, points) if d > depth)
+              for c, deepest in sweep_limits_mm(params).items()}
     return Plan(headline, sweeps, Case("ring", "ring-compression", None))

@@ -108,7 +108,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
     """Run the whole validation into ``out_dir``; returns the checks and timings (see module docstring)."""
     from ..analytic.summary import analytic_summary
     from .artifacts import make_images
-    from .step_export import export_steps
+    from .step_export import StepJob
 
     start = time.perf_counter()
     out_dir = Path(out_dir)
@@ -118,12 +118,21 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
     total = 6
     with _stage("analytic", timings, progress, 1, total):
         summary = analytic_summary(params)
-    with _stage("step", timings, progress, 2, total):
-        steps = export_steps(params, out_dir / "step", cache, progress)
     plan = make_plan(params, quick=quick)
-    with _stage("fea", timings, progress, 3, total):
-        outcomes = {case.label: run_case(case, params, fields_dir=out_dir / "fields", cache=cache, quick=quick,
-                                         order=ORDER, progress=progress) for case in plan.all_cases()}
+    progress(f"[2/{total}] step: every part as STEP, in parallel with the FEA")
+    step_job = StepJob(params, out_dir / "step", cache, progress)
+    try:
+        with _stage("fea", timings, progress, 3, total):
+            outcomes = {case.label: run_case(case, params, fields_dir=out_dir / "fields", cache=cache,
+                                             quick=quick, order=ORDER, progress=progress)
+                        for case in plan.all_cases()}
+        wait_start = time.perf_counter()
+        steps, timings["step"] = step_job.result()
+        timings["step_wait_after_fea"] = time.perf_counter() - wait_start
+    finally:
+        step_job.cancel()
+    progress(f"[2/{total}] step done: {sum(len(s.files) for s in steps)} STEP file(s), {timings['step']:.1f} s "
+             f"wall (waited {timings['step_wait_after_fea']:.1f} s after the FEA)")
     book = FeaBook(outcomes)
     with _stage("checks", timings, progress, 4, total):
         check_set = build_checks(book, plan, summary, params)
@@ -144,6 +153,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
                 "created_utc": now_utc(), "params": params.to_dict(), "versions": versions(),
                 "settings": {"quick": quick, "order": ORDER, "mesh": "study defaults (quick: coarse), 3 refinements",
                              "solver": "fea/ default (see each case's meta)",
+                             "step_export": "background process, overlapping the FEA stage",
                              "sweep_depths_mm": {k: [c.crack_depth_mm for c in v] for k, v in plan.sweeps.items()}},
                 "cases": [_case_record(o, out_dir) for o in outcomes.values()],
                 "steps": [{"part": s.part, "files": [_relative(p, out_dir) for p in s.files], "seconds": s.seconds,

@@ -98,7 +98,9 @@ def test_timings_per_stage_recorded(results):
     timings = results["metadata"]["timings_s"]
     for stage in ("analytic", "step", "fea", "checks", "images"):
         assert stage in timings and timings[stage] >= 0
-    assert results["metadata"]["total_s"] >= sum(timings.values()) * 0.99
+    # STEP export overlaps the FEA (background process); the sequential stages add up to at most the total
+    sequential = sum(timings[k] for k in ("analytic", "fea", "checks", "images"))
+    assert results["metadata"]["total_s"] >= sequential
 
 
 def test_every_image_is_non_blank(quick_run, results):
