@@ -10,6 +10,7 @@ interrupted sweep resumes where it stopped and a repeated one costs nothing.
 from __future__ import annotations
 
 import logging
+import math
 import os
 import time
 from contextlib import contextmanager
@@ -24,6 +25,8 @@ from .sweep_grid import build_points
 from .sweep_outputs import plot_sweep, records_frame, departures, write_markdown, write_records, write_table
 from .sweep_task import CRACK_KEY, PointSpec, TaskFn, point_key, run_point, task_name
 
+POLL_S = 0.1          # how often the driver looks for finished points
+HEARTBEAT_S = 30.0    # longest silence on the terminal while points are running
 WORKER_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
 
 
@@ -82,10 +85,12 @@ def dask_client(scheduler: str | None, workers: int | None) -> Iterator[tuple[ob
         cluster.close()
 
 
-def _eta(started: float, computed: int, remaining: int) -> str:
-    if computed == 0:
+def _eta(records: list[dict], remaining: int, workers: int) -> str:
+    """Time left from the mean cost of the points solved so far (refusals cost nothing and are left out)."""
+    costs = [r["elapsed_s"] for r in records if r["status"] == "ok" and r.get("elapsed_s")]
+    if not costs:
         return "time left unknown"
-    return f"~{(time.perf_counter() - started) / computed * remaining:.0f} s left"
+    return f"~{sum(costs) / len(costs) * math.ceil(remaining / max(1, workers)):.0f} s left"
 
 
 def _failed(spec: PointSpec, key: str, exc: BaseException, task: TaskFn | None) -> dict:
@@ -94,8 +99,9 @@ def _failed(spec: PointSpec, key: str, exc: BaseException, task: TaskFn | None) 
             "inputs": spec.inputs, "task": task_name(task), "fea": {}, "analytic": {}, "cached": False}
 
 
-def _compute(client, specs: dict[str, PointSpec], cache_root: Path, task: TaskFn | None,
+def _compute(client, specs: dict[str, PointSpec], cache_root: Path, task: TaskFn | None, workers: int,
              progress: Callable[[str], None], already: int, total: int, counts: dict) -> dict[str, dict]:
+    """Submit every point under its cache key and collect the records as they finish."""
     from distributed import as_completed
 
     keys = list(specs)
@@ -103,17 +109,27 @@ def _compute(client, specs: dict[str, PointSpec], cache_root: Path, task: TaskFn
                          key=[f"strainwave-sweep-{k}" for k in keys])
     by_future = dict(zip(futures, keys))
     done: dict[str, dict] = {}
-    started = time.perf_counter()
-    for future in as_completed(futures):
-        key = by_future[future]
-        try:
-            record = future.result()
-        except Exception as exc:  # noqa: BLE001 - a lost worker fails its point, not the sweep
-            record = _failed(specs[key], key, exc, task)
-        done[key] = record
-        counts["failed"] += record["status"] != "ok"
-        progress(f"sweep: {already + len(done)}/{total} points done, {counts['failed']} failed, "
-                 f"{counts['cached']} from cache; {_eta(started, len(done), len(keys) - len(done))}")
+    started = last_message = time.perf_counter()
+    finished = as_completed(futures)
+    while not finished.is_empty():
+        if not finished.has_ready():
+            time.sleep(POLL_S)
+            if time.perf_counter() - last_message > HEARTBEAT_S:   # long solves: say the sweep is alive
+                last_message = time.perf_counter()
+                progress(f"sweep: {already + len(done)}/{total} points done, {len(keys) - len(done)} running or "
+                         f"queued, {last_message - started:.0f} s elapsed")
+            continue
+        for future in finished.next_batch(block=False):
+            key = by_future[future]
+            try:
+                record = future.result()
+            except Exception as exc:  # noqa: BLE001 - a lost worker fails its point, not the sweep
+                record = _failed(specs[key], key, exc, task)
+            done[key] = record
+            counts["failed"] += record["status"] != "ok"
+            last_message = time.perf_counter()
+            progress(f"sweep: {already + len(done)}/{total} points done, {counts['failed']} failed, "
+                     f"{counts['cached']} from cache; {_eta(list(done.values()), len(keys) - len(done), workers)}")
     return done
 
 
@@ -156,7 +172,8 @@ def run_sweep(study: str, *, vary: list[str], params_path: str | Path | None = N
     if todo:
         with dask_client(scheduler, workers) as (client, n_workers):
             progress(f"sweep: {n_workers} Dask workers at {client.scheduler.address}")
-            by_key.update(_compute(client, todo, out_dir / "cache", task, progress, len(by_key), len(points), counts))
+            by_key.update(_compute(client, todo, out_dir / "cache", task, n_workers, progress, len(by_key),
+                                   len(points), counts))
 
     records = [{**by_key[key], "index": index, "inputs": spec.inputs}
                for index, (key, spec) in enumerate(zip(keys, specs))]
