@@ -66,3 +66,20 @@ def test_point_is_cached_and_refusals_are_recorded(tmp_path):
     assert "cracks.depth_mm = 12.5" in record["error"] and "output_shaft wall" in record["error"]
     stored = json.loads((tmp_path / f"{point_key(bad, closed_form_probe)}.json").read_text())
     assert stored["error"] == record["error"]   # a deterministic refusal is cached like a result
+
+
+def _flexibility_in(unit):
+    def task(study, params, quick):
+        return {"quantities": {"flexibility_rad_per_Nmm": {"value": 1.3e-9, "unit": unit, "uncertainty": None}},
+                "mesh": None}
+    return task
+
+
+def test_closed_forms_only_beside_quantities_in_the_same_unit(tmp_path):
+    spec = PointSpec("shaft-torsion", (("output_shaft.length_mm", 200.0),), default_dict())
+    same = run_point(spec, "same", str(tmp_path), _flexibility_in("rad/(N mm)"))     # spelling differs only
+    entry = same["analytic"]["flexibility_rad_per_Nmm"]
+    assert entry["corrected"] == pytest.approx(32 * L / (math.pi * MU * (D ** 4 - d ** 4)), rel=1e-12)
+    other = run_point(spec, "other", str(tmp_path), _flexibility_in("deg/(N*m)"))
+    assert other["analytic"]["flexibility_rad_per_Nmm"]["corrected"] is None
+    assert any("not compared" in w for w in other["warnings"])
