@@ -89,8 +89,12 @@ def make_images(out_dir: Path, book: FeaBook, plan: Plan, check_set: CheckSet, s
         deepest = cases[-1]
         vtu = _vtu(book, deepest.label)
         title = f"{COMPONENT_TITLES[component]}, crack a = {deepest.crack_depth_mm:g} mm"
+        crack = book.meta(deepest.label).get("crack") or {}
+        z0 = crack.get("crack_z_mm") if isinstance(crack, dict) else None
+        radius = 3.0 * deepest.crack_depth_mm  # a few crack depths show the tip field and the slot
         col.attempt(f"{title} close-up", component, "closeup",
-                    lambda t, v=vtu, ti=title: images.render_closeup(_require(v), t, label=ti).caption,
+                    lambda t, v=vtu, ti=title, z=z0, r=radius: images.render_closeup(
+                        _require(v), t, label=ti, radius_mm=r, near_z_mm=z).caption,
                     f"{component}_crack_tip.png")
     col.attempt("ring mid-layer", "ring", "ring-shape",
                 lambda t: _ring_shape(t, book, plan, check_set, summary), "ring_mid_layer.png")

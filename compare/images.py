@@ -119,8 +119,13 @@ def render_stress(vtu: Path, png: Path, *, label: str, exaggeration: float | Non
     return Rendered(Path(png), f"{label}: von Mises stress on the deformed shape ({scale})", exaggeration)
 
 
-def render_closeup(vtu: Path, png: Path, *, label: str, center_mm=None, radius_mm: float | None = None) -> Rendered:
-    """Close-up of the crack tip: the region around the stress peak (or ``center_mm``), undeformed."""
+def render_closeup(vtu: Path, png: Path, *, label: str, center_mm=None, radius_mm: float | None = None,
+                   near_z_mm: float | None = None) -> Rendered:
+    """Close-up of the crack tip: the region around the stress peak (or ``center_mm``), undeformed.
+
+    ``near_z_mm`` restricts the peak search to a slab around the crack plane z (loads and supports
+    elsewhere have their own stress peaks).
+    """
     pv = _pv()
     with pv.VtkErrorCatcher(raise_errors=True):
         mesh = pv.read(str(vtu))
@@ -128,7 +133,11 @@ def render_closeup(vtu: Path, png: Path, *, label: str, center_mm=None, radius_m
         if center_mm is None:
             if names.von_mises is None or names.von_mises not in mesh.point_data:
                 raise ValueError(f"{vtu}: no point von Mises field to locate the crack tip")
-            center_mm = mesh.points[int(np.argmax(mesh.point_data[names.von_mises]))]
+            stress = np.asarray(mesh.point_data[names.von_mises], dtype=float).copy()
+            if near_z_mm is not None:
+                slab = radius_mm or 0.05 * mesh.length
+                stress[np.abs(mesh.points[:, 2] - near_z_mm) > slab] = -np.inf
+            center_mm = mesh.points[int(np.argmax(stress))]
         center = np.asarray(center_mm, dtype=float)
         radius = radius_mm or 0.08 * mesh.length
         region = mesh.clip_box([center[0] - radius, center[0] + radius, center[1] - radius, center[1] + radius,
