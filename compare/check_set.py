@@ -95,6 +95,11 @@ def build_checks(book: FeaBook, plan: Plan, summary: dict, params) -> CheckSet:
         if sweep is not None:
             sweeps[component] = _sweep_report(sweep, curves[component])
         allowances = dict([mu_gap(params)]) if component == "shaft" else {}
+        if component == "shaft":
+            s = params.output_shaft
+            hollow = 1.0 / (1.0 - (s.inner_diameter_mm / s.outer_diameter_mm) ** 4)
+            note += (f"; expectation: the bore raises the outer-fibre shear stress by {hollow:.3f} and so a shallow "
+                     f"crack's compliance by {hollow ** 2:.3f} over the solid-bar forms")
         checks.append(crack_check(check_id, quantity, unit, sweep, curves[component], allowances, note,
                                   {"fea": "FEA " + ", ".join(case_labels), "analytic": "seed 000"},
                                   params.cracks.depth_mm))
