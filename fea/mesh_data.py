@@ -96,7 +96,8 @@ def to_skfem(md: MeshData) -> SkfemMesh:
         return SkfemMesh(p1, node_to_dof, elem)
     mesh2 = mesh_cls.from_mesh(p1)
     n = vert_nodes.size
-    edge_keys = _pair_keys(np.sort(p1.edges, axis=0), n)
+    edges_of = p1.edges if md.dim == 3 else p1.facets      # P2 edge dofs: one per edge (3D) / facet (2D)
+    edge_keys = _pair_keys(np.sort(edges_of, axis=0), n)
     order = np.argsort(edge_keys)
     doflocs = mesh2.doflocs.copy()
     for j, (a, b) in enumerate(GMSH_EDGES[md.dim]):

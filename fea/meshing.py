@@ -59,12 +59,18 @@ def _import_shape(model, shape) -> None:
 def _match(model, dim: int, refs, tol_mm: float, rel_tol: float = 1e-3) -> list[int]:
     """Entity tags of dimension ``dim`` whose centre of mass and measure match ``refs``.
 
-    A ref is a FaceRef (centre, area or length) or a callable taking the entity centre (3,) -> bool."""
+    ``refs`` is a tuple of FaceRef (centre, area or length) or ONE callable: for curves it gets (21, 3)
+    points sampled along the curve, for surfaces the centre of mass (3,); it returns True to select."""
     tags = []
+    if callable(refs):
+        if dim == 1:  # curves: the predicate sees 21 points sampled along the curve (arcs have off-curve centres)
+            def samples(t):
+                lo, hi = model.getParametrizationBounds(1, t)
+                return np.asarray(model.getValue(1, t, np.linspace(lo[0], hi[0], 21))).reshape(-1, 3)
+            return [t for _, t in model.getEntities(1) if refs(samples(t))]
+        return [t for _, t in model.getEntities(dim) if refs(np.array(model.occ.getCenterOfMass(dim, t)))]
     entities = [(t, np.array(model.occ.getCenterOfMass(dim, t)), model.occ.getMass(dim, t))
                 for _, t in model.getEntities(dim)]
-    if callable(refs):
-        return [t for t, c, _ in entities if refs(c)]
     for ref in refs:
         c_ref = np.asarray(ref.center_mm, float)
         hits = [t for t, c, m in entities
@@ -224,8 +230,9 @@ def mesh_section(model, face=None, *, loops: Sequence[np.ndarray] | None = None,
     ----------
     face : a build123d Face (exact curves, so P2 nodes follow circles), or None to use ``loops``.
     loops : polylines (n, 2); the first is the outer boundary, the others holes.
-    named_edges : name -> tuple of FaceRef (centre, LENGTH in ``area_mm2``) or a predicate on the edge's
-        centre of mass (3,) -> bool. Each becomes a group of boundary edges (line2/line3 node rows).
+    named_edges : name -> tuple of FaceRef (centre, LENGTH in ``area_mm2``) or a predicate on (21, 3) points
+        sampled along a curve -> bool (robust when ``named_points`` split curves). Each becomes a group of
+        boundary edges (line2/line3 node rows).
     named_points : name -> points; each point is fragmented into the geometry (split boundary curves or
         embedded inside), so a node sits exactly there; the group holds those nodes as (k, 1) rows.
     """
