@@ -97,3 +97,12 @@ def test_bad_vary_exits_2_with_one_line(strainwave_cmd, tmp_path):
         assert run.returncode == 2
         assert run.stderr.count("\n") == 1 and fragment in run.stderr and "Traceback" not in run.stderr
         assert run.stdout == ""
+
+
+def test_bad_scheduler_address_exits_2(strainwave_cmd, tmp_path):
+    run = subprocess.run([*strainwave_cmd, "sweep", "shaft-torsion", "--vary", "output_shaft.length_mm=100,200",
+                          "--scheduler", "nonsense://host:8786", "--out", str(tmp_path)],
+                         capture_output=True, text=True, timeout=60)
+    assert run.returncode == 2 and "Traceback" not in run.stderr
+    last = run.stderr.strip().splitlines()[-1]
+    assert last.startswith("error: --scheduler = 'nonsense://host:8786': no Dask scheduler answered")
