@@ -104,8 +104,8 @@ def closed_form_probe(study: str, params, quick: bool, *, delay_s: float = 0.0) 
 
     lambda = 32 L / (pi mu (D^4 - d^4)) (Seed 000, lambda_so0, with the bore; see the formula audit).
     It is *not* an FEA result and is labelled ``probe_`` so it never stands in for one; ``delay_s``
-    stands for the cost of a solve when timing the scheduler. Refuses a crack as deep as the wall,
-    like a real study would.
+    stands for the cost of a solve when timing the scheduler. Impossible points (a bore wider than the
+    shaft, a crack through the wall) are refused before it runs, by the parameter schema, as for FEA.
     """
     shaft, mu = params.output_shaft, params.material.shear_modulus_MPa
     if delay_s:
