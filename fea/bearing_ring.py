@@ -25,9 +25,9 @@ from .convergence import grid_convergence
 from .fields import nodal_displacement, nodal_stress, von_mises, write_vtu
 from .facet_traction import facet_traction_load
 from .mesh_data import group_dofs, to_skfem
-from .meshing import MeshingFailed, Refine, mesh_part
+from .mesh_isolated import mesh_part_isolated
+from .meshing import MeshingFailed, Refine
 from .result import Quantity, StudyResult
-from .session import gmsh_session
 from .solver import solve_elasticity
 
 STUDY = "bearing-ring"
@@ -78,6 +78,7 @@ class ComplianceSolve:
     timings_s: dict
     solver: dict
     field: tuple = ()          # (MeshData, SkfemMesh, u) when asked for
+    size_factor: float = 1.0   # sizes scaled by this after a failed gmsh attempt (mesh_isolated)
 
 
 def solve_compliance(part, params, lame, *, size_mm, order, refine_points, local_mm, force_N,
@@ -96,11 +97,10 @@ def solve_compliance(part, params, lame, *, size_mm, order, refine_points, local
     if refine_points:
         refine.append(Refine(size_mm=local_mm, dist_min_mm=2 * local_mm, dist_max_mm=max(a_ax, b_circ),
                              points_mm=tuple(refine_points)))
-    try:
-        with gmsh_session() as model:
-            md = mesh_part(model, part, size_mm=size_mm, order=order, refine=refine)
+    try:   # in a forked child: gmsh's high-order optimiser can abort natively on the crack slot
+        md, size_factor = mesh_part_isolated(part, size_mm=size_mm, order=order, refine=refine)
     except MeshingFailed as exc:
-        raise StageError("mesh", STUDY, str(exc)) from exc
+        raise StageError("mesh", STUDY, f"h = {size_mm:g} mm: {exc}") from exc
     t1 = time.perf_counter()
     sk = to_skfem(md)
     sb = scalar_basis(sk.mesh, sk.element)
@@ -117,7 +117,7 @@ def solve_compliance(part, params, lame, *, size_mm, order, refine_points, local
     u, info = solve_elasticity(K, f, fixed_dofs=fixed, coords=sb.doflocs, dim=3, study=STUDY, method=method)
     t2 = time.perf_counter()
     return ComplianceSolve(float(f @ u) / force_N ** 2, md.quality, {"mesh": t1 - t0, "assemble+solve": t2 - t1},
-                           info.to_dict(), (md, sk, u) if keep_field else ())
+                           info.to_dict(), (md, sk, u) if keep_field else (), size_factor)
 
 
 def analytic_crack_displacement(params, force_N: float, a_mm: float) -> dict:
@@ -174,7 +174,7 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
     timings = {"geometry": time.perf_counter() - t0}
     front = list(cracked.crack_front_mm) or [tuple(f.center_mm) for f in cracked.named_faces.get("crack_front", ())]
     slot = params.crack_geometry.slot_width_mm
-    c_unc, c_cr, qual, info, fields_fine = [], [], None, None, {}
+    c_unc, c_cr, qual, info, fields_fine, factors = [], [], None, None, {}, {}
     for k, h in enumerate(sizes):
         scale = REFINEMENT_RATIO ** k
         local = max(a / 3.0, slot) * scale       # the crack-tip size refines with the mesh
@@ -184,6 +184,7 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
             sol = solve_compliance(part, params, lame, size_mm=h, order=order, refine_points=front, local_mm=local,
                                    force_N=force, contact_mm=contact, keep_field=(k == 0 and vtu is not None))
             store.append(sol.compliance_mm_per_N)
+            factors[f"{label}_h{k}"] = sol.size_factor
             for key, v in sol.timings_s.items():
                 timings[f"{key}_{label}"] = timings.get(f"{key}_{label}", 0.0) + v
             if k == 0:
@@ -215,6 +216,6 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
             "analytic": analytic_crack_displacement(params, force, a),
             "mesh_sizes_mm": sizes, "contact_sizes_mm": [min(fine, b_circ / 3.0) * REFINEMENT_RATIO ** k for k in range(3)],
             "crack_front_sizes_mm": [max(a / 3.0, slot) * REFINEMENT_RATIO ** k for k in range(3)],
-            "solver": info, "part": {k: v for k, v in (smooth.meta or {}).items() if isinstance(v, (int, float, str))},
+            "mesh_size_factors": factors, "solver": info, "part": {k: v for k, v in (smooth.meta or {}).items() if isinstance(v, (int, float, str))},
             "E_MPa": mat.youngs_modulus_MPa, "nu": mat.poisson_ratio, "G_implied_MPa": mat.implied_shear_modulus_MPa}
     return StudyResult(STUDY, q, qual, timings, fields, meta)

@@ -22,12 +22,14 @@ linear problem, so each force solution is scaled to delta_CD = 2 W0):
 from __future__ import annotations
 
 import time
+from pathlib import Path
 
 import numpy as np
 
 from ..errors import StageError
 from .assembly import Lame
 from .convergence import grid_convergence
+from .fields import nodal_displacement, nodal_stress, von_mises, write_vtu
 from .meshing import MeshingFailed
 from .result import Quantity, StudyResult
 from .ring_loads import ArcLoad, point_load_factors, thin_ring_deflections_mm, thin_ring_moment_Nmm
@@ -84,13 +86,13 @@ def _scaled(sol, w0: float) -> dict[str, float]:
             "root_B_MPa": sol.root_B_MPa * k, "root_D_MPa": sol.root_D_MPa * k}
 
 
-def _series(face, geo, load, lame, sizes, order, w0, pitch, progress, label):
+def _series(face, geo, load, lame, sizes, order, w0, pitch, progress, label, keep_fields=False):
     out = []
-    for h in sizes:
+    for k, h in enumerate(sizes):
         progress(f"{STUDY}: {label} ring, 2D plane stress, h = {h:.3g} mm")
         try:
             out.append(solve_ring_section(face, geo, load, lame, size_mm=h, order=order, ewg_w0_mm=w0,
-                                          pitch_rad=pitch))
+                                          pitch_rad=pitch, keep_fields=keep_fields and k == 0))
         except MeshingFailed as exc:
             raise StageError("mesh", STUDY, f"{label} ring section, h = {h:g} mm: {exc}") from exc
     return out
@@ -117,10 +119,10 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
     smooth_face, toothed_face = section_face(params, teeth=False), section_face(params, teeth=True)
     timings["geometry"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    smooth = _series(smooth_face, geo, load, lame, sizes, order, w0, pitch, progress, "smooth")
+    smooth = _series(smooth_face, geo, load, lame, sizes, order, w0, pitch, progress, "smooth", vtu is not None)
     timings["smooth_2d"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    toothed = _series(toothed_face, geo, load, lame, sizes, order, w0, pitch, progress, "toothed")
+    toothed = _series(toothed_face, geo, load, lame, sizes, order, w0, pitch, progress, "toothed", vtu is not None)
     timings["toothed_2d"] = time.perf_counter() - t0
 
     q: dict[str, Quantity] = {}
@@ -145,8 +147,31 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
 
     meta = _meta(params, geo, load, lame, smooth, toothed, sc, tc, w0, f_ref, sizes)
     fine = smooth[0]["force"]
+    fields = ()
+    if vtu is not None:
+        t0 = time.perf_counter()
+        fields = tuple(write_force_field(path, sol[0]["force"], lame)
+                       for path, sol in zip(vtu_paths(vtu), (smooth, toothed)))
+        timings["vtu"] = time.perf_counter() - t0
+        meta["fields"] = {"force_case_N": f_ref, "files": [str(p) for p in fields],
+                          "note": "force case at the reference force (delta_CD ~ 2 W0), finest mesh; plane stress"}
     timings["total"] = time.perf_counter() - t_start
-    return StudyResult(STUDY, q, fine.mesh.quality, timings, (), meta)
+    return StudyResult(STUDY, q, fine.mesh.quality, timings, fields, meta)
+
+
+def vtu_paths(vtu) -> tuple[Path, Path]:
+    """(smooth, toothed) field files next to ``vtu``: <stem>_smooth.vtu first (the report's mid-layer plot)."""
+    v = Path(vtu)
+    return v.with_name(f"{v.stem}_smooth.vtu"), v.with_name(f"{v.stem}_toothed.vtu")
+
+
+def write_force_field(path, sol, lame: Lame) -> Path:
+    """Displacement, von Mises and stress (plane stress, zz = 0) of one 2D force-case solve, as VTU."""
+    sk, u = sol.fields
+    md = sol.mesh
+    s = nodal_stress(md, sk, u, lame)
+    return write_vtu(path, md, {"displacement_mm": nodal_displacement(md, sk, u), "von_mises_MPa": von_mises(s),
+                                "stress_MPa": s})
 
 
 def _meta(params, geo, load, lame, smooth, toothed, sc, tc, w0, f_ref, sizes) -> dict:

@@ -86,7 +86,9 @@ def mesh_ring_section(face, geo: RingGeometry, load: ArcLoad, *, size_mm: float,
     r_o, th = geo.r_outer_mm, load.half_angle_rad
     ends = [(r_o * np.cos(c + s * th), r_o * np.sin(c + s * th)) for c in (0.5 * np.pi, -0.5 * np.pi) for s in (-1, 1)]
     arc_mm = 2.0 * th * r_o
-    contact = lambda com: abs(com[0]) < arc_mm and abs(com[1]) > geo.r_m_mm      # noqa: E731
+    # the predicate sees points sampled along each curve (meshing._match): the contact arcs lie wholly
+    # within |x| < arc length, on the outer side of the mid-layer
+    contact = lambda pts: bool(np.all(np.abs(pts[:, 0]) < arc_mm) and np.all(np.abs(pts[:, 1]) > geo.r_m_mm))  # noqa: E731
     refine = Refine(size_mm=min(size_mm, arc_mm / 8), dist_min_mm=arc_mm, dist_max_mm=6 * geo.thickness_mm,
                     points_mm=((0.0, r_o, 0.0), (0.0, -r_o, 0.0)))
     with gmsh_session() as model:

@@ -125,7 +125,7 @@ def mid_layer(basis, u, r_m_mm: float, z_mm: float | None = None) -> MidLayer:
         from skfem import CellBasis
         one = CellBasis(basis.mesh, basis.elem, mapping=basis.mapping, elements=np.array([cell]),
                         quadrature=(ref[:, i, :], np.array([1.0])))
-        values.append(one.interpolate(u).value[:, 0, 0])
+        values.append(np.asarray(one.interpolate(u))[:, 0, 0])
     return MidLayer(*values)
 
 

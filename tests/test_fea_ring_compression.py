@@ -120,7 +120,7 @@ def test_ewg_prescribed_deformation_reaches_W0(ring):
     assert e.force_N > 0
 
 
-def test_study_quick_carries_gci(monkeypatch):
+def test_study_quick_carries_gci(monkeypatch, tmp_path):
     import strainwave.fea.ring_compression as rc
     from strainwave.geometry.involute import ToothSpec, gear_face
 
@@ -133,7 +133,7 @@ def test_study_quick_carries_gci(monkeypatch):
         return gear_face(ToothSpec(40, 1.0, internal=True), outer_radius_mm=geo.r_outer_mm)
 
     monkeypatch.setattr(rc, "section_face", section)
-    res = run(params, quick=True)
+    res = run(params, quick=True, vtu=tmp_path / "ring.vtu")
     for name in ("delta_cd_mm", "delta_ab_mm", "force_for_W0_N", "sigma_B_outer_MPa", "sigma_D_outer_MPa",
                  "sigma_B_inner_MPa", "sigma_D_inner_MPa", "tooth_influence", "stress_concentration"):
         conv = res[name].convergence
@@ -144,3 +144,9 @@ def test_study_quick_carries_gci(monkeypatch):
     assert res["delta_cd_mm"].convergence.gci_fine < 0.002
     # teeth make the ring stiffer and the root a notch: both factors exceed 1
     assert res["tooth_influence"].value > 1.0 and res["stress_concentration"].value > 1.0
+    # VTU of the smooth and toothed force cases, smooth first (the report samples its mid-layer)
+    assert [p.name for p in res.fields] == ["ring_smooth.vtu", "ring_toothed.vtu"]
+    text = res.fields[0].read_text()
+    assert 'Name="displacement_mm"' in text and 'Name="von_mises_MPa"' in text
+    import re
+    assert int(re.search(r'NumberOfPoints="(\d+)"', text).group(1)) == res.mesh.nodes
