@@ -22,6 +22,7 @@ from .refinement import DEFAULT_RATIO, converged_quantity, refinement_sizes
 from .result import Quantity, StudyResult
 from .session import gmsh_session
 from .static import StaticSolution, solve_static
+from .torsion_load import mean_rotation_rad, saint_venant_traction
 
 STUDY = "shaft-torsion"
 UNIT = "rad/(N*mm)"
@@ -47,22 +48,6 @@ def crack_refine(part, h_mm: float, depth_mm: float) -> Refine:
                   points_mm=part.crack_front_mm)
 
 
-def _torsion_traction(torque_Nmm: float, J_mm4: float):
-    def traction(x):
-        return np.stack([-torque_Nmm * x[1] / J_mm4, torque_Nmm * x[0] / J_mm4, np.zeros_like(x[0])])
-    return traction
-
-
-def mean_rotation_rad(sol: StaticSolution, group: str) -> float:
-    """Area-weighted mean rotation about z of a face: int (x u_y - y u_x)/r^2 dA / A."""
-    from skfem import Functional
-    fb = sol.facet_basis(group)
-    uh = fb.interpolate(sol.u)
-    rot = Functional(lambda w: (w.x[0] * w.u[1] - w.x[1] * w.u[0]) / (w.x[0] ** 2 + w.x[1] ** 2))
-    area = Functional(lambda w: np.ones_like(w.x[0]))
-    return float(rot.assemble(fb, u=uh) / area.assemble(fb))
-
-
 def solve_once(part, params, *, h_mm: float, order: int, refine: Sequence[Refine] = (),
                progress: Callable[[str], None] = lambda m: None) -> tuple[float, StaticSolution, float]:
     """Mesh ``part`` at h, solve the torsion case, return (lambda, solution, mesh time)."""
@@ -78,7 +63,7 @@ def solve_once(part, params, *, h_mm: float, order: int, refine: Sequence[Refine
         raise StageError("mesh", STUDY, str(exc)) from exc
     t_mesh = time.perf_counter() - t0
     sol = solve_static(md, Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio), fixed={"fixed": 0.0},
-                       tractions={"loaded": _torsion_traction(T, J)}, study=STUDY, progress=progress)
+                       tractions={"loaded": saint_venant_traction(T, J)}, study=STUDY, progress=progress)
     return mean_rotation_rad(sol, "loaded") / T, sol, t_mesh
 
 

@@ -1,0 +1,39 @@
+"""Torque as a tangential traction and twist as a mean face rotation: shared by the torsion studies."""
+from __future__ import annotations
+
+import numpy as np
+
+from .static import StaticSolution
+
+
+def saint_venant_traction(torque_Nmm: float, J_mm4: float):
+    """tau = T r / J e_theta, i.e. t = (T/J)(-y, x, 0): the exact end shear of a circular (hollow) section."""
+    def traction(x):
+        return np.stack([-torque_Nmm * x[1] / J_mm4, torque_Nmm * x[0] / J_mm4, np.zeros_like(x[0])])
+    return traction
+
+
+def uniform_tangential_traction(torque_Nmm: float, moment_arm_mm3: float):
+    """t = c e_theta with c = T / int r dA: constant tangential shear whose moment about z is exactly T."""
+    c = torque_Nmm / moment_arm_mm3
+
+    def traction(x):
+        r = np.sqrt(x[0] ** 2 + x[1] ** 2)
+        return np.stack([-c * x[1] / r, c * x[0] / r, np.zeros_like(x[0])])
+    return traction
+
+
+def moment_arm_mm3(fbasis) -> float:
+    """int r dA over the facets of a FacetBasis (curved P2 facets, so r follows the true surface)."""
+    from skfem import Functional
+    return float(Functional(lambda w: np.sqrt(w.x[0] ** 2 + w.x[1] ** 2)).assemble(fbasis))
+
+
+def mean_rotation_rad(sol: StaticSolution, group: str) -> float:
+    """Area-weighted mean rotation about z of a face set: int (x u_y - y u_x)/r^2 dA / A."""
+    from skfem import Functional
+    fb = sol.facet_basis(group)
+    uh = fb.interpolate(sol.u)
+    rot = Functional(lambda w: (w.x[0] * w.u[1] - w.x[1] * w.u[0]) / (w.x[0] ** 2 + w.x[1] ** 2))
+    area = Functional(lambda w: np.ones_like(w.x[0]))
+    return float(rot.assemble(fb, u=uh) / area.assemble(fb))
