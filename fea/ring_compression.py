@@ -37,6 +37,7 @@ from .ring_plane import RingGeometry, solve_ring_section
 
 STUDY = "ring-compression"
 REFINEMENT_RATIO = 1.5      # h, 1.5 h, 2.25 h: r > 1.3 as the GCI procedure asks
+SOLID_LAYERS = (4, 3, 2)    # 3D: P2 tets through the thickness, fine first (ratios 1.33, 1.5 > 1.3)
 
 
 def ring_geometry(params) -> RingGeometry:
@@ -146,6 +147,11 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
     add("toothed_ewg_force_N", "N", [s["ewg"].force_N for s in toothed])
 
     meta = _meta(params, geo, load, lame, smooth, toothed, sc, tc, w0, f_ref, sizes)
+    if not quick:   # 3D solid (fea/ring_solid.py): ~20 s more, so only in the full study
+        t0 = time.perf_counter()
+        q3, meta["solid_3d"] = _solid_3d(params, geo, load, q, progress)
+        q.update(q3)
+        timings["solid_3d"] = time.perf_counter() - t0
     fine = smooth[0]["force"]
     fields = ()
     if vtu is not None:
@@ -157,6 +163,37 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
                           "note": "force case at the reference force (delta_CD ~ 2 W0), finest mesh; plane stress"}
     timings["total"] = time.perf_counter() - t_start
     return StudyResult(STUDY, q, fine.mesh.quality, timings, fields, meta)
+
+
+def _solid_3d(params, geo, load, q2d, progress) -> tuple[dict[str, Quantity], dict]:
+    """delta_CD, delta_AB of the smooth ring as a 3D solid (P2 tets, 2, 3, 4 elements through the
+    thickness) at the same F, and their ratio to the 2D plane-stress values (expected in [1 - nu^2, 1])."""
+    from .ring_solid import solve_ring_solid
+    mat = params.material
+    lame3 = Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio)
+    sols = []
+    for n in SOLID_LAYERS:
+        progress(f"{STUDY}: smooth ring, 3D solid, {n} P2 tets through the thickness")
+        sols.append(solve_ring_solid(geo, load, lame3, n_radial=n))
+    h = [s.h_mm for s in sols]
+    q = {"delta_cd_3d_mm": _quantity("delta_cd_3d_mm", "mm", h, [s.delta_cd_mm for s in sols]),
+         "delta_ab_3d_mm": _quantity("delta_ab_3d_mm", "mm", h, [s.delta_ab_mm for s in sols])}
+    fine = sols[0]
+    nu = mat.poisson_ratio
+    meta = {"model": "one-eighth ring (symmetry x = 0, y = 0, mid-plane), structured curved P2 tets, same arc "
+                     "load uniform over the width; delta at r_m averaged over the width (Simpson on P2 nodes)",
+            "layers": list(SOLID_LAYERS), "h_mm": h, "dofs": [s.mesh.dofs for s in sols],
+            "elements": [s.mesh.elements for s in sols], "timings_s": [s.timings_s for s in sols],
+            "ratio_cd_3d_over_2d": fine.delta_cd_mm / q2d["delta_cd_mm"].value,
+            "ratio_ab_3d_over_2d": fine.delta_ab_mm / q2d["delta_ab_mm"].value,
+            "ratio_cd_extrapolated": q["delta_cd_3d_mm"].convergence.extrapolated
+            / q2d["delta_cd_mm"].convergence.extrapolated,
+            "ratio_cd_midplane_over_2d": fine.delta_cd_midplane_mm / q2d["delta_cd_mm"].value,
+            "ratio_cd_edge_over_2d": fine.delta_cd_edge_mm / q2d["delta_cd_mm"].value,
+            "plane_strain_bound": 1.0 - nu ** 2,
+            "B2_over_r_delta": geo.width_mm ** 2 / (geo.r_m_mm * geo.thickness_mm),
+            "solver": fine.solver}
+    return q, meta
 
 
 def vtu_paths(vtu) -> tuple[Path, Path]:
