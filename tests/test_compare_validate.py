@@ -142,14 +142,19 @@ def test_html_references_only_existing_relative_files(quick_run, results):
 
 def test_rerun_reuses_finished_cases_and_says_so(quick_run):
     out, first = quick_run
-    solved = [c for c in json.loads((out / "results.json").read_text())["metadata"]["cases"] if c["ok"]]
+    before = json.loads((out / "results.json").read_text())
+    solved = {c["label"] for c in before["metadata"]["cases"] if c["ok"]}
     proc = _validate(out)
     assert proc.returncode == first.returncode
     rerun = json.loads((out / "results.json").read_text())
     cached = {c["label"] for c in rerun["metadata"]["cases"] if c["cached"]}
-    assert cached == {c["label"] for c in solved}
-    for label in cached:
-        assert f"{label}: reusing cached" in proc.stderr
+    if rerun["metadata"]["versions"]["code_version"] == before["metadata"]["versions"]["code_version"]:
+        assert cached == solved
+        for label in cached:
+            assert f"{label}: reusing cached" in proc.stderr
+    else:
+        # the shared tree changed between the two runs: a new code version must invalidate every case
+        assert cached == set()
 
 
 def _chromium() -> str:
