@@ -108,3 +108,24 @@ def test_vtu_fields_written(study):
     vm = np.frombuffer(base64.b64decode(payload)[8:], dtype=np.float64)
     # von Mises is non-negative everywhere and peaks under the Hertz pressure (p0 = 3F/(2 pi a'b') = 0.08 MPa)
     assert vm.size == npts and vm.min() >= 0.0 and 0.01 < vm.max() < 10.0
+
+
+def test_isolated_meshing_survives_a_native_abort(monkeypatch):
+    import os
+
+    import strainwave.fea.mesh_isolated as mi
+    from strainwave.fea.meshing import MeshingFailed, Refine
+
+    def fake_mesh_part(model, part, *, size_mm, order, refine):
+        if size_mm == 2.0:            # the first attempt dies as gmsh's std::terminate does
+            os.abort()
+        return {"size_mm": size_mm, "refine_mm": refine[0].size_mm}
+
+    monkeypatch.setattr(mi, "mesh_part", fake_mesh_part)
+    md, factor = mi.mesh_part_isolated(None, size_mm=2.0, order=2, refine=[Refine(0.5, 1.0, 2.0)])
+    # the retry scales the global and the local sizes together, by the first factor after 1
+    assert factor == mi.SIZE_FACTORS[1]
+    assert md == {"size_mm": 2.0 * factor, "refine_mm": 0.5 * factor}
+    monkeypatch.setattr(mi, "mesh_part", lambda *a, **k: os.abort())
+    with pytest.raises(MeshingFailed, match="exited with code"):
+        mi.mesh_part_isolated(None, size_mm=2.0, order=2, refine=[], factors=(1.0, 1.03))
