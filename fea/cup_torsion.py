@@ -72,7 +72,7 @@ def solve_once(part, params, *, h_mm: float, order: int, refine=(), progress=lam
                        # thin walls: the matrix graph is nearly 2D, so Cholesky fill stays small, while
                        # AMG-CG needed 470-800 iterations (measured at 37k-54k dofs)
                        method="direct")
-    torque = moment_arm_mm3(sol.facet_basis("loaded"))     # moment of the unit tangential shear
+    torque = moment_arm_mm3(sol, "loaded")     # moment of the unit tangential shear
     return mean_rotation_rad(sol, "loaded") / torque, sol, torque, t_mesh
 
 

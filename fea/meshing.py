@@ -131,15 +131,43 @@ def _options(size_mm: float) -> None:
 
 
 def _generate(model, dim: int, order: int) -> None:
-    import gmsh
     model.mesh.generate(dim)
     if order == 2:
         model.mesh.setOrder(2)
-        types, tags, _ = model.mesh.getElements(dim)
-        q = gmsh.model.mesh.getElementQualities(np.concatenate(tags), "minSJ")
-        if q.min() <= 0.0:  # curved mid nodes inverted an element: let gmsh untangle them
-            gmsh.option.setNumber("Mesh.HighOrderOptimize", 2)
-            model.mesh.optimize("HighOrder")
+        _straighten_inverted(model, dim)
+
+
+def _straighten_inverted(model, dim: int, passes: int = 4) -> None:
+    """Put the mid nodes of inverted curved elements back on their straight edges.
+
+    Curving P2 nodes onto the geometry can invert an element whose size exceeds the local radius or wall
+    (coarse meshes of the thin cup, slivers at a crack slot). gmsh's ``optimize("HighOrder")`` may abort
+    the whole process in that case (an uncaught C++ exception, seen on the cup), so the fix is local:
+    only those elements lose their curvature, and the edges they share with neighbours stay conforming.
+    """
+    import gmsh
+    cell_type = _CELL_TYPES[(dim, 2)]
+    pairs = {3: ((0, 1), (1, 2), (2, 0), (3, 0), (3, 2), (3, 1)), 2: ((0, 1), (1, 2), (2, 0))}[dim]
+    nv = dim + 1
+    for _ in range(passes):
+        tags, nodes = model.mesh.getElementsByType(cell_type)
+        if tags.size == 0:
+            return
+        q = np.asarray(gmsh.model.mesh.getElementQualities(tags, "minSJ"))
+        bad = np.flatnonzero(q <= 0.0)
+        if bad.size == 0:
+            return
+        conn = nodes.reshape(tags.size, -1)[bad]
+        done = set()
+        for row in conn:
+            for j, (a, b) in enumerate(pairs):
+                mid = int(row[nv + j])
+                if mid in done:
+                    continue
+                done.add(mid)
+                xa = np.asarray(model.mesh.getNode(int(row[a]))[0])
+                xb = np.asarray(model.mesh.getNode(int(row[b]))[0])
+                model.mesh.setNode(mid, list(0.5 * (xa + xb)), [])
 
 
 def _extract(model, dim: int, order: int, group_tags: Mapping[str, tuple[int, list[int]]], h_mm: float) -> MeshData:

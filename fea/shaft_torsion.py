@@ -90,10 +90,11 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
     sizes = refinement_sizes(h, ratio)
     timings = {"geometry": 0.0, "mesh": 0.0, "assembly": 0.0, "solve": 0.0}
     t0 = time.perf_counter()
-    plain = _build(params, None)
+    cache = {} if _uncracked_cache is None else _uncracked_cache
+    plain = cache.get("plain_part") or _build(params, None)
+    cache["plain_part"] = plain
     cracked = _build(params, crack_depth_mm) if crack_depth_mm is not None else None
     timings["geometry"] = time.perf_counter() - t0
-    cache = {} if _uncracked_cache is None else _uncracked_cache
     lam0, lam1, finest = [], [], None
     for k, hk in enumerate(reversed(sizes)):        # coarse to fine
         progress(f"{STUDY}: refinement {k + 1}/3, h = {hk:.3g} mm")

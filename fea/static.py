@@ -11,9 +11,10 @@ from typing import Callable, Mapping
 
 import numpy as np
 
-from .assembly import Lame, elasticity_stiffness, facet_vector_basis, scalar_basis, traction_load
+from .assembly import Lame, elasticity_stiffness, facet_vector_basis, scalar_basis
 from .mesh_data import MeshData, SkfemMesh, facet_indices, group_dofs, to_skfem
 from .solver import SolverInfo, solve_elasticity
+from .surface import SurfaceQuadrature
 
 Traction = Callable[[np.ndarray], np.ndarray]     # x (dim, nf, nq) mm -> t (dim, nf, nq) MPa
 
@@ -27,6 +28,15 @@ class StaticSolution:
     lame: Lame
     solver: SolverInfo
     timings_s: dict = field(default_factory=dict)
+
+    def surface(self, group: str) -> SurfaceQuadrature:
+        """Quadrature on a named group's own facets (robust on any element shape)."""
+        return SurfaceQuadrature.of(self.md, group)
+
+    def nodal_u(self) -> np.ndarray:
+        """(N, dim) displacement at MeshData nodes."""
+        d = self.md.dim
+        return np.stack([self.u[d * self.sk.node_to_dof + c] for c in range(d)], axis=1)
 
     def facet_basis(self, group: str, *, intorder: int = 4):
         """Vector FacetBasis on a named boundary group (integrals over a loaded face)."""
@@ -52,8 +62,9 @@ def solve_static(md: MeshData, lame: Lame, *, fixed: Mapping[str, float | np.nda
     K = elasticity_stiffness(basis, lame, thickness_mm=thickness_mm)
     f = np.zeros(K.shape[0])
     for group, trac in (tractions or {}).items():
-        f += thickness_mm * traction_load(facet_vector_basis(sk.mesh, sk.element, facet_indices(sk, md, group)), trac) \
-            if d == 2 else traction_load(facet_vector_basis(sk.mesh, sk.element, facet_indices(sk, md, group)), trac)
+        # facet-own quadrature (no element inversion): robust on curved and sliver P2 elements
+        f += (thickness_mm if d == 2 else 1.0) * SurfaceQuadrature.of(md, group).load_vector(
+            trac, sk.node_to_dof, d, K.shape[0])
     if point_loads is not None:
         f += point_loads
     dofs, vals = [], []

@@ -23,17 +23,15 @@ def uniform_tangential_traction(torque_Nmm: float, moment_arm_mm3: float):
     return traction
 
 
-def moment_arm_mm3(fbasis) -> float:
-    """int r dA over the facets of a FacetBasis (curved P2 facets, so r follows the true surface)."""
-    from skfem import Functional
-    return float(Functional(lambda w: np.sqrt(w.x[0] ** 2 + w.x[1] ** 2)).assemble(fbasis))
+def moment_arm_mm3(sol: StaticSolution, group: str) -> float:
+    """int r dA over a named group (curved P2 facets, so r follows the true surface)."""
+    q = sol.surface(group)
+    return q.integrate(np.hypot(q.x[..., 0], q.x[..., 1]))
 
 
 def mean_rotation_rad(sol: StaticSolution, group: str) -> float:
     """Area-weighted mean rotation about z of a face set: int (x u_y - y u_x)/r^2 dA / A."""
-    from skfem import Functional
-    fb = sol.facet_basis(group)
-    uh = fb.interpolate(sol.u)
-    rot = Functional(lambda w: (w.x[0] * w.u[1] - w.x[1] * w.u[0]) / (w.x[0] ** 2 + w.x[1] ** 2))
-    area = Functional(lambda w: np.ones_like(w.x[0]))
-    return float(rot.assemble(fb, u=uh) / area.assemble(fb))
+    q = sol.surface(group)
+    u = q.interpolate(sol.nodal_u())
+    x, y = q.x[..., 0], q.x[..., 1]
+    return q.integrate((x * u[..., 1] - y * u[..., 0]) / (x ** 2 + y ** 2)) / q.area

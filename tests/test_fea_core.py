@@ -159,3 +159,19 @@ def test_vtu_opens_in_pyvista(box_meshes, tmp_path):
     assert np.median(vm[far]) == pytest.approx(10.0, rel=0.05)   # the clamp's Poisson constraint decays over ~1 width
     assert grid.point_data["displacement_mm"][:, 0].max() > 0
     assert not list(tmp_path.glob(".*tmp"))                      # atomic write left no temporary file
+
+
+def test_facet_quadrature_load_equals_skfem_facet_basis(box_meshes):
+    from strainwave.fea.assembly import facet_vector_basis, traction_load
+    from strainwave.fea.surface import SurfaceQuadrature
+    md = box_meshes[2]
+    sk = to_skfem(md)
+    n = 3 * sk.mesh.doflocs.shape[1]
+
+    def trac(x):
+        return np.stack([x[1] ** 2, x[0] * x[2], 1.0 + 0 * x[0]])   # quadratic: both rules are exact on P2 x P2
+
+    f_own = SurfaceQuadrature.of(md, "xmax").load_vector(trac, sk.node_to_dof, 3, n)
+    f_sk = traction_load(facet_vector_basis(sk.mesh, sk.element, facet_indices(sk, md, "xmax")), trac)
+    assert np.abs(f_own - f_sk).max() < 1e-12 * np.abs(f_sk).max()   # same integral, round-off only
+    assert SurfaceQuadrature.of(md, "xmax").area == pytest.approx(1.5, rel=1e-12)
