@@ -53,7 +53,9 @@ def run_isolated(study: str, params, kwargs: dict, *, timeout_s: float,
     """``run_study(study, params, **kwargs)`` in a child process, at most ``timeout_s`` seconds."""
     ctx = _context()
     parent_conn, child_conn = ctx.Pipe(duplex=False)
-    process = ctx.Process(target=_child, args=(child_conn, study, params, kwargs), daemon=True)
+    # Not a daemon: a study may start worker processes of its own (daemons may not have children);
+    # the ``finally`` below terminates the child on every way out instead.
+    process = ctx.Process(target=_child, args=(child_conn, study, params, kwargs), daemon=False)
     start = time.perf_counter()
     process.start()
     child_conn.close()
