@@ -9,6 +9,8 @@ case that exceeds its time limit is terminated and reported as such.
 from __future__ import annotations
 
 import multiprocessing
+import os
+import signal
 import time
 import traceback
 from dataclasses import dataclass
@@ -26,6 +28,7 @@ class ChildOutcome:
 
 def _child(conn, study: str, params, kwargs: dict) -> None:
     """Child side: solve, stream progress, send ("result", dict) or ("error", text)."""
+    os.setpgid(0, 0)  # own process group: a time-out also stops any worker the study started
     try:
         from ..fea.studies import run_study
 
@@ -82,15 +85,24 @@ def run_isolated(study: str, params, kwargs: dict, *, timeout_s: float,
                 break
     finally:
         if process.is_alive():
+            _stop_group(process.pid)
             process.terminate()
         process.join(5)
         parent_conn.close()
     return ChildOutcome(result, error, time.perf_counter() - start)
 
 
+def _stop_group(pid: int) -> None:
+    """SIGTERM the child's process group (the child and the workers it started, nothing else)."""
+    try:
+        os.killpg(pid, signal.SIGTERM)
+    except (ProcessLookupError, PermissionError):
+        pass  # already gone
+
+
 def _death(process) -> str:
     process.join(5)
     code = process.exitcode
-    signal = f" (signal {-code})" if code is not None and code < 0 else ""
-    return (f"the worker process died with exit code {code}{signal}: a native crash in gmsh, VTK or the solver; "
+    by_signal = f" (signal {-code})" if code is not None and code < 0 else ""
+    return (f"the worker process died with exit code {code}{by_signal}: a native crash in gmsh, VTK or the solver; "
             "its message, if any, is on stderr above")
