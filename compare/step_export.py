@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import multiprocessing
 import time
-from concurrent.futures import Future, ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
@@ -38,15 +37,22 @@ def export_one(part: str, params, target: Path) -> tuple[list[str], float, str]:
         return [], time.perf_counter() - start, f"{type(exc).__name__}: {exc}"
 
 
+def _worker(conn, jobs: list[tuple[str, Path]], params) -> None:
+    """Background process: export each part in turn and send (part, files, seconds, error) back."""
+    for part, target in jobs:
+        conn.send((part, *export_one(part, params, target)))
+    conn.close()
+
+
 class StepJob:
     """STEP export of every ``PartName`` (teeth on, uncracked: the parts as designed), started in the background."""
 
     def __init__(self, params, step_dir: Path, cache: ResultCache, progress: Callable[[str], None]):
-        self.params, self.step_dir, self.cache, self.progress = params, Path(step_dir), cache, progress
+        self.cache, self.progress = cache, progress
         self.started = time.perf_counter()
         self.done: list[StepOutcome] = []
-        self.pending: dict[str, tuple[str, Future]] = {}
-        self.executor: ProcessPoolExecutor | None = None
+        self.keys: dict[str, str] = {}
+        jobs = []
         for part in PartName:
             key = case_key("validate-step", {"part": part.value, "params": params.to_dict()})
             hit = cache.get(key)
@@ -54,32 +60,47 @@ class StepJob:
                 progress(f"  {part.value}: reusing cached STEP ({hit['seconds']:.1f} s originally)")
                 self.done.append(StepOutcome(part.value, tuple(Path(p) for p in hit["files"]), hit["seconds"], True))
                 continue
-            if self.executor is None:
-                # spawn, not fork: the parent may hold gmsh/VTK state by the time the worker needs it
-                self.executor = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn"))
-            target = self.step_dir / f"{part.value}.step"
-            self.pending[part.value] = (key, self.executor.submit(export_one, part.value, params, target))
-        if self.pending:
-            progress(f"  building {len(self.pending)} STEP part(s) in a background process: "
-                     + ", ".join(self.pending))
+            self.keys[part.value] = key
+            jobs.append((part.value, Path(step_dir) / f"{part.value}.step"))
+        self.process = None
+        if jobs:
+            # spawn, not fork: a clean interpreter for OCC; a daemon, so it never outlives the run
+            ctx = multiprocessing.get_context("spawn")
+            self.conn, child = ctx.Pipe(duplex=False)
+            self.process = ctx.Process(target=_worker, args=(child, jobs, params), daemon=True)
+            self.process.start()
+            child.close()
+            progress(f"  building {len(jobs)} STEP part(s) in a background process: "
+                     + ", ".join(p for p, _ in jobs))
 
     def result(self) -> tuple[list[StepOutcome], float]:
         """Wait for the background parts; returns every part's outcome and the wall time of the export."""
-        for part, (key, future) in self.pending.items():
-            files, seconds, error = future.result()
+        received = set()
+        while self.process is not None and len(received) < len(self.keys):
+            try:
+                part, files, seconds, error = self.conn.recv()
+            except EOFError:
+                break  # the worker died: the parts not received are reported below
+            received.add(part)
             if error:
                 self.progress(f"  {part}: STEP FAILED ({error})")
                 self.done.append(StepOutcome(part, (), seconds, False, error))
                 continue
-            self.cache.put(key, {"files": files, "seconds": seconds})
+            self.cache.put(self.keys[part], {"files": files, "seconds": seconds})
             self.progress(f"  {part}: wrote {', '.join(Path(p).name for p in files)} in {seconds:.1f} s")
             self.done.append(StepOutcome(part, tuple(Path(p) for p in files), seconds, False))
-        if self.executor is not None:
-            self.executor.shutdown()
+        for part in self.keys:
+            if part not in received:
+                code = None if self.process is None else self.process.exitcode
+                self.done.append(StepOutcome(part, (), 0.0, False, f"STEP worker died (exit code {code})"))
+        self.cancel()
         order = {p.value: i for i, p in enumerate(PartName)}
         self.done.sort(key=lambda s: order[s.part])
         return self.done, time.perf_counter() - self.started
 
     def cancel(self) -> None:
-        if self.executor is not None:
-            self.executor.shutdown(wait=False, cancel_futures=True)
+        """Stop the background export (on an interrupted run; harmless after it finished)."""
+        if self.process is not None:
+            if self.process.is_alive():
+                self.process.terminate()
+            self.process.join(5)
