@@ -66,7 +66,10 @@ def grid_convergence(h_mm, values, *, max_order: float = 8.0) -> Convergence:
     e_a21 = abs((f1 - f2) / f1) if f1 != 0 else abs(f1 - f2)
     gci = SAFETY_FACTOR_THREE_GRIDS * e_a21 / (r21 ** p - 1.0)
     if not monotone:
-        # Oscillatory convergence: Richardson is not trustworthy; report the spread as the error band.
+        # Oscillatory convergence: the order equation has no meaningful root (p is clipped), so a
+        # Richardson-based GCI would be arbitrary. The error band is the spread of the three values,
+        # with the three-grid safety factor, and the finest value is kept as the estimate.
         spread = (max(f1, f2, f3) - min(f1, f2, f3)) / abs(f1) if f1 != 0 else 0.0
-        gci = max(gci, SAFETY_FACTOR_THREE_GRIDS * spread)
+        gci = SAFETY_FACTOR_THREE_GRIDS * spread
+        extrapolated = f1
     return Convergence((h1, h2, h3), (f1, f2, f3), p, extrapolated, gci, monotone)
