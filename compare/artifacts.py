@@ -58,12 +58,15 @@ class _Collector:
         self.images.append(Image(target.relative_to(self.out_dir), caption, component, kind))
 
 
-def _vtu(book: FeaBook, label: str) -> Path | None:
+def _vtu(book: FeaBook, label: str, prefer: str = "") -> Path | None:
+    """The case's VTU; with several (e.g. ``_cracked``/``_uncracked``, ``_smooth``/``_toothed``) the one
+    whose name ends with ``prefer``."""
     outcome = book.outcomes.get(label)
     if outcome is None or outcome.result is None:
         return None
     files = [Path(p) for p in outcome.result.fields if str(p).endswith(".vtu") and Path(p).exists()]
-    return files[0] if files else None
+    preferred = [p for p in files if prefer and p.stem.endswith(prefer) and not p.stem.endswith("un" + prefer)]
+    return (preferred or files or [None])[0]
 
 
 def _require(path):
@@ -87,7 +90,7 @@ def make_images(out_dir: Path, book: FeaBook, plan: Plan, check_set: CheckSet, s
         if not cases:
             continue
         deepest = cases[-1]
-        vtu = _vtu(book, deepest.label)
+        vtu = _vtu(book, deepest.label, "_cracked")
         title = f"{COMPONENT_TITLES[component]}, crack a = {deepest.crack_depth_mm:g} mm"
         crack = book.meta(deepest.label).get("crack") or {}
         z0 = crack.get("crack_z_mm") if isinstance(crack, dict) else None
@@ -157,7 +160,7 @@ def _sweep(target: Path, report, component: str) -> str:
 def _ring_shape(target: Path, book: FeaBook, plan: Plan, check_set: CheckSet, summary: dict) -> str:
     from .images import sample_circle
 
-    vtu = _require(_vtu(book, plan.ring.label))
+    vtu = _require(_vtu(book, plan.ring.label, "_smooth"))
     checks = check_set.by_id()
     cd, ab = checks["ring.delta_cd"], checks["ring.delta_ab"]
     if cd.fea is None or ab.fea is None or "published" not in cd.analytic:
