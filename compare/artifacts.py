@@ -171,6 +171,8 @@ def _ring_shape(target: Path, book: FeaBook, plan: Plan, check_set: CheckSet, su
         raise ValueError(f"{vtu}: the mid-layer circle r = {r_m:g} mm does not cross the mesh")
     theta, u_r, _ = sampled
     load_angle = float(theta[np.argmin(u_r)])  # the loaded points move inward the most
+    if np.sin(load_angle) < 0:  # name the upper load point D, so B (phi = 0) lands at +x as in fea/ring_*
+        load_angle += np.pi
     plots.ring_midlayer_plot(target, r_m_mm=r_m, theta=theta, u_r_fea=u_r, delta_cd_fea=cd.fea, delta_ab_fea=ab.fea,
                              delta_cd_analytic=cd.analytic["published"], delta_ab_analytic=ab.analytic["published"],
                              load_angle_rad=load_angle)
