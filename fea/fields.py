@@ -30,12 +30,9 @@ def nodal_displacement(md: MeshData, sk: SkfemMesh, u: np.ndarray) -> np.ndarray
     return out
 
 
-def nodal_stress(md: MeshData, sk: SkfemMesh, u: np.ndarray, lame: Lame) -> np.ndarray:
-    """Averaged nodal Cauchy stress (N, 6) as xx, yy, zz, xy, yz, zx in MPa (plane stress: zz = 0).
-
-    ``lame`` must match the analysis (plane-stress Lame constants in 2D)."""
+def _element_node_stress(sk: SkfemMesh, u: np.ndarray, lame: Lame, d: int):
+    """Cauchy stress at each element's own nodes: (3, 3, nel, nloc) (plane stress: zz = 0), and the basis."""
     from skfem import Basis
-    d = md.dim
     elem = sk.element
     X = np.asarray(elem.doflocs, float).T                      # reference node positions (dim, nloc)
     basis = Basis(sk.mesh, elem, quadrature=(X, np.ones(X.shape[1])))
@@ -50,16 +47,37 @@ def nodal_stress(md: MeshData, sk: SkfemMesh, u: np.ndarray, lame: Lame) -> np.n
     sig = 2 * lame.mu_MPa * eps
     for a in range(d):
         sig[a, a] += lame.lam_MPa * tr
-    # node q of the quadrature is local dof q of the element
-    dofs = basis.element_dofs                                   # (nloc, nel)
+    return sig, basis
+
+
+_COMPONENTS = [(0, 0), (1, 1), (2, 2), (0, 1), (1, 2), (2, 0)]
+
+
+def nodal_stress(md: MeshData, sk: SkfemMesh, u: np.ndarray, lame: Lame) -> np.ndarray:
+    """Averaged nodal Cauchy stress (N, 6) as xx, yy, zz, xy, yz, zx in MPa (plane stress: zz = 0).
+
+    ``lame`` must match the analysis (plane-stress Lame constants in 2D)."""
+    d = md.dim
+    sig, basis = _element_node_stress(sk, u, lame, d)
+    dofs = basis.element_dofs                                   # (nloc, nel); quadrature node q = local dof q
     n = basis.N
     count = np.bincount(dofs.ravel(), minlength=n)
-    comps = [(0, 0), (1, 1), (2, 2), (0, 1), (1, 2), (2, 0)]
     s_dof = np.zeros((n, 6))
-    for k, (a, b) in enumerate(comps):
+    for k, (a, b) in enumerate(_COMPONENTS):
         if a < d and b < d:
             s_dof[:, k] = np.bincount(dofs.ravel(), weights=sig[a, b].T.ravel(), minlength=n) / np.maximum(count, 1)
     return s_dof[sk.node_to_dof]
+
+
+def cell_stress(md: MeshData, sk: SkfemMesh, u: np.ndarray, lame: Lame) -> np.ndarray:
+    """Mean Cauchy stress of each cell over its own nodes (M, 6), in MeshData cell order (= skfem's)."""
+    d = md.dim
+    sig, _ = _element_node_stress(sk, u, lame, d)
+    out = np.zeros((md.cells.shape[0], 6))
+    for k, (a, b) in enumerate(_COMPONENTS):
+        if a < d and b < d:
+            out[:, k] = sig[a, b].mean(axis=1)
+    return out
 
 
 def von_mises(stress: np.ndarray) -> np.ndarray:

@@ -13,6 +13,7 @@ import numpy as np
 
 from .assembly import Lame, elasticity_stiffness, facet_vector_basis, scalar_basis
 from .mesh_data import MeshData, SkfemMesh, facet_indices, group_dofs, to_skfem
+from ..errors import StageError
 from .solver import SolverInfo, solve_elasticity
 from .surface import SurfaceQuadrature
 
@@ -44,17 +45,7 @@ class StaticSolution:
                                   intorder=intorder)
 
 
-def solve_static(md: MeshData, lame: Lame, *, fixed: Mapping[str, float | np.ndarray] | None = None,
-                 fixed_dofs: np.ndarray | None = None, fixed_values: np.ndarray | float = 0.0,
-                 tractions: Mapping[str, Traction] | None = None, point_loads: np.ndarray | None = None,
-                 thickness_mm: float = 1.0, study: str = "fea", progress: Callable[[str], None] = lambda m: None,
-                 method: str = "auto") -> StaticSolution:
-    """Assemble and solve; ``fixed`` clamps named groups (all components, value 0 or a (dim,) vector).
-
-    ``fixed_dofs``/``fixed_values`` add explicit Dirichlet dofs (interleaved numbering); ``point_loads``
-    is added to the load vector as is."""
-    t = {}
-    t0 = time.perf_counter()
+def _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions, point_loads, thickness_mm, study, progress):
     sk = to_skfem(md)
     basis = scalar_basis(sk.mesh, sk.element)
     d = md.dim
@@ -76,10 +67,30 @@ def solve_static(md: MeshData, lame: Lame, *, fixed: Mapping[str, float | np.nda
     if fixed_dofs is not None:
         dofs.append(np.asarray(fixed_dofs, np.int64))
         vals.append(np.broadcast_to(np.asarray(fixed_values, float), np.shape(fixed_dofs)))
-    t["assembly"] = time.perf_counter() - t0
-    progress(f"{study}: solving ({K.shape[0]} dofs)")
     all_dofs = np.concatenate(dofs) if dofs else np.zeros(0, np.int64)
     all_vals = np.concatenate(vals) if vals else np.zeros(0)
+    return sk, basis, K, f, all_dofs, all_vals
+
+
+def solve_static(md: MeshData, lame: Lame, *, fixed: Mapping[str, float | np.ndarray] | None = None,
+                 fixed_dofs: np.ndarray | None = None, fixed_values: np.ndarray | float = 0.0,
+                 tractions: Mapping[str, Traction] | None = None, point_loads: np.ndarray | None = None,
+                 thickness_mm: float = 1.0, study: str = "fea", progress: Callable[[str], None] = lambda m: None,
+                 method: str = "auto") -> StaticSolution:
+    """Assemble and solve; ``fixed`` clamps named groups (all components, value 0 or a (dim,) vector).
+
+    ``fixed_dofs``/``fixed_values`` add explicit Dirichlet dofs (interleaved numbering); ``point_loads``
+    is added to the load vector as is."""
+    t = {}
+    t0 = time.perf_counter()
+    try:
+        sk, basis, K, f, all_dofs, all_vals = _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions,
+                                                        point_loads, thickness_mm, study, progress)
+    except (ValueError, KeyError, IndexError) as exc:   # mesh/group mismatch: name the stage, no traceback
+        raise StageError("assembly", study, f"{type(exc).__name__}: {exc}") from exc
+    d = md.dim
+    t["assembly"] = time.perf_counter() - t0
+    progress(f"{study}: solving ({K.shape[0]} dofs)")
     u, info = solve_elasticity(K, f, fixed_dofs=all_dofs, fixed_values=all_vals, coords=basis.doflocs, dim=d,
                                study=study, method=method)
     t["solve"] = info.time_s

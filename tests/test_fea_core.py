@@ -175,3 +175,17 @@ def test_facet_quadrature_load_equals_skfem_facet_basis(box_meshes):
     f_sk = traction_load(facet_vector_basis(sk.mesh, sk.element, facet_indices(sk, md, "xmax")), trac)
     assert np.abs(f_own - f_sk).max() < 1e-12 * np.abs(f_sk).max()   # same integral, round-off only
     assert SurfaceQuadrature.of(md, "xmax").area == pytest.approx(1.5, rel=1e-12)
+
+
+def test_cell_and_nodal_stress_of_uniform_field(box_meshes):
+    from strainwave.fea.fields import cell_stress
+    md = box_meshes[2]
+    sk = to_skfem(md)
+    lame = Lame.from_young(E, NU)
+    eps_xx = 1e-4                      # u = (eps x, 0, 0): sigma_xx = (lam + 2 mu) eps, yy = zz = lam eps
+    u = np.zeros(3 * sk.mesh.doflocs.shape[1])
+    u[0::3] = eps_xx * sk.mesh.doflocs[0]
+    expected = np.array([lame.lam_MPa + 2 * lame.mu_MPa, lame.lam_MPa, lame.lam_MPa, 0, 0, 0]) * eps_xx
+    # a linear field has constant stress: every cell and node reproduces it to round-off
+    assert np.abs(cell_stress(md, sk, u, lame) - expected).max() < 1e-9 * expected[0]
+    assert np.abs(nodal_stress(md, sk, u, lame) - expected).max() < 1e-9 * expected[0]

@@ -1,0 +1,110 @@
+"""FEA speed and memory on this machine: the uncracked output-shaft torsion case over a size series.
+
+Each case runs in its own process so ``ru_maxrss`` is that case's peak. Prints dofs, time per phase
+(mesh, assembly, solve), solver iterations, peak memory and the flexibility error against the exact
+value. ``--compare`` also solves the small cases with the direct solver and with AMG-CG (the crossover
+behind ``fea.solver.DIRECT_MAX_DOFS``); ``--rtol`` shows how the CG tolerance moves the flexibility.
+
+    python benchmarks/bench_fea.py                 # series up to ~300k dofs (default make bench)
+    python benchmarks/bench_fea.py --sizes 2.4     # the ~1M dof case alone (run it once: ~minutes)
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import resource
+import subprocess
+import sys
+import time
+
+SERIES_MM = (8.3, 6.1, 5.2, 3.6)          # ~24k, 60k, 100k, 300k P2 dofs
+COMPARE_MM = (12.0, 8.3, 6.1)             # ~8k, 24k, 60k: direct vs AMG
+
+
+def one_case(h_mm: float, method: str, rtol: float) -> dict:
+    from strainwave.fea import shaft_torsion as st
+    from strainwave.fea import solver
+    from strainwave.fea.assembly import Lame
+    from strainwave.fea.meshing import mesh_part
+    from strainwave.fea.session import gmsh_session
+    from strainwave.fea.static import solve_static
+    from strainwave.fea.torsion_load import mean_rotation_rad, saint_venant_traction
+    from strainwave.params import load_params
+    import math
+    import warnings
+    warnings.simplefilter("ignore")
+    params = load_params()
+    part = st._build(params, None)
+    t0 = time.perf_counter()
+    with gmsh_session() as model:
+        md = mesh_part(model, part, size_mm=h_mm, order=2)
+    t_mesh = time.perf_counter() - t0
+    sh, mat = params.output_shaft, params.material
+    J = math.pi / 32 * (sh.outer_diameter_mm ** 4 - sh.inner_diameter_mm ** 4)
+    T = params.gear.output_torque_Nmm
+    solver.DEFAULT_RTOL = rtol
+    old = solver.solve_elasticity.__kwdefaults__["rtol"]
+    solver.solve_elasticity.__kwdefaults__["rtol"] = rtol
+    sol = solve_static(md, Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio), fixed={"fixed": 0.0},
+                       tractions={"loaded": saint_venant_traction(T, J)}, method=method)
+    solver.solve_elasticity.__kwdefaults__["rtol"] = old
+    lam = mean_rotation_rad(sol, "loaded") / T
+    return {"h_mm": h_mm, "dofs": int(sol.u.size), "elements": int(md.cells.shape[0]), "method": sol.solver.method,
+            "iterations": sol.solver.iterations, "rtol": rtol, "mesh_s": round(t_mesh, 2),
+            "assembly_s": round(sol.timings_s["assembly"], 2), "solve_s": round(sol.timings_s["solve"], 2),
+            "total_s": round(t_mesh + sol.timings_s["assembly"] + sol.timings_s["solve"], 2),
+            "peak_GB": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e6, 2),
+            "rel_error": lam / st.exact_flexibility(params) - 1.0, "flexibility": lam}
+
+
+def run_child(h_mm: float, method: str, rtol: float) -> dict:
+    out = subprocess.run([sys.executable, __file__, "--one", str(h_mm), "--method", method, "--rtol", str(rtol)],
+                         capture_output=True, text=True, env={**os.environ, "OMP_NUM_THREADS": os.environ.get("OMP_NUM_THREADS", "2")})
+    if out.returncode != 0:
+        return {"h_mm": h_mm, "method": method, "error": out.stderr.strip().splitlines()[-1:]}
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def show(row: dict) -> None:
+    if "error" in row:
+        print(f"h {row['h_mm']:5.2f} {row['method']:7s} FAILED {row['error']}", flush=True)
+        return
+    print(f"h {row['h_mm']:5.2f}  dofs {row['dofs']:8d}  {row['method']:8s} its {row['iterations']:4d}  "
+          f"mesh {row['mesh_s']:6.2f} s  assembly {row['assembly_s']:6.2f} s  solve {row['solve_s']:6.2f} s  "
+          f"total {row['total_s']:6.2f} s  peak {row['peak_GB']:5.2f} GB  error {row['rel_error']:+.2e}", flush=True)
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--one", type=float)
+    ap.add_argument("--method", default="auto")
+    ap.add_argument("--rtol", type=float, default=1e-10)
+    ap.add_argument("--sizes", type=float, nargs="*", default=list(SERIES_MM))
+    ap.add_argument("--compare", action="store_true", help="direct vs AMG-CG on the small sizes")
+    ap.add_argument("--rtol-study", type=float, default=None, metavar="H", help="CG rtol 1e-8/1e-10/1e-12 at size H")
+    args = ap.parse_args()
+    if args.one is not None:
+        print(json.dumps(one_case(args.one, args.method, args.rtol)))
+        return 0
+    print(f"FEA benchmark: output-shaft torsion, P2 curved, uncracked ({os.cpu_count()} cores)", flush=True)
+    for h in args.sizes:
+        show(run_child(h, "auto", args.rtol))
+    if args.compare:
+        print("-- direct vs AMG-CG", flush=True)
+        for h in COMPARE_MM:
+            for m in ("direct", "amg"):
+                show(run_child(h, m, args.rtol))
+    if args.rtol_study:
+        print("-- CG tolerance", flush=True)
+        rows = [run_child(args.rtol_study, "amg", r) for r in (1e-8, 1e-10, 1e-12)]
+        for r in rows:
+            show(r)
+            if "error" not in r:
+                print(f"   rtol {r['rtol']:.0e}: flexibility differs from rtol 1e-12 by "
+                      f"{r['flexibility'] / rows[-1]['flexibility'] - 1:+.2e}", flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
