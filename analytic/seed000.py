@@ -24,6 +24,23 @@ def flexspline_radii_mm(params) -> dict:
             "pitch": 0.5 * cup.pitch_diameter_mm}
 
 
+def cup_series_model(params, G_MPa: float) -> torsion.CupSeriesFlexibility:
+    """strainwave's series shell model of the cup (tube + diaphragm + hub) on the FEA's geometry.
+
+    The hub, diaphragm and band proportions are those of ``strainwave.geometry.flexspline_cup``
+    (hub radius HUB_RATIO d1, bore HUB_BORE_RATIO d1, height BOSS_HEIGHT_WALLS delta with the diaphragm
+    as its top wall, band BAND_RATIO d1), imported here so the model follows the CAD.
+    """
+    from strainwave.geometry.flexspline_cup import BAND_RATIO, BOSS_HEIGHT_WALLS, HUB_BORE_RATIO, HUB_RATIO
+
+    cup = params.flexspline_cup
+    d1, t = cup.pitch_diameter_mm, cup.wall_thickness_mm
+    return torsion.cup_series_flexibility(
+        d1, t, cup.length_mm, G_MPa, hub_radius_mm=HUB_RATIO * d1, hub_bore_radius_mm=HUB_BORE_RATIO * d1,
+        hub_height_mm=BOSS_HEIGHT_WALLS * t, diaphragm_thickness_mm=t, band_length_mm=BAND_RATIO * d1,
+        diaphragm_z_mm=(BOSS_HEIGHT_WALLS - 0.5) * t)
+
+
 def _dlambda_H(params, K_G0: float, delta_K_G: float, variant: Variant):
     """Extra wave-generator flexibility; None where the published K_G0 - dK_G is not positive."""
     g, cup = params.gear, params.flexspline_cup
@@ -50,6 +67,7 @@ def seed000_summary(params) -> dict:
                                             k_f, k_G, v) for v in Variant}
     lf_Enu = torsion.flexspline_flexibility(cup.pitch_diameter_mm, cup.wall_thickness_mm, cup.length_mm,
                                             G_impl, k_f, k_G, C)
+    series = cup_series_model(params, G_impl)
     lso = {v: torsion.shaft_flexibility(shaft.length_mm, shaft.outer_diameter_mm, shaft.inner_diameter_mm, mu, v)
            for v in Variant}
     lso_Enu = torsion.shaft_flexibility(shaft.length_mm, shaft.outer_diameter_mm, shaft.inner_diameter_mm, G_impl, C)
@@ -102,7 +120,13 @@ def seed000_summary(params) -> dict:
         "k_f": k_f, "k_G": k_G,
         "F_r_N": F_r,
         "lambda_f0": lf[P],
-        "lambda_f0_variants": {"published": lf[P], "corrected": lf[C], "corrected_E_nu": lf_Enu},
+        "lambda_f0_variants": {"published": lf[P], "corrected": lf[C], "corrected_E_nu": lf_Enu,
+                               "series_shell_E_nu": series.total},
+        "lambda_f0_series_shell_parts_E_nu": {
+            **series.to_dict(),
+            "note": ("strainwave's series shell model (not seed 000): tube L_eff/(G J) + annular diaphragm "
+                     "(1/(4 pi G t))(1/r_hub^2 - 1/r_m^2) + hub, G = E/2(1+nu); seed 000's lambda_f0 is the "
+                     "tube alone (times k_f k_G) and omits the diaphragm")},
         "lambda_so0": {"published": lso[P], "corrected": lso[C], "corrected_E_nu": lso_Enu,
                        "table_reconstruction": lso_table,
                        "L_s_implied_by_table_mm": torsion.shaft_length_implied_mm(

@@ -40,6 +40,8 @@ def _fmt(v) -> str:
 
 _ROWS_000 = [
     ("lambda_f0 (published 0.1)", ("lambda_f0_variants", "published"), ("lambda_f0_variants", "corrected"), "rad/(N mm)"),
+    ("lambda_f0 series shell model (strainwave, G = E/2(1+nu))", ("lambda_f0_variants", "series_shell_E_nu"),
+     ("lambda_f0_variants", "series_shell_E_nu"), "rad/(N mm)"),
     ("lambda_so0", ("lambda_so0", "published"), ("lambda_so0", "corrected"), "rad/(N mm)"),
     ("lambda_H0", ("lambda_H0",), ("lambda_H0",), "rad/(N mm)"),
     ("du_H", ("delta_u_H_mm", "published"), ("delta_u_H_mm", "corrected"), "mm"),

@@ -6,6 +6,7 @@ Seed 000 uses the shear modulus mu directly (8e4 MPa), not E/(2(1+nu)).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 from .variant import Variant
 
@@ -141,3 +142,75 @@ def shares(lambda_H: float, lambda_f: float, lambda_so: float) -> tuple[float, f
     """Fractions of lambda_sum carried by wave generator, flexspline and output shaft."""
     total = total_flexibility(lambda_H, lambda_f, lambda_so)
     return lambda_H / total, lambda_f / total, lambda_so / total
+
+
+@dataclass(frozen=True)
+class CupSeriesFlexibility:
+    """The parts of ``cup_series_flexibility`` in rad/(N*mm): tube, diaphragm and hub in series."""
+
+    tube: float
+    diaphragm: float
+    hub: float
+
+    @property
+    def total(self) -> float:
+        return self.tube + self.diaphragm + self.hub
+
+    def to_dict(self) -> dict:
+        return {"tube": self.tube, "diaphragm": self.diaphragm, "hub": self.hub, "total": self.total}
+
+
+def tube_effective_length_mm(length_mm: float, band_length_mm: float, diaphragm_z_mm: float) -> float:
+    """Twisted length of the tube between the diaphragm mid-plane and the band's mean rotation.
+
+    The torque T enters the band (the last b of the tube, up to z = L) uniformly per unit length, so the
+    internal torque falls linearly from T at the band start to 0 at the rim. With x measured from the
+    band start, the twist in the band is phi(x) = phi_b + T/(G J) (x - x^2/(2b)); its mean over the band
+    is phi_b + T/(G J) (b/2 - b/6), hence L_eff = (L - b - z_d) + b/3.
+    """
+    return length_mm - band_length_mm - diaphragm_z_mm + band_length_mm / 3.0
+
+
+def cup_series_flexibility(d1_mm: float, wall_mm: float, length_mm: float, G_MPa: float, *,
+                           hub_radius_mm: float, hub_bore_radius_mm: float, hub_height_mm: float,
+                           diaphragm_thickness_mm: float, band_length_mm: float,
+                           diaphragm_z_mm: float) -> CupSeriesFlexibility:
+    """Torsional flexibility of a cup: tube + annular diaphragm + hub in series (strainwave's own model).
+
+    Not a seed formula: seed 000's lambda_f0 is a bare tube of length L (scaled by k_f k_G) and has no
+    diaphragm term, yet the diaphragm is about as compliant as the tube. Parameters
+    (lengths in mm, G in MPa; the cup's z runs from the clamped hub face z = 0 to the rim z = L):
+
+    Parameters
+    ----------
+    d1_mm, wall_mm, length_mm : float
+        Outer diameter of the wall, wall thickness delta, cup length L (clamped face to open rim).
+    G_MPa : float
+        Shear modulus.
+    hub_radius_mm, hub_bore_radius_mm, hub_height_mm : float
+        Hub (boss) outer radius, bore radius and height; the diaphragm must lie on it.
+    diaphragm_thickness_mm, diaphragm_z_mm : float
+        Diaphragm thickness t and the z of its mid-plane.
+    band_length_mm : float
+        Axial length b of the loaded band at the rim (uniform torque per length; twist averaged over it).
+
+    Returns
+    -------
+    CupSeriesFlexibility
+        - tube: L_eff/(G J), J = pi/32 (d1^4 - (d1 - 2 delta)^4), L_eff from ``tube_effective_length_mm``;
+        - diaphragm: an annular plate in pure shear tau = T/(2 pi r^2 t), so dphi/dr = T/(2 pi G t r^3),
+          integrated from the hub radius to the wall mid-surface r_m = (d1 - delta)/2:
+          (1/(4 pi G t)) (1/r_hub^2 - 1/r_m^2);
+        - hub: a solid annulus r_bore..r_hub twisted from the clamped face to the diaphragm mid-plane,
+          z_d/(G pi/2 (r_hub^4 - r_bore^4)).
+        Ignored: the wall-diaphragm and hub-diaphragm junctions (fillet, local warping of the corners).
+    """
+    if not 0.0 < diaphragm_z_mm <= hub_height_mm or not 0.0 <= hub_bore_radius_mm < hub_radius_mm:
+        raise ValueError("the diaphragm must lie on a hub with a bore smaller than it")
+    J_tube = math.pi / 32.0 * (d1_mm ** 4 - (d1_mm - 2.0 * wall_mm) ** 4)
+    tube = tube_effective_length_mm(length_mm, band_length_mm, diaphragm_z_mm) / (G_MPa * J_tube)
+    r_m = 0.5 * (d1_mm - wall_mm)
+    diaphragm = (1.0 / hub_radius_mm ** 2 - 1.0 / r_m ** 2) / (4.0 * math.pi * G_MPa * diaphragm_thickness_mm)
+    J_hub = 0.5 * math.pi * (hub_radius_mm ** 4 - hub_bore_radius_mm ** 4)
+    hub = diaphragm_z_mm / (G_MPa * J_hub)
+    return CupSeriesFlexibility(tube, diaphragm, hub)

@@ -75,3 +75,60 @@ def test_K_G_from_crack_displacement():
     K = torsion.radial_stiffness_with_crack_N_per_mm(K0, du, F)
     assert F / K == pytest.approx(F / K0 + du, rel=1e-12)
     assert torsion.radial_stiffness_with_crack_N_per_mm(K0, du, F, Variant.PUBLISHED) == pytest.approx(K0 - F / du, rel=1e-12)
+
+
+def _cup(**kw):
+    d1, t = 160.0, 2.24
+    args = dict(hub_radius_mm=0.25 * d1, hub_bore_radius_mm=0.1 * d1, hub_height_mm=4 * t,
+                diaphragm_thickness_mm=t, band_length_mm=0.2 * d1, diaphragm_z_mm=3.5 * t)
+    args.update(kw)
+    return torsion.cup_series_flexibility(d1, t, 160.0, 80769.0, **args)
+
+
+def test_cup_series_tube_reduces_to_L_over_GJ():
+    # band -> 0 and no diaphragm (the tube from z = 0, no hub length): L/(G J) of the hollow tube exactly
+    d1, t, L, G = 160.0, 2.24, 160.0, 80769.0
+    parts = torsion.cup_series_flexibility(d1, t, L, G, hub_radius_mm=40.0, hub_bore_radius_mm=16.0,
+                                           hub_height_mm=1e-12, diaphragm_thickness_mm=t, band_length_mm=0.0,
+                                           diaphragm_z_mm=1e-12)
+    J = math.pi / 32 * (d1 ** 4 - (d1 - 2 * t) ** 4)
+    assert parts.tube == pytest.approx(L / (G * J), rel=1e-12)   # z_d = 1e-12 mm of 160 mm
+    assert parts.hub < 1e-22                                       # 1e-12 mm of hub
+    # the pi/32 tube equals seed 000's corrected lambda_f0 without k_f k_G
+    tube = torsion.flexspline_flexibility(d1, t, L, G, 1.0, 1.0, Variant.CORRECTED)
+    assert parts.tube == pytest.approx(tube, rel=1e-12)
+
+
+def test_cup_series_terms_against_numerical_integration():
+    from scipy.integrate import dblquad, quad
+
+    d1, t, L, G = 160.0, 2.24, 160.0, 80769.0
+    b, z_d, r_hub, r_bore = 0.2 * d1, 3.5 * t, 40.0, 16.0
+    parts = _cup()
+    r_m = (d1 - t) / 2
+    # diaphragm: dphi/dr = T / (G 2 pi r^3 t) (pure shear tau = T/(2 pi r^2 t), gamma = r dphi/dr), T = 1
+    diaphragm, _ = quad(lambda r: 1.0 / (G * 2 * math.pi * r ** 3 * t), r_hub, r_m, epsabs=0, epsrel=1e-13)
+    # hub and tube: J = int 2 pi r^3 dr over the section
+    J_hub, _ = quad(lambda r: 2 * math.pi * r ** 3, r_bore, r_hub, epsabs=0, epsrel=1e-13)
+    J_tube, _ = quad(lambda r: 2 * math.pi * r ** 3, d1 / 2 - t, d1 / 2, epsabs=0, epsrel=1e-13)
+    # tube: internal torque 1 up to the band, falling linearly to 0 at the rim; twist = its z integral
+    # from the diaphragm mid-plane, averaged over the band (a double integral, no L_eff assumed)
+    z_b = L - b
+    torque = lambda s: 1.0 if s < z_b else (L - s) / b
+    twist = lambda z: quad(lambda s: torque(s) / (G * J_tube), z_d, z, points=[z_b] if z > z_b else None,
+                           epsabs=0, epsrel=1e-13)[0]
+    tube = quad(twist, z_b, L, epsabs=0, epsrel=1e-12)[0] / b
+    # 1e-9: quad's requested relative accuracy is 1e-12..1e-13, far below
+    assert parts.diaphragm == pytest.approx(diaphragm, rel=1e-9)
+    assert parts.hub == pytest.approx(z_d / (G * J_hub), rel=1e-9)
+    assert parts.tube == pytest.approx(tube, rel=1e-9)
+    assert parts.total == pytest.approx(tube + diaphragm + z_d / (G * J_hub), rel=1e-9)
+    # the default cup: the diaphragm is as compliant as the tube (2.04 vs 2.34e-10), the hub ~5 %
+    assert parts.diaphragm / parts.tube == pytest.approx(0.8711, abs=1e-3)
+    assert parts.total == pytest.approx(4.6342e-10, rel=1e-4)
+    assert set(parts.to_dict()) == {"tube", "diaphragm", "hub", "total"}
+
+
+def test_cup_series_rejects_a_diaphragm_off_the_hub():
+    with pytest.raises(ValueError, match="hub"):
+        _cup(diaphragm_z_mm=10.0)

@@ -127,3 +127,39 @@ def test_isolated_case_reports_errors_and_time_limits_instead_of_dying():
     slow = run_isolated("ring-compression", params, {"quick": True}, timeout_s=0.3, progress=lambda m: None)
     assert slow.result is None and "timed out after 0.3 s" in slow.error
     assert slow.seconds < 10.0  # terminated promptly; 10 s covers a loaded 2-core machine
+
+
+def _cup_check(fea_value, gci_abs):
+    from types import SimpleNamespace
+
+    from strainwave.analytic.seed000 import seed000_summary
+    from strainwave.compare.fea_book import FeaBook
+    from strainwave.compare.torsion_checks import cup_flexibility
+
+    params = load_params()
+    q = SimpleNamespace(value=fea_value, uncertainty=gci_abs)
+    outcome = SimpleNamespace(result=SimpleNamespace(quantities={"flexibility_rad_per_Nmm": q}, meta={}),
+                              case=SimpleNamespace(study="cup-torsion"), error=None)
+    return cup_flexibility(FeaBook({"cup": outcome}), "cup", seed000_summary(params), params)
+
+
+def test_cup_check_asserts_the_series_shell_model_not_the_tube():
+    # quick cup-torsion FEA: 4.8537e-10 rad/(N*mm), GCI 0.2759e-11 (measured, see torsion_checks)
+    c = _cup_check(4.8537e-10, 2.759e-12)
+    # corrected = tube 2.3444 + diaphragm 2.0421 + hub 0.2477 (e-10), G = E/2(1+nu)
+    assert c.analytic["corrected"] == pytest.approx(4.6342e-10, rel=1e-4)
+    assert c.analytic["published"] == pytest.approx(2.3588e-10, rel=1e-4)   # seed 000 table value
+    assert c.rel_error["corrected"] == pytest.approx(4.8537 / 4.6342 - 1, rel=1e-3)
+    # 3 x 0.568 % GCI + 6 % junction allowance
+    assert c.tolerance.relative == pytest.approx(3 * 2.759e-12 / 4.8537e-10 + 0.06, rel=1e-9)
+    assert c.passed and c.verdict == "corrected"
+    assert "diaphragm" in c.note and "junction" in c.tolerance.reason
+
+
+def test_cup_check_fails_when_the_fea_matches_only_the_bare_tube():
+    # an FEA cup as stiff as seed 000's tube (no diaphragm compliance) must fail the series model
+    c = _cup_check(2.40e-10, 2.759e-12)
+    assert not c.passed
+    assert c.rel_error["corrected"] == pytest.approx(2.40 / 4.6342 - 1, rel=1e-3)
+    # and 10 % above the model is outside 3 x GCI + 6 %
+    assert not _cup_check(1.10 * 4.6342e-10, 2.759e-12).passed
