@@ -61,7 +61,8 @@ def shaft_flexibility(book: FeaBook, label: str, s000: dict, params) -> Check:
 # hub-diaphragm junction (a short, wide hub loaded at its top rim does not twist as a uniform annulus;
 # the diaphragm's pure-shear field is disturbed near both edges). Both make the real cup more compliant.
 # Measured: FEA vs model +4.74 % (quick, finest h = 8.96 mm, GCI 0.57 %; Richardson +5.21 %),
-# full +4.86 % (finest h = 6.72 mm, GCI 0.24 %; Richardson +5.06 %). The allowance covers that junction compliance with ~1 % margin.
+# full +4.86 % (finest h = 6.72 mm, GCI 0.24 %; Richardson +5.06 %).
+# The allowance covers that junction compliance with ~1 % margin.
 CUP_JUNCTION_ALLOWANCE = 0.06
 
 
