@@ -13,7 +13,7 @@ CHECK_FUNCTIONS = {
     "shaft.flexibility": ("torsion.shaft_flexibility", "torsion.shaft_flexibility_table_reconstruction"),
     "shaft.crack_compliance": ("cracks.shaft_crack_flexibility", "cracks.shaft_crack_flexibility_growing",
                                "cracks.crack_compliance_integral"),
-    "cup.flexibility": ("torsion.flexspline_flexibility",),
+    "cup.flexibility": ("torsion.flexspline_flexibility", "torsion.cup_series_flexibility"),
     "cup.crack_compliance": ("cracks.flexspline_crack_flexibility", "cracks.crack_compliance_integral"),
     "bearing.radial_compliance": ("torsion.wave_generator_flexibility", "torsion.cracked_radial_stiffness_N_per_mm"),
     "bearing.crack_compliance": ("cracks.bearing_displacement_mm", "cracks.bearing_crack_stiffness"),
@@ -53,8 +53,11 @@ def reference_values(params, s000: dict | None = None, s003: dict | None = None)
         "shaft.crack_compliance": entry("shaft.crack_compliance", "rad/(N*mm)", dlso["published"], dlso["corrected"],
                                         "solid-bar K_III; growing-crack integral alongside",
                                         corrected_growing_crack=dlso["corrected_growing_crack"]),
-        "cup.flexibility": entry("cup.flexibility", "rad/(N*mm)", lf["published"], lf["corrected"],
-                                 "includes k_f k_G (0.83 for a cup)", corrected_E_nu=lf["corrected_E_nu"]),
+        "cup.flexibility": entry("cup.flexibility", "rad/(N*mm)", lf["published"], lf["series_shell_E_nu"],
+                                 "published: seed lambda_f0 with k_f k_G (0.83 for a cup), a bare tube; corrected: "
+                                 "strainwave's series shell model (tube + diaphragm + hub, G = E/2(1+nu)); "
+                                 "the seed's formula omits the diaphragm",
+                                 tube_only_pi_over_32=lf["corrected"], tube_only_E_nu=lf["corrected_E_nu"]),
         "cup.crack_compliance": entry("cup.crack_compliance", "rad/(N*mm)", s000["delta_lambda_f"]["published"],
                                       s000["delta_lambda_f"]["corrected"], "r_m = mid-wall radius (d1 - delta)/2"),
         "bearing.radial_compliance": entry("bearing.radial_compliance", "mm/N",

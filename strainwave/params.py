@@ -297,7 +297,7 @@ def _set_dotted(data: dict, dotted_key: str, value: object) -> dict:
     return new
 
 
-_MIN_MAGNITUDE, _MAX_MAGNITUDE = 1e-9, 1e12
+_MAX_MAGNITUDE = 1e12
 
 
 def _coerce(key: str, value: object, annotation: object):
@@ -323,10 +323,10 @@ def _coerce(key: str, value: object, annotation: object):
         value = float(value)
         if not math.isfinite(value):
             raise InputError(key, value, "must be a finite number")
-        if value != 0.0 and not _MIN_MAGNITUDE <= abs(value) <= _MAX_MAGNITUDE:
-            # The closed forms raise lengths to the 6th power and divide by them: beyond these
-            # magnitudes float arithmetic overflows or underflows before any physics is computed.
-            raise InputError(key, value, f"magnitude must lie in [{_MIN_MAGNITUDE:g}, {_MAX_MAGNITUDE:g}] (or be 0)")
+        if abs(value) > _MAX_MAGNITUDE:
+            # The closed forms raise lengths to the 6th power: beyond this magnitude float arithmetic
+            # overflows before any physics is computed.
+            raise InputError(key, value, f"magnitude must be <= {_MAX_MAGNITUDE:g}")
         return value
     if typing.get_origin(annotation) is tuple:
         if not isinstance(value, (list, tuple)):
