@@ -163,17 +163,30 @@ def gear_stiffness(book: FeaBook, labels: dict[str, str], s000: dict, params) ->
     if qf is None or qs is None or lam_H is None:
         return not_evaluated("gear.stiffness", "drive torsional stiffness K_HD (uncracked)", unit,
                              "; ".join(w for w in (why_f, why_s) if w) or "no lambda_H0", analytic=analytic)
+    from ..analytic import torsion
+    from ..analytic.seed000 import cup_series_model
+
     total = lam_H + qf.value + qs.value
     K = 1.0 / total
     # K's relative uncertainty: the FEA parts' absolute uncertainties over the total compliance.
     unc = K * ((qf.uncertainty or 0.0) + (qs.uncertainty or 0.0)) / total
-    reason, gap = mu_gap(params)
-    share_fea = (qf.value + qs.value) / total
-    allowances = {f"{reason}, on the FEA share {100 * share_fea:.0f} % of the compliance": gap * share_fea}
+    # The corrected drive stiffness uses the corrected members the component checks assert: the series shell
+    # cup and the hollow shaft, both with G = E/2(1+nu) like the FEA (so no mu-vs-E/2(1+nu) gap enters).
+    G = params.material.implied_shear_modulus_MPa
+    sh = params.output_shaft
+    cup_model = cup_series_model(params, G).total
+    shaft_model = torsion.shaft_flexibility(sh.length_mm, sh.outer_diameter_mm, sh.inner_diameter_mm, G,
+                                            Variant.CORRECTED)
+    analytic = {**analytic, "corrected": 1.0 / (lam_H + cup_model + shaft_model)}
+    share_cup = qf.value / total
+    allowances = {f"cup junctions the series model omits, on the cup share {100 * share_cup:.0f} % of the "
+                  "compliance": CUP_JUNCTION_ALLOWANCE * share_cup}
     tol = fea_tolerance(K, unc, allowances=allowances)
     note = (f"lambda_H0 = {lam_H:.5g} (analytic: seed 000 with K_G0 = {s000.get('K_G0_N_per_mm')} N/mm), "
             f"lambda_f0 = {qf.value:.5g} (FEA {labels['cup']}), lambda_so0 = {qs.value:.5g} (FEA "
-            f"{labels['shaft']}) {FLEX_UNIT}; the seed prints K_HD 10^3 too small (audit 14)")
+            f"{labels['shaft']}) {FLEX_UNIT}; published = seed 000's K_HD (its lambda_f0 and solid-shaft "
+            f"lambda_so0, mu); corrected = 1/(lambda_H0 + series shell cup {cup_model:.5g} + hollow shaft "
+            f"{shaft_model:.5g}), G = E/2(1+nu); the seed prints K_HD 10^3 too small (audit 14)")
     sources = {"lambda_H0": "analytic (seed 000, K_G0 from its table)", "lambda_f0": f"FEA {labels['cup']}",
                "lambda_so0": f"FEA {labels['shaft']}"}
     return evaluate(Check("gear.stiffness", "drive torsional stiffness K_HD (uncracked)", unit, K, unc,

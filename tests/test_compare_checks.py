@@ -87,9 +87,15 @@ def test_thin_ring_shape_reproduces_seed_003_eqs_3_and_4():
 
 def test_plan_sweeps_reach_half_the_wall_and_stay_inside_it():
     params = load_params()
-    plan = make_plan(params, quick=True)
+    plan = make_plan(params, quick=False)
     wall = params.output_shaft.wall_mm
     depths = [c.crack_depth_mm for c in plan.sweeps["shaft"]]
+    assert plan.headline["shaft"].crack_depth_mm == params.cracks.depth_mm  # the full run keeps the seed's depth
+    quick = make_plan(params, quick=True)
+    # --quick: one case per component, at the deepest crack, which must be the full sweep's deepest one
+    assert [c.crack_depth_mm for c in quick.headline.values()] == [max(c.crack_depth_mm for c in plan.sweeps[k])
+                                                                   for k in quick.headline]
+    assert all(not s for s in quick.sweeps.values())
     assert max(depths) == pytest.approx(wall / 2, rel=1e-2)  # 3-digit rounding of the depths
     assert all(d < wall for d in depths)
     assert len(sweep_depths_mm(wall, 4)) == 4
