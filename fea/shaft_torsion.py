@@ -19,7 +19,7 @@ from .assembly import Lame
 from .fields import nodal_displacement, nodal_stress, von_mises, write_vtu
 from .meshing import MeshingFailed, Refine, mesh_part
 from .refinement import DEFAULT_RATIO, converged_quantity, refinement_sizes
-from .result import Quantity, StudyResult
+from .result import StudyResult
 from .session import gmsh_session
 from .static import StaticSolution, solve_static
 from .torsion_load import mean_rotation_rad, saint_venant_traction
