@@ -11,14 +11,14 @@ from __future__ import annotations
 import math
 import time
 
-from ..errors import InputError, StageError
+from ..errors import InputError
 from .assembly import Lame
 from .fields import nodal_displacement, nodal_stress, von_mises, write_vtu
-from .meshing import MeshingFailed, Refine, mesh_part
+from .meshing import Refine
 from .refinement import DEFAULT_RATIO, converged_quantity, refinement_sizes
 from .result import StudyResult
-from .session import gmsh_session
 from .static import StaticSolution, solve_static
+from .study_mesh import mesh_for_study
 from .torsion_load import mean_rotation_rad, moment_arm_mm3, uniform_tangential_traction
 
 STUDY = "cup-torsion"
@@ -59,14 +59,7 @@ def solve_once(part, params, *, h_mm: float, order: int, refine=(), progress=lam
                ) -> tuple[float, StaticSolution, float, float]:
     """(lambda_f, solution for unit shear, applied torque of the unit shear, mesh time)."""
     mat = params.material
-    t0 = time.perf_counter()
-    progress(f"{STUDY}: meshing h = {h_mm:.3g} mm")
-    try:
-        with gmsh_session() as model:
-            md = mesh_part(model, part, size_mm=h_mm, order=order, refine=list(refine))
-    except MeshingFailed as exc:
-        raise StageError("mesh", STUDY, str(exc)) from exc
-    t_mesh = time.perf_counter() - t0
+    md, t_mesh = mesh_for_study(part, study=STUDY, h_mm=h_mm, order=order, refine=refine, progress=progress)
     sol = solve_static(md, Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio), fixed={"fixed": 0.0},
                        tractions={"loaded": uniform_tangential_traction(1.0, 1.0)}, study=STUDY, progress=progress,
                        # thin walls: the matrix graph is nearly 2D, so Cholesky fill stays small, while

@@ -117,7 +117,6 @@ def mid_layer(basis, u, r_m_mm: float, z_mm: float | None = None) -> MidLayer:
     """Displacement of the mid-layer points C, D, A, B (probes: the FE interpolant at the exact points)."""
     xy = np.array([[0.0, 0.0, -r_m_mm, r_m_mm], [-r_m_mm, r_m_mm, 0.0, 0.0]])
     pts = xy if z_mm is None else np.vstack([xy, np.full(4, z_mm)])
-    dim = pts.shape[0]
     cells = find_cells(basis.mesh, pts)
     ref = basis.mapping.invF(pts[:, :, None], tind=cells)
     values = []

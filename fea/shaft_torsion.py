@@ -12,16 +12,15 @@ import math
 import time
 from typing import Callable, Sequence
 
-import numpy as np
 
-from ..errors import InputError, StageError
+from ..errors import InputError
 from .assembly import Lame
 from .fields import nodal_displacement, nodal_stress, von_mises, write_vtu
-from .meshing import MeshingFailed, Refine, mesh_part
+from .meshing import Refine
 from .refinement import DEFAULT_RATIO, converged_quantity, refinement_sizes
 from .result import StudyResult
-from .session import gmsh_session
 from .static import StaticSolution, solve_static
+from .study_mesh import mesh_for_study
 from .torsion_load import mean_rotation_rad, saint_venant_traction
 
 STUDY = "shaft-torsion"
@@ -54,14 +53,7 @@ def solve_once(part, params, *, h_mm: float, order: int, refine: Sequence[Refine
     sh, mat = params.output_shaft, params.material
     T = params.gear.output_torque_Nmm
     J = math.pi / 32.0 * (sh.outer_diameter_mm ** 4 - sh.inner_diameter_mm ** 4)
-    t0 = time.perf_counter()
-    progress(f"{STUDY}: meshing h = {h_mm:.3g} mm")
-    try:
-        with gmsh_session() as model:
-            md = mesh_part(model, part, size_mm=h_mm, order=order, refine=list(refine))
-    except MeshingFailed as exc:
-        raise StageError("mesh", STUDY, str(exc)) from exc
-    t_mesh = time.perf_counter() - t0
+    md, t_mesh = mesh_for_study(part, study=STUDY, h_mm=h_mm, order=order, refine=refine, progress=progress)
     sol = solve_static(md, Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio), fixed={"fixed": 0.0},
                        tractions={"loaded": saint_venant_traction(T, J)}, study=STUDY, progress=progress)
     return mean_rotation_rad(sol, "loaded") / T, sol, t_mesh

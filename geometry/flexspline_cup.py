@@ -38,7 +38,7 @@ def _profile(fc, z_top: float, split_at: float | None):
     """Half section (x = radius, z) of the revolved body from z = 0 to ``z_top``."""
     from build123d import Edge, Face, Wire
 
-    d1, t, length = fc.pitch_diameter_mm, fc.wall_thickness_mm, fc.length_mm
+    d1, t = fc.pitch_diameter_mm, fc.wall_thickness_mm
     r_o, r_i = d1 / 2, d1 / 2 - t
     E = Edge.make_line
     pts_outer = [(r_o, 0, z) for z in ([split_at] if split_at else [])] + [(r_o, 0, z_top)]

@@ -13,7 +13,7 @@ import math
 import tomllib
 import typing
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 

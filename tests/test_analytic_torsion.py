@@ -100,7 +100,7 @@ def test_cup_series_tube_reduces_to_L_over_GJ():
 
 
 def test_cup_series_terms_against_numerical_integration():
-    from scipy.integrate import dblquad, quad
+    from scipy.integrate import quad
 
     d1, t, L, G = 160.0, 2.24, 160.0, 80769.0
     b, z_d, r_hub, r_bore = 0.2 * d1, 3.5 * t, 40.0, 16.0

@@ -1,7 +1,6 @@
 """Bad input on the command line or in a parameter file: exit 2 and one line, never a traceback or a hang."""
 import subprocess
 
-import pytest
 from hypothesis import HealthCheck, given, settings, strategies as st
 
 from strainwave.cli import main

@@ -15,7 +15,7 @@ from strainwave.analytic.thick_ring import RingSection, deflections_mm, winkler_
 from strainwave.fea.assembly import Lame
 from strainwave.fea.convergence import Convergence
 from strainwave.fea.ring_compression import contact_load, ring_geometry, reference_force_N, run
-from strainwave.fea.ring_loads import ArcLoad, point_load_factors, thin_ring_deflections_mm, thin_ring_moment_Nmm
+from strainwave.fea.ring_loads import point_load_factors, thin_ring_deflections_mm, thin_ring_moment_Nmm
 from strainwave.fea.ring_plane import solve_ring_section
 from strainwave.params import load_params
 

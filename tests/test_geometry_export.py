@@ -4,7 +4,6 @@ from __future__ import annotations
 import subprocess
 import warnings
 
-import numpy as np
 import pytest
 
 from strainwave.errors import InputError

@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from strainwave.errors import InputError
-from strainwave.geometry.involute import ToothSpec, gear_face, polygon_area_mm2, tooth_polyline_mm
+from strainwave.geometry.involute import ToothSpec, polygon_area_mm2, tooth_polyline_mm
 from strainwave.geometry.parts import build_part
 from strainwave.params import load_params
 
