@@ -64,7 +64,7 @@ def wired(tmp_path_factory):
     out = tmp_path_factory.mktemp("artifacts")
     params = load_params()
     summary = analytic_summary(params)
-    plan = make_plan(params, quick=True)
+    plan = make_plan(params, quick=False)   # the full plan: a shaft sweep of several depths to fit
     refs = summary["checks"]
     r_m = summary["seed003"]["geometry"]["r_m_mm"]
     delta_cd = refs["ring.delta_cd"]["corrected"]
