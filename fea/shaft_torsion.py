@@ -17,7 +17,7 @@ from ..errors import InputError
 from .assembly import Lame
 from .fields import nodal_displacement, nodal_stress, von_mises, write_vtu
 from .meshing import Refine
-from .refinement import DEFAULT_RATIO, converged_quantity, refinement_sizes
+from .refinement import DEFAULT_RATIO, crack_flexibility_quantities, refinement_sizes
 from .result import StudyResult
 from .static import StaticSolution, solve_static
 from .study_mesh import mesh_for_study
@@ -108,12 +108,7 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
             timings["solve"] += sol.timings_s["solve"]
             finest = sol
     lam0, lam1 = lam0[::-1], lam1[::-1]             # finest first, like ``sizes``
-    quantities = {"flexibility_rad_per_Nmm": converged_quantity("flexibility_rad_per_Nmm", UNIT, sizes, lam0)}
-    if cracked is not None:
-        quantities["cracked_flexibility_rad_per_Nmm"] = converged_quantity(
-            "cracked_flexibility_rad_per_Nmm", UNIT, sizes, lam1)
-        quantities["delta_flexibility_rad_per_Nmm"] = converged_quantity(
-            "delta_flexibility_rad_per_Nmm", UNIT, sizes, [c - u for c, u in zip(lam1, lam0)])
+    quantities = crack_flexibility_quantities(sizes, lam0, lam1 if cracked is not None else None, UNIT)
     fields = _write_fields(vtu, finest) if finest is not None else ()
     mesh_q = finest.md.quality if finest is not None else cache[(sizes[0], order)][1]
     mat = params.material
