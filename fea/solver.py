@@ -62,7 +62,8 @@ def rigid_body_modes(coords: np.ndarray, dim: int) -> np.ndarray:
 
 def solve_elasticity(K: sp.spmatrix, f: np.ndarray, *, fixed_dofs: np.ndarray, fixed_values: np.ndarray | float = 0.0,
                      coords: np.ndarray, dim: int, method: str = "auto", rtol: float = DEFAULT_RTOL,
-                     maxiter: int = 2000, study: str = "fea") -> tuple[np.ndarray, SolverInfo]:
+                     maxiter: int = 2000, study: str = "fea",
+                     p2_element_dofs: np.ndarray | None = None) -> tuple[np.ndarray, SolverInfo]:
     """Solve the condensed system for the free dofs; fixed dofs take ``fixed_values``.
 
     Parameters
@@ -71,6 +72,8 @@ def solve_elasticity(K: sp.spmatrix, f: np.ndarray, *, fixed_dofs: np.ndarray, f
     fixed_dofs, fixed_values : Dirichlet dofs and their prescribed displacements (mm).
     coords : (dim, n_scalar) scalar dof positions, for the rigid-body near-nullspace.
     method : "auto" (direct up to DIRECT_MAX_DOFS free dofs), "direct" or "amg".
+    p2_element_dofs : (nloc, nel) scalar P2 element dofs (scikit-fem order); with them "amg" is a
+        p-multigrid (P2 -> P1 on the same mesh -> smoothed aggregation), see ``pmultigrid``.
     Raises StageError("solve", study, ...) when CG does not reach ``rtol`` in ``maxiter`` iterations.
     """
     t0 = time.perf_counter()
@@ -81,9 +84,9 @@ def solve_elasticity(K: sp.spmatrix, f: np.ndarray, *, fixed_dofs: np.ndarray, f
     mask = np.ones(N, bool)
     mask[fixed] = False
     free = np.flatnonzero(mask)
-    K = K.tocsr()
-    Kff = K[free][:, free]
-    b = f[free] - K[free][:, fixed] @ u[fixed]
+    Kf = K.tocsr()[free]
+    b = f[free] - Kf @ u          # u holds only the prescribed values yet
+    Kff = Kf[:, free]
     nb = np.linalg.norm(b)
     if nb == 0.0:
         return u, SolverInfo("none", free.size, 0, 0.0, time.perf_counter() - t0)
@@ -93,23 +96,7 @@ def solve_elasticity(K: sp.spmatrix, f: np.ndarray, *, fixed_dofs: np.ndarray, f
         x, name = _direct(Kff, b, study)
         its = 1
     else:
-        import pyamg
-        B = rigid_body_modes(coords, dim)[free]
-        node_complete = free.size % dim == 0 and np.array_equal(free.reshape(-1, dim) % dim,
-                                                                np.tile(np.arange(dim), (free.size // dim, 1)))
-        A = Kff.tobsr(blocksize=(dim, dim)) if node_complete else Kff
-        ml = pyamg.smoothed_aggregation_solver(A, B=B, symmetry="hermitian", strength=("symmetric", {"theta": 0.0}),
-                                               smooth="jacobi", max_coarse=500, coarse_solver="splu",
-                                               # the rigid-body modes are the exact near-nullspace: relaxing
-                                               # them first halved the setup (9.5 -> 4.7 s, 150k) for 0 iterations
-                                               improve_candidates=None,
-                                               # pinv (the default) took 8 s of SVD on a 2-level hierarchy at 60k
-                                               # one forward GS sweep before, one backward after: a
-                                               # symmetric V-cycle at 1/3 the cost of pyamg's default
-                                               # symmetric sweeps (measured 0.10 vs 0.37 s per cycle at
-                                               # 150k dofs; 1.4x the iterations, 2.5x faster overall)
-                                               presmoother=("gauss_seidel", {"sweep": "forward"}),
-                                               postsmoother=("gauss_seidel", {"sweep": "backward"}))
+        ml = _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs)
         res = []
         x = ml.solve(b, tol=rtol, accel="cg", maxiter=maxiter, residuals=res)
         its, name = len(res) - 1, "amg-cg"
@@ -119,6 +106,55 @@ def solve_elasticity(K: sp.spmatrix, f: np.ndarray, *, fixed_dofs: np.ndarray, f
                                          f"after {its} iterations ({free.size} dofs)")
     u[free] = x
     return u, SolverInfo(name, int(free.size), int(its), residual, time.perf_counter() - t0)
+
+
+# Symmetric-strength threshold of the aggregation. theta = 0 aggregates across every coupling and
+# needed 85 iterations on the 238k-dof P2 shaft; 0.02 drops the weak P2 couplings: 42 (plain SA) and
+# 26 (P2 -> P1 -> SA), at the same operator complexity (1.10). 0.05 saves 3 more iterations but
+# its setup costs more than they save; 0.1 adds a level and doubles the setup.
+STRENGTH_THETA = 0.02
+
+
+def _aggregation(A, B):
+    """pyamg smoothed aggregation with the rigid-body near-nullspace ``B``."""
+    import pyamg
+    return pyamg.smoothed_aggregation_solver(
+        A, B=B, symmetry="hermitian", strength=("symmetric", {"theta": STRENGTH_THETA}),
+        smooth="jacobi", max_coarse=500, coarse_solver="splu",
+        # the rigid-body modes are the exact near-nullspace: relaxing them first halved the setup
+        # (9.5 -> 4.7 s, 150k) for 0 iterations
+        improve_candidates=None,
+        # one forward GS sweep before, one backward after: a symmetric V-cycle at 1/3 the cost of
+        # pyamg's default symmetric sweeps (0.10 vs 0.37 s per cycle at 150k dofs; 1.4x the
+        # iterations, 2.5x faster overall)
+        presmoother=SMOOTHERS[0], postsmoother=SMOOTHERS[1])
+
+
+SMOOTHERS = (("gauss_seidel", {"sweep": "forward"}), ("gauss_seidel", {"sweep": "backward"}))
+
+
+def _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs):
+    """Smoothed aggregation with the rigid-body modes; for P2, preceded by the P1 level (p-multigrid).
+
+    Node blocks (BSR dim x dim) when the free dofs come in whole nodes: pyamg then aggregates nodes,
+    not single components."""
+    import pyamg
+    from pyamg.multilevel import MultilevelSolver
+    node_complete = free.size % dim == 0 and np.array_equal(
+        free.reshape(-1, dim) % dim, np.tile(np.arange(dim), (free.size // dim, 1)))
+    B = rigid_body_modes(coords, dim)
+    if p2_element_dofs is None or not node_complete:
+        return _aggregation(Kff.tobsr(blocksize=(dim, dim)) if node_complete else Kff, B[free])
+    from .pmultigrid import p1_prolongation, vector_prolongation
+    P, coarse_free = vector_prolongation(p1_prolongation(p2_element_dofs)[0], dim, free)
+    coarse = _aggregation((P.T @ Kff @ P).tobsr(blocksize=(dim, dim)), B[coarse_free])
+    fine = MultilevelSolver.Level()
+    fine.A = Kff.tobsr(blocksize=(dim, dim))
+    fine.P = P.tobsr(blocksize=(dim, dim))
+    fine.R = fine.P.T.tobsr(blocksize=(dim, dim))
+    ml = MultilevelSolver([fine] + coarse.levels, coarse_solver="splu")
+    pyamg.relaxation.smoothing.change_smoothers(ml, presmoother=SMOOTHERS[0], postsmoother=SMOOTHERS[1])
+    return ml
 
 
 def _direct(A: sp.csr_matrix, b: np.ndarray, study: str) -> tuple[np.ndarray, str]:

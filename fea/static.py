@@ -92,7 +92,8 @@ def solve_static(md: MeshData, lame: Lame, *, fixed: Mapping[str, float | np.nda
     t["assembly"] = time.perf_counter() - t0
     progress(f"{study}: solving ({K.shape[0]} dofs)")
     u, info = solve_elasticity(K, f, fixed_dofs=all_dofs, fixed_values=all_vals, coords=basis.doflocs, dim=d,
-                               study=study, method=method)
+                               study=study, method=method,
+                               p2_element_dofs=basis.element_dofs if md.order == 2 else None)
     t["solve"] = info.time_s
     progress(f"{study}: {info.method} {info.iterations} iterations, residual {info.residual:.1e}, {info.time_s:.1f} s")
     return StaticSolution(md, sk, basis, u, lame, info, t)
