@@ -217,7 +217,8 @@ def mesh_part(model, part, *, size_mm: float, order: int = 2, refine: Sequence[R
     Parameters
     ----------
     model : the ``gmsh.model`` yielded by ``gmsh_session``.
-    part : ``geometry.part.Part`` (solid in mm, named faces as FaceRef tuples).
+    part : ``geometry.part.Part`` (solid in mm, named faces as FaceRef tuples). A part with a
+        ``crack_surface`` (CrackModel.SEAM) gets it embedded as the conforming internal group "crack".
     size_mm : global element size; ``refine`` adds local sizes (crack front points, named faces).
     order : 1 (straight P1) or 2 (curved P2).
     """
@@ -226,11 +227,12 @@ def mesh_part(model, part, *, size_mm: float, order: int = 2, refine: Sequence[R
         raise MeshingFailed(f"{part.name}: the BREP holds no volume")
     bbox = np.array(model.getBoundingBox(-1, -1))
     tol = match_tol_mm if match_tol_mm is not None else 1e-4 * np.linalg.norm(bbox[3:] - bbox[:3]) + 1e-6
-    group_tags = {}
-    for name, refs in part.named_faces.items():
-        tags = _match(model, 2, refs, tol)
+    if getattr(part, "crack_surface", None) is not None:
+        group_tags = _embed_crack(model, part.crack_surface, part.named_faces, tol)
+    else:
+        group_tags = {name: _match(model, 2, refs, tol) for name, refs in part.named_faces.items()}
+    for name, tags in group_tags.items():
         model.addPhysicalGroup(2, tags, name=name)
-        group_tags[name] = tags
     model.addPhysicalGroup(3, [t for _, t in model.getEntities(3)], name="solid")
     _options(size_mm)
     _size_fields(model, size_mm, refine or (), group_tags, 3)
@@ -239,6 +241,67 @@ def mesh_part(model, part, *, size_mm: float, order: int = 2, refine: Sequence[R
     except Exception as exc:  # gmsh raises plain Exception with its log message
         raise MeshingFailed(f"gmsh meshing failed: {exc}") from exc
     return _extract(model, 3, order, {n: (2, t) for n, t in group_tags.items()}, size_mm)
+
+
+def _embed_crack(model, face, named_faces, tol_mm: float) -> dict[str, list[int]]:
+    """Fragment the volume with the crack face so that the face becomes a conforming internal surface,
+    and match the named faces again on the fragmented model.
+
+    Faces the crack mouth does not split keep their centre and area (an internal edge does not change
+    them; the bearing's contact patch) and match as before. A split face (the shaft's outer cylinder,
+    cut in two by a full circumferential mouth) is matched piece by piece: same surface type, inside the
+    original's bounding box. (gmsh's ``out_map`` is not used: with the volume's faces passed as objects
+    it returned tags that no longer held those faces.) Crack pieces outside the solid (the face reaches
+    beyond the free surface) are not embedded by the fragment and are removed. Returns the named groups
+    plus "crack" (the embedded pieces)."""
+    before = {}
+    for name, refs in named_faces.items():
+        tags = _match(model, 2, refs, tol_mm)
+        before[name] = [(model.getType(2, t), np.array(model.getBoundingBox(2, t)), model.occ.getMass(2, t))
+                        for t in tags]
+    with tempfile.TemporaryDirectory(prefix="strainwave-brep-") as tmp:
+        path = Path(tmp) / "crack.brep"
+        _export_brep(face, path)
+        tool = model.occ.importShapes(str(path), highestDimOnly=True)
+    model.occ.synchronize()
+    vols = model.getEntities(3)
+    _, out_map = model.occ.fragment(vols, tool)
+    model.occ.synchronize()
+    pieces = sorted({t for k in range(len(vols), len(out_map)) for d, t in out_map[k] if d == 2})
+    embedded = {t for _, v in model.getEntities(3) for d, t in model.mesh.getEmbedded(3, v) if d == 2}
+    inside = [t for t in pieces if t in embedded]
+    outside = [(2, t) for t in pieces if t not in embedded]
+    if not inside:
+        raise MeshingFailed("the crack surface does not lie inside the solid (nothing to embed)")
+    if outside:
+        model.occ.remove(outside, recursive=True)
+        model.occ.synchronize()
+    free = {t for _, t in model.getEntities(2)} - set(inside)
+    group_tags: dict[str, list[int]] = {}
+    split = {}
+    for name, refs in named_faces.items():
+        try:
+            group_tags[name] = _match(model, 2, refs, tol_mm)
+        except MeshingFailed:
+            split[name] = before[name]
+    free -= {t for tags in group_tags.values() for t in tags}
+    # smallest original first: a piece inside two candidates' boxes belongs to the tighter one
+    for name, olds in sorted(split.items(), key=lambda kv: min(np.prod(o[1][3:] - o[1][:3] + tol_mm) for o in kv[1])):
+        got = []
+        for kind, box, _ in olds:
+            for t in sorted(free):
+                b = np.array(model.getBoundingBox(2, t))
+                if model.getType(2, t) == kind and (b[:3] >= box[:3] - tol_mm).all() and (b[3:] <= box[3:] + tol_mm).all():
+                    got.append(t)
+                    free.discard(t)
+        area = sum(model.occ.getMass(2, t) for t in got)
+        want = sum(o[2] for o in olds)
+        if abs(area - want) > 1e-3 * want:
+            raise MeshingFailed(f"named face set {name!r}: pieces after embedding the crack cover {area:g} "
+                                f"of {want:g} mm^2")
+        group_tags[name] = sorted(got)
+    group_tags["crack"] = inside
+    return group_tags
 
 
 def _surface_from_loops(model, loops: Sequence[np.ndarray]) -> int:

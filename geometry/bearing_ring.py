@@ -8,7 +8,8 @@ Geometry choices (the seed gives t_i and the contact ellipse a' x b' only):
 - ``contact``: a patch imprinted on the race at +x, the rectangle of the contact ellipse's area
   (half sides sqrt(pi)/2 a' axially and sqrt(pi)/2 b' circumferentially), centred at z = width/2;
 - crack: semi-elliptical surface crack at +x in the plane y = 0 (normal to the circumferential stress),
-  depth a, half length c from Q = 1 + 1.464 (a/c)^1.65 (seed 000), centred at z = width/2.
+  depth a, half length c from Q = 1 + 1.464 (a/c)^1.65 (seed 000), centred at z = width/2. As a slot
+  (CAD) or, with ``CrackModel.SEAM``, as the half-ellipse surface ``Part.crack_surface`` on the whole ring.
 """
 from __future__ import annotations
 
@@ -17,9 +18,10 @@ import math
 from strainwave.errors import InputError
 
 from . import faces as F
+from .crack_seams import semi_elliptical_seam
 from .cracks import check_crack, half_length_from_q, semi_elliptical_slot
 from .occ import cut, imprint
-from .part import Part, PartName
+from .part import CrackModel, Part, PartName
 
 WIDTH_OVER_A = 4.0
 RACE_GAP_OVER_T = 1.5
@@ -36,7 +38,8 @@ def _patch_face(r_mm: float, half_theta_rad: float, z0_mm: float, z1_mm: float):
     return Face(BRepBuilderAPI_MakeFace(surf, -half_theta_rad, half_theta_rad, z0_mm, z1_mm, 1e-7).Face())
 
 
-def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) -> Part:
+def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True,
+          crack_model: CrackModel = CrackModel.SLOT) -> Part:
     wg, fc, cg = params.wave_generator, params.flexspline_cup, params.crack_geometry
     t_i = wg.bearing_inner_ring_thickness_mm
     a_c, b_c = wg.contact_semi_axes_mm
@@ -53,7 +56,8 @@ def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) ->
                          "b' is too large for the race circumference")
     z_mid = width / 2
     if crack_depth_mm is not None:  # refuse bad cracks before any CAD work
-        check_crack(crack_depth_mm, t_i, "wave_generator.bearing_inner_ring_thickness_mm", cg.slot_width_mm)
+        check_crack(crack_depth_mm, t_i, "wave_generator.bearing_inner_ring_thickness_mm",
+                    0.0 if crack_model == CrackModel.SEAM else cg.slot_width_mm)
         c = half_length_from_q(crack_depth_mm, params.cracks.surface_crack_shape_factor)
         if c >= hz:
             raise InputError("cracks.surface_crack_shape_factor", params.cracks.surface_crack_shape_factor,
@@ -67,8 +71,11 @@ def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) ->
             "contact_half_sides_mm": (hz, hs), "contact_patch_area_mm2": 4 * hz * hs,
             "contact_ellipse_area_mm2": math.pi * a_c * b_c,
             "volume_closed_form_mm3": math.pi * (r_race ** 2 - r_bore ** 2) * width}
-    slot = None
-    if crack_depth_mm is not None:
+    slot = seam = None
+    if crack_depth_mm is not None and crack_model == CrackModel.SEAM:
+        seam = semi_elliptical_seam(r_race, crack_depth_mm, c, z_mid)
+        meta.update(seam.meta, crack_depth_mm=crack_depth_mm, crack_model=CrackModel.SEAM.value)
+    elif crack_depth_mm is not None:
         slot = semi_elliptical_slot(r_race, crack_depth_mm, c, z_mid, cg.slot_width_mm)
         solid = cut(solid, slot.tool)
         meta.update(slot.meta, crack_depth_mm=crack_depth_mm, slot_width_mm=cg.slot_width_mm,
@@ -88,4 +95,7 @@ def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) ->
         inside = F.select(infos, F.in_box(slot.box_lo, slot.box_hi))
         named["crack_face"] = F.refs(F.select(inside, lambda fi: fi.kind == "plane"))
         named["crack_front"] = F.refs(F.select(inside, lambda fi: fi.kind != "plane"))
+    if seam is not None:
+        return Part(PartName.WG_BEARING_RING, solid, named, seam.front_mm, None, meta, seam.face,
+                    (seam.point_mm, seam.normal))
     return Part(PartName.WG_BEARING_RING, solid, named, slot.front_mm if slot else (), None, meta)

@@ -23,10 +23,11 @@ from strainwave.errors import InputError
 from strainwave.params import CupShape
 
 from . import faces as F
+from .crack_seams import inclined_root_seam
 from .cracks import check_crack, inclined_root_slot
 from .involute import ToothSpec, gear_face, tip_thickness_mm
 from .occ import cut, fuse
-from .part import Part, PartName
+from .part import CrackModel, Part, PartName
 
 BAND_RATIO = 0.2          # tooth face width / d1
 HUB_RATIO, HUB_BORE_RATIO = 0.25, 0.10
@@ -82,7 +83,10 @@ def tooth_spec(params) -> ToothSpec:
     return ToothSpec(fc.teeth, fc.module_mm, 20.0, 1.0, 1.35, internal=False, shift_coef=shift)
 
 
-def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) -> Part:
+def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True,
+          crack_model: CrackModel = CrackModel.SLOT) -> Part:
+    """The cup; a crack as the CAD slot or (``CrackModel.SEAM``) as the root-crack rectangle
+    ``Part.crack_surface`` on the uncracked cup."""
     fc, cg = params.flexspline_cup, params.crack_geometry
     d1, t, length = fc.pitch_diameter_mm, fc.wall_thickness_mm, fc.length_mm
     r_o, r_i = d1 / 2, d1 / 2 - t
@@ -100,7 +104,7 @@ def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) ->
     if crack_depth_mm is not None:  # refuse bad cracks before any CAD work
         # teeth stand on the wall (root circle = d1/2), so the wall under the root is delta either way
         check_crack(crack_depth_mm, t, "flexspline_cup.wall_thickness_mm (wall under the tooth root)",
-                    cg.slot_width_mm)
+                    0.0 if crack_model == CrackModel.SEAM else cg.slot_width_mm)
         c = crack_depth_mm / CRACK_ASPECT
         z_c = cg.flexspline_axial_position_ratio * length
         if not (z_b + c < z_c < length - c):
@@ -127,6 +131,13 @@ def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) ->
     if crack_depth_mm is not None:
         theta = (cg.flexspline_tooth_index + 0.5) * 2 * math.pi / fc.teeth
         opening = 0.5 * spec.root_fillet_mm if teeth else crack_depth_mm
+    if crack_depth_mm is not None and crack_model == CrackModel.SEAM:
+        seam = inclined_root_seam(r_surface, theta, crack_depth_mm, params.cracks.flexspline_crack_angle_deg,
+                                  z_c, c, opening)
+        meta.update(seam.meta, crack_depth_mm=crack_depth_mm, crack_z_mm=z_c, crack_model=CrackModel.SEAM.value)
+        return Part(PartName.FLEXSPLINE_CUP, solid, _named(solid, meta, None, teeth, fc.cup), seam.front_mm, None,
+                    meta, seam.face, (seam.point_mm, seam.normal))
+    if crack_depth_mm is not None:
         slot = inclined_root_slot(r_surface, theta, crack_depth_mm, params.cracks.flexspline_crack_angle_deg,
                                   z_c, c, cg.slot_width_mm, opening)
         solid = cut(solid, slot.tool)

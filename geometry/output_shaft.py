@@ -2,7 +2,8 @@
 
 z runs from 0 (end face ``fixed``) to L_s (end face ``loaded``); ``outer`` and ``bore`` are the
 cylinders. The crack is a slot of depth a from the outer surface at z = ratio * L_s, centred on +x,
-over ``crack_geometry.shaft_arc_deg`` (360 = full circumferential crack).
+over ``crack_geometry.shaft_arc_deg`` (360 = full circumferential crack). ``CrackModel.SEAM`` keeps the
+solid whole and returns the annulus (sector) z = z_c, r_o - a .. r_o as ``Part.crack_surface``.
 """
 from __future__ import annotations
 
@@ -11,17 +12,21 @@ import math
 from strainwave.errors import InputError
 
 from . import faces as F
+from .crack_seams import circumferential_seam
 from .cracks import check_crack, circumferential_slot
 from .occ import cut
-from .part import Part, PartName
+from .part import CrackModel, Part, PartName
 
 
-def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) -> Part:
+def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True,
+          crack_model: CrackModel = CrackModel.SLOT) -> Part:
     sh, cg = params.output_shaft, params.crack_geometry
     r_o, r_i, length = sh.outer_diameter_mm / 2, sh.inner_diameter_mm / 2, sh.length_mm
+    seam = crack_model == CrackModel.SEAM
+    w = 0.0 if seam else cg.slot_width_mm        # a seam has no width to check
     if crack_depth_mm is not None:  # refuse bad cracks before any CAD work
-        check_crack(crack_depth_mm, sh.wall_mm, "output_shaft wall (outer - inner)/2", cg.slot_width_mm)
-        if not cg.slot_width_mm < cg.shaft_axial_position_ratio * length < length - cg.slot_width_mm:
+        check_crack(crack_depth_mm, sh.wall_mm, "output_shaft wall (outer - inner)/2", w)
+        if not w < cg.shaft_axial_position_ratio * length < length - w:
             raise InputError("crack_geometry.shaft_axial_position_ratio", cg.shaft_axial_position_ratio,
                              "the slot must lie inside the shaft length")
     from build123d import Solid
@@ -31,6 +36,12 @@ def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) ->
         solid = cut(solid, Solid.make_cylinder(r_i, length))
     meta = {"outer_radius_mm": r_o, "inner_radius_mm": r_i, "length_mm": length,
             "volume_closed_form_mm3": math.pi * (r_o ** 2 - r_i ** 2) * length}
+    if crack_depth_mm is not None and seam:
+        z_c = cg.shaft_axial_position_ratio * length
+        cs = circumferential_seam(r_o, crack_depth_mm, z_c, cg.shaft_arc_deg)
+        meta.update(cs.meta, crack_depth_mm=crack_depth_mm, crack_model=CrackModel.SEAM.value)
+        return Part(PartName.OUTPUT_SHAFT, solid, _plain_faces(solid, length, r_o, r_i), cs.front_mm, None, meta,
+                    cs.face, (cs.point_mm, cs.normal))
     slot = None
     if crack_depth_mm is not None:
         z_c = cg.shaft_axial_position_ratio * length
@@ -40,13 +51,8 @@ def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) ->
                     slot_volume_mm3=slot.volume_mm3)
         meta["volume_closed_form_mm3"] -= slot.volume_mm3
 
+    named = _plain_faces(solid, length, r_o, r_i)
     infos = F.face_infos(solid)
-    named = {
-        "fixed": F.refs(F.select(infos, F.is_zplane(0.0))),
-        "loaded": F.refs(F.select(infos, F.is_zplane(length))),
-        "outer": F.refs(F.select(infos, F.is_cylinder(r_o))),
-        "bore": F.refs(F.select(infos, F.is_cylinder(r_i))) if r_i > 0 else (),
-    }
     front: tuple = ()
     if slot is not None:
         zc, w = meta["crack_z_mm"], cg.slot_width_mm
@@ -58,3 +64,13 @@ def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) ->
         named["crack_front"] = F.refs(bottom + ends)
         front = slot.front_mm
     return Part(PartName.OUTPUT_SHAFT, solid, named, front, None, meta)
+
+
+def _plain_faces(solid, length: float, r_o: float, r_i: float) -> dict:
+    infos = F.face_infos(solid)
+    return {
+        "fixed": F.refs(F.select(infos, F.is_zplane(0.0))),
+        "loaded": F.refs(F.select(infos, F.is_zplane(length))),
+        "outer": F.refs(F.select(infos, F.is_cylinder(r_o))),
+        "bore": F.refs(F.select(infos, F.is_cylinder(r_i))) if r_i > 0 else (),
+    }

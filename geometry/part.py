@@ -18,6 +18,13 @@ class PartName(enum.Enum):
 
 
 @dataclass(frozen=True)
+class CrackModel(enum.Enum):
+    """How a crack enters the geometry."""
+    SLOT = "slot"    # a CAD slot of width crack_geometry.slot_width_mm cut from the solid (STEP, previews)
+    SEAM = "seam"    # the uncracked solid plus a zero-width crack surface (FEA: same mesh cracked/uncracked)
+
+
+@dataclass(frozen=True)
 class FaceRef:
     center_mm: tuple[float, float, float]
     area_mm2: float
@@ -31,6 +38,9 @@ class Part:
     crack_front_mm: tuple[tuple[float, float, float], ...] = ()   # points along the crack front, for size fields
     section: object | None = None                   # 2D build123d Face (xy plane) for prismatic parts, else None
     meta: dict = field(default_factory=dict)        # key dimensions the tests and FEA read (radii, W0, ...)
+    # SEAM cracks: the planar crack Face (reaching beyond the free surface) and its plane (point, unit normal)
+    crack_surface: object | None = None
+    crack_plane: tuple[tuple[float, float, float], tuple[float, float, float]] | None = None
 
     @property
     def volume_mm3(self) -> float:
