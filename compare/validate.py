@@ -107,13 +107,21 @@ def _shaft_exponent(check_set: CheckSet) -> dict | None:
 
 
 def _run_cases(cases, params, *, fields_dir: Path, cache, quick: bool, progress) -> dict[str, CaseOutcome]:
-    """Solve the cases two at a time: each runs in its own child process (the threads only wait on them),
-    and the machine this targets has two cores. Results keep the plan's order."""
+    """Solve the cases two at a time, longest first: each runs in its own child process (the threads only
+    wait on them), and the machine this targets has two cores. Results keep the plan's order."""
+    from .schedule import durations_file, load_durations, longest_first, save_durations
+
     workers = max(1, min(2, os.cpu_count() or 1))
+    timing_file = durations_file(Path(cache.root), quick)
+    durations = load_durations(timing_file)
     with ThreadPoolExecutor(max_workers=workers) as pool:
-        futures = [pool.submit(run_case, case, params, fields_dir=fields_dir, cache=cache, quick=quick,
-                               order=ORDER, progress=progress) for case in cases]
-        return {case.label: future.result() for case, future in zip(cases, futures)}
+        futures = {case.label: pool.submit(run_case, case, params, fields_dir=fields_dir, cache=cache, quick=quick,
+                                           order=ORDER, progress=progress)
+                   for case in longest_first(cases, durations)}
+        outcomes = {case.label: futures[case.label].result() for case in cases}
+    save_durations(timing_file, [(o.case.label, o.seconds) for o in outcomes.values() if not o.cached],
+                   durations)
+    return outcomes
 
 
 def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str], None]) -> Outcome:
