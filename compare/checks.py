@@ -56,6 +56,7 @@ class Check:
     note: str = ""                               # what is FEA, what is analytic, caveats
     sources: dict[str, str] = field(default_factory=dict)   # ingredient -> "FEA ..." / "analytic ..."
     reason_not_evaluated: str = ""
+    relation: str = "equal"                      # "equal": |rel error| <= tol; "at_most": rel error <= tol
 
     @property
     def component(self) -> str:
@@ -69,7 +70,7 @@ class Check:
                 "rel_error": {k: _finite_or_none(v) for k, v in self.rel_error.items()},
                 "tolerance": self.tolerance.to_dict(), "verdict": self.verdict, "passed": self.passed,
                 "note": self.note, "sources": dict(self.sources),
-                "reason_not_evaluated": self.reason_not_evaluated}
+                "reason_not_evaluated": self.reason_not_evaluated, "relation": self.relation}
 
 
 def _finite_or_none(value):
@@ -86,9 +87,18 @@ def relative_error(fea: float, reference: float) -> float:
     return (fea - reference) / abs(reference)
 
 
-def verdict_of(rel_error: dict[str, float], tolerance: float) -> str:
+RELATIONS = ("equal", "at_most")
+
+
+def within(rel_error: float, tolerance: float, relation: str = "equal") -> bool:
+    """``equal``: |e| <= tol. ``at_most`` (the closed form is an upper bound, e.g. the compliance of a whole
+    assembly against one of its series members): e <= tol."""
+    return (rel_error if relation == "at_most" else abs(rel_error)) <= tolerance
+
+
+def verdict_of(rel_error: dict[str, float], tolerance: float, relation: str = "equal") -> str:
     """Which variant the FEA supports: the one(s) inside the tolerance, else ``neither``."""
-    inside = [v for v in VARIANTS if v in rel_error and abs(rel_error[v]) <= tolerance]
+    inside = [v for v in VARIANTS if v in rel_error and within(rel_error[v], tolerance, relation)]
     if len(inside) == 2:
         return "both"
     return inside[0] if inside else "neither"
@@ -104,8 +114,8 @@ def evaluate(check: Check) -> Check:
         return replace(check, verdict="not evaluated", passed=False,
                        reason_not_evaluated=check.reason_not_evaluated or f"no {check.asserts} closed form")
     errors = {k: relative_error(check.fea, v) for k, v in analytic.items()}
-    verdict = verdict_of(errors, check.tolerance.relative)
-    passed = abs(errors[check.asserts]) <= check.tolerance.relative
+    verdict = verdict_of(errors, check.tolerance.relative, check.relation)
+    passed = within(errors[check.asserts], check.tolerance.relative, check.relation)
     return replace(check, rel_error=errors, verdict=verdict, passed=passed, reason_not_evaluated="")
 
 

@@ -67,7 +67,10 @@ def check_notes(c: dict) -> str:
     parts = [c["note"]] if c["note"] else []
     if c["sources"]:
         parts.append("sources: " + "; ".join(f"{k} = {v}" for k, v in c["sources"].items()))
-    parts.append(f"asserts agreement with the {c['asserts']} form")
+    if c.get("relation") == "at_most":
+        parts.append(f"asserts FEA <= the {c['asserts']} value (an upper bound) within the tolerance")
+    else:
+        parts.append(f"asserts agreement with the {c['asserts']} form")
     return " | ".join(parts)
 
 
