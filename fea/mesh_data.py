@@ -64,6 +64,12 @@ class SkfemMesh:
     mesh: object                 # skfem MeshTet1/MeshTet2/MeshTri1/MeshTri2
     node_to_dof: np.ndarray      # (N,) MeshData node -> skfem scalar dof index
     element: object              # the scalar skfem element matching the order
+    element_dofs: np.ndarray | None = None   # (nloc, nel) scalar dofs of each cell, scikit-fem local order
+
+    @property
+    def doflocs(self) -> np.ndarray:
+        """(dim, n) positions of the scalar dofs (P2: vertices, then the curved mid-edge nodes)."""
+        return self.mesh.doflocs
 
 
 def _pair_keys(pairs: np.ndarray, n: int) -> np.ndarray:
@@ -72,48 +78,66 @@ def _pair_keys(pairs: np.ndarray, n: int) -> np.ndarray:
     return lo * n + hi
 
 
+def _edge_numbering(t: np.ndarray, pairs, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """scikit-fem's edge (3D) / facet (2D) numbering: the sorted vertex pairs in lexicographic order
+    (what ``Mesh.build_entities`` gives), as (edges (2, ne) int32, t2e (len(pairs), nel)).
+
+    One np.unique of int64 keys instead of scikit-fem's np.unique(axis=1) on pairs: 0.03 vs 0.3 s
+    for 45k tets."""
+    keys = _pair_keys(np.stack([np.stack([t[a], t[b]]) for a, b in pairs], axis=1).reshape(2, -1), n)
+    ukeys, t2e = np.unique(keys, return_inverse=True)
+    edges = np.ascontiguousarray(np.vstack([ukeys // n, ukeys % n]).astype(np.int32))
+    return edges, t2e.reshape(len(pairs), t.shape[1])
+
+
 def to_skfem(md: MeshData) -> SkfemMesh:
     """Convert to scikit-fem, P2 mid-edge dofs placed on gmsh's curved mid nodes.
 
-    scikit-fem numbers P2 scalar dofs as vertices first, then one dof per mesh edge in ``mesh.edges``
-    order; the mid node of each gmsh cell edge is looked up by its (sorted) vertex pair.
+    scikit-fem numbers P2 scalar dofs as vertices first, then one dof per mesh edge (3D) / facet (2D)
+    in its lexicographic (sorted vertex pair) order; the P2 mesh is built directly from those dof
+    positions, with that numbering cached in it so scikit-fem does not compute it again.
     """
     import skfem
+
+    from .element_gradients import SKFEM_EDGES
 
     nv = md.n_vertices_per_cell
     vert_nodes = np.unique(md.cells[:, :nv])
     node_to_dof = np.full(md.nodes_mm.shape[0], -1, dtype=np.int64)
     node_to_dof[vert_nodes] = np.arange(vert_nodes.size)
     p = md.nodes_mm[vert_nodes, :md.dim].T.copy()
-    t = node_to_dof[md.cells[:, :nv]].T.copy()
-    if md.dim == 3:
-        p1 = skfem.MeshTet1(p, t)
-        mesh_cls, elem = skfem.MeshTet2, (skfem.ElementTetP1() if md.order == 1 else skfem.ElementTetP2())
-    else:
-        p1 = skfem.MeshTri1(p, t)
-        mesh_cls, elem = skfem.MeshTri2, (skfem.ElementTriP1() if md.order == 1 else skfem.ElementTriP2())
+    t = np.ascontiguousarray(node_to_dof[md.cells[:, :nv]].T.astype(np.int32))
+    three = md.dim == 3
     if md.order == 1:
-        return SkfemMesh(p1, node_to_dof, elem)
-    mesh2 = mesh_cls.from_mesh(p1)
+        mesh = (skfem.MeshTet1 if three else skfem.MeshTri1)(p, t)
+        return SkfemMesh(mesh, node_to_dof, skfem.ElementTetP1() if three else skfem.ElementTriP1(), t)
     n = vert_nodes.size
-    edges_of = p1.edges if md.dim == 3 else p1.facets      # P2 edge dofs: one per edge (3D) / facet (2D)
-    edge_keys = _pair_keys(np.sort(edges_of, axis=0), n)
-    order = np.argsort(edge_keys)
-    doflocs = mesh2.doflocs.copy()
-    for j, (a, b) in enumerate(GMSH_EDGES[md.dim]):
-        keys = _pair_keys(np.vstack([t[a], t[b]]), n)
-        pos = np.searchsorted(edge_keys, keys, sorter=order)
-        edges = order[np.minimum(pos, order.size - 1)]
-        if not np.array_equal(edge_keys[edges], keys):
-            raise ValueError("to_skfem: a gmsh cell edge is not an edge of the scikit-fem mesh")
-        mid = md.cells[:, nv + j]
-        node_to_dof[mid] = n + edges
-        doflocs[:, n + edges] = md.nodes_mm[mid, :md.dim].T
-    from dataclasses import replace
-    mesh2 = replace(mesh2, doflocs=doflocs)
+    edges, t2e = _edge_numbering(t, SKFEM_EDGES[md.dim], n)
+    mids = md.cells[:, nv + np.array(_gmsh_to_skfem(md.dim))].T          # (n_edges_per_cell, nel)
+    edge_node = np.empty(edges.shape[1], np.int64)
+    edge_node[t2e] = mids
+    if not np.array_equal(edge_node[t2e], mids):
+        raise ValueError("to_skfem: cells sharing an edge disagree on its mid node")
+    node_to_dof[edge_node] = n + np.arange(edges.shape[1])
     if (node_to_dof < 0).any():
         raise ValueError("to_skfem: mesh nodes not used by any cell")
-    return SkfemMesh(mesh2, node_to_dof, elem)
+    doflocs = np.vstack([p.T, md.nodes_mm[edge_node, :md.dim]]).T.copy()
+    element_dofs = np.vstack([t, n + t2e])
+    mesh = (skfem.MeshTet2 if three else skfem.MeshTri2)(doflocs, t)
+    # scikit-fem caches its entities in these attributes; setting them skips recomputing the same
+    # numbering (checked against scikit-fem's own in tests/test_fea_assembly.py)
+    if three:
+        mesh._edges, mesh._t2e = edges, t2e
+    else:
+        mesh._facets, mesh._t2f = edges, t2e
+    return SkfemMesh(mesh, node_to_dof, skfem.ElementTetP2() if three else skfem.ElementTriP2(), element_dofs)
+
+
+def _gmsh_to_skfem(dim: int) -> list[int]:
+    """For each scikit-fem P2 edge slot, the gmsh mid-node slot of the same vertex pair."""
+    from .element_gradients import SKFEM_EDGES
+    gmsh_slot = {tuple(sorted(e)): j for j, e in enumerate(GMSH_EDGES[dim])}
+    return [gmsh_slot[p] for p in SKFEM_EDGES[dim]]
 
 
 def facet_indices(sk: SkfemMesh, md: MeshData, name: str) -> np.ndarray:

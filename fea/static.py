@@ -1,17 +1,21 @@
 """One linear static elasticity solve on a MeshData: the glue every study shares.
 
-mesh -> scikit-fem (curved P2) -> vectorised stiffness -> traction loads -> Dirichlet solve, with the
-time of each phase recorded and reported through ``progress``.
+mesh -> scikit-fem numbering (curved P2) -> element geometry -> vectorised stiffness -> traction loads
+-> Dirichlet solve, with the time of each phase recorded and reported through ``progress``. No
+scikit-fem CellBasis is built on the way (``StaticSolution.basis`` makes one on first use).
+Measured (2 shared cores, +-1.5x), 224k-dof curved P2 shaft: assembly phase 4.2 -> 0.9 s.
 """
 from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Callable, Mapping
 
 import numpy as np
 
-from .assembly import Lame, elasticity_stiffness, facet_vector_basis, scalar_basis
+from .assembly import Lame, facet_vector_basis, scalar_basis, stiffness
+from .element_gradients import element_geometry
 from .mesh_data import MeshData, SkfemMesh, facet_indices, group_dofs, to_skfem
 from ..errors import StageError
 from .solver import SolverInfo, solve_elasticity
@@ -24,11 +28,15 @@ Traction = Callable[[np.ndarray], np.ndarray]     # x (dim, nf, nq) mm -> t (dim
 class StaticSolution:
     md: MeshData
     sk: SkfemMesh
-    basis: object                 # scalar CellBasis
     u: np.ndarray                 # interleaved displacement, mm
     lame: Lame
     solver: SolverInfo
     timings_s: dict = field(default_factory=dict)
+
+    @cached_property
+    def basis(self):
+        """Scalar scikit-fem CellBasis on the solution's mesh (built on first use: assembly needs none)."""
+        return scalar_basis(self.sk.mesh, self.sk.element)
 
     def surface(self, group: str) -> SurfaceQuadrature:
         """Quadrature on a named group's own facets (robust on any element shape)."""
@@ -47,10 +55,9 @@ class StaticSolution:
 
 def _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions, point_loads, thickness_mm, study, progress):
     sk = to_skfem(md)
-    basis = scalar_basis(sk.mesh, sk.element)
     d = md.dim
-    progress(f"{study}: assembling {basis.N * d} dofs (P{md.order}, {md.cells.shape[0]} elements)")
-    K = elasticity_stiffness(basis, lame, thickness_mm=thickness_mm)
+    progress(f"{study}: assembling {sk.doflocs.shape[1] * d} dofs (P{md.order}, {md.cells.shape[0]} elements)")
+    K = stiffness(element_geometry(sk.doflocs, sk.element_dofs, md.order), lame, thickness_mm=thickness_mm)
     f = np.zeros(K.shape[0])
     for group, trac in (tractions or {}).items():
         # facet-own quadrature (no element inversion): robust on curved and sliver P2 elements
@@ -69,7 +76,7 @@ def _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions, point_loads,
         vals.append(np.broadcast_to(np.asarray(fixed_values, float), np.shape(fixed_dofs)))
     all_dofs = np.concatenate(dofs) if dofs else np.zeros(0, np.int64)
     all_vals = np.concatenate(vals) if vals else np.zeros(0)
-    return sk, basis, K, f, all_dofs, all_vals
+    return sk, K, f, all_dofs, all_vals
 
 
 def solve_static(md: MeshData, lame: Lame, *, fixed: Mapping[str, float | np.ndarray] | None = None,
@@ -84,16 +91,16 @@ def solve_static(md: MeshData, lame: Lame, *, fixed: Mapping[str, float | np.nda
     t = {}
     t0 = time.perf_counter()
     try:
-        sk, basis, K, f, all_dofs, all_vals = _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions,
-                                                        point_loads, thickness_mm, study, progress)
+        sk, K, f, all_dofs, all_vals = _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions,
+                                                 point_loads, thickness_mm, study, progress)
     except (ValueError, KeyError, IndexError) as exc:   # mesh/group mismatch: name the stage, no traceback
         raise StageError("assembly", study, f"{type(exc).__name__}: {exc}") from exc
     d = md.dim
     t["assembly"] = time.perf_counter() - t0
     progress(f"{study}: solving ({K.shape[0]} dofs)")
-    u, info = solve_elasticity(K, f, fixed_dofs=all_dofs, fixed_values=all_vals, coords=basis.doflocs, dim=d,
+    u, info = solve_elasticity(K, f, fixed_dofs=all_dofs, fixed_values=all_vals, coords=sk.doflocs, dim=d,
                                study=study, method=method,
-                               p2_element_dofs=basis.element_dofs if md.order == 2 else None)
+                               p2_element_dofs=sk.element_dofs if md.order == 2 else None)
     t["solve"] = info.time_s
     progress(f"{study}: {info.method} {info.iterations} iterations, residual {info.residual:.1e}, {info.time_s:.1f} s")
-    return StaticSolution(md, sk, basis, u, lame, info, t)
+    return StaticSolution(md, sk, u, lame, info, t)
