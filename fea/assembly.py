@@ -79,21 +79,19 @@ def stiffness(geom: ElementGeometry, lame: Lame, *, thickness_mm: float = 1.0, c
     n_sym = len(component_pairs(dim)[0])
     fold = lame_map(lame, dim) @ split_matrix(dim) * (thickness_mm if dim == 2 else 1.0)
     fold_s, fold_a = np.ascontiguousarray(fold[:, :n_sym]), np.ascontiguousarray(fold[:, n_sym:])
-    m = npair * nel
-    sym, anti = np.empty((m, n_sym)), np.empty((m, fold_a.shape[1]))
-    I, J = np.empty(m, np.int64), np.empty(m, np.int64)
+    sym = np.empty((npair, nel, n_sym))                                         # pair-major: (I, J) below
+    anti = np.empty((npair, nel, fold_a.shape[1]))
     for s in range(0, nel, chunk):
         e = slice(s, min(s + chunk, nel))
         ne = e.stop - e.start
         A = (geom.inv[..., e] * geom.dx[:, e]).transpose(2, 0, 3, 1)           # (q, r, e, a)
         B = geom.inv[..., e].transpose(2, 0, 3, 1)                              # (q, s, e, b)
         T = (A[:, :, None, :, :, None] * B[:, None, :, :, None, :]).reshape(nrs * ne, dim * dim)
-        rows = slice(s * npair, (s + ne) * npair)                               # pair-major, then element
-        sym[rows] = (R @ (T @ fold_s).reshape(nrs, ne * n_sym)).reshape(npair * ne, n_sym)
-        anti[rows] = (R @ (T @ fold_a).reshape(nrs, -1)).reshape(npair * ne, -1)
-        I[rows] = edofs[iu, e].ravel()
-        J[rows] = edofs[ju, e].ravel()
-    return assemble_symmetric(I, J, sym, anti, geom.n_dofs, dim, fmt)
+        sym[:, e] = (R @ (T @ fold_s).reshape(nrs, ne * n_sym)).reshape(npair, ne, n_sym)
+        anti[:, e] = (R @ (T @ fold_a).reshape(nrs, -1)).reshape(npair, ne, -1)
+    m = npair * nel
+    return assemble_symmetric(edofs[iu].ravel(), edofs[ju].ravel(), sym.reshape(m, -1), anti.reshape(m, -1),
+                              geom.n_dofs, dim, fmt)
 
 
 def elasticity_stiffness(basis, lame: Lame, *, thickness_mm: float = 1.0, chunk: int = 4096,

@@ -7,7 +7,8 @@ a swapped pair contributes C^T, i.e. the antisymmetric part changes sign), summe
 
 Why not np.unique + bincount: one np.sort of (key << b | index) packed in an int64 is ~5x faster than
 np.argsort on this machine (AVX2 sort: 0.05 vs 0.21 s for 2.5M keys), and the sum over equal keys is one
-sparse 0/1 (or +-1) matrix times the (m, k) contribution array, which scipy does in one C pass.
+sparse 0/1 (or +-1) matrix times the (m, k) contribution array, which scipy does in one C pass. The
+mirror is U + U^T in scipy (C++ loops throughout).
 """
 from __future__ import annotations
 
@@ -90,46 +91,14 @@ def assemble_symmetric(I: np.ndarray, J: np.ndarray, sym: np.ndarray, anti: np.n
 
 
 def _mirror_csr(rows: np.ndarray, cols: np.ndarray, B: np.ndarray, n: int, dim: int) -> sp.csr_matrix:
-    """Scalar CSR of the full symmetric matrix from its sorted upper block triangle.
+    """Scalar CSR of the full symmetric matrix from its sorted upper block triangle (B is modified).
 
-    rows <= cols, sorted by (row, col); B (nb, dim, dim), diagonal blocks symmetric. Block row r of the
-    full matrix is its lower part (the transposed upper blocks of column r: all before the diagonal)
-    followed by its upper part, so no merge is needed; scalar row (r, a) holds row a of those blocks in
-    the same order, so the data are written as dim-wide runs at computed offsets (0.4 s at 224k dofs,
-    scipy's bsr -> csr alone took 0.42 s). A diagonal block is written a second time, as its own
-    transpose, to its own place: no gather of the strict part is needed.
-    """
-    diag = rows == cols
-    n_up = np.bincount(rows, minlength=n)
-    n_lo = np.bincount(cols, minlength=n) - np.bincount(rows[diag], minlength=n)
-    n_blk = n_up + n_lo                                          # blocks in block row r
-    bptr = np.zeros(n + 1, np.int64)
-    np.cumsum(n_blk, out=bptr[1:])
-    nnz = int(bptr[-1]) * dim * dim
-    itype = np.int32 if nnz < 2 ** 31 else np.int64
-    k = np.arange(rows.size)
-    up_first = np.zeros(n + 1, np.int64)
-    np.cumsum(n_up, out=up_first[1:])
-    # place of each block in its full block row: upper part after the n_lo lower blocks
-    first_up = dim * bptr[rows] + n_lo[rows] + (k - up_first[rows])
-    # the transposed copy goes to block row cols[k]; its rank there = rank among the column's entries
-    # (rows ascending: a stable sort by column); the diagonal copy lands on the block itself
-    lo_order, lo_starts, _ = sorted_groups(np.where(diag, n, cols))
-    rank = np.empty(rows.size, np.int64)
-    rank[lo_order] = k - np.repeat(lo_starts, np.diff(np.append(lo_starts, k.size)))
-    first_lo = np.where(diag, first_up, dim * bptr[cols] + rank)
-    data = np.empty((nnz // dim, dim))                           # dim-wide runs
-    indices = np.empty((nnz // dim, dim), itype)
-    b = np.arange(dim)
-    for first, r_blk, col, transpose in ((first_up, rows, cols, False), (first_lo, cols, rows, True)):
-        width = n_blk[r_blk]
-        cidx = (dim * col)[:, None] + b
-        for a in range(dim):
-            run = first + a * width
-            data[run] = B[:, :, a] if transpose else B[:, a, :]
-            indices[run] = cidx
-    indptr = (dim * (dim * bptr[:-1, None] + np.arange(dim) * n_blk[:, None])).ravel()
-    indptr = np.append(indptr, nnz).astype(itype)
-    K = sp.csr_matrix((data.ravel(), indices.ravel(), indptr), shape=(n * dim, n * dim))
-    K.has_sorted_indices = True
-    return K
+    rows <= cols, sorted by (row, col); B (nb, dim, dim) with symmetric diagonal blocks. With the
+    diagonal blocks halved, K = U + U^T: scipy's C++ bsr -> csr, transpose and sorted merge. Measured
+    at 224k dofs (min of 12 on the shared machine): 0.21 s, against 0.41 s for writing the mirrored
+    dim-wide runs straight into the CSR arrays with numpy fancy indexing."""
+    B[rows == cols] *= 0.5
+    indptr = np.zeros(n + 1, np.int64)
+    np.cumsum(np.bincount(rows, minlength=n), out=indptr[1:])
+    U = sp.bsr_matrix((B, cols, indptr), shape=(n * dim, n * dim)).tocsr()
+    return U + U.T.tocsr()
