@@ -8,8 +8,10 @@ Support: the whole bore fixed. The inner ring sits on the wave generator's cam, 
 than the ring locally and carries it all round; a bonded bore is that rigid-cam limit (it also removes
 every rigid-body mode without a point constraint that would add its own compliance).
 Compliance: the work-conjugate displacement of the load, C = f.u / F_r^2 (what the crack-compliance
-integral of seed 000 is conjugate to). Crack effect: C(cracked) - C(uncracked) on meshes with the same
-size field (refined at the crack location in both) so that their discretization errors largely cancel.
+integral of seed 000 is conjugate to). Crack effect: C(cracked) - C(uncracked) on ONE mesh per refinement:
+the ring is meshed with the crack as an embedded zero-width surface (geometry's CrackModel.SEAM), solved
+as is, then with the surface opened (fea.crack_seam.open_crack), so the far-field discretization error
+cancels in the difference.
 """
 from __future__ import annotations
 
@@ -24,6 +26,7 @@ from .assembly import Lame, elasticity_stiffness, scalar_basis
 from .convergence import grid_convergence
 from .fields import nodal_displacement, nodal_stress, von_mises, write_vtu
 from .facet_traction import facet_traction_load
+from .crack_seam import open_crack
 from .mesh_data import group_dofs, to_skfem
 from .mesh_isolated import mesh_part_isolated
 from .meshing import MeshingFailed, Refine
@@ -81,6 +84,51 @@ class ComplianceSolve:
     size_factor: float = 1.0   # sizes scaled by this after a failed gmsh attempt (mesh_isolated)
 
 
+def ring_refine(part, params, *, size_mm, refine_points, local_mm, contact_mm=None) -> list[Refine]:
+    """Size fields: the contact ellipse (``contact_mm``, default min(size, b'/3)) and the crack front."""
+    a_ax, b_circ = params.wave_generator.contact_semi_axes_mm
+    centre = contact_centre_mm(part, "contact" if "contact" in part.named_faces else "race")
+    c_mm = min(size_mm, contact_mm if contact_mm else b_circ / 3)
+    refine = [Refine(size_mm=c_mm, dist_min_mm=max(a_ax, b_circ), dist_max_mm=3 * max(a_ax, b_circ),
+                     points_mm=(tuple(centre),))]
+    if refine_points:
+        refine.append(Refine(size_mm=local_mm, dist_min_mm=2 * local_mm, dist_max_mm=max(a_ax, b_circ),
+                             points_mm=tuple(refine_points)))
+    return refine
+
+
+def compliance_on_mesh(md, part, params, lame, *, force_N, method=SOLVER, keep_field=False) -> tuple:
+    """Load (Hertzian patch, resultant F_r), fix the bore, solve once on ``md``:
+    (compliance, solver info dict, field or ())."""
+    a_ax, b_circ = params.wave_generator.contact_semi_axes_mm
+    contact_name = "contact" if "contact" in part.named_faces else "race"
+    centre = contact_centre_mm(part, contact_name)
+    sk = to_skfem(md)
+    sb = scalar_basis(sk.mesh, sk.element)
+    K = elasticity_stiffness(sb, lame)
+    race_nodes = group_dofs(sk, md, contact_name)
+    r_race = float(np.median(np.hypot(*sb.doflocs[:2, race_nodes])))
+    p = hertz_pressure(force_N, (a_ax, b_circ), centre, r_race)
+    # integrated on the facet triangles: FacetBasis's inverse mapping fails on curved sliver tets
+    f = facet_traction_load(md, sk, contact_name,
+                            lambda x: -p(x) * np.stack([x[0], x[1], 0 * x[2]]) / np.hypot(x[0], x[1]))
+    fx = f[0::3].sum() * np.cos(np.arctan2(centre[1], centre[0])) + f[1::3].sum() * np.sin(np.arctan2(centre[1], centre[0]))
+    f *= force_N / -fx                  # the resultant is F_r exactly (quadrature of the sqrt profile)
+    fixed = (3 * group_dofs(sk, md, "bore")[:, None] + np.arange(3)).ravel()
+    u, info = solve_elasticity(K, f, fixed_dofs=fixed, coords=sb.doflocs, dim=3, study=STUDY, method=method)
+    return float(f @ u) / force_N ** 2, info.to_dict(), ((md, sk, u) if keep_field else ())
+
+
+def mesh_ring(part, params, *, size_mm, order, refine_points, local_mm, contact_mm=None) -> tuple:
+    """(mesh, size factor of the successful gmsh attempt)."""
+    refine = ring_refine(part, params, size_mm=size_mm, refine_points=refine_points, local_mm=local_mm,
+                         contact_mm=contact_mm)
+    try:   # in a forked child: gmsh's high-order optimiser can abort natively (seen on the old slot)
+        return mesh_part_isolated(part, size_mm=size_mm, order=order, refine=refine)
+    except MeshingFailed as exc:
+        raise StageError("mesh", STUDY, f"h = {size_mm:g} mm: {exc}") from exc
+
+
 def solve_compliance(part, params, lame, *, size_mm, order, refine_points, local_mm, force_N,
                      contact_mm=None, method=SOLVER, keep_field=False) -> ComplianceSolve:
     """Mesh, load (Hertzian patch, resultant F_r), fix the bore, solve once.
@@ -88,36 +136,29 @@ def solve_compliance(part, params, lame, *, size_mm, order, refine_points, local
     ``contact_mm`` is the element size over the contact ellipse (default min(size, b'/3)); the study
     scales it with the global size so that all three refinements refine the contact zone too."""
     t0 = time.perf_counter()
-    a_ax, b_circ = params.wave_generator.contact_semi_axes_mm
-    contact_name = "contact" if "contact" in part.named_faces else "race"
-    centre = contact_centre_mm(part, contact_name)
-    c_mm = min(size_mm, contact_mm if contact_mm else b_circ / 3)
-    refine = [Refine(size_mm=c_mm, dist_min_mm=max(a_ax, b_circ), dist_max_mm=3 * max(a_ax, b_circ),
-                     points_mm=(tuple(centre),))]
-    if refine_points:
-        refine.append(Refine(size_mm=local_mm, dist_min_mm=2 * local_mm, dist_max_mm=max(a_ax, b_circ),
-                             points_mm=tuple(refine_points)))
-    try:   # in a forked child: gmsh's high-order optimiser can abort natively on the crack slot
-        md, size_factor = mesh_part_isolated(part, size_mm=size_mm, order=order, refine=refine)
-    except MeshingFailed as exc:
-        raise StageError("mesh", STUDY, f"h = {size_mm:g} mm: {exc}") from exc
+    md, size_factor = mesh_ring(part, params, size_mm=size_mm, order=order, refine_points=refine_points,
+                                local_mm=local_mm, contact_mm=contact_mm)
     t1 = time.perf_counter()
-    sk = to_skfem(md)
-    sb = scalar_basis(sk.mesh, sk.element)
-    K = elasticity_stiffness(sb, lame)
-    race_nodes = group_dofs(sk, md, contact_name)
-    r_race = float(np.median(np.hypot(*sb.doflocs[:2, race_nodes])))
-    p = hertz_pressure(force_N, (a_ax, b_circ), centre, r_race)
-    # integrated on the facet triangles: FacetBasis's inverse mapping fails on the slotted curved tets
-    f = facet_traction_load(md, sk, contact_name,
-                            lambda x: -p(x) * np.stack([x[0], x[1], 0 * x[2]]) / np.hypot(x[0], x[1]))
-    fx = f[0::3].sum() * np.cos(np.arctan2(centre[1], centre[0])) + f[1::3].sum() * np.sin(np.arctan2(centre[1], centre[0]))
-    f *= force_N / -fx                  # the resultant is F_r exactly (quadrature of the sqrt profile)
-    fixed = (3 * group_dofs(sk, md, "bore")[:, None] + np.arange(3)).ravel()
-    u, info = solve_elasticity(K, f, fixed_dofs=fixed, coords=sb.doflocs, dim=3, study=STUDY, method=method)
+    c, info, field = compliance_on_mesh(md, part, params, lame, force_N=force_N, method=method, keep_field=keep_field)
     t2 = time.perf_counter()
-    return ComplianceSolve(float(f @ u) / force_N ** 2, md.quality, {"mesh": t1 - t0, "assemble+solve": t2 - t1},
-                           info.to_dict(), (md, sk, u) if keep_field else (), size_factor)
+    return ComplianceSolve(c, md.quality, {"mesh": t1 - t0, "assemble+solve": t2 - t1}, info, field, size_factor)
+
+
+def seam_compliances(part, params, lame, *, size_mm, order, refine_points, local_mm, force_N, contact_mm=None,
+                     keep_field=False) -> tuple[ComplianceSolve, ComplianceSolve]:
+    """Mesh the seam part ONCE; (uncracked, cracked) solves on that mesh as is and with the crack opened."""
+    t0 = time.perf_counter()
+    md, size_factor = mesh_ring(part, params, size_mm=size_mm, order=order, refine_points=refine_points,
+                                local_mm=local_mm, contact_mm=contact_mm)
+    t_mesh = time.perf_counter() - t0
+    out = []
+    for m in (md, open_crack(md)):
+        t1 = time.perf_counter()
+        c, info, field = compliance_on_mesh(m, part, params, lame, force_N=force_N, keep_field=keep_field)
+        out.append(ComplianceSolve(c, m.quality, {"mesh": t_mesh, "assemble+solve": time.perf_counter() - t1},
+                                   info, field, size_factor))
+        t_mesh = 0.0
+    return out[0], out[1]
 
 
 def analytic_crack_displacement(params, force_N: float, a_mm: float) -> dict:
@@ -134,10 +175,20 @@ def analytic_crack_displacement(params, force_N: float, a_mm: float) -> dict:
     return out
 
 
-def build_parts(params, crack_depth_mm: float):
-    """(uncracked, cracked) wave-generator bearing inner rings from geometry/ (tests substitute a stand-in)."""
+# Crack-front size floor as a fraction of the finest global size (see crack_front_size_mm).
+FRONT_FLOOR_OVER_H = 1.0 / 16.0
+
+
+def crack_front_size_mm(a_mm: float, fine_mm: float, floor_over_h: float = FRONT_FLOOR_OVER_H) -> float:
+    """Element size at the crack front on the finest mesh: a/3, not below ``floor_over_h`` h."""
+    return max(a_mm / 3.0, floor_over_h * fine_mm)
+
+
+def build_seam_part(params, crack_depth_mm: float):
+    """The wave-generator bearing inner ring with its crack as an embedded seam (tests substitute a stand-in)."""
+    from ..geometry.part import CrackModel
     from ..geometry.parts import build_part
-    return build_part(PART, params), build_part(PART, params, crack_depth_mm=crack_depth_mm)
+    return build_part(PART, params, crack_depth_mm=crack_depth_mm, crack_model=CrackModel.SEAM)
 
 
 def vtu_paths(vtu) -> tuple[Path, Path]:
@@ -159,7 +210,7 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
     """Radial compliance on three meshes (GCI), cracked and uncracked, and their difference per mesh.
 
     Every length of the size field scales with the refinement: global size h, contact size
-    min(h, b'/3) r^k and crack-front size max(a/3, slot) r^k, so the GCI covers the contact zone too."""
+    min(h, b'/3) r^k and crack-front size max(a/3, h/16) r^k, so the GCI covers the contact zone too."""
     t_start = time.perf_counter()
     a = crack_depth_mm if crack_depth_mm is not None else params.cracks.depth_mm
     force = radial_force_N(params)
@@ -170,29 +221,29 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
     fine = mesh_size_mm if mesh_size_mm else t_i / (2.0 if quick else 3.0)
     sizes = [fine * REFINEMENT_RATIO ** k for k in range(3)]
     t0 = time.perf_counter()
-    smooth, cracked = build_parts(params, a)
+    seam = build_seam_part(params, a)
     timings = {"geometry": time.perf_counter() - t0}
-    front = list(cracked.crack_front_mm) or [tuple(f.center_mm) for f in cracked.named_faces.get("crack_front", ())]
-    slot = params.crack_geometry.slot_width_mm
+    front = list(seam.crack_front_mm)
     c_unc, c_cr, qual, info, fields_fine, factors = [], [], None, None, {}, {}
-    h_used = {"uncracked": [], "cracked": []}     # sizes as meshed (a gmsh retry scales them a little)
+    h_used = []     # sizes as meshed (a gmsh retry scales them a little)
     for k, h in enumerate(sizes):
         scale = REFINEMENT_RATIO ** k
-        local = max(a / 3.0, slot) * scale       # the crack-tip size refines with the mesh
+        local = crack_front_size_mm(a, fine) * scale      # the crack-tip size refines with the mesh
         contact = min(fine, b_circ / 3.0) * scale
-        for part, store, label in ((smooth, c_unc, "uncracked"), (cracked, c_cr, "cracked")):
-            progress(f"{STUDY}: {label} (a = {a:g} mm), h = {h:.3g} mm")
-            sol = solve_compliance(part, params, lame, size_mm=h, order=order, refine_points=front, local_mm=local,
+        progress(f"{STUDY}: a = {a:g} mm, h = {h:.3g} mm: one mesh, solved uncracked and with the crack opened")
+        unc, cr = seam_compliances(seam, params, lame, size_mm=h, order=order, refine_points=front, local_mm=local,
                                    force_N=force, contact_mm=contact, keep_field=(k == 0 and vtu is not None))
-            store.append(sol.compliance_mm_per_N)
-            factors[f"{label}_h{k}"] = sol.size_factor
-            h_used[label].append(h * sol.size_factor)
+        c_unc.append(unc.compliance_mm_per_N)
+        c_cr.append(cr.compliance_mm_per_N)
+        factors[f"h{k}"] = unc.size_factor
+        h_used.append(h * unc.size_factor)
+        for label, sol in (("uncracked", unc), ("cracked", cr)):
             for key, v in sol.timings_s.items():
                 timings[f"{key}_{label}"] = timings.get(f"{key}_{label}", 0.0) + v
             if k == 0:
                 fields_fine[label] = sol.field
-                if label == "uncracked":
-                    qual, info = sol.quality, dict(sol.solver, dofs_total=sol.quality.dofs)
+        if k == 0:   # the uncracked mesh's facts; the opened one adds the duplicated crack nodes
+            qual, info = unc.quality, dict(unc.solver, dofs_total=unc.quality.dofs, dofs_cracked=cr.quality.dofs)
     fields = ()
     if vtu is not None:
         t0 = time.perf_counter()
@@ -201,11 +252,11 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
         timings["vtu"] = time.perf_counter() - t0
     delta = [cc - cu for cc, cu in zip(c_cr, c_unc)]
     q = {"radial_compliance_mm_per_N": Quantity("radial_compliance_mm_per_N", c_unc[0], "mm/N",
-                                                grid_convergence(h_used["uncracked"], c_unc)),
+                                                grid_convergence(h_used, c_unc)),
          "cracked_radial_compliance_mm_per_N": Quantity("cracked_radial_compliance_mm_per_N", c_cr[0], "mm/N",
-                                                        grid_convergence(h_used["cracked"], c_cr)),
+                                                        grid_convergence(h_used, c_cr)),
          "delta_radial_compliance_mm_per_N": Quantity("delta_radial_compliance_mm_per_N", delta[0], "mm/N",
-                                                      grid_convergence(h_used["cracked"], delta))}
+                                                      grid_convergence(h_used, delta))}
     dq = q["delta_radial_compliance_mm_per_N"]
     timings["total"] = time.perf_counter() - t_start
     meta = {"radial_force_N": force, "crack_depth_mm": a,
@@ -217,7 +268,8 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
             "delta_resolved": bool(abs(dq.value) > dq.uncertainty),
             "analytic": analytic_crack_displacement(params, force, a),
             "mesh_sizes_mm": sizes, "contact_sizes_mm": [min(fine, b_circ / 3.0) * REFINEMENT_RATIO ** k for k in range(3)],
-            "crack_front_sizes_mm": [max(a / 3.0, slot) * REFINEMENT_RATIO ** k for k in range(3)],
-            "mesh_size_factors": factors, "solver": info, "part": {k: v for k, v in (smooth.meta or {}).items() if isinstance(v, (int, float, str))},
+            "crack_front_sizes_mm": [crack_front_size_mm(a, fine) * REFINEMENT_RATIO ** k for k in range(3)],
+            "crack_model": "seam (one mesh per refinement, solved closed and opened)",
+            "mesh_size_factors": factors, "solver": info, "part": {k: v for k, v in (seam.meta or {}).items() if isinstance(v, (int, float, str))},
             "E_MPa": mat.youngs_modulus_MPa, "nu": mat.poisson_ratio, "G_implied_MPa": mat.implied_shear_modulus_MPa}
     return StudyResult(STUDY, q, qual, timings, fields, meta)

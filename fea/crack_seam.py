@@ -58,12 +58,14 @@ def crack_front_nodes(md: MeshData, group: str = "crack") -> np.ndarray:
 
 
 def _oriented_normals(md: MeshData, facets: np.ndarray) -> np.ndarray:
-    """Unit facet normals flipped to agree with the first one: the seam cracks are planar (the geometry's
-    ``Part.crack_plane``), so one reference orientation holds for every facet."""
+    """Unit facet normals flipped to agree with one reference: the seam cracks are planar (the geometry's
+    ``Part.crack_plane``), so one orientation holds for every facet. The reference is the first facet's
+    normal with its largest component made positive, so + is a fixed side (+y for a plane y = const)."""
     x = md.nodes_mm[facets[:, :3]]
     nrm = np.cross(x[:, 1] - x[:, 0], x[:, 2] - x[:, 0])
     nrm /= np.linalg.norm(nrm, axis=1, keepdims=True)
-    return nrm * np.where(nrm @ nrm[0] < 0, -1.0, 1.0)[:, None]
+    ref = nrm[0] * np.sign(nrm[0][np.argmax(np.abs(nrm[0]))])
+    return nrm * np.where(nrm @ ref < 0, -1.0, 1.0)[:, None]
 
 
 def element_sides(md: MeshData, cells: np.ndarray, group: str = "crack") -> np.ndarray:

@@ -14,6 +14,7 @@ import time
 from ..errors import InputError
 from .assembly import Lame
 from .fields import nodal_displacement, nodal_stress, von_mises, write_vtu
+from .crack_seam import open_crack
 from .meshing import Refine
 from .refinement import DEFAULT_RATIO, crack_flexibility_quantities, refinement_sizes
 from .result import StudyResult
@@ -48,30 +49,42 @@ def tube_flexibility(params) -> float:
     return 32.0 * fc.length_mm / (math.pi * mat.implied_shear_modulus_MPa * (d ** 4 - di ** 4))
 
 
-def crack_refine(part, h_mm: float, depth_mm: float) -> Refine:
-    """a/2 at the root-crack front, not below h/16 (shallow cracks stay affordable; the GCI tells)."""
-    tip = max(min(h_mm, depth_mm / 2.0), h_mm / 16.0)
+# Crack-front size floor as a fraction of h (seam cracks; see crack_refine).
+FRONT_FLOOR_OVER_H = 1.0 / 16.0
+
+
+def crack_refine(part, h_mm: float, depth_mm: float, floor_over_h: float = FRONT_FLOOR_OVER_H) -> Refine:
+    """a/2 at the root-crack front, not below ``floor_over_h`` h (shallow cracks stay affordable; the GCI tells)."""
+    tip = max(min(h_mm, depth_mm / 2.0), h_mm * floor_over_h)
     return Refine(size_mm=tip, dist_min_mm=max(depth_mm, tip), dist_max_mm=2 * depth_mm + 3 * h_mm,
                   points_mm=part.crack_front_mm)
 
 
-def solve_once(part, params, *, h_mm: float, order: int, refine=(), progress=lambda m: None
-               ) -> tuple[float, StaticSolution, float, float]:
-    """(lambda_f, solution for unit shear, applied torque of the unit shear, mesh time)."""
+def solve_mesh(md, params, *, progress=lambda m: None) -> tuple[float, StaticSolution, float]:
+    """(lambda_f, solution for unit shear, applied torque of the unit shear) on a given mesh."""
     mat = params.material
-    md, t_mesh = mesh_for_study(part, study=STUDY, h_mm=h_mm, order=order, refine=refine, progress=progress)
     sol = solve_static(md, Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio), fixed={"fixed": 0.0},
                        tractions={"loaded": uniform_tangential_traction(1.0, 1.0)}, study=STUDY, progress=progress,
                        # thin walls: the matrix graph is nearly 2D, so Cholesky fill stays small, while
                        # AMG-CG needed 470-800 iterations (measured at 37k-54k dofs)
                        method="direct")
     torque = moment_arm_mm3(sol, "loaded")     # moment of the unit tangential shear
-    return mean_rotation_rad(sol, "loaded") / torque, sol, torque, t_mesh
+    return mean_rotation_rad(sol, "loaded") / torque, sol, torque
+
+
+def solve_once(part, params, *, h_mm: float, order: int, refine=(), progress=lambda m: None
+               ) -> tuple[float, StaticSolution, float, float]:
+    """(lambda_f, solution for unit shear, applied torque of the unit shear, mesh time)."""
+    md, t_mesh = mesh_for_study(part, study=STUDY, h_mm=h_mm, order=order, refine=refine, progress=progress)
+    return (*solve_mesh(md, params, progress=progress), t_mesh)
 
 
 def _build(params, depth_mm, teeth):
+    from strainwave.geometry.part import CrackModel
     from strainwave.geometry.parts import build_part
-    return build_part("flexspline-cup", params, crack_depth_mm=depth_mm, teeth=teeth)
+    # a crack is the zero-width seam (FEA on one mesh, cracked and uncracked); the CAD slot is for STEP
+    model = CrackModel.SEAM if depth_mm is not None else CrackModel.SLOT
+    return build_part("flexspline-cup", params, crack_depth_mm=depth_mm, teeth=teeth, crack_model=model)
 
 
 def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, progress=lambda m: None,
@@ -84,19 +97,20 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
     sizes = refinement_sizes(h, ratio)
     timings = {"geometry": 0.0, "mesh": 0.0, "assembly": 0.0, "solve": 0.0}
     t0 = time.perf_counter()
-    plain = _build(params, None, teeth)
     cracked = _build(params, crack_depth_mm, teeth) if crack_depth_mm is not None else None
+    plain = _build(params, None, teeth) if cracked is None else cracked   # the seam part IS the uncracked cup
     timings["geometry"] = time.perf_counter() - t0
     lam0, lam1, finest = [], [], None
     for k, hk in enumerate(reversed(sizes)):
         progress(f"{STUDY}: refinement {k + 1}/3, h = {hk:.3g} mm")
-        cases = [(plain, (), lam0)]
-        if cracked is not None:
-            cases.append((cracked, (crack_refine(cracked, hk, crack_depth_mm),), lam1))
-        for part, refine, out in cases:
-            lam, sol, torque, tm = solve_once(part, params, h_mm=hk, order=order, refine=refine, progress=progress)
+        refine = (crack_refine(cracked, hk, crack_depth_mm),) if cracked is not None else ()
+        md, tm = mesh_for_study(plain, study=STUDY, h_mm=hk, order=order, refine=refine, progress=progress)
+        timings["mesh"] += tm
+        # with a crack: the same mesh solved as is (embedded surface closed) and opened
+        cases = [(md, lam0)] + ([(open_crack(md), lam1)] if cracked is not None else [])
+        for mdk, out in cases:
+            lam, sol, torque = solve_mesh(mdk, params, progress=progress)
             out.append(lam)
-            timings["mesh"] += tm
             timings["assembly"] += sol.timings_s["assembly"]
             timings["solve"] += sol.timings_s["solve"]
             finest = (sol, torque)

@@ -16,6 +16,7 @@ from typing import Callable, Sequence
 from ..errors import InputError
 from .assembly import Lame
 from .fields import nodal_displacement, nodal_stress, von_mises, write_vtu
+from .crack_seam import open_crack
 from .meshing import Refine
 from .refinement import DEFAULT_RATIO, crack_flexibility_quantities, refinement_sizes
 from .result import StudyResult
@@ -39,24 +40,45 @@ def default_size_mm(params, quick: bool) -> float:
     return params.output_shaft.wall_mm / (1.0 if quick else 1.5)
 
 
-def crack_refine(part, h_mm: float, depth_mm: float) -> Refine:
-    """Crack-front refinement: a/2 at the front (never below h/16, so shallow cracks stay affordable;
-    their GCI then says how well they are resolved), growing to h over a few crack depths."""
-    tip = max(min(h_mm, depth_mm / 2.0), h_mm / 16.0)
+# Crack-front size floor as a fraction of h (seam cracks; see crack_refine for the measurement).
+FRONT_FLOOR_OVER_H = 1.0 / 16.0
+
+
+def crack_refine(part, h_mm: float, depth_mm: float, floor_over_h: float = FRONT_FLOOR_OVER_H) -> Refine:
+    """Crack-front refinement: a/2 at the front, never below ``floor_over_h`` h (shallow cracks stay
+    affordable; their GCI then says how well they are resolved), growing to h over a few crack depths."""
+    tip = max(min(h_mm, depth_mm / 2.0), h_mm * floor_over_h)
     return Refine(size_mm=tip, dist_min_mm=max(depth_mm / 2.0, tip), dist_max_mm=depth_mm + 3.0 * h_mm,
                   points_mm=part.crack_front_mm)
+
+
+def solve_mesh(md, params, *, progress: Callable[[str], None] = lambda m: None) -> tuple[float, StaticSolution]:
+    """Solve the torsion case on a mesh; return (lambda, solution)."""
+    sh, mat = params.output_shaft, params.material
+    T = params.gear.output_torque_Nmm
+    J = math.pi / 32.0 * (sh.outer_diameter_mm ** 4 - sh.inner_diameter_mm ** 4)
+    sol = solve_static(md, Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio), fixed={"fixed": 0.0},
+                       tractions={"loaded": saint_venant_traction(T, J)}, study=STUDY, progress=progress)
+    return mean_rotation_rad(sol, "loaded") / T, sol
 
 
 def solve_once(part, params, *, h_mm: float, order: int, refine: Sequence[Refine] = (),
                progress: Callable[[str], None] = lambda m: None) -> tuple[float, StaticSolution, float]:
     """Mesh ``part`` at h, solve the torsion case, return (lambda, solution, mesh time)."""
-    sh, mat = params.output_shaft, params.material
-    T = params.gear.output_torque_Nmm
-    J = math.pi / 32.0 * (sh.outer_diameter_mm ** 4 - sh.inner_diameter_mm ** 4)
     md, t_mesh = mesh_for_study(part, study=STUDY, h_mm=h_mm, order=order, refine=refine, progress=progress)
-    sol = solve_static(md, Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio), fixed={"fixed": 0.0},
-                       tractions={"loaded": saint_venant_traction(T, J)}, study=STUDY, progress=progress)
-    return mean_rotation_rad(sol, "loaded") / T, sol, t_mesh
+    lam, sol = solve_mesh(md, params, progress=progress)
+    return lam, sol, t_mesh
+
+
+def solve_seam(part, params, *, h_mm: float, order: int, refine: Sequence[Refine] = (),
+               progress: Callable[[str], None] = lambda m: None
+               ) -> tuple[float, float, StaticSolution, StaticSolution, float]:
+    """Mesh the seam part ONCE, solve it uncracked and with the crack opened (same mesh):
+    (lambda uncracked, lambda cracked, uncracked solution, cracked solution, mesh time)."""
+    md, t_mesh = mesh_for_study(part, study=STUDY, h_mm=h_mm, order=order, refine=refine, progress=progress)
+    lam0, sol0 = solve_mesh(md, params, progress=progress)
+    lam1, sol1 = solve_mesh(open_crack(md), params, progress=progress)
+    return lam0, lam1, sol0, sol1, t_mesh
 
 
 def _write_fields(vtu, sol: StaticSolution) -> tuple:
@@ -68,9 +90,15 @@ def _write_fields(vtu, sol: StaticSolution) -> tuple:
     return (path,)
 
 
-def _build(params, depth_mm):
+def _build(params, depth_mm, crack_model=None):
+    from strainwave.geometry.part import CrackModel
     from strainwave.geometry.parts import build_part
-    return build_part("output-shaft", params, crack_depth_mm=depth_mm)
+    return build_part("output-shaft", params, crack_depth_mm=depth_mm, crack_model=crack_model or CrackModel.SLOT)
+
+
+def _build_seam(params, depth_mm):
+    from strainwave.geometry.part import CrackModel
+    return _build(params, depth_mm, CrackModel.SEAM)
 
 
 def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, progress=lambda m: None,
@@ -83,30 +111,39 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
     timings = {"geometry": 0.0, "mesh": 0.0, "assembly": 0.0, "solve": 0.0}
     t0 = time.perf_counter()
     cache = {} if _uncracked_cache is None else _uncracked_cache
-    plain = cache.get("plain_part") or _build(params, None)
-    cache["plain_part"] = plain
-    cracked = _build(params, crack_depth_mm) if crack_depth_mm is not None else None
+    cracked = _build_seam(params, crack_depth_mm) if crack_depth_mm is not None else None
+    plain = None
+    if cracked is None:
+        plain = cache.get("plain_part") or _build(params, None)
+        cache["plain_part"] = plain
     timings["geometry"] = time.perf_counter() - t0
     lam0, lam1, finest = [], [], None
+
+    def add(sol, tm):
+        timings["mesh"] += tm
+        timings["assembly"] += sol.timings_s["assembly"]
+        timings["solve"] += sol.timings_s["solve"]
+
     for k, hk in enumerate(reversed(sizes)):        # coarse to fine
         progress(f"{STUDY}: refinement {k + 1}/3, h = {hk:.3g} mm")
+        if cracked is not None:
+            # one mesh with the embedded crack surface, solved as is (uncracked) and opened (cracked):
+            # the difference then carries almost none of the far field's discretization error
+            l0, l1, sol0, sol1, tm = solve_seam(cracked, params, h_mm=hk, order=order,
+                                                refine=[crack_refine(cracked, hk, crack_depth_mm)], progress=progress)
+            lam0.append(l0)
+            lam1.append(l1)
+            add(sol0, tm)
+            add(sol1, 0.0)
+            finest = sol1
+            continue
         key = (hk, order)
         if key not in cache:
             lam, sol, tm = solve_once(plain, params, h_mm=hk, order=order, progress=progress)
             cache[key] = (lam, sol.md.quality, sol.solver)
-            timings["mesh"] += tm
-            timings["assembly"] += sol.timings_s["assembly"]
-            timings["solve"] += sol.timings_s["solve"]
+            add(sol, tm)
             finest = sol
         lam0.append(cache[key][0])
-        if cracked is not None:
-            lam, sol, tm = solve_once(cracked, params, h_mm=hk, order=order,
-                                      refine=[crack_refine(cracked, hk, crack_depth_mm)], progress=progress)
-            lam1.append(lam)
-            timings["mesh"] += tm
-            timings["assembly"] += sol.timings_s["assembly"]
-            timings["solve"] += sol.timings_s["solve"]
-            finest = sol
     lam0, lam1 = lam0[::-1], lam1[::-1]             # finest first, like ``sizes``
     quantities = crack_flexibility_quantities(sizes, lam0, lam1 if cracked is not None else None, UNIT)
     fields = _write_fields(vtu, finest) if finest is not None else ()

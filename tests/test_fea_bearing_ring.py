@@ -15,23 +15,21 @@ R_BORE, R_RACE, WIDTH = 60.0, 70.0, 15.0
 
 
 def _ring(a_mm=None):
-    from build123d import Align, BuildPart, BuildSketch, CenterOf, Cylinder, Ellipse, GeomType, Locations, Plane, extrude
+    """The ring; with ``a_mm`` the crack is a seam: the semi-ellipse (depth a, half length 2a on the race)
+    as a zero-width surface in y = 0 (the full ellipse: its outer half lies outside and is trimmed)."""
+    from build123d import Align, CenterOf, Cylinder, Edge, Face, GeomType, Plane, Wire
     ring = (Cylinder(R_RACE, WIDTH, align=(Align.CENTER, Align.CENTER, Align.MIN))
             - Cylinder(R_BORE, WIDTH, align=(Align.CENTER, Align.CENTER, Align.MIN)))
-    front = ()
+    front, face = (), None
     if a_mm:
-        slot_mm = 0.05
-        with BuildPart() as bp:
-            with BuildSketch(Plane.XZ.offset(slot_mm / 2)):
-                with Locations((R_RACE, WIDTH / 2)):
-                    Ellipse(a_mm, 2 * a_mm)          # semi-elliptical: depth a, half-length 2a on the race
-            extrude(amount=slot_mm)
-        ring = ring - bp.part
+        plane = Plane(origin=(R_RACE, 0.0, WIDTH / 2), x_dir=(1, 0, 0), z_dir=(0, 1, 0))
+        face = Face(Wire([Edge.make_ellipse(a_mm, 2 * a_mm, plane)]))
         t = np.linspace(0.0, np.pi, 7)
         front = tuple((R_RACE - a_mm * np.sin(s), 0.0, WIDTH / 2 + 2 * a_mm * np.cos(s)) for s in t)
     cyl = lambda r: tuple(FaceRef(tuple(f.center(CenterOf.MASS)), f.area) for f in ring.faces()    # noqa: E731
                           if f.geom_type == GeomType.CYLINDER and abs(f.radius - r) < 1e-6)
-    return Part(PartName.WG_BEARING_RING, ring, {"bore": cyl(R_BORE), "race": cyl(R_RACE)}, front)
+    return Part(PartName.WG_BEARING_RING, ring, {"bore": cyl(R_BORE), "race": cyl(R_RACE)}, front,
+                crack_surface=face, crack_plane=((R_RACE, 0.0, WIDTH / 2), (0.0, 1.0, 0.0)) if a_mm else None)
 
 
 A_MM = 3.0          # a deep crack: its effect must stand far above the coarse-mesh error
@@ -43,7 +41,7 @@ def study(tmp_path_factory):
     import strainwave.fea.bearing_ring as br
     vtu = tmp_path_factory.mktemp("bearing") / "ring.vtu"
     with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(br, "build_parts", lambda params, a: (_ring(), _ring(a)))
+        mp.setattr(br, "build_seam_part", lambda params, a: _ring(a))
         return br.run(load_params(), mesh_size_mm=H_MM, order=2, crack_depth_mm=A_MM, vtu=vtu)
 
 
@@ -68,7 +66,7 @@ def test_uncracked_compliance_positive_and_converging(study):
 
 def test_crack_increases_compliance(study):
     d = study["delta_radial_compliance_mm_per_N"]
-    # cracked minus uncracked on meshes with the same size field, at every refinement
+    # cracked minus uncracked on the same mesh (seam opened), at every refinement
     assert all(v > 0 for v in d.convergence.values)
     # ~19 % of the uncracked compliance at a = 3 mm, far above the coarse-mesh noise (the difference's
     # GCI is ~0.1 %: the two meshes' discretization errors cancel)
@@ -101,9 +99,11 @@ def test_vtu_fields_written(study):
     for name in ("displacement_mm", "von_mises_MPa", "stress_MPa"):
         assert f'Name="{name}"' in text
     npts = int(re.search(r'NumberOfPoints="(\d+)"', text).group(1))
-    # the uncracked file holds the finest uncracked mesh, every node (P2 cells keep their mid nodes)
+    # the uncracked file holds the finest mesh, every node (P2 cells keep their mid nodes); the cracked
+    # file the same mesh with the crack opened: more nodes (the duplicated crack-face nodes)
     n_unc = int(re.search(r'NumberOfPoints="(\d+)"', uncracked.read_text()).group(1))
     assert n_unc == study.mesh.nodes
+    assert npts == study.meta["solver"]["dofs_cracked"] // 3 and npts > n_unc
     payload = re.search(r'Name="von_mises_MPa"[^>]*>([^<]+)<', text).group(1)
     vm = np.frombuffer(base64.b64decode(payload)[8:], dtype=np.float64)
     # von Mises is non-negative everywhere and peaks under the Hertz pressure (p0 = 3F/(2 pi a'b') = 0.08 MPa)
