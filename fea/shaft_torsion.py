@@ -5,6 +5,9 @@ Saint-Venant shear traction tau = T r / J (tangential). For a circular section t
 solution, and the clamped end is compatible with it (u = theta(z) e_z x r vanishes at z = 0), so the
 uncracked FEA must reproduce lambda = 32 L / (pi G (d^4 - d_i^4)) with G = E / (2 (1 + nu)).
 Twist = area-weighted mean rotation (x u_y - y u_x) / r^2 of the loaded face; lambda = twist / T.
+A crack is a seam (geometry's CrackModel.SEAM): each refinement meshes the shaft once with the crack
+surface embedded and solves it closed (uncracked) and opened (``crack_seam.open_crack``), so delta lambda
+is a difference on one mesh, free of the far field's mesh-to-mesh noise.
 """
 from __future__ import annotations
 
@@ -44,11 +47,15 @@ def default_size_mm(params, quick: bool) -> float:
 FRONT_FLOOR_OVER_H = 1.0 / 16.0
 
 
-def crack_refine(part, h_mm: float, depth_mm: float, floor_over_h: float = FRONT_FLOOR_OVER_H) -> Refine:
+GROW_OVER_H = 3.0
+
+
+def crack_refine(part, h_mm: float, depth_mm: float, floor_over_h: float = FRONT_FLOOR_OVER_H,
+                 grow_over_h: float = GROW_OVER_H) -> Refine:
     """Crack-front refinement: a/2 at the front, never below ``floor_over_h`` h (shallow cracks stay
-    affordable; their GCI then says how well they are resolved), growing to h over a few crack depths."""
+    affordable; their GCI then says how well they are resolved), growing to h over a + grow h."""
     tip = max(min(h_mm, depth_mm / 2.0), h_mm * floor_over_h)
-    return Refine(size_mm=tip, dist_min_mm=max(depth_mm / 2.0, tip), dist_max_mm=depth_mm + 3.0 * h_mm,
+    return Refine(size_mm=tip, dist_min_mm=max(depth_mm / 2.0, tip), dist_max_mm=depth_mm + grow_over_h * h_mm,
                   points_mm=part.crack_front_mm)
 
 
@@ -103,7 +110,8 @@ def _build_seam(params, depth_mm):
 
 def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, progress=lambda m: None,
         quick=False, ratio: float = DEFAULT_RATIO, _uncracked_cache: dict | None = None) -> StudyResult:
-    """Flexibility on three meshes (GCI); with a crack also delta lambda = cracked - uncracked per mesh."""
+    """Flexibility on three meshes (GCI); with a crack also delta lambda = cracked - uncracked on each
+    (seam) mesh, both from the same mesh."""
     h = mesh_size_mm or default_size_mm(params, quick)
     if h >= params.output_shaft.length_mm / 2:
         raise InputError("--mesh-size-mm", h, f"must be < L_s/2 = {params.output_shaft.length_mm / 2:g} mm")
