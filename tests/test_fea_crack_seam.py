@@ -125,3 +125,44 @@ def test_uncracked_seam_mesh_is_exact_and_crack_matches_tada(meshes):
     # finite h_s/b = 2 and the extrapolation's own error. The finest alone must be low by 1-5 %.
     assert -0.05 < dc / ref - 1 < -0.01
     assert 2 * dc - dc_coarse == pytest.approx(ref, rel=0.015)
+
+
+# ---- the parts' seams: geometry and one coarse seam mesh each ------------------------------------------
+
+@pytest.mark.parametrize("name, a_mm, h_mm", [("output-shaft", 3.0, 16.0), ("wg-bearing-ring", 2.0, 6.0),
+                                              ("flexspline-cup", 1.0, 9.0)])
+def test_part_seams_embed_on_the_uncracked_solid(name, a_mm, h_mm):
+    import warnings
+
+    from strainwave.geometry.part import CrackModel
+    from strainwave.geometry.parts import build_part
+    from strainwave.params import load_params
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        params = load_params()
+    kw = {"teeth": False} if name == "flexspline-cup" else {}
+    seam = build_part(name, params, crack_depth_mm=a_mm, crack_model=CrackModel.SEAM, **kw)
+    plain = build_part(name, params, **kw)
+    # the seam leaves the solid whole (the slot would remove w x area) and keeps the uncracked face names
+    assert seam.volume_mm3 == pytest.approx(plain.volume_mm3, rel=1e-12)
+    assert set(seam.named_faces) == set(plain.named_faces)
+    point, normal = (np.array(v) for v in seam.crack_plane)
+    assert np.linalg.norm(normal) == pytest.approx(1.0, rel=1e-12)
+    with gmsh_session() as model:
+        md = mesh_part(model, seam, size_mm=h_mm, order=1,
+                       refine=[Refine(size_mm=a_mm / 2, dist_min_mm=a_mm, dist_max_mm=3 * h_mm,
+                                      points_mm=seam.crack_front_mm)])
+    crack = md.nodes_mm[np.unique(md.groups["crack"])]
+    # every crack node lies in the crack plane and inside the solid's radial extent (the overshoot
+    # beyond the free surface was dropped); the crack reaches depth a below that surface
+    assert np.abs((crack - point) @ normal).max() < 1e-6 * h_mm
+    r = np.hypot(crack[:, 0], crack[:, 1])
+    r_all = np.hypot(md.nodes_mm[:, 0], md.nodes_mm[:, 1])
+    assert r.max() <= r_all.max() + 1e-9
+    front = md.nodes_mm[crack_front_nodes(md)]
+    depth = r_all.max() - np.hypot(front[:, 0], front[:, 1]).min()
+    # the front's deepest point is a below the outer radius (the cup's inclined plane: depth a below
+    # the root circle, measured radially); 2 % allows the P1 chord of the curved front
+    assert depth == pytest.approx(a_mm, rel=0.02)
+    # every named face was found again after the fragment (the shaft's outer cylinder is cut in two)
+    assert set(plain.named_faces) <= set(md.groups)
