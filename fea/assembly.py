@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from .block_scatter import assemble_symmetric, component_pairs, split_matrix
+from .block_scatter import split_matrix, symmetric_matrix, upper_blocks
 from .element_gradients import ElementGeometry, geometry_of_basis
 
 
@@ -76,22 +76,20 @@ def stiffness(geom: ElementGeometry, lame: Lame, *, thickness_mm: float = 1.0, c
     npair, nrs = iu.size, nq * dim * dim
     # R[p, (q, r, s)] = dN_{i_p r}(q) dN_{j_p s}(q): the reference part of Q, the same for every element
     R = np.einsum("prq,psq->pqrs", geom.dN[iu], geom.dN[ju]).reshape(npair, nrs)
-    n_sym = len(component_pairs(dim)[0])
-    fold = lame_map(lame, dim) @ split_matrix(dim) * (thickness_mm if dim == 2 else 1.0)
-    fold_s, fold_a = np.ascontiguousarray(fold[:, :n_sym]), np.ascontiguousarray(fold[:, n_sym:])
-    sym = np.empty((npair, nel, n_sym))                                         # pair-major: (I, J) below
-    anti = np.empty((npair, nel, fold_a.shape[1]))
+    fold = lame_map(lame, dim) @ split_matrix(dim) * (thickness_mm if dim == 2 else 1.0)   # (dim^2, k)
+    k = fold.shape[1]
+    W = np.empty((npair, nel, k))                  # pair-major, so (I, J) are plain rows of edofs below
     for s in range(0, nel, chunk):
         e = slice(s, min(s + chunk, nel))
         ne = e.stop - e.start
         A = (geom.inv[..., e] * geom.dx[:, e]).transpose(2, 0, 3, 1)           # (q, r, e, a)
         B = geom.inv[..., e].transpose(2, 0, 3, 1)                              # (q, s, e, b)
         T = (A[:, :, None, :, :, None] * B[:, None, :, :, None, :]).reshape(nrs * ne, dim * dim)
-        sym[:, e] = (R @ (T @ fold_s).reshape(nrs, ne * n_sym)).reshape(npair, ne, n_sym)
-        anti[:, e] = (R @ (T @ fold_a).reshape(nrs, -1)).reshape(npair, ne, -1)
-    m = npair * nel
-    return assemble_symmetric(edofs[iu].ravel(), edofs[ju].ravel(), sym.reshape(m, -1), anti.reshape(m, -1),
-                              geom.n_dofs, dim, fmt)
+        W[:, e] = (R @ (T @ fold).reshape(nrs, ne * k)).reshape(npair, ne, k)
+    rows, cols, blocks = upper_blocks(edofs[iu].ravel(), edofs[ju].ravel(), W.reshape(npair * nel, k),
+                                      geom.n_dofs, dim)
+    del W                                          # before the mirror: the peak is there
+    return symmetric_matrix(rows, cols, blocks, geom.n_dofs, dim, fmt)
 
 
 def elasticity_stiffness(basis, lame: Lame, *, thickness_mm: float = 1.0, chunk: int = 4096,

@@ -109,7 +109,7 @@ def test_symmetric_scatter_against_dense_sum():
     sym = np.stack([0.5 * (C[:, a, b] + C[:, b, a]) for a, b in ps], axis=1)
     anti = np.stack([0.5 * (C[:, a, b] - C[:, b, a]) for a, b in pa], axis=1)
     for fmt in ("csr", "bsr"):
-        K = assemble_symmetric(I, J, sym, anti, n, dim, fmt)
+        K = assemble_symmetric(I, J, np.hstack([sym, anti]), n, dim, fmt)
         assert K.format == fmt
         assert np.abs(K.toarray() - dense).max() < 1e-12 * np.abs(dense).max()   # summation order only
     assert sp.csr_matrix(dense).nnz <= K.nnz
