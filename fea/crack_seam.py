@@ -31,8 +31,9 @@ def _keys(rows: np.ndarray, n: int) -> np.ndarray:
 
 
 def crack_front_nodes(md: MeshData, group: str = "crack") -> np.ndarray:
-    """Sorted node indices on the crack front: vertices (and P2 mid nodes) of the crack-surface boundary
-    edges that are not edges of the volume mesh's exterior boundary."""
+    """Sorted node indices that stay shared: the vertices of the crack FRONT edges (crack-surface boundary
+    edges that are not edges of the volume mesh's exterior boundary) and, for P2, the mid nodes of the
+    crack edges between two such vertices."""
     n = md.nodes_mm.shape[0]
     if n ** 3 >= 2 ** 62:
         raise ValueError("crack_front_nodes: too many nodes for integer face keys")
@@ -50,11 +51,15 @@ def crack_front_nodes(md: MeshData, group: str = "crack") -> np.ndarray:
     ext_faces = faces[first[fcnt == 1]]          # faces of one element only: the exterior boundary
     ext_edges = np.unique(np.concatenate([_keys(ext_faces[:, [a, b]], n) for a, b in ((0, 1), (1, 2), (0, 2))]))
     front = boundary & ~np.isin(ekeys, ext_edges)
-    nodes = [edges[front].ravel()]
-    if facets.shape[1] == 6:       # P2: the mid node of each front edge stays shared as well
-        mids = np.concatenate([facets[:, m] for _, _, m in _TRI_EDGES])
-        nodes.append(mids[front])
-    return np.unique(np.concatenate(nodes))
+    verts = np.unique(edges[front])
+    if facets.shape[1] != 6:
+        return verts
+    # P2: the mid node of every crack edge whose two vertices both stay shared stays shared too - the
+    # front edges, and also an edge joining two front vertices across a corner facet: one edge has one
+    # mid node (duplicating it alone would give the two sides different mid nodes on one edge)
+    mids = np.concatenate([facets[:, m] for _, _, m in _TRI_EDGES])
+    closed = np.isin(edges, verts).all(axis=1)
+    return np.unique(np.concatenate([verts, mids[closed]]))
 
 
 def _oriented_normals(md: MeshData, facets: np.ndarray) -> np.ndarray:
