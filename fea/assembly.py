@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from .block_scatter import split_matrix, symmetric_matrix, upper_blocks
+from .block_scatter import component_pairs, orient, split_matrix, symmetric_matrix, upper_blocks
 from .element_gradients import ElementGeometry, geometry_of_basis
 
 
@@ -77,17 +77,21 @@ def stiffness(geom: ElementGeometry, lame: Lame, *, thickness_mm: float = 1.0, c
     # R[p, (q, r, s)] = dN_{i_p r}(q) dN_{j_p s}(q): the reference part of Q, the same for every element
     R = np.einsum("prq,psq->pqrs", geom.dN[iu], geom.dN[ju]).reshape(npair, nrs)
     fold = lame_map(lame, dim) @ split_matrix(dim) * (thickness_mm if dim == 2 else 1.0)   # (dim^2, k)
-    k = fold.shape[1]
-    W = np.empty((npair, nel, k))                  # pair-major, so (I, J) are plain rows of edofs below
+    k, n_sym = fold.shape[1], len(component_pairs(dim)[0])
+    m = npair * nel
+    W = np.empty((m, k))
+    I, J = np.empty(m, edofs.dtype), np.empty(m, edofs.dtype)
     for s in range(0, nel, chunk):
         e = slice(s, min(s + chunk, nel))
         ne = e.stop - e.start
+        rows = slice(s * npair, (s + ne) * npair)                              # chunk-major, then pair
         A = (geom.inv[..., e] * geom.dx[:, e]).transpose(2, 0, 3, 1)           # (q, r, e, a)
         B = geom.inv[..., e].transpose(2, 0, 3, 1)                              # (q, s, e, b)
         T = (A[:, :, None, :, :, None] * B[:, None, :, :, None, :]).reshape(nrs * ne, dim * dim)
-        W[:, e] = (R @ (T @ fold).reshape(nrs, ne * k)).reshape(npair, ne, k)
-    rows, cols, blocks = upper_blocks(edofs[iu].ravel(), edofs[ju].ravel(), W.reshape(npair * nel, k),
-                                      geom.n_dofs, dim)
+        np.matmul(R, (T @ fold).reshape(nrs, ne * k), out=W[rows].reshape(npair, ne * k))
+        I[rows], J[rows] = edofs[iu, e].ravel(), edofs[ju, e].ravel()
+        orient(I[rows], J[rows], W[rows], n_sym)                                # while in cache
+    rows, cols, blocks = upper_blocks(I, J, W, geom.n_dofs, dim)
     del W                                          # before the mirror: the peak is there
     return symmetric_matrix(rows, cols, blocks, geom.n_dofs, dim, fmt)
 

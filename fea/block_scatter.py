@@ -64,20 +64,24 @@ def _block_map(dim: int) -> tuple[np.ndarray, np.ndarray]:
     return Ms, Ma
 
 
+def orient(I: np.ndarray, J: np.ndarray, W: np.ndarray, n_sym: int) -> None:
+    """Orient contributions to the upper triangle, in place: a swapped pair (I > J) contributes C^T, so
+    its antisymmetric part changes sign; a diagonal pair's C is symmetric (its antisymmetric part is
+    round-off only) and is zeroed, so the diagonal blocks come out exactly symmetric.
+    I, J : (...) dofs; W : (..., n_sym + n_anti) [sym, anti] components."""
+    W[..., n_sym:] *= np.sign(J.astype(np.int64) - I).astype(W.dtype)[..., None]
+
+
 def upper_blocks(I: np.ndarray, J: np.ndarray, W: np.ndarray, n: int, dim: int
                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Sum block contributions into the upper block triangle.
+    """Sum ORIENTED block contributions (``orient``) into the upper block triangle.
 
-    I, J : (m,) scalar dofs of each contribution (any orientation; of a pair (I, J) / (J, I) of the same
-    element only one is given). W : (m, n_sym + n_anti) [sym, anti] components (``component_pairs``),
-    OVERWRITTEN (its antisymmetric part is oriented in place). Returns the (row, col)-sorted block
-    rows <= cols and the summed blocks B (nb, dim, dim)."""
+    I, J : (m,) scalar dofs of each contribution (of a pair (I, J) / (J, I) of the same element only one
+    is given). W : (m, n_sym + n_anti) [sym, anti] components (``component_pairs``) of the block of
+    (min(I, J), max(I, J)). Returns the (row, col)-sorted block rows <= cols and the summed blocks
+    B (nb, dim, dim)."""
     I = I.astype(np.int64, copy=False)
     J = J.astype(np.int64, copy=False)
-    n_sym = len(component_pairs(dim)[0])
-    # a swapped pair contributes C^T: its antisymmetric part changes sign. A diagonal pair's C is
-    # symmetric (anti is round-off only): dropped, so the diagonal blocks are exactly symmetric.
-    W[:, n_sym:] *= np.where(I == J, 0.0, np.where(I > J, -1.0, 1.0))[:, None]
     order, starts, ukeys = sorted_groups(np.minimum(I, J) * n + np.maximum(I, J))
     m = order.size
     S = sp.csr_matrix((np.ones(m), order, np.append(starts, m)), shape=(starts.size, m))
@@ -96,7 +100,9 @@ def symmetric_matrix(rows: np.ndarray, cols: np.ndarray, B: np.ndarray, n: int, 
 
 def assemble_symmetric(I: np.ndarray, J: np.ndarray, W: np.ndarray, n: int, dim: int,
                        fmt: str = "csr") -> sp.spmatrix:
-    """``symmetric_matrix(*upper_blocks(I, J, W, n, dim))`` (W is overwritten)."""
+    """The symmetric matrix of unoriented contributions: ``orient`` (W is overwritten), ``upper_blocks``,
+    ``symmetric_matrix``."""
+    orient(I, J, W, len(component_pairs(dim)[0]))
     return symmetric_matrix(*upper_blocks(I, J, W, n, dim), n, dim, fmt)
 
 
