@@ -15,6 +15,7 @@ import dataclasses
 import numpy as np
 from scipy.spatial import cKDTree
 
+from ..errors import StageError
 from .mesh_data import MeshData
 
 _TET_FACES = ((0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3))
@@ -96,6 +97,9 @@ def open_crack(md: MeshData, group: str = "crack") -> MeshData:
     n = md.nodes_mm.shape[0]
     facets = md.groups[group]
     dup = np.setdiff1d(np.unique(facets), crack_front_nodes(md, group))
+    if dup.size == 0:    # e.g. two triangles whose corners all lie on the front: the crack stays shut
+        raise ValueError(f"the mesh does not resolve the crack: all {np.unique(facets).size} nodes of group "
+                         f"{group!r} lie on its front; refine the front below the crack size")
     new_id = np.full(n, -1, dtype=np.int64)
     new_id[dup] = n + np.arange(dup.size)
     is_dup = new_id >= 0
@@ -127,3 +131,11 @@ def open_crack(md: MeshData, group: str = "crack") -> MeshData:
     quality = None if md.quality is None else dataclasses.replace(
         md.quality, nodes=int(nodes.shape[0]), dofs=int(nodes.shape[0] * md.dim))
     return dataclasses.replace(md, nodes_mm=nodes, cells=cells, groups=groups, quality=quality)
+
+
+def open_crack_for(md: MeshData, study: str, group: str = "crack") -> MeshData:
+    """``open_crack`` for a study: an unresolved crack becomes ``StageError("mesh", study, ...)``."""
+    try:
+        return open_crack(md, group)
+    except ValueError as exc:
+        raise StageError("mesh", study, str(exc)) from exc

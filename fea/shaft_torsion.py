@@ -19,7 +19,7 @@ from typing import Callable, Sequence
 from ..errors import InputError
 from .assembly import Lame
 from .fields import nodal_displacement, nodal_stress, von_mises, write_vtu
-from .crack_seam import open_crack
+from .crack_seam import open_crack_for
 from .meshing import Refine
 from .refinement import DEFAULT_RATIO, crack_flexibility_quantities, refinement_sizes
 from .result import StudyResult
@@ -90,7 +90,7 @@ def solve_seam(part, params, *, h_mm: float, order: int, refine: Sequence[Refine
     (lambda uncracked, lambda cracked, uncracked solution, cracked solution, mesh time)."""
     md, t_mesh = mesh_for_study(part, study=STUDY, h_mm=h_mm, order=order, refine=refine, progress=progress)
     lam0, sol0 = solve_mesh(md, params, progress=progress)
-    lam1, sol1 = solve_mesh(open_crack(md), params, progress=progress)
+    lam1, sol1 = solve_mesh(open_crack_for(md, STUDY), params, progress=progress)
     return lam0, lam1, sol0, sol1, t_mesh
 
 

@@ -166,3 +166,20 @@ def test_part_seams_embed_on_the_uncracked_solid(name, a_mm, h_mm):
     assert depth == pytest.approx(a_mm, rel=0.02)
     # every named face was found again after the fragment (the shaft's outer cylinder is cut in two)
     assert set(plain.named_faces) <= set(md.groups)
+
+
+def test_unresolved_crack_is_refused():
+    # an internal triangular crack (1 mm legs) meshed at 2.5 mm: one triangle, every node on the front
+    # (an internal crack's whole boundary is front), so opening it would change nothing - refused
+    import dataclasses
+
+    from build123d import Face, Polyline, Wire
+    from strainwave.errors import StageError
+    from strainwave.fea.crack_seam import open_crack_for
+    pts = [(4.0, HS, 0.5), (5.0, HS, 0.5), (4.0, HS, 1.5)]
+    part = dataclasses.replace(_strip(True), crack_surface=Face(Wire(Polyline(*pts, close=True).edges())))
+    with gmsh_session() as model:
+        md = mesh_part(model, part, size_mm=2.5, order=1)
+    assert np.setdiff1d(np.unique(md.groups["crack"]), crack_front_nodes(md)).size == 0
+    with pytest.raises(StageError, match="does not resolve the crack"):
+        open_crack_for(md, "test")
