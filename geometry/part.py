@@ -17,7 +17,6 @@ class PartName(enum.Enum):
     WG_BEARING_RING = "wg-bearing-ring"
 
 
-@dataclass(frozen=True)
 class CrackModel(enum.Enum):
     """How a crack enters the geometry."""
     SLOT = "slot"    # a CAD slot of width crack_geometry.slot_width_mm cut from the solid (STEP, previews)
