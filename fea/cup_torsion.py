@@ -16,7 +16,7 @@ from .assembly import Lame
 from .fields import nodal_displacement, nodal_stress, von_mises, write_vtu
 from .crack_seam import open_crack_for
 from .meshing import Refine
-from .refinement import DEFAULT_RATIO, crack_flexibility_quantities, refinement_sizes
+from .refinement import DEFAULT_RATIO, crack_flexibility_quantities, crack_front_size_mm, refinement_sizes
 from .result import StudyResult
 from .static import StaticSolution, solve_static
 from .study_mesh import mesh_for_study
@@ -54,6 +54,7 @@ def tube_flexibility(params) -> float:
 # (0.42 mm) left the 0.1 mm crack as two triangles with every node on the front (delta lambda = 0).
 FRONT_FLOOR_OVER_H = 0.0
 GROW_OVER_H = 3.0
+TIP_OVER_A = 0.5
 
 
 def crack_refine(part, h_mm: float, depth_mm: float, *, h_fine_mm: float | None = None,
@@ -64,8 +65,8 @@ def crack_refine(part, h_mm: float, depth_mm: float, *, h_fine_mm: float | None 
     lambda 2.438e-15 +- 1.3e-17 in 47 s for the three refinements (slot: ~1e-14, unresolved, ~40 s)."""
     floor = FRONT_FLOOR_OVER_H if floor_over_h is None else floor_over_h
     grow = GROW_OVER_H if grow_over_h is None else grow_over_h
-    h_f = h_mm if h_fine_mm is None else h_fine_mm
-    tip = (h_mm / h_f) * max(min(h_f, depth_mm / 2.0), h_f * floor)
+    tip = crack_front_size_mm(h_mm, h_mm if h_fine_mm is None else h_fine_mm, depth_mm,
+                              tip_over_a=TIP_OVER_A, floor_over_h=floor)
     return Refine(size_mm=tip, dist_min_mm=max(depth_mm, tip), dist_max_mm=2 * depth_mm + grow * h_mm,
                   points_mm=part.crack_front_mm)
 

@@ -21,7 +21,7 @@ from .assembly import Lame
 from .fields import nodal_displacement, nodal_stress, von_mises, write_vtu
 from .crack_seam import open_crack_for
 from .meshing import Refine
-from .refinement import DEFAULT_RATIO, crack_flexibility_quantities, refinement_sizes
+from .refinement import DEFAULT_RATIO, crack_flexibility_quantities, crack_front_size_mm, refinement_sizes
 from .result import StudyResult
 from .static import StaticSolution, solve_static
 from .study_mesh import mesh_for_study
@@ -43,25 +43,32 @@ def default_size_mm(params, quick: bool) -> float:
     return params.output_shaft.wall_mm / (1.0 if quick else 1.5)
 
 
-# Crack-front size floor and the width of the graded zone, in units of the global size h. Measured on the
-# shaft at a = 0.1 mm (full circumference, h = 8.33 mm, seam): floor h/16 with the zone a + 3h: 324k dofs,
-# delta lambda 5.98e-15 +- 1.35e-14; floor h/32, a + 3h: 606k dofs, 8.08e-15 +- 3.5e-15 (227 s);
-# floor h/32, a + 1h: 190k dofs, 7.97e-15 +- 2.7e-15 (95 s). The seam leaves no far-field noise to grade
-# away, so the narrow zone costs nothing in accuracy.
+# Crack-front size (refinement.crack_front_size_mm): a/6 at the finest mesh, floor h/32; graded zone
+# 3a + h. Measured on the shaft (seam, h = 8.33 mm, 3 refinements x 2 solves, 2 shared cores, +-1.5x):
+#  a = 3.13 mm: tip a/2 fixed (not refined with h), zone a + 3h: 87k dofs, 18 s, 1.218e-11 +- 0.5 %, but
+#    the GCI missed the tip error: refined tips give 1.34e-11; tip a/2 scaled: 62k dofs, p = 0.3, GCI 69 %;
+#    a/4: 175k dofs, p = 0.05 (equal steps, GCI useless); a/6: 381k dofs, 86 s, 1.344e-11 +- 5.5 %, p = 1.1
+#    (the O(tip) singularity error of P2 without quarter-point elements);
+#  a = 0.78 mm (floor a/3): 267k dofs, 64 s, 7.58e-13 +- 7.6 %, p = 1.6;
+#  a = 0.1 mm (floor, 0.26 mm): zone a + 3h: 606k dofs, 227 s, 8.08e-15 +- 3.5e-15; zone a + h: 190k dofs,
+#    58 s, 7.97e-15 +- 2.7e-15 (extrapolated 1.01e-14). Floor h/16: 324k dofs, 5.98e-15 +- 1.35e-14.
+# The seam leaves no far-field noise to grade away, so a narrow zone costs nothing in accuracy.
 FRONT_FLOOR_OVER_H = 1.0 / 32.0
+TIP_OVER_A = 1.0 / 6.0
 GROW_OVER_H = 1.0
+ZONE_OVER_A = 3.0
 
 
 def crack_refine(part, h_mm: float, depth_mm: float, *, h_fine_mm: float | None = None,
                  floor_over_h: float | None = None, grow_over_h: float | None = None) -> Refine:
-    """Crack-front refinement: a/2 at the front on the finest mesh, never below ``floor_over_h`` h (shallow
+    """Crack-front refinement: a/6 at the front on the finest mesh, never below ``floor_over_h`` h (shallow
     cracks stay affordable; their GCI then says how well they are resolved), scaled with h/h_fine on the
-    coarser meshes (so the GCI sees the front converge too), growing to h within a + ``grow_over_h`` h."""
+    coarser meshes (so the GCI sees the front converge too), growing to h within 3a + ``grow_over_h`` h."""
     floor = FRONT_FLOOR_OVER_H if floor_over_h is None else floor_over_h
     grow = GROW_OVER_H if grow_over_h is None else grow_over_h
-    h_f = h_mm if h_fine_mm is None else h_fine_mm
-    tip = (h_mm / h_f) * max(min(h_f, depth_mm / 2.0), h_f * floor)
-    return Refine(size_mm=tip, dist_min_mm=max(depth_mm / 2.0, tip), dist_max_mm=depth_mm + grow * h_mm,
+    tip = crack_front_size_mm(h_mm, h_mm if h_fine_mm is None else h_fine_mm, depth_mm,
+                              tip_over_a=TIP_OVER_A, floor_over_h=floor)
+    return Refine(size_mm=tip, dist_min_mm=max(depth_mm / 2.0, tip), dist_max_mm=ZONE_OVER_A * depth_mm + grow * h_mm,
                   points_mm=part.crack_front_mm)
 
 
