@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from .block_scatter import component_pairs, orient, split_matrix, symmetric_matrix, upper_blocks
+from .block_scatter import component_pairs, orient, pair_keys, split_matrix, symmetric_matrix, upper_blocks
 from .element_gradients import ElementGeometry, geometry_of_basis
 
 
@@ -80,7 +80,7 @@ def stiffness(geom: ElementGeometry, lame: Lame, *, thickness_mm: float = 1.0, c
     k, n_sym = fold.shape[1], len(component_pairs(dim)[0])
     m = npair * nel
     W = np.empty((m, k))
-    I, J = np.empty(m, edofs.dtype), np.empty(m, edofs.dtype)
+    keys = np.empty(m, np.int64)
     for s in range(0, nel, chunk):
         e = slice(s, min(s + chunk, nel))
         ne = e.stop - e.start
@@ -89,11 +89,14 @@ def stiffness(geom: ElementGeometry, lame: Lame, *, thickness_mm: float = 1.0, c
         B = geom.inv[..., e].transpose(2, 0, 3, 1)                              # (q, s, e, b)
         T = (A[:, :, None, :, :, None] * B[:, None, :, :, None, :]).reshape(nrs * ne, dim * dim)
         np.matmul(R, (T @ fold).reshape(nrs, ne * k), out=W[rows].reshape(npair, ne * k))
-        I[rows], J[rows] = edofs[iu, e].ravel(), edofs[ju, e].ravel()
-        orient(I[rows], J[rows], W[rows], n_sym)                                # while in cache
-    rows, cols, blocks = upper_blocks(I, J, W, geom.n_dofs, dim)
-    del W                                          # before the mirror: the peak is there
-    return symmetric_matrix(rows, cols, blocks, geom.n_dofs, dim, fmt)
+        I, J = edofs[iu, e], edofs[ju, e]                                      # (npair, ne)
+        keys[rows] = pair_keys(I, J, geom.n_dofs).ravel()
+        orient(I, J, W[rows].reshape(npair, ne, k), n_sym)                      # while in cache
+    rows, cols, blocks = upper_blocks(keys, W, geom.n_dofs, dim)
+    del W, keys                                    # the peak is in the mirror: free what we can first
+    K = symmetric_matrix(rows, cols, blocks, geom.n_dofs, dim)
+    del rows, cols, blocks
+    return K if fmt == "bsr" else K.tocsr()
 
 
 def elasticity_stiffness(basis, lame: Lame, *, thickness_mm: float = 1.0, chunk: int = 4096,
