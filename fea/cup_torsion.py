@@ -49,20 +49,23 @@ def tube_flexibility(params) -> float:
     return 32.0 * fc.length_mm / (math.pi * mat.implied_shear_modulus_MPa * (d ** 4 - di ** 4))
 
 
-# Crack-front size floor and graded-zone width in units of h (seam cracks; measurements in crack_refine).
-# No floor: the root crack's front is short (a/sin beta + 2c), so a/2 there is cheap, and a floor of h/16
-# (0.42 mm) left the 0.1 mm crack as two triangles with every node on the front (delta lambda = 0).
+# Crack-front size (refinement.crack_front_size_mm): a/4 at the finest mesh, no floor: the root crack's
+# front is short (a/sin beta + 2c), so a fine tip is cheap, while a floor of h/16 (0.42 mm) left the
+# 0.1 mm crack as two triangles with every node on the front (delta lambda = 0). Measured (seam, h = 6.72
+# mm, 3 refinements x 2 solves, 2 shared cores, +-1.5x):
+#   a = 1.12 mm: tip a/2: 109k dofs, 43 s, 2.438e-15 +- 1.1e-16 (p = 3.8 from irregular steps; the a/4
+#     value lies outside that band); a/4: 145k dofs, 50 s, 2.585e-15, equal steps (p = 0.05, GCI 195 %);
+#   a = 0.1 mm: tip a/2: 116k dofs, 70 s, 1.65e-18 +- 1.1e-18; a/4: 154k dofs, 51 s, 1.766e-18 +- 2.4 %.
+# delta lambda ~ a^3.0 between the two depths, as for a 3D crack of fixed aspect ratio (c = 2a).
 FRONT_FLOOR_OVER_H = 0.0
 GROW_OVER_H = 3.0
-TIP_OVER_A = 0.5
+TIP_OVER_A = 0.25
 
 
 def crack_refine(part, h_mm: float, depth_mm: float, *, h_fine_mm: float | None = None,
                  floor_over_h: float | None = None, grow_over_h: float | None = None) -> Refine:
-    """a/2 at the root-crack front on the finest mesh, not below ``floor_over_h`` h (shallow cracks stay
-    affordable; the GCI tells), scaled with h/h_fine on the coarser meshes so the GCI sees the front
-    converge. Measured (seam, h = 6.72 mm, floor h/16, zone 2a + 3h): a = 1.12 mm, 109k dofs, delta
-    lambda 2.438e-15 +- 1.3e-17 in 47 s for the three refinements (slot: ~1e-14, unresolved, ~40 s)."""
+    """a/4 at the root-crack front on the finest mesh, scaled with h/h_fine on the coarser meshes so the
+    GCI sees the front converge, growing to h within 2a + 3h."""
     floor = FRONT_FLOOR_OVER_H if floor_over_h is None else floor_over_h
     grow = GROW_OVER_H if grow_over_h is None else grow_over_h
     tip = crack_front_size_mm(h_mm, h_mm if h_fine_mm is None else h_fine_mm, depth_mm,
