@@ -121,10 +121,29 @@ def _build_seam(params, depth_mm):
     return _build(params, depth_mm, CrackModel.SEAM)
 
 
+def crack_model_for(params, crack_model: str) -> str:
+    """"auto": the exact axisymmetric section for a full circumferential crack, the 3D seam otherwise."""
+    if crack_model not in ("auto", "axisymmetric", "seam"):
+        raise InputError("crack_model", crack_model, "must be auto, axisymmetric or seam")
+    full = params.crack_geometry.shaft_arc_deg >= 360.0
+    if crack_model == "axisymmetric" and not full:
+        raise InputError("crack_geometry.shaft_arc_deg", params.crack_geometry.shaft_arc_deg,
+                         "must be 360 for the axisymmetric crack model (use the 3D seam)")
+    return crack_model if crack_model != "auto" else ("axisymmetric" if full else "seam")
+
+
 def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, progress=lambda m: None,
-        quick=False, ratio: float = DEFAULT_RATIO, _uncracked_cache: dict | None = None) -> StudyResult:
-    """Flexibility on three meshes (GCI); with a crack also delta lambda = cracked - uncracked on each
-    (seam) mesh, both from the same mesh."""
+        quick=False, ratio: float = DEFAULT_RATIO, _uncracked_cache: dict | None = None,
+        crack_model: str = "auto") -> StudyResult:
+    """Flexibility on three meshes (GCI); with a crack also delta lambda = cracked - uncracked, both on
+    the same mesh: the (r, z) section for a full circumferential crack (``crack_model`` "auto" or
+    "axisymmetric", exact and cheap), the 3D seam otherwise ("seam")."""
+    model = crack_model_for(params, crack_model)
+    if crack_depth_mm is not None and model == "axisymmetric":
+        from .shaft_axisym_study import run_axisymmetric
+        uncracked = run(params, mesh_size_mm=mesh_size_mm, order=order, crack_depth_mm=None, vtu=vtu,
+                        progress=progress, quick=quick, ratio=ratio, _uncracked_cache=_uncracked_cache)
+        return run_axisymmetric(params, uncracked, crack_depth_mm, quick=quick, ratio=ratio, progress=progress)
     h = mesh_size_mm or default_size_mm(params, quick)
     if h >= params.output_shaft.length_mm / 2:
         raise InputError("--mesh-size-mm", h, f"must be < L_s/2 = {params.output_shaft.length_mm / 2:g} mm")
