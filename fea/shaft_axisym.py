@@ -104,9 +104,18 @@ def open_crack_line(md: MeshData, section: Section) -> MeshData:
                                groups=groups)
 
 
-def flexibility_rad_per_Nmm(md: MeshData, section: Section, shear_modulus_MPa: float,
-                            torque_Nmm: float = 1.0) -> float:
-    """Mean end rotation / T of the scalar axisymmetric torsion problem on ``md``."""
+@dataclass(frozen=True)
+class SectionSolution:
+    md: MeshData
+    psi: np.ndarray                 # rotation at the scikit-fem dofs, rad
+    sk: object                      # SkfemMesh
+    basis: object                   # scalar CellBasis
+    flexibility_rad_per_Nmm: float  # mean end rotation / T
+
+
+def solve_section(md: MeshData, section: Section, shear_modulus_MPa: float,
+                  torque_Nmm: float = 1.0) -> SectionSolution:
+    """The scalar axisymmetric torsion problem on ``md`` (x = r, y = z)."""
     from skfem import BilinearForm, FacetBasis, Functional, LinearForm, solve, condense
     from skfem.helpers import dot, grad
 
@@ -140,4 +149,24 @@ def flexibility_rad_per_Nmm(md: MeshData, section: Section, shear_modulus_MPa: f
         return 2 * np.pi * w.x[0]
 
     twist = rotation_area.assemble(end, psi=end.interpolate(psi)) / area.assemble(end)
-    return float(twist / torque_Nmm)
+    return SectionSolution(md, psi, sk, basis, float(twist / torque_Nmm))
+
+
+def flexibility_rad_per_Nmm(md: MeshData, section: Section, shear_modulus_MPa: float,
+                            torque_Nmm: float = 1.0) -> float:
+    """Mean end rotation / T of the scalar axisymmetric torsion problem on ``md``."""
+    return solve_section(md, section, shear_modulus_MPa, torque_Nmm).flexibility_rad_per_Nmm
+
+
+def section_fields(sol: SectionSolution, shear_modulus_MPa: float, torque_Nmm: float) -> dict[str, np.ndarray]:
+    """Nodal fields for VTU: rotation, u_theta (as the out-of-plane component) and the shear stress
+    tau = mu r |grad psi| with its von Mises equivalent sqrt(3) tau (L2-projected gradients)."""
+    g = sol.basis.project(sol.basis.interpolate(sol.psi).grad[0]), sol.basis.project(
+        sol.basis.interpolate(sol.psi).grad[1])
+    n2d = sol.sk.node_to_dof
+    r = sol.md.nodes_mm[:, 0]
+    psi = torque_Nmm * sol.psi[n2d]
+    tau = shear_modulus_MPa * r * torque_Nmm * np.hypot(g[0][n2d], g[1][n2d])
+    disp = np.zeros((r.size, 3))
+    disp[:, 2] = r * psi
+    return {"rotation_rad": psi, "displacement_mm": disp, "shear_stress_MPa": tau, "von_mises_MPa": np.sqrt(3) * tau}

@@ -10,12 +10,14 @@ delta lambda 1.348 -> 1.360e-14, 8.228 -> 8.297e-13, 1.379 -> 1.395e-11, 6.266 -
 from __future__ import annotations
 
 import time
+from pathlib import Path
 from typing import Callable
 
+from .fields import write_vtu
 from .refinement import converged_quantity, crack_flexibility_quantities, refinement_sizes
 from .result import StudyResult
 from .session import gmsh_session
-from .shaft_axisym import Section, flexibility_rad_per_Nmm, mesh_section, open_crack_line
+from .shaft_axisym import Section, mesh_section, open_crack_line, section_fields, solve_section
 
 UNIT = "rad/(N*mm)"
 # Finest section size (wall / 8) and tip size (a / 40): the tip error of P2 without quarter-point
@@ -25,9 +27,10 @@ WALL_OVER_H = {False: 8.0, True: 5.0}
 A_OVER_TIP = {False: 40.0, True: 20.0}
 
 
-def section_deltas(params, depth_mm: float, *, quick: bool, ratio: float,
+def section_deltas(params, depth_mm: float, *, quick: bool, ratio: float, vtu: Path | None = None,
                    progress: Callable[[str], None] = lambda m: None) -> tuple[tuple[float, ...], list[float], dict]:
-    """(section sizes finest first, delta lambda per size finest first, info) for one crack depth."""
+    """(section sizes finest first, delta lambda per size finest first, info) for one crack depth; the
+    finest opened section's fields (torque T, rotation, tau) go to ``vtu``."""
     section = Section.of(params, depth_mm)
     G = params.material.implied_shear_modulus_MPa
     h_fine = params.output_shaft.wall_mm / WALL_OVER_H[quick]
@@ -37,9 +40,12 @@ def section_deltas(params, depth_mm: float, *, quick: bool, ratio: float,
         tip = depth_mm / A_OVER_TIP[quick] * h / h_fine
         with gmsh_session() as model:
             md = mesh_section(model, section, size_mm=h, tip_size_mm=tip)
-        closed = flexibility_rad_per_Nmm(md, section, G)
-        opened = flexibility_rad_per_Nmm(open_crack_line(md, section), section, G)
-        deltas[h], nodes[h] = opened - closed, md.nodes_mm.shape[0]
+        closed = solve_section(md, section, G)
+        opened = solve_section(open_crack_line(md, section), section, G)
+        deltas[h] = opened.flexibility_rad_per_Nmm - closed.flexibility_rad_per_Nmm
+        nodes[h] = md.nodes_mm.shape[0]
+        if vtu is not None and h == sizes[0]:
+            write_vtu(vtu, opened.md, section_fields(opened, G, params.gear.output_torque_Nmm))
         progress(f"shaft-torsion (axisymmetric): h = {h:.3g} mm, tip {tip:.3g} mm, {nodes[h]} nodes, "
                  f"delta lambda {deltas[h]:.4e}")
     info = {"section_sizes_mm": list(sizes), "tip_sizes_mm": [depth_mm / A_OVER_TIP[quick] * h / h_fine for h in sizes],
@@ -48,10 +54,14 @@ def section_deltas(params, depth_mm: float, *, quick: bool, ratio: float,
 
 
 def run_axisymmetric(params, uncracked: StudyResult, depth_mm: float, *, quick: bool, ratio: float,
-                     progress: Callable[[str], None] = lambda m: None) -> StudyResult:
-    """Combine the 3D uncracked result with the section's crack delta (refinement k with refinement k)."""
+                     vtu: Path | None = None, progress: Callable[[str], None] = lambda m: None) -> StudyResult:
+    """Combine the 3D uncracked result with the section's crack delta (refinement k with refinement k).
+
+    Fields: the 3D uncracked VTU and ``<vtu stem>_cracked.vtu``, the opened (r, z) section (x = r, y = z)."""
     t0 = time.perf_counter()
-    sizes_2d, deltas, info = section_deltas(params, depth_mm, quick=quick, ratio=ratio, progress=progress)
+    section_vtu = None if vtu is None else Path(vtu).with_name(Path(vtu).stem + "_cracked.vtu")
+    sizes_2d, deltas, info = section_deltas(params, depth_mm, quick=quick, ratio=ratio, vtu=section_vtu,
+                                            progress=progress)
     flex = uncracked["flexibility_rad_per_Nmm"]
     sizes_3d, lam0 = flex.convergence.h_mm, list(flex.convergence.values)
     quantities = crack_flexibility_quantities(sizes_3d, lam0, [l0 + d for l0, d in zip(lam0, deltas)], UNIT)
@@ -63,4 +73,5 @@ def run_axisymmetric(params, uncracked: StudyResult, depth_mm: float, *, quick: 
                 axisymmetric=info)
     timings = dict(uncracked.timings_s, axisymmetric=time.perf_counter() - t0)
     timings["total"] = uncracked.timings_s.get("total", 0.0) + timings["axisymmetric"]
-    return StudyResult(uncracked.study, quantities, uncracked.mesh, timings, uncracked.fields, meta)
+    fields = tuple(uncracked.fields) + ((section_vtu,) if section_vtu is not None else ())
+    return StudyResult(uncracked.study, quantities, uncracked.mesh, timings, fields, meta)

@@ -143,7 +143,8 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
         from .shaft_axisym_study import run_axisymmetric
         uncracked = run(params, mesh_size_mm=mesh_size_mm, order=order, crack_depth_mm=None, vtu=vtu,
                         progress=progress, quick=quick, ratio=ratio, _uncracked_cache=_uncracked_cache)
-        return run_axisymmetric(params, uncracked, crack_depth_mm, quick=quick, ratio=ratio, progress=progress)
+        return run_axisymmetric(params, uncracked, crack_depth_mm, quick=quick, ratio=ratio, vtu=vtu,
+                                progress=progress)
     h = mesh_size_mm or default_size_mm(params, quick)
     if h >= params.output_shaft.length_mm / 2:
         raise InputError("--mesh-size-mm", h, f"must be < L_s/2 = {params.output_shaft.length_mm / 2:g} mm")
