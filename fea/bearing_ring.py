@@ -24,6 +24,7 @@ import numpy as np
 from ..errors import StageError
 from .assembly import Lame, elasticity_stiffness, scalar_basis
 from .convergence import grid_convergence
+from .refinement import CRACK_ORDER_BOUNDS
 from .fields import nodal_displacement, nodal_stress, von_mises, write_vtu
 from .facet_traction import facet_traction_load
 from .crack_seam import open_crack_for
@@ -259,7 +260,8 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
          "cracked_radial_compliance_mm_per_N": Quantity("cracked_radial_compliance_mm_per_N", c_cr[0], "mm/N",
                                                         grid_convergence(h_used, c_cr)),
          "delta_radial_compliance_mm_per_N": Quantity("delta_radial_compliance_mm_per_N", delta[0], "mm/N",
-                                                      grid_convergence(h_used, delta))}
+                                                      grid_convergence(h_used, delta, min_order=CRACK_ORDER_BOUNDS[0],
+                                                                       max_order=CRACK_ORDER_BOUNDS[1]))}
     dq = q["delta_radial_compliance_mm_per_N"]
     timings["total"] = time.perf_counter() - t_start
     meta = {"radial_force_N": force, "crack_depth_mm": a,

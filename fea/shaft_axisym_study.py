@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Callable
 
 from .fields import write_vtu
-from .refinement import converged_quantity, crack_flexibility_quantities, refinement_sizes
+from .refinement import CRACK_ORDER_BOUNDS, converged_quantity, crack_flexibility_quantities, refinement_sizes
 from .result import StudyResult
 from .session import gmsh_session
 from .shaft_axisym import Section, mesh_section, open_crack_line, section_fields, solve_section
@@ -66,7 +66,7 @@ def run_axisymmetric(params, uncracked: StudyResult, depth_mm: float, *, quick: 
     sizes_3d, lam0 = flex.convergence.h_mm, list(flex.convergence.values)
     quantities = crack_flexibility_quantities(sizes_3d, lam0, [l0 + d for l0, d in zip(lam0, deltas)], UNIT)
     quantities["delta_flexibility_rad_per_Nmm"] = converged_quantity("delta_flexibility_rad_per_Nmm", UNIT,
-                                                                     sizes_2d, deltas)
+                                                                     sizes_2d, deltas, order_bounds=CRACK_ORDER_BOUNDS)
     meta = dict(uncracked.meta, crack_depth_mm=depth_mm,
                 crack_model="axisymmetric (r, z) section: exact for a full circumferential crack; closed and "
                             "opened on one mesh",
