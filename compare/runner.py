@@ -23,10 +23,11 @@ class Case:
     label: str
     study: str
     crack_depth_mm: float | None = None
+    mesh_size_mm: float | None = None        # finest global size; None = the study's default
 
     def payload(self, params, quick: bool, order: int) -> dict:
         return {"study": self.study, "crack_depth_mm": self.crack_depth_mm, "quick": quick, "order": order,
-                "params": params.to_dict()}
+                "mesh_size_mm": self.mesh_size_mm, "params": params.to_dict()}
 
 
 @dataclass(frozen=True)
@@ -82,7 +83,7 @@ def run_case(case: Case, params, *, fields_dir: Path, cache: ResultCache, quick:
         except (KeyError, TypeError, ValueError):
             pass  # an entry from an older layout is recomputed
     progress(f"  {case.label}: solving {_describe(case)} ...")
-    kwargs = {"mesh_size_mm": None, "order": order, "crack_depth_mm": case.crack_depth_mm,
+    kwargs = {"mesh_size_mm": case.mesh_size_mm, "order": order, "crack_depth_mm": case.crack_depth_mm,
               "vtu": Path(fields_dir) / f"{case.label}.vtu", "quick": quick}
     child = run_isolated(case.study, params, kwargs, timeout_s=timeout_s or CASE_TIMEOUT_S[quick],
                          progress=lambda msg: progress(f"    {msg}"))
