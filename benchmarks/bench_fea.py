@@ -22,7 +22,7 @@ import subprocess
 import sys
 import time
 
-SERIES_MM = (8.3, 6.1, 5.2, 3.3, 2.4)     # ~24k, 60k, 100k, 300k, 1M P2 dofs (HXT meshes)
+SERIES_MM = (8.3, 6.1, 5.2, 3.3, 2.4, 2.1)  # ~25k, 60k, 90k, 280k, 650k, 960k P2 dofs (HXT meshes)
 CALCULIX_297K_S = 36.0                    # issue 4: CalculiX 2.20 on the 297k-dof mesh, 2 threads
 GOALS = ((250_000, 400_000, CALCULIX_297K_S / 3, 24.0), (800_000, 1_300_000, 60.0, 24.0))
 COMPARE_MM = (12.0, 8.3, 6.1)             # ~8k, 24k, 60k: direct vs AMG

@@ -116,7 +116,8 @@ def compliance_on_mesh(md, part, params, lame, *, force_N, method=SOLVER, keep_f
     fx = f[0::3].sum() * np.cos(np.arctan2(centre[1], centre[0])) + f[1::3].sum() * np.sin(np.arctan2(centre[1], centre[0]))
     f *= force_N / -fx                  # the resultant is F_r exactly (quadrature of the sqrt profile)
     fixed = (3 * group_dofs(sk, md, "bore")[:, None] + np.arange(3)).ravel()
-    u, info = solve_elasticity(K, f, fixed_dofs=fixed, coords=sb.doflocs, dim=3, study=STUDY, method=method)
+    u, info = solve_elasticity(K, f, fixed_dofs=fixed, coords=sb.doflocs, dim=3, study=STUDY, method=method,
+                               p2_element_dofs=sb.element_dofs if md.order == 2 else None)
     return float(f @ u) / force_N ** 2, info.to_dict(), ((md, sk, u) if keep_field else ())
 
 

@@ -16,9 +16,11 @@ import scipy.sparse.linalg as spla
 
 from ..errors import StageError
 
-# Crossover for solid (bulky) parts, from benchmarks/bench_fea.py: PARDISO beats AMG-CG up to about
-# this size; beyond it the Cholesky fill (and memory) of a 3D mesh grows faster than AMG's cost.
-# Thin-walled parts (the flexspline cup) pass method="direct": their graph is nearly 2D.
+# Crossover for plain smoothed aggregation (P1, 2D), from benchmarks/bench_fea.py: PARDISO beats it up
+# to about this size. For 3D P2 the p-multigrid wins at every size measured on the shaft (solve s,
+# PARDISO vs p-MG): 6.6k dofs 1.07 vs 0.21, 11.8k 1.12 vs 0.24, 25k 1.33 vs 0.49, 59k 2.83 vs 1.27,
+# so "auto" uses it for all 3D P2 systems. Thin-walled parts (the flexspline cup) pass method="direct":
+# their graph is nearly 2D (94k dofs: PARDISO 4.0 s, p-MG 10.7 s / 118 iterations).
 DIRECT_MAX_DOFS = 60_000
 # Relative residual for CG, measured with benchmarks/bench_fea.py --rtol-study 6.1 (62k dofs): against
 # rtol 1e-11 the shaft flexibility moves by -1.6e-11 (rtol 1e-6), -9.3e-14 (1e-8), -1.7e-14 (1e-10),
@@ -91,7 +93,8 @@ def solve_elasticity(K: sp.spmatrix, f: np.ndarray, *, fixed_dofs: np.ndarray, f
     if nb == 0.0:
         return u, SolverInfo("none", free.size, 0, 0.0, time.perf_counter() - t0)
     if method == "auto":
-        method = "direct" if free.size <= DIRECT_MAX_DOFS else "amg"
+        pmg = p2_element_dofs is not None and dim == 3
+        method = "amg" if pmg or free.size > DIRECT_MAX_DOFS else "direct"
     if method == "direct":
         x, name = _direct(Kff, b, study)
         its = 1
