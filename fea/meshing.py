@@ -136,6 +136,20 @@ def _options(size_mm: float) -> None:
     gmsh.option.setNumber("Mesh.Optimize", 1)
 
 
+def generate(model, dim: int, order: int, *, size_mm: float, refine: Sequence[Refine] | None = None,
+             group_tags: Mapping[str, list[int]] | None = None) -> None:
+    """Options, size fields and meshing of the synchronised ``model``; gmsh errors -> MeshingFailed.
+
+    The one meshing tail of every builder here and of other fea modules that draw their own geometry
+    (e.g. the axisymmetric shaft section)."""
+    _options(size_mm)
+    _size_fields(model, size_mm, refine or (), group_tags or {}, dim)
+    try:
+        _generate(model, dim, order)
+    except Exception as exc:  # gmsh raises plain Exception with its log message
+        raise MeshingFailed(f"gmsh meshing failed: {exc}") from exc
+
+
 def _generate(model, dim: int, order: int) -> None:
     model.mesh.generate(dim)
     if order == 2:
@@ -176,7 +190,8 @@ def _straighten_inverted(model, dim: int, passes: int = 4) -> None:
                 model.mesh.setNode(mid, list(0.5 * (xa + xb)), [])
 
 
-def _extract(model, dim: int, order: int, group_tags: Mapping[str, tuple[int, list[int]]], h_mm: float) -> MeshData:
+def extract(model, dim: int, order: int, group_tags: Mapping[str, tuple[int, list[int]]], h_mm: float) -> MeshData:
+    """The meshed model as MeshData with the named groups (name -> (dim, entity tags))."""
     import gmsh
     node_tags, coords, _ = model.mesh.getNodes()
     coords = coords.reshape(-1, 3)
@@ -237,13 +252,8 @@ def mesh_part(model, part, *, size_mm: float, order: int = 2, refine: Sequence[R
     for name, tags in group_tags.items():
         model.addPhysicalGroup(2, tags, name=name)
     model.addPhysicalGroup(3, [t for _, t in model.getEntities(3)], name="solid")
-    _options(size_mm)
-    _size_fields(model, size_mm, refine or (), group_tags, 3)
-    try:
-        _generate(model, 3, order)
-    except Exception as exc:  # gmsh raises plain Exception with its log message
-        raise MeshingFailed(f"gmsh meshing failed: {exc}") from exc
-    return _extract(model, 3, order, {n: (2, t) for n, t in group_tags.items()}, size_mm)
+    generate(model, 3, order, size_mm=size_mm, refine=refine, group_tags=group_tags)
+    return extract(model, 3, order, {n: (2, t) for n, t in group_tags.items()}, size_mm)
 
 
 def _embed_crack(model, face, named_faces, tol_mm: float) -> dict[str, list[int]]:
@@ -363,12 +373,7 @@ def mesh_section(model, face=None, *, loops: Sequence[np.ndarray] | None = None,
     for name, tags in point_tags.items():
         model.addPhysicalGroup(0, tags, name=name)
     model.addPhysicalGroup(2, [t for _, t in model.getEntities(2)], name="section")
-    _options(size_mm)
-    _size_fields(model, size_mm, refine or (), group_tags, 2)
-    try:
-        _generate(model, 2, order)
-    except Exception as exc:
-        raise MeshingFailed(f"gmsh meshing failed: {exc}") from exc
+    generate(model, 2, order, size_mm=size_mm, refine=refine, group_tags=group_tags)
     groups = {n: (1, t) for n, t in group_tags.items()}
     groups.update({n: (0, t) for n, t in point_tags.items()})
-    return _extract(model, 2, order, groups, size_mm)
+    return extract(model, 2, order, groups, size_mm)

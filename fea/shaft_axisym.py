@@ -51,7 +51,7 @@ class Section:
 def mesh_section(model, section: Section, *, size_mm: float, tip_size_mm: float, order: int = 2) -> MeshData:
     """Triangles of the (r, z) rectangle (x = r, y = z) with the crack line embedded (group "crack"),
     ends "fixed" (z = 0) and "loaded" (z = L); refined to ``tip_size_mm`` around the crack tip."""
-    from .meshing import Refine, _extract, _generate, _options, _size_fields
+    from .meshing import Refine, extract, generate
 
     s = section
     rect = model.occ.addRectangle(s.r_inner_mm, 0.0, 0.0, s.r_outer_mm - s.r_inner_mm, s.length_mm)
@@ -72,12 +72,10 @@ def mesh_section(model, section: Section, *, size_mm: float, tip_size_mm: float,
             model.addPhysicalGroup(1, tags, name=name)
             groups[name] = (1, tags)
     model.addPhysicalGroup(2, [t for _, t in model.getEntities(2)], name="section")
-    _options(size_mm)
     refine = [Refine(tip_size_mm, 2 * tip_size_mm, s.crack_depth_mm + 4 * size_mm, points_mm=(s.tip_mm + (0.0,),))
               ] if s.crack_depth_mm > 0 else []
-    _size_fields(model, size_mm, refine, {}, 2)
-    _generate(model, 2, order)
-    return _extract(model, 2, order, groups, size_mm)
+    generate(model, 2, order, size_mm=size_mm, refine=refine)
+    return extract(model, 2, order, groups, size_mm)
 
 
 def open_crack_line(md: MeshData, section: Section) -> MeshData:
