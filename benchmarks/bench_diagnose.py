@@ -16,9 +16,9 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 
 def cha_table(params) -> list[str]:
-    from strainwave.compare.diagnose import diagnose
-    from strainwave.compare.diagnose_cha import cha_recording, cha_rows
-    from strainwave.compare.recording import parse_text
+    from strainwave.compare.diagnose.pipeline import diagnose
+    from strainwave.compare.diagnose.cha import cha_recording, cha_rows
+    from strainwave.compare.diagnose.recording import parse_text
     lines = ["CHA table recovery (2000 rows, 20-bit encoder): relative error of the fitted parameters in %",
              f"{'gear':<10s} {'loop':<5s} {'named':<34s} {'K1':>6s} {'K2':>6s} {'K3':>6s} {'T1':>6s} {'T2':>6s} "
              f"{'loss':>6s}"]
@@ -40,9 +40,9 @@ def cha_table(params) -> list[str]:
 
 
 def speed(params) -> tuple[float, str]:
-    from strainwave.compare.diagnose import diagnose
-    from strainwave.compare.diagnose_cha import cha_recording, cha_rows
-    from strainwave.compare.recording import parse_text
+    from strainwave.compare.diagnose.pipeline import diagnose
+    from strainwave.compare.diagnose.cha import cha_recording, cha_rows
+    from strainwave.compare.diagnose.recording import parse_text
     text = cha_recording(cha_rows()[10], hysteresis=True, n=10_000)
     best = float("inf")
     for _ in range(3):
@@ -58,7 +58,7 @@ def main() -> int:
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--out", default="reports/bench_diagnose")
     args = ap.parse_args()
-    from strainwave.compare.diagnose_benchmark import run_benchmark
+    from strainwave.compare.diagnose.benchmark import run_benchmark
     from strainwave.errors import RangeWarning
     from strainwave.io_atomic import atomic_write_text
     from strainwave.params import load_params

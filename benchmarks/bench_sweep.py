@@ -22,8 +22,8 @@ from pathlib import Path
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
-from strainwave.compare.sweep import _compute, dask_client, run_sweep  # noqa: E402
-from strainwave.compare.sweep_task import PointSpec, closed_form_probe, point_key, run_point  # noqa: E402
+from strainwave.compare.sweep.pipeline import _compute, dask_client, run_sweep  # noqa: E402
+from strainwave.compare.sweep.task import PointSpec, closed_form_probe, point_key, run_point  # noqa: E402
 from strainwave.params import load_params  # noqa: E402
 
 DEFAULT_VARY = {

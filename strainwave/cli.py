@@ -81,7 +81,7 @@ def _cmd_solve(args) -> int:
 
 
 def _cmd_validate(args) -> int:
-    from .compare.validate import run_validate
+    from .compare.validate.pipeline import run_validate
     outcome = run_validate(_params(args), Path(args.out), quick=args.quick,
                            progress=lambda msg: print(msg, file=sys.stderr))
     print(outcome.summary())
@@ -89,7 +89,7 @@ def _cmd_validate(args) -> int:
 
 
 def _cmd_diagnose(args) -> int:
-    from .compare.diagnose import diagnose_file
+    from .compare.diagnose.pipeline import diagnose_file
     diagnosis = diagnose_file(Path(args.recording), params_path=args.params, baseline=args.baseline,
                               json_out=Path(args.json) if args.json else None,
                               plot_out=Path(args.plot) if args.plot else None)
@@ -98,14 +98,14 @@ def _cmd_diagnose(args) -> int:
 
 
 def _cmd_benchmark_diagnose(args) -> int:
-    from .compare.diagnose_benchmark import run_benchmark
+    from .compare.diagnose.benchmark import run_benchmark
     report = run_benchmark(n_per_class=args.n, seed=args.seed, out_dir=Path(args.out) if args.out else None)
     print(report.summary())
     return 0 if report.meets_targets else 1
 
 
 def _cmd_sweep(args) -> int:
-    from .compare.sweep import run_sweep
+    from .compare.sweep.pipeline import run_sweep
     outcome = run_sweep(args.study, vary=args.vary, params_path=args.params, sample_file=args.samples,
                         scheduler=args.scheduler, workers=args.workers, out_dir=Path(args.out),
                         quick=args.quick, tolerance=args.tolerance,

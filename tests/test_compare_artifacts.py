@@ -14,13 +14,13 @@ import pyvista as pv
 from PIL import Image
 
 from strainwave.analytic.summary import analytic_summary
-from strainwave.compare.artifacts import make_images
-from strainwave.compare.check_set import build_checks
-from strainwave.compare.fea_book import FeaBook
-from strainwave.compare.images import sample_circle
-from strainwave.compare.plan import make_plan
-from strainwave.compare.ring_shape import radial_displacement_mm
-from strainwave.compare.runner import CaseOutcome
+from strainwave.compare.validate.artifacts import make_images
+from strainwave.compare.validate.check_set import build_checks
+from strainwave.compare.validate.fea_book import FeaBook
+from strainwave.compare.validate.images import sample_circle
+from strainwave.compare.validate.plan import make_plan
+from strainwave.compare.validate.ring_shape import radial_displacement_mm
+from strainwave.compare.validate.runner import CaseOutcome
 from strainwave.fea.convergence import grid_convergence
 from strainwave.fea.result import MeshQuality, Quantity, StudyResult
 from strainwave.params import load_params

@@ -8,12 +8,12 @@ import jsonschema
 import numpy as np
 import pytest
 
-from strainwave.compare.audit_evidence import exponent_evidence
-from strainwave.compare.checks import Check, Tolerance, evaluate, fea_tolerance, not_evaluated, verdict_of
-from strainwave.compare.crack_scaling import fit_power_law
-from strainwave.compare.plan import bearing_depth_limit_mm, make_plan, sweep_depths_mm
-from strainwave.compare.results import plain, validate_results
-from strainwave.compare.ring_shape import thin_ring_shape
+from strainwave.compare.validate.audit_evidence import exponent_evidence
+from strainwave.compare.validate.checks import Check, Tolerance, evaluate, fea_tolerance, not_evaluated, verdict_of
+from strainwave.compare.validate.crack_scaling import fit_power_law
+from strainwave.compare.validate.plan import bearing_depth_limit_mm, make_plan, sweep_depths_mm
+from strainwave.compare.validate.results import plain, validate_results
+from strainwave.compare.validate.ring_shape import thin_ring_shape
 from strainwave.params import load_params
 
 
@@ -124,7 +124,7 @@ def test_schema_rejects_a_check_without_a_tolerance_reason():
 
 
 def test_isolated_case_reports_errors_and_time_limits_instead_of_dying():
-    from strainwave.compare.isolated import run_isolated
+    from strainwave.compare.validate.isolated import run_isolated
 
     params = load_params()
     bad = run_isolated("no-such-study", params, {}, timeout_s=60, progress=lambda m: None)
@@ -139,8 +139,8 @@ def _cup_check(fea_value, gci_abs):
     from types import SimpleNamespace
 
     from strainwave.analytic.seed000 import seed000_summary
-    from strainwave.compare.fea_book import FeaBook
-    from strainwave.compare.torsion_checks import cup_flexibility
+    from strainwave.compare.validate.fea_book import FeaBook
+    from strainwave.compare.validate.torsion_checks import cup_flexibility
 
     params = load_params()
     q = SimpleNamespace(value=fea_value, uncertainty=gci_abs)
@@ -172,9 +172,9 @@ def test_cup_check_fails_when_the_fea_matches_only_the_bare_tube():
 
 
 def _bearing_check(fea_mm_per_N, gci_mm_per_N, K_G0_N_per_mm=6.303e4):
-    from strainwave.compare.fea_book import FeaBook
-    from strainwave.compare.runner import Case, CaseOutcome
-    from strainwave.compare.torsion_checks import bearing_radial_compliance
+    from strainwave.compare.validate.fea_book import FeaBook
+    from strainwave.compare.validate.runner import Case, CaseOutcome
+    from strainwave.compare.validate.torsion_checks import bearing_radial_compliance
     from strainwave.fea.convergence import Convergence
     from strainwave.fea.result import MeshQuality, Quantity, StudyResult
     conv = Convergence((1.0, 1.4, 1.96), (fea_mm_per_N,) * 3, 2.0, fea_mm_per_N, gci_mm_per_N / fea_mm_per_N, True)

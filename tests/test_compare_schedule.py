@@ -1,6 +1,6 @@
 """Longest-first scheduling of validation cases from the previous run's durations."""
-from strainwave.compare.runner import Case
-from strainwave.compare.schedule import durations_file, load_durations, longest_first, save_durations
+from strainwave.compare.validate.runner import Case
+from strainwave.compare.validate.schedule import durations_file, load_durations, longest_first, save_durations
 
 
 def _cases(*labels):

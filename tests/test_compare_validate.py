@@ -18,8 +18,8 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from strainwave.compare.checks import REQUIRED_IDS
-from strainwave.compare.results import load_schema
+from strainwave.compare.validate.checks import REQUIRED_IDS
+from strainwave.compare.validate.results import load_schema
 
 CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_FLAGS = ("--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",

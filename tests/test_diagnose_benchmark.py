@@ -5,9 +5,9 @@ import math
 import numpy as np
 import pytest
 
-from strainwave.compare import diagnose_hifi_ring as hr
-from strainwave.compare import diagnose_hifi_torsion as ht
-from strainwave.compare.diagnose_benchmark import run_benchmark
+from strainwave.compare.diagnose import hifi_ring as hr
+from strainwave.compare.diagnose import hifi_torsion as ht
+from strainwave.compare.diagnose.benchmark import run_benchmark
 
 
 def test_benchmark_small_n_meets_targets(tmp_path):

@@ -4,9 +4,9 @@ import warnings
 
 import pytest
 
-from strainwave.compare.diagnose import diagnose
-from strainwave.compare.diagnose_cha import cha_recording, cha_rows
-from strainwave.compare.recording import parse_text
+from strainwave.compare.diagnose.pipeline import diagnose
+from strainwave.compare.diagnose.cha import cha_recording, cha_rows
+from strainwave.compare.diagnose.recording import parse_text
 from strainwave.errors import RangeWarning
 from strainwave.params import load_params
 

@@ -5,11 +5,11 @@ import warnings
 import numpy as np
 import pytest
 
-from strainwave.compare.baseline import analytic_baseline
-from strainwave.compare.diagnose import diagnose
-from strainwave.compare.diagnose_context import build_context
-from strainwave.compare.effects import CATALOGUE
-from strainwave.compare.recording import RecordingKind, format_recording, parse_text
+from strainwave.compare.diagnose.baseline import analytic_baseline
+from strainwave.compare.diagnose.pipeline import diagnose
+from strainwave.compare.diagnose.context import build_context
+from strainwave.compare.diagnose.effects import CATALOGUE
+from strainwave.compare.diagnose.recording import RecordingKind, format_recording, parse_text
 from strainwave.errors import RangeWarning
 from strainwave.params import load_params
 
@@ -109,8 +109,8 @@ def test_location_of_a_dead_band_is_around_zero(params):
 
 def test_fea_baseline_end_to_end_on_the_shaft(params, tmp_path):
     """--baseline fea runs the shaft-torsion study (quick meshes) and diagnoses against it."""
-    from strainwave.compare.baseline import torsion_compliance
-    from strainwave.compare.diagnose import diagnose_file
+    from strainwave.compare.diagnose.baseline import torsion_compliance
+    from strainwave.compare.diagnose.pipeline import diagnose_file
     c0, _ = torsion_compliance("output_shaft", params)
     T = 1e6 * np.sin(np.linspace(0.0, 4.0 * np.pi, 300))
     rng = np.random.default_rng(5)

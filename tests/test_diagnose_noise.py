@@ -2,8 +2,8 @@
 import numpy as np
 import pytest
 
-from strainwave.compare.diagnose_context import find_segments, reversal_threshold
-from strainwave.compare.diagnose_noise import noise_std
+from strainwave.compare.diagnose.context import find_segments, reversal_threshold
+from strainwave.compare.diagnose.noise import noise_std
 
 
 def test_noise_estimate_ignores_trend_and_drift():

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings, strategies as st
 
-from strainwave.compare.recording import RecordingKind, format_recording, parse_bytes, parse_text
+from strainwave.compare.diagnose.recording import RecordingKind, format_recording, parse_bytes, parse_text
 from strainwave.errors import InputError
 
 HEAD = '# [test]\n# kind = "torsion"\n# specimen = "output_shaft"\n'
@@ -106,7 +106,7 @@ def test_cli_unknown_kind_exit_2(strainwave_cmd, tmp_path):
 def test_cli_good_recording_writes_json_with_stable_keys_and_png(strainwave_cmd, tmp_path):
     rng = np.random.default_rng(3)
     T = 1e6 * np.sin(np.linspace(0.0, 4.0 * np.pi, 400))
-    from strainwave.compare.baseline import torsion_compliance
+    from strainwave.compare.diagnose.baseline import torsion_compliance
     from strainwave.params import load_params
     c0, _ = torsion_compliance("output_shaft", load_params())
     twist = c0 * T + 2e-4 * c0 * 1e6 * np.sign(np.gradient(T)) + 1e-3 * c0 * 1e6 * rng.standard_normal(400) * 0.05
@@ -126,7 +126,7 @@ def test_cli_good_recording_writes_json_with_stable_keys_and_png(strainwave_cmd,
 
 def test_fea_baseline_reads_the_ring_study_compliance(monkeypatch):
     """Wiring of --baseline fea: delta_cd_mm / reference_force_N of the study, GCI added to the uncertainty."""
-    from strainwave.compare import baseline as bl
+    from strainwave.compare.diagnose import baseline as bl
     from strainwave.fea import studies
     from strainwave.fea.convergence import grid_convergence
     from strainwave.fea.result import MeshQuality, Quantity, StudyResult
@@ -144,7 +144,7 @@ def test_fea_baseline_reads_the_ring_study_compliance(monkeypatch):
 
 
 def test_fea_baseline_for_gear_is_refused():
-    from strainwave.compare.baseline import fea_baseline
+    from strainwave.compare.diagnose.baseline import fea_baseline
     from strainwave.params import load_params
     rec = parse_text(_good().replace('"output_shaft"', '"gear"'))
     with pytest.raises(InputError, match="no FEA study models specimen 'gear'"):

@@ -16,9 +16,9 @@ import time
 
 import pandas as pd
 
-from strainwave.compare import cache
-from strainwave.compare.sweep import run_sweep
-from strainwave.compare.sweep_task import PointSpec, closed_form_probe, point_key
+from strainwave import cache
+from strainwave.compare.sweep.pipeline import run_sweep
+from strainwave.compare.sweep.task import PointSpec, closed_form_probe, point_key
 from strainwave.params import default_dict
 
 def _compliance(inner_mm, length_mm=200.0, outer_mm=70.0, mu_MPa=8.0e4):
@@ -29,9 +29,9 @@ def _compliance(inner_mm, length_mm=200.0, outer_mm=70.0, mu_MPa=8.0e4):
 _SCRIPT = """
 import functools, sys
 from pathlib import Path
-from strainwave.compare import cache
-from strainwave.compare.sweep import run_sweep
-from strainwave.compare.sweep_task import closed_form_probe
+from strainwave import cache
+from strainwave.compare.sweep.pipeline import run_sweep
+from strainwave.compare.sweep.task import closed_form_probe
 
 if __name__ == "__main__":
     cache.code_version = lambda: "pinned-for-the-resume-test"

@@ -10,7 +10,7 @@ import pandas as pd
 import pytest
 from distributed import LocalCluster
 
-from strainwave.compare.sweep import run_sweep
+from strainwave.compare.sweep.pipeline import run_sweep
 
 D, L, MU, E, NU = 70.0, 60.0, 8.0e4, 2.1e5, 0.3   # a short shaft (--params) keeps the meshes small
 G = E / (2 * (1 + NU))

@@ -4,8 +4,8 @@ import math
 import pandas as pd
 import pytest
 
-from strainwave.compare.sweep_grid import build_points, full_grid, parse_vary, read_samples
-from strainwave.compare.sweep_outputs import departures, records_frame
+from strainwave.compare.sweep.grid import build_points, full_grid, parse_vary, read_samples
+from strainwave.compare.sweep.outputs import departures, records_frame
 from strainwave.errors import InputError
 from strainwave.params import default_dict
 
@@ -127,7 +127,7 @@ def test_tidy_rows_relative_errors_and_named_departures():
 
 
 def test_plots_one_per_quantity_and_varied_input(tmp_path):
-    from strainwave.compare.sweep_outputs import plot_sweep
+    from strainwave.compare.sweep.outputs import plot_sweep
     records = []
     for index, (a, d) in enumerate([(0.1, 30.0), (0.2, 30.0), (0.1, 45.0), (0.2, 45.0)]):
         rec = _record(index, a, 1.0 + a + d / 100, 1.0, 1.1)

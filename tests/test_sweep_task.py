@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from strainwave.compare.sweep_task import PointSpec, analytic_beside, closed_form_probe, point_key, run_point
+from strainwave.compare.sweep.task import PointSpec, analytic_beside, closed_form_probe, point_key, run_point
 from strainwave.params import default_dict, load_params
 
 # the default output shaft: D = 70 mm, d = 45 mm, L = 200 mm, mu = 8e4 MPa

@@ -12,8 +12,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-from ..geometry.part import PartName
-from .cache import ResultCache, case_key
+from ...geometry.part import PartName
+from ...cache import ResultCache, case_key
 
 
 @dataclass(frozen=True)
@@ -29,7 +29,7 @@ def export_one(part: str, params, target: Path) -> tuple[list[str], float, str]:
     """Build and write one part (runs in the worker process); errors come back as text, not exceptions."""
     start = time.perf_counter()
     try:
-        from ..geometry.export import export_part
+        from ...geometry.export import export_part
 
         files = [str(p) for p in export_part(part, params, Path(target), crack_depth_mm=None, teeth=True, png=None)]
         return files, time.perf_counter() - start, ""

@@ -11,9 +11,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-from ..fea.convergence import Convergence
-from ..fea.result import MeshQuality, Quantity, StudyResult
-from .cache import ResultCache, case_key
+from ...fea.convergence import Convergence
+from ...fea.result import MeshQuality, Quantity, StudyResult
+from ...cache import ResultCache, case_key
 
 
 @dataclass(frozen=True)

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..io_atomic import atomic_write_bytes
+from ...io_atomic import atomic_write_bytes
 
 WINDOW = (1000, 750)
 

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..io_atomic import atomic_write_bytes
+from ...io_atomic import atomic_write_bytes
 from .ring_shape import radial_displacement_mm
 
 

@@ -30,7 +30,7 @@ def _child(conn, study: str, params, kwargs: dict) -> None:
     """Child side: solve, stream progress, send ("result", dict) or ("error", text)."""
     os.setpgid(0, 0)  # own process group: a time-out also stops any worker the study started
     try:
-        from ..fea.studies import run_study
+        from ...fea.studies import run_study
 
         def progress(msg: str) -> None:
             conn.send(("progress", msg))

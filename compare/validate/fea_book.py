@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..fea.result import Quantity
+from ...fea.result import Quantity
 from .runner import CaseOutcome
 
 

@@ -16,8 +16,8 @@ from __future__ import annotations
 
 import math
 
-from ..analytic import cracks
-from ..analytic.variant import Variant
+from ...analytic import cracks
+from ...analytic.variant import Variant
 from .checks import Check, evaluate, fea_tolerance, not_evaluated
 from .fea_book import FeaBook, Sweep
 
@@ -74,7 +74,7 @@ def cup_flexibility(book: FeaBook, label: str, s000: dict, params) -> Check:
     torsional compliance is as large as the tube's; the corrected value is strainwave's series shell
     model (tube + diaphragm + hub, ``analytic.torsion.cup_series_flexibility``) with G = E/2(1+nu) as the FEA.
     """
-    from ..analytic.seed000 import cup_series_model
+    from ...analytic.seed000 import cup_series_model
 
     lf = s000.get("lambda_f0_variants", {})
     series = cup_series_model(params, params.material.implied_shear_modulus_MPa)
@@ -178,8 +178,8 @@ def gear_stiffness(book: FeaBook, labels: dict[str, str], s000: dict, params) ->
     if qf is None or qs is None or lam_H is None:
         return not_evaluated("gear.stiffness", "drive torsional stiffness K_HD (uncracked)", unit,
                              "; ".join(w for w in (why_f, why_s) if w) or "no lambda_H0", analytic=analytic)
-    from ..analytic import torsion
-    from ..analytic.seed000 import cup_series_model
+    from ...analytic import torsion
+    from ...analytic.seed000 import cup_series_model
 
     total = lam_H + qf.value + qs.value
     K = 1.0 / total

@@ -10,6 +10,7 @@
 from __future__ import annotations
 
 import dataclasses
+import enum
 import itertools
 import json
 from dataclasses import dataclass
@@ -17,20 +18,27 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import InputError
-from ..io_atomic import atomic_write_text
+from ...errors import InputError
+from ...io_atomic import atomic_write_text
 from .baseline import Baseline, analytic_baseline, fea_baseline
-from .diagnose_context import build_context
-from .diagnose_explain import explain
-from .diagnose_fit import NOISE_FLOOR, Fit, fit_effects
-from .diagnose_locate import Located, locate
-from .diagnose_noise import noise_std
+from .context import build_context
+from .explain import explain
+from .fit import NOISE_FLOOR, Fit, fit_effects
+from .locate import Located, locate
+from .noise import noise_std
 from .effects import effects_for
 from .recording import Recording, parse_recording
 
 BIC_THRESHOLD = 10.0
 # Pairs that cannot be told apart: both are a pure linear compliance change.
 _DEGENERATE = {frozenset({"compliance_offset", "thick_ring"})}
+
+
+class Verdict(str, enum.Enum):
+    """The three answers, decided in this order (issue 12)."""
+    AGREES = "agrees"              # residual after the nuisance fit is consistent with the noise
+    EXPLAINED = "explained"        # a mismatch, and catalogue effect(s) bring the residual to the noise
+    UNEXPLAINED = "unexplained"    # a mismatch no catalogue model brings to the noise
 
 
 @dataclass(frozen=True)
@@ -66,9 +74,28 @@ class Diagnosis:
     n_samples: int
 
     @property
+    def verdict(self) -> Verdict:
+        # placeholder mapping until the goodness-of-fit verdict lands (issue 12)
+        return Verdict.EXPLAINED if self.mismatch else Verdict.AGREES
+
+    @property
+    def named(self) -> tuple[str, ...]:
+        """The named set of effects (catalogue ids), empty when the verdict is not *explained*."""
+        return self.effects[0].components if self.verdict is Verdict.EXPLAINED and self.effects else ()
+
+    @property
+    def ambiguous(self) -> bool:
+        """True when the runner-up cannot be told from the named model (within a few BIC units)."""
+        return False
+
+    @property
     def primary(self) -> str | None:
         """The named effect: the first component of the best model (components ordered by own delta BIC)."""
-        return self.effects[0].components[0] if self.mismatch and self.effects else None
+        return self.named[0] if self.named else None
+
+    def quantity(self, name: str) -> float | None:
+        """A shape-free quantity of the named model, e.g. ``hysteresis_loss_arcmin`` (None when absent)."""
+        return None
 
     def to_dict(self) -> dict:
         return {"recording": self.recording, "kind": self.kind, "specimen": self.specimen,
@@ -155,14 +182,14 @@ def _ranked(ctx, fit: Fit, base_fit: Fit, n: int) -> RankedEffect:
 def diagnose_file(path: Path, *, params_path=None, baseline: str = "analytic", json_out: Path | None = None,
                   plot_out: Path | None = None) -> Diagnosis:
     """CLI entry: parse, apply [params] overrides from the header, diagnose, write JSON/plot atomically."""
-    from ..params import load_params
+    from ...params import load_params
     rec = parse_recording(path)
     params = load_params(params_path, overrides=rec.param_overrides or None)
     diag, arrays = diagnose(rec, params, baseline)
     if json_out is not None:
         atomic_write_text(Path(json_out), json.dumps(diag.to_dict(), indent=2) + "\n")
     if plot_out is not None:
-        from .diagnose_plot import plot_diagnosis
+        from .plot import plot_diagnosis
         title = (f"{diag.recording}: {'mismatch - ' + diag.effects[0].id if diag.mismatch else 'no mismatch'}")
         plot_diagnosis(Path(plot_out), load=arrays["load"], response=arrays["response"],
                        baseline=arrays["baseline"], augmented=arrays["augmented"],

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import InputError
+from ...errors import InputError
 
 VARY_FORMS = "KEY=START:STOP:N (N >= 1 evenly spaced values) or KEY=v1,v2,..."
 

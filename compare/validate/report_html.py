@@ -8,7 +8,7 @@ from __future__ import annotations
 from html import escape
 from pathlib import Path
 
-from ..io_atomic import atomic_write_text
+from ...io_atomic import atomic_write_text
 from . import report_text as rt
 
 CSS = """

@@ -17,8 +17,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import lsq_linear
 
-from . import diagnose_hifi_ring as hr
-from . import diagnose_hifi_torsion as ht
+from . import hifi_ring as hr
+from . import hifi_torsion as ht
 from .baseline import ring_geometry, torsion_compliance
 from .recording import RecordingKind, format_recording
 

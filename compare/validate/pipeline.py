@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Callable
 
 from .audit_evidence import audit_with_evidence, exponent_evidence
-from .cache import ResultCache
+from ...cache import ResultCache
 from .check_set import CheckSet, build_checks
 from .checks import Check
 from .fea_book import FeaBook
@@ -126,7 +126,7 @@ def _run_cases(cases, params, *, fields_dir: Path, cache, quick: bool, progress)
 
 def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str], None]) -> Outcome:
     """Run the whole validation into ``out_dir``; returns the checks and timings (see module docstring)."""
-    from ..analytic.summary import analytic_summary
+    from ...analytic.summary import analytic_summary
     from .artifacts import make_images
     from .step_export import StepJob
 

@@ -19,8 +19,8 @@ from datetime import datetime, timezone
 from pathlib import Path
 from typing import Callable
 
-from ..errors import StrainwaveError
-from .cache import ResultCache, case_key
+from ...errors import StrainwaveError
+from ...cache import ResultCache, case_key
 
 # A task computes the quantities of one point: (study, params, quick) -> a ``StudyResult.to_dict()``-shaped
 # dict (``{"quantities": {name: {"value", "unit", "uncertainty"}}, "mesh": {"dofs": ...} | None}``).
@@ -95,7 +95,7 @@ def point_key(spec: PointSpec, task: TaskFn | None) -> str:
 
 def fea_task(study: str, params, quick: bool, *, crack_depth_mm: float | None = None) -> dict:
     """The default task: the FEA study of ``fea/studies.py`` on this point's parameters."""
-    from ..fea.studies import run_study
+    from ...fea.studies import run_study
     return run_study(study, params, quick=quick, crack_depth_mm=crack_depth_mm).to_dict()
 
 
@@ -129,7 +129,7 @@ def analytic_beside(study: str, params, names, meta: dict | None = None) -> dict
     wanted = [name for name in names if name in table]
     if not wanted:
         return {}
-    from ..analytic.summary import analytic_summary
+    from ...analytic.summary import analytic_summary
     for dotted, value in ANALYTIC_OVERRIDES.get(study, {}).items():
         params = params.with_value(dotted, value)
     checks = analytic_summary(params).get("checks", {})
@@ -145,7 +145,7 @@ def analytic_beside(study: str, params, names, meta: dict | None = None) -> dict
 
 
 def _compute(spec: PointSpec, task: TaskFn | None) -> dict:
-    from ..params import params_from_dict
+    from ...params import params_from_dict
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         params = params_from_dict(spec.merged())      # InputError here: the point is impossible

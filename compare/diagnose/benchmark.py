@@ -14,10 +14,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import RangeWarning
-from ..io_atomic import atomic_write_text
+from ...errors import RangeWarning
+from ...io_atomic import atomic_write_text
 from . import generate_recordings as gen
-from .diagnose import diagnose
+from .pipeline import diagnose
 from .recording import parse_text
 
 ACCURACY_TARGET = 0.95
@@ -96,7 +96,7 @@ class BenchmarkReport:
 def run_benchmark(n_per_class: int = 20, seed: int = 0, out_dir: Path | None = None, *,
                   rows: tuple[int, int] = (200, 2000), classes: tuple[str, ...] = gen.CLASSES) -> BenchmarkReport:
     """Generate ``n_per_class`` recordings of every class, diagnose each blind, score."""
-    from ..params import load_params
+    from ...params import load_params
     t0 = time.perf_counter()
     rng = np.random.default_rng(seed)
     with warnings.catch_warnings():
@@ -118,12 +118,12 @@ def run_benchmark(n_per_class: int = 20, seed: int = 0, out_dir: Path | None = N
 
 
 def hr_table():
-    from .diagnose_hifi_ring import elastica_curve
+    from .hifi_ring import elastica_curve
     return elastica_curve(max_delta_over_R=0.3, n=25)
 
 
 def _diagnose_one(c: gen.Concealed, name: str, default_params) -> Outcome:
-    from ..params import load_params
+    from ...params import load_params
     rec = parse_text(c.text, f"{name}.csv")       # the diagnosis sees only the file text
     params = load_params(overrides=rec.param_overrides) if rec.param_overrides else default_params
     t = time.perf_counter()

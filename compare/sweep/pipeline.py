@@ -18,12 +18,12 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Iterator
 
-from ..errors import InputError, StageError
-from ..params import default_dict, load_params
-from .cache import ResultCache
-from .sweep_grid import build_points
-from .sweep_outputs import plot_sweep, records_frame, departures, write_markdown, write_records, write_table
-from .sweep_task import CRACK_KEY, PointSpec, TaskFn, point_key, run_point, task_name
+from ...errors import InputError, StageError
+from ...params import default_dict, load_params
+from ...cache import ResultCache
+from .grid import build_points
+from .outputs import plot_sweep, records_frame, departures, write_markdown, write_records, write_table
+from .task import CRACK_KEY, PointSpec, TaskFn, point_key, run_point, task_name
 
 POLL_S = 0.1          # how often the driver looks for finished points
 HEARTBEAT_S = 30.0    # longest silence on the terminal while points are running

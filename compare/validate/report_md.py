@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..io_atomic import atomic_write_text
+from ...io_atomic import atomic_write_text
 from . import report_text as rt
 
 

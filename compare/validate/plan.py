@@ -43,7 +43,7 @@ def bearing_depth_limit_mm(params) -> float:
     geometry/bearing_ring.py refuses c >= 0.5 sqrt(pi) a' (the patch half-length across the race), with
     c from Q = 1 + 1.464 (a/c)^1.65 (seed 000); c/a is fixed by Q, so the depth is bounded.
     """
-    from ..geometry.cracks import half_length_from_q
+    from ...geometry.cracks import half_length_from_q
 
     patch_half_mm = 0.5 * math.sqrt(math.pi) * params.wave_generator.contact_semi_axes_mm[0]
     c_per_a = half_length_from_q(1.0, params.cracks.surface_crack_shape_factor)
@@ -77,7 +77,7 @@ def sweep_mesh_size_mm(params, component: str) -> float | None:
     or the shaft's axisymmetric section with its own sizes) and so hardly depends on the far-field
     size; the headline case keeps the fine global mesh for the flexibility checks. Measured on the
     cup: 154k dofs and 56 s per case at 3 walls (two cases sharing 2 cores)."""
-    from ..fea import cup_torsion, shaft_torsion
+    from ...fea import cup_torsion, shaft_torsion
     sizes = {"shaft": shaft_torsion.default_size_mm, "cup": cup_torsion.default_size_mm}
     return sizes[component](params, True) if component in sizes else None
 

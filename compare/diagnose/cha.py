@@ -20,7 +20,7 @@ from importlib import resources
 
 import numpy as np
 
-from .diagnose_hifi_torsion import maxwell_slip_twist
+from .hifi_torsion import maxwell_slip_twist
 from .recording import RecordingKind, format_recording
 
 ARCMIN = math.pi / (180.0 * 60.0)
