@@ -47,15 +47,15 @@ def test_needs_three_distinct_sizes():
         grid_convergence([0.1, 0.1, 0.2], [1.0, 1.1, 1.2])
 
 
-def test_order_bounds_clip_an_accidental_order():
+def test_crack_order_is_fixed_at_its_formal_value():
     # irregular steps of a crack compliance: e32/e21 = 10 would mean p = 6.8 at r = 1.4 (GCI tiny);
-    # bounded at 2 (CRACK_ORDER_BOUNDS), the GCI is that of a second-order quantity
+    # fixed at the formal first order (CRACK_ORDER_BOUNDS = (1, 1)), the GCI is that of a first-order quantity
     from strainwave.fea.convergence import grid_convergence
     from strainwave.fea.refinement import CRACK_ORDER_BOUNDS
     h, v = (1.0, 1.4, 1.96), (1.0, 0.99, 0.89)
     free = grid_convergence(h, v)
-    bounded = grid_convergence(h, v, min_order=CRACK_ORDER_BOUNDS[0], max_order=CRACK_ORDER_BOUNDS[1])
+    fixed = grid_convergence(h, v, min_order=CRACK_ORDER_BOUNDS[0], max_order=CRACK_ORDER_BOUNDS[1])
     assert free.observed_order > 6
-    assert bounded.observed_order == 2.0
-    assert bounded.gci_fine == pytest.approx(1.25 * 0.01 / (1.4 ** 2 - 1), rel=1e-12)
-    assert bounded.gci_fine > 5 * free.gci_fine
+    assert fixed.observed_order == 1.0
+    assert fixed.gci_fine == pytest.approx(1.25 * 0.01 / (1.4 - 1), rel=1e-12)
+    assert fixed.gci_fine > 10 * free.gci_fine

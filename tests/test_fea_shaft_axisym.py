@@ -88,3 +88,26 @@ def test_crack_model_choice_follows_the_arc():
         crack_model_for(arc, "axisymmetric")
     with pytest.raises(InputError):
         crack_model_for(full, "slot")
+
+
+@pytest.mark.parametrize("ratio, a_over_t", [(0.9, 0.25), (0.9, 0.75), (0.643, 0.0625), (0.643, 0.5)])
+def test_thick_tube_form_on_geometries_it_was_not_fitted_on(ratio, a_over_t):
+    # m of analytic.tube_crack was fitted on d_i/d = 0.5 and 0.8 only; here d_i/d = 0.9 and 0.643 (the default).
+    # Tolerance: the fit's scatter on its own geometries (3.9 %) + 3 x GCI (tip a/20 -> a/40, formal order 1).
+    from strainwave.analytic import tube_crack
+    from strainwave.fea.convergence import grid_convergence
+    r_o = 35.0
+    r_i = ratio * r_o
+    a = a_over_t * (r_o - r_i)
+    s = Section(r_i, r_o, 200.0, 100.0, a)
+    G = 2.1e5 / 2.6
+    h = (r_o - r_i) / 6
+    values = []
+    for k in range(3):
+        with gmsh_session() as model:
+            md = mesh_section(model, s, size_mm=h * 1.4 ** k, tip_size_mm=a / 40 * 1.4 ** k)
+        closed = flexibility_rad_per_Nmm(md, s, G)
+        values.append(flexibility_rad_per_Nmm(open_crack_line(md, s), s, G) - closed)
+    conv = grid_convergence([h * 1.4 ** k for k in range(3)], values, min_order=1.0, max_order=1.0)
+    model_value = tube_crack.thick_tube_flexibility(r_o, r_i, a, G)
+    assert abs(values[0] / model_value - 1) <= tube_crack.THICK_TUBE_FIT_SCATTER + 3 * conv.gci_fine

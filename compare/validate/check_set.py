@@ -9,6 +9,7 @@ from .checks import REQUIRED_IDS, Check, not_evaluated
 from .crack_scaling import PowerFit, fit_power_law
 from .fea_book import FeaBook, Sweep
 from .plan import Plan
+from ...analytic import tube_crack
 from .ring_checks import applied_force_N, ring_checks
 from .torsion_checks import (FLEX_UNIT, bearing_crack_curve, bearing_radial_compliance, crack_check,
                              cup_crack_curve, cup_flexibility, gear_stiffness, mu_gap, shaft_crack_curve,
@@ -68,9 +69,12 @@ def _sweep_report(sweep: Sweep, curve) -> SweepReport:
 
 CRACK_TEXT = {
     "shaft": ("shaft.crack_compliance", "added torsional flexibility of the circumferential shaft crack", FLEX_UNIT,
-              "published 512 M_M^2 a^3/(3 mu d_e^6) (penny-crack area), corrected 128 M_M^2 a^2/(mu d_e^5) "
-              "(circumferential crack); both solid-bar K_III (Tada), so the hollow shaft's higher nominal stress "
-              "is not in them (audit 12)"),
+              "published 512 M_M^2 a^3/(3 mu d_e^6) (seed 000: penny-crack area, solid-bar K_III); asserted "
+              "(corrected): strainwave's thick-tube form, the hollow-tube strip form (Tada's anti-plane edge-cracked "
+              "strip of the wall t under tau_o = T r_o/J_hollow, dA = 2 pi r_o da) times the tube's net-section "
+              "amplification^m, m fitted on d_i/d = 0.5 and 0.8 only (analytic/tube_crack.py), so the default "
+              "d_i/d is a geometry it was not fitted on; beside them the strip form itself and the solid-bar "
+              "128 M_M^2 a^2/(mu d_e^5) (audit 10, 12)"),
     "cup": ("cup.crack_compliance", "added torsional flexibility of the tooth-root crack", FLEX_UNIT,
             "closed forms evaluated with K_u = K_d = 1 because the FEA load is static and uniform (the seed's "
             "1.2 x 1.1 are load factors, audit 17); published a^2/(2 pi E r_m^4 delta), corrected "
@@ -94,12 +98,18 @@ def build_checks(book: FeaBook, plan: Plan, summary: dict, params) -> CheckSet:
         sweep = book.sweep(component, case_labels, DELTA_NAMES[component])
         if sweep is not None:
             sweeps[component] = _sweep_report(sweep, curves[component])
-        allowances = dict([mu_gap(params)]) if component == "shaft" else {}
+        allowances = {}
         if component == "shaft":
             s = params.output_shaft
-            hollow = 1.0 / (1.0 - (s.inner_diameter_mm / s.outer_diameter_mm) ** 4)
-            note += (f"; expectation: the bore raises the outer-fibre shear stress by {hollow:.3f} and so a shallow "
-                     f"crack's compliance by {hollow ** 2:.3f} over the solid-bar forms")
+            ratio = s.inner_diameter_mm / s.outer_diameter_mm
+            fitted = any(abs(ratio - x) < 0.02 for x in tube_crack.THICK_TUBE_FIT_RATIOS)
+            allowances = {f"thick-tube form: largest deviation on the geometries m was fitted on (d_i/d = "
+                          f"{', '.join(f'{x:g}' for x in tube_crack.THICK_TUBE_FIT_RATIOS)}; this shaft d_i/d = "
+                          f"{ratio:.3g}, {'one of them' if fitted else 'not fitted on'})":
+                          tube_crack.THICK_TUBE_FIT_SCATTER}
+            hollow = 1.0 / (1.0 - ratio ** 4)
+            note += (f"; the bore raises the outer-fibre shear stress by {hollow:.3f} and so a shallow crack's "
+                     f"compliance by {hollow ** 2:.3f} over the solid-bar forms; G = E/2(1+nu) as the FEA")
         checks.append(crack_check(check_id, quantity, unit, sweep, curves[component], allowances, note,
                                   {"fea": "FEA " + ", ".join(case_labels), "analytic": "seed 000"},
                                   params.cracks.depth_mm))

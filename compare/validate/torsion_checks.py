@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 
-from ...analytic import cracks
+from ...analytic import cracks, tube_crack
 from ...analytic.variant import Variant
 from .checks import Check, evaluate, fea_tolerance, not_evaluated
 from .fea_book import FeaBook, Sweep
@@ -125,8 +125,15 @@ def bearing_radial_compliance(book: FeaBook, label: str, s000: dict, params) -> 
 # ---- crack compliances: evaluated at the shallowest resolved depth of the sweep ----
 
 def shaft_crack_curve(params, depth_mm: float) -> dict[str, float]:
-    d_s, mu = params.output_shaft.outer_diameter_mm, params.material.shear_modulus_MPa
-    return {v.value: cracks.shaft_crack_flexibility(d_s, depth_mm, mu, v) for v in Variant}
+    """published: seed 000's 512 M_M^2 a^3/(3 mu d_e^6); corrected: the thick-tube form (analytic.tube_crack,
+    G = E/2(1+nu) as the FEA); beside them the hollow-tube strip form and the solid-bar a^2 form (mu)."""
+    sh, mat = params.output_shaft, params.material
+    d_s, mu, G = sh.outer_diameter_mm, mat.shear_modulus_MPa, mat.implied_shear_modulus_MPa
+    r_o, r_i = 0.5 * d_s, 0.5 * sh.inner_diameter_mm
+    return {"published": cracks.shaft_crack_flexibility(d_s, depth_mm, mu, Variant.PUBLISHED),
+            "corrected": tube_crack.thick_tube_flexibility(r_o, r_i, depth_mm, G),
+            "hollow_tube_strip": tube_crack.hollow_tube_strip_flexibility(r_o, r_i, depth_mm, G),
+            "solid_bar_a2": cracks.shaft_crack_flexibility(d_s, depth_mm, mu, Variant.CORRECTED)}
 
 
 def cup_crack_curve(params, depth_mm: float, r_m_mm: float) -> dict[str, float]:
