@@ -21,8 +21,8 @@ CHECK_FUNCTIONS = {
     "ring.delta_ab": ("ring.delta_ab_mm", "thick_ring.deflections_mm"),
     "ring.sigma_max": ("ring.sigma_max_MPa", "thick_ring.winkler_bach_stress_MPa"),
     "ring.sigma_min": ("ring.sigma_min_MPa", "thick_ring.winkler_bach_stress_MPa"),
-    "ring.tooth_influence": ("fatigue.stress_MPa",),
-    "ring.stress_concentration": ("fatigue.normal_safety_factor",),
+    "ring.tooth_influence": ("fatigue.stress_MPa", "tooth_factors.tooth_influence"),
+    "ring.stress_concentration": ("fatigue.normal_safety_factor", "tooth_factors.stress_concentration"),
     "gear.stiffness": ("torsion.drive_stiffness_Nmm_per_rad", "torsion.total_flexibility"),
 }
 
@@ -34,6 +34,7 @@ def reference_values(params, s000: dict | None = None, s003: dict | None = None)
     g, th, st = s003["geometry"], s003["thick_ring"], s003["stresses_MPa"]
     F_r = s000["F_r_N"]
     e = params.ewg_drive
+    tf = s003["tooth_factors"]
 
     def entry(cid, unit, published, corrected, note="", **extra):
         return {"unit": unit, "published": published, "corrected": corrected,
@@ -82,12 +83,16 @@ def reference_values(params, s000: dict | None = None, s003: dict | None = None)
         "ring.sigma_min": entry("ring.sigma_min", "MPa", st["sigma_min"], wb["B_outer"],
                                 "outer fibre at the free point at force_N; corrected = Winkler-Bach thick ring",
                                 inner_fibre_corrected=wb["B_inner"], force_N=F, W0_mm=g["W0_mm"]),
-        "ring.tooth_influence": entry("ring.tooth_influence", "1", e.tooth_influence, e.tooth_influence,
-                                      "K_delta: toothed / smooth rim stress; seed range 1.05..1.10",
-                                      seed_range=[1.05, 1.10]),
+        "ring.tooth_influence": entry("ring.tooth_influence", "1", e.tooth_influence, tf["tooth_influence"],
+                                      "K_delta: toothed / smooth outer-fibre stress amplitude at equal W0; published = "
+                                      "the seed's assumption (1.05..1.10); corrected = equivalent-rim model "
+                                      "(analytic/tooth_factors.py) at this rim", seed_range=[1.05, 1.10], **tf),
         "ring.stress_concentration": entry("ring.stress_concentration", "1", e.stress_concentration,
-                                           e.stress_concentration, "K_sigma at the tooth root; seed range 1.8..2.0",
-                                           seed_range=[1.8, 2.0]),
+                                           tf["stress_concentration"],
+                                           "K_sigma = root-fillet peak / (K_delta x smooth inner fibre), the factor "
+                                           "eq 13 applies to sigma_a (which already holds K_delta); published = the "
+                                           "seed's assumption (1.8..2.0); corrected = tooth-factor model at this rim "
+                                           "and fillet", seed_range=[1.8, 2.0], **tf),
         "gear.stiffness": entry("gear.stiffness", "N*mm/rad", s000["K_HD"]["published"], s000["K_HD"]["corrected"],
                                 "uncracked; printed seed value is 1e3 too small",
                                 printed_by_seed=s000["K_HD"]["printed_by_seed"]["uncracked"]),

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from . import fatigue, ring, thick_ring
+from . import fatigue, ring, thick_ring, tooth_factors, tooth_number
 from .variant import Variant
 
 P, C = Variant.PUBLISHED, Variant.CORRECTED
@@ -35,6 +35,49 @@ def tooth_numbers(params, tooth_difference: int) -> dict:
         except ValueError:
             root = None
         out[key] = root
+    return out
+
+
+def tooth_factor_summary(params) -> dict:
+    """K_delta, K_sigma and the equivalent rim of ``params``' ring by the fitted model (analytic/tooth_factors.py)."""
+    e = params.ewg_drive
+    model = tooth_factors.FITTED
+    h = tooth_factors.tooth_height_mm(e.module_mm, e.dedendum_coefficient)
+    delta = e.rim_thickness_mm
+    hd, md = h / delta, e.module_mm / delta
+    fitted_on = [(r.teeth, r.delta_over_m) for r in tooth_factors.FITTING_SET]
+    held_out = all(not (r.teeth == e.flexspline_teeth and abs(r.delta_over_m - delta / e.module_mm) < 1e-6)
+                   for r in tooth_factors.FITTING_SET)
+    return {"model": "equivalent rim delta + c h (stiffness), K_delta = 1 + (R - 1) tanh(k m/delta), "
+                     "K_delta K_sigma = P0 + a (K_delta - 1)",
+            "c": model.c, "k": model.k, "p0": model.p0, "a": model.a,
+            "tooth_height_mm": h, "h_over_delta": hd, "m_over_delta": md,
+            "equivalent_rim_mm": delta + model.c * h,
+            "stiffness_ratio": tooth_factors.stiffness_ratio(hd, model),
+            "tooth_influence": tooth_factors.tooth_influence(hd, md, model),
+            "stress_concentration": tooth_factors.stress_concentration(hd, md, model),
+            "root_product": tooth_factors.root_product(hd, md, model),
+            "fit_residuals": tooth_factors.fit_residuals(tooth_factors.FITTING_SET, model),
+            "fitted_on_teeth_and_delta_over_m": fitted_on, "held_out": held_out,
+            "model_root_fillet_coefficient": tooth_factors.MODEL_ROOT_FILLET_COEFFICIENT,
+            "root_fillet_coefficient": e.root_fillet_coefficient}
+
+
+def tooth_numbers_with_model(params) -> dict:
+    """Seed 003's Z_R,min (eq 14) with K_delta(Z_R), K_sigma(Z_R) from the tooth-factor model, dZ = 2 and 4."""
+    e, mat = params.ewg_drive, params.material
+    design = design_from_params(params)
+    out = {}
+    for dz in (2, 4):
+        r = tooth_number.minimal_teeth_with_model(dz, e.permissible_safety, mat.fatigue_limit_MPa,
+                                                  mat.youngs_modulus_MPa, design)
+        out[f"dZ{dz}"] = {"Z_R_min": r.Z_R_min, "seed_constant_Z_R_min": r.seed_constant_Z_R_min,
+                          "n_sigma": r.n_sigma, "K_delta": r.tooth_influence, "K_sigma": r.stress_concentration,
+                          "h_over_delta": r.h_over_delta, "delta_over_m": r.delta_over_m}
+    out["assumptions"] = {"rim_thickness_ratio": e.rim_thickness_ratio, "dedendum_coefficient": e.dedendum_coefficient,
+                          "root_fillet_coefficient": tooth_factors.MODEL_ROOT_FILLET_COEFFICIENT,
+                          "psi_sigma": e.mean_stress_influence, "permissible_safety": e.permissible_safety,
+                          "fatigue_limit_MPa": mat.fatigue_limit_MPa, "mean_stress": "|sigma_m| as the seed"}
     return out
 
 
@@ -127,6 +170,8 @@ def seed003_summary(params) -> dict:
                 fatigue.PAPER_EXAMPLE["youngs_modulus_MPa"], fatigue.tooth_offset()) for dz, r in
                 fatigue.PAPER_ROOTS.items()},
         },
+        "tooth_factors": tooth_factor_summary(params),
+        "tooth_number_min_with_fea_factors": tooth_numbers_with_model(params),
         "thick_ring": {
             "model": "Roark Table 9.2 case 1 (thick ring, I -> A e R) + Winkler-Bach",
             "alpha": f_thick.alpha, "beta": f_thick.beta, "k1": f_thick.k1, "k2": f_thick.k2,

@@ -64,6 +64,26 @@ def _get(d: dict, path: tuple):
     return d
 
 
+def designer_headline(s3: dict) -> list[str]:
+    """The opening lines for a designer: seed 003's minimal tooth number with the FEA-fitted tooth factors."""
+    zm, tf = s3["tooth_number_min_with_fea_factors"], s3["tooth_factors"]
+    a = zm["assumptions"]
+    out = ["DESIGNER HEADLINE (seed 003, eq 14 with FEA-confirmed tooth factors, analytic/tooth_factors.py)"]
+    for dz in (2, 4):
+        r = zm[f"dZ{dz}"]
+        out.append(f"  dZ = {dz}: Z_R,min = {r['Z_R_min']} (seed's constants K_delta 1.07, K_sigma 1.9: "
+                   f"{r['seed_constant_Z_R_min']}); at Z_R,min: delta/m = {r['delta_over_m']:.3f}, h/delta = "
+                   f"{r['h_over_delta']:.3f}, K_delta = {r['K_delta']:.3f}, K_sigma = {r['K_sigma']:.3f}, "
+                   f"n_sigma = {r['n_sigma']:.4f}")
+    out.append(f"  rim delta = {a['rim_thickness_ratio']:g} d_R, h_f = {a['dedendum_coefficient']:g} m, root fillet "
+               f"{a['root_fillet_coefficient']:g} m, psi = {a['psi_sigma']:g}, [n] = {a['permissible_safety']:g}, "
+               f"sigma_-1 = {a['fatigue_limit_MPa']:g} MPa, {a['mean_stress']}; factors evaluated at each Z_R "
+               f"(h/delta changes with Z_R)")
+    out.append(f"  this ring: K_delta = {tf['tooth_influence']:.3f}, K_sigma = {tf['stress_concentration']:.3f} "
+               f"(seed 1.07, 1.9); equivalent rim delta + {tf['c']:.3f} h = {tf['equivalent_rim_mm']:.4g} mm")
+    return out
+
+
 def format_summary(summary: dict) -> str:
     """Readable text tables: seed 000 (published | corrected), seed 003, audit list."""
     s0, s3 = summary["seed000"], summary["seed003"]
@@ -79,6 +99,7 @@ def format_summary(summary: dict) -> str:
     lines.append("material: " + s0["material"]["note"])
 
     co, tn, ge, stv = s3["coefficients"], s3["tooth_number_min"], s3["geometry"], s3["stresses_MPa"]
+    lines = designer_headline(s3) + [""] + lines
     lines += ["", "SEED 003: HGD with external wave generator",
               f"Z_R = {s3['inputs']['Z_R']}, dZ = {s3['inputs']['tooth_difference']}, Z_G = {s3['inputs']['Z_G']}, "
               f"r_m = {_fmt(ge['r_m_mm'])} mm, delta = {_fmt(s3['inputs']['rim_thickness_mm'])} mm, "

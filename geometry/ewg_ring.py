@@ -22,7 +22,7 @@ CONTACT_HALF_ANGLE_DEG = 2.0
 def tooth_spec(params) -> ToothSpec:
     e = params.ewg_drive
     return ToothSpec(e.flexspline_teeth, e.module_mm, e.pressure_angle_deg, 1.0, e.dedendum_coefficient,
-                     internal=True)
+                     internal=True, root_fillet_coef=e.root_fillet_coefficient)
 
 
 def radii_mm(params) -> dict:

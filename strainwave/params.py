@@ -181,6 +181,7 @@ class EwgDrive:
     face_width_mm: float
     dedendum_coefficient: float
     pressure_angle_deg: float
+    root_fillet_coefficient: float
     tooth_influence: float
     stress_concentration: float
     mean_stress_influence: float
@@ -194,11 +195,14 @@ class EwgDrive:
             raise InputError("ewg_drive.flexspline_teeth", self.flexspline_teeth,
                              f"must be >= 2 x tooth_difference = {2 * self.tooth_difference}")
         for name in ("module_mm", "rim_thickness_ratio", "face_width_mm", "dedendum_coefficient",
-                     "tooth_influence", "stress_concentration", "permissible_safety"):
+                     "root_fillet_coefficient", "tooth_influence", "stress_concentration", "permissible_safety"):
             _positive(f"ewg_drive.{name}", getattr(self, name))
         _in_open("ewg_drive.pressure_angle_deg", self.pressure_angle_deg, 0.0, 45.0)
         if not 0.0 <= self.mean_stress_influence < 1.0:
             raise InputError("ewg_drive.mean_stress_influence", self.mean_stress_influence, "must lie in [0, 1)")
+        if self.root_fillet_coefficient > 0.5:
+            raise InputError("ewg_drive.root_fillet_coefficient", self.root_fillet_coefficient,
+                             "must be <= 0.5 (fillet radius / module; ISO 53 basic racks use 0.25..0.39)")
         if self.rim_thickness_ratio >= 0.5:
             raise InputError("ewg_drive.rim_thickness_ratio", self.rim_thickness_ratio,
                              "must be < 0.5 (the rim would close the bore)")

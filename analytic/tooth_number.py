@@ -1,0 +1,69 @@
+"""Seed 003's minimal flexspline tooth number (eq 14) with the FEA-confirmed tooth factors.
+
+Eq 14 takes K_delta = 1.07 and K_sigma = 1.9 as constants. The toothed-ring FEA shows both depend on the
+rim: with delta = ratio m Z_R and tooth height h = (h*_a + h*_f) m, the rim ratios h/delta = (h*_a +
+h*_f)/(ratio Z_R) and m/delta = 1/(ratio Z_R) change with Z_R, so K_delta(Z_R) K_sigma(Z_R)
+(``tooth_factors``) must be evaluated at the tooth number being tested. n_sigma(Z) rises with Z (more
+teeth: thicker rim, smaller factors, and eq 14's (Z + c)^2/Z), so the smallest integer Z with
+n_sigma(Z) >= [n] is found by a scan upward from the seed-constant root.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+from . import fatigue, tooth_factors
+
+__all__ = ["ToothNumberResult", "rim_ratios", "safety_with_model", "minimal_teeth_with_model"]
+
+
+@dataclass(frozen=True)
+class ToothNumberResult:
+    """Z_R,min for one tooth difference, with the factors at that Z_R."""
+
+    tooth_difference: int
+    Z_R_min: int
+    n_sigma: float                # at Z_R_min
+    tooth_influence: float        # K_delta at Z_R_min
+    stress_concentration: float   # K_sigma at Z_R_min
+    h_over_delta: float
+    delta_over_m: float
+    seed_constant_Z_R_min: int    # eq 14 with the seed's constants (K_delta = 1.07, K_sigma = 1.9)
+
+
+def rim_ratios(teeth: float, design: fatigue.ToothDesign, addendum_coefficient: float = 1.0) -> tuple[float, float]:
+    """(h/delta, m/delta) of the rim delta = ratio m Z_R (seed 003, eq 14 text: delta = 0.012 d_R)."""
+    delta_over_m = design.rim_thickness_ratio * teeth
+    h_over_m = tooth_factors.tooth_height_mm(1.0, design.dedendum_coefficient, addendum_coefficient)
+    return h_over_m / delta_over_m, 1.0 / delta_over_m
+
+
+def safety_with_model(teeth: int, tooth_difference: int, permissible_safety: float, fatigue_limit_MPa: float,
+                      E_MPa: float, design: fatigue.ToothDesign, model: tooth_factors.ToothFactorModel) -> tuple:
+    """n_sigma of eq 14 with K_delta, K_sigma from ``model`` at this Z_R; returns (n_sigma, K_delta, K_sigma)."""
+    hd, md = rim_ratios(teeth, design)
+    kd = tooth_factors.tooth_influence(hd, md, model)
+    ks = tooth_factors.stress_concentration(hd, md, model)
+    d = replace(design, tooth_influence=kd, stress_concentration=ks)
+    n = fatigue.safety_from_teeth(teeth, tooth_difference, fatigue_limit_MPa, E_MPa, fatigue.tooth_constant(d),
+                                  fatigue.tooth_offset(d))
+    return n, kd, ks
+
+
+def minimal_teeth_with_model(tooth_difference: int, permissible_safety: float, fatigue_limit_MPa: float,
+                             E_MPa: float, design: fatigue.ToothDesign,
+                             model: tooth_factors.ToothFactorModel = tooth_factors.FITTED,
+                             max_teeth: int = 5000) -> ToothNumberResult:
+    """Smallest integer Z_R with n_sigma(Z_R) >= [n], factors evaluated self-consistently at Z_R."""
+    seed_root = fatigue.minimal_teeth_root(tooth_difference, permissible_safety, fatigue_limit_MPa, E_MPa,
+                                           fatigue.tooth_constant(design), fatigue.tooth_offset(design))
+    seed_z = fatigue.minimal_teeth(seed_root)
+    # eq 14's (Z + c)^2/Z falls up to Z = c: the practical (larger-root) branch starts above c
+    z = max(2 * tooth_difference, math.floor(fatigue.tooth_offset(design)) + 1)
+    while z <= max_teeth:
+        n, kd, ks = safety_with_model(z, tooth_difference, permissible_safety, fatigue_limit_MPa, E_MPa, design, model)
+        if n >= permissible_safety:
+            hd, md = rim_ratios(z, design)
+            return ToothNumberResult(tooth_difference, z, n, kd, ks, hd, 1.0 / md, seed_z)
+        z += 1
+    raise ValueError(f"no Z_R <= {max_teeth} satisfies n_sigma >= {permissible_safety} for dZ = {tooth_difference}")

@@ -1,0 +1,53 @@
+"""Regenerate analytic/tooth_factors.FITTING_SET: toothed-ring FEA on the fitting rims, then the fit.
+
+    .venv/bin/python benchmarks/fit_tooth_factors.py            # the fitting set (Z_R = 100), ~1 min
+    .venv/bin/python benchmarks/fit_tooth_factors.py --held-out # rims the model was NOT fitted on
+
+Each rim runs ``fea/ring_compression.run(quick=True)`` (finest toothed mesh delta/1.5) and prints one
+FitRow; the fitting set's constants are then printed next to the stored ones, and for --held-out the
+model's error on each rim.
+"""
+from __future__ import annotations
+
+import argparse
+import warnings
+
+from strainwave.analytic import tooth_factors as tf
+from strainwave.fea import ring_compression
+from strainwave.params import load_params
+
+FIT_RIMS = ((100, 0.75), (100, 1.1), (100, 1.5), (100, 2.0), (100, 3.0))
+HELD_OUT_RIMS = ((72, 0.864), (72, 1.6), (72, 2.4), (72, 3.6), (64, 1.0), (80, 1.0))
+
+
+def fea_row(teeth: int, delta_over_m: float, fillet: float = tf.MODEL_ROOT_FILLET_COEFFICIENT) -> tf.FitRow:
+    p = load_params().with_value("ewg_drive.flexspline_teeth", teeth)
+    p = p.with_value("ewg_drive.rim_thickness_ratio", delta_over_m / teeth)
+    p = p.with_value("ewg_drive.root_fillet_coefficient", fillet)
+    r = ring_compression.run(p, quick=True)
+    e = p.ewg_drive
+    return tf.FitRow(teeth, e.module_mm, delta_over_m, tf.tooth_height_mm(1.0, e.dedendum_coefficient),
+                     r.meta["tooth_stiffness_ratio"], r["tooth_influence"].value, r["root_stress_factor"].value)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--held-out", action="store_true")
+    args = ap.parse_args()
+    warnings.simplefilter("ignore")
+    rows = [fea_row(z, d) for z, d in (HELD_OUT_RIMS if args.held_out else FIT_RIMS)]
+    for r in rows:
+        print(r)
+    if args.held_out:
+        for r in rows:
+            hd, md = r.tooth_height_over_m / r.delta_over_m, 1.0 / r.delta_over_m
+            kd, ks = tf.tooth_influence(hd, md, tf.FITTED), tf.stress_concentration(hd, md, tf.FITTED)
+            print(f"Z_R {r.teeth} delta/m {r.delta_over_m}: K_delta FEA {r.tooth_influence:.4f} model {kd:.4f} "
+                  f"({kd / r.tooth_influence - 1:+.2%}); K_sigma FEA {r.root_product / r.tooth_influence:.4f} "
+                  f"model {ks:.4f} ({ks * r.tooth_influence / r.root_product - 1:+.2%})")
+    else:
+        print("fitted:", tf.fit_tooth_factors(rows), "stored:", tf.FITTED)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,50 @@
+"""Tooth-factor model (analytic/tooth_factors.py) and eq 14 with it (analytic/tooth_number.py)."""
+import math
+
+import pytest
+
+from strainwave.analytic import fatigue, tooth_factors as tf, tooth_number as tn
+
+
+def test_refit_reproduces_the_stored_constants():
+    fitted = tf.fit_tooth_factors(tf.FITTING_SET)
+    for name in ("c", "k", "p0", "a"):
+        assert getattr(fitted, name) == pytest.approx(getattr(tf.FITTED, name), rel=1e-4)
+
+
+def test_residuals_on_the_fitting_set_are_small_and_reported():
+    res = tf.fit_residuals(tf.FITTING_SET, tf.FITTED)
+    assert 0.0 < res["tooth_influence"] < 0.05 and 0.0 < res["stress_concentration"] < 0.05
+    assert res["root_product"] < 0.02
+
+
+def test_limits_of_the_model():
+    m = tf.FITTED
+    # no teeth: every factor is 1 (K_sigma -> P0, the notch alone)
+    assert tf.tooth_influence(0.0, 1.0, m) == pytest.approx(1.0)
+    assert tf.root_product(0.0, 1.0, m) == pytest.approx(m.p0)
+    # long segments (m/delta large): the outer fibre carries the stiffness ratio (segmented beam)
+    assert tf.tooth_influence(2.0, 50.0, m) == pytest.approx(tf.stiffness_ratio(2.0, m), rel=1e-9)
+    # the equivalent rim: R = ((delta + c h)/delta)^3
+    assert tf.stiffness_ratio(2.0, m) == pytest.approx((1 + 2.0 * m.c) ** 3)
+
+
+def test_fitting_needs_a_residual():
+    with pytest.raises(ValueError):
+        tf.fit_tooth_factors(tf.FITTING_SET[:2])
+
+
+def test_minimal_teeth_is_the_smallest_integer_that_satisfies_eq14():
+    design = fatigue.ToothDesign()
+    for dz in (2, 4):
+        r = tn.minimal_teeth_with_model(dz, 1.4, 625.0, 2.1e5, design)
+        n_at, _, _ = tn.safety_with_model(r.Z_R_min, dz, 1.4, 625.0, 2.1e5, design, tf.FITTED)
+        n_below, _, _ = tn.safety_with_model(r.Z_R_min - 1, dz, 1.4, 625.0, 2.1e5, design, tf.FITTED)
+        assert n_at >= 1.4 > n_below
+        # self-consistent: the factors are those of the rim at Z_R,min
+        hd, md = tn.rim_ratios(r.Z_R_min, design)
+        assert r.tooth_influence == pytest.approx(tf.tooth_influence(hd, md, tf.FITTED))
+        assert r.seed_constant_Z_R_min == math.ceil(fatigue.minimal_teeth_root(
+            dz, 1.4, 625.0, 2.1e5, fatigue.tooth_constant(design), fatigue.tooth_offset(design)))
+        # thicker factors than the seed's 1.07 x 1.9 need more teeth
+        assert r.Z_R_min > r.seed_constant_Z_R_min
