@@ -2,20 +2,29 @@
 
 Exit codes: 0 fine; 1 a check, mesher or solver failed; 2 bad input. Library imports are
 lazy so ``strainwave --help`` stays instant and no stage does work at import time.
+
+Conventions shared by every subcommand: ``-q`` / ``-v`` / ``--debug`` go before or after the
+subcommand; progress and warnings go through ``logging`` to stderr (``-q`` keeps errors only, ``-v``
+adds debug detail); ``--json [FILE]`` writes the command's result as JSON to FILE, or to stdout in
+place of the text when FILE is left out or is ``-``.
 """
 from __future__ import annotations
 
 import argparse
 import json
+import logging
 import sys
 import traceback
 import warnings
 from pathlib import Path
 
-from .errors import InputError, RangeWarning, StrainwaveError
+from .errors import InputError, MaterialWarning, RangeWarning, StrainwaveError
 
 STUDIES = ("shaft-torsion", "cup-torsion", "bearing-ring", "ring-compression")
 PARTS = ("flexspline-cup", "ewg-flexspline-ring", "ewg", "output-shaft", "wg-bearing-ring", "assembly")
+
+
+LOG = "strainwave"   # the logger every stage's progress and every warning goes through
 
 
 class _Parser(argparse.ArgumentParser):
@@ -23,6 +32,18 @@ class _Parser(argparse.ArgumentParser):
 
     def error(self, message):
         raise InputError("command line", " ".join(sys.argv[1:]), message)
+
+
+class _Help(argparse.RawDescriptionHelpFormatter):
+    """Every option's help ends with its default when it has a value one (not None, not a flag's False);
+    descriptions keep their line breaks."""
+
+    def _get_help_string(self, action):
+        text = action.help or ""
+        if action.default not in (None, False, argparse.SUPPRESS) and "%(default)" not in text \
+                and action.option_strings and not isinstance(action.default, list):
+            text += " (default: %(default)s)"
+        return text
 
 
 def _positive_float(text: str) -> float:
@@ -35,18 +56,56 @@ def _positive_float(text: str) -> float:
     return value
 
 
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+    try:
+        return version("strainwave")
+    except PackageNotFoundError:   # run from a source tree that was never installed
+        return "unknown (not installed)"
+
+
 def _params(args):
     from .params import load_params
     return load_params(args.params)
 
 
-def _write_json(data: dict, out: Path | None) -> None:
-    text = json.dumps(data, indent=2, default=str)
-    if out is None:
+def _progress(msg: str) -> None:
+    logging.getLogger(LOG).info(msg)
+
+
+def _emit(args, text: str, data) -> None:
+    """Print ``text``, or the JSON of ``data`` (a dict, or a callable giving one) as ``--json`` asks:
+    to stdout instead of the text (``--json`` / ``--json -``), or to a file next to the text."""
+    target = getattr(args, "json", None)
+    if target is None:
         print(text)
+        return
+    payload = json.dumps(data() if callable(data) else data, indent=2, default=str, allow_nan=False) + "\n"
+    if target == "-":
+        sys.stdout.write(payload)
     else:
         from .io_atomic import atomic_write_text
-        atomic_write_text(Path(out), text + "\n")
+        atomic_write_text(Path(target), payload)
+        print(text)
+
+
+def _plain(value):
+    """Dataclass records -> JSON-able values (paths and enums as strings)."""
+    import dataclasses
+    import enum
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        if hasattr(value, "to_dict"):
+            return _plain(value.to_dict())
+        return {f.name: _plain(getattr(value, f.name)) for f in dataclasses.fields(value)}
+    if isinstance(value, dict):
+        return {str(k): _plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    if isinstance(value, enum.Enum):
+        return value.value
+    if isinstance(value, Path):
+        return str(value)
+    return value
 
 
 # ---- subcommands: each is a thin layer over one library function -------------------------------
@@ -55,10 +114,19 @@ def _cmd_analytic(args) -> int:
     params = _params(args)
     from .analytic.summary import analytic_summary, format_summary
     summary = analytic_summary(params)
-    if args.json:
-        print(json.dumps(summary, indent=2))
-    else:
-        print(format_summary(summary))
+    _emit(args, format_summary(summary), summary)
+    return 0
+
+
+def _cmd_params(args) -> int:
+    if args.print_default:
+        from importlib import resources
+        sys.stdout.write(resources.files("strainwave").joinpath("data/defaults.toml").read_text(encoding="utf-8"))
+        return 0
+    params = _params(args)
+    data = params.to_dict()
+    text = "\n".join(f"{section}.{key} = {value!r}" for section, table in data.items() for key, value in table.items())
+    _emit(args, text, data)
     return 0
 
 
@@ -66,8 +134,7 @@ def _cmd_export_step(args) -> int:
     from .geometry.export import export_part
     written = export_part(args.part, _params(args), Path(args.output), crack_depth_mm=args.crack_depth_mm,
                           teeth=not args.no_teeth, png=Path(args.png) if args.png else None)
-    for path in written:
-        print(f"wrote {path}")
+    _emit(args, "\n".join(f"wrote {path}" for path in written), {"written": [str(p) for p in written]})
     return 0
 
 
@@ -75,32 +142,33 @@ def _cmd_solve(args) -> int:
     from .fea.studies import run_study
     result = run_study(args.study, _params(args), mesh_size_mm=args.mesh_size_mm, order=args.order,
                        crack_depth_mm=args.crack_depth_mm, vtu=Path(args.vtu) if args.vtu else None,
-                       progress=lambda msg: print(msg, file=sys.stderr))
-    print(json.dumps(result.to_dict(), indent=2, default=str) if args.json else result.summary())
+                       progress=_progress)
+    _emit(args, result.summary(), result.to_dict)
     return 0
 
 
 def _cmd_validate(args) -> int:
     from .compare.validate.pipeline import run_validate
-    outcome = run_validate(_params(args), Path(args.out), quick=args.quick,
-                           progress=lambda msg: print(msg, file=sys.stderr))
-    print(outcome.summary())
+    outcome = run_validate(_params(args), Path(args.out), quick=args.quick, progress=_progress)
+    _emit(args, outcome.summary(), lambda: {
+        "passed": outcome.passed, "out_dir": str(outcome.out_dir), "timings_s": outcome.timings_s,
+        "checks": [c.to_dict() for c in outcome.checks],
+        "results": str(Path(outcome.out_dir) / "results.json")})
     return 0 if outcome.passed else 1
 
 
 def _cmd_diagnose(args) -> int:
     from .compare.diagnose.pipeline import diagnose_file
     diagnosis = diagnose_file(Path(args.recording), params_path=args.params, baseline=args.baseline,
-                              json_out=Path(args.json) if args.json else None,
                               plot_out=Path(args.plot) if args.plot else None)
-    print(diagnosis.summary())
+    _emit(args, diagnosis.summary(), diagnosis.to_dict)
     return 0
 
 
 def _cmd_benchmark_diagnose(args) -> int:
     from .compare.diagnose.benchmark import run_benchmark
     report = run_benchmark(n_per_class=args.n, seed=args.seed, out_dir=Path(args.out) if args.out else None)
-    print(report.summary())
+    _emit(args, report.summary(), report.to_dict)
     return 0 if report.meets_targets else 1
 
 
@@ -108,91 +176,170 @@ def _cmd_sweep(args) -> int:
     from .compare.sweep.pipeline import run_sweep
     outcome = run_sweep(args.study, vary=args.vary, params_path=args.params, sample_file=args.samples,
                         scheduler=args.scheduler, workers=args.workers, out_dir=Path(args.out),
-                        quick=args.quick, tolerance=args.tolerance,
-                        progress=lambda msg: print(msg, file=sys.stderr))
-    print(outcome.summary())
+                        quick=args.quick, tolerance=args.tolerance, progress=_progress)
+    _emit(args, outcome.summary(), lambda: _plain(outcome))
     # Failed points are results (recorded with their error); only a sweep with no good point at all fails.
     return 0 if outcome.n_ok else 1
 
 
-def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="strainwave", description="Strain wave gear CAD, FEA and seed-paper validation.")
-    parser.add_argument("--debug", action="store_true", help="show tracebacks of internal errors")
-    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+# ---- parser ------------------------------------------------------------------------------------
 
-    def add(name, func, help_text):
-        p = sub.add_parser(name, help=help_text, description=help_text)
-        p.add_argument("--params", metavar="FILE.toml", help="partial parameter file (rest from the default)")
-        p.set_defaults(func=func)
+def _common(top: bool) -> argparse.ArgumentParser:
+    """-q/-v/--debug, accepted before and after the subcommand. On the subcommand they default to
+    SUPPRESS, so a flag given before the subcommand is not reset by the subparser."""
+    p = argparse.ArgumentParser(add_help=False)
+    unset = {} if top else {"default": argparse.SUPPRESS}
+    g = p.add_mutually_exclusive_group()
+    g.add_argument("-q", "--quiet", action="store_true", help="errors only: no progress, no warnings",
+                   **({"default": False} if top else unset))
+    g.add_argument("-v", "--verbose", action="store_true", help="also debug detail on stderr",
+                   **({"default": False} if top else unset))
+    p.add_argument("--debug", action="store_true", help="show tracebacks of internal errors",
+                   **({"default": False} if top else unset))
+    return p
+
+
+_JSON_HELP = "write the result as JSON to FILE; without FILE (or with -) print it on stdout instead of the text"
+_CRACK_HELP = ("crack depth a in mm, measured from the surface the crack starts at, in every part of the "
+               "command that carries a crack (default: uncracked)")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="strainwave", parents=[_common(True)], formatter_class=_Help,
+                     description="Strain wave gear CAD, FEA and seed-paper validation.\n"
+                                 "Exit status: 0 fine, 1 a check, mesher or solver failed, 2 bad input.")
+    parser.add_argument("--version", action="version", version=f"strainwave {_version()}")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser, metavar="COMMAND")
+    common = _common(False)
+
+    def add(name, func, help_text, *, material=True):
+        p = sub.add_parser(name, help=help_text, description=help_text, parents=[common], formatter_class=_Help)
+        p.add_argument("--params", metavar="FILE.toml",
+                       help="partial parameter file; keys it leaves out come from the embedded default "
+                            "(strainwave params --print-default)")
+        p.add_argument("--json", nargs="?", const="-", default=None, metavar="FILE", help=_JSON_HELP)
+        # material=False: the command never uses the material, so warnings about it would mean nothing
+        p.set_defaults(func=func, uses_material=material)
         return p
 
-    p = add("analytic", _cmd_analytic, "every closed form of both seeds, published and corrected")
-    p.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    add("analytic", _cmd_analytic, "every closed form of both seeds, published and corrected")
 
-    p = add("export-step", _cmd_export_step, "build a part and write it as STEP (mm)")
-    p.add_argument("--part", required=True, choices=PARTS)
-    p.add_argument("--crack-depth-mm", type=_positive_float, default=None, help="seed a crack of this depth")
-    p.add_argument("--no-teeth", action="store_true", help="smooth shell of the same mid-surface")
-    p.add_argument("--png", metavar="FILE.png", help="also render an off-screen preview")
-    p.add_argument("-o", "--output", required=True, metavar="FILE.step")
+    p = add("params", _cmd_params, "print the effective parameters (default + --params), or the default file "
+            "to start a parameter file from")
+    p.add_argument("--print-default", action="store_true",
+                   help="print the embedded default parameter file (TOML, with units and sources) and exit")
 
-    p = add("solve", _cmd_solve, "mesh and solve one FEA study")
-    p.add_argument("study", choices=STUDIES)
-    p.add_argument("--mesh-size-mm", type=_positive_float, default=None)
-    p.add_argument("--order", type=int, choices=(1, 2), default=2)
-    p.add_argument("--crack-depth-mm", type=_positive_float, default=None)
-    p.add_argument("--json", action="store_true")
-    p.add_argument("--vtu", metavar="FILE.vtu")
+    p = add("export-step", _cmd_export_step,
+            "build a part and write it as STEP (mm, named faces, coloured parts). --part assembly writes "
+            "two files: the cup-type gear (flexspline cup, wave generator bearing ring, output shaft) to "
+            "FILE.step and the EWG drive (flexspline ring and external wave generator) to "
+            "FILE-ewg-drive.step", material=False)
+    p.add_argument("--part", required=True, choices=PARTS, help="part to build")
+    p.add_argument("--crack-depth-mm", type=_positive_float, default=None, metavar="A_MM", help=_CRACK_HELP)
+    p.add_argument("--no-teeth", action="store_true", help="smooth shell of the same mid-surface instead of teeth")
+    p.add_argument("--png", metavar="FILE.png", help="also render an off-screen preview of what was written")
+    p.add_argument("-o", "--output", required=True, metavar="FILE.step", help="STEP file to write")
+
+    p = add("solve", _cmd_solve, "mesh and solve one FEA study on three meshes (GCI)")
+    p.add_argument("study", choices=STUDIES, help="study to run")
+    p.add_argument("--mesh-size-mm", type=_positive_float, default=None, metavar="H_MM",
+                   help="element size in mm of the FINEST of the three meshes (the others are 1.4x and "
+                        "1.96x coarser); default: the study's own, from the part size")
+    p.add_argument("--order", type=int, choices=(1, 2), default=2, help="element order: 1 linear, 2 curved quadratic")
+    p.add_argument("--crack-depth-mm", type=_positive_float, default=None, metavar="A_MM",
+                   help="crack depth a in mm in the study's crack-bearing part (default: the study's own)")
+    p.add_argument("--vtu", metavar="FILE.vtu",
+                   help="write the finest mesh's fields (and FILE.boundary.vtu with the named faces)")
 
     p = add("validate", _cmd_validate, "all studies vs the closed forms: report, images, STEP, VTU")
-    p.add_argument("--out", default="reports/validate", metavar="DIR")
-    p.add_argument("--quick", action="store_true", help="coarse meshes, fewer sweep points")
+    p.add_argument("--out", default="reports/validate", metavar="DIR", help="output directory")
+    p.add_argument("--quick", action="store_true", help="coarse meshes, one crack depth per component")
 
     p = add("diagnose", _cmd_diagnose, "locate, name and model the mismatch between a recording and the model")
-    p.add_argument("recording", metavar="RECORDING.csv")
-    p.add_argument("--baseline", choices=("analytic", "fea"), default="analytic")
-    p.add_argument("--json", metavar="OUT.json")
-    p.add_argument("--plot", metavar="OUT.png")
+    p.add_argument("recording", metavar="RECORDING.csv", help="self-describing recording (docs/recordings.md)")
+    p.add_argument("--baseline", choices=("analytic", "fea"), default="analytic",
+                   help="model the recording is compared with")
+    p.add_argument("--plot", metavar="OUT.png", help="also plot the recording, the baseline and the fit")
 
     p = add("benchmark-diagnose", _cmd_benchmark_diagnose, "score diagnose blind on generated recordings")
-    p.add_argument("--n", type=int, default=20, help="recordings per effect class")
-    p.add_argument("--seed", type=int, default=0)
-    p.add_argument("--out", metavar="DIR")
+    p.add_argument("--n", type=int, default=20, metavar="N", help="recordings per effect class")
+    p.add_argument("--seed", type=int, default=0, metavar="S", help="random seed of the generated recordings")
+    p.add_argument("--out", metavar="DIR", help="also write benchmark_diagnose.json/.txt here")
 
     p = add("sweep", _cmd_sweep, "parameter sweep of one study on Dask")
-    p.add_argument("study", choices=STUDIES)
-    p.add_argument("--vary", action="append", default=[], metavar="KEY=START:STOP:N|v1,v2")
+    p.add_argument("study", choices=STUDIES, help="study solved at every point")
+    p.add_argument("--vary", action="append", default=[], metavar="KEY=START:STOP:N|v1,v2",
+                   help="dotted parameter key (units in its name) and its values; repeat for a grid")
     p.add_argument("--samples", metavar="FILE.csv", help="CSV of parameter rows (dotted keys as columns)")
-    p.add_argument("--scheduler", metavar="ADDRESS", help="existing Dask scheduler, e.g. tcp://host:8786")
-    p.add_argument("--workers", type=int, default=None)
-    p.add_argument("--out", default="reports/sweep", metavar="DIR")
+    p.add_argument("--scheduler", metavar="ADDRESS", help="existing Dask scheduler, e.g. tcp://host:8786 "
+                   "(default: a local cluster)")
+    p.add_argument("--workers", type=int, default=None, metavar="N", help="local Dask workers (default: one per core)")
+    p.add_argument("--out", default="reports/sweep", metavar="DIR", help="output directory")
     p.add_argument("--quick", action="store_true", help="coarse meshes")
-    p.add_argument("--tolerance", type=float, default=0.05, help="relative departure named in the summary")
+    p.add_argument("--tolerance", type=float, default=0.05, metavar="REL",
+                   help="relative departure from the closed form (dimensionless, 0.05 = 5 %%) named in the summary")
     return parser
 
 
+class _StderrFormat(logging.Formatter):
+    """Progress as plain lines; warnings and worse prefixed with their level, as the CLI always printed."""
+
+    def format(self, record: logging.LogRecord) -> str:
+        msg = record.getMessage()
+        return msg if record.levelno < logging.WARNING else f"{record.levelname.lower()}: {msg}"
+
+
+def _verbosity(argv: list[str]) -> tuple[int, bool]:
+    """(log level, debug) from the raw arguments, so they hold even when parsing fails."""
+    quiet = any(a in ("-q", "--quiet") for a in argv)
+    verbose = any(a in ("-v", "--verbose") for a in argv)
+    level = logging.ERROR if quiet else logging.DEBUG if verbose else logging.INFO
+    return level, "--debug" in argv
+
+
 def main(argv: list[str] | None = None) -> int:
-    argv = sys.argv[1:] if argv is None else argv
-    debug = "--debug" in argv
-    with warnings.catch_warnings():
-        warnings.simplefilter("default", RangeWarning)  # each distinct warning once
-        warnings.showwarning = lambda msg, cat, *a, **k: print(f"warning: {msg}", file=sys.stderr)
-        try:
-            args = build_parser().parse_args(argv)
-            return args.func(args)
-        except StrainwaveError as exc:
-            print(f"error: {exc}", file=sys.stderr)
-            if debug:
-                traceback.print_exc()
-            return exc.exit_status
-        except KeyboardInterrupt:
-            print("error: interrupted", file=sys.stderr)
-            return 130
-        except Exception as exc:  # noqa: BLE001 - last line of defence: one line, no traceback
-            print(f"error: internal error ({type(exc).__name__}: {exc}); rerun with --debug", file=sys.stderr)
-            if debug:
-                traceback.print_exc()
-            return 1
+    argv = sys.argv[1:] if argv is None else list(argv)
+    level, debug = _verbosity(argv)
+    logger = logging.getLogger(LOG)
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(_StderrFormat())
+    saved_level, saved_propagate = logger.level, logger.propagate
+    logger.addHandler(handler)
+    logger.setLevel(level)
+    logger.propagate = False
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("default", RangeWarning)  # each distinct warning once
+            warnings.showwarning = lambda msg, cat, *a, **k: logger.warning(str(msg))
+            try:
+                args = build_parser().parse_args(argv)
+                if not args.uses_material:
+                    warnings.simplefilter("ignore", MaterialWarning)
+                logger.debug("strainwave %s: %s", _version(), " ".join(argv))
+                return args.func(args)
+            except StrainwaveError as exc:
+                print(f"error: {exc}", file=sys.stderr)
+                if debug:
+                    traceback.print_exc()
+                return exc.exit_status
+            except SystemExit as exc:   # --help / --version: argparse prints and exits 0
+                return exc.code if isinstance(exc.code, int) else 0
+            except KeyboardInterrupt:
+                print("error: interrupted", file=sys.stderr)
+                return 130
+            except BrokenPipeError:   # the reader (e.g. `| head`) went away: stop quietly, as shell tools do
+                import os
+                os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+                return 141
+            except Exception as exc:  # noqa: BLE001 - last line of defence: one line, no traceback
+                print(f"error: internal error ({type(exc).__name__}: {exc}); rerun with --debug", file=sys.stderr)
+                if debug:
+                    traceback.print_exc()
+                return 1
+    finally:
+        logger.removeHandler(handler)
+        logger.setLevel(saved_level)
+        logger.propagate = saved_propagate
 
 
 if __name__ == "__main__":

@@ -38,3 +38,8 @@ class StageError(StrainwaveError, RuntimeError):
 
 class RangeWarning(UserWarning):
     """A value is possible but outside a seed's recommended range; the run goes on."""
+
+
+class MaterialWarning(RangeWarning):
+    """The material constants disagree with each other (e.g. E, nu and mu); only commands that use the
+    material (closed forms, FEA) show it: a STEP export does not."""

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
-from .errors import InputError, RangeWarning
+from .errors import InputError, MaterialWarning, RangeWarning
 
 
 class CupShape(enum.Enum):
@@ -69,7 +69,7 @@ class Material:
                 f"material: E/(2(1+nu)) = {implied:.0f} MPa differs from shear_modulus_MPa = "
                 f"{self.shear_modulus_MPa:g} by {100 * (implied / self.shear_modulus_MPa - 1):+.2f} %; "
                 "seed-000 closed forms use mu = shear_modulus_MPa, FEA uses E and nu",
-                RangeWarning, stacklevel=3)
+                MaterialWarning, stacklevel=3)
 
     @property
     def implied_shear_modulus_MPa(self) -> float:
@@ -320,6 +320,8 @@ def _coerce(key: str, value: object, annotation: object):
             value = int(value)
         if isinstance(value, bool) or not isinstance(value, int):
             raise InputError(key, value, "must be an integer")
+        if abs(value) > _MAX_MAGNITUDE:   # as for floats: the closed forms overflow beyond it
+            raise InputError(key, value, f"magnitude must be <= {_MAX_MAGNITUDE:g}")
         return value
     if annotation is float:
         if isinstance(value, bool) or not isinstance(value, (int, float)):

@@ -74,3 +74,127 @@ def test_random_bad_parameter_files_exit_2_with_one_line(tmp_path_factory, capsy
         assert status == 2, captured.err
         assert len(errors) == 1 and "Traceback" not in captured.err
         assert "internal error" not in errors[0]
+
+
+# ---- conventions every subcommand shares (issue 14) ----------------------------------------------
+
+import argparse  # noqa: E402
+import json  # noqa: E402
+import sys  # noqa: E402
+import tomllib  # noqa: E402
+from importlib.metadata import version  # noqa: E402
+
+import pytest  # noqa: E402
+
+from strainwave.cli import build_parser  # noqa: E402
+
+_MATERIAL_WARNING = "E/(2(1+nu))"
+
+
+def _subparsers():
+    parser = build_parser()
+    action = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    return action.choices
+
+
+SUBCOMMANDS = sorted(_subparsers())
+
+
+def test_version_and_python_dash_m(strainwave_cmd):
+    want = f"strainwave {version('strainwave')}"
+    script = _run(strainwave_cmd, "--version")
+    module = subprocess.run([sys.executable, "-m", "strainwave", "--version"], capture_output=True, text=True,
+                            timeout=60)
+    assert script.returncode == 0 and script.stdout.strip() == want
+    assert module.returncode == 0 and module.stdout.strip() == want
+    bad = subprocess.run([sys.executable, "-m", "strainwave", "solve", "no-such-study"], capture_output=True,
+                         text=True, timeout=60)
+    assert bad.returncode == 2 and bad.stderr.startswith("error:")
+
+
+@settings(max_examples=40, deadline=None)
+@given(sub=st.sampled_from(SUBCOMMANDS), flags=st.lists(st.sampled_from(["-q", "-v", "--debug"]), unique=True),
+       after=st.lists(st.booleans(), min_size=3, max_size=3))
+def test_common_flags_before_or_after_the_subcommand(sub, flags, after):
+    if "-q" in flags and "-v" in flags:
+        flags = [f for f in flags if f != "-v"]
+    required = {"export-step": ["--part", "ewg", "-o", "x.step"], "solve": ["shaft-torsion"],
+                "diagnose": ["r.csv"], "sweep": ["shaft-torsion"]}.get(sub, [])
+    before = [f for f, a in zip(flags, after) if not a]
+    behind = [f for f, a in zip(flags, after) if a]
+    args = build_parser().parse_args([*before, sub, *required, *behind])
+    assert args.command == sub
+    assert args.quiet == ("-q" in flags) and args.verbose == ("-v" in flags) and args.debug == ("--debug" in flags)
+
+
+@pytest.mark.parametrize("sub", SUBCOMMANDS)
+def test_every_option_has_help_with_units_and_default(sub):
+    parser = _subparsers()[sub]
+    text = parser.format_help()
+    for action in parser._actions:
+        if isinstance(action, argparse._HelpAction):
+            continue
+        assert action.help and len(action.help) > 8, (sub, action.dest)
+        if action.dest.endswith("_mm"):
+            assert " mm" in action.help, (sub, action.dest)
+        if action.option_strings and action.default not in (None, False, argparse.SUPPRESS, []):
+            assert f"(default: {action.default})" in " ".join(text.split()), (sub, action.dest)
+    if sub == "solve":
+        assert "FINEST of the three meshes" in " ".join(text.split())
+
+
+@pytest.mark.parametrize("sub", SUBCOMMANDS)
+def test_json_means_the_same_everywhere(sub):
+    json_action = next(a for a in _subparsers()[sub]._actions if "--json" in a.option_strings)
+    assert (json_action.nargs, json_action.const, json_action.default) == ("?", "-", None)
+
+
+def test_json_to_stdout_or_file(capsys, tmp_path):
+    assert main(["analytic", "--json"]) == 0
+    on_stdout = json.loads(capsys.readouterr().out)
+    out = tmp_path / "a.json"
+    assert main(["analytic", "--json", str(out)]) == 0
+    printed = capsys.readouterr().out
+    assert json.loads(out.read_text()) == on_stdout and "SEED 000" in printed   # text still printed
+
+
+def test_export_step_json_lists_written_files(capsys, tmp_path):
+    out = tmp_path / "s.step"
+    assert main(["export-step", "--part", "wg-bearing-ring", "-o", str(out), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out) == {"written": [str(out)]}
+
+
+@pytest.mark.parametrize("argv, shown", [
+    (["analytic"], True), (["-q", "analytic"], False), (["analytic", "-q"], False), (["analytic", "-v"], True),
+    (["params"], True)])
+def test_material_warning_through_logging(capsys, argv, shown):
+    assert main(argv) == 0
+    err = capsys.readouterr().err
+    assert (_MATERIAL_WARNING in err) == shown
+    if shown:
+        assert f"warning: material: {_MATERIAL_WARNING}" in err
+
+
+def test_material_warning_not_on_export_step(capsys, tmp_path):
+    assert main(["export-step", "--part", "wg-bearing-ring", "-o", str(tmp_path / "r.step")]) == 0
+    assert _MATERIAL_WARNING not in capsys.readouterr().err
+
+
+def test_verbose_adds_debug_detail(capsys):
+    assert main(["-v", "params"]) == 0
+    assert f"strainwave {version('strainwave')}: -v params" in capsys.readouterr().err
+    assert main(["params"]) == 0
+    assert "strainwave 0" not in capsys.readouterr().err
+
+
+def test_print_default_starts_a_parameter_file(capsys, tmp_path):
+    assert main(["params", "--print-default"]) == 0
+    text = capsys.readouterr().out
+    assert tomllib.loads(text) == default_dict()
+    assert "# " in text                                   # the comments (units, sources) come along
+    start = tmp_path / "mine.toml"
+    start.write_text(text.replace("output_torque_Nmm = 1000.0", "output_torque_Nmm = 2500.0"))
+    assert main(["params", "--params", str(start), "--json"]) == 0
+    effective = json.loads(capsys.readouterr().out)
+    assert effective["gear"]["output_torque_Nmm"] == 2500.0
+    assert effective["material"] == default_dict()["material"]

@@ -106,3 +106,33 @@ def test_bad_scheduler_address_exits_2(strainwave_cmd, tmp_path):
     assert run.returncode == 2 and "Traceback" not in run.stderr
     last = run.stderr.strip().splitlines()[-1]
     assert last.startswith("error: --scheduler = 'nonsense://host:8786': no Dask scheduler answered")
+
+
+def test_impossible_grid_points_are_refused_before_any_worker(strainwave_cmd, tmp_path, monkeypatch):
+    """A bore wider than the 70 mm shaft is a mistake in the grid: exit 2 naming the points, nothing run."""
+    from strainwave.compare.sweep import pipeline
+    from strainwave.errors import InputError
+
+    def no_cluster(*args, **kwargs):
+        raise AssertionError("a Dask cluster was started for an impossible grid")
+
+    monkeypatch.setattr(pipeline, "dask_client", no_cluster)
+    out = tmp_path / "sweep"
+    try:
+        run_sweep("shaft-torsion", vary=["output_shaft.inner_diameter_mm=40,75,80", "output_shaft.length_mm=100,200"],
+                  out_dir=out, task=closed_form_probe)
+    except InputError as exc:
+        message = str(exc)
+    else:
+        raise AssertionError("the impossible grid was accepted")
+    assert message.startswith("--vary = '4 of 6 points': impossible, nothing was run: point 2 (")
+    assert "output_shaft.inner_diameter_mm=75.0, output_shaft.length_mm=100.0" in message
+    assert "point 5 (output_shaft.inner_diameter_mm=80.0, output_shaft.length_mm=200.0)" in message
+    assert "outer_diameter_mm" in message and "point 0" not in message and "point 1 " not in message
+    assert not out.exists()
+
+    run = subprocess.run([*strainwave_cmd, "sweep", "shaft-torsion", "--vary", "output_shaft.inner_diameter_mm=40,75",
+                          "--out", str(out)], capture_output=True, text=True, timeout=60)
+    assert run.returncode == 2 and run.stdout == "" and not out.exists()
+    errors = [line for line in run.stderr.splitlines() if line.startswith("error:")]
+    assert len(errors) == 1 and "point 1 (output_shaft.inner_diameter_mm=75.0)" in errors[0]

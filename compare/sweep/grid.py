@@ -2,8 +2,9 @@
 
 Only the *syntax* and the *type* of each value are checked here, against the parameter schema
 (``Params.to_dict()`` of the base parameters). Whether a point is physically possible (a crack
-deeper than the wall, a bore wider than the shaft) is decided later, per point, by
-``Params.with_value``: such a point is recorded as failed and the sweep goes on.
+deeper than the wall, a bore wider than the shaft) needs the merged parameters: the driver checks
+every point with the parameter schema before any worker starts and refuses the grid (exit 2) naming
+the impossible points (``pipeline.refuse_impossible``).
 """
 from __future__ import annotations
 

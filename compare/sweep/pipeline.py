@@ -13,13 +13,14 @@ import logging
 import math
 import os
 import time
+import warnings
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Iterator
 
-from ...errors import InputError, StageError
-from ...params import default_dict, load_params
+from ...errors import InputError, RangeWarning, StageError
+from ...params import default_dict, load_params, params_from_dict
 from ...cache import ResultCache
 from .grid import build_points
 from .outputs import plot_sweep, records_frame, departures, write_markdown, write_records, write_table
@@ -52,6 +53,28 @@ class Outcome:
                  f"  wrote {self.out_dir}/ (sweep.parquet, sweep.csv, summary.md, points.json, "
                  f"{sum(p.suffix == '.png' for p in self.files)} plots)"]
         return "\n".join(lines)
+
+
+MAX_NAMED = 5   # impossible points named in the one-line refusal; the rest are counted
+
+
+def refuse_impossible(specs: list[PointSpec], where: str) -> None:
+    """Validate every point's parameters on the driver, before any worker starts: an impossible point
+    (a bore wider than the shaft, a crack through the wall) is a mistake in the grid, not a result,
+    so the whole grid is refused in one line (exit 2) naming the points and why."""
+    bad = []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RangeWarning)   # possible-but-unusual points warn in their worker
+        for index, spec in enumerate(specs):
+            try:
+                params_from_dict(spec.merged())
+            except InputError as exc:
+                values = ", ".join(f"{k}={v}" for k, v in spec.values)
+                bad.append(f"point {index} ({values}): {exc}")
+    if bad:
+        more = f"; and {len(bad) - MAX_NAMED} more" if len(bad) > MAX_NAMED else ""
+        raise InputError(where, f"{len(bad)} of {len(specs)} points",
+                         "impossible, nothing was run: " + "; ".join(bad[:MAX_NAMED]) + more)
 
 
 @contextmanager
@@ -155,6 +178,7 @@ def run_sweep(study: str, *, vary: list[str], params_path: str | Path | None = N
     base = load_params(params_path).to_dict()
     seed_crack = CRACK_KEY in varied
     specs = [PointSpec(study, tuple(point.items()), base, quick, seed_crack) for point in points]
+    refuse_impossible(specs, "--samples" if sample_file and not vary else "--vary")
     keys = [point_key(spec, task) for spec in specs]
     cache = ResultCache(out_dir / "cache")
     started = time.perf_counter()
