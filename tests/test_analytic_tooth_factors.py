@@ -48,3 +48,20 @@ def test_minimal_teeth_is_the_smallest_integer_that_satisfies_eq14():
             dz, 1.4, 625.0, 2.1e5, fatigue.tooth_constant(design), fatigue.tooth_offset(design)))
         # thicker factors than the seed's 1.07 x 1.9 need more teeth
         assert r.Z_R_min > r.seed_constant_Z_R_min
+
+
+def test_stored_fea_at_the_minimum_is_consistent_with_eq14():
+    from dataclasses import replace
+    for (z, dz), v in tn.FEA_AT_MINIMUM.items():
+        d = replace(fatigue.ToothDesign(), tooth_influence=v["tooth_influence"],
+                    stress_concentration=v["stress_concentration"])
+        n = fatigue.safety_from_teeth(z, dz, 625.0, 2.1e5, fatigue.tooth_constant(d), fatigue.tooth_offset(d))
+        assert n == pytest.approx(v["n_sigma"], rel=1e-3)
+        root = fatigue.minimal_teeth_root(dz, 1.4, 625.0, 2.1e5, fatigue.tooth_constant(d), fatigue.tooth_offset(d))
+        assert fatigue.minimal_teeth(root) == v["Z_R_min_with_these_factors"]
+        # the model's factors at that rim lie within its fitting residual of the FEA
+        hd, md = tn.rim_ratios(z, fatigue.ToothDesign())
+        res = tf.fit_residuals(tf.FITTING_SET, tf.FITTED)
+        assert abs(tf.tooth_influence(hd, md, tf.FITTED) / v["tooth_influence"] - 1) <= res["tooth_influence"]
+        assert abs(tf.stress_concentration(hd, md, tf.FITTED) / v["stress_concentration"] - 1) <= \
+            res["stress_concentration"]

@@ -102,8 +102,51 @@ def ring_checks(book: FeaBook, label: str, refs: dict, params) -> list[Check]:
         note = f"{load_note}; {ref.get('note', '')}"
         out.append(evaluate(Check(check_id, quantity, unit, q.value, q.uncertainty, analytic, "corrected", tol,
                                   note=note, sources={"fea": f"FEA {label}", "analytic": "seed 003 / Roark"})))
+    out.insert(2, solid_ring_check(book, label, refs, params, load_factor, arc.get("ring.delta_cd", {})))
     out += tooth_factor_checks(book, label, refs)
     return out
+
+
+def width_allowance(poisson_ratio: float) -> tuple[float, float]:
+    """(factor, half spread) of the 3D ring's compliance relative to the plane-stress closed form.
+
+    A ring of width B bends between two bounds: free anticlastic curvature (plane stress, E I; a narrow
+    ring) and none (plane strain, E I/(1 - nu^2); B^2/(r delta) large, the edges' free zones ~sqrt(r delta)
+    small). Its compliance lies in [(1 - nu^2), 1] x the plane-stress value. Without a closed form for the
+    transition, the midpoint 1 - nu^2/2 is asserted and half the interval, (nu^2/2)/(1 - nu^2/2), is the
+    allowance: both follow from nu alone, fixed before the 3D solve.
+    """
+    factor = 1.0 - 0.5 * poisson_ratio ** 2
+    return factor, 0.5 * poisson_ratio ** 2 / factor
+
+
+def solid_ring_check(book: FeaBook, label: str, refs: dict, params, load_factor: float,
+                     arc_allowance: dict[str, float]) -> Check:
+    """``ring.delta_cd_solid``: the real 12 mm wide ring (3D solid FEA) against eq 3 and Roark's thick ring,
+    the latter with the plane-stress / plane-strain spread as a named allowance (``width_allowance``)."""
+    check_id, quantity, unit = "ring.delta_cd_solid", "shortening of the loaded diameter delta_CD, 3D solid ring", "mm"
+    ref = refs.get("ring.delta_cd", {})
+    nu = params.material.poisson_ratio
+    factor, half_spread = width_allowance(nu)
+    analytic = _scaled(ref, load_factor)
+    if "corrected" in analytic:
+        analytic["corrected"] *= factor
+    q, why = book.quantity(label, "delta_cd_3d_mm")
+    if q is None:
+        return not_evaluated(check_id, quantity, unit, why, analytic=analytic)
+    meta = book.meta(label)
+    e = params.ewg_drive
+    r_m = (meta.get("geometry") or {}).get("r_m_mm", math.nan)
+    searle = e.face_width_mm ** 2 / (r_m * e.rim_thickness_mm)
+    allowances = {f"width: plane stress (E I) .. plane strain (E I/(1 - nu^2)) bounds, B^2/(r_m delta) = "
+                  f"{searle:.3g}; midpoint asserted, half spread": half_spread, **arc_allowance}
+    tol = fea_tolerance(q.value, q.uncertainty, allowances=allowances)
+    ratio = (meta.get("solid_3d") or {}).get("ratio_cd_3d_over_2d", math.nan)
+    note = (f"3D solid (one eighth, P2, 2/3/4 elements through the rim, load uniform over B = {e.face_width_mm:g} mm) "
+            f"at the FEA's force; 3D / 2D plane stress = {ratio:.4f} (bounds {1 - nu ** 2:.3f}..1); published = "
+            f"eq 3 (E I), corrected = Roark thick ring x (1 - nu^2/2) = {factor:.4f}")
+    return evaluate(Check(check_id, quantity, unit, q.value, q.uncertainty, analytic, "corrected", tol, note=note,
+                          sources={"fea": f"FEA {label} (3D solid)", "analytic": "seed 003 eq 3 / Roark, width bounds"}))
 
 
 def _relative_uncertainty(q) -> float:
