@@ -27,6 +27,7 @@ from .convergence import grid_convergence
 from .refinement import CRACK_ORDER_BOUNDS
 from .fields import nodal_displacement, nodal_stress, von_mises, write_vtu
 from .facet_traction import facet_traction_load
+from .crack_contact import crack_pairs, solve_with_contact
 from .crack_seam import open_crack_for
 from .mesh_data import group_dofs, to_skfem
 from .mesh_isolated import mesh_part_isolated
@@ -98,9 +99,11 @@ def ring_refine(part, params, *, size_mm, refine_points, local_mm, contact_mm=No
     return refine
 
 
-def compliance_on_mesh(md, part, params, lame, *, force_N, method=SOLVER, keep_field=False) -> tuple:
+def compliance_on_mesh(md, part, params, lame, *, force_N, method=SOLVER, keep_field=False,
+                       contact: bool = False) -> tuple:
     """Load (Hertzian patch, resultant F_r), fix the bore, solve once on ``md``:
-    (compliance, solver info dict, field or ())."""
+    (compliance, solver info dict, field or ()). ``contact``: an opened crack's faces may not pass through
+    each other (``crack_contact``, frictionless, solved by active set with the direct solver)."""
     a_ax, b_circ = params.wave_generator.contact_semi_axes_mm
     contact_name = "contact" if "contact" in part.named_faces else "race"
     centre = contact_centre_mm(part, contact_name)
@@ -116,6 +119,21 @@ def compliance_on_mesh(md, part, params, lame, *, force_N, method=SOLVER, keep_f
     fx = f[0::3].sum() * np.cos(np.arctan2(centre[1], centre[0])) + f[1::3].sum() * np.sin(np.arctan2(centre[1], centre[0]))
     f *= force_N / -fx                  # the resultant is F_r exactly (quadrature of the sqrt profile)
     fixed = (3 * group_dofs(sk, md, "bore")[:, None] + np.arange(3)).ravel()
+    if contact and "crack_plus" in md.groups:
+        infos = []
+
+        def linear(Kc, fc, fixed_c):
+            uc, inf = solve_elasticity(Kc, fc, fixed_dofs=fixed_c, coords=sb.doflocs, dim=3, study=STUDY,
+                                       method="direct")
+            infos.append(inf)
+            return uc
+        res = solve_with_contact(K, f, fixed, crack_pairs(md).in_dofs(sk.node_to_dof), linear)
+        u = res.u
+        info = dict(infos[-1].to_dict(), contact_iterations=res.iterations, contact_pairs=int(res.active.size),
+                    contact_closed_pairs=int(res.active.sum()),
+                    contact_min_opening_mm=float(res.opening_mm.min()), contact_max_opening_mm=float(res.opening_mm.max()),
+                    compliance_without_contact_mm_per_N=float(f @ res.u_unconstrained) / force_N ** 2)
+        return float(f @ u) / force_N ** 2, info, ((md, sk, u) if keep_field else ())
     u, info = solve_elasticity(K, f, fixed_dofs=fixed, coords=sb.doflocs, dim=3, study=STUDY, method=method,
                                p2_element_dofs=sb.element_dofs if md.order == 2 else None)
     return float(f @ u) / force_N ** 2, info.to_dict(), ((md, sk, u) if keep_field else ())
@@ -154,9 +172,11 @@ def seam_compliances(part, params, lame, *, size_mm, order, refine_points, local
                                 local_mm=local_mm, contact_mm=contact_mm)
     t_mesh = time.perf_counter() - t0
     out = []
-    for m in (md, open_crack_for(md, STUDY)):
+    for m, contact in ((md, False), (open_crack_for(md, STUDY), True)):
         t1 = time.perf_counter()
-        c, info, field = compliance_on_mesh(m, part, params, lame, force_N=force_N, keep_field=keep_field)
+        # the opened crack's faces may separate but not interpenetrate (crack_contact)
+        c, info, field = compliance_on_mesh(m, part, params, lame, force_N=force_N, keep_field=keep_field,
+                                            contact=contact)
         out.append(ComplianceSolve(c, m.quality, {"mesh": t_mesh, "assemble+solve": time.perf_counter() - t1},
                                    info, field, size_factor))
         t_mesh = 0.0
@@ -248,7 +268,8 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
             if k == 0:
                 fields_fine[label] = sol.field
         if k == 0:   # the uncracked mesh's facts; the opened one adds the duplicated crack nodes
-            qual, info = unc.quality, dict(unc.solver, dofs_total=unc.quality.dofs, dofs_cracked=cr.quality.dofs)
+            qual, info = unc.quality, dict(unc.solver, dofs_total=unc.quality.dofs, dofs_cracked=cr.quality.dofs,
+                                           **{k: v for k, v in cr.solver.items() if k.startswith(('contact', 'compliance'))})
     fields = ()
     if vtu is not None:
         t0 = time.perf_counter()

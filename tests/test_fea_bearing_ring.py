@@ -64,16 +64,19 @@ def test_uncracked_compliance_positive_and_converging(study):
     assert q.convergence.extrapolated > q.value
 
 
-def test_crack_increases_compliance(study):
+def test_crack_at_the_hertz_centre_closes(study):
+    # the crack lies in the compressed patch (hoop stress ~ -0.87 p0): with frictionless face contact it stays
+    # shut and adds ~no compliance, while the linear solve let the faces pass through each other (issue 13:
+    # 19 % of the uncracked compliance at a = 3 mm)
     d = study["delta_radial_compliance_mm_per_N"]
-    # cracked minus uncracked on the same mesh (seam opened), at every refinement
-    assert all(v > 0 for v in d.convergence.values)
-    # ~19 % of the uncracked compliance at a = 3 mm, far above the coarse-mesh noise (the difference's
-    # GCI is ~0.1 %: the two meshes' discretization errors cancel)
-    assert d.value > 0.05 * study["radial_compliance_mm_per_N"].value
-    assert abs(d.value) > d.uncertainty and study.meta["delta_resolved"]
+    c0 = study["radial_compliance_mm_per_N"].value
+    assert all(abs(v) < 1e-4 * c0 for v in d.convergence.values)
+    solver = study.meta["solver"]
+    assert solver["compliance_without_contact_mm_per_N"] - c0 > 0.05 * c0
+    assert solver["contact_closed_pairs"] > 0.8 * solver["contact_pairs"]
+    assert solver["contact_min_opening_mm"] > -1e-12
     c_cr = study["cracked_radial_compliance_mm_per_N"].value
-    assert c_cr == pytest.approx(study["radial_compliance_mm_per_N"].value + d.value, rel=1e-12)
+    assert c_cr == pytest.approx(c0 + d.value, rel=1e-12)
 
 
 def test_analytic_forms_reported_next_to_fea(study):
@@ -84,10 +87,10 @@ def test_analytic_forms_reported_next_to_fea(study):
     from strainwave.analytic.cracks import hertz_mode_i_constant
     assert pub / cor == pytest.approx(f_r * 0.217 / hertz_mode_i_constant(), rel=1e-9)
     assert an["corrected"]["delta_compliance_mm_per_N"] == pytest.approx(cor / f_r, rel=1e-12)
-    # the closed form (a half-space crack estimate) and the FEA agree in order of magnitude: measured
-    # FEA / corrected = 1.8 at a = 3 mm; a factor 5 either way still fails on a units or F-power slip
+    # the seed's form assumes a tensile beta p0/2 across the crack; at the Hertz centre the crack is compressed
+    # and shut, so the FEA adds less than 1 % of what the seed predicts (a finding, not an agreement)
     ratio = study["delta_radial_compliance_mm_per_N"].value / an["corrected"]["delta_compliance_mm_per_N"]
-    assert 0.2 < ratio < 5.0
+    assert abs(ratio) < 0.01
 
 
 def test_vtu_fields_written(study):

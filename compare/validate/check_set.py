@@ -11,7 +11,7 @@ from .fea_book import FeaBook, Sweep
 from .plan import Plan
 from ...analytic import tube_crack
 from .ring_checks import applied_force_N, ring_checks
-from .torsion_checks import (FLEX_UNIT, bearing_crack_curve, bearing_radial_compliance, crack_check,
+from .torsion_checks import (FLEX_UNIT, bearing_closed_crack_check, bearing_crack_curve, bearing_radial_compliance, crack_check,
                              cup_crack_curve, cup_flexibility, gear_stiffness, mu_gap, shaft_crack_curve,
                              shaft_flexibility)
 
@@ -110,6 +110,10 @@ def build_checks(book: FeaBook, plan: Plan, summary: dict, params) -> CheckSet:
             hollow = 1.0 / (1.0 - ratio ** 4)
             note += (f"; the bore raises the outer-fibre shear stress by {hollow:.3f} and so a shallow crack's "
                      f"compliance by {hollow ** 2:.3f} over the solid-bar forms; G = E/2(1+nu) as the FEA")
+        if component == "bearing":
+            F_r = applied_force_N(book.meta(plan.headline["bearing"].label)) or s000.get("F_r_N", 1.0)
+            checks.append(bearing_closed_crack_check(book, case_labels, params, F_r))
+            continue
         checks.append(crack_check(check_id, quantity, unit, sweep, curves[component], allowances, note,
                                   {"fea": "FEA " + ", ".join(case_labels), "analytic": "seed 000"},
                                   params.cracks.depth_mm))

@@ -213,3 +213,40 @@ def gear_stiffness(book: FeaBook, labels: dict[str, str], s000: dict, params) ->
                "lambda_so0": f"FEA {labels['shaft']}"}
     return evaluate(Check("gear.stiffness", "drive torsional stiffness K_HD (uncracked)", unit, K, unc,
                           analytic, "corrected", tol, note=note, sources=sources))
+
+
+def bearing_closed_crack_check(book: FeaBook, labels: list[str], params, radial_force_N: float) -> Check:
+    """The bearing crack sits at the centre of the Hertz patch, where the hoop stress is compressive
+    (about -0.87 p0): with frictionless crack-face contact (fea.crack_contact) the crack closes, so the
+    cracked ring must be as stiff as the uncracked one. Asserted (corrected): C_cracked = C_uncracked, i.e. a
+    closed crack adds no compliance (first principles; the closed form of this position). Published: seed
+    000's du_H/F_r added (it assumes a TENSILE sigma = beta p0/2 acting on a straight front of length t_i,
+    i.e. a crack outside the compressed patch, not this one); its re-derived F_r^1 version beside it.
+    Evaluated at the deepest crack of the run (the largest face area that could open)."""
+    check_id, unit = "bearing.crack_compliance", "mm/N"
+    quantity = "cracked radial compliance of the bearing ring (crack at the Hertz centre, faces in contact)"
+    rows = []
+    for label in labels:
+        q0, _ = book.quantity(label, "radial_compliance_mm_per_N")
+        qd, _ = book.quantity(label, "delta_radial_compliance_mm_per_N")
+        if q0 is not None and qd is not None:
+            rows.append((book.meta(label).get("crack_depth_mm", 0.0), q0, qd, label))
+    if not rows:
+        return not_evaluated(check_id, quantity, unit, "no bearing case produced the crack compliance")
+    depth, q0, qd, label = max(rows, key=lambda r: r[0])
+    seed = bearing_crack_curve(params, depth, radial_force_N)
+    c0 = q0.value
+    analytic = {"corrected": c0, "published": c0 + seed["published"], "seed_corrected_tensile": c0 + seed["corrected"]}
+    info = book.meta(label).get("solver", {})
+    tol = fea_tolerance(c0 + qd.value, qd.uncertainty, allowances={})
+    note = (f"a = {depth:g} mm at the contact centre; FEA delta C = {qd.value:.3g} mm/N "
+            f"({qd.value / c0:+.2e} of the uncracked {c0:.4g} mm/N) with frictionless face contact; the linear "
+            f"solve (faces passing through each other) gave "
+            f"{info.get('compliance_without_contact_mm_per_N', float('nan')) - c0:.3g} mm/N; "
+            f"{info.get('contact_closed_pairs', '?')} of {info.get('contact_pairs', '?')} crack node pairs closed. "
+            "Seed 000's formula (tensile beta p0/2 on a straight front of length t_i) describes a crack under "
+            "tension, outside the compressed patch; it cannot hold at the centre, where the crack stays shut")
+    return evaluate(Check(check_id, f"{quantity} at a = {depth:g} mm", unit, c0 + qd.value, qd.uncertainty,
+                          analytic, "corrected", tol, note=note,
+                          sources={"fea": f"FEA {label}", "analytic": "closed crack = uncracked ring (FEA C0); "
+                                                                      "published: + seed 000 du_H/F_r"}))
