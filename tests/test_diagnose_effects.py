@@ -34,14 +34,16 @@ def _synth(params, kind, effect_id, theta, *, n=800, seed=0, scale=1.0, override
     specimen = "output_shaft" if kind is RecordingKind.TORSION else "ewg_ring"
     X = 1e6 if kind is RecordingKind.TORSION else 50.0
     u = _path(kind, n)
-    probe = parse_text(format_recording(kind, specimen, u * X, u, params=overrides))
+    # three wave generator turns at a varying speed: 2x and 4x ripples span 133 and 67 samples
+    angle = 2 * np.pi * 3.0 * np.linspace(0, 1, n) ** 1.2 if effect_id == "kinematic_error" else None
+    probe = parse_text(format_recording(kind, specimen, u * X, u, params=overrides, input_angle_rad=angle))
     base = analytic_baseline(probe, params if not overrides else load_params(overrides=overrides))
     ctx = build_context(probe, base)
     y = scale * ctx.u + 0.01 + 0.003 * ctx.t
     if effect_id:
         y = y + CATALOGUE[effect_id].contribution(ctx, np.asarray(theta, dtype=float))
     y = y + NOISE * rng.standard_normal(n)
-    text = format_recording(kind, specimen, u * X, y * ctx.Y, params=overrides)
+    text = format_recording(kind, specimen, u * X, y * ctx.Y, params=overrides, input_angle_rad=angle)
     rec = parse_text(text)
     return diagnose(rec, params if not overrides else load_params(overrides=overrides))[0], ctx
 
@@ -50,6 +52,7 @@ CASES = [  # (kind, effect, normalised parameters, {reported parameter: expected
     (RecordingKind.TORSION, "compliance_offset", [0.15], {"compliance_change_percent": 15.0}),
     (RecordingKind.TORSION, "nonlinear_stiffness", [0.15, 0.2, 0.25, 0.35], {"T1": 2.5e5, "T2": 6.0e5}),
     (RecordingKind.TORSION, "hysteresis", [0.02, -1.3], {"friction_saturation_load": 10 ** -1.3 * 1e6}),
+    (RecordingKind.TORSION, "kinematic_error", [0.01, 0.0, 0.0, 0.004], {}),
     (RecordingKind.TORSION, "lost_motion", [0.02, -1.7, 0.0], {"band_width": 10 ** -1.7 * 1e6}),
     (RecordingKind.TORSION, "crack_closure", [0.08, 0.0], {}),
     (RecordingKind.RING_COMPRESSION, "large_deflection", [0.05], {}),
@@ -101,10 +104,13 @@ def test_stiffness_error_within_uncertainty_is_absorbed_beyond_it_named(params):
 
 def test_location_of_a_dead_band_is_around_zero(params):
     diag, _ = _synth(params, RecordingKind.TORSION, "lost_motion", [0.03, -1.5, 0.0])
-    # the band is 3 % of full scale wide; the largest deviation is in a bin (10 % wide) next to zero
+    # the band is 3 % of full scale wide (w = 10^-1.5): located from the fitted effect as u0 +/- 2 w, and the
+    # binned residual's largest deviation is in a bin (10 % wide) next to zero
     assert abs(diag.located.peak_at) <= 1.5e5
-    assert any(lo <= 0.0 <= hi for lo, hi in diag.located.ranges)
-    assert diag.located.branch == "loading and unloading, both load signs"
+    assert len(diag.located.ranges) == 1
+    lo, hi = diag.located.ranges[0]
+    assert lo < 0.0 < hi and hi - lo == pytest.approx(4 * 10 ** -1.5 * 1e6, rel=0.2)
+    assert "around zero" in diag.located.branch
 
 
 def test_fea_baseline_end_to_end_on_the_shaft(params, tmp_path):

@@ -26,7 +26,7 @@ def build_context(rec: Recording, baseline: Baseline) -> Context:
     return Context(u=u, y=rec.response / Y, t=t, X=X, Y=Y, c0=baseline.compliance,
                    load_unit=rec.load_unit, response_unit=rec.response_unit, direction=direction,
                    segments=tuple(segments), geometry=dict(baseline.geometry),
-                   uncertainty=baseline.uncertainty)
+                   uncertainty=baseline.uncertainty, angle=rec.extra.get("input_angle_rad"))
 
 
 def reversal_threshold(u: np.ndarray) -> float:

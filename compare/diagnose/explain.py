@@ -1,4 +1,4 @@
-"""The paragraph a gear engineer reads: what differs, where, which physics, how much, how sure."""
+"""The paragraph a gear engineer reads: the verdict, what differs, where, which physics, how much, how sure."""
 from __future__ import annotations
 
 from .effects import CATALOGUE
@@ -6,21 +6,34 @@ from .effects import CATALOGUE
 
 def explain(diag) -> str:
     noise = diag.noise_std
-    if not diag.mismatch:
+    verdict = diag.verdict.value
+    if verdict == "agrees":
         return (f"The recording agrees with the baseline ({diag.baseline.source}) within the noise "
-                f"({noise:.3g}) and the stated {100 * diag.baseline.uncertainty:.0f} % uncertainty of the simulated "
-                f"stiffness: residual RMS {diag.rms_before:.3g}. No physics is missing at this resolution; the "
-                f"best catalogue candidate did not improve BIC by more than 10.")
-    top = diag.effects[0]
+                f"({noise:.3g}, coloured noise allowed for) and the stated {100 * diag.baseline.uncertainty:.0f} % "
+                f"uncertainty of the simulated stiffness: residual RMS {diag.rms_before:.3g}; its structure test "
+                f"finds nothing beyond the noise and no catalogue effect improves BIC by more than 10.")
+    top = diag.effects[0] if diag.effects else None
+    if verdict == "unexplained":
+        sugg = ""
+        if top is not None:
+            sugg = (f" The best partial model, offered only as a suggestion, is {top.id.replace('+', ' with ')} "
+                    f"(delta BIC {top.delta_bic:.1f}, RMS {diag.rms_before:.3g} -> {top.rms:.3g}), but it leaves a "
+                    f"residual that is not noise.")
+        return (f"MISMATCH NOT EXPLAINED: the recording departs from the baseline ({diag.baseline.source}) beyond "
+                f"its noise ({noise:.3g}), and no catalogue model brings the residual back to the noise. The residual: "
+                f"{diag.structure}.{sugg} Check the rig (sensor channels, clamping, drift, sampling) before trusting "
+                f"any named physics.")
     why = "; and ".join(CATALOGUE[c].explanation for c in top.components)
-    params = ", ".join(f"{k} = {v:.4g} {u}".rstrip() for k, (v, u) in list(top.parameters.items())[:6])
+    params = ", ".join(f"{k} = {v:.4g}".rstrip() + (f" +/- {top.errors[k]:.2g}" if k in top.errors else "") + f" {u}"
+                       for k, (v, u) in list(top.parameters.items())[:6])
     runner = ""
-    if len(diag.effects) > 1:
-        r = diag.effects[1]
-        runner = (f" The runner-up, {r.id}, scores {top.delta_bic - r.delta_bic:.1f} BIC units worse"
-                  f"{' (a close call)' if top.delta_bic - r.delta_bic < 6 else ''}.")
+    if diag.runner_up is not None and diag.margin_bic is not None:
+        runner = (f" The runner-up, {diag.runner_up}, scores {diag.margin_bic:.1f} BIC units worse"
+                  f"{' - AMBIGUOUS: the data cannot tell the two apart' if diag.ambiguous else ''}.")
+    warn = (" Warnings: " + "; ".join(top.warnings) + ".") if top.warnings else ""
     return (f"The recording departs from the baseline ({diag.baseline.source}) beyond its noise ({noise:.3g}) "
             f"and the {100 * diag.baseline.uncertainty:.0f} % stiffness uncertainty: {diag.located.description}. "
             f"The best explanation is {top.id.replace('+', ' together with ')}: {why}. Fitted: {params}. "
-            f"Adding it lowers the residual RMS from {diag.rms_before:.3g} to {diag.rms_after:.3g} and BIC by "
-            f"{top.delta_bic:.1f}.{runner}")
+            f"It lowers the residual RMS from {diag.rms_before:.3g} to {diag.rms_after:.3g} (BIC by "
+            f"{top.delta_bic:.1f}, weight {top.weight:.2f}) and leaves a residual consistent with the noise."
+            f"{runner}{warn}")

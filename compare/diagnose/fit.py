@@ -1,15 +1,20 @@
-"""Fit the baseline plus zero, one or two catalogue effects; score each fit by BIC.
+"""Fit the baseline plus zero, one or two catalogue effects; score each fit by BIC under coloured noise.
 
-Model (normalised units, see effects/base.py):  y = b0 + b1 t + s u + sum_k effect_k(theta_k).
+Model (normalised units, see effects/base.py):  y = b0 + b1 t + s u + sum_k effect_k(theta_k) + noise.
 b0, b1 (channel zero offset and drift) and s (stiffness scale) enter linearly and are eliminated
 by least squares inside every residual evaluation (variable projection); s carries the Gaussian
-prior 1 +/- baseline_uncertainty, so a stiffness error within the stated uncertainty is absorbed
-at a small, honest cost instead of being called a mismatch.
-The effect parameters are fitted by bounded trust-region least squares from a few starts.
+prior 1 +/- baseline_uncertainty. The effect parameters are fitted by bounded trust-region least
+squares from a few starts.
 
-BIC = N ln(RSS_aug / N) + k ln N, RSS_aug = max(RSS, N floor^2) + sigma^2 ((s - 1)/u)^2 (the prior as
-one extra datum), k = 3 + effect parameters. Profiling the noise variance keeps the comparison valid even
-where the noise estimate is rough.
+Noise is not assumed white: real sensors drift, are low-pass filtered and wander. The likelihood of
+every model is that of an AR(2) noise process whose coefficients are profiled on the model's own
+residual r (conditional Gaussian likelihood: innovations e_k = r_k - a1 r_(k-1) - a2 r_(k-2)):
+    BIC = N ln(RSS_e / N) + ((s - 1)/u)^2 + (k + 2) ln N,   RSS_e = min_a sum e_k^2 (>= N floor^2),
+k = 3 + effect parameters, ((s - 1)/u)^2 = -2 ln(prior). For white noise a ~ 0 and this is the usual BIC;
+for AR(1) noise with rho -> 1 (a random walk) the innovations are the first differences, so a slow wander
+of the residual costs what a random walk of that size costs, not what N independent samples would.
+A systematic misfit can therefore raise BIC by at most ~N ln(1.5 .. 2) against a model that fits: the
+evidence for a second effect that only mops up a rigid model's misfit stays bounded (issue 12, item 4).
 """
 from __future__ import annotations
 
@@ -25,6 +30,33 @@ from .effects.base import Context, Effect
 # 10 ppm of the full-scale response: no strain gauge or encoder test resolves less; used as the least
 # noise level, so synthetic noise-free files do not turn a stiffness error inside the prior into "evidence"
 NOISE_FLOOR = 1e-5
+AR_ORDER = 2
+
+
+def ar_profile(r: np.ndarray, order: int = AR_ORDER) -> tuple[float, np.ndarray]:
+    """(innovation sum of squares rescaled to len(r) samples, AR coefficients) of the least-squares AR fit."""
+    n = len(r)
+    if order == 0 or n <= 4 * order:
+        return float(r @ r), np.zeros(order)
+    lags = np.column_stack([r[order - 1 - i:n - 1 - i] for i in range(order)])
+    target = r[order:]
+    coef, *_ = np.linalg.lstsq(lags, target, rcond=None)
+    e = target - lags @ coef
+    return float(e @ e) * n / (n - order), coef
+
+
+def lag1(r: np.ndarray) -> float:
+    """Lag-1 autocorrelation of a residual (0 for white noise)."""
+    r = r - r.mean()
+    den = float(r @ r)
+    return float(r[1:] @ r[:-1]) / den if den > 0 else 0.0
+
+
+def bic_ar(r: np.ndarray, k: int, prior_chi2: float) -> float:
+    """BIC of a model with residual ``r``, ``k`` regression parameters, the prior's -2 ln p, AR(2) noise."""
+    n = len(r)
+    rss_e, _ = ar_profile(r)
+    return n * math.log(max(rss_e, n * NOISE_FLOOR ** 2) / n) + prior_chi2 + (k + AR_ORDER) * math.log(n)
 
 
 @dataclass(frozen=True)
@@ -36,10 +68,17 @@ class Fit:
     rss: float                   # plain residual sum of squares (normalised units)
     bic: float
     k: int
+    cov: np.ndarray | None = None     # covariance of theta (Jacobian, residual variance, AR inflation)
+    at_bound: tuple[str, ...] = ()    # parameters that ended on a bound of their plausible range
+    prior_chi2: float = 0.0           # ((s - 1)/u)^2
 
     @property
     def id(self) -> str:
         return "+".join(e.id for e in self.effects) if self.effects else "baseline"
+
+    @property
+    def label(self) -> str:
+        return "+".join(e.label for e in self.effects) if self.effects else "baseline"
 
     @property
     def scale(self) -> float:
@@ -49,6 +88,15 @@ class Fit:
         out, i = [], 0
         for e in self.effects:
             out.append(self.theta[i:i + e.n_params])
+            i += e.n_params
+        return out
+
+    def split_cov(self) -> list[np.ndarray | None]:
+        if self.cov is None:
+            return [None] * len(self.effects)
+        out, i = [], 0
+        for e in self.effects:
+            out.append(self.cov[i:i + e.n_params, i:i + e.n_params])
             i += e.n_params
         return out
 
@@ -94,6 +142,8 @@ def fit_effects(ctx: Context, effects: tuple[Effect, ...], sigma: float, uncerta
         return np.append(r, proj.lam * (beta[2] - 1.0))
 
     params = [p for e in effects for p in e.params]
+    jac = None
+    at_bound: tuple[str, ...] = ()
     if params:
         lo = np.array([p.lo for p in params])
         hi = np.array([p.hi for p in params])
@@ -106,15 +156,29 @@ def fit_effects(ctx: Context, effects: tuple[Effect, ...], sigma: float, uncerta
             if best is None or sol.cost < best.cost:
                 best = sol
         theta = best.x
+        jac = best.jac
+        # a parameter pinned at a bound that is not a physical zero (e.g. a weight >= 0) is reported
+        names = [f"{e.id}.{p.name}" for e in effects for p in e.params]
+        at_bound = tuple(nm for nm, x, a, b, p in zip(names, theta, lo, hi, params)
+                         if (x - a < 1e-4 * (b - a) and a != 0.0) or (b - x < 1e-4 * (b - a)))
     else:
         theta = np.zeros(0)
     z = ctx.y - contribution(theta)
     beta = proj.solve(z)
     model = contribution(theta) + proj.A @ beta
-    rss = float(np.sum((ctx.y - model) ** 2))
-    # never below the instrument floor: on noise-free data the log of a vanishing RSS would turn any
-    # difference into "evidence", while the prior term says a stiffness error within u is no evidence
-    rss_aug = max(rss, n * NOISE_FLOOR ** 2) + proj.lam2 * (beta[2] - 1.0) ** 2
+    r = ctx.y - model
+    rss = float(r @ r)
+    prior_chi2 = ((beta[2] - 1.0) / uncertainty) ** 2
     k = 3 + len(params)
-    bic = n * math.log(max(rss_aug, 1e-300) / n) + k * math.log(n)
-    return Fit(effects, theta, (float(beta[0]), float(beta[1]), float(beta[2])), model, rss, bic, k)
+    bic = bic_ar(r, k, prior_chi2)
+    cov = None
+    if jac is not None:
+        # residual variance with the AR(1) effective-sample inflation (1 + rho)/(1 - rho) for correlated noise
+        rho = min(max(lag1(r), 0.0), 0.99)
+        s2 = rss / max(n - k, 1) * (1.0 + rho) / (1.0 - rho)
+        cov = np.linalg.pinv(jac.T @ jac) * s2
+    return Fit(effects, theta, (float(beta[0]), float(beta[1]), float(beta[2])), model, rss, bic, k, cov,
+               at_bound, float(prior_chi2))
+
+
+__all__ = ["AR_ORDER", "Fit", "NOISE_FLOOR", "ar_profile", "bic_ar", "fit_effects", "lag1"]

@@ -71,3 +71,40 @@ def locate(ctx: Context, residual: np.ndarray, sigma: float, variable: str, mism
             else "mismatch spread thinly over the whole range (no single bin stands out)")
     peak_at = float(0.5 * (edges[pb] + edges[pb + 1]) * ctx.X) if hits else None
     return Located(variable, tuple(ranges), branch, desc, peak_at)
+
+
+def locate_effect(ctx: Context, effects, thetas, binned: Located, variable: str) -> Located:
+    """Where the fitted effect acts (knee above T1, the open side of a crack, the band of a backlash), in
+    physical units, cross-checked with the binned residual of the baseline fit: the description says
+    whether the residual's significant bins fall inside the effect's ranges."""
+    ranges, texts = [], []
+    for e, th in zip(effects, thetas):
+        if e.where is None:
+            texts.append(f"{e.id}: whole load range" + (", branch-dependent" if e.id == "hysteresis" else ""))
+            ranges.append((float(ctx.u.min()), float(ctx.u.max())))
+            continue
+        rr, text = e.where(ctx, np.asarray(th))
+        ranges.extend(rr)
+        where = ", ".join(f"[{lo * ctx.X:.4g}, {hi * ctx.X:.4g}]" for lo, hi in rr)
+        texts.append(f"{e.id}: {variable} in {where} {ctx.load_unit} ({text})")
+    phys = tuple((lo * ctx.X, hi * ctx.X) for lo, hi in _merge(ranges))
+    if binned.ranges:
+        inside = all(any(lo - 0.1 * ctx.X <= b_lo and b_hi <= hi + 0.1 * ctx.X for lo, hi in phys)
+                     for b_lo, b_hi in binned.ranges)
+        check = ("the binned residual agrees (its significant bins lie in these ranges)" if inside
+                 else "the binned residual is significant also outside them ("
+                 + ", ".join(f"[{lo:.4g}, {hi:.4g}]" for lo, hi in binned.ranges) + ")")
+    else:
+        check = "no single bin of the binned residual stands out"
+    branch = "; ".join(t.split("(", 1)[1].rstrip(")") if "(" in t else t for t in texts)
+    return Located(variable, phys, branch, "; ".join(texts) + "; " + check, binned.peak_at)
+
+
+def _merge(ranges):
+    out = []
+    for lo, hi in sorted(ranges):
+        if out and lo <= out[-1][1]:
+            out[-1] = (out[-1][0], max(out[-1][1], hi))
+        else:
+            out.append((lo, hi))
+    return out

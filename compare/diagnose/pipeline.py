@@ -1,11 +1,18 @@
-"""`strainwave diagnose`: locate, name and model the mismatch between a recording and the simulation.
+"""`strainwave diagnose`: is the recording consistent with the simulation, and if not, which physics differs?
 
-1. baseline (analytic or FEA) and noise level from the data itself;
-2. mismatch? the best catalogue model must beat the baseline (with its stiffness prior) by
-   delta BIC > 10 ("very strong" on the Kass-Raftery scale);
-3. locate: significant load ranges and branches (diagnose_locate);
-4. name: every applicable effect and every pair of the four best, ranked by BIC;
-5. show: RMS and BIC before/after, JSON with stable keys, a plot.
+1. baseline (analytic or FEA), white-noise level from the data itself;
+2. fit the nuisance model (offsets, drift, stiffness within its prior) and every applicable catalogue
+   effect (each in more than one model form), scored by BIC under AR(2) noise (fit.py);
+3. goodness of fit without the catalogue (structure.py): does the residual of the nuisance fit show
+   structure beyond the (possibly coloured) noise? No, and no catalogue effect beats it by delta BIC > 10:
+   verdict *agrees*;
+4. name: the best single effect; a second effect joins only if it is significant given the first (its own
+   delta BIC > 10 against the single) AND removes a structure the first leaves; the named model's residual
+   must pass the same goodness-of-fit test: *explained*; otherwise *unexplained*, with the best model
+   kept as a suggestion and the residual's structure described physically;
+5. confidence: BIC weights, margin to the runner-up (ambiguous when < 6), parameter standard errors from
+   the Jacobian, parameters at a bound and physically implausible values flagged;
+6. locate from the fitted effect (cross-checked with the binned residual), JSON, plot.
 """
 from __future__ import annotations
 
@@ -13,7 +20,8 @@ import dataclasses
 import enum
 import itertools
 import json
-from dataclasses import dataclass
+import math
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -22,14 +30,19 @@ from ...errors import InputError
 from ...io_atomic import atomic_write_text
 from .baseline import Baseline, analytic_baseline, fea_baseline
 from .context import build_context
+from .effects import CATALOGUE, effects_for
+from .effects.loop import ARCMIN_PER_RAD, loop_quantities
 from .explain import explain
 from .fit import NOISE_FLOOR, Fit, fit_effects
-from .locate import Located, locate
+from .locate import Located, locate, locate_effect
 from .noise import noise_std
-from .effects import effects_for
 from .recording import Recording, parse_recording
+from .structure import StructureTest, describe, structure_test
 
-BIC_THRESHOLD = 10.0
+BIC_THRESHOLD = 10.0       # "very strong" on the Kass-Raftery scale
+AMBIGUOUS_BIC = 6.0        # "strong": closer than this, the data cannot tell the two apart
+MAX_GOF_TRIES = 6          # model forms offered the goodness-of-fit test, best BIC first
+MAX_FIT_ROWS = 4000        # model selection on an evenly strided subsample beyond this (speed, issue 12)
 # Pairs that cannot be told apart: both are a pure linear compliance change.
 _DEGENERATE = {frozenset({"compliance_offset", "thick_ring"})}
 
@@ -49,11 +62,16 @@ class RankedEffect:
     delta_bic: float
     rms: float                  # physical units
     model: str = ""             # id with the model variant, e.g. nonlinear_stiffness[two-slope]
+    errors: dict = field(default_factory=dict)      # name -> standard error (same unit)
+    weight: float = 0.0         # BIC weight among the ranked models
+    warnings: tuple[str, ...] = ()
 
     def to_dict(self) -> dict:
         return {"id": self.id, "model": self.model or self.id, "components": list(self.components),
-                "parameters": {k: {"value": v, "unit": u} for k, (v, u) in self.parameters.items()},
-                "delta_bic": self.delta_bic, "rms": self.rms}
+                "parameters": {k: {"value": v, "unit": u, "std_error": self.errors.get(k)}
+                               for k, (v, u) in self.parameters.items()},
+                "delta_bic": self.delta_bic, "bic_weight": self.weight, "rms": self.rms,
+                "warnings": list(self.warnings)}
 
 
 @dataclass(frozen=True)
@@ -72,21 +90,23 @@ class Diagnosis:
     bic_after: float
     explanation: str
     n_samples: int
+    verdict: Verdict = Verdict.AGREES
+    named: tuple[str, ...] = ()                # catalogue ids of the named set (empty unless explained)
+    ambiguous: bool = False                    # runner-up within AMBIGUOUS_BIC of the best
+    runner_up: str | None = None
+    margin_bic: float | None = None            # BIC(runner-up) - BIC(best)
+    suggestion: RankedEffect | None = None     # best partial model when unexplained
+    structure: str = ""                        # the residual's structure in physical terms
+    gof_baseline: StructureTest | None = None
+    gof_model: StructureTest | None = None
+    quantities: dict = field(default_factory=dict)   # name -> (value, unit) of the best model
+    fitted_rows: int = 0
 
-    @property
-    def verdict(self) -> Verdict:
-        # placeholder mapping until the goodness-of-fit verdict lands (issue 12)
-        return Verdict.EXPLAINED if self.mismatch else Verdict.AGREES
-
-    @property
-    def named(self) -> tuple[str, ...]:
-        """The named set of effects (catalogue ids), empty when the verdict is not *explained*."""
-        return self.effects[0].components if self.verdict is Verdict.EXPLAINED and self.effects else ()
-
-    @property
-    def ambiguous(self) -> bool:
-        """True when the runner-up cannot be told from the named model (within a few BIC units)."""
-        return False
+    def __post_init__(self):
+        if not isinstance(self.verdict, Verdict):
+            raise ValueError(f"verdict must be a Verdict, got {self.verdict!r}")
+        if self.named and self.verdict is not Verdict.EXPLAINED:
+            raise ValueError("only an explained diagnosis names effects")
 
     @property
     def primary(self) -> str | None:
@@ -94,17 +114,37 @@ class Diagnosis:
         return self.named[0] if self.named else None
 
     def quantity(self, name: str) -> float | None:
-        """A shape-free quantity of the named model, e.g. ``hysteresis_loss_arcmin`` (None when absent)."""
+        """A quantity of the named model (None unless explained or when absent): shape-free loop quantities
+        ``hysteresis_loss_arcmin`` (loop width at zero torque), ``hysteresis_energy_per_cycle_Nmm_rad``
+        (closed integral of T dphi), or any reported parameter (``K1``, ``T1``, ...)."""
+        if self.verdict is not Verdict.EXPLAINED:
+            return None
+        if name in self.quantities:
+            return float(self.quantities[name][0])
+        params = self.effects[0].parameters
+        for key in (name, *(f"{c}.{name}" for c in self.named)):
+            if key in params:
+                return float(params[key][0])
         return None
 
     def to_dict(self) -> dict:
         return {"recording": self.recording, "kind": self.kind, "specimen": self.specimen,
                 "baseline": {"source": self.baseline.source, "compliance": self.baseline.compliance,
                              "unit": self.baseline.unit, "uncertainty": self.baseline.uncertainty},
-                "mismatch": self.mismatch, "noise_std": self.noise_std, "located": self.located.to_dict(),
+                "verdict": self.verdict.value, "named": list(self.named), "primary": self.primary,
+                "ambiguous": self.ambiguous, "mismatch": self.mismatch,
+                "confidence": {"runner_up": self.runner_up, "margin_bic": self.margin_bic,
+                               "bic_weight": self.effects[0].weight if self.effects else None},
+                "quantities": {k: {"value": v, "unit": u} for k, (v, u) in self.quantities.items()},
+                "suggestion": self.suggestion.to_dict() if self.suggestion else None,
+                "structure": self.structure,
+                "goodness_of_fit": {"baseline": self.gof_baseline.to_dict() if self.gof_baseline else None,
+                                    "model": self.gof_model.to_dict() if self.gof_model else None},
+                "noise_std": self.noise_std, "located": self.located.to_dict(),
                 "effects": [e.to_dict() for e in self.effects] if self.mismatch else [],
                 "fit": {"rms_before": self.rms_before, "rms_after": self.rms_after,
-                        "bic_before": self.bic_before, "bic_after": self.bic_after},
+                        "bic_before": self.bic_before, "bic_after": self.bic_after,
+                        "fitted_rows": self.fitted_rows},
                 "explanation": self.explanation}
 
     def summary(self) -> str:
@@ -112,19 +152,26 @@ class Diagnosis:
                  f"baseline {self.baseline.source}",
                  f"  noise std {self.noise_std:.3g}; rms {self.rms_before:.3g} -> {self.rms_after:.3g}; "
                  f"BIC {self.bic_before:.1f} -> {self.bic_after:.1f}",
-                 f"  mismatch: {'yes' if self.mismatch else 'no'}"]
+                 f"  verdict: {self.verdict.value}" + (f" ({' + '.join(self.named)})" if self.named else "")
+                 + (" - AMBIGUOUS with " + str(self.runner_up) if self.ambiguous else "")]
         if self.mismatch:
             lines.append(f"  located: {self.located.description}")
+            if self.structure and self.verdict is Verdict.UNEXPLAINED:
+                lines.append(f"  residual structure: {self.structure}")
             for e in self.effects[:5]:
-                lines.append(f"  {e.model or e.id:<52s} delta BIC {e.delta_bic:9.1f}")
-            for name, (v, u) in self.effects[0].parameters.items():
-                lines.append(f"    {name:<38s} {v:.6g} {u}")
+                lines.append(f"  {e.model or e.id:<52s} delta BIC {e.delta_bic:9.1f}  weight {e.weight:.2f}")
+            top = self.effects[0]
+            for name, (v, u) in top.parameters.items():
+                se = top.errors.get(name)
+                lines.append(f"    {name:<38s} {v:.6g}" + (f" +/- {se:.2g}" if se is not None else "") + f" {u}")
+            for w in top.warnings:
+                lines.append(f"    warning: {w}")
         lines.append(f"  {self.explanation}")
         return "\n".join(lines)
 
 
 def diagnose(rec: Recording, params, baseline: str = "analytic") -> tuple[Diagnosis, dict]:
-    """Run steps 1-5 on a parsed recording; returns the diagnosis and the arrays for the plot."""
+    """Run the diagnosis on a parsed recording; returns the diagnosis and the arrays for the plot."""
     if baseline not in ("analytic", "fea"):
         raise InputError("--baseline", baseline, "must be analytic or fea")
     base = analytic_baseline(rec, params) if baseline == "analytic" else fea_baseline(rec, params)
@@ -135,48 +182,196 @@ def diagnose(rec: Recording, params, baseline: str = "analytic") -> tuple[Diagno
         return _diagnose(rec, base)
 
 
+def _subsample(rec: Recording) -> Recording:
+    """Every k-th row (acquisition order kept) so at most MAX_FIT_ROWS are fitted; white noise stays white."""
+    if rec.n <= MAX_FIT_ROWS:
+        return rec
+    k = math.ceil(rec.n / MAX_FIT_ROWS)
+    return dataclasses.replace(rec, load=rec.load[::k], response=rec.response[::k],
+                               time_s=None if rec.time_s is None else rec.time_s[::k],
+                               extra={c: v[::k] for c, v in rec.extra.items()})
+
+
+def _best_per_set(fits: list[Fit]) -> list[Fit]:
+    """The best-scoring model form of every distinct set of effect ids, ranked by BIC."""
+    best: dict[frozenset, Fit] = {}
+    for f in fits:
+        key = frozenset(e.id for e in f.effects)
+        if key not in best or f.bic < best[key].bic:
+            best[key] = f
+    return sorted(best.values(), key=lambda f: f.bic)
+
+
 def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
-    ctx = build_context(rec, base)
+    fit_rec = _subsample(rec)
+    ctx = build_context(fit_rec, base)
     u_rel = base.uncertainty
-    # first pass: noise from the residual of a free linear fit (any smooth trend is cancelled anyway)
+    n = len(ctx.u)
+    # noise from the residual of a free linear fit (any smooth trend is cancelled by second differences)
     sigma = max(noise_std(ctx.y - np.polyval(np.polyfit(ctx.u, ctx.y, 1), ctx.u)), NOISE_FLOOR)
     base_fit = fit_effects(ctx, (), sigma, u_rel)
     singles = [fit_effects(ctx, (e,), sigma, u_rel) for e in effects_for(rec.kind.value) if e.applicable(ctx)]
-    singles.sort(key=lambda f: f.bic)
+    ranked_singles = _best_per_set(singles)
+    gof_base = structure_test(ctx, ctx.y - base_fit.model, sigma, base_fit.prior_chi2)
+    best_single = ranked_singles[0] if ranked_singles else None
+    cat_gain = base_fit.bic - best_single.bic if best_single else 0.0
+    mismatch = bool(gof_base.structured or cat_gain > BIC_THRESHOLD)
+
+    # pairs of the four best distinct singles; a pair is a candidate only if parsimonious (see module doc)
     pairs = []
-    for a, b in itertools.combinations(singles[:4], 2):
-        if frozenset({a.id, b.id}) in _DEGENERATE or a.id == b.id:   # degenerate, or two variants of one effect
-            continue
-        first, second = (a, b) if a.bic <= b.bic else (b, a)      # primary = the better single
-        start = np.concatenate([first.theta, second.theta])
-        pairs.append(fit_effects(ctx, first.effects + second.effects, sigma, u_rel, starts=[start]))
-    ranked = sorted(singles + pairs, key=lambda f: f.bic)
-    best = ranked[0] if ranked else base_fit
-    mismatch = bool(ranked) and (base_fit.bic - best.bic) > BIC_THRESHOLD
-    n = rec.n
-    located = locate(ctx, ctx.y - base_fit.model, sigma, rec.load_name, mismatch)
-    effects = tuple(_ranked(ctx, f, base_fit, n) for f in ranked)
-    after = best if mismatch else base_fit
+    gofs: dict[int, StructureTest] = {}
+
+    def gof(f: Fit) -> StructureTest:
+        if id(f) not in gofs:
+            gofs[id(f)] = structure_test(ctx, ctx.y - f.model, sigma, f.prior_chi2)
+        return gofs[id(f)]
+
+    if mismatch and best_single is not None:
+        for a, b in itertools.combinations(ranked_singles[:4], 2):
+            if frozenset({a.id, b.id}) in _DEGENERATE:
+                continue
+            start = np.concatenate([a.theta, b.theta])
+            pairs.append(fit_effects(ctx, a.effects + b.effects, sigma, u_rel, starts=[start]))
+        # the best pair in every other combination of model forms: a loop law that loses as a single
+        # (its misfit of the stiffening costs more) may be the one that fits beside the other effect
+        if pairs:
+            top = min(pairs, key=lambda f: f.bic)
+            forms = {e.id: [f for f in singles if f.id == e.id] for e in top.effects}
+            (ia, fa), (ib, fb) = forms.items()
+            for x, y in itertools.product(fa, fb):
+                if x.effects[0] is top.effects[0] and y.effects[0] is top.effects[1]:
+                    continue
+                pairs.append(fit_effects(ctx, x.effects + y.effects, sigma, u_rel,
+                                         starts=[np.concatenate([x.theta, y.theta])]))
+    candidates = list(ranked_singles)
+    for p in pairs:
+        first = next(s for s in ranked_singles if s.id == p.effects[0].id)
+        if first.bic - p.bic <= BIC_THRESHOLD:
+            continue                         # the second effect is not significant given the first
+        left = {s.name for s in gof(first).significant}
+        removed = left - {s.name for s in gof(p).significant}
+        if not removed:
+            continue                         # it explains no structure the first one leaves
+        candidates.append(p)
+    candidates.sort(key=lambda f: f.bic)
+    best = candidates[0] if candidates else base_fit
+
+    verdict = Verdict.AGREES
+    named: tuple[str, ...] = ()
+    gof_best = gof(best) if mismatch else gof_base
+    if mismatch:
+        # explained when some catalogue model (any of its model forms, best BIC first) beats the nuisance fit
+        # by BIC (or, where the catalogue-free test found the mismatch, at least beats it), leaves a residual
+        # consistent with the noise and has physically plausible parameters
+        forms = sorted(singles + [p for p in candidates if len(p.effects) > 1], key=lambda f: f.bic)
+        for f in forms[:MAX_GOF_TRIES]:
+            gain = base_fit.bic - f.bic
+            if not (gain > BIC_THRESHOLD or (gof_base.structured and gain > 0)):
+                break
+            if not gof(f).structured and not _implausible(ctx, f):
+                best, gof_best = f, gof(f)
+                verdict = Verdict.EXPLAINED
+                named = tuple(e.id for e in f.effects)
+                candidates = [best] + [c for c in candidates if c is not best]
+                break
+        else:
+            verdict = Verdict.UNEXPLAINED
+        if verdict is Verdict.AGREES:
+            verdict = Verdict.UNEXPLAINED
+    runner = next((f for f in candidates[1:] if frozenset(e.id for e in f.effects) != frozenset(best.id.split("+"))),
+                  None)
+    margin = float(runner.bic - best.bic) if runner is not None and mismatch else None
+    ambiguous = bool(margin is not None and margin < AMBIGUOUS_BIC and verdict is Verdict.EXPLAINED)
+
+    bics = np.array([f.bic for f in candidates]) if candidates else np.zeros(0)
+    weights = np.exp(-0.5 * (bics - bics.min())) if len(bics) else bics
+    weights = weights / weights.sum() if len(bics) else weights
+    effects = tuple(_ranked(ctx, f, base_fit, n, float(w), detail=i < 3) for i, (f, w) in enumerate(zip(candidates, weights)))
+    quantities = _quantities(ctx, best) if mismatch and best is not base_fit else {}
+    located = _located(ctx, rec, best if verdict is Verdict.EXPLAINED else None, base_fit, sigma, mismatch,
+                       gof_best)
+    dt = None if rec.time_s is None else float(np.median(np.diff(fit_rec.time_s)))
+    structure = describe(gof_best, ctx, located.description, dt) if mismatch else describe(gof_base, ctx, "", dt)
+    after = best if verdict is not Verdict.AGREES else base_fit
     diag = Diagnosis(recording=rec.source, kind=rec.kind.value, specimen=rec.specimen, baseline=base,
                      mismatch=mismatch, noise_std=sigma * ctx.Y, located=located,
                      effects=effects if mismatch else (), rms_before=base_fit.rms(n) * ctx.Y,
                      rms_after=after.rms(n) * ctx.Y, bic_before=base_fit.bic, bic_after=after.bic,
-                     explanation="", n_samples=n)
+                     explanation="", n_samples=rec.n, verdict=verdict, named=named, ambiguous=ambiguous,
+                     runner_up=runner.label if runner is not None and mismatch else None, margin_bic=margin,
+                     suggestion=effects[0] if verdict is Verdict.UNEXPLAINED and effects else None,
+                     structure=structure, gof_baseline=gof_base, gof_model=gof_best if mismatch else None,
+                     quantities=quantities, fitted_rows=n)
     diag = dataclasses.replace(diag, explanation=explain(diag))
-    arrays = {"load": rec.load, "response": rec.response, "baseline": base_fit.model * ctx.Y,
-              "augmented": after.model * ctx.Y, "model_label": after.id}
+    arrays = {"load": fit_rec.load, "response": fit_rec.response, "baseline": base_fit.model * ctx.Y,
+              "augmented": after.model * ctx.Y, "model_label": after.label}
     return diag, arrays
 
 
-def _ranked(ctx, fit: Fit, base_fit: Fit, n: int) -> RankedEffect:
-    parameters = {}
+def _implausible(ctx, fit: Fit) -> list[str]:
+    """Physics bounds of the fitted effects (each effect's own plausibility check)."""
+    return [w for e, th in zip(fit.effects, fit.split_theta()) if e.plausible is not None
+            for w in e.plausible(ctx, th, fit.scale)]
+
+
+def _quantities(ctx, fit: Fit) -> dict:
+    """Shape-free loop quantities of the model's effects (hysteresis-type effects only)."""
+    if ctx.response_unit != "rad" or not any(e.id == "hysteresis" for e in fit.effects) or ctx.reversals < 1:
+        return {}
+    thetas = fit.split_theta()
+
+    def model(c):
+        return sum(e.contribution(c, th) for e, th in zip(fit.effects, thetas))
+    width, energy = loop_quantities(ctx, model)
+    return {"hysteresis_loss_arcmin": (width * ARCMIN_PER_RAD, "arcmin"), "hysteresis_loss": (width, "rad"),
+            "hysteresis_energy_per_cycle_Nmm_rad": (energy, "N*mm*rad")}
+
+
+def _located(ctx, rec, fit: Fit | None, base_fit: Fit, sigma: float, mismatch: bool, gof_best) -> Located:
+    if not mismatch:
+        return locate(ctx, ctx.y - base_fit.model, sigma, rec.load_name, False)
+    binned = locate(ctx, ctx.y - base_fit.model, sigma, rec.load_name, True)
+    if fit is None:
+        # unexplained: where the residual the best model leaves is significant
+        return locate(ctx, ctx.y - base_fit.model, sigma, rec.load_name, True)
+    return locate_effect(ctx, fit.effects, fit.split_theta(), binned, rec.load_name)
+
+
+def _ranked(ctx, fit: Fit, base_fit: Fit, n: int, weight: float, detail: bool = True) -> RankedEffect:
+    parameters, errors, warnings = {}, {}, []
     multi = len(fit.effects) > 1
-    for e, th in zip(fit.effects, fit.split_theta()):
-        for k, v in e.report(ctx, th, fit.scale).items():
+    for e, th, cov in zip(fit.effects, fit.split_theta(), fit.split_cov()):
+        rep = e.report(ctx, th, fit.scale)
+        for k, v in rep.items():
             parameters[f"{e.id}.{k}" if multi else k] = (float(v[0]), v[1])
+        if detail and cov is not None and len(th):
+            for k, se in _report_errors(ctx, e, th, cov, fit.scale, rep).items():
+                errors[f"{e.id}.{k}" if multi else k] = se
+        if e.plausible is not None:
+            warnings.extend(e.plausible(ctx, th, fit.scale))
     parameters["stiffness_scale_within_prior" if not multi else "baseline.stiffness_scale"] = (fit.scale, "1")
+    prior_sigmas = abs(fit.scale - 1.0) / ctx.uncertainty
+    if prior_sigmas > 3.0:
+        warnings.append(f"stiffness scale {fit.scale:.4g} is {prior_sigmas:.1f} prior sigmas from 1 (implausible "
+                        f"for a baseline uncertain by {100 * ctx.uncertainty:.0f} %)")
+    warnings.extend(f"{p} ended at a bound of its plausible range" for p in fit.at_bound)
     return RankedEffect(fit.id, tuple(e.id for e in fit.effects), parameters, float(base_fit.bic - fit.bic),
-                        fit.rms(n) * ctx.Y, "+".join(e.label for e in fit.effects))
+                        fit.rms(n) * ctx.Y, fit.label, errors, weight, tuple(warnings))
+
+
+def _report_errors(ctx, effect, theta, cov, s, rep) -> dict:
+    """Standard errors of the reported quantities: J_rep C J_rep^T with J_rep by finite differences."""
+    keys = [k for k, v in rep.items() if np.isfinite(v[0])]
+    base = np.array([rep[k][0] for k in keys])
+    J = np.zeros((len(keys), len(theta)))
+    for j in range(len(theta)):
+        h = 1e-6 * max(abs(theta[j]), 1e-3)
+        th = np.array(theta, dtype=float)
+        th[j] += h
+        r2 = effect.report(ctx, th, s)
+        J[:, j] = (np.array([r2[k][0] for k in keys]) - base) / h
+    var = np.einsum("ij,jk,ik->i", J, cov, J)
+    return {k: float(math.sqrt(v)) for k, v in zip(keys, var) if np.isfinite(v) and v >= 0}
 
 
 def diagnose_file(path: Path, *, params_path=None, baseline: str = "analytic", json_out: Path | None = None,
@@ -190,7 +385,7 @@ def diagnose_file(path: Path, *, params_path=None, baseline: str = "analytic", j
         atomic_write_text(Path(json_out), json.dumps(diag.to_dict(), indent=2) + "\n")
     if plot_out is not None:
         from .plot import plot_diagnosis
-        title = (f"{diag.recording}: {'mismatch - ' + diag.effects[0].id if diag.mismatch else 'no mismatch'}")
+        title = f"{diag.recording}: {diag.verdict.value}" + (f" - {' + '.join(diag.named)}" if diag.named else "")
         plot_diagnosis(Path(plot_out), load=arrays["load"], response=arrays["response"],
                        baseline=arrays["baseline"], augmented=arrays["augmented"],
                        load_label=f"{rec.load_name}", response_label=f"{rec.response_name}", title=title,

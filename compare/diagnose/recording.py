@@ -12,10 +12,13 @@ Format (docs/recordings.md)::
     0.0,1.2e-7
 
 Every defect raises ``InputError`` whose key is ``<file>:<line>`` so the user can go straight to it.
-Spreadsheet exports (BOM, CRLF, trailing commas, blank lines) are accepted.
+Spreadsheet exports are accepted: BOM, CRLF, trailing separators, blank lines, quoted cells, and the
+separator a locale uses (comma; semicolon with decimal commas; tab), recognised by the standard library's
+``csv.Sniffer`` on the column-header row and the first data rows.
 """
 from __future__ import annotations
 
+import csv
 import enum
 import math
 import tomllib
@@ -37,7 +40,7 @@ class RecordingKind(enum.Enum):
 SPECIMENS = {RecordingKind.TORSION: ("output_shaft", "flexspline_cup", "gear"),
              RecordingKind.RING_COMPRESSION: ("ewg_ring",)}
 # (load column, response column), optional columns
-COLUMNS = {RecordingKind.TORSION: (("torque_Nmm", "twist_rad"), ("time_s",)),
+COLUMNS = {RecordingKind.TORSION: (("torque_Nmm", "twist_rad"), ("time_s", "input_angle_rad")),
            RecordingKind.RING_COMPRESSION: (("force_N", "delta_cd_mm"), ("delta_ab_mm", "time_s"))}
 TEST_KEYS = {"kind", "specimen", "baseline_uncertainty", "baseline_stiffness_Nmm_per_rad",
              "baseline_stiffness_N_per_mm", "description"}
@@ -114,7 +117,8 @@ def parse_text(text: str, name: str = "recording.csv") -> Recording:
     (load_col, resp_col), optional = COLUMNS[kind]
     if body_start >= len(lines):
         raise InputError(f"{name}:{len(lines)}", "end of file", f"expected a CSV header row '{load_col},{resp_col}'")
-    columns = _split(lines[body_start])
+    delimiter = _sniff_delimiter(lines, body_start)
+    columns = _split(lines[body_start], delimiter)
     hline = body_start + 1
     allowed = (load_col, resp_col) + optional
     for col in columns:
@@ -125,7 +129,7 @@ def parse_text(text: str, name: str = "recording.csv") -> Recording:
     for col in (load_col, resp_col):
         if col not in columns:
             raise InputError(f"{name}:{hline}", ",".join(columns), f"missing column {col!r} (kind {kind.value!r})")
-    data = _parse_rows(lines, body_start + 1, columns, name)
+    data = _parse_rows(lines, body_start + 1, columns, name, delimiter)
     if data.shape[0] < MIN_ROWS:
         raise InputError(f"{name}:{len(lines)}", f"{data.shape[0]} data rows", f"need at least {MIN_ROWS} rows")
     col = {c: data[:, j] for j, c in enumerate(columns)}
@@ -215,27 +219,52 @@ def _find(header_lines, key: str) -> int:
     return header_lines[0][0] if header_lines else 1
 
 
-def _split(line: str) -> list[str]:
-    cells = [c.strip() for c in line.split(",")]
-    while cells and cells[-1] == "":   # trailing commas from spreadsheets
+def _sniff_delimiter(lines: list[str], start: int) -> str:
+    """Comma, semicolon or tab, from the column-header row and up to 20 data rows (csv.Sniffer)."""
+    sample = [ln for ln in lines[start:start + 40] if ln.strip() and not ln.startswith("#")][:21]
+    try:
+        return csv.Sniffer().sniff("\n".join(sample), delimiters=",;\t").delimiter
+    except csv.Error:
+        # one-column or irregular text: the most frequent candidate of the header row, else a comma
+        head = lines[start]
+        counts = {d: head.count(d) for d in (";", "\t", ",")}
+        best = max(counts, key=counts.get)
+        return best if counts[best] else ","
+
+
+def _split(line: str, delimiter: str = ",") -> list[str]:
+    cells = [c.strip() for c in next(csv.reader([line], delimiter=delimiter, quotechar='"'))]
+    while cells and cells[-1] == "":   # trailing separators from spreadsheets
         cells.pop()
     return cells
 
 
-def _parse_rows(lines: list[str], start: int, columns: list[str], name: str) -> np.ndarray:
+def _number(cell: str, delimiter: str) -> float:
+    """A numeric cell; with a semicolon or tab separator a decimal comma is accepted (1,5e-3)."""
+    if delimiter != "," and "," in cell and "." not in cell:
+        cell = cell.replace(",", ".")
+    return float(cell)
+
+
+def _parse_rows(lines: list[str], start: int, columns: list[str], name: str, delimiter: str = ",") -> np.ndarray:
     rows = []
     ncol = len(columns)
     for i in range(start, len(lines)):
         line = lines[i]
         if line.strip() == "" or line.startswith("#"):
             continue
-        cells = _split(line)
-        if len(cells) != ncol:
-            raise InputError(f"{name}:{i + 1}", line.strip()[:60], f"expected {ncol} cells ({','.join(columns)})")
         try:
-            values = [float(c) for c in cells]
+            cells = _split(line, delimiter)
+        except csv.Error as exc:
+            raise InputError(f"{name}:{i + 1}", line.strip()[:60], f"not a CSV row ({exc})") from None
+        if len(cells) != ncol:
+            sep = {"\t": "tab", ";": "';'", ",": "','"}[delimiter]
+            raise InputError(f"{name}:{i + 1}", line.strip()[:60],
+                             f"expected {ncol} cells separated by {sep} ({','.join(columns)})")
+        try:
+            values = [_number(c, delimiter) for c in cells]
         except ValueError:
-            bad = next(c for c in cells if not _is_float(c))
+            bad = next(c for c in cells if not _is_float(c, delimiter))
             raise InputError(f"{name}:{i + 1}", bad, "every cell must be a number") from None
         if not all(math.isfinite(v) for v in values):
             raise InputError(f"{name}:{i + 1}", line.strip()[:60], "NaN or infinite values are not allowed")
@@ -243,9 +272,9 @@ def _parse_rows(lines: list[str], start: int, columns: list[str], name: str) -> 
     return np.asarray(rows, dtype=float).reshape(-1, ncol)
 
 
-def _is_float(text: str) -> bool:
+def _is_float(text: str, delimiter: str = ",") -> bool:
     try:
-        float(text)
+        _number(text, delimiter)
         return True
     except ValueError:
         return False
@@ -265,7 +294,8 @@ def _row_line(lines: list[str], start: int, row: int) -> int:
 
 def format_recording(kind: RecordingKind, specimen: str, load: np.ndarray, response: np.ndarray, *,
                      baseline_uncertainty: float | None = None, baseline_stiffness: float | None = None,
-                     params: dict | None = None, time_s: np.ndarray | None = None, description: str = "") -> str:
+                     params: dict | None = None, time_s: np.ndarray | None = None, description: str = "",
+                     input_angle_rad: np.ndarray | None = None) -> str:
     """Write a recording in the documented format (the inverse of ``parse_text``)."""
     (load_col, resp_col), _ = COLUMNS[kind]
     head = ["[test]", f'kind = "{kind.value}"', f'specimen = "{specimen}"']
@@ -280,8 +310,11 @@ def format_recording(kind: RecordingKind, specimen: str, load: np.ndarray, respo
         head.append(f"[params.{section}]")
         head.extend(f"{k} = {_toml_value(v)}" for k, v in table.items())
     cols = [load_col, resp_col] + (["time_s"] if time_s is not None else [])
-    out = ["# " + h for h in head] + [",".join(cols)]
     stack = [load, response] + ([time_s] if time_s is not None else [])
+    if input_angle_rad is not None:
+        cols.append("input_angle_rad")
+        stack.append(input_angle_rad)
+    out = ["# " + h for h in head] + [",".join(cols)]
     out.extend(",".join(f"{v:.9g}" for v in row) for row in zip(*stack))
     return "\n".join(out) + "\n"
 

@@ -1,19 +1,20 @@
-"""The physics catalogue: one module per effect, stable ids (issue 6)."""
+"""The physics catalogue: one module per effect, stable ids (issue 6, issue 12)."""
 from __future__ import annotations
 
-from . import (compliance_offset, crack_closure, hysteresis, large_deflection, lost_motion, nonlinear_stiffness,
-               plasticity, thick_ring)
+from . import (compliance_offset, crack_closure, hysteresis, kinematic_error, large_deflection, lost_motion,
+               nonlinear_stiffness, plasticity, thick_ring)
 from .base import Context, Effect, Param
 
 CATALOGUE = {m.EFFECT.id: m.EFFECT for m in (compliance_offset, nonlinear_stiffness, hysteresis, lost_motion,
-                                             crack_closure, thick_ring, large_deflection, plasticity)}
+                                             crack_closure, thick_ring, large_deflection, plasticity,
+                                             kinematic_error)}
 
-
-VARIANTS = (nonlinear_stiffness.TWO_SLOPE,)
+# other model forms of the same physics: the named effect must not depend on one law's shape
+VARIANTS = (nonlinear_stiffness.TWO_SLOPE, nonlinear_stiffness.SMOOTH_KNEE, nonlinear_stiffness.MONOTONE, hysteresis.PLAY, crack_closure.GRADUAL)
 
 
 def effects_for(kind: str) -> tuple[Effect, ...]:
-    """The catalogue entries (and their smaller variants) that apply to a test kind, in catalogue order."""
+    """The catalogue entries (and their variants) that apply to a test kind, in catalogue order."""
     return tuple(e for e in (*CATALOGUE.values(), *VARIANTS) if kind in e.kinds)
 
 

@@ -39,6 +39,7 @@ class Context:
     segments: tuple[tuple[int, int, int], ...]   # (start, stop, direction) between load reversals
     geometry: dict = field(default_factory=dict)
     uncertainty: float = 0.02  # relative 1-sigma uncertainty of the baseline compliance
+    angle: np.ndarray | None = None   # wave generator input angle, rad (optional column input_angle_rad)
 
     @property
     def two_sided(self) -> bool:
@@ -61,6 +62,10 @@ class Effect:
     explanation: str
     applicable: Callable[[Context], bool] = lambda ctx: True
     variant: str = ""          # a second, smaller model of the same effect (BIC picks between them)
+    # where the fitted effect acts: (ranges of u in normalised units, branch/side text); None = everywhere
+    where: Callable[[Context, np.ndarray], tuple[tuple[tuple[float, float], ...], str]] | None = None
+    # physical plausibility of fitted values: (ctx, theta, s) -> list of warnings (empty when plausible)
+    plausible: Callable[[Context, np.ndarray, float], list[str]] | None = None
 
     @property
     def label(self) -> str:

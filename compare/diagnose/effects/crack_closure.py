@@ -5,6 +5,8 @@ the open crack adds a compliance c_x on one side of the load zero T0 only:
     y += d max(sgn(d) (u - u0), 0)
 (d > 0: open under positive torque, extra twist d u for u > u0; d < 0: open under negative torque,
 extra twist |d| u for u < u0). K_open = 1/((s + |d|) c0), K_closed = 1/(s c0).
+Variant ``gradual``: the faces close over a load width w (the ramp's corner rounded by a softplus), for
+cracks whose faces touch progressively (rough faces, crack-tip plasticity).
 """
 from __future__ import annotations
 
@@ -19,8 +21,22 @@ def _contribution(ctx: Context, theta):
     return d * np.maximum(side * (ctx.u - u0), 0.0)
 
 
+def _contribution_gradual(ctx: Context, theta):
+    d, u0, lw = theta
+    w = 10.0 ** lw
+    side = 1.0 if d >= 0 else -1.0
+    return d * w * (np.logaddexp(0.0, side * (ctx.u - u0) / w) - np.logaddexp(0.0, -side * u0 / w))
+
+
+def _where(ctx: Context, theta):
+    d, u0 = theta[0], theta[1]
+    if d >= 0:
+        return ((float(u0), float(ctx.u.max())),), "positive load only (the crack opens under positive load)"
+    return ((float(ctx.u.min()), float(u0)),), "negative load only (the crack opens under negative load)"
+
+
 def _report(ctx: Context, theta, s: float) -> dict:
-    d, u0 = theta
+    d, u0 = theta[0], theta[1]
     inv = "N*mm/rad" if ctx.response_unit == "rad" else "N/mm"
     k_open, k_closed = 1.0 / ((s + abs(d)) * ctx.c0), 1.0 / (s * ctx.c0)
     return {"stiffness_crack_open": (k_open, inv), "stiffness_crack_closed": (k_closed, inv),
@@ -38,4 +54,17 @@ EFFECT = Effect(
     explanation=("a fatigue crack opens under one torque direction and its faces press shut under the "
                  "other, so the part is softer for one sign of torque than for the other"),
     applicable=lambda ctx: ctx.two_sided,
+    where=_where,
+)
+
+GRADUAL = Effect(
+    id="crack_closure",
+    kinds=("torsion",),
+    params=(Param("d", -0.8, 0.8, (0.05, -0.05)), Param("u0", -0.1, 0.1, (0.0,)), Param("log10_w", -2.5, -0.7, (-1.5,))),
+    contribution=_contribution_gradual,
+    report=_report,
+    explanation=EFFECT.explanation,
+    applicable=lambda ctx: ctx.two_sided,
+    variant="gradual",
+    where=_where,
 )

@@ -15,6 +15,18 @@ def _contribution(ctx: Context, theta):
     return theta[0] * ctx.u * np.abs(ctx.u)
 
 
+GAMMA_PLAUSIBLE = 3.0   # the first elastica correction of a ring has gamma of order one (0.2-0.5 for a ring)
+
+
+def _plausible(ctx: Context, theta, s: float) -> list[str]:
+    r_m = ctx.geometry.get("r_m_mm", float("nan"))
+    gamma = theta[0] * r_m / ctx.Y
+    if not abs(gamma) <= GAMMA_PLAUSIBLE:
+        return [f"gamma = {gamma:.3g} is not of order one (|gamma| <= {GAMMA_PLAUSIBLE:g} for a ring): "
+                f"the curvature is too large to be the elastica's"]
+    return []
+
+
 def _report(ctx: Context, theta, s: float) -> dict:
     r_m = ctx.geometry.get("r_m_mm", float("nan"))
     return {"gamma": (theta[0] * r_m / ctx.Y, "1"),
@@ -30,4 +42,5 @@ EFFECT = Effect(
     report=_report,
     explanation=("the deflection is no longer small against the ring radius, so the changing shape "
                  "changes the lever arms of the load and the force-deflection curve bends"),
+    plausible=_plausible,
 )

@@ -20,6 +20,12 @@ def _contribution(ctx: Context, theta):
     return b * np.tanh((ctx.u - u0) / 10.0 ** lw)
 
 
+def _where(ctx: Context, theta):
+    b, lw, u0 = theta
+    w = 10.0 ** lw
+    return ((float(u0 - 2.0 * w), float(u0 + 2.0 * w)),), "around zero load, both branches (the dead band)"
+
+
 def _report(ctx: Context, theta, s: float) -> dict:
     b, lw, u0 = theta
     lost = 2.0 * b * ctx.Y
@@ -40,4 +46,5 @@ EFFECT = Effect(
     explanation=("a clearance (backlash) between teeth or in a coupling is taken up each time the torque "
                  "changes sign, so the twist jumps by the lost motion in a narrow band around zero torque"),
     applicable=lambda ctx: ctx.two_sided,
+    where=_where,
 )

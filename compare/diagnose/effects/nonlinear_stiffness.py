@@ -6,6 +6,12 @@ In normalised units with s/K1 = s c0: y += -sgn(u) [a1 (|u| - p1)+ + a2 (|u| - p
 a1, a2 >= 0 so K1 <= K2 <= K3.
 Variant ``two-slope`` (K1 <= K2 above T1, two parameters) for weak or single-knee stiffening: with half the
 parameters it wins on BIC when the third slope is not resolved.
+Variant ``monotone`` (seven parameters): a piecewise-linear compliance curve on fixed knots whose slope can
+only fall (a_i >= 0): any monotone stiffening law, whatever its shape; K1..T2 are read from it.
+Variant ``smooth-knee`` (five parameters): the same three slopes joined by knees rounded over a load width w
+(softplus instead of the ramp), so smooth stiffening laws (tanh, exponential, contact spread) are not forced
+into sharp knees and their misfit is not handed to another effect. It still reports K1, K2, K3 (the slopes
+far from the knees) and T1, T2 (the knee centres) for the comparison with the catalogue.
 """
 from __future__ import annotations
 
@@ -35,6 +41,89 @@ def _report(ctx: Context, theta, s: float) -> dict:
             "T1": (p1 * ctx.X, ctx.load_unit), "T2": (p2 * ctx.X, ctx.load_unit)}
 
 
+def _softramp(x, w):
+    """w ln(1 + e^(x/w)): the ramp max(x, 0) with its corner rounded over w (overflow-safe)."""
+    return w * np.logaddexp(0.0, x / w)
+
+
+def _contribution_smooth(ctx: Context, theta):
+    a1, a2, p1, g, lw = theta
+    w = 10.0 ** lw
+    m = np.abs(ctx.u)
+    # minus the value at |u| = 0 keeps the curve odd and continuous through zero load
+    ramp = (a1 * (_softramp(m - p1, w) - _softramp(-p1, w))
+            + a2 * (_softramp(m - p1 - g, w) - _softramp(-p1 - g, w)))
+    return -np.sign(ctx.u) * ramp
+
+
+def _report_smooth(ctx: Context, theta, s: float) -> dict:
+    out = _report(ctx, theta[:4], s)
+    out["knee_width"] = (10.0 ** theta[4] * ctx.X, ctx.load_unit)
+    return out
+
+
+# Harmonic Drive catalogues give K3/K1 of 1.3 to 3 (CHA table: at most 2.6); a curve that stiffens more
+# than 5x is not tooth-contact spreading (clipping, saturation or a stop would look like this)
+MAX_STIFFENING = 5.0
+
+
+def _plausible(ctx: Context, theta, s: float) -> list[str]:
+    a_total = float(theta[0] + (theta[1] if len(theta) in (4, 5) else 0.0))
+    if len(theta) == len(MONOTONE_KNOTS):
+        a_total = float(np.sum(theta))
+    if s - a_total <= s / MAX_STIFFENING:
+        ratio = s / (s - a_total) if s > a_total else float("inf")
+        return [f"the stiffness rises {ratio:.3g}x over the load range (tooth-contact stiffening gives at most "
+                f"~{MAX_STIFFENING:g}x): a stop, clipping or saturation, not stiffening"]
+    return []
+
+
+def _where(ctx: Context, theta):
+    if len(theta) == len(MONOTONE_KNOTS):
+        nz = [p for a, p in zip(theta, MONOTONE_KNOTS) if a > 1e-6]
+        p1 = nz[0] if nz else MONOTONE_KNOTS[-1]
+    else:
+        p1 = float(theta[2] if len(theta) >= 4 else theta[1])
+    if len(theta) == 5:
+        p1 = max(p1 - 2.0 * 10.0 ** theta[4], 0.0)
+    lo, hi = float(ctx.u.min()), float(ctx.u.max())
+    ranges = tuple(r for r in ((lo, -p1), (p1, hi)) if r[1] - r[0] > 0)
+    return ranges, "above the knee load on both load signs (odd in load: stiffening)"
+
+
+MONOTONE_KNOTS = (0.05, 0.15, 0.3, 0.45, 0.6, 0.75, 0.9)
+
+
+def _contribution_monotone(ctx: Context, theta):
+    m = np.abs(ctx.u)
+    ramps = sum(a * np.maximum(m - p, 0.0) for a, p in zip(theta, MONOTONE_KNOTS))
+    return -np.sign(ctx.u) * ramps
+
+
+def _report_monotone(ctx: Context, theta, s: float) -> dict:
+    """Slopes of the piecewise-linear monotone curve read as the catalogue's three slopes: K1 at zero load,
+    K3 at full load, T1 and T2 where the compliance has fallen by 1/3 and 2/3 of its total fall, K2 between."""
+    inv = "N*mm/rad" if ctx.response_unit == "rad" else "N/mm"
+    a = np.asarray(theta, dtype=float)
+    knots = np.asarray(MONOTONE_KNOTS)
+    fall = np.cumsum(a)                      # compliance drop reached past each knot
+    total = float(fall[-1]) if len(fall) else 0.0
+
+    def stiff(comp):
+        return 1.0 / (comp * ctx.c0) if comp > 0 else float("inf")
+
+    def load_at(frac):
+        if total <= 0:
+            return float("nan")
+        k = int(np.searchsorted(fall, frac * total - 1e-15))
+        return float(knots[min(k, len(knots) - 1)])
+    t1, t2 = load_at(1.0 / 3.0), load_at(2.0 / 3.0)
+    mid = 0.5 * (t1 + t2) if np.isfinite(t1) else 0.5
+    a_mid = float(np.sum(a[knots <= mid + 1e-12]))
+    return {"K1": (stiff(s), inv), "K2": (stiff(s - a_mid), inv), "K3": (stiff(s - total), inv),
+            "T1": (t1 * ctx.X, ctx.load_unit), "T2": (t2 * ctx.X, ctx.load_unit)}
+
+
 def _contribution_two(ctx: Context, theta):
     a1, p1 = theta
     return -np.sign(ctx.u) * a1 * np.maximum(np.abs(ctx.u) - p1, 0.0)
@@ -58,6 +147,8 @@ EFFECT = Effect(
     contribution=_contribution,
     report=_report,
     explanation=EXPLANATION,
+    where=_where,
+    plausible=_plausible,
 )
 
 TWO_SLOPE = Effect(
@@ -68,4 +159,31 @@ TWO_SLOPE = Effect(
     report=_report_two,
     explanation=EXPLANATION,
     variant="two-slope",
+    where=_where,
+    plausible=_plausible,
+)
+
+SMOOTH_KNEE = Effect(
+    id="nonlinear_stiffness",
+    kinds=("torsion",),
+    params=(Param("a1", 0.0, 0.95, (0.1,)), Param("a2", 0.0, 0.95, (0.1,)),
+            Param("p1", 0.02, 0.9, (0.1, 0.3)), Param("g", 0.03, 0.9, (0.3,)), Param("log10_w", -2.0, -0.5, (-1.0,))),
+    contribution=_contribution_smooth,
+    report=_report_smooth,
+    explanation=EXPLANATION,
+    variant="smooth-knee",
+    where=_where,
+    plausible=_plausible,
+)
+
+MONOTONE = Effect(
+    id="nonlinear_stiffness",
+    kinds=("torsion",),
+    params=tuple(Param(f"a_{p:g}", 0.0, 0.95, (0.0,)) for p in MONOTONE_KNOTS),
+    contribution=_contribution_monotone,
+    report=_report_monotone,
+    explanation=EXPLANATION,
+    variant="monotone",
+    where=_where,
+    plausible=_plausible,
 )

@@ -6,6 +6,8 @@ so loading beyond F_y bends the curve down (softening) and unloading is elastic,
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .base import Context, Effect, Param
@@ -15,6 +17,32 @@ def _contribution(ctx: Context, theta):
     a, f, n = theta
     peak = np.maximum.accumulate(ctx.u)
     return a * np.maximum(peak - f, 0.0) ** n
+
+
+# yield stress range of flexspline and ring steels (annealed structural steel to through-hardened 40CrNiMo)
+YIELD_STRESS_RANGE_MPa = (200.0, 1800.0)
+
+
+def first_yield_force_N(geometry: dict, yield_stress_MPa: float) -> float:
+    """Load at first yield of the thin ring under diametral compression: M_max = F R / pi at the load
+    points (seed 003 moment distribution), sigma = 6 M/(b h^2)."""
+    return math.pi * yield_stress_MPa * geometry["face_width_mm"] * geometry["rim_thickness_mm"] ** 2 / (
+        6.0 * geometry["r_m_mm"])
+
+
+def _plausible(ctx: Context, theta, s: float) -> list[str]:
+    if "r_m_mm" not in ctx.geometry:
+        return []
+    f_lo, f_hi = (first_yield_force_N(ctx.geometry, sy) for sy in YIELD_STRESS_RANGE_MPa)
+    fy = theta[1] * ctx.X
+    if not f_lo / 1.5 <= fy <= f_hi * 1.5:
+        return [f"yield load {fy:.3g} N is outside {f_lo:.3g}-{f_hi:.3g} N, the first-yield range of this "
+                f"section for yield stresses {YIELD_STRESS_RANGE_MPa[0]:g}-{YIELD_STRESS_RANGE_MPa[1]:g} MPa"]
+    return []
+
+
+def _where(ctx: Context, theta):
+    return ((float(theta[1]), float(ctx.u.max())),), "beyond the yield load while loading, a set on unloading"
 
 
 def _report(ctx: Context, theta, s: float) -> dict:
@@ -33,4 +61,6 @@ EFFECT = Effect(
     report=_report,
     explanation=("the rim yields at the load points: past the yield load plastic hinges turn, the curve "
                  "shows a knee, and a permanent set remains after unloading"),
+    plausible=_plausible,
+    where=_where,
 )
