@@ -167,7 +167,11 @@ def _cmd_diagnose(args) -> int:
 
 def _cmd_benchmark_diagnose(args) -> int:
     from .compare.diagnose.benchmark import run_benchmark
-    report = run_benchmark(n_per_class=args.n, seed=args.seed, out_dir=Path(args.out) if args.out else None)
+    if args.n < 1:
+        raise InputError("--n", args.n, "recordings per class must be an integer >= 1")
+    families = (1, 2) if args.family == "both" else (int(args.family),)
+    report = run_benchmark(n_per_class=args.n, seed=args.seed, out_dir=Path(args.out) if args.out else None,
+                           families=families)
     _emit(args, report.summary(), report.to_dict)
     return 0 if report.meets_targets else 1
 
@@ -262,7 +266,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--plot", metavar="OUT.png", help="also plot the recording, the baseline and the fit")
 
     p = add("benchmark-diagnose", _cmd_benchmark_diagnose, "score diagnose blind on generated recordings")
-    p.add_argument("--n", type=int, default=20, metavar="N", help="recordings per effect class")
+    p.add_argument("--n", type=int, default=10, metavar="N", help="recordings per class and family (>= 1)")
+    p.add_argument("--family", choices=("1", "2", "both"), default="both",
+                   help="generator family: 1 (hifi_*), 2 (independent physics, coloured noise, out of catalogue)")
     p.add_argument("--seed", type=int, default=0, metavar="S", help="random seed of the generated recordings")
     p.add_argument("--out", metavar="DIR", help="also write benchmark_diagnose.json/.txt here")
 

@@ -4,51 +4,34 @@ Each recording is produced in physical units from the default parameter set (plu
 where the specimen must change, e.g. a thick rim), with
 - a true linear stiffness off the simulated one by a random error within the stated uncertainty,
 - an effect from diagnose_hifi_torsion / diagnose_hifi_ring (or none: clean),
-- white noise + encoder quantization on the response, white noise on the load,
+- white noise + encoder quantization on the response, white noise on the load (the two
+  ``clean_*_coloured`` classes use the coloured noise of family2_sensors instead: AR(1), low-pass, random walk),
 - a linear thermal drift and zero offsets on both channels,
 - sample counts and signal-to-noise ratios drawn over a wide range, down to the detection limit.
-The truth (effect ids, signal-to-noise) is returned next to the file text, never inside it.
+The truth (effect ids, signal-to-noise, noise colour, true hysteresis loss) is returned next to the file
+text (``concealed.Concealed``), never inside it.
 """
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import lsq_linear
 
+from . import family2_sensors as fs
 from . import hifi_ring as hr
 from . import hifi_torsion as ht
 from .baseline import ring_geometry, torsion_compliance
+from .concealed import Concealed, projected_peak
+from .loop_metrics import measure_loop
 from .recording import RecordingKind, format_recording
 
 UNCERTAINTY = 0.02
-PRIOR_SIGMAS = 4.5
-TORSION_CLASSES = ("clean_torsion", "compliance_offset", "nonlinear_stiffness", "hysteresis", "lost_motion",
+ARCMIN = math.pi / (180.0 * 60.0)
+COLOURED = ("ar1", "lowpass", "random_walk")
+TORSION_CLASSES = ("clean_torsion", "clean_torsion_coloured", "compliance_offset", "nonlinear_stiffness", "hysteresis", "lost_motion",
                    "crack_closure", "nonlinear_stiffness+hysteresis", "hysteresis+lost_motion")
-RING_CLASSES = ("clean_ring", "compliance_offset_ring", "thick_ring", "large_deflection", "plasticity")
+RING_CLASSES = ("clean_ring", "clean_ring_coloured", "compliance_offset_ring", "thick_ring", "large_deflection", "plasticity")
 CLASSES = TORSION_CLASSES + RING_CLASSES
-
-
-@dataclass(frozen=True)
-class Concealed:
-    name: str                   # the class (see CLASSES)
-    text: str
-    truth: tuple[str, ...]      # effect ids; () for a clean recording
-    snr: float                  # peak of the effect left after the baseline fit / total noise std
-    kind: str
-
-
-def projected_peak(u: np.ndarray, t: np.ndarray, effect: np.ndarray, uncertainty: float = UNCERTAINTY) -> float:
-    """Peak of what remains of a noise-free effect after the baseline fit (offset, drift, stiffness within
-    +/- PRIOR_SIGMAS uncertainties): the part of the effect a diagnosis can possibly see (units of Y).
-
-    4.5 sigmas because a pure stiffness change must beat the prior by the decision threshold:
-    (d/u)^2 > 10 + ln N, i.e. d > 4.0..4.4 u for N = 200..2000, before it is evidence of anything."""
-    A = np.column_stack([np.ones_like(u), t, u])
-    b = PRIOR_SIGMAS * uncertainty
-    sol = lsq_linear(A, effect, bounds=([-np.inf, -np.inf, -b], [np.inf, np.inf, b]))
-    return float(np.max(np.abs(effect - A @ sol.x)))
 
 
 def _torsion_path(rng, n: int) -> np.ndarray:
@@ -65,19 +48,20 @@ def _ring_path(rng, n: int) -> tuple[np.ndarray, np.ndarray, list[float]]:
     return np.interp(s, np.arange(len(knots)), knots), s, knots
 
 
-def _noisy(rng, u_true, y_true_Y, effect_Y, snr, clean_noise, n):
-    """Add noise (white + quantization), drift and offsets; returns (load u, response y) in units of X, Y."""
+def _noisy(rng, u_true, y_true_Y, effect_Y, snr, clean_noise, n, noise_kind="white"):
+    """Add noise (white or coloured, + quantization), drift and offsets; returns (u, y, noise std, peak)."""
     t = np.linspace(0.0, 1.0, n)
     if effect_Y is None:
         sigma = clean_noise
         peak = 0.0
     else:
         # what the diagnosis sees is the effect plus the stiffness error, which may cancel part of it
-        peak = projected_peak(u_true, t, effect_Y + (y_true_Y - u_true))
+        peak = projected_peak(u_true, t, effect_Y + (y_true_Y - u_true), UNCERTAINTY)
         sigma = peak / snr
     q = sigma * rng.uniform(0.0, 2.5)
     white = math.sqrt(max(sigma ** 2 - q ** 2 / 12.0, 0.25 * sigma ** 2))
-    y = y_true_Y + (0.0 if effect_Y is None else effect_Y) + white * rng.standard_normal(n)
+    y = y_true_Y + (0.0 if effect_Y is None else effect_Y) + fs.coloured_noise(
+        rng, n, white, noise_kind, rho=rng.uniform(0.5, 0.95), fc=rng.uniform(0.05, 0.3), wander=rng.uniform(0.3, 0.8))
     y += rng.uniform(-5.0, 5.0) * sigma * t + rng.uniform(-50.0, 50.0) * sigma   # drift, zero offset
     if q > 0:
         y = np.round(y / q) * q
@@ -107,6 +91,7 @@ def _torsion(cls, rng, params, n, snr, clean_noise, eps) -> Concealed:
     Y = c0 * X
     parts = cls.split("+")
     effect = np.zeros(n)
+    loss = energy = None
     for p in parts:
         if p == "compliance_offset":
             effect += ht.series_compliance_twist(T, c0 * rng.choice([-1, 1]) * rng.uniform(0.06, 0.4))
@@ -115,7 +100,10 @@ def _torsion(cls, rng, params, n, snr, clean_noise, eps) -> Concealed:
             effect += ht.contact_spread_twist(T, K1, K1 * rng.uniform(1.1, 1.8), X * rng.uniform(0.15, 0.5),
                                               rng.uniform(1.0, 2.5))
         elif p == "hysteresis":
-            effect += ht.maxwell_slip_twist(T, Y * rng.uniform(0.005, 0.08), rng.uniform(0.05, 0.4))
+            target, frac = Y * rng.uniform(0.005, 0.08), rng.uniform(0.05, 0.4)
+            effect += ht.maxwell_slip_twist(T, target, frac)
+            loop = measure_loop(lambda x: ht.maxwell_slip_twist(x, target, frac), float(np.max(np.abs(T))))
+            loss, energy = loop.loss_rad / ARCMIN, loop.energy_Nmm_rad
         elif p == "lost_motion":
             band = X * rng.uniform(0.01, 0.08)
             effect += ht.backlash_twist(T, Y * rng.uniform(0.005, 0.08), band, band * rng.uniform(0.0, 0.2))
@@ -123,9 +111,11 @@ def _torsion(cls, rng, params, n, snr, clean_noise, eps) -> Concealed:
             effect += ht.breathing_crack_twist(T, c0 * rng.uniform(0.05, 0.4), X * rng.uniform(0.005, 0.05),
                                                int(rng.choice([-1, 1])))
     clean = cls.startswith("clean")
-    un, yn, noise, peak = _noisy(rng, u, c * T / Y, None if clean else effect / Y, snr, clean_noise, n)
+    noise_kind = str(rng.choice(COLOURED)) if cls.endswith("_coloured") else "white"
+    un, yn, noise, peak = _noisy(rng, u, c * T / Y, None if clean else effect / Y, snr, clean_noise, n, noise_kind)
     text = format_recording(RecordingKind.TORSION, specimen, un * X, yn * Y, baseline_uncertainty=UNCERTAINTY)
-    return Concealed(cls, text, () if clean else tuple(parts), peak / noise if not clean else 0.0, "torsion")
+    return Concealed(cls, text, () if clean else tuple(parts), peak / noise if not clean else 0.0, "torsion",
+                     noise=noise_kind, loss_arcmin=loss, energy_Nmm_rad=energy)
 
 
 def _ring(cls, rng, params, n, snr, clean_noise, eps, table) -> Concealed:
@@ -134,7 +124,7 @@ def _ring(cls, rng, params, n, snr, clean_noise, eps, table) -> Concealed:
         ratio = float(rng.uniform(0.12, 0.3))
     elif cls == "plasticity":
         ratio = float(rng.uniform(0.02, 0.05))
-    elif cls in ("clean_ring", "compliance_offset_ring", "large_deflection"):
+    elif cls in ("clean_ring", "clean_ring_coloured", "compliance_offset_ring", "large_deflection"):
         ratio = float(rng.uniform(0.01, 0.015))
     p = params.with_value("ewg_drive.rim_thickness_ratio", ratio)
     g = ring_geometry(p)
@@ -143,7 +133,7 @@ def _ring(cls, rng, params, n, snr, clean_noise, eps, table) -> Concealed:
     c = c0 * (1.0 + eps)
     u, s_path, knots = _ring_path(rng, n)
     truth: tuple[str, ...] = ()
-    if cls == "large_deflection" or cls == "clean_ring":
+    if cls == "large_deflection" or cls.startswith("clean_ring"):
         d_max = R * (rng.uniform(0.03, 0.25) if cls == "large_deflection" else min(0.01, 0.3 * clean_noise))
         X = d_max / c
         lin = c * u * X
@@ -173,11 +163,12 @@ def _ring(cls, rng, params, n, snr, clean_noise, eps, table) -> Concealed:
             truth = ("compliance_offset",)
     Y = c0 * X
     clean = not truth
+    noise_kind = str(rng.choice(COLOURED)) if cls.endswith("_coloured") else "white"
     un, yn, noise, peak = _noisy(rng, u, lin / Y, None if clean else effect / Y,
-                                 snr, clean_noise, n)
+                                 snr, clean_noise, n, noise_kind)
     if clean:
         yn = yn + effect / Y
     overrides = {"ewg_drive": {"rim_thickness_ratio": ratio}}
     text = format_recording(RecordingKind.RING_COMPRESSION, "ewg_ring", un * X, yn * Y,
                             baseline_uncertainty=UNCERTAINTY, params=overrides)
-    return Concealed(cls, text, truth, peak / noise if not clean else 0.0, "ring_compression")
+    return Concealed(cls, text, truth, peak / noise if not clean else 0.0, "ring_compression", noise=noise_kind)
