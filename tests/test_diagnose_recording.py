@@ -151,3 +151,44 @@ def test_fea_baseline_for_gear_is_refused():
     rec = parse_text(_good().replace('"output_shaft"', '"gear"'))
     with pytest.raises(InputError, match="no FEA study models specimen 'gear'"):
         fea_baseline(rec, load_params())
+
+
+def _locale(sep, decimal_comma, quote):
+    T = np.linspace(-1e6, 1e6, 30)
+    q = '"' if quote else ""
+    head = sep.join(f"{q}{c}{q}" for c in ("torque_Nmm", "twist_rad", "input_angle_rad"))
+    rows = []
+    for i, t in enumerate(T):
+        cells = [f"{t:.6g}", f"{t * 1.2e-9:.6g}", f"{0.25 * i:.4f}"]
+        if decimal_comma:
+            cells = [c.replace(".", ",") for c in cells]
+        rows.append(sep.join(cells))
+    return HEAD + head + "\n" + "\n".join(rows) + "\n", T
+
+
+@pytest.mark.parametrize("sep, decimal_comma, quote", [(",", False, True), (";", True, True), (";", True, False),
+                                                        ("\t", True, False), ("\t", False, True)],
+                         ids=["comma-quoted", "semicolon-decimal-comma-quoted", "semicolon-decimal-comma",
+                              "tab-decimal-comma", "tab-quoted"])
+def test_spreadsheet_dialects_parse_to_the_same_numbers(sep, decimal_comma, quote):
+    text, T = _locale(sep, decimal_comma, quote)
+    rec = parse_text(text)
+    np.testing.assert_allclose(rec.load, T, rtol=1e-5)          # 6 significant digits written
+    np.testing.assert_allclose(rec.response, T * 1.2e-9, rtol=1e-5)
+    np.testing.assert_allclose(rec.extra["input_angle_rad"], 0.25 * np.arange(30), atol=1e-9)
+
+
+def test_semicolon_file_bad_cell_is_named_by_line():
+    text, _ = _locale(";", True, True)
+    lines = text.split("\n")
+    lines[10] = lines[10].replace(";", ";zwölf;", 1).split(";zwölf;")[0] + ";zwölf;0,1"
+    assert _key("\n".join(lines)) == "rec.csv:11"
+    short = text.split("\n")
+    short[12] = short[12].rsplit(";", 1)[0]           # a row with a cell missing
+    assert _key("\n".join(short)) == "rec.csv:13"
+
+
+def test_input_angle_is_torsion_only():
+    text = ('# [test]\n# kind = "ring_compression"\n# specimen = "ewg_ring"\nforce_N,delta_cd_mm,input_angle_rad\n'
+            + "\n".join(f"{f},{f * 1e-3},{f}" for f in range(30)) + "\n")
+    assert _key(text) == "rec.csv:4"
