@@ -52,7 +52,7 @@ def audit_records(params, s000: dict | None = None, s003: dict | None = None) ->
     co, tn, th = s003["coefficients"], s003["tooth_number_min"], s003["thick_ring"]
     P, C = Variant.PUBLISHED, Variant.CORRECTED
     cr, cup, shaft = params.cracks, params.flexspline_cup, params.output_shaft
-    a, Ku, Kd = cr.depth_mm, cr.stress_nonuniformity, cr.dynamic_load_factor
+    a, Ku, Kd = shaft.crack_depth_mm, cr.stress_nonuniformity, cr.dynamic_load_factor
     d_e = shaft.outer_diameter_mm - 2 * a
     t = s000["seed_table"]
     lsum_c = s000["lambda_sum"]["corrected"]

@@ -57,7 +57,8 @@ def seed000_summary(params) -> dict:
     mat, g, cup, shaft = params.material, params.gear, params.flexspline_cup, params.output_shaft
     wg, cr = params.wave_generator, params.cracks
     E, mu, G_impl = mat.youngs_modulus_MPa, mat.shear_modulus_MPa, mat.implied_shear_modulus_MPa
-    a = cr.depth_mm
+    # each component's own crack depth (seed 000 uses one a for all three)
+    a_shaft, a_cup, a_bearing = shaft.crack_depth_mm, cup.root_crack_depth_mm, wg.bearing_crack_depth_mm
     k_f = torsion.shape_coefficient(cup.shape.value == "bell")
     k_G = torsion.structure_coefficient(cup.cup)
     radii = flexspline_radii_mm(params)
@@ -79,17 +80,17 @@ def seed000_summary(params) -> dict:
     F_r = torsion.radial_force_N(g.force_coefficient, g.output_torque_Nmm, cup.pitch_diameter_mm)
 
     bearing = dict(radial_force_N=F_r, ring_thickness_mm=wg.bearing_inner_ring_thickness_mm, beta=wg.beta,
-                   semi_axes_mm=wg.contact_semi_axes_mm, a_mm=a, E_MPa=E, Q=cr.surface_crack_shape_factor)
+                   semi_axes_mm=wg.contact_semi_axes_mm, a_mm=a_bearing, E_MPa=E, Q=cr.surface_crack_shape_factor)
     du = {v: cracks.bearing_displacement_mm(variant=v, **bearing) for v in Variant}
     dK = {v: cracks.bearing_crack_stiffness(variant=v, **bearing) for v in Variant}
     dlH = {v: _dlambda_H(params, K_G0, dK[v], v) for v in Variant}
 
     Ku, Kd = cr.stress_nonuniformity, cr.dynamic_load_factor
-    dlf = {v: cracks.flexspline_crack_flexibility(r_m, cup.wall_thickness_mm, Ku, Kd, a, E, v) for v in Variant}
-    dlf_pitch = {v: cracks.flexspline_crack_flexibility(radii["pitch"], cup.wall_thickness_mm, Ku, Kd, a, E, v)
+    dlf = {v: cracks.flexspline_crack_flexibility(r_m, cup.wall_thickness_mm, Ku, Kd, a_cup, E, v) for v in Variant}
+    dlf_pitch = {v: cracks.flexspline_crack_flexibility(radii["pitch"], cup.wall_thickness_mm, Ku, Kd, a_cup, E, v)
                  for v in Variant}
     d_s = shaft.outer_diameter_mm
-    dlso = {v: cracks.shaft_crack_flexibility(d_s, a, mu, v) for v in Variant}
+    dlso = {v: cracks.shaft_crack_flexibility(d_s, a_shaft, mu, v) for v in Variant}
 
     def totals(v: Variant) -> dict:
         sum0 = torsion.total_flexibility(lH0, lf[v], lso[v])
@@ -141,8 +142,8 @@ def seed000_summary(params) -> dict:
         "delta_lambda_f": {"published": dlf[P], "corrected": dlf[C],
                            "published_pitch_radius": dlf_pitch[P], "corrected_pitch_radius": dlf_pitch[C]},
         "delta_lambda_so": {"published": dlso[P], "corrected": dlso[C],
-                            "corrected_growing_crack": cracks.shaft_crack_flexibility_growing(d_s, a, mu),
-                            "published_mixed_axial_term_per_N": cracks.shaft_mixed_axial_term(d_s, a, E)},
+                            "corrected_growing_crack": cracks.shaft_crack_flexibility_growing(d_s, a_shaft, mu),
+                            "published_mixed_axial_term_per_N": cracks.shaft_mixed_axial_term(d_s, a_shaft, E)},
         "lambda_sum": {"published": tot[P], "corrected": tot[C]},
         "K_HD": {"published": tot[P]["K_HD_uncracked"], "corrected": tot[C]["K_HD_uncracked"],
                  "published_cracked": tot[P]["K_HD_cracked"], "corrected_cracked": tot[C]["K_HD_cracked"],

@@ -216,6 +216,12 @@ def build_seam_part(params, crack_depth_mm: float):
     return build_part(PART, params, crack_depth_mm=crack_depth_mm, crack_model=CrackModel.SEAM)
 
 
+def build_plain_part(params):
+    """The uncracked wave-generator bearing inner ring (tests substitute a stand-in)."""
+    from ..geometry.parts import build_part
+    return build_part(PART, params)
+
+
 def vtu_paths(vtu) -> tuple[Path, Path]:
     """(cracked, uncracked) field files next to ``vtu``: <stem>_cracked.vtu first (the report's close-up)."""
     v = Path(vtu)
@@ -236,8 +242,11 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
 
     Every length of the size field scales with the refinement: global size h, contact size
     min(h, b'/3) r^k and crack-front size a/3 r^k, so the GCI covers the contact zone too."""
+    if crack_depth_mm is None:      # None means uncracked, as in every study
+        return _run_uncracked(params, mesh_size_mm=mesh_size_mm, order=order, vtu=vtu, progress=progress,
+                              quick=quick)
     t_start = time.perf_counter()
-    a = crack_depth_mm if crack_depth_mm is not None else params.cracks.depth_mm
+    a = crack_depth_mm
     force = radial_force_N(params)
     mat = params.material
     lame = Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio)
@@ -300,3 +309,38 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
             "mesh_size_factors": factors, "solver": info, "part": {k: v for k, v in (seam.meta or {}).items() if isinstance(v, (int, float, str))},
             "E_MPa": mat.youngs_modulus_MPa, "nu": mat.poisson_ratio, "G_implied_MPa": mat.implied_shear_modulus_MPa}
     return StudyResult(STUDY, q, qual, timings, fields, meta)
+
+
+def _run_uncracked(params, *, mesh_size_mm, order, vtu, progress, quick) -> StudyResult:
+    """The uncracked ring alone: radial compliance on three meshes (same sizes as the cracked run)."""
+    t_start = time.perf_counter()
+    force = radial_force_N(params)
+    mat = params.material
+    lame = Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio)
+    t_i = params.wave_generator.bearing_inner_ring_thickness_mm
+    b_circ = params.wave_generator.contact_semi_axes_mm[1]
+    fine = mesh_size_mm if mesh_size_mm else t_i / (2.0 if quick else 3.0)
+    sizes = [fine * REFINEMENT_RATIO ** k for k in range(3)]
+    part = build_plain_part(params)
+    timings = {"geometry": time.perf_counter() - t_start}
+    sols = []
+    for k, h in enumerate(sizes):
+        progress(f"{STUDY}: uncracked, h = {h:.3g} mm")
+        sols.append(solve_compliance(part, params, lame, size_mm=h, order=order, refine_points=(), local_mm=h,
+                                     force_N=force, contact_mm=min(fine, b_circ / 3.0) * REFINEMENT_RATIO ** k,
+                                     keep_field=(k == 0 and vtu is not None)))
+        for key, v in sols[-1].timings_s.items():
+            timings[key] = timings.get(key, 0.0) + v
+    c = [s.compliance_mm_per_N for s in sols]
+    h_used = [h * s.size_factor for h, s in zip(sizes, sols)]
+    fields = (write_fields(vtu, sols[0].field, lame),) if vtu is not None else ()
+    q = {"radial_compliance_mm_per_N": Quantity("radial_compliance_mm_per_N", c[0], "mm/N",
+                                                grid_convergence(h_used, c))}
+    timings["total"] = time.perf_counter() - t_start
+    meta = {"radial_force_N": force, "crack_depth_mm": None,
+            "load": "Hertzian ellipsoidal pressure on the race, a' axial x b' circumferential, p0 = 3F/(2 pi a'b')",
+            "support": "bore fixed (rigid cam, bonded)", "compliance": "work-conjugate f.u/F^2",
+            "seed_uncracked_stiffness_N_per_mm": params.wave_generator.uncracked_radial_stiffness_N_per_mm,
+            "fea_uncracked_stiffness_N_per_mm": 1.0 / c[0], "mesh_sizes_mm": sizes, "solver": sols[0].solver,
+            "E_MPa": mat.youngs_modulus_MPa, "nu": mat.poisson_ratio, "G_implied_MPa": mat.implied_shear_modulus_MPa}
+    return StudyResult(STUDY, q, sols[0].quality, timings, fields, meta)

@@ -19,9 +19,10 @@ import warnings
 from pathlib import Path
 
 from .errors import InputError, MaterialWarning, RangeWarning, StrainwaveError
+from .geometry.part import PartName
+from .registry import STUDY_NAMES as STUDIES
 
-STUDIES = ("shaft-torsion", "cup-torsion", "bearing-ring", "ring-compression")
-PARTS = ("flexspline-cup", "ewg-flexspline-ring", "ewg", "output-shaft", "wg-bearing-ring", "assembly")
+PARTS = tuple(p.value for p in PartName) + ("assembly",)
 
 
 LOG = "strainwave"   # the logger every stage's progress and every warning goes through

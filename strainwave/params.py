@@ -45,6 +45,26 @@ def _in_open(key: str, value: float, lo: float, hi: float, why: str = "") -> Non
         raise InputError(key, value, f"must lie in ({lo:g}, {hi:g}){why}")
 
 
+def _crack_in_wall(key: str, depth_mm: float, wall_name: str, wall_mm: float) -> None:
+    """A crack must be deeper than zero and shallower than the wall it cuts."""
+    _positive(key, depth_mm)
+    if depth_mm >= wall_mm:
+        raise InputError(key, depth_mm, f"must be < {wall_name} = {wall_mm:g} mm")
+
+
+# Keys that were removed, with what replaces them: refused with a message naming the new keys.
+REMOVED_KEYS = {
+    "cracks.depth_mm": "was one depth for every part; set the crack of each component instead: "
+                       "output_shaft.crack_depth_mm, flexspline_cup.root_crack_depth_mm, "
+                       "wave_generator.bearing_crack_depth_mm",
+}
+
+
+def refuse_removed(dotted_key: str, value: object) -> None:
+    if dotted_key in REMOVED_KEYS:
+        raise InputError(dotted_key, value, REMOVED_KEYS[dotted_key])
+
+
 def _recommend(key: str, value: float, lo: float, hi: float, source: str) -> None:
     if not lo <= value <= hi:
         warnings.warn(f"{key} = {value:g} is outside the recommended {lo:g}..{hi:g} ({source}); running anyway",
@@ -100,6 +120,7 @@ class FlexsplineCup:
     cup: bool
     teeth: int
     module_mm: float
+    root_crack_depth_mm: float      # depth of the tooth-root crack (seed 000's a, for the flexspline)
 
     def __post_init__(self):
         for name in ("pitch_diameter_mm", "wall_thickness_mm", "length_mm", "module_mm"):
@@ -107,6 +128,8 @@ class FlexsplineCup:
         if self.wall_thickness_mm >= self.pitch_diameter_mm / 2:
             raise InputError("flexspline_cup.wall_thickness_mm", self.wall_thickness_mm,
                              f"must be < pitch_diameter_mm/2 = {self.pitch_diameter_mm / 2:g}")
+        _crack_in_wall("flexspline_cup.root_crack_depth_mm", self.root_crack_depth_mm,
+                       "flexspline_cup.wall_thickness_mm", self.wall_thickness_mm)
         if self.teeth < 4:
             raise InputError("flexspline_cup.teeth", self.teeth, "must be an integer >= 4")
         if self.module_mm * 2.35 >= self.pitch_diameter_mm / 2 - self.wall_thickness_mm:
@@ -121,6 +144,7 @@ class OutputShaft:
     outer_diameter_mm: float
     inner_diameter_mm: float
     length_mm: float
+    crack_depth_mm: float           # depth of the circumferential shaft crack (seed 000's a, for the shaft)
 
     def __post_init__(self):
         _positive("output_shaft.outer_diameter_mm", self.outer_diameter_mm)
@@ -128,6 +152,8 @@ class OutputShaft:
         if not (isinstance(self.inner_diameter_mm, float) and 0.0 <= self.inner_diameter_mm < self.outer_diameter_mm):
             raise InputError("output_shaft.inner_diameter_mm", self.inner_diameter_mm,
                              f"must be >= 0 and < outer_diameter_mm = {self.outer_diameter_mm:g}")
+        _crack_in_wall("output_shaft.crack_depth_mm", self.crack_depth_mm,
+                       "the output_shaft wall (outer_diameter_mm - inner_diameter_mm)/2", self.wall_mm)
 
     @property
     def wall_mm(self) -> float:
@@ -141,6 +167,7 @@ class WaveGenerator:
     contact_semi_axes_mm: tuple[float, float]
     beta: float
     uncracked_radial_stiffness_N_per_mm: float
+    bearing_crack_depth_mm: float   # depth of the inner ring's race crack (seed 000's a, for the bearing)
 
     def __post_init__(self):
         _positive("wave_generator.bearing_inner_ring_thickness_mm", self.bearing_inner_ring_thickness_mm)
@@ -152,18 +179,20 @@ class WaveGenerator:
         _positive("wave_generator.beta", self.beta)
         _positive("wave_generator.uncracked_radial_stiffness_N_per_mm", self.uncracked_radial_stiffness_N_per_mm)
         _recommend("wave_generator.beta", self.beta, 0.4278, 0.5, "seed 000, from a'/b'")
+        _crack_in_wall("wave_generator.bearing_crack_depth_mm", self.bearing_crack_depth_mm,
+                       "wave_generator.bearing_inner_ring_thickness_mm", self.bearing_inner_ring_thickness_mm)
 
 
 @dataclass(frozen=True)
 class Cracks:
-    depth_mm: float
+    """Seed 000's crack factors; each component's crack depth is a key of its own section."""
+
     surface_crack_shape_factor: float
     stress_nonuniformity: float
     dynamic_load_factor: float
     flexspline_crack_angle_deg: float
 
     def __post_init__(self):
-        _positive("cracks.depth_mm", self.depth_mm)
         if not (math.isfinite(self.surface_crack_shape_factor) and self.surface_crack_shape_factor >= 1.0):
             raise InputError("cracks.surface_crack_shape_factor", self.surface_crack_shape_factor,
                              "Q = 1 + 1.464 (a/c)^1.65 must be >= 1")
@@ -251,22 +280,24 @@ class Params:
     crack_geometry: CrackGeometry
 
     def __post_init__(self):
-        # Checks that need two sections: a crack must fit inside the wall it cuts.
-        a = self.cracks.depth_mm
-        walls = {
-            "output_shaft wall (outer - inner)/2": self.output_shaft.wall_mm,
-            "flexspline_cup.wall_thickness_mm": self.flexspline_cup.wall_thickness_mm,
-            "wave_generator.bearing_inner_ring_thickness_mm": self.wave_generator.bearing_inner_ring_thickness_mm,
-        }
-        for name, wall in walls.items():
-            if a >= wall:
-                raise InputError("cracks.depth_mm", a, f"must be < {name} = {wall:g} mm")
+        # Checks that need two sections (each crack against its own wall is checked in its section).
+        key, a = min(self.crack_depths_mm().items(), key=lambda kv: kv[1])
         if self.crack_geometry.slot_width_mm > a / 5:
             raise InputError("crack_geometry.slot_width_mm", self.crack_geometry.slot_width_mm,
-                             f"must be <= cracks.depth_mm/5 = {a / 5:g} mm (a slot, not a notch)")
+                             f"must be <= {key}/5 = {a / 5:g} mm (a slot, not a notch)")
         if self.crack_geometry.flexspline_tooth_index >= self.flexspline_cup.teeth:
             raise InputError("crack_geometry.flexspline_tooth_index", self.crack_geometry.flexspline_tooth_index,
                              f"must be < flexspline_cup.teeth = {self.flexspline_cup.teeth}")
+
+    def crack_depths_mm(self) -> dict[str, float]:
+        """{dotted key: depth} of every component's crack."""
+        return {"output_shaft.crack_depth_mm": self.output_shaft.crack_depth_mm,
+                "flexspline_cup.root_crack_depth_mm": self.flexspline_cup.root_crack_depth_mm,
+                "wave_generator.bearing_crack_depth_mm": self.wave_generator.bearing_crack_depth_mm}
+
+    def crack_depth_mm(self, dotted_key: str) -> float:
+        """The depth under one of the crack keys of ``crack_depths_mm``."""
+        return self.crack_depths_mm()[dotted_key]
 
     # Modifiers return copies (the dataclasses are frozen).
     def with_value(self, dotted_key: str, value: object) -> "Params":
@@ -291,6 +322,7 @@ def _plain(value):
 
 
 def _set_dotted(data: dict, dotted_key: str, value: object) -> dict:
+    refuse_removed(dotted_key, value)
     section, _, key = dotted_key.partition(".")
     if section not in data or not key:
         raise InputError(dotted_key, value, f"unknown key; sections are {', '.join(data)}")
@@ -376,6 +408,7 @@ def merge_overrides(base: dict, overrides: dict, source: str = "params") -> dict
         if not isinstance(table, dict):
             raise InputError(section, table, "must be a [section] table")
         for key, value in table.items():
+            refuse_removed(f"{section}.{key}", value)
             if key not in merged[section]:
                 raise InputError(f"{section}.{key}", value,
                                  f"unknown key; {section} has {', '.join(merged[section])}")

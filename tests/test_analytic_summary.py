@@ -88,7 +88,7 @@ def test_audit_effects_are_computed_not_typed(params):
     assert by_id[4]["cp"] == pytest.approx(12.2640, abs=5e-5)
     # Change the crack depth: the effect values that depend on it move accordingly.
     with pytest.warns(RangeWarning):   # the same material warning on re-validation
-        deeper = params.with_value("cracks.depth_mm", 0.5)
+        deeper = params.with_value("output_shaft.crack_depth_mm", 0.5)
     by_id2 = {r.id: dict(r.effect_values) for r in audit_records(deeper)}
     assert by_id2[10]["q"] == pytest.approx(4 * 0.5 / (3 * 69.0), rel=1e-12)
     assert by_id2[10]["c"] == pytest.approx(cracks.shaft_crack_flexibility(70.0, 0.5, 8e4), rel=1e-12)
@@ -166,7 +166,7 @@ def test_summary_is_strict_json_for_any_valid_params(params, depth, teeth, dz, r
     import warnings
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RangeWarning)     # out-of-range values run with a warning by design
-        p = params.with_value("cracks.depth_mm", depth).with_value("ewg_drive.flexspline_teeth", max(teeth, 2 * dz))
+        p = params.with_value("output_shaft.crack_depth_mm", depth).with_value("flexspline_cup.root_crack_depth_mm", depth).with_value("ewg_drive.flexspline_teeth", max(teeth, 2 * dz))
         p = p.with_value("ewg_drive.tooth_difference", dz).with_value("ewg_drive.rim_thickness_ratio", ratio)
         p = p.with_value("output_shaft.inner_diameter_mm", inner)
     out = summary.analytic_summary(p)

@@ -198,3 +198,16 @@ def test_print_default_starts_a_parameter_file(capsys, tmp_path):
     effective = json.loads(capsys.readouterr().out)
     assert effective["gear"]["output_torque_Nmm"] == 2500.0
     assert effective["material"] == default_dict()["material"]
+
+def test_crack_deeper_than_its_own_wall_is_refused_before_any_mesh(strainwave_cmd):
+    """--crack-depth-mm sets the study's own crack (the shaft's, wall (70 - 45)/2 = 12.5 mm) and is checked
+    by the parameter schema before the part is built: exit 2 naming the wall, no solver progress."""
+    out = _run(strainwave_cmd, "solve", "shaft-torsion", "--crack-depth-mm", "20")
+    assert out.returncode == 2 and "Traceback" not in out.stderr
+    assert "output_shaft.crack_depth_mm = 20.0" in out.stderr and "12.5 mm" in out.stderr
+    assert "refinement" not in out.stderr and "internal error" not in out.stderr
+
+
+def test_crack_on_a_study_without_a_crack_is_refused(strainwave_cmd):
+    out = _run(strainwave_cmd, "solve", "ring-compression", "--crack-depth-mm", "1")
+    assert out.returncode == 2 and "--crack-depth-mm" in out.stderr and "carries no crack" in out.stderr

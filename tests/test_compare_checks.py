@@ -90,7 +90,7 @@ def test_plan_sweeps_reach_half_the_wall_and_stay_inside_it():
     plan = make_plan(params, quick=False)
     wall = params.output_shaft.wall_mm
     depths = [c.crack_depth_mm for c in plan.sweeps["shaft"]]
-    assert plan.headline["shaft"].crack_depth_mm == params.cracks.depth_mm  # the full run keeps the seed's depth
+    assert plan.headline["shaft"].crack_depth_mm == params.output_shaft.crack_depth_mm  # the full run keeps the seed's depth
     quick = make_plan(params, quick=True)
     # --quick: one case per component, at the deepest crack, which must be the full sweep's deepest one
     assert [c.crack_depth_mm for c in quick.headline.values()] == [max(c.crack_depth_mm for c in plan.sweeps[k])

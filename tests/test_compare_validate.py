@@ -193,3 +193,40 @@ def test_report_opens_in_headless_chromium_and_every_image_loads(quick_run, resu
     pixels = np.asarray(Image.open(shot).convert("RGB"), dtype=float)
     assert pixels.std() > 5.0  # the page rendered text and tables, not a blank canvas
     shutil.rmtree(tmp_path / "profile", ignore_errors=True)
+
+
+# ---- regression: the --quick checks equal the numbers main gave before issue 11's refactor ----------------
+
+REFERENCE = Path(__file__).parent / "data" / "validate_quick_checks.json"
+REGRESSION_RTOL = 1e-9
+# Every DELIBERATE change of a --quick check's numbers, by check id, with its reason. An engineer who
+# changes numbers on purpose adds the check id here (one line, saying why and by how much), or, when the
+# new numbers become the reference, regenerates tests/data/validate_quick_checks.json from a --quick
+# results.json and empties the entry. Anything not listed must reproduce the reference to 1e-9 relative.
+DELIBERATE_CHANGES: dict[str, str] = {
+}
+NUMBERS = ("fea", "fea_uncertainty", "published", "corrected", "tolerance_relative")
+
+
+def _numbers(check: dict) -> dict:
+    return {"fea": check["fea"], "fea_uncertainty": check["fea_uncertainty"],
+            "published": check["analytic"].get("published"), "corrected": check["analytic"].get("corrected"),
+            "tolerance_relative": (check.get("tolerance") or {}).get("relative")}
+
+
+def test_quick_checks_reproduce_the_reference_or_are_listed_as_deliberate(results):
+    reference = json.loads(REFERENCE.read_text(encoding="utf-8"))["checks"]
+    now = {c["id"]: c for c in results["checks"]}
+    assert set(reference) <= set(now), f"checks gone: {sorted(set(reference) - set(now))}"
+    changed = {}
+    for check_id, ref in reference.items():
+        if check_id in DELIBERATE_CHANGES:
+            continue
+        got = _numbers(now[check_id])
+        for name in NUMBERS:
+            a, b = got[name], ref[name]
+            if (a is None) != (b is None) or (a is not None and not np.isclose(a, b, rtol=REGRESSION_RTOL, atol=0.0)):
+                changed.setdefault(check_id, []).append(f"{name}: {b!r} -> {a!r}")
+        if now[check_id]["verdict"] != ref["verdict"]:
+            changed.setdefault(check_id, []).append(f"verdict: {ref['verdict']} -> {now[check_id]['verdict']}")
+    assert not changed, f"undeclared changes (list them in DELIBERATE_CHANGES with a reason): {changed}"

@@ -132,3 +132,15 @@ def test_isolated_meshing_survives_a_native_abort(monkeypatch):
     monkeypatch.setattr(mi, "mesh_part", lambda *a, **k: os.abort())
     with pytest.raises(MeshingFailed, match="exited with code"):
         mi.mesh_part_isolated(None, size_mm=2.0, order=2, refine=[], factors=(1.0, 1.03))
+
+
+def test_no_crack_means_uncracked_and_agrees_with_the_seam_runs_uncracked_solve(study):
+    """crack_depth_mm=None is the uncracked ring (as for every study), not the parameter file's crack: only
+    the radial compliance, on plain meshes; it agrees with the seam run's uncracked solve within 3 x both GCIs."""
+    import strainwave.fea.bearing_ring as br
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(br, "build_plain_part", lambda params: _ring(None))
+        plain = br.run(load_params(), mesh_size_mm=H_MM, order=2, crack_depth_mm=None)
+    assert set(plain.quantities) == {"radial_compliance_mm_per_N"} and plain.meta["crack_depth_mm"] is None
+    a, b = plain["radial_compliance_mm_per_N"], study["radial_compliance_mm_per_N"]
+    assert abs(a.value - b.value) <= 3.0 * (a.uncertainty + b.uncertainty)

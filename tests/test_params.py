@@ -33,11 +33,38 @@ def test_partial_file_keeps_the_rest(tmp_path):
 
 def test_with_value_returns_validated_copy():
     p = load_params()
-    q = p.with_value("cracks.depth_mm", 1.0)
-    assert q.cracks.depth_mm == 1.0 and p.cracks.depth_mm == 0.1
+    q = p.with_value("output_shaft.crack_depth_mm", 1.0)
+    assert q.output_shaft.crack_depth_mm == 1.0 and p.output_shaft.crack_depth_mm == 0.1
     with pytest.raises(InputError) as err:
-        p.with_value("cracks.depth_mm", 20.0)   # the shaft wall is 12.5 mm
+        p.with_value("output_shaft.crack_depth_mm", 20.0)   # the shaft wall is 12.5 mm
+    assert err.value.key == "output_shaft.crack_depth_mm" and "12.5 mm" in str(err.value)
+
+
+def test_each_crack_is_bounded_by_its_own_wall_only():
+    """A 5 mm shaft crack is fine (wall 12.5 mm) although the cup wall is 2.24 mm (issue 11)."""
+    p = load_params().with_value("output_shaft.crack_depth_mm", 5.0)
+    assert p.output_shaft.crack_depth_mm == 5.0 and p.flexspline_cup.root_crack_depth_mm == 0.1
+    for key, depth, wall in (("flexspline_cup.root_crack_depth_mm", 2.24, "wall_thickness_mm = 2.24"),
+                             ("wave_generator.bearing_crack_depth_mm", 10.0, "bearing_inner_ring_thickness_mm = 10")):
+        with pytest.raises(InputError) as err:
+            p.with_value(key, depth)
+        assert err.value.key == key and wall in str(err.value)
+
+
+@pytest.mark.parametrize("how", ["file", "with_value"])
+def test_old_single_crack_depth_is_refused_naming_the_new_keys(tmp_path, how):
+    with pytest.raises(InputError) as err:
+        if how == "file":
+            f = tmp_path / "old.toml"
+            f.write_text("[cracks]\ndepth_mm = 0.5\n")
+            load_params(f)
+        else:
+            load_params().with_value("cracks.depth_mm", 0.5)
+    text = str(err.value)
     assert err.value.key == "cracks.depth_mm"
+    for new in ("output_shaft.crack_depth_mm", "flexspline_cup.root_crack_depth_mm",
+                "wave_generator.bearing_crack_depth_mm"):
+        assert new in text
 
 
 @pytest.mark.parametrize("section,key,value,needle", [
@@ -49,9 +76,9 @@ def test_with_value_returns_validated_copy():
     ("ewg_drive", "flexspline_teeth", 72.5, "integer"),
     ("flexspline_cup", "shape", "conical", "'cylindrical'"),
     ("flexspline_cup", "cup", 1, "true or false"),
-    ("cracks", "depth_mm", 2.24, "flexspline_cup.wall_thickness_mm"),
+    ("flexspline_cup", "root_crack_depth_mm", 2.24, "flexspline_cup.wall_thickness_mm"),
     ("cracks", "flexspline_crack_angle_deg", 90.0, "(0, 90)"),
-    ("crack_geometry", "slot_width_mm", 0.05, "depth_mm/5"),
+    ("crack_geometry", "slot_width_mm", 0.05, "crack_depth_mm/5"),
 ])
 def test_impossible_values_name_key_value_and_range(section, key, value, needle):
     data = merge_overrides(default_dict(), {section: {key: value}})

@@ -80,7 +80,7 @@ def test_resume_after_kill_recomputes_nothing_cached(tmp_path, monkeypatch):
 
 
 def test_code_version_is_part_of_the_point_key(monkeypatch):
-    spec = PointSpec("shaft-torsion", (("cracks.depth_mm", 0.2),), default_dict())
+    spec = PointSpec("shaft-torsion", (("output_shaft.crack_depth_mm", 0.2),), default_dict())
     monkeypatch.setattr(cache, "code_version", lambda: "A")
     first, same = point_key(spec, None), point_key(spec, None)
     probe = point_key(spec, closed_form_probe)

@@ -30,18 +30,18 @@ def test_integer_key_stays_integer(schema):
 
 
 def test_explicit_list_and_enum_and_bool(schema):
-    assert parse_vary("cracks.depth_mm=0.1,0.2,0.5", schema).values == (0.1, 0.2, 0.5)
+    assert parse_vary("output_shaft.crack_depth_mm=0.1,0.2,0.5", schema).values == (0.1, 0.2, 0.5)
     assert parse_vary("flexspline_cup.shape=cylindrical,bell", schema).values == ("cylindrical", "bell")
     assert parse_vary("flexspline_cup.cup=true,false", schema).values == (True, False)
 
 
 def test_full_grid_is_the_product_first_axis_slowest(schema):
-    axes = [parse_vary("cracks.depth_mm=0.1,0.2", schema), parse_vary("output_shaft.length_mm=100:300:3", schema)]
+    axes = [parse_vary("output_shaft.crack_depth_mm=0.1,0.2", schema), parse_vary("output_shaft.length_mm=100:300:3", schema)]
     grid = full_grid(axes)
     assert len(grid) == 6
-    assert grid[0] == {"cracks.depth_mm": 0.1, "output_shaft.length_mm": 100.0}
-    assert grid[2] == {"cracks.depth_mm": 0.1, "output_shaft.length_mm": 300.0}
-    assert grid[3] == {"cracks.depth_mm": 0.2, "output_shaft.length_mm": 100.0}
+    assert grid[0] == {"output_shaft.crack_depth_mm": 0.1, "output_shaft.length_mm": 100.0}
+    assert grid[2] == {"output_shaft.crack_depth_mm": 0.1, "output_shaft.length_mm": 300.0}
+    assert grid[3] == {"output_shaft.crack_depth_mm": 0.2, "output_shaft.length_mm": 100.0}
 
 
 @pytest.mark.parametrize("text, fragment", [
@@ -66,7 +66,7 @@ def test_bad_vary_is_one_input_error(schema, text, fragment):
 
 def test_same_key_twice_is_refused(schema):
     with pytest.raises(InputError, match="only once"):
-        build_points(["cracks.depth_mm=0.1,0.2", "cracks.depth_mm=0.3,0.4"], None, schema)
+        build_points(["output_shaft.crack_depth_mm=0.1,0.2", "output_shaft.crack_depth_mm=0.3,0.4"], None, schema)
 
 
 def test_nothing_to_vary_is_refused(schema):
@@ -95,14 +95,14 @@ def test_sample_file_rows_and_bad_cell_line(schema, tmp_path):
 def test_samples_combine_with_a_grid(schema, tmp_path):
     samples = tmp_path / "s.csv"
     samples.write_text("output_shaft.inner_diameter_mm\n30\n40\n")
-    keys, points = build_points(["cracks.depth_mm=0.1,0.2,0.3"], samples, schema)
-    assert keys == ["output_shaft.inner_diameter_mm", "cracks.depth_mm"]
-    assert len(points) == 6 and points[4] == {"output_shaft.inner_diameter_mm": 40.0, "cracks.depth_mm": 0.2}
+    keys, points = build_points(["output_shaft.crack_depth_mm=0.1,0.2,0.3"], samples, schema)
+    assert keys == ["output_shaft.inner_diameter_mm", "output_shaft.crack_depth_mm"]
+    assert len(points) == 6 and points[4] == {"output_shaft.inner_diameter_mm": 40.0, "output_shaft.crack_depth_mm": 0.2}
 
 
 def _record(index, a, fea, published, corrected, status="ok"):
     return {"index": index, "status": status, "error": None if status == "ok" else "InputError: too deep",
-            "inputs": {"cracks.depth_mm": a}, "dofs": 1000,
+            "inputs": {"output_shaft.crack_depth_mm": a}, "dofs": 1000,
             "fea": {} if status != "ok" else {"flexibility_rad_per_Nmm": {"value": fea, "unit": "rad/(N mm)",
                                                                            "uncertainty": 0.01 * fea}},
             "analytic": {} if status != "ok" else {"flexibility_rad_per_Nmm": {
@@ -111,19 +111,19 @@ def _record(index, a, fea, published, corrected, status="ok"):
 
 def test_tidy_rows_relative_errors_and_named_departures():
     records = [_record(0, 0.1, 2.0, 1.0, 2.02), _record(1, 0.2, 4.0, 2.0, 4.4), _record(2, 20.0, 0, 0, 0, "failed")]
-    frame = records_frame(records, ["cracks.depth_mm"])
+    frame = records_frame(records, ["output_shaft.crack_depth_mm"])
     assert len(frame) == 3 and list(frame["point"]) == [0, 1, 2]
-    # (analytic - fea) / |fea|, exact in binary for these values up to one rounding
-    assert frame.loc[0, "published_rel_error"] == pytest.approx(-0.5, rel=1e-12)
-    assert frame.loc[1, "corrected_rel_error"] == pytest.approx(0.1, rel=1e-12)
+    # (fea - ref) / |ref|, the closed form as reference (validate's sign): (2 - 1)/1 and (4 - 4.4)/4.4
+    assert frame.loc[0, "published_rel_error"] == pytest.approx(1.0, rel=1e-12)
+    assert frame.loc[1, "corrected_rel_error"] == pytest.approx(-0.4 / 4.4, rel=1e-12)
     assert frame.loc[2, "status"] == "failed" and pd.isna(frame.loc[2, "quantity"])
     assert math.isnan(frame.loc[2, "fea"])
-    lines = departures(frame, ["cracks.depth_mm"], tolerance=0.05)
+    lines = departures(frame, ["output_shaft.crack_depth_mm"], tolerance=0.05)
     published, corrected = lines
     assert "published departs by more than 0.05 at 2/2 points" in published
-    assert "cracks.depth_mm in [0.1, 0.2]" in published
+    assert "output_shaft.crack_depth_mm in [0.1, 0.2]" in published
     assert "corrected departs by more than 0.05 at 1/2 points" in corrected
-    assert "cracks.depth_mm in [0.2, 0.2]" in corrected and "worst +0.1 at point 1" in corrected
+    assert "output_shaft.crack_depth_mm in [0.2, 0.2]" in corrected and "worst -0.0909 at point 1" in corrected
 
 
 def test_plots_one_per_quantity_and_varied_input(tmp_path):
@@ -133,11 +133,11 @@ def test_plots_one_per_quantity_and_varied_input(tmp_path):
         rec = _record(index, a, 1.0 + a + d / 100, 1.0, 1.1)
         rec["inputs"]["output_shaft.inner_diameter_mm"] = d
         records.append(rec)
-    varied = ["cracks.depth_mm", "output_shaft.inner_diameter_mm"]
+    varied = ["output_shaft.crack_depth_mm", "output_shaft.inner_diameter_mm"]
     frame = records_frame(records, varied)
     grid = plot_sweep(frame, varied, tmp_path / "grid")
     scatter = plot_sweep(frame, varied, tmp_path / "samples", lines=False)
-    names = ["flexibility_rad_per_Nmm__vs__cracks_depth_mm.png",
+    names = ["flexibility_rad_per_Nmm__vs__output_shaft_crack_depth_mm.png",
              "flexibility_rad_per_Nmm__vs__output_shaft_inner_diameter_mm.png"]
     assert [p.name for p in grid] == names and [p.name for p in scatter] == names
     assert all(p.stat().st_size > 10_000 for p in grid + scatter)   # a drawn figure, not an empty canvas

@@ -60,10 +60,10 @@ def test_point_is_cached_and_refusals_are_recorded(tmp_path):
     again = run_point(spec, key, str(tmp_path), closed_form_probe)
     assert again["cached"] is True and again["computed_at"] == first["computed_at"]
 
-    bad = PointSpec("shaft-torsion", (("cracks.depth_mm", 12.5),), base)   # the wall is (70 - 45)/2 = 12.5 mm
+    bad = PointSpec("shaft-torsion", (("output_shaft.crack_depth_mm", 12.5),), base)   # the wall is (70 - 45)/2 = 12.5 mm
     record = run_point(bad, point_key(bad, closed_form_probe), str(tmp_path), closed_form_probe)
     assert record["status"] == "failed" and record["fea"] == {}
-    assert "cracks.depth_mm = 12.5" in record["error"] and "output_shaft wall" in record["error"]
+    assert "output_shaft.crack_depth_mm = 12.5" in record["error"] and "output_shaft wall" in record["error"]
     stored = json.loads((tmp_path / f"{point_key(bad, closed_form_probe)}.json").read_text())
     assert stored["error"] == record["error"]   # a deterministic refusal is cached like a result
 

@@ -17,9 +17,11 @@ import math
 from dataclasses import dataclass
 
 from ...errors import InputError
+from ...registry import STUDIES
 from .recording import Recording, RecordingKind
 
-FEA_STUDY = {"output_shaft": "shaft-torsion", "flexspline_cup": "cup-torsion", "ewg_ring": "ring-compression"}
+# recording specimen -> the study that models it (registry)
+FEA_STUDY = {s.specimen: s.name for s in STUDIES.values() if s.specimen}
 
 
 @dataclass(frozen=True)
@@ -101,31 +103,25 @@ def fea_baseline(rec: Recording, params) -> Baseline:
         result = run_study(study, params, quick=True)
     except ModuleNotFoundError as exc:
         raise InputError("--baseline", "fea", f"the FEA study {study!r} is not available in this build ({exc})") from None
-    compliance, name = _compliance_from(result, rec.kind)
-    key = "delta_cd_mm" if rec.kind is RecordingKind.RING_COMPRESSION else name
-    q = result[key]
+    compliance, name = _compliance_from(result)
+    q = result[STUDIES[study].flexibility.name]
     unc = (q.uncertainty or 0.0) / abs(q.value)     # relative GCI discretization uncertainty, in quadrature
     geometry = ring_geometry(params) if rec.kind is RecordingKind.RING_COMPRESSION else {}
     return Baseline(compliance, "rad/(N*mm)" if rec.kind is RecordingKind.TORSION else "mm/N",
                     math.hypot(rec.baseline_uncertainty, unc), f"FEA {study} (quick mesh), {name}", geometry)
 
 
-def _compliance_from(result, kind: RecordingKind) -> tuple[float, str]:
-    """The study's linear compliance: ring = delta_cd_mm / reference_force_N (meta); torsion = the
-    quantity in rad/(N*mm) (a flexibility), else 1/stiffness in N*mm/rad."""
-    q = result.quantities
-    if kind is RecordingKind.RING_COMPRESSION:
-        force = result.meta.get("reference_force_N")
-        if "delta_cd_mm" in q and force:
-            return q["delta_cd_mm"].value / float(force), "delta_cd_mm / reference_force_N"
-    else:
-        for name, quantity in q.items():
-            unit = quantity.unit.replace(" ", "").replace("*", "")
-            if unit in ("rad/(Nmm)", "rad/N/mm", "rad/Nmm"):
-                return quantity.value, name
-        for name, quantity in q.items():
-            unit = quantity.unit.replace(" ", "").replace("*", "")
-            if unit in ("Nmm/rad",):
-                return 1.0 / quantity.value, name
+def _compliance_from(result) -> tuple[float, str]:
+    """The study's linear compliance, its registry ``flexibility`` quantity: a torsion study's flexibility
+    in rad/(N*mm); the ring's delta_cd_mm divided by the force the study applied (its ``force_key``)."""
+    spec = STUDIES[result.study]
+    q = spec.flexibility
+    if q is not None and q.name in result.quantities:
+        value = result.quantities[q.name].value
+        if spec.force_key is None:
+            return value, q.name
+        force = spec.applied_force_N(result.meta)
+        if force:
+            return value / force, f"{q.name} / {spec.force_key}"
     raise InputError("--baseline", "fea", f"study {result.study!r} reports no linear compliance "
-                     f"(quantities: {', '.join(q)})")
+                     f"(quantities: {', '.join(result.quantities)})")

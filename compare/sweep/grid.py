@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import InputError
+from ...params import REMOVED_KEYS
 
 VARY_FORMS = "KEY=START:STOP:N (N >= 1 evenly spaced values) or KEY=v1,v2,..."
 
@@ -35,6 +36,8 @@ def schema_kinds(base: dict) -> dict[str, type]:
 
 
 def _check_key(key: str, kinds: dict[str, type], where: str) -> type:
+    if key in REMOVED_KEYS:
+        raise InputError(where, key, REMOVED_KEYS[key])
     if key not in kinds:
         sections = sorted({k.partition(".")[0] for k in kinds})
         section = key.partition(".")[0]

@@ -2,8 +2,9 @@
 input, and a Markdown summary naming where the closed forms depart from FEA by more than a tolerance.
 
 Tidy means one row per (point, FEA quantity): the varied inputs, the FEA value and its uncertainty,
-the published and corrected closed forms beside it, and their relative errors
-``(analytic - fea) / |fea|``. A failed point is one row with its error message and no quantity.
+the published and corrected closed forms beside it, and their relative errors ``(fea - ref) / |ref|``
+(the closed form is the reference, as in validate's checks). A failed point is one row with its error
+message and no quantity.
 """
 from __future__ import annotations
 
@@ -21,9 +22,10 @@ MAX_LISTED = 20      # departures listed one by one in the Markdown summary
 
 
 def _rel(analytic, fea) -> float:
-    if analytic is None or fea is None or not math.isfinite(fea) or fea == 0:
+    """(fea - ref) / |ref|, the closed form as reference: the relative error validate reports."""
+    if analytic is None or fea is None or not math.isfinite(float(analytic)) or float(analytic) == 0:
         return math.nan
-    return (float(analytic) - fea) / abs(fea)
+    return (fea - float(analytic)) / abs(float(analytic))
 
 
 def records_frame(records: list[dict], varied: list[str]) -> pd.DataFrame:

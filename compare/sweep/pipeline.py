@@ -22,9 +22,10 @@ from typing import Callable, Iterator
 from ...errors import InputError, RangeWarning, StageError
 from ...params import default_dict, load_params, params_from_dict
 from ...cache import ResultCache
+from ...registry import study as registered
 from .grid import build_points
 from .outputs import plot_sweep, records_frame, departures, write_markdown, write_records, write_table
-from .task import CRACK_KEY, PointSpec, TaskFn, point_key, run_point, task_name
+from .task import PointSpec, TaskFn, point_key, run_point, task_name
 
 POLL_S = 0.1          # how often the driver looks for finished points
 HEARTBEAT_S = 30.0    # longest silence on the terminal while points are running
@@ -176,7 +177,7 @@ def run_sweep(study: str, *, vary: list[str], params_path: str | Path | None = N
     # refused in one line before any RangeWarning of the base parameters is printed.
     varied, points = build_points(list(vary), Path(sample_file) if sample_file else None, default_dict())
     base = load_params(params_path).to_dict()
-    seed_crack = CRACK_KEY in varied
+    seed_crack = registered(study).crack_key in varied   # only a sweep over the study's own crack meshes one
     specs = [PointSpec(study, tuple(point.items()), base, quick, seed_crack) for point in points]
     refuse_impossible(specs, "--samples" if sample_file and not vary else "--vary")
     keys = [point_key(spec, task) for spec in specs]

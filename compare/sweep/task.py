@@ -19,8 +19,9 @@ from datetime import datetime, timezone
 from pathlib import Path
 from typing import Callable
 
-from ...errors import StrainwaveError
 from ...cache import ResultCache, case_key
+from ...errors import StrainwaveError
+from ...registry import STUDIES
 
 # A task computes the quantities of one point: (study, params, quick) -> a ``StudyResult.to_dict()``-shaped
 # dict (``{"quantities": {name: {"value", "unit", "uncertainty"}}, "mesh": {"dofs": ...} | None}``).
@@ -28,33 +29,9 @@ from ...cache import ResultCache, case_key
 # exercise the Dask machinery without meshing). It must be a module-level function, so workers can import it.
 TaskFn = Callable[[str, object, bool], dict]
 
-# Which closed form of ``analytic_summary(params)["checks"]`` (a {unit, published, corrected} entry) stands
-# beside each FEA quantity of a study; the FEA names are the ones ``compare/validate`` reads too.
-# A quantity missing here gets no analytic column.
-ANALYTIC_KEYS: dict[str, dict[str, str]] = {
-    "shaft-torsion": {"flexibility_rad_per_Nmm": "shaft.flexibility",
-                      "delta_flexibility_rad_per_Nmm": "shaft.crack_compliance"},
-    "cup-torsion": {"flexibility_rad_per_Nmm": "cup.flexibility",
-                    "delta_flexibility_rad_per_Nmm": "cup.crack_compliance"},
-    "bearing-ring": {"radial_compliance_mm_per_N": "bearing.radial_compliance",
-                     "delta_radial_compliance_mm_per_N": "bearing.crack_compliance"},
-    "ring-compression": {"delta_cd_mm": "ring.delta_cd", "delta_ab_mm": "ring.delta_ab",
-                         "sigma_D_outer_MPa": "ring.sigma_max", "sigma_B_outer_MPa": "ring.sigma_min"},
-}
-
-# The closed forms are evaluated under the FEA's load conditions: the cup FEA load is static and uniform,
-# so seed 000's load factors K_u, K_d (audit 17) are set to 1 for its crack compliance, as validate does.
-ANALYTIC_OVERRIDES: dict[str, dict[str, float]] = {
-    "cup-torsion": {"cracks.stress_nonuniformity": 1.0, "cracks.dynamic_load_factor": 1.0},
-}
-
-# Keys under which a study's meta may state the force it applied (N); the ring closed forms are linear in
-# it and are given at the thin-ring force for W0 (their ``force_N``), so they are scaled to the FEA force.
-FORCE_KEYS = ("force_N", "applied_force_N", "load_N", "F_N")
-
-# The varied key whose value is the seeded crack: only a sweep over it meshes a crack.
-CRACK_KEY = "cracks.depth_mm"
-
+# Which closed form stands beside each FEA quantity, the parameters under which it is evaluated and the
+# force it scales with are the registry's (``strainwave/registry.py``), the same pairing validate reads.
+# A quantity without a closed form there gets no analytic column.
 
 @dataclass(frozen=True)
 class PointSpec:
@@ -64,7 +41,7 @@ class PointSpec:
     values: tuple[tuple[str, object], ...]    # the varied dotted keys and their values at this point
     base: dict = field(hash=False)              # Params.to_dict() of the sweep's base parameters
     quick: bool = False
-    seed_crack: bool = False                    # mesh a crack of depth cracks.depth_mm
+    seed_crack: bool = False                    # mesh the study's crack, of the depth under its crack key
 
     @property
     def inputs(self) -> dict:
@@ -115,25 +92,18 @@ def closed_form_probe(study: str, params, quick: bool, *, delay_s: float = 0.0) 
         "value": compliance, "unit": "rad/(N mm)", "uncertainty": 0.0}}, "mesh": None}
 
 
-def _applied_force_N(meta: dict) -> float | None:
-    for key in FORCE_KEYS:
-        value = meta.get(key)
-        if isinstance(value, (int, float)) and not isinstance(value, bool) and value > 0:
-            return float(value)
-    return None
-
-
 def analytic_beside(study: str, params, names, meta: dict | None = None) -> dict:
     """{quantity: {key, published, corrected}} from ``analytic_summary`` for the FEA quantities ``names``."""
-    table = ANALYTIC_KEYS.get(study, {})
+    spec = STUDIES[study]
+    table = spec.checked
     wanted = [name for name in names if name in table]
     if not wanted:
         return {}
     from ...analytic.summary import analytic_summary
-    for dotted, value in ANALYTIC_OVERRIDES.get(study, {}).items():
+    for dotted, value in spec.analytic_overrides:
         params = params.with_value(dotted, value)
     checks = analytic_summary(params).get("checks", {})
-    force = _applied_force_N(meta or {})
+    force = spec.applied_force_N(meta or {})
     out = {}
     for name in wanted:
         entry = checks.get(table[name]) or {}
@@ -150,7 +120,7 @@ def _compute(spec: PointSpec, task: TaskFn | None) -> dict:
         warnings.simplefilter("always")
         params = params_from_dict(spec.merged())      # InputError here: the point is impossible
         if task is None:
-            crack = params.cracks.depth_mm if spec.seed_crack else None
+            crack = params.crack_depth_mm(STUDIES[spec.study].crack_key) if spec.seed_crack else None
             result = fea_task(spec.study, params, spec.quick, crack_depth_mm=crack)
         else:
             result = task(spec.study, params, spec.quick)

@@ -5,18 +5,19 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ...registry import STUDIES
 from .checks import REQUIRED_IDS, Check, not_evaluated
 from .crack_scaling import PowerFit, fit_power_law
 from .fea_book import FeaBook, Sweep
-from .plan import Plan
+from .plan import COMPONENT_STUDY, Plan
 from ...analytic import tube_crack
-from .ring_checks import applied_force_N, ring_checks
+from .ring_checks import ring_checks
 from .torsion_checks import (FLEX_UNIT, bearing_closed_crack_check, bearing_crack_curve, bearing_radial_compliance, crack_check,
                              cup_crack_curve, cup_flexibility, gear_stiffness, mu_gap, shaft_crack_curve,
                              shaft_flexibility)
 
-DELTA_NAMES = {"shaft": "delta_flexibility_rad_per_Nmm", "cup": "delta_flexibility_rad_per_Nmm",
-               "bearing": "delta_radial_compliance_mm_per_N"}
+# component -> the quantity that is its crack's added compliance (registry)
+DELTA_NAMES = {c: STUDIES[s].crack_delta.name for c, s in COMPONENT_STUDY.items()}
 
 
 @dataclass(frozen=True)
@@ -44,7 +45,7 @@ def _curves(params, s000: dict, book: FeaBook, plan: Plan):
     """component -> (depth -> {variant: closed form}) under the FEA's load conditions."""
     r_m = s000.get("r_m_mm", {}).get("chosen", 0.5 * params.flexspline_cup.pitch_diameter_mm)
     unit_params = params.with_value("cracks.stress_nonuniformity", 1.0).with_value("cracks.dynamic_load_factor", 1.0)
-    F_r = applied_force_N(book.meta(plan.headline["bearing"].label)) or s000.get("F_r_N", 1.0)
+    F_r = STUDIES[COMPONENT_STUDY["bearing"]].applied_force_N(book.meta(plan.headline["bearing"].label)) or s000.get("F_r_N", 1.0)
     return {"shaft": lambda a: shaft_crack_curve(params, a),
             "cup": lambda a: cup_crack_curve(unit_params, a, r_m),
             "bearing": lambda a: bearing_crack_curve(params, a, F_r)}
@@ -111,12 +112,13 @@ def build_checks(book: FeaBook, plan: Plan, summary: dict, params) -> CheckSet:
             note += (f"; the bore raises the outer-fibre shear stress by {hollow:.3f} and so a shallow crack's "
                      f"compliance by {hollow ** 2:.3f} over the solid-bar forms; G = E/2(1+nu) as the FEA")
         if component == "bearing":
-            F_r = applied_force_N(book.meta(plan.headline["bearing"].label)) or s000.get("F_r_N", 1.0)
+            F_r = STUDIES[COMPONENT_STUDY["bearing"]].applied_force_N(book.meta(plan.headline["bearing"].label)) \
+                or s000.get("F_r_N", 1.0)
             checks.append(bearing_closed_crack_check(book, case_labels, params, F_r))
             continue
         checks.append(crack_check(check_id, quantity, unit, sweep, curves[component], allowances, note,
                                   {"fea": "FEA " + ", ".join(case_labels), "analytic": "seed 000"},
-                                  params.cracks.depth_mm))
+                                  params.crack_depth_mm(STUDIES[COMPONENT_STUDY[component]].crack_key)))
     checks += ring_checks(book, plan.ring.label, refs, params)
     checks.append(gear_stiffness(book, labels, s000, params))
     present = {c.id for c in checks}

@@ -13,9 +13,12 @@ import math
 
 import numpy as np
 
+from ...registry import STUDIES
 from .runner import Case
 
-COMPONENT_STUDY = {"shaft": "shaft-torsion", "cup": "cup-torsion", "bearing": "bearing-ring"}
+# component -> its study, from the registry (the crack-bearing studies)
+COMPONENT_STUDY = {s.component: s.name for s in STUDIES.values() if s.component}
+RING_STUDY = "ring-compression"
 
 
 @dataclass(frozen=True)
@@ -89,9 +92,10 @@ def make_plan(params, *, quick: bool) -> Plan:
     --quick leaves it out: its headline case is the shallower of its two depths (the uncracked
     flexibility is solved in every case), and the crack checks use the sweep anyway.
     """
-    depth = params.cracks.depth_mm
+    from ...fea.studies import with_crack
     headline, sweeps = {}, {}
     for c, deepest in sweep_limits_mm(params).items():
+        depth = params.crack_depth_mm(STUDIES[COMPONENT_STUDY[c]].crack_key)
         depths = sweep_depths_mm(deepest, 2 if quick else FULL_SWEEP_POINTS)
         if quick:
             # One case per component, at the deepest crack (where the crack compliance stands out of the
@@ -103,4 +107,7 @@ def make_plan(params, *, quick: bool) -> Plan:
             headline[c] = Case(f"{c}-a{depth:g}", COMPONENT_STUDY[c], depth)
             sweep_h = sweep_mesh_size_mm(params, c)
             sweeps[c] = tuple(Case(f"{c}-a{d:g}", COMPONENT_STUDY[c], d, sweep_h) for d in depths if d > depth)
-    return Plan(headline, sweeps, Case("ring", "ring-compression", None))
+    plan = Plan(headline, sweeps, Case("ring", RING_STUDY, None))
+    for case in plan.all_cases():   # every crack checked against its own wall before any mesh is built
+        with_crack(case.study, params, case.crack_depth_mm)
+    return plan

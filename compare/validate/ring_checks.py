@@ -17,20 +17,10 @@ from __future__ import annotations
 
 import math
 
+from ...registry import STUDIES
 from .checks import Check, evaluate, fea_tolerance, not_evaluated
 from .fea_book import FeaBook
-
-# Keys under which a ring study's meta may state the force it applied per diametral load (N).
-FORCE_KEYS = ("reference_force_N", "force_N", "applied_force_N", "load_N", "F_N")
-
-
-def applied_force_N(meta: dict) -> float | None:
-    for key in FORCE_KEYS:
-        value = meta.get(key)
-        if isinstance(value, (int, float)) and value > 0:
-            return float(value)
-    return None
-
+from .plan import RING_STUDY
 
 def _scaled(ref: dict, factor: float) -> dict[str, float]:
     return {k: float(ref[k]) * factor for k in ("published", "corrected") if isinstance(ref.get(k), (int, float))}
@@ -75,7 +65,7 @@ def ring_checks(book: FeaBook, label: str, refs: dict, params) -> list[Check]:
     """All six ring checks from the ring case ``label`` and the analytic reference values ``refs``."""
     meta = book.meta(label)
     F_ref = refs.get("ring.delta_cd", {}).get("force_N")
-    F_fea = applied_force_N(meta)
+    F_fea = STUDIES[RING_STUDY].applied_force_N(meta)
     # Deflections are at the force the FEA applied; stresses at the prescribed W0 (both sides of the
     # comparison state them that way), so only the deflections are rescaled.
     load_factor = 1.0 if F_fea is None or not F_ref else F_fea / F_ref

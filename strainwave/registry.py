@@ -1,0 +1,157 @@
+"""The one registry of FEA studies: each study is declared here once, and every stage reads it.
+
+A ``Study`` names its CLI name, the module whose ``run`` solves it, the part it meshes, the component
+whose crack it can seed (the dotted parameter key of that crack, or none), its quantities (name, unit,
+meaning, and the ``analytic_summary(params)["checks"]`` entry each is compared with, published and
+corrected), the key under which its result states the force its closed forms scale with, the
+parameter overrides under which its closed forms are evaluated (the FEA's load conditions) and the
+VTU fields it writes. Readers: the CLI (``STUDY_NAMES``), ``fea/studies.run_study``, validate's plan and
+checks, diagnose's FEA baseline and the sweep. Adding a study is its module plus one entry here.
+
+Pure declarations: importing this module does no work and imports nothing heavy.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .errors import InputError
+
+__all__ = ["QuantitySpec", "Study", "STUDIES", "STUDY_NAMES", "CRACK_KEYS", "FLEX_UNIT", "study",
+           "study_of_component", "crack_key_of"]
+
+FLEX_UNIT = "rad/(N*mm)"
+# Every 3D study writes the same nodal fields (fea/fields.py).
+SOLID_FIELDS = ("displacement_mm", "von_mises_MPa", "stress_MPa")
+
+
+@dataclass(frozen=True)
+class QuantitySpec:
+    """One number a study reports; ``check`` is the analytic summary's check id it stands beside."""
+
+    name: str                      # units in the name
+    unit: str
+    meaning: str
+    check: str | None = None       # key of analytic_summary(params)["checks"], or None (no closed form)
+
+    def __post_init__(self):
+        if not self.name or not self.unit:
+            raise ValueError(f"quantity {self.name!r}: name and unit are required")
+
+
+@dataclass(frozen=True)
+class Study:
+    name: str                                  # kebab-case CLI name
+    module: str                                # module whose run(params, ...) solves it
+    part: str                                  # geometry PartName value it meshes
+    component: str | None                      # validate's component name ("shaft", ...); None: no crack
+    crack_key: str | None                      # dotted params key of the crack it seeds; None: refuses a crack
+    quantities: tuple[QuantitySpec, ...]
+    force_key: str | None = None               # result field (meta key) with the force the closed forms scale to
+    analytic_overrides: tuple[tuple[str, float], ...] = ()   # params under which its closed forms are evaluated
+    vtu_fields: tuple[str, ...] = SOLID_FIELDS
+    specimen: str | None = None                # diagnose recording specimen this study models
+
+    def __post_init__(self):
+        if (self.component is None) != (self.crack_key is None):
+            raise ValueError(f"study {self.name}: component and crack_key go together")
+        names = [q.name for q in self.quantities]
+        if len(set(names)) != len(names):
+            raise ValueError(f"study {self.name}: duplicate quantity names")
+
+    def quantity(self, name: str) -> QuantitySpec:
+        for q in self.quantities:
+            if q.name == name:
+                return q
+        raise KeyError(f"study {self.name} has no quantity {name!r}")
+
+    def applied_force_N(self, meta: dict) -> float | None:
+        """The force the study states it applied (under ``force_key``), or None when it states none."""
+        value = meta.get(self.force_key) if self.force_key else None
+        if isinstance(value, (int, float)) and not isinstance(value, bool) and value > 0:
+            return float(value)
+        return None
+
+    @property
+    def checked(self) -> dict[str, str]:
+        """{FEA quantity name: analytic check id} for the quantities that have a closed form."""
+        return {q.name: q.check for q in self.quantities if q.check}
+
+    @property
+    def flexibility(self) -> QuantitySpec | None:
+        """The study's uncracked linear compliance (what diagnose's FEA baseline reads), if it has one."""
+        for q in self.quantities:
+            if q.check in ("shaft.flexibility", "cup.flexibility", "bearing.radial_compliance", "ring.delta_cd"):
+                return q
+        return None
+
+    @property
+    def crack_delta(self) -> QuantitySpec | None:
+        """The quantity that is the crack's added compliance (cracked - uncracked), if the study has a crack."""
+        for q in self.quantities:
+            if q.check and q.check.endswith(".crack_compliance"):
+                return q
+        return None
+
+
+def _flex(prefix: str, what: str) -> tuple[QuantitySpec, ...]:
+    return (
+        QuantitySpec("flexibility_rad_per_Nmm", FLEX_UNIT, f"torsional flexibility of the uncracked {what}",
+                     f"{prefix}.flexibility"),
+        QuantitySpec("cracked_flexibility_rad_per_Nmm", FLEX_UNIT, f"torsional flexibility of the cracked {what}"),
+        QuantitySpec("delta_flexibility_rad_per_Nmm", FLEX_UNIT, f"added flexibility of the {what}'s crack",
+                     f"{prefix}.crack_compliance"),
+    )
+
+
+STUDIES: dict[str, Study] = {s.name: s for s in (
+    Study("shaft-torsion", "strainwave.fea.shaft_torsion", "output-shaft", "shaft", "output_shaft.crack_depth_mm",
+          _flex("shaft", "output shaft"), specimen="output_shaft"),
+    # The cup FEA load is static and uniform, so seed 000's load factors K_u, K_d (audit 17) are 1 for it.
+    Study("cup-torsion", "strainwave.fea.cup_torsion", "flexspline-cup", "cup", "flexspline_cup.root_crack_depth_mm",
+          _flex("cup", "flexspline cup"), specimen="flexspline_cup",
+          analytic_overrides=(("cracks.stress_nonuniformity", 1.0), ("cracks.dynamic_load_factor", 1.0))),
+    Study("bearing-ring", "strainwave.fea.bearing_ring", "wg-bearing-ring", "bearing",
+          "wave_generator.bearing_crack_depth_mm", (
+              QuantitySpec("radial_compliance_mm_per_N", "mm/N", "radial compliance of the uncracked inner ring",
+                           "bearing.radial_compliance"),
+              QuantitySpec("cracked_radial_compliance_mm_per_N", "mm/N", "radial compliance of the cracked ring"),
+              QuantitySpec("delta_radial_compliance_mm_per_N", "mm/N", "added radial compliance of the race crack",
+                           "bearing.crack_compliance"),
+          ), force_key="radial_force_N"),
+    # The ring closed forms are given at the thin-ring force for W0; they scale linearly to the FEA's force.
+    Study("ring-compression", "strainwave.fea.ring_compression", "ewg-flexspline-ring", None, None, (
+        QuantitySpec("delta_cd_mm", "mm", "diameter shortening along the load line CD", "ring.delta_cd"),
+        QuantitySpec("delta_ab_mm", "mm", "diameter growth across the load line AB", "ring.delta_ab"),
+        QuantitySpec("sigma_D_outer_MPa", "MPa", "hoop stress at the outer fibre under the load (D)",
+                     "ring.sigma_max"),
+        QuantitySpec("sigma_B_outer_MPa", "MPa", "hoop stress at the outer fibre at the free point (B)",
+                     "ring.sigma_min"),
+        QuantitySpec("tooth_influence", "1", "K_delta: toothed over smooth rim outer-fibre stress range",
+                     "ring.tooth_influence"),
+        QuantitySpec("stress_concentration", "1", "K_sigma: toothed root over smooth rim stress range",
+                     "ring.stress_concentration"),
+    ), force_key="reference_force_N", specimen="ewg_ring"),
+)}
+
+STUDY_NAMES = tuple(STUDIES)
+# Every crack a parameter file can seed, one per crack-bearing component.
+CRACK_KEYS = tuple(s.crack_key for s in STUDIES.values() if s.crack_key)
+
+
+def study(name: str) -> Study:
+    """The registry entry of ``name``; InputError (exit 2) naming the known studies otherwise."""
+    try:
+        return STUDIES[name]
+    except KeyError:
+        raise InputError("study", name, f"must be one of {', '.join(STUDIES)}") from None
+
+
+def study_of_component(component: str) -> Study:
+    for s in STUDIES.values():
+        if s.component == component:
+            return s
+    raise KeyError(component)
+
+
+def crack_key_of(component: str) -> str:
+    return study_of_component(component).crack_key
