@@ -17,8 +17,11 @@ $(STAMP): pyproject.toml
 	$(BIN)/python -m pip install --quiet -e '.[test]'
 	touch $(STAMP)
 
+# Both shipped parameter files must pass with the same coefficients: the embedded default (the seeds'
+# examples) and strainwave/data/second_gear.toml (another module, tooth count, rim ratio and shaft bore).
 validate: $(STAMP)
 	$(BIN)/strainwave validate --out reports/validate
+	$(BIN)/strainwave validate --params strainwave/data/second_gear.toml --out reports/validate-second-gear
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q tests

@@ -9,7 +9,7 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass
 
-from . import crack_series, torsion
+from . import bearing_stiffness, crack_series, torsion
 from .seed000 import seed000_summary
 from .seed003 import seed003_summary
 from .variant import Variant
@@ -56,6 +56,11 @@ def audit_records(params, s000: dict | None = None, s003: dict | None = None) ->
     d_e = shaft.outer_diameter_mm - 2 * a
     t = s000["seed_table"]
     lsum_c = s000["lambda_sum"]["corrected"]
+    kg0 = torsion.radial_stiffness_implied_N_per_mm(
+        t["lambda_H0"], params.gear.force_coefficient, cup.pitch_diameter_mm, params.gear.wave_number,
+        params.gear.radial_deformation_mm, params.gear.gear_ratio)
+    hertz_args = (*params.wave_generator.contact_semi_axes_mm, params.material.youngs_modulus_MPa,
+                  params.material.poisson_ratio)
     table_add = (t["delta_lambda_H"] + t["delta_lambda_f"] + t["delta_lambda_so"]) / t["lambda_sum0"]
     r = [
         _rec(1, "003", "eqs 10, 11", "sigma_m and sigma_a printed as sigma_max + sigma_min (no /2, sign dropped); "
@@ -87,7 +92,7 @@ def audit_records(params, s000: dict | None = None, s003: dict | None = None) ->
         _rec(8, "000", "K_G = K_G0 - dK_G", "stiffnesses subtracted; a crack adds compliance in series",
              "published K_G = {p:.4g} N/mm (negative), series K_G = {c:.6g} N/mm",
              {"p": s000["K_G_N_per_mm"]["published"], "c": s000["K_G_N_per_mm"]["corrected"]},
-             "bearing.radial_compliance"),
+             "bearing.crack_compliance"),
         _rec(9, "000", "dlambda_f", "K_uK_d not squared and 2 pi instead of 4 pi",
              "published/integral = 2/(K_uK_d) = {q:.4f}; {p:.3g} vs {c:.3g} rad/(N mm)",
              {"q": 2.0 / (Ku * Kd), "p": s000["delta_lambda_f"]["published"], "c": s000["delta_lambda_f"]["corrected"]},
@@ -104,11 +109,13 @@ def audit_records(params, s000: dict | None = None, s003: dict | None = None) ->
              "published {p:.4g} vs hollow {c:.4g} rad/(N mm)",
              {"p": s000["lambda_so0"]["published"], "c": s000["lambda_so0"]["corrected"]}, "shaft.flexibility"),
         _rec(13, "000", "example inputs", "K_G0 and r_m not given; the table's lambda_so0 needs L_s = 110 mm, "
-             "not the stated 200 mm", "implied L_s = {ls:.2f} mm; implied K_G0 = {kg:.4g} N/mm",
-             {"ls": s000["lambda_so0"]["L_s_implied_by_table_mm"],
-              "kg": torsion.radial_stiffness_implied_N_per_mm(
-                  t["lambda_H0"], params.gear.force_coefficient, cup.pitch_diameter_mm, params.gear.wave_number,
-                  params.gear.radial_deformation_mm, params.gear.gear_ratio)}, "shaft.flexibility"),
+             "not the stated 200 mm; the implied K_G0 is softer than one ball's two Hertz contacts at the seed's "
+             "own ellipse a' x b' (no model of the seed reaches it: FEA cannot decide, reported as information)",
+             "implied L_s = {ls:.2f} mm; implied K_G0 = {kg:.4g} N/mm vs one ball (two Hertz contacts) {kb:.4g} "
+             "N/mm = {nb:.3f} ball",
+             {"ls": s000["lambda_so0"]["L_s_implied_by_table_mm"], "kg": kg0,
+              "kb": bearing_stiffness.ball_pair_stiffness_N_per_mm(*hertz_args),
+              "nb": bearing_stiffness.implied_ball_pairs(kg0, *hertz_args)}, None),
         _rec(14, "000", "K_HD", "printed stiffness 1e3 too small", "1/lambda_sum0 / printed = {f:.2f}",
              {"f": s000["K_HD"]["printed_by_seed"]["slip_factor"]}, "gear.stiffness"),
         _rec(15, "000", "shares", "percent shares 28/19/53 do not follow from the table",

@@ -6,6 +6,7 @@ re-deriving formulas.
 """
 from __future__ import annotations
 
+from . import bearing_stiffness
 from .seed000 import seed000_summary
 from .seed003 import seed003_summary
 
@@ -25,6 +26,18 @@ CHECK_FUNCTIONS = {
     "ring.stress_concentration": ("fatigue.normal_safety_factor", "tooth_factors.stress_concentration"),
     "gear.stiffness": ("torsion.drive_stiffness_Nmm_per_rad", "torsion.total_flexibility"),
 }
+
+
+def bearing_hertz_info(params, K_G0_N_per_mm: float) -> dict:
+    """The seed's K_G0 next to the Hertz stiffness of its own contact ellipse (analytic/bearing_stiffness.py)."""
+    wg, mat = params.wave_generator, params.material
+    a, b = wg.contact_semi_axes_mm
+    E, nu = mat.youngs_modulus_MPa, mat.poisson_ratio
+    return {"hertz_contact_stiffness_N_per_mm": bearing_stiffness.hertz_contact_stiffness_N_per_mm(a, b, E, nu),
+            "ball_pair_stiffness_N_per_mm": bearing_stiffness.ball_pair_stiffness_N_per_mm(a, b, E, nu),
+            "implied_ball_pairs": bearing_stiffness.implied_ball_pairs(K_G0_N_per_mm, a, b, E, nu),
+            "method": "Hertz elliptical contact (Johnson 1985), tangent stiffness pi a E*/K(e); one ball = two "
+                      "contacts in series (Palmgren / Harris ball deflection, load shared by >= 1 ball)"}
 
 
 def reference_values(params, s000: dict | None = None, s003: dict | None = None) -> dict:
@@ -63,7 +76,9 @@ def reference_values(params, s000: dict | None = None, s003: dict | None = None)
                                       s000["delta_lambda_f"]["corrected"], "r_m = mid-wall radius (d1 - delta)/2"),
         "bearing.radial_compliance": entry("bearing.radial_compliance", "mm/N",
                                            1.0 / s000["K_G0_N_per_mm"], 1.0 / s000["K_G0_N_per_mm"],
-                                           "K_G0 is an input (not derivable from seed 000)"),
+                                           "information, not a check: K_G0 is an input the seed implies, no model; "
+                                           "Hertz stiffness of the seed's own contact ellipse beside it",
+                                           **bearing_hertz_info(params, s000["K_G0_N_per_mm"])),
         "bearing.crack_compliance": entry("bearing.crack_compliance", "mm/N",
                                           s000["delta_u_H_mm"]["published"] / F_r, s000["delta_u_H_mm"]["corrected"] / F_r,
                                           "du_H / F_r; published is load-dependent (F_r^2)", F_r_N=F_r),

@@ -76,9 +76,12 @@ def designer_headline(s3: dict) -> list[str]:
                    f"{r['seed_constant_Z_R_min']}); at Z_R,min: delta/m = {r['delta_over_m']:.3f}, h/delta = "
                    f"{r['h_over_delta']:.3f}, K_delta = {r['K_delta']:.3f}, K_sigma = {r['K_sigma']:.3f}, "
                    f"n_sigma = {r['n_sigma']:.4f}")
-    out.append("  toothed-ring FEA at those rims (analytic/tooth_number.FEA_AT_MINIMUM): " + "; ".join(
+    seed_design = (a["rim_thickness_ratio"], a["dedendum_coefficient"], a["psi_sigma"], a["permissible_safety"],
+                   a["fatigue_limit_MPa"]) == (0.012, 1.35, 0.12, 1.4, 625.0)
+    if seed_design:   # the stored FEA was solved for the seed's design assumptions only
+        out.append("  toothed-ring FEA at those rims (analytic/tooth_number.FEA_AT_MINIMUM): " + "; ".join(
         f"Z_R {z}: K_delta {v['tooth_influence']:.3f}, K_sigma {v['stress_concentration']:.3f}, n_sigma "
-        f"{v['n_sigma']:.3f} -> Z_R,min {v['Z_R_min_with_these_factors']}" for (z, _), v in FEA_AT_MINIMUM.items()))
+            f"{v['n_sigma']:.3f} -> Z_R,min {v['Z_R_min_with_these_factors']}" for (z, _), v in FEA_AT_MINIMUM.items()))
     out.append(f"  rim delta = {a['rim_thickness_ratio']:g} d_R, h_f = {a['dedendum_coefficient']:g} m, root fillet "
                f"{a['root_fillet_coefficient']:g} m, psi = {a['psi_sigma']:g}, [n] = {a['permissible_safety']:g}, "
                f"sigma_-1 = {a['fatigue_limit_MPa']:g} MPa, {a['mean_stress']}; factors evaluated at each Z_R "

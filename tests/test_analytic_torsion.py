@@ -132,3 +132,24 @@ def test_cup_series_terms_against_numerical_integration():
 def test_cup_series_rejects_a_diaphragm_off_the_hub():
     with pytest.raises(ValueError, match="hub"):
         _cup(diaphragm_z_mm=10.0)
+
+
+def test_hertz_contact_stiffness_limits_and_derivative():
+    import math
+    from strainwave.analytic import bearing_stiffness as bs
+    E, nu = 2.1e5, 0.3
+    Es = E / (2 * (1 - nu ** 2))
+    # circle: k = 2 a E* (Johnson)
+    assert bs.hertz_contact_stiffness_N_per_mm(2.0, 2.0, E, nu) == pytest.approx(4.0 * Es, rel=1e-12)
+    # ellipse: k = dP/d(delta) of the Hertz law delta = 3 P K(e)/(2 pi a E*) with a, b ~ P^(1/3)
+    from scipy.special import ellipk
+    a0, b0, P0 = 5.0, 3.0, 100.0
+
+    def approach(P):
+        s = (P / P0) ** (1 / 3)
+        return 3 * P * ellipk(1 - (b0 / a0) ** 2) / (2 * math.pi * a0 * s * Es)
+
+    dP = 1e-3 * P0
+    k_num = 2 * dP / (approach(P0 + dP) - approach(P0 - dP))
+    assert bs.hertz_contact_stiffness_N_per_mm(a0, b0, E, nu) == pytest.approx(k_num, rel=1e-6)
+    assert bs.ball_pair_stiffness_N_per_mm(a0, b0, E, nu) == pytest.approx(0.5 * k_num, rel=1e-6)

@@ -116,8 +116,8 @@ def make_images(out_dir: Path, book: FeaBook, plan: Plan, check_set: CheckSet, s
 # quantity name per check whose convergence history is plotted
 CONVERGENCE_OF = {"shaft.flexibility": ("shaft", "flexibility_rad_per_Nmm"),
                   "cup.flexibility": ("cup", "flexibility_rad_per_Nmm"),
-                  "bearing.radial_compliance": ("bearing", "radial_compliance_mm_per_N"),
                   "ring.delta_cd": ("ring", "delta_cd_mm"), "ring.delta_ab": ("ring", "delta_ab_mm"),
+                  "ring.delta_cd_solid": ("ring", "delta_cd_3d_mm"),
                   "ring.sigma_max": ("ring", "sigma_D_outer_MPa"), "ring.sigma_min": ("ring", "sigma_B_outer_MPa"),
                   "ring.tooth_influence": ("ring", "tooth_influence"),
                   "ring.stress_concentration": ("ring", "stress_concentration")}

@@ -1,7 +1,6 @@
 """Checks of seed 000's torsional model: shaft, cup, bearing ring and the assembled drive stiffness.
 
 What each check asserts (and why):
-- ``bearing.radial_compliance``: an upper bound, ring compliance <= 1/K_G0 (the seed has no ring model).
 - ``*.flexibility``: agreement with the CORRECTED closed form within
   3 x GCI plus the stated modelling allowances (for the cup, "corrected" is strainwave's series shell
   model, tube + diaphragm + hub: seed 000 has no diaphragm term). The published form being off (e.g. the
@@ -95,31 +94,6 @@ def cup_flexibility(book: FeaBook, label: str, s000: dict, params) -> Check:
                           label, "flexibility_rad_per_Nmm", analytic, allowances, note,
                           {"fea": f"FEA {label}", "analytic": "published: seed 000 lambda_f0 (k_f, k_G); "
                                                               "corrected: strainwave series shell model"})
-
-
-def bearing_radial_compliance(book: FeaBook, label: str, s000: dict, params) -> Check:
-    """The inner ring's radial compliance against 1/K_G0, as an upper bound.
-
-    Seed 000 gives K_G0 (wave-generator radial stiffness) as a number, with no model behind it. The
-    inner ring is one of the members in series that make up 1/K_G0 (ring, ball-race contacts, outer
-    race, flexspline-side support), so the one thing FEA of the ring can test is that the ring alone
-    is not MORE compliant than the whole: FEA <= 1/K_G0 (+ 3 x GCI). Equality is not expected (last
-    full run: the ring was 3 % of 1/K_G0, i.e. the Hertzian contacts dominate).
-    """
-    K_G0 = s000.get("K_G0_N_per_mm")
-    analytic = {"published": 1.0 / K_G0, "corrected": 1.0 / K_G0} if K_G0 else {}
-    note = ("upper bound: the seed gives no model for K_G0; 1/K_G0 is the value its table implies "
-            f"({K_G0:.4g} N/mm) and covers every member in series (inner ring, ball contacts, outer race). "
-            "Both variants are that one number; the FEA ring compliance must not exceed it, and the "
-            "ring's share of it is FEA x K_G0" if K_G0 else "the seed's K_G0 is missing")
-    q, why = book.quantity(label, "radial_compliance_mm_per_N")
-    unit, quantity = "mm/N", "wave-generator bearing inner ring radial compliance (<= 1/K_G0)"
-    if q is None:
-        return not_evaluated("bearing.radial_compliance", quantity, unit, why, analytic=analytic)
-    tol = fea_tolerance(q.value, q.uncertainty, allowances={})
-    return evaluate(Check("bearing.radial_compliance", quantity, unit, q.value, q.uncertainty, analytic, "corrected",
-                          tol, note=note, relation="at_most",
-                          sources={"fea": f"FEA {label}", "analytic": "1/K_G0 (seed 000 table, implied)"}))
 
 
 # ---- crack compliances: evaluated at the shallowest resolved depth of the sweep ----
