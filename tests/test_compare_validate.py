@@ -218,6 +218,12 @@ DELIBERATE_CHANGES: dict[str, str] = {
     "ring.stress_concentration": "01f8eec (ring): K_sigma compared like with like (root factor / K_delta) "
                                  "against the tooth-factor model (was the seed's 1.9)",
 }
+# Checks removed on purpose, with the reason (a removed check is listed, never silently gone).
+DELIBERATE_REMOVALS: dict[str, str] = {
+    "bearing.radial_compliance": "ring (issue 13): passed vacuously (ring FEA 31x below 1/K_G0 back-computed from "
+                                 "the seed's table); now information: analytic checks entry and audit 13 (K_G0 "
+                                 "= 0.139 of one ball's Hertz contacts at the seed's ellipse)",
+}
 NUMBERS = ("fea", "fea_uncertainty", "published", "corrected", "tolerance_relative")
 
 
@@ -230,10 +236,11 @@ def _numbers(check: dict) -> dict:
 def test_quick_checks_reproduce_the_reference_or_are_listed_as_deliberate(results):
     reference = json.loads(REFERENCE.read_text(encoding="utf-8"))["checks"]
     now = {c["id"]: c for c in results["checks"]}
-    assert set(reference) <= set(now), f"checks gone: {sorted(set(reference) - set(now))}"
+    gone = set(reference) - set(now) - set(DELIBERATE_REMOVALS)
+    assert not gone, f"checks gone: {sorted(gone)}"
     changed = {}
     for check_id, ref in reference.items():
-        if check_id in DELIBERATE_CHANGES:
+        if check_id in DELIBERATE_CHANGES or check_id in DELIBERATE_REMOVALS:
             continue
         got = _numbers(now[check_id])
         for name in NUMBERS:
