@@ -95,3 +95,39 @@ def render_preview(part: Part, png_path: Path | str, size: tuple[int, int] = (14
         tmp.with_suffix(".png").replace(tmp)
     plotter.close()
     return png_path
+
+
+def render_assembly_preview(drives: dict, png_path: Path | str, size: tuple[int, int] = (1400, 700)) -> Path:
+    """Render every part of every drive (name -> list of ``step_xcaf.Placed``), one panel per drive,
+    each part in its STEP colour and placed where the STEP file has it; crack faces in red."""
+    import pyvista as pv
+
+    from .step_xcaf import PART_COLOURS_RGB
+
+    plotter = pv.Plotter(off_screen=True, shape=(1, len(drives)), window_size=size)
+    for col, (drive, placed) in enumerate(drives.items()):
+        plotter.subplot(0, col)
+        plotter.set_background("white")
+        names = []
+        for item in placed:
+            shape = item.shape
+            bb = shape.bounding_box()
+            span = max(bb.size.X, bb.size.Y, bb.size.Z)
+            body = _polydata([shape], 2e-3 * span)
+            plotter.add_mesh(body, color=PART_COLOURS_RGB.get(item.part.name.value, (0.7, 0.7, 0.7)))
+            refs = item.part.named_faces.get("crack_face", ()) + item.part.named_faces.get("crack_front", ())
+            if refs:   # the crack faces of the part as built, moved to where the assembly has it
+                faces = find_faces(item.part.solid, refs)
+                crack = _polydata([f if item.at is None else f.moved(item.at) for f in faces], 1e-3)
+                if crack is not None:
+                    plotter.add_mesh(crack, color="red", lighting=False)
+            names.append(item.part.name.value)
+        plotter.add_text(f"{drive}: " + ", ".join(names), font_size=9, color="black")
+        plotter.view_isometric()
+        plotter.reset_camera()
+    png_path = Path(png_path)
+    with atomic_path(png_path) as tmp:
+        plotter.screenshot(str(tmp.with_suffix(".png")))
+        tmp.with_suffix(".png").replace(tmp)
+    plotter.close()
+    return png_path

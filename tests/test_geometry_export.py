@@ -1,6 +1,7 @@
 """STEP/BREP round trips (build123d and gmsh), assemblies, previews and the export-step command."""
 from __future__ import annotations
 
+import re
 import subprocess
 import warnings
 
@@ -29,7 +30,8 @@ CASES = [("output-shaft", 2.0, True), ("wg-bearing-ring", 0.5, True), ("ewg-flex
          ("ewg", None, True), ("flexspline-cup", 0.5, True)]
 
 
-def _gmsh_volumes(path):
+def _gmsh_import(path):
+    """What gmsh sees in a STEP file: volumes, names of the volumes, (centre, area) of every surface."""
     import gmsh
 
     gmsh.initialize(interruptible=False)
@@ -37,9 +39,36 @@ def _gmsh_volumes(path):
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.model.occ.importShapes(str(path))
         gmsh.model.occ.synchronize()
-        return sorted(gmsh.model.occ.getMass(3, tag) for _, tag in gmsh.model.getEntities(3))
+        volumes = sorted(gmsh.model.occ.getMass(3, tag) for _, tag in gmsh.model.getEntities(3))
+        names = sorted(gmsh.model.getEntityName(3, tag) for _, tag in gmsh.model.getEntities(3))
+        surfaces = [(gmsh.model.occ.getCenterOfMass(2, tag), gmsh.model.occ.getMass(2, tag))
+                    for _, tag in gmsh.model.getEntities(2)]
+        return volumes, names, surfaces
     finally:
         gmsh.finalize()
+
+
+def _gmsh_volumes(path):
+    return _gmsh_import(path)[0]
+
+
+def _named_faces_come_back(path, expected: dict[str, int], size_mm: float):
+    """Every named face is read back by OCC's STEP reader with its name, and is one of gmsh's surfaces.
+
+    gmsh 4.15's importShapes reads product names (volumes) but not face names, so on the gmsh side each
+    named face is found by its centre and area (as the mesher matches faces)."""
+    from collections import Counter
+
+    from strainwave.geometry.step_xcaf import read_step_face_names
+
+    back = read_step_face_names(path)
+    # a face in two sets carries both names joined by '+' (the cup's tooth flanks are also 'loaded')
+    assert Counter(group for name, _, _ in back for group in name.split("+")) == Counter(expected)
+    _, _, surfaces = _gmsh_import(path)
+    for name, centre, area in back:
+        hits = [s for s in surfaces if abs(s[1] - area) <= 1e-6 * area
+                and max(abs(a - b) for a, b in zip(s[0], centre)) <= 1e-6 * size_mm]
+        assert len(hits) == 1, (name, centre, area)
 
 
 @pytest.mark.parametrize("name,crack,teeth", CASES)
@@ -52,10 +81,20 @@ def test_step_round_trip(params, tmp_path, name, crack, teeth):
     back = import_step(path)
     assert len(back.solids()) == n_solids and all(s.is_valid for s in back.solids())
     assert sum(s.volume for s in back.solids()) == pytest.approx(part.volume_mm3, rel=ROUND_TRIP)
-    vols = _gmsh_volumes(path)
+    vols, names, _ = _gmsh_import(path)
     assert len(vols) == n_solids
     assert sum(vols) == pytest.approx(part.volume_mm3, rel=ROUND_TRIP)
+    if n_solids == 1:                            # the product name reaches gmsh (a two-roller EWG is a compound)
+        assert names[0].endswith(name)
     assert not list(tmp_path.glob(".*tmp"))      # no temporary left behind
+    # every named face of the part is a named STEP face (fixed, loaded, bore, contact, crack_face, ...)
+    expected = {group: len(refs) for group, refs in part.named_faces.items()}
+    if crack is not None:
+        assert expected["crack_face"] >= 1 and expected["crack_front"] >= 1
+    text = path.read_text(errors="ignore")
+    assert "COLOUR_RGB" in text
+    assert all(re.search(rf"ADVANCED_FACE\('([a-z_]+\+)?{group}(\+[a-z_]+)?'", text) for group in expected)
+    _named_faces_come_back(path, expected, part.solid.bounding_box().diagonal)
 
 
 def test_brep_round_trip(params, tmp_path):
@@ -78,6 +117,17 @@ def test_assembly_exports_both_drives_with_part_names(params, tmp_path):
     for label in ("flexspline-cup", "wg-bearing-ring", "output-shaft"):
         assert label in text
     assert "MILLI" in text                                                # length unit mm
+    # every part's named faces are named in its drive's file (a face in two sets counts in both)
+    from collections import Counter
+
+    from strainwave.geometry.export import cup_gear_assembly, ewg_drive_assembly
+    from strainwave.geometry.step_xcaf import read_step_face_names
+    for path, placed in zip(written, (cup_gear_assembly(params, teeth=False), ewg_drive_assembly(params, teeth=False))):
+        expected = Counter()
+        for item in placed:
+            expected.update({group: len(refs) for group, refs in item.part.named_faces.items()})
+        back = Counter(group for name, _, _ in read_step_face_names(path) for group in name.split("+"))
+        assert back == expected, path.name
     # the shaft hangs below the hub: the assembly spans -L_s .. L
     bb = cup_gear.bounding_box()
     assert bb.min.Z == pytest.approx(-params.output_shaft.length_mm, abs=1e-6)
@@ -129,3 +179,22 @@ def test_cli_bad_crack_is_one_line_exit_2(strainwave_cmd, tmp_path):
     lines = run.stderr.strip().splitlines()
     assert len(lines) == 1 and "crack_depth_mm" in lines[0] and "Traceback" not in run.stderr
     assert not out.exists()
+
+
+def test_assembly_png_draws_every_part_of_both_drives(params, tmp_path):
+    """The preview of ``--part assembly`` shows the whole assembly, not only the cup: the bearing ring
+    (orange), the shaft (blue) in the left panel and the EWG rollers (green) in the right one."""
+    import matplotlib.image as mpimg
+    import numpy as np
+
+    written = export_part("assembly", params, tmp_path / "gear.step", teeth=False, png=tmp_path / "gear.png")
+    assert [p.name for p in written] == ["gear.step", "gear-ewg-drive.step", "gear.png"]
+    img = mpimg.imread(written[2])[..., :3]
+    r, g, b = img[..., 0], img[..., 1], img[..., 2]
+    w = img.shape[1]
+    orange = (r - b > 0.25) & (r > g)                 # wg-bearing-ring (0.85, 0.62, 0.30), shaded
+    blue = (b - r > 0.08) & (b > g)                   # output-shaft (0.45, 0.55, 0.70), shaded darker
+    green = (g - r > 0.1) & (g - b > 0.1)             # ewg (0.55, 0.75, 0.50)
+    assert orange[:, : w // 2].sum() > 500 and blue[:, : w // 2].sum() > 500
+    assert green[:, w // 2:].sum() > 500 and green[:, : w // 2].sum() == 0
+    assert np.mean(img.min(axis=2)[:, w // 2:] < 0.95) > 0.03   # the EWG drive panel is not blank

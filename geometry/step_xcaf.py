@@ -1,0 +1,249 @@
+"""STEP with names that other tools read back: parts named and coloured, named faces as STEP face names.
+
+build123d's ``export_step`` names products but writes every face as ``ADVANCED_FACE('')``. Here the OCC
+XCAF document is built directly (each part a coloured, named shape label; an assembly its components),
+written, and each face of ``Part.named_faces`` gets its name on its STEP face entity
+(``ADVANCED_FACE('fixed', ...)``), which OCC's STEP reader returns (``read_step_face_names``). gmsh
+4.15 reads the part names and colours, not face names. Units: mm.
+"""
+from __future__ import annotations
+
+from contextlib import contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+
+__all__ = ["Placed", "PART_COLOURS_RGB", "named_refs", "write_named_step", "read_step_face_names"]
+
+# One colour per part so an assembly reads at a glance (sRGB 0..1; steel greys with a hue per role).
+PART_COLOURS_RGB: dict[str, tuple[float, float, float]] = {
+    "flexspline-cup": (0.70, 0.72, 0.78),
+    "ewg-flexspline-ring": (0.70, 0.72, 0.78),
+    "wg-bearing-ring": (0.85, 0.62, 0.30),
+    "output-shaft": (0.45, 0.55, 0.70),
+    "ewg": (0.55, 0.75, 0.50),
+}
+
+
+@dataclass(frozen=True)
+class Placed:
+    """A part and where it sits in the file: ``at`` (a build123d Location) moves ``part.solid``
+    rigidly; None leaves it where it was built."""
+
+    part: object                 # geometry.part.Part
+    at: object | None = None     # build123d Location
+
+    @property
+    def shape(self):
+        return self.part.solid if self.at is None else self.part.solid.moved(self.at)
+
+    def point_mm(self, p: tuple[float, float, float]) -> tuple[float, float, float]:
+        """A point of the part's own frame in the file's frame."""
+        if self.at is None:
+            return tuple(p)
+        from build123d import Location
+        q = (self.at * Location(tuple(p))).position
+        return (q.X, q.Y, q.Z)
+
+
+def named_refs(placed: list[Placed]) -> list[tuple[str, tuple[float, float, float], float]]:
+    """(name, centre in the file's frame, area) of every named face of the placed parts. A face in two
+    sets of one part gets both names joined by '+', in the order of ``part.named_faces``."""
+    out: list[tuple[str, tuple[float, float, float], float]] = []
+    for item in placed:
+        merged: dict[tuple, list[str]] = {}
+        for name, refs in item.part.named_faces.items():
+            for ref in refs:
+                key = (tuple(round(c, 9) for c in ref.center_mm), round(ref.area_mm2, 9))
+                merged.setdefault(key, [])
+                if name not in merged[key]:
+                    merged[key].append(name)
+        for (centre, area), names in merged.items():
+            out.append(("+".join(names), item.point_mm(centre), area))
+    return out
+
+
+def _name(label, text: str) -> None:
+    from OCP.TCollection import TCollection_ExtendedString
+    from OCP.TDataStd import TDataStd_Name
+    TDataStd_Name.Set_s(label, TCollection_ExtendedString(text))
+
+
+def _colour(color_tool, label, rgb) -> None:
+    from OCP.Quantity import Quantity_Color, Quantity_TypeOfColor
+    from OCP.XCAFDoc import XCAFDoc_ColorType
+    color_tool.SetColor(label, Quantity_Color(*rgb, Quantity_TypeOfColor.Quantity_TOC_sRGB),
+                        XCAFDoc_ColorType.XCAFDoc_ColorSurf)
+
+
+def _document():
+    from OCP.TCollection import TCollection_ExtendedString
+    from OCP.TDocStd import TDocStd_Document
+    from OCP.XCAFApp import XCAFApp_Application
+    from OCP.XCAFDoc import XCAFDoc_DocumentTool
+
+    doc = TDocStd_Document(TCollection_ExtendedString("MDTV-XCAF"))
+    app = XCAFApp_Application.GetApplication_s()
+    app.NewDocument(TCollection_ExtendedString("MDTV-XCAF"), doc)
+    app.InitDocument(doc)
+    XCAFDoc_DocumentTool.SetLengthUnit_s(doc, 0.001)      # mm
+    shapes = XCAFDoc_DocumentTool.ShapeTool_s(doc.Main())
+    shapes.SetAutoNaming_s(False)                          # only our names, no generated ones
+    return doc, shapes, XCAFDoc_DocumentTool.ColorTool_s(doc.Main())
+
+
+def _add_part(colours, label, part) -> None:
+    _name(label, part.name.value)
+    _colour(colours, label, PART_COLOURS_RGB.get(part.name.value, (0.7, 0.7, 0.7)))
+
+
+def _faces_read_back(path: Path) -> list[tuple[int, str, tuple[float, float, float], float]]:
+    """(entity number, name, centre, area) of every face of a STEP file as OCC's STEP reader transfers it.
+    The number is the face's ``#N``: OCC's writer numbers entities #1, #2, ... in file order."""
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+    from OCP.IFSelect import IFSelect_ReturnStatus
+    from OCP.STEPControl import STEPControl_Reader
+    from OCP.TopAbs import TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+
+    reader = STEPControl_Reader()
+    with _quiet_occ():
+        if reader.ReadFile(str(path)) != IFSelect_ReturnStatus.IFSelect_RetDone:
+            raise RuntimeError(f"OCC could not read {path}")
+        reader.TransferRoots()
+    transfer, model = reader.WS().TransferReader(), reader.Model()
+    faces = []
+    explorer = TopExp_Explorer(reader.OneShape(), TopAbs_FACE)
+    while explorer.More():
+        face = explorer.Current()
+        explorer.Next()
+        # mode 1 finds a face as transferred; a face of an assembly component carries the component's
+        # location on top, which only mode -1 (any location) resolves
+        entity = transfer.EntityFromShapeResult(face, 1) or transfer.EntityFromShapeResult(face, -1)
+        props = GProp_GProps()
+        BRepGProp.SurfaceProperties_s(face, props)
+        c = props.CentreOfMass()
+        faces.append([entity, (c.X(), c.Y(), c.Z()), props.Mass(), _entity_name(entity)])
+    # The entity's file number: model.Number() does not find the handles OCP returns, so each face
+    # entity is tagged in memory and the model's entities are scanned for the tags.
+    from OCP.TCollection import TCollection_HAsciiString
+    for k, face in enumerate(faces):
+        if face[0] is not None:
+            face[0].SetName(TCollection_HAsciiString(f"strainwave-face-{k}"))
+    number = {}
+    for i in range(1, model.NbEntities() + 1):
+        name = _entity_name(model.Value(i))
+        if name.startswith("strainwave-face-"):
+            number[int(name.rpartition("-")[2])] = i
+    return [(number.get(k, 0), name, centre, area) for k, (_, centre, area, name) in enumerate(faces)]
+
+
+def _entity_name(entity) -> str:
+    """The name of a STEP representation item ('' for anything else, e.g. units whose Name is an enum)."""
+    name = entity.Name() if entity is not None and hasattr(entity, "Name") else None
+    return name.ToCString() if hasattr(name, "ToCString") else ""
+
+
+def _name_faces(path: Path, placed: list[Placed]) -> None:
+    """Write each named face's name into its ``ADVANCED_FACE`` entity of the file at ``path``.
+
+    The names are put on the written file, found by reading it back, rather than through XCAF
+    sub-shape labels or the writer's finder process: both resolve a face that OCC stores as a located
+    copy of another (the top of an extruded ring shares the bottom's TShape) to the other face's
+    entity, so the top face lost its name or the bottom got the top's. Matching the read-back faces by
+    centre and area (as the mesher matches faces) cannot confuse the two."""
+    import math
+    import re
+
+    faces = list(_faces_read_back(path))
+    scale = max(1.0, max((math.dist((0, 0, 0), c) for _, _, c, _ in faces), default=1.0))
+    names: dict[int, str] = {}
+    for name, centre, area in named_refs(placed):
+        hits = [number for number, _, c, a in faces
+                if abs(a - area) <= 1e-6 * max(1.0, area) and math.dist(c, centre) <= 1e-5 * scale]
+        if len(hits) != 1 or hits[0] <= 0:
+            raise RuntimeError(f"{Path(path).name}: named face {name!r} at {centre} matches {len(hits)} faces")
+        names[hits[0]] = name
+    text = Path(path).read_text(encoding="ascii")
+
+    def rename(match):
+        number = int(match.group(1))
+        return f"#{number} = ADVANCED_FACE('{names[number]}'," if number in names else match.group(0)
+
+    named, count = re.subn(r"^#(\d+) = ADVANCED_FACE\('',", rename, text, flags=re.M)
+    missing = set(names) - {int(m) for m in re.findall(r"^#(\d+) = ADVANCED_FACE\('(?:[^']+)',", named, flags=re.M)}
+    if missing:
+        raise RuntimeError(f"{Path(path).name}: entities {sorted(missing)} are not unnamed ADVANCED_FACEs")
+    Path(path).write_text(named, encoding="ascii")
+
+
+def write_named_step(placed: list[Placed], path: Path, *, assembly: str | None = None) -> Path:
+    """Write one part (``assembly=None``, one entry) or an assembly named ``assembly`` of placed parts
+    as STEP AP214 in mm, with part names and colours and named faces. ``path`` is written as given
+    (the caller makes it atomic)."""
+    from OCP.TDF import TDF_Label
+    from OCP.XCAFDoc import XCAFDoc_ShapeTool
+
+    if assembly is None and len(placed) != 1:
+        raise ValueError("a single-part STEP takes exactly one placed part")
+    doc, shapes, colours = _document()
+    if assembly is None:
+        _add_part(colours, shapes.AddShape(placed[0].shape.wrapped, False), placed[0].part)
+    else:
+        root = shapes.NewShape()
+        _name(root, assembly)
+        for item in placed:
+            component = shapes.AddComponent(root, item.shape.wrapped, False)
+            prototype = TDF_Label()
+            if component.IsNull() or not XCAFDoc_ShapeTool.GetReferredShape_s(component, prototype):
+                raise RuntimeError(f"{assembly}: could not add {item.part.name.value} as a component")
+            _name(component, item.part.name.value)
+            _add_part(colours, prototype, item.part)
+        shapes.UpdateAssemblies()
+
+    with _quiet_occ():
+        _write(doc, path)
+    _name_faces(Path(path), placed)
+    return Path(path)
+
+
+@contextmanager
+def _quiet_occ():
+    """OCC's writer prints transfer statistics through its default messenger: keep only failures
+    while writing, and give the printers their levels back afterwards."""
+    from OCP.Message import Message, Message_Gravity
+    printers = list(Message.DefaultMessenger_s().Printers())
+    levels = [p.GetTraceLevel() for p in printers]
+    for p in printers:
+        p.SetTraceLevel(Message_Gravity.Message_Fail)
+    try:
+        yield
+    finally:
+        for p, level in zip(printers, levels):
+            p.SetTraceLevel(level)
+
+
+def _write(doc, path) -> None:
+    from OCP.IFSelect import IFSelect_ReturnStatus
+    from OCP.Interface import Interface_Static
+    from OCP.STEPCAFControl import STEPCAFControl_Controller, STEPCAFControl_Writer
+    from OCP.STEPControl import STEPControl_StepModelType
+    from OCP.XSControl import XSControl_WorkSession
+
+    STEPCAFControl_Controller.Init_s()
+    Interface_Static.SetCVal_s("write.step.unit", "MM")
+    Interface_Static.SetCVal_s("write.step.schema", "AP214IS")
+    writer = STEPCAFControl_Writer(XSControl_WorkSession(), False)
+    writer.SetNameMode(True)
+    writer.SetColorMode(True)
+    if not writer.Transfer(doc, STEPControl_StepModelType.STEPControl_AsIs):
+        raise RuntimeError(f"STEP transfer of {Path(path).name} failed")
+    if writer.Write(str(path)) != IFSelect_ReturnStatus.IFSelect_RetDone:
+        raise RuntimeError(f"STEP write of {Path(path).name} failed")
+
+
+def read_step_face_names(path: Path | str) -> list[tuple[str, tuple[float, float, float], float]]:
+    """(name, centre of mass in mm, area in mm^2) of every named face of a STEP file, read back with
+    OCC's own STEP reader (the name of the ADVANCED_FACE entity each face was transferred from).
+    Lets a test (or a user's script) check that a file carries the names other tools will see."""
+    return [(name, centre, area) for _, name, centre, area in _faces_read_back(Path(path)) if name]
