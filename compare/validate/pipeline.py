@@ -126,7 +126,7 @@ def _run_cases(cases, params, *, fields_dir: Path, cache, quick: bool, progress)
 
 def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str], None]) -> Outcome:
     """Run the whole validation into ``out_dir``; returns the checks and timings (see module docstring)."""
-    from ...analytic.summary import analytic_summary
+    from ...analytic.summary import analytic_summary, designer_headline
     from .artifacts import make_images
     from .step_export import StepJob
 
@@ -179,6 +179,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
                            "cached": s.cached, "error": s.error} for s in steps],
                 "timings_s": dict(timings), "total_s": 0.0,
             },
+            "designer": designer_headline(summary["seed003"]) if "seed003" in summary else [],
             "checks": checks, "audit": audit,
             "crack_sweeps": {k: r.to_dict() for k, r in check_set.sweeps.items()},
             "images": [i.to_dict() for i in images], "missing_images": [m.to_dict() for m in missing],

@@ -55,6 +55,8 @@ def render_html(doc: dict) -> str:
              "<h1>strainwave validation report</h1>",
              f'<div class="verdict {"pass" if passed else "fail"}" id="verdict">{escape(rt.headline(doc))}</div>',
              f"<p>{escape(rt.run_line(doc))}</p>"]
+    if doc.get("designer"):
+        parts.append('<pre id="designer">' + escape("\n".join(doc["designer"])) + "</pre>")
     failing = [c for c in doc["checks"] if not c["passed"]]
     if failing:
         parts.append("<h2>Failing checks</h2><ul>")

@@ -18,6 +18,8 @@ def _table(columns, rows) -> list[str]:
 
 def render_markdown(doc: dict) -> str:
     lines = ["# strainwave validation report", "", f"**{rt.headline(doc)}**", "", rt.run_line(doc), ""]
+    if doc.get("designer"):
+        lines += ["```", *doc["designer"], "```", ""]
     failing = [c for c in doc["checks"] if not c["passed"]]
     if failing:
         lines += ["## Failing checks", ""]
