@@ -1,4 +1,4 @@
-"""The seeds' inconsistencies as data (audit of /work/shared/seed-formula-audit.md, items 1-18, plus 19-21).
+"""The seeds' inconsistencies as data (the seed formula audit, seed-formula-audit.md, items 1-18, plus 19-21).
 
 Every effect value is computed by calling the formula functions for the given
 parameters (the default parameters are the seeds' own examples), not typed in.

@@ -9,7 +9,8 @@ class Variant(enum.Enum):
 
     PUBLISHED is the formula exactly as printed in the seed (reconstructed where the
     PDF text is garbled); CORRECTED is the one re-derived in
-    /work/shared/seed-formula-audit.md and confirmed by this package's tests.
+    the project's seed formula audit (seed-formula-audit.md, kept with the seed papers; its items are
+    data in ``analytic/audit.py``) and confirmed by this package's tests.
     """
 
     PUBLISHED = "published"

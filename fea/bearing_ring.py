@@ -38,9 +38,8 @@ from .solver import solve_elasticity
 STUDY = "bearing-ring"
 PART = "wg-bearing-ring"
 REFINEMENT_RATIO = 1.5
-# 3D P2 systems: AMG-CG with the rigid-body modes. Measured on the bearing ring at 17.6k free dofs:
-# 3.3 s (33 iterations) against 24 s for splu (the core's DIRECT_MAX_DOFS = 20k crossover was measured
-# on other meshes; 3D P2 fill-in makes splu lose far earlier), identical compliance to 1e-12.
+# Iterative solve (p-multigrid / AMG-CG, fea/solver.py): 3D P2 fill-in makes a sparse direct solve lose
+# early; the crossover is measured by benchmarks/bench_fea.py --compare, not asserted here.
 SOLVER = "amg"
 
 
@@ -183,20 +182,6 @@ def seam_compliances(part, params, lame, *, size_mm, order, refine_points, local
     return out[0], out[1]
 
 
-def analytic_crack_displacement(params, force_N: float, a_mm: float) -> dict:
-    """Seed 000's du_H, published (F_r^2) and corrected (F_r), and the compliances they imply."""
-    from ..analytic.cracks import bearing_displacement_mm
-    from ..analytic.variant import Variant
-    wg, cr = params.wave_generator, params.cracks
-    out = {}
-    for v in (Variant.PUBLISHED, Variant.CORRECTED):
-        du = bearing_displacement_mm(force_N, wg.bearing_inner_ring_thickness_mm, wg.beta,
-                                     tuple(wg.contact_semi_axes_mm), a_mm, params.material.youngs_modulus_MPa,
-                                     cr.surface_crack_shape_factor, v)
-        out[v.name.lower()] = {"delta_u_H_mm": du, "delta_compliance_mm_per_N": du / force_N}
-    return out
-
-
 # Crack-front size floor as a fraction of the finest global size (see crack_front_size_mm). None: the
 # semi-elliptical front is short (~ pi (a + c) / 2), so a/3 is affordable at any depth. Measured (seam,
 # h = 3.33 mm, 3 refinements x 2 solves, 2 shared cores): a = 1.04 mm: 79k dofs, 39 s, delta C
@@ -302,7 +287,6 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
             "fea_uncracked_stiffness_N_per_mm": 1.0 / c_unc[0],
             # |delta| below its GCI band means the crack is below the resolution of these meshes
             "delta_resolved": bool(abs(dq.value) > dq.uncertainty),
-            "analytic": analytic_crack_displacement(params, force, a),
             "mesh_sizes_mm": sizes, "contact_sizes_mm": [min(fine, b_circ / 3.0) * REFINEMENT_RATIO ** k for k in range(3)],
             "crack_front_sizes_mm": [crack_front_size_mm(a, fine) * REFINEMENT_RATIO ** k for k in range(3)],
             "crack_model": "seam (one mesh per refinement, solved closed and opened)",

@@ -8,7 +8,6 @@ d1^3), published with 0.1 and the seed's mu; corrected with pi/32; k_G = 0.83 fo
 """
 from __future__ import annotations
 
-import math
 import time
 
 from ..errors import InputError
@@ -30,36 +29,6 @@ def default_size_mm(params, quick: bool) -> float:
     """Finest global size: 3 walls (4 with --quick). One P2 element through the wall carries the membrane
     shear of torsion; measured GCI 0.24 % at 2 walls (211k dofs, 64 s), ~1 % at 4 walls."""
     return params.flexspline_cup.wall_thickness_mm * (4.0 if quick else 3.0)
-
-
-def seed_flexibility(params, *, published: bool) -> float:
-    """lambda_f0 (seed 000): published 0.1 and mu; corrected pi/32 (same k_f, k_G, mu)."""
-    fc, mu = params.flexspline_cup, params.material.shear_modulus_MPa
-    k_f = 0.83 if fc.shape.value == "bell" else 1.0
-    k_G = 0.83 if fc.cup else 1.0
-    c_L, c_d = fc.length_mm / fc.pitch_diameter_mm, fc.wall_thickness_mm / fc.pitch_diameter_mm
-    factor = 0.1 if published else math.pi / 32.0
-    return k_f * k_G * c_L / (factor * mu * (1.0 - (1.0 - 2.0 * c_d) ** 4) * fc.pitch_diameter_mm ** 3)
-
-
-def tube_flexibility(params) -> float:
-    """32 L / (pi G (d1^4 - (d1 - 2 delta)^4)), G = E/(2(1+nu)): a plain tube of the cup's length."""
-    fc, mat = params.flexspline_cup, params.material
-    d, di = fc.pitch_diameter_mm, fc.pitch_diameter_mm - 2 * fc.wall_thickness_mm
-    return 32.0 * fc.length_mm / (math.pi * mat.implied_shear_modulus_MPa * (d ** 4 - di ** 4))
-
-
-# Crack-front size (refinement.crack_front_size_mm): a/4 at the finest mesh, no floor: the root crack's
-# front is short (a/sin beta + 2c), so a fine tip is cheap, while a floor of h/16 (0.42 mm) left the
-# 0.1 mm crack as two triangles with every node on the front (delta lambda = 0). Measured (seam, h = 6.72
-# mm, 3 refinements x 2 solves, 2 shared cores, +-1.5x):
-#   a = 1.12 mm: tip a/2: 109k dofs, 43 s, 2.438e-15 +- 1.1e-16 (p = 3.8 from irregular steps; the a/4
-#     value lies outside that band); a/4: 145k dofs, 50 s, 2.585e-15, equal steps (p = 0.05, GCI 195 %);
-#   a = 0.1 mm: tip a/2: 116k dofs, 70 s, 1.65e-18 +- 1.1e-18; a/4: 154k dofs, 51 s, 1.766e-18 +- 2.4 %.
-# delta lambda ~ a^3.0 between the two depths, as for a 3D crack of fixed aspect ratio (c = 2a).
-FRONT_FLOOR_OVER_H = 0.0
-GROW_OVER_H = 3.0
-TIP_OVER_A = 0.25
 
 
 def crack_refine(part, h_mm: float, depth_mm: float, *, h_fine_mm: float | None = None,
@@ -139,14 +108,9 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
         fields = (write_vtu(vtu, sol.md, {"displacement_mm": nodal_displacement(sol.md, sol.sk, u),
                                           "von_mises_MPa": von_mises(s), "stress_MPa": s}),)
     mat = params.material
-    pub, cor = seed_flexibility(params, published=True), seed_flexibility(params, published=False)
     meta = {"torque_Nmm": params.gear.output_torque_Nmm, "teeth": teeth,
             "load": "uniform tangential shear on 'loaded' (band), moment T", "bc": "'fixed' (hub face) clamped",
             "twist": "area-weighted mean rotation of 'loaded'",
-            "seed_lambda_f0_published_rad_per_Nmm": pub, "seed_lambda_f0_corrected_rad_per_Nmm": cor,
-            "seed_formula": "k_f k_G c_L / (0.1 mu [1-(1-2 c_delta)^4] d1^3), k_G = 0.83 (cup); corrected: pi/32",
-            "tube_flexibility_rad_per_Nmm": tube_flexibility(params),
-            "implied_k_G": lam0[0] / (cor / (0.83 if fc.cup else 1.0)) * (mat.implied_shear_modulus_MPa / mat.shear_modulus_MPa),
             "G_fea_MPa": mat.implied_shear_modulus_MPa, "mu_seed_MPa": mat.shear_modulus_MPa,
             "order": order, "refinement_ratio": ratio, "mesh_sizes_mm": list(sizes),
             "solver": sol.solver.to_dict(), "crack_depth_mm": crack_depth_mm}

@@ -19,7 +19,6 @@ from .result import MeshQuality
 
 # gmsh element type ids
 _CELL_TYPES = {(3, 1): 4, (3, 2): 11, (2, 1): 2, (2, 2): 9}
-_FACET_TYPES = {(3, 1): 2, (3, 2): 9, (2, 1): 1, (2, 2): 8}
 
 
 class MeshingFailed(RuntimeError):

@@ -2,8 +2,10 @@
 
 Analytic (default), from strainwave.analytic's corrected closed forms:
 - torsion / output_shaft: hollow shaft 32 L/(pi G (d^4 - d_i^4)), G = E/(2(1+nu)) (seed 000, lambda_so0 corrected);
-- torsion / flexspline_cup: seed 000 lambda_f0 with pi/32 instead of 0.1 (corrected), G = E/(2(1+nu));
-- torsion / gear: K_HD-type series sum lambda_H + lambda_f0 + lambda_so0 (seed 000, first equation);
+- torsion / flexspline_cup: the corrected cup flexibility validate checks, strainwave's series shell model
+  (tube + diaphragm + hub, analytic.seed000.cup_series_model), G = E/(2(1+nu)): seed 000's lambda_f0 is a
+  bare tube and omits the diaphragm, which the FEA and a real cup have (FEA vs series model +4.7 %);
+- torsion / gear: K_HD-type series sum lambda_H + lambda_f (series shell, as above) + lambda_so0 (seed 000);
 - ring_compression / ewg_ring: thin ring delta_CD = 0.148778 F r_m^3/(E I) (seed 003, eqs 1 and 3).
 G is taken from E and nu (not shear_modulus_MPa) so the analytic and FEA baselines see the same material.
 A header key ``baseline_stiffness_Nmm_per_rad`` / ``baseline_stiffness_N_per_mm`` replaces the
@@ -57,21 +59,20 @@ def analytic_baseline(rec: Recording, params) -> Baseline:
 def torsion_compliance(specimen: str, params) -> tuple[float, str]:
     """Corrected seed-000 flexibility of the torsion specimen, rad/(N*mm)."""
     from ...analytic import torsion as tor
+    from ...analytic.seed000 import cup_series_model
     from ...analytic.variant import Variant
     G = params.material.implied_shear_modulus_MPa
     sh, cup, gear, wg = params.output_shaft, params.flexspline_cup, params.gear, params.wave_generator
     shaft = tor.shaft_flexibility(sh.length_mm, sh.outer_diameter_mm, sh.inner_diameter_mm, G, Variant.CORRECTED)
-    flex = tor.flexspline_flexibility(cup.pitch_diameter_mm, cup.wall_thickness_mm, cup.length_mm, G,
-                                      tor.shape_coefficient(cup.shape.value == "bell"),
-                                      tor.structure_coefficient(cup.cup), Variant.CORRECTED)
+    flex = cup_series_model(params, G).total
     if specimen == "output_shaft":
         return shaft, "hollow shaft 32L/(pi G (d^4 - d_i^4)) (seed 000 lambda_so0, corrected)"
     if specimen == "flexspline_cup":
-        return flex, "flexspline cup lambda_f0 with pi/32 (seed 000, corrected)"
+        return flex, "flexspline cup series shell model, tube + diaphragm + hub (corrected, as validate)"
     lam_h = tor.wave_generator_flexibility(gear.force_coefficient, wg.uncracked_radial_stiffness_N_per_mm,
                                            cup.pitch_diameter_mm, gear.wave_number, gear.radial_deformation_mm,
                                            gear.gear_ratio)
-    return tor.total_flexibility(lam_h, flex, shaft), "gear K_HD = 1/(lambda_H + lambda_f0 + lambda_so0) (seed 000)"
+    return tor.total_flexibility(lam_h, flex, shaft), "gear K_HD = 1/(lambda_H + lambda_f + lambda_so0) (seed 000; lambda_f the series shell model)"
 
 
 def ring_geometry(params) -> dict:

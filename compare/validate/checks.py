@@ -40,6 +40,9 @@ def fea_tolerance(fea: float | None, fea_uncertainty: float | None, *, allowance
     return Tolerance(total, " + ".join(parts))
 
 
+RELATIONS = ("equal", "at_most")
+
+
 @dataclass(frozen=True)
 class Check:
     id: str
@@ -57,6 +60,10 @@ class Check:
     sources: dict[str, str] = field(default_factory=dict)   # ingredient -> "FEA ..." / "analytic ..."
     reason_not_evaluated: str = ""
     relation: str = "equal"                      # "equal": |rel error| <= tol; "at_most": rel error <= tol
+
+    def __post_init__(self):
+        if self.relation not in RELATIONS:
+            raise ValueError(f"check {self.id}: relation {self.relation!r} must be one of {RELATIONS}")
 
     @property
     def component(self) -> str:
@@ -86,8 +93,6 @@ def relative_error(fea: float, reference: float) -> float:
         return math.inf if fea != 0.0 else 0.0
     return (fea - reference) / abs(reference)
 
-
-RELATIONS = ("equal", "at_most")
 
 
 def within(rel_error: float, tolerance: float, relation: str = "equal") -> bool:
