@@ -25,7 +25,7 @@ from ..errors import StageError
 from .assembly import Lame, elasticity_stiffness, scalar_basis
 from .convergence import grid_convergence
 from .refinement import CRACK_ORDER_BOUNDS
-from .fields import nodal_displacement, nodal_stress, von_mises, write_vtu
+from .fields import write_solid_fields
 from .facet_traction import facet_traction_load
 from .crack_contact import crack_pairs, solve_with_contact
 from .crack_seam import open_crack_for
@@ -215,10 +215,7 @@ def vtu_paths(vtu) -> tuple[Path, Path]:
 
 def write_fields(path, field, lame) -> Path:
     """Displacement, von Mises and the stress tensor at the mesh nodes, as VTU."""
-    md, sk, u = field
-    s = nodal_stress(md, sk, u, lame)
-    return write_vtu(path, md, {"displacement_mm": nodal_displacement(md, sk, u), "von_mises_MPa": von_mises(s),
-                                "stress_MPa": s})
+    return write_solid_fields(path, *field, lame)
 
 
 def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, progress=lambda m: None,
@@ -232,13 +229,7 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
                               quick=quick)
     t_start = time.perf_counter()
     a = crack_depth_mm
-    force = radial_force_N(params)
-    mat = params.material
-    lame = Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio)
-    t_i = params.wave_generator.bearing_inner_ring_thickness_mm
-    b_circ = params.wave_generator.contact_semi_axes_mm[1]
-    fine = mesh_size_mm if mesh_size_mm else t_i / (2.0 if quick else 3.0)
-    sizes = [fine * REFINEMENT_RATIO ** k for k in range(3)]
+    force, mat, lame, b_circ, fine, sizes = _setup(params, mesh_size_mm, quick)
     t0 = time.perf_counter()
     seam = build_seam_part(params, a)
     timings = {"geometry": time.perf_counter() - t0}
@@ -295,16 +286,19 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
     return StudyResult(STUDY, q, qual, timings, fields, meta)
 
 
+def _setup(params, mesh_size_mm, quick):
+    """(F_r, material, Lame, b', finest size, three sizes finest first) shared by the cracked and uncracked runs."""
+    mat = params.material
+    t_i = params.wave_generator.bearing_inner_ring_thickness_mm
+    fine = mesh_size_mm if mesh_size_mm else t_i / (2.0 if quick else 3.0)
+    return (radial_force_N(params), mat, Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio),
+            params.wave_generator.contact_semi_axes_mm[1], fine, [fine * REFINEMENT_RATIO ** k for k in range(3)])
+
+
 def _run_uncracked(params, *, mesh_size_mm, order, vtu, progress, quick) -> StudyResult:
     """The uncracked ring alone: radial compliance on three meshes (same sizes as the cracked run)."""
     t_start = time.perf_counter()
-    force = radial_force_N(params)
-    mat = params.material
-    lame = Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio)
-    t_i = params.wave_generator.bearing_inner_ring_thickness_mm
-    b_circ = params.wave_generator.contact_semi_axes_mm[1]
-    fine = mesh_size_mm if mesh_size_mm else t_i / (2.0 if quick else 3.0)
-    sizes = [fine * REFINEMENT_RATIO ** k for k in range(3)]
+    force, mat, lame, b_circ, fine, sizes = _setup(params, mesh_size_mm, quick)
     part = build_plain_part(params)
     timings = {"geometry": time.perf_counter() - t_start}
     sols = []

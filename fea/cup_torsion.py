@@ -12,7 +12,7 @@ import time
 
 from ..errors import InputError
 from .assembly import Lame
-from .fields import nodal_displacement, nodal_stress, von_mises, write_vtu
+from .fields import write_solid_fields
 from .crack_seam import open_crack_for
 from .meshing import Refine
 from .refinement import DEFAULT_RATIO, crack_flexibility_quantities, crack_front_size_mm, refinement_sizes
@@ -29,6 +29,19 @@ def default_size_mm(params, quick: bool) -> float:
     """Finest global size: 3 walls (4 with --quick). One P2 element through the wall carries the membrane
     shear of torsion; measured GCI 0.24 % at 2 walls (211k dofs, 64 s), ~1 % at 4 walls."""
     return params.flexspline_cup.wall_thickness_mm * (4.0 if quick else 3.0)
+
+
+# Crack-front size (refinement.crack_front_size_mm): a/4 at the finest mesh, no floor: the root crack's
+# front is short (a/sin beta + 2c), so a fine tip is cheap, while a floor of h/16 (0.42 mm) left the
+# 0.1 mm crack as two triangles with every node on the front (delta lambda = 0). Measured (seam, h = 6.72
+# mm, 3 refinements x 2 solves, 2 shared cores, +-1.5x):
+#   a = 1.12 mm: tip a/2: 109k dofs, 43 s, 2.438e-15 +- 1.1e-16 (p = 3.8 from irregular steps; the a/4
+#     value lies outside that band); a/4: 145k dofs, 50 s, 2.585e-15, equal steps (p = 0.05, GCI 195 %);
+#   a = 0.1 mm: tip a/2: 116k dofs, 70 s, 1.65e-18 +- 1.1e-18; a/4: 154k dofs, 51 s, 1.766e-18 +- 2.4 %.
+# delta lambda ~ a^3.0 between the two depths, as for a 3D crack of fixed aspect ratio (c = 2a).
+FRONT_FLOOR_OVER_H = 0.0
+GROW_OVER_H = 3.0
+TIP_OVER_A = 0.25
 
 
 def crack_refine(part, h_mm: float, depth_mm: float, *, h_fine_mm: float | None = None,
@@ -103,10 +116,7 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
     fields = ()
     if vtu is not None:
         scale = params.gear.output_torque_Nmm / torque       # report fields at the design torque T
-        u = sol.u * scale
-        s = nodal_stress(sol.md, sol.sk, u, sol.lame)
-        fields = (write_vtu(vtu, sol.md, {"displacement_mm": nodal_displacement(sol.md, sol.sk, u),
-                                          "von_mises_MPa": von_mises(s), "stress_MPa": s}),)
+        fields = (write_solid_fields(vtu, sol.md, sol.sk, sol.u * scale, sol.lame),)
     mat = params.material
     meta = {"torque_Nmm": params.gear.output_torque_Nmm, "teeth": teeth,
             "load": "uniform tangential shear on 'loaded' (band), moment T", "bc": "'fixed' (hub face) clamped",

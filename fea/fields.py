@@ -121,3 +121,11 @@ def write_vtu(path: Path, md: MeshData, point_data: Mapping[str, np.ndarray],
     with atomic_path(path) as tmp:
         tmp.write_text("".join(parts), encoding="ascii")
     return path
+
+
+def write_solid_fields(path: Path, md: MeshData, sk: SkfemMesh, u: np.ndarray, lame: Lame) -> Path:
+    """The fields every elasticity study writes (the registry's ``vtu_fields``): displacement, von Mises
+    and the stress tensor at the mesh nodes, as VTU."""
+    s = nodal_stress(md, sk, u, lame)
+    return write_vtu(path, md, {"displacement_mm": nodal_displacement(md, sk, u), "von_mises_MPa": von_mises(s),
+                                "stress_MPa": s})

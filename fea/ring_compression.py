@@ -31,7 +31,7 @@ import numpy as np
 from ..errors import StageError
 from .assembly import Lame
 from .convergence import grid_convergence
-from .fields import nodal_displacement, nodal_stress, von_mises, write_vtu
+from .fields import write_solid_fields
 from .meshing import MeshingFailed
 from .result import Quantity, StudyResult
 from .ring_loads import ArcLoad, point_load_factors, thin_ring_deflections_mm, thin_ring_moment_Nmm
@@ -219,10 +219,7 @@ def vtu_paths(vtu) -> tuple[Path, Path]:
 def write_force_field(path, sol, lame: Lame) -> Path:
     """Displacement, von Mises and stress (plane stress, zz = 0) of one 2D force-case solve, as VTU."""
     sk, u = sol.fields
-    md = sol.mesh
-    s = nodal_stress(md, sk, u, lame)
-    return write_vtu(path, md, {"displacement_mm": nodal_displacement(md, sk, u), "von_mises_MPa": von_mises(s),
-                                "stress_MPa": s})
+    return write_solid_fields(path, sol.mesh, sk, u, lame)
 
 
 def _meta(params, geo, load, lame, smooth, toothed, sc, tc, w0, f_ref, sizes) -> dict:

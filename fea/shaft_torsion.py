@@ -18,7 +18,7 @@ from typing import Callable, Sequence
 
 from ..errors import InputError
 from .assembly import Lame
-from .fields import nodal_displacement, nodal_stress, von_mises, write_vtu
+from .fields import write_solid_fields
 from .crack_seam import open_crack_for
 from .meshing import Refine
 from .refinement import DEFAULT_RATIO, crack_flexibility_quantities, crack_front_size_mm, refinement_sizes
@@ -97,9 +97,7 @@ def solve_seam(part, params, *, h_mm: float, order: int, refine: Sequence[Refine
 def _write_fields(vtu, sol: StaticSolution) -> tuple:
     if vtu is None:
         return ()
-    s = nodal_stress(sol.md, sol.sk, sol.u, sol.lame)
-    path = write_vtu(vtu, sol.md, {"displacement_mm": nodal_displacement(sol.md, sol.sk, sol.u),
-                                   "von_mises_MPa": von_mises(s), "stress_MPa": s})
+    path = write_solid_fields(vtu, sol.md, sol.sk, sol.u, sol.lame)
     return (path,)
 
 
