@@ -106,6 +106,21 @@ def flexspline_crack_flexibility(r_m_mm: float, wall_mm: float, K_u: float, K_d:
     return (K_u * K_d) ** 2 * a_mm ** 2 / (4.0 * math.pi * E_MPa * r_m_mm ** 4 * wall_mm)
 
 
+def flexspline_through_crack_flexibility(r_m_mm: float, wall_mm: float, a_mm: float, E_MPa: float,
+                                         tips: int = 2) -> float:
+    """dlambda_f of a THROUGH-WALL crack of half-length a (the seed's Griffith K = tau sqrt(pi a)), both tips.
+
+    Seed 000's K_I^2 + K_II^2 = tau^2 pi a at any angle, tau = T/(2 pi r_m^2 delta); a through crack of
+    half-length a grows at both tips, dA = 2 delta da, so eq 4 gives tips * a^2 / (4 pi E r_m^4 delta):
+    a^2 / (2 pi E r_m^4 delta) for the through crack, twice the seed's own one-tip integral (dA = delta da,
+    ``flexspline_crack_flexibility`` CORRECTED) and equal to its PUBLISHED a^2/(2 pi ...) with K_u K_d = 1.
+    E' = E (plane stress, as the seed); a thick-wall crack lies between that and plane strain (1 - nu^2).
+    """
+    if tips not in (1, 2):
+        raise ValueError(f"a crack has one or two tips, not {tips}")
+    return tips * a_mm ** 2 / (4.0 * math.pi * E_MPa * r_m_mm ** 4 * wall_mm)
+
+
 # ---- output shaft: circumferential crack, mode III (torque) and mode I (axial force) ----
 
 def shaft_k_per_torque(d_s_mm: float, a_final_mm: float | None, variant: Variant = Variant.CORRECTED) -> KPerLoad:

@@ -52,32 +52,6 @@ def circumferential_seam(r_outer_mm: float, depth_mm: float, z_mm: float, arc_de
                         {"crack_radius_mm": r_in, "crack_arc_deg": arc_deg, "crack_z_mm": z_mm})
 
 
-def inclined_root_seam(r_root_mm: float, theta_rad: float, depth_mm: float, angle_deg: float, z_mm: float,
-                       half_length_mm: float, opening_mm: float) -> CrackSurface:
-    """Rectangle of ``cracks.inclined_root_slot``'s mid plane: from ``opening_mm`` outside the root circle
-    (in the tooth space) to the front at depth a below the root, axial half length c."""
-    from build123d import Face, Polyline, Wire
-
-    beta = math.radians(angle_deg)
-    er = np.array([math.cos(theta_rad), math.sin(theta_rad), 0.0])
-    et = np.array([-math.sin(theta_rad), math.cos(theta_rad), 0.0])
-    u = -er * math.sin(beta) + et * math.cos(beta)          # into the wall
-    n = np.cross(np.array([0.0, 0.0, 1.0]), u)
-    r = r_root_mm      # same front depth rule as the slot: |P + L u| = r_f - a
-    length = r * math.sin(beta) - math.sqrt((r * math.sin(beta)) ** 2 - (2 * r * depth_mm - depth_mm ** 2))
-    p = r_root_mm * er + np.array([0.0, 0.0, z_mm])
-    ez = np.array([0.0, 0.0, half_length_mm])
-    start, tip = p - u * opening_mm, p + u * length
-    pts = [start - ez, tip - ez, tip + ez, start + ez]
-    face = Face(Wire(Polyline(*[_vec(q) for q in pts], close=True).edges()))
-    front = tuple((float(tip[0]), float(tip[1]), float(z)) for z in
-                  np.linspace(z_mm - half_length_mm, z_mm + half_length_mm, 9))
-    return CrackSurface(face, _vec(p), _vec(n), front,
-                        {"crack_root_point_mm": _vec(p), "crack_direction": _vec(u), "crack_normal": _vec(n),
-                         "crack_length_along_plane_mm": length, "crack_half_length_mm": half_length_mm,
-                         "crack_angle_deg": angle_deg})
-
-
 def semi_elliptical_seam(r_surface_mm: float, depth_mm: float, half_length_mm: float, z_mm: float) -> CrackSurface:
     """Half ellipse (a radial, c axial) in the plane y = 0 at the cylinder r = r_surface, +x.
 
@@ -93,3 +67,31 @@ def semi_elliptical_seam(r_surface_mm: float, depth_mm: float, half_length_mm: f
     return CrackSurface(face, (float(r_surface_mm), 0.0, float(z_mm)), (0.0, 1.0, 0.0), front,
                         {"crack_half_length_mm": half_length_mm, "crack_aspect_a_over_c": depth_mm / half_length_mm,
                          "crack_z_mm": z_mm})
+
+
+def helical_through_seam(r_inner_mm: float, r_outer_mm: float, half_length_mm: float, angle_deg: float,
+                         theta_rad: float, z_mm: float) -> CrackSurface:
+    """Through-wall crack of half-length a in a tube wall, at ``angle_deg`` to the axis in the wall's tangent
+    plane (45 deg: normal to the principal tension of torsion, seed 000's flexspline crack), centred at
+    (theta, z). A flat rectangle: radial through the wall (overshooting both surfaces, which trim it) times
+    +-a along the inclined direction; the wall's curvature over a moves its surface by a^2/(2r), covered
+    by the overshoot. Its front is the two radial lines at +-a."""
+    from build123d import Face, Polyline, Wire
+
+    beta = math.radians(angle_deg)
+    er = np.array([math.cos(theta_rad), math.sin(theta_rad), 0.0])
+    et = np.array([-math.sin(theta_rad), math.cos(theta_rad), 0.0])
+    d = math.sin(beta) * et + math.cos(beta) * np.array([0.0, 0.0, 1.0])   # in the tangent plane
+    n = np.cross(er, d)
+    r_m = 0.5 * (r_inner_mm + r_outer_mm)
+    c = r_m * er + np.array([0.0, 0.0, z_mm])
+    t = r_outer_mm - r_inner_mm
+    lo, hi = c + er * (r_inner_mm - r_m - 0.5 * t), c + er * (r_outer_mm - r_m + 0.5 * t + half_length_mm ** 2 / r_m)
+    pts = [lo - half_length_mm * d, hi - half_length_mm * d, hi + half_length_mm * d, lo + half_length_mm * d]
+    face = Face(Wire(Polyline(*[_vec(q) for q in pts], close=True).edges()))
+    s = np.linspace(r_inner_mm - r_m, r_outer_mm - r_m, 5)
+    front = tuple(_vec(c + er * x + sgn * half_length_mm * d) for sgn in (-1.0, 1.0) for x in s)
+    return CrackSurface(face, _vec(c), _vec(n), front,
+                        {"crack_kind": "through-wall", "crack_half_length_mm": half_length_mm,
+                         "crack_angle_deg": angle_deg, "crack_normal": _vec(n), "crack_direction": _vec(d),
+                         "crack_z_mm": z_mm, "crack_centre_mm": _vec(c)})

@@ -23,7 +23,7 @@ from strainwave.errors import InputError
 from strainwave.params import CupShape
 
 from . import faces as F
-from .crack_seams import inclined_root_seam
+from .crack_seams import helical_through_seam
 from .cracks import check_crack, inclined_root_slot
 from .involute import ToothSpec, gear_face, tip_thickness_mm
 from .occ import cut, fuse
@@ -107,7 +107,12 @@ def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True,
                     0.0 if crack_model == CrackModel.SEAM else cg.slot_width_mm)
         c = crack_depth_mm / CRACK_ASPECT
         z_c = cg.flexspline_axial_position_ratio * length
-        if not (z_b + c < z_c < length - c):
+        if crack_model == CrackModel.SEAM:
+            # the FEA solves the seed's crack: through the wall, 45 deg, in the fully loaded tube between the
+            # diaphragm region and the band (where the torque enters as surface shear the section carries
+            # less than T; issue 13 measured the outer-fibre shear halved at z = 0.9 L)
+            z_c = 0.5 * ((bottom_needed if fc.cup else 0.0) + z_b)
+        elif not (z_b + c < z_c < length - c):
             raise InputError("crack_geometry.flexspline_axial_position_ratio", cg.flexspline_axial_position_ratio,
                              f"the crack (half length {c:g} mm) must lie inside the tooth band "
                              f"z = {z_b:g}..{length:g} mm, i.e. ratio in ({(z_b + c) / length:.4f}, {(length - c) / length:.4f})")
@@ -132,8 +137,7 @@ def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True,
         theta = (cg.flexspline_tooth_index + 0.5) * 2 * math.pi / fc.teeth
         opening = 0.5 * spec.root_fillet_mm if teeth else crack_depth_mm
     if crack_depth_mm is not None and crack_model == CrackModel.SEAM:
-        seam = inclined_root_seam(r_surface, theta, crack_depth_mm, params.cracks.flexspline_crack_angle_deg,
-                                  z_c, c, opening)
+        seam = helical_through_seam(r_i, r_o, crack_depth_mm, params.cracks.flexspline_crack_angle_deg, theta, z_c)
         meta.update(seam.meta, crack_depth_mm=crack_depth_mm, crack_z_mm=z_c, crack_model=CrackModel.SEAM.value)
         return Part(PartName.FLEXSPLINE_CUP, solid, _named(solid, meta, None, teeth, fc.cup), seam.front_mm, None,
                     meta, seam.face, (seam.point_mm, seam.normal))

@@ -114,3 +114,19 @@ def test_stress_intensity_factors_at_load():
     kI, kII = cracks.flexspline_K(1000.0, 78.88, 2.24, 1.2, 1.1, 45.0, 0.1)
     assert kII == pytest.approx(0.0, abs=1e-12 * kI)   # beta = 45 deg is pure mode I (seed 000 text)
     assert cracks.shaft_K_I(10.0, 70.0, 0.1, Variant.PUBLISHED) > cracks.shaft_K_I(10.0, 70.0, 0.1)
+
+
+def test_through_crack_integrates_both_tips():
+    # a through-wall crack of half-length a grows at both tips: dA = 2 delta da in eq 4 (issue 13)
+    r_m, delta, E = 78.88, 2.24, 2.1e5
+    for angle in (30.0, 45.0):
+        k = cracks.flexspline_k_per_load(r_m, delta, 1.0, 1.0, angle)
+        for a in (0.1, 1.12):
+            integral = cracks.crack_compliance_integral(k, lambda s: 2.0 * delta, a, E, 8e4)
+            assert cracks.flexspline_through_crack_flexibility(r_m, delta, a, E) == pytest.approx(integral, rel=REL)
+            # one tip is the audit's corrected form; the seed's published 2 pi is the two-tip value (K_u K_d = 1)
+            one = cracks.flexspline_through_crack_flexibility(r_m, delta, a, E, tips=1)
+            assert one == pytest.approx(cracks.flexspline_crack_flexibility(r_m, delta, 1, 1, a, E, C), rel=REL)
+            assert 2 * one == pytest.approx(cracks.flexspline_crack_flexibility(r_m, delta, 1, 1, a, E, P), rel=REL)
+    with pytest.raises(ValueError):
+        cracks.flexspline_through_crack_flexibility(r_m, delta, 1.0, E, tips=3)

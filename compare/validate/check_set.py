@@ -13,8 +13,8 @@ from .plan import COMPONENT_STUDY, Plan
 from ...analytic import tube_crack
 from .ring_checks import ring_checks
 from .torsion_checks import (FLEX_UNIT, bearing_closed_crack_check, bearing_crack_curve, crack_check,
-                             cup_crack_curve, cup_flexibility, gear_stiffness, mu_gap, shaft_crack_curve,
-                             shaft_flexibility)
+                             cup_crack_allowances, cup_crack_curve, cup_flexibility, gear_stiffness, mu_gap,
+                             shaft_crack_curve, shaft_flexibility)
 
 # component -> the quantity that is its crack's added compliance (registry)
 DELTA_NAMES = {c: STUDIES[s].crack_delta.name for c, s in COMPONENT_STUDY.items()}
@@ -43,11 +43,9 @@ class CheckSet:
 
 def _curves(params, s000: dict, book: FeaBook, plan: Plan):
     """component -> (depth -> {variant: closed form}) under the FEA's load conditions."""
-    r_m = s000.get("r_m_mm", {}).get("chosen", 0.5 * params.flexspline_cup.pitch_diameter_mm)
-    unit_params = params.with_value("cracks.stress_nonuniformity", 1.0).with_value("cracks.dynamic_load_factor", 1.0)
     F_r = STUDIES[COMPONENT_STUDY["bearing"]].applied_force_N(book.meta(plan.headline["bearing"].label)) or s000.get("F_r_N", 1.0)
     return {"shaft": lambda a: shaft_crack_curve(params, a),
-            "cup": lambda a: cup_crack_curve(unit_params, a, r_m),
+            "cup": lambda a: cup_crack_curve(params, a),
             "bearing": lambda a: bearing_crack_curve(params, a, F_r)}
 
 
@@ -76,10 +74,14 @@ CRACK_TEXT = {
               "amplification^m, m fitted on d_i/d = 0.5 and 0.8 only (analytic/tube_crack.py), so the default "
               "d_i/d is a geometry it was not fitted on; beside them the strip form itself and the solid-bar "
               "128 M_M^2 a^2/(mu d_e^5) (audit 10, 12)"),
-    "cup": ("cup.crack_compliance", "added torsional flexibility of the tooth-root crack", FLEX_UNIT,
-            "closed forms evaluated with K_u = K_d = 1 because the FEA load is static and uniform (the seed's "
-            "1.2 x 1.1 are load factors, audit 17); published a^2/(2 pi E r_m^4 delta), corrected "
-            "a^2/(4 pi E r_m^4 delta)"),
+    "cup": ("cup.crack_compliance", "added torsional flexibility of the seed's through-wall 45 deg flexspline crack",
+            FLEX_UNIT,
+            "the crack seed 000 describes: through the wall, half-length a, 45 deg to the axis (pure mode I, "
+            "K_I = tau sqrt(pi a)), in the fully loaded tube between diaphragm and tooth band (not in the band, "
+            "where the torque enters as surface shear and the section carries less than T). Asserted "
+            "(corrected): both tips, a^2/(2 pi E r_m^4 delta); the seed's published K_u K_d a^2/(2 pi ...) is "
+            "that form (its 2 pi is right for a through crack), evaluated at K_u = K_d = 1 (static uniform load, "
+            "audit 17); audit_one_tip = the audit's a^2/(4 pi ...), which integrates one tip only"),
     "bearing": ("bearing.crack_compliance", "added radial compliance of the bearing-ring surface crack", "mm/N",
                 "du_H/F_r; published carries F_r^2 (load-dependent), corrected F_r (audit 7)"),
 }
@@ -101,6 +103,8 @@ def build_checks(book: FeaBook, plan: Plan, summary: dict, params) -> CheckSet:
         if sweep is not None:
             sweeps[component] = _sweep_report(sweep, curves[component])
         allowances = {}
+        if component == "cup":
+            allowances = lambda a: cup_crack_allowances(params, a)   # noqa: E731  (depth chosen in crack_check)
         if component == "shaft":
             s = params.output_shaft
             ratio = s.inner_diameter_mm / s.outer_diameter_mm

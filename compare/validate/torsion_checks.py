@@ -110,10 +110,28 @@ def shaft_crack_curve(params, depth_mm: float) -> dict[str, float]:
             "solid_bar_a2": cracks.shaft_crack_flexibility(d_s, depth_mm, mu, Variant.CORRECTED)}
 
 
-def cup_crack_curve(params, depth_mm: float, r_m_mm: float) -> dict[str, float]:
-    cup, cr, E = params.flexspline_cup, params.cracks, params.material.youngs_modulus_MPa
-    return {v.value: cracks.flexspline_crack_flexibility(r_m_mm, cup.wall_thickness_mm, cr.stress_nonuniformity,
-                                                         cr.dynamic_load_factor, depth_mm, E, v) for v in Variant}
+def cup_crack_curve(params, depth_mm: float) -> dict[str, float]:
+    """The seed's flexspline crack as the FEA solves it: through the wall, half-length a, 45 deg, in the fully
+    loaded tube (mid-surface radius r_m = d1/2 - delta/2). corrected (asserted): both tips of the through crack,
+    a^2/(2 pi E r_m^4 delta); published: seed 000's K_u K_d a^2/(2 pi E r_m^4 delta); audit_one_tip: the
+    audit's (K_u K_d)^2 a^2/(4 pi E r_m^4 delta) (one tip, dA = delta da). K_u = K_d = 1: the FEA load is
+    static and uniform (the seed's 1.2 x 1.1 are load factors, audit 17)."""
+    cup, E = params.flexspline_cup, params.material.youngs_modulus_MPa
+    r_m, wall = 0.5 * (cup.pitch_diameter_mm - cup.wall_thickness_mm), cup.wall_thickness_mm
+    return {"published": cracks.flexspline_crack_flexibility(r_m, wall, 1.0, 1.0, depth_mm, E, Variant.PUBLISHED),
+            "corrected": cracks.flexspline_through_crack_flexibility(r_m, wall, depth_mm, E, tips=2),
+            "audit_one_tip": cracks.flexspline_crack_flexibility(r_m, wall, 1.0, 1.0, depth_mm, E, Variant.CORRECTED)}
+
+
+def cup_crack_allowances(params, depth_mm: float) -> dict[str, float]:
+    """Named allowances of the through-crack form, fixed by theory before any solve: the 3D front lies between
+    plane stress (the form, E) and plane strain (E/(1 - nu^2)), so the compliance may be up to nu^2 lower;
+    the wall's curvature (shell parameter lambda = a/sqrt(r_m delta)) bulges the crack by O(lambda^2)."""
+    cup, nu = params.flexspline_cup, params.material.poisson_ratio
+    r_m = 0.5 * (cup.pitch_diameter_mm - cup.wall_thickness_mm)
+    lam2 = depth_mm ** 2 / (r_m * cup.wall_thickness_mm)
+    return {f"3D front between plane stress and plane strain (nu^2, nu = {nu:g})": nu ** 2,
+            f"shell curvature lambda^2 = a^2/(r_m delta) = {lam2:.2g}": lam2}
 
 
 def bearing_crack_curve(params, depth_mm: float, radial_force_N: float) -> dict[str, float]:
@@ -141,6 +159,8 @@ def crack_check(check_id: str, quantity: str, unit: str, sweep: Sweep | None, cu
     rel = [u / v if ok else float("inf") for u, v, ok in zip(sweep.uncertainties, sweep.values, resolved)]
     i = min(range(len(rel)), key=lambda k: (rel[k], sweep.depths_mm[k]))
     depth, value, unc = sweep.depths_mm[i], sweep.values[i], sweep.uncertainties[i]
+    if callable(allowances):
+        allowances = allowances(depth)
     where = (f"at the seed's a = {depth:g} mm" if math.isclose(depth, default_depth_mm) else
              f"at a = {depth:g} mm, the depth the FEA resolves best (GCI {100 * rel[i]:.2g} %); the seed's "
              f"{default_depth_mm:g} mm is in the sweep table")
