@@ -84,11 +84,11 @@ def audit_records(params, s000: dict | None = None, s003: dict | None = None) ->
              "delta_AB/2 = 0.918 W0, not W0",
              "delta_AB/delta_CD = {q:.5f}", {"q": co["delta_AB_over_delta_CD"]}, "ring.delta_ab"),
         _rec(6, "000", "eq 3", "du = int G/P dA is missing a factor 2 (the expanded form with 2/E' is right)",
-             "factor {f:.0f}", {"f": 2.0}, "bearing.crack_compliance"),
+             "factor {f:.0f}", {"f": 2.0}, "cup.crack_compliance"),
         _rec(7, "000", "du_H, dK_G", "du_H printed with F_r^2 instead of F_r: dK_G gets units 1/mm and depends on "
              "the load", "du_H published/corrected = {q:.4f} (= F_r * 0.217/0.216717); dK_G {p:.4g} vs {c:.4g}",
              {"q": s000["delta_u_H_mm"]["published"] / s000["delta_u_H_mm"]["corrected"],
-              "p": s000["delta_K_G"]["published"], "c": s000["delta_K_G"]["corrected"]}, "bearing.crack_compliance"),
+              "p": s000["delta_K_G"]["published"], "c": s000["delta_K_G"]["corrected"]}, None),
         _rec(8, "000", "K_G = K_G0 - dK_G", "stiffnesses subtracted; a crack adds compliance in series",
              "published K_G = {p:.4g} N/mm (negative), series K_G = {c:.6g} N/mm",
              {"p": s000["K_G_N_per_mm"]["published"], "c": s000["K_G_N_per_mm"]["corrected"]},
@@ -126,7 +126,7 @@ def audit_records(params, s000: dict | None = None, s003: dict | None = None) ->
              {"tp": 100 * table_add, "cp": lsum_c["reduction_percent"]}, "shaft.crack_compliance"),
         _rec(17, "000", "dlambda_f, K_I of the ring", "dynamic factor K_d inside a compliance makes stiffness "
              "load-dependent; Hertzian contact stress is compressive; the crack front should be the ring width, "
-             "not t_i", "(K_uK_d)^2 = {k:.4f} multiplies dlambda_f", {"k": (Ku * Kd) ** 2}, "cup.crack_compliance"),
+             "not t_i", "(K_uK_d)^2 = {k:.4f} multiplies dlambda_f", {"k": (Ku * Kd) ** 2}, "bearing.crack_compliance"),
         _rec(18, "000", "material", "E, nu and mu mutually inconsistent: E/(2(1+nu)) differs from mu",
              "E/(2(1+nu)) / mu - 1 = {d:+.3f} %",
              {"d": 100 * (params.material.implied_shear_modulus_MPa / params.material.shear_modulus_MPa - 1)},

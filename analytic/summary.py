@@ -7,6 +7,7 @@ from __future__ import annotations
 import math
 
 from .audit import audit_as_dicts
+from .crack_headline import crack_headline
 from .checks import reference_values
 from .tooth_number import FEA_AT_MINIMUM
 from .seed000 import seed000_summary
@@ -22,6 +23,7 @@ def analytic_summary(params) -> dict:
                   "force": "N"},
         "seed000": s000,
         "seed003": s003,
+        "crack_headline": crack_headline(params).to_dict(),
         "checks": reference_values(params, s000, s003),
         "audit": audit_as_dicts(params, s000, s003),
     }
@@ -91,6 +93,18 @@ def designer_headline(s3: dict) -> list[str]:
     return out
 
 
+def crack_headline_lines(h: dict) -> list[str]:
+    """Seed 000's headline (analytic/crack_headline.py) from its JSON form."""
+    out = [f"DESIGNER HEADLINE (seed 000): cracks of the seed's depth a = {h['seed_depth_mm']:g} mm in all three "
+           f"components lower K_HD = {h['K_HD_uncracked_Nmm_per_rad']:.4g} N mm/rad by "
+           f"{100 * h['drop_all_three']:.2g} % (seed: {h['seed_claim_percent']:g} %), from the FEA-confirmed crack forms"]
+    for c in h["components"]:
+        depth = "none" if c["depth_for_target_mm"] is None else f"a = {c['depth_for_target_mm']:.3g} mm"
+        out.append(f"  {c['component']}: {c['form']}; K_HD -{100 * c['drop_at_seed_depth']:.2g} % at the seed's depth; "
+                   f"{100 * h['target_drop']:g} % of K_HD costs {depth} ({c['depth_note']})")
+    return out
+
+
 def format_summary(summary: dict) -> str:
     """Readable text tables: seed 000 (published | corrected), seed 003, audit list."""
     s0, s3 = summary["seed000"], summary["seed003"]
@@ -106,7 +120,7 @@ def format_summary(summary: dict) -> str:
     lines.append("material: " + s0["material"]["note"])
 
     co, tn, ge, stv = s3["coefficients"], s3["tooth_number_min"], s3["geometry"], s3["stresses_MPa"]
-    lines = designer_headline(s3) + [""] + lines
+    lines = designer_headline(s3) + crack_headline_lines(summary["crack_headline"]) + [""] + lines
     lines += ["", "SEED 003: HGD with external wave generator",
               f"Z_R = {s3['inputs']['Z_R']}, dZ = {s3['inputs']['tooth_difference']}, Z_G = {s3['inputs']['Z_G']}, "
               f"r_m = {_fmt(ge['r_m_mm'])} mm, delta = {_fmt(s3['inputs']['rim_thickness_mm'])} mm, "

@@ -46,7 +46,36 @@ def ellipse_evidence(checks: dict[str, Check]) -> dict | None:
             if thin else f"FEA delta_AB/delta_CD = {ratio:.4f}; an ellipse would give 1"}
 
 
-def audit_with_evidence(records: list[dict], checks: dict[str, Check], *, shaft_exponent: dict | None) -> list[dict]:
+# Why the FEA cannot decide an item (issue 13: every inconsistency names its FEA evidence or this reason).
+NOT_AN_FEA_QUESTION = {
+    4: "arithmetic of seed 003's worked example (roots of eq 14): no field quantity is involved",
+    7: "the FEA is linear in F_r by construction (linear elasticity; crack-face contact with zero gap is "
+       "homogeneous of degree 1), so du_H ~ F_r^1 holds for every FEA result and F_r^2 cannot; the coefficient "
+       "0.217 is not testable here because the crack at the Hertz centre is shut (bearing.crack_compliance)",
+    11: "M_P is the tension factor; the drive carries no axial force, so no study loads the shaft axially",
+    15: "arithmetic of the seed's table (shares of its own numbers)",
+    20: "0.376 vs 0.375 changes M_M by 0.27 %, and M_M is a solid-bar factor: the hollow shaft's crack is checked "
+        "against the tube forms instead (shaft.crack_compliance)",
+}
+
+
+def through_crack_evidence(check: Check | None) -> dict | None:
+    """Audit 9: the seed's 2 pi (both tips of a through crack) against the audit's 4 pi (one tip)."""
+    if check is None or check.fea is None or "audit_one_tip" not in check.rel_error:
+        return None
+    one, two = check.rel_error["audit_one_tip"], check.rel_error.get("corrected")
+    tol = check.tolerance.relative
+    settles = "published" if two is not None and abs(two) <= tol < abs(one) else "both"
+    return {"kind": "crack tips", "settles": settles,
+            "finding": f"through-wall crack FEA vs both tips a^2/(2 pi E r_m^4 delta) (= the seed's 2 pi with "
+                       f"K_u K_d = 1): {100 * two:+.1f} %; vs the audit's one tip (4 pi): {100 * one:+.1f} % "
+                       f"(tolerance {100 * tol:.1f} %): the seed's 2 pi is right for a through crack, the audit's "
+                       "'2 pi double-counts K_II' is refuted; whether K_u K_d is squared cannot be tested by a "
+                       "static FEA (K_u = K_d = 1)"}
+
+
+def audit_with_evidence(records: list[dict], checks: dict[str, Check], *, shaft_exponent: dict | None,
+                        crack_headline: dict | None = None) -> list[dict]:
     """Each audit record plus ``fea_evidence`` (a list) and ``settled`` (a one-line finding)."""
     out = []
     for rec in records:
@@ -63,9 +92,19 @@ def audit_with_evidence(records: list[dict], checks: dict[str, Check], *, shaft_
             shape = ellipse_evidence(checks)
             if shape is not None:
                 evidence.append(shape)
+        if rec.get("id") == 9:
+            tips = through_crack_evidence(checks.get("cup.crack_compliance"))
+            if tips is not None:
+                evidence.append(tips)
+        if rec.get("id") == 16 and crack_headline:
+            evidence.append({"kind": "confirmed crack forms", "settles": "corrected",
+                             "finding": f"cracks of {crack_headline['seed_depth_mm']:g} mm in all three components "
+                                        f"lower K_HD by {100 * crack_headline['drop_all_three']:.2g} % with the "
+                                        f"FEA-confirmed forms, not {crack_headline['seed_claim_percent']:g} %"})
         decisive = [e for e in evidence if e.get("settles") in ("corrected", "published", "neither")]
+        why_not = NOT_AN_FEA_QUESTION.get(rec.get("id"), "not an FEA question (arithmetic or wording)")
         settled = (decisive[-1]["finding"] if decisive else
-                   (evidence[-1]["finding"] if evidence else "not an FEA question (arithmetic or wording)"))
+                   (evidence[-1]["finding"] if evidence else "FEA cannot decide: " + why_not))
         out.append({**rec, "fea_evidence": evidence, "settled": settled,
                     "settled_by_fea": bool(decisive) and decisive[-1]["settles"] in ("corrected", "published")})
     return out

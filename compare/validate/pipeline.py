@@ -126,7 +126,7 @@ def _run_cases(cases, params, *, fields_dir: Path, cache, quick: bool, progress)
 
 def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str], None]) -> Outcome:
     """Run the whole validation into ``out_dir``; returns the checks and timings (see module docstring)."""
-    from ...analytic.summary import analytic_summary, designer_headline
+    from ...analytic.summary import analytic_summary, crack_headline_lines, designer_headline
     from .artifacts import make_images
     from .step_export import StepJob
 
@@ -156,7 +156,8 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
     with _stage("checks", timings, progress, 4, total):
         check_set = build_checks(book, plan, summary, params)
         audit = audit_with_evidence(summary.get("audit", []), check_set.by_id(),
-                                    shaft_exponent=_shaft_exponent(check_set))
+                                    shaft_exponent=_shaft_exponent(check_set),
+                                    crack_headline=summary.get("crack_headline"))
     with _stage("images", timings, progress, 5, total):
         images, missing = make_images(out_dir, book, plan, check_set, summary, progress)
     with _stage("reports", timings, progress, 6, total):
@@ -179,7 +180,10 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
                            "cached": s.cached, "error": s.error} for s in steps],
                 "timings_s": dict(timings), "total_s": 0.0,
             },
-            "designer": designer_headline(summary["seed003"]) if "seed003" in summary else [],
+            # the report's opening lines (issue 13): seed 003's Z_R,min and seed 000's crack headline, both from
+            # FEA-confirmed forms
+            "designer": ((designer_headline(summary["seed003"]) if "seed003" in summary else [])
+                         + (crack_headline_lines(summary["crack_headline"]) if "crack_headline" in summary else [])),
             "checks": checks, "audit": audit,
             "crack_sweeps": {k: r.to_dict() for k, r in check_set.sweeps.items()},
             "images": [i.to_dict() for i in images], "missing_images": [m.to_dict() for m in missing],
