@@ -34,6 +34,7 @@ CUP_SHELL_PARAMETER_LIMIT = 0.5     # a/sqrt(r_m delta) up to which a flat-sheet
 class ComponentCrackCost:
     component: str
     form: str
+    depth_mm: float                          # the parameter set's crack of this component (seed 000: 0.1 mm)
     delta_lambda_at_seed_depth: float        # rad/(N mm)
     drop_at_seed_depth: float                # relative K_HD drop, this crack alone
     depth_for_target_mm: float | None        # crack depth (half-length for the cup) costing TARGET_DROP
@@ -46,7 +47,7 @@ class ComponentCrackCost:
 
 @dataclass(frozen=True)
 class CrackHeadline:
-    seed_depth_mm: float
+    seed_depth_mm: float                     # the largest of the components' depths (all 0.1 mm in seed 000)
     lambda_sum_uncracked: float
     K_HD_uncracked: float
     components: tuple[ComponentCrackCost, ...]
@@ -77,7 +78,7 @@ def crack_headline(params) -> CrackHeadline:
 
     mat, sh, cup, g, wg = params.material, params.output_shaft, params.flexspline_cup, params.gear, params.wave_generator
     G, E = mat.implied_shear_modulus_MPa, mat.youngs_modulus_MPa
-    a = params.cracks.depth_mm
+    a_s, a_f, a_b = sh.crack_depth_mm, cup.root_crack_depth_mm, wg.bearing_crack_depth_mm
     lam_H0 = torsion.wave_generator_flexibility(g.force_coefficient, wg.uncracked_radial_stiffness_N_per_mm,
                                                 cup.pitch_diameter_mm, g.wave_number, g.radial_deformation_mm,
                                                 g.gear_ratio)
@@ -92,23 +93,23 @@ def crack_headline(params) -> CrackHeadline:
     cup_fn = lambda s: cracks.flexspline_through_crack_flexibility(r_m, wall, s, E)   # noqa: E731
     a_cup_max = CUP_SHELL_PARAMETER_LIMIT * math.sqrt(r_m * wall)
 
-    d_shaft, d_cup = shaft_fn(a), cup_fn(a)
+    d_shaft, d_cup = shaft_fn(a_s), cup_fn(a_f)
     a_shaft = _depth_for(shaft_fn, lam, a_shaft_max)
     a_cup = _depth_for(cup_fn, lam, a_cup_max)
     # flat-sheet extrapolation beyond the form's range, quoted only to say how far out of reach it is
     a_cup_flat = math.sqrt(TARGET_DROP / (1 - TARGET_DROP) * lam / cup_fn(1.0))
     components = (
-        ComponentCrackCost("output shaft", "circumferential crack, thick-tube form", d_shaft, _drop(lam, d_shaft),
+        ComponentCrackCost("output shaft", "circumferential crack, thick-tube form", a_s, d_shaft, _drop(lam, d_shaft),
                            a_shaft, f"confirmed range a/t <= {SHAFT_CONFIRMED_A_OVER_T:g}, wall {r_o - r_i:g} mm"
                            + ("" if a_shaft is None else f", a/t = {a_shaft / (r_o - r_i):.3g}")),
-        ComponentCrackCost("flexspline", "through-wall 45 deg crack of half-length a, both tips", d_cup,
+        ComponentCrackCost("flexspline", "through-wall 45 deg crack of half-length a, both tips", a_f, d_cup,
                            _drop(lam, d_cup), a_cup,
                            f"not within a/sqrt(r_m delta) <= {CUP_SHELL_PARAMETER_LIMIT:g} (a <= {a_cup_max:.3g} mm); "
                            f"the flat-sheet form would need a = {a_cup_flat:.3g} mm" if a_cup is None else
                            "within the flat-sheet range"),
         ComponentCrackCost("wave-generator bearing ring", "surface crack at the Hertz centre: compressed, shut",
-                           0.0, 0.0, None, "a crack under the contact never opens (FEA with face contact); the "
+                           a_b, 0.0, 0.0, None, "a crack under the contact never opens (FEA with face contact); the "
                                            "seed's tensile form applies to a crack outside the patch, not checked"),
     )
     total = d_shaft + d_cup
-    return CrackHeadline(a, lam, 1.0 / lam, components, _drop(lam, total))
+    return CrackHeadline(max(a_s, a_f, a_b), lam, 1.0 / lam, components, _drop(lam, total))

@@ -95,12 +95,12 @@ def designer_headline(s3: dict) -> list[str]:
 
 def crack_headline_lines(h: dict) -> list[str]:
     """Seed 000's headline (analytic/crack_headline.py) from its JSON form."""
-    out = [f"DESIGNER HEADLINE (seed 000): cracks of the seed's depth a = {h['seed_depth_mm']:g} mm in all three "
-           f"components lower K_HD = {h['K_HD_uncracked_Nmm_per_rad']:.4g} N mm/rad by "
+    out = [f"DESIGNER HEADLINE (seed 000): cracks of the seed's depth (a = {h['seed_depth_mm']:g} mm) in all three "
+           f"components together lower K_HD = {h['K_HD_uncracked_Nmm_per_rad']:.4g} N mm/rad by "
            f"{100 * h['drop_all_three']:.2g} % (seed: {h['seed_claim_percent']:g} %), from the FEA-confirmed crack forms"]
     for c in h["components"]:
         depth = "none" if c["depth_for_target_mm"] is None else f"a = {c['depth_for_target_mm']:.3g} mm"
-        out.append(f"  {c['component']}: {c['form']}; K_HD -{100 * c['drop_at_seed_depth']:.2g} % at the seed's depth; "
+        out.append(f"  {c['component']}: {c['form']}; a = {c['depth_mm']:g} mm: K_HD -{100 * c['drop_at_seed_depth']:.2g} %; "
                    f"{100 * h['target_drop']:g} % of K_HD costs {depth} ({c['depth_note']})")
     return out
 
