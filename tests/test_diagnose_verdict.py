@@ -77,7 +77,7 @@ def test_every_loop_law_dissipates(params, model):
     u = _path(2001, (0, 1, -1, 1, 0))
     ctx = _ctx(params, u)
     laws = {"dahl": lambda c: hysteresis.EFFECT.contribution(c, np.array([0.02, -1.3])),
-            "play": lambda c: hysteresis.PLAY.contribution(c, np.array([0.0, 0.1, 0.2, 0.05, 0.0])),
+            "play": lambda c: hysteresis.PLAY.contribution(c, np.array([0.0, 0.0, 0.1, 0.0, 0.2, 0.05, 0.0, 0.0])),
             "bouc_wen": lambda c: -0.02 * _bouc_wen(c.u)}
     twist = laws[model](ctx)
     width, energy = loop_quantities(ctx, laws[model])

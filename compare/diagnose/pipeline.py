@@ -214,7 +214,9 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     ranked_singles = _best_per_set(singles)
     gof_base = structure_test(ctx, ctx.y - base_fit.model, sigma, base_fit.prior_chi2)
     best_single = ranked_singles[0] if ranked_singles else None
-    cat_gain = base_fit.bic - best_single.bic if best_single else 0.0
+    # a catalogue model is evidence of a mismatch only with physically plausible parameters
+    plausible = [f for f in ranked_singles if not _implausible(ctx, f)]
+    cat_gain = base_fit.bic - plausible[0].bic if plausible else 0.0
     mismatch = bool(gof_base.structured or cat_gain > BIC_THRESHOLD)
 
     # pairs of the four best distinct singles; a pair is a candidate only if parsimonious (see module doc)

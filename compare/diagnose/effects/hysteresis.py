@@ -23,7 +23,7 @@ from .base import Context, Effect, Param
 from .loop import ARCMIN_PER_RAD, loop_quantities
 
 # play thresholds (fraction of full-scale load): log-spaced, from a tight slip to a wide elastic-slip range
-PLAY_THRESHOLDS = (0.01, 0.03, 0.08, 0.2, 0.45)
+PLAY_THRESHOLDS = (0.005, 0.01, 0.02, 0.04, 0.08, 0.15, 0.3, 0.5)
 
 
 def dahl_unit(ctx: Context, w: float) -> np.ndarray:
