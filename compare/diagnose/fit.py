@@ -45,6 +45,31 @@ def ar_profile(r: np.ndarray, order: int = AR_ORDER) -> tuple[float, np.ndarray]
     return float(e @ e) * n / (n - order), coef
 
 
+# ARMA(1,1) grid: a white sensor with a slow wander (random walk, drifting reference) is ARIMA(0,1,1), which a
+# short AR filter cannot whiten; e_k = r_k - phi r_(k-1) + theta e_(k-1) can (phi -> 1, theta -> 1)
+_PHIS = (0.5, 0.8, 0.9, 0.95, 0.98, 0.99, 1.0)
+_THETAS = (0.0, 0.3, 0.5, 0.7, 0.8, 0.9, 0.95, 0.98)
+
+
+def noise_filter(r: np.ndarray) -> tuple[float, np.ndarray, np.ndarray]:
+    """(innovation sum of squares, b, a): the best two-parameter noise filter e = lfilter(b, a, r), AR(2) or
+    ARMA(1,1), by least innovation variance (both have two parameters, so the comparison is fair)."""
+    from scipy.signal import lfilter
+    n = len(r)
+    rss, coef = ar_profile(r)
+    best = (rss, np.concatenate([[1.0], -coef]), np.array([1.0]))
+    if n <= 8:
+        return best
+    for phi in _PHIS:
+        d = r[1:] - phi * r[:-1]
+        for th in _THETAS:
+            e = lfilter([1.0], [1.0, -th], d) if th else d
+            val = float(e @ e) * n / (n - 1)
+            if val < best[0]:
+                best = (val, np.array([1.0, -phi]), np.array([1.0, -th]))
+    return best
+
+
 def lag1(r: np.ndarray) -> float:
     """Lag-1 autocorrelation of a residual (0 for white noise)."""
     r = r - r.mean()
@@ -55,7 +80,7 @@ def lag1(r: np.ndarray) -> float:
 def bic_ar(r: np.ndarray, k: int, prior_chi2: float) -> float:
     """BIC of a model with residual ``r``, ``k`` regression parameters, the prior's -2 ln p, AR(2) noise."""
     n = len(r)
-    rss_e, _ = ar_profile(r)
+    rss_e, _, _ = noise_filter(r)
     return n * math.log(max(rss_e, n * NOISE_FLOOR ** 2) / n) + prior_chi2 + (k + AR_ORDER) * math.log(n)
 
 
@@ -181,4 +206,4 @@ def fit_effects(ctx: Context, effects: tuple[Effect, ...], sigma: float, uncerta
                at_bound, float(prior_chi2))
 
 
-__all__ = ["AR_ORDER", "Fit", "NOISE_FLOOR", "ar_profile", "bic_ar", "fit_effects", "lag1"]
+__all__ = ["AR_ORDER", "Fit", "NOISE_FLOOR", "ar_profile", "bic_ar", "noise_filter", "fit_effects", "lag1"]

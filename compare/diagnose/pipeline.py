@@ -250,10 +250,11 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
         first = next(s for s in ranked_singles if s.id == p.effects[0].id)
         if first.bic - p.bic <= BIC_THRESHOLD:
             continue                         # the second effect is not significant given the first
-        left = {s.name for s in gof(first).significant}
-        removed = left - {s.name for s in gof(p).significant}
-        if not removed:
-            continue                         # it explains no structure the first one leaves
+        # it must explain a structure the first one cannot: some generic structure of the first's residual
+        # loses more than 10 BIC units of evidence once the second effect is added
+        before, after = gof(first), gof(p)
+        if not any(s.delta_bic - after.get(s.name).delta_bic > BIC_THRESHOLD for s in before.structures):
+            continue
         candidates.append(p)
     candidates.sort(key=lambda f: f.bic)
     best = candidates[0] if candidates else base_fit

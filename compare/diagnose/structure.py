@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .effects.base import Context
-from .fit import NOISE_FLOOR, ar_profile, lag1
+from .fit import NOISE_FLOOR, lag1, noise_filter
 
 THRESHOLD = 10.0
 STIFFNESS_CHI2 = 6.63     # chi-square(1) at 99 %: 2.58 prior sigmas
@@ -143,36 +143,34 @@ def _project_out(G: np.ndarray, Q: np.ndarray) -> tuple[np.ndarray, int]:
     return U[:, :rank], rank
 
 
-def _whiten(x: np.ndarray, a: np.ndarray) -> np.ndarray:
-    """Innovations of x under the AR filter a (rows from len(a) on); works on vectors and column stacks."""
-    p = len(a)
-    out = x[p:].copy()
-    for i, ai in enumerate(a):
-        out -= ai * x[p - 1 - i:len(x) - 1 - i]
-    return out
+def _whiten(x: np.ndarray, b: np.ndarray, a: np.ndarray) -> np.ndarray:
+    """Innovations of x under the noise filter (b, a), start-up samples dropped; vectors or column stacks."""
+    from scipy.signal import lfilter
+    return lfilter(b, a, x, axis=0)[len(b) - 1:]
 
 
 def _score(r: np.ndarray, basis: np.ndarray) -> float:
-    """-2 ln L (up to constants) of r minus the best multiple of ``basis`` under profiled AR noise.
+    """-2 ln L (up to constants) of r minus the best multiple of ``basis`` under the profiled noise filter.
 
     The coefficients come from ordinary least squares and from generalised least squares (whitened with the
-    AR filter of the current residual, iterated twice); the best pair (coefficients, AR filter) is kept.
+    noise filter of the current residual, iterated twice); the best pair (coefficients, filter) is kept.
     OLS alone would be wrong under coloured noise: fitting a sharp basis function to a smooth residual puts
-    jumps into it that the AR likelihood then punishes."""
+    jumps into it that the coloured-noise likelihood then punishes."""
     n = len(r)
     if basis.shape[1] == 0:
-        rss, _ = ar_profile(r)
+        rss, _, _ = noise_filter(r)
         return n * math.log(max(rss, n * NOISE_FLOOR ** 2) / n)
     c = basis.T @ r
     best = None
+    filt = noise_filter(r)
     for it in range(3):
         r2 = r - basis @ c
-        rss, a = ar_profile(r2)
-        best = rss if best is None or rss < best else best
+        cur = noise_filter(r2)
+        best = cur[0] if best is None or cur[0] < best else best
         if it == 2:
             break
-        a_from = ar_profile(r)[1] if it == 0 else a
-        wb, wr = _whiten(basis, a_from), _whiten(r, a_from)
+        b, a = (filt[1], filt[2]) if it == 0 else (cur[1], cur[2])
+        wb, wr = _whiten(basis, b, a), _whiten(r, b, a)
         c, *_ = np.linalg.lstsq(wb, wr, rcond=None)
     return n * math.log(max(best, n * NOISE_FLOOR ** 2) / n)
 
@@ -209,7 +207,7 @@ def structure_test(ctx: Context, r: np.ndarray, sigma_white: float, prior_chi2: 
         structures.append(Structure(name, float(alone[name]), float(without - joint - (rank + extra) * ln_n), detail))
     # a stiffness outside its prior is judged as the prior states it: beyond 2.6 sigma (p < 0.01)
     structures.append(Structure("stiffness", float(prior_chi2), float(prior_chi2), threshold=STIFFNESS_CHI2))
-    rss_e, _ = ar_profile(r)
+    rss_e, _, _ = noise_filter(r)
     return StructureTest(tuple(structures), float(np.mean(r ** 2)) / max(sigma_white ** 2, 1e-300), lag1(r),
                          rss_e)
 
