@@ -7,7 +7,8 @@ prior 1 +/- baseline_uncertainty. The effect parameters are fitted by bounded tr
 squares from a few starts.
 
 Noise is not assumed white: real sensors drift, are low-pass filtered and wander. The likelihood of
-every model is that of an AR(2) noise process whose coefficients are profiled on the model's own
+every model is that of an AR(2) or ARMA(1,1) noise process (noise_filter: whichever whitens better, both two
+parameters) whose coefficients are profiled on the model's own
 residual r (conditional Gaussian likelihood: innovations e_k = r_k - a1 r_(k-1) - a2 r_(k-2)):
     BIC = N ln(RSS_e / N) + ((s - 1)/u)^2 + (k + 2) ln N,   RSS_e = min_a sum e_k^2 (>= N floor^2),
 k = 3 + effect parameters, ((s - 1)/u)^2 = -2 ln(prior). For white noise a ~ 0 and this is the usual BIC;

@@ -9,7 +9,7 @@ The residual r of a model is offered a few generic, catalogue-free structures, e
   specimen, warm-up of the gain);
 - ``periodic_time``: a sinusoid at the residual's strongest spectral line (period reported);
 - ``periodic_angle``: a sinusoid in the wave generator's input angle (when recorded), k per revolution.
-Each is scored under the same AR(2) noise likelihood as the catalogue (fit.bic_ar): delta BIC =
+Each is scored under the same coloured-noise likelihood as the catalogue (fit.bic_ar, fit.noise_filter): delta BIC =
 N ln(RSS_e(r) / RSS_e(r - G c)) - rank(G) ln N (and + ln N for a searched frequency). A structure is
 significant when delta BIC > 10 ("very strong"); its unique share is its drop from the joint fit of all
 structures. Coloured noise is no structure: its wander costs what an AR process of that size costs.
