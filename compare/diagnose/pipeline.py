@@ -42,7 +42,7 @@ from .structure import StructureTest, describe, structure_test
 BIC_THRESHOLD = 10.0       # "very strong" on the Kass-Raftery scale
 AMBIGUOUS_BIC = 6.0        # "strong": closer than this, the data cannot tell the two apart
 MAX_GOF_TRIES = 6          # model forms offered the goodness-of-fit test, best BIC first
-MAX_FIT_ROWS = 4000        # model selection on an evenly strided subsample beyond this (speed, issue 12)
+MAX_FIT_ROWS = 2500        # model selection on an evenly strided subsample beyond this (speed, issue 12)
 # Pairs that cannot be told apart: both are a pure linear compliance change.
 _DEGENERATE = {frozenset({"compliance_offset", "thick_ring"})}
 
