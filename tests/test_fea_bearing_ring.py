@@ -58,9 +58,12 @@ def test_uncracked_compliance_positive_and_converging(study):
     # a displacement-based FE model is too stiff and softens monotonically as every size shrinks
     assert c[0] > c[1] > c[2]
     assert q.convergence.monotone
-    # GCI of the coarse test meshes (contact zone at 1/1.5/2.25 mm) is ~4 %; 8 % leaves room for gmsh
-    # version differences in the unstructured meshes, yet fails on any non-converging series
-    assert 0.0 < q.convergence.gci_fine < 0.08
+    # GCI of the coarse test meshes was ~4 % at refinement ratio 1.5 with a bound of 8 % (room for gmsh
+    # version differences in the unstructured meshes). At the one ratio 1.4 of every study the same error
+    # gives a GCI larger by (1.5^p - 1)/(1.4^p - 1) = 1.23 at the contact field's order p ~ 1/2 (measured
+    # 0.47): the bound scales with it, and still fails on any non-converging series.
+    ratio_factor = (1.5 ** 0.5 - 1.0) / (1.4 ** 0.5 - 1.0)
+    assert 0.0 < q.convergence.gci_fine < 0.08 * ratio_factor
     assert q.convergence.extrapolated > q.value
 
 
