@@ -15,6 +15,7 @@ from . import plots
 from .check_set import CheckSet
 from .fea_book import FeaBook
 from .plan import Plan
+from .torsion_checks import CUP_FLEX, SHAFT_FLEX
 
 COMPONENT_TITLES = {"shaft": "output shaft", "cup": "flexspline cup", "bearing": "bearing inner ring",
                     "ring": "EWG flexspline ring"}
@@ -114,8 +115,7 @@ def make_images(out_dir: Path, book: FeaBook, plan: Plan, check_set: CheckSet, s
 
 
 # quantity name per check whose convergence history is plotted
-CONVERGENCE_OF = {"shaft.flexibility": ("shaft", "flexibility_rad_per_Nmm"),
-                  "cup.flexibility": ("cup", "flexibility_rad_per_Nmm"),
+CONVERGENCE_OF = {"shaft.flexibility": ("shaft", SHAFT_FLEX), "cup.flexibility": ("cup", CUP_FLEX),
                   "ring.delta_cd": ("ring", "delta_cd_mm"), "ring.delta_ab": ("ring", "delta_ab_mm"),
                   "ring.delta_cd_solid": ("ring", "delta_cd_3d_mm"),
                   "ring.sigma_max": ("ring", "sigma_D_outer_MPa"), "ring.sigma_min": ("ring", "sigma_B_outer_MPa"),

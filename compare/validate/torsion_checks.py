@@ -17,10 +17,12 @@ import math
 
 from ...analytic import cracks, tube_crack
 from ...analytic.variant import Variant
+from ...registry import FLEX_UNIT, study_of_component
 from .checks import Check, evaluate, fea_tolerance, not_evaluated
 from .fea_book import FeaBook, Sweep
 
-FLEX_UNIT = "rad/(N*mm)"
+# the uncracked flexibility each torsion study reports (registry)
+SHAFT_FLEX, CUP_FLEX = (study_of_component(c).flexibility.name for c in ("shaft", "cup"))
 
 
 def mu_gap(params) -> tuple[str, float]:
@@ -53,7 +55,7 @@ def shaft_flexibility(book: FeaBook, label: str, s000: dict, params) -> Check:
     note = (f"published = L/(0.1 mu d^4), the bore ignored; corrected = 32 L/(pi mu (d^4 - d_i^4)); "
             f"corrected with G = E/2(1+nu): {lso.get('corrected_E_nu', float('nan')):.5g} {FLEX_UNIT}")
     return _from_quantity("shaft.flexibility", "output shaft torsional flexibility lambda_so0", FLEX_UNIT, book,
-                          label, "flexibility_rad_per_Nmm", variants(lso), {reason: gap}, note,
+                          label, SHAFT_FLEX, variants(lso), {reason: gap}, note,
                           {"fea": f"FEA {label}", "analytic": "seed 000 lambda_so0"})
 
 
@@ -96,7 +98,7 @@ def cup_flexibility(book: FeaBook, label: str, s000: dict, params) -> Check:
     allowances = {"wall-diaphragm and hub-diaphragm junctions (fillet, short hub) not in the series model":
                   CUP_JUNCTION_ALLOWANCE}
     return _from_quantity("cup.flexibility", "flexspline cup torsional flexibility lambda_f0", FLEX_UNIT, book,
-                          label, "flexibility_rad_per_Nmm", analytic, allowances, note,
+                          label, CUP_FLEX, analytic, allowances, note,
                           {"fea": f"FEA {label}", "analytic": "published: seed 000 lambda_f0 (k_f, k_G); "
                                                               "corrected: strainwave series shell model"})
 
@@ -178,8 +180,8 @@ def gear_stiffness(book: FeaBook, labels: dict[str, str], s000: dict, params) ->
     """K_HD = 1/(lambda_H0 + lambda_f0 + lambda_so0): FEA for the flexspline and shaft, analytic lambda_H0."""
     lam_H = s000.get("lambda_H0")
     analytic = variants(s000.get("K_HD"))
-    qf, why_f = book.quantity(labels["cup"], "flexibility_rad_per_Nmm")
-    qs, why_s = book.quantity(labels["shaft"], "flexibility_rad_per_Nmm")
+    qf, why_f = book.quantity(labels["cup"], CUP_FLEX)
+    qs, why_s = book.quantity(labels["shaft"], SHAFT_FLEX)
     unit = "N*mm/rad"
     if qf is None or qs is None or lam_H is None:
         return not_evaluated("gear.stiffness", "drive torsional stiffness K_HD (uncracked)", unit,
