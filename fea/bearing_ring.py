@@ -25,7 +25,7 @@ from ..errors import StageError
 from .assembly import Lame, elasticity_stiffness, scalar_basis
 from .convergence import grid_convergence
 from .refinement import CRACK_ORDER_BOUNDS, DEFAULT_RATIO
-from .fields import write_solid_fields
+from .fields import field_info, write_solid_fields
 from .facet_traction import facet_traction_load
 from .crack_contact import crack_pairs, solve_with_contact
 from .crack_seam import open_crack_for
@@ -213,9 +213,13 @@ def vtu_paths(vtu) -> tuple[Path, Path]:
     return v.with_name(f"{v.stem}_cracked.vtu"), v.with_name(f"{v.stem}_uncracked.vtu")
 
 
-def write_fields(path, field, lame) -> Path:
-    """Displacement, von Mises and the stress tensor at the mesh nodes, as VTU."""
-    return write_solid_fields(path, *field, lame)
+def write_fields(path, field, lame, info=None) -> Path:
+    """Displacement, von Mises and the stress tensor at the mesh nodes, as VTU (``info``: FieldData)."""
+    return write_solid_fields(path, *field, lame, info=info)
+
+
+def _info(params, force_N: float) -> dict:
+    return field_info(STUDY, f"radial force F = {force_N:g} N as Hertz pressure on 'contact'", params.material)
 
 
 def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, progress=lambda m: None,
@@ -259,7 +263,8 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
     if vtu is not None:
         t0 = time.perf_counter()
         p_cr, p_unc = vtu_paths(vtu)
-        fields = (write_fields(p_cr, fields_fine["cracked"], lame), write_fields(p_unc, fields_fine["uncracked"], lame))
+        fields = (write_fields(p_cr, fields_fine["cracked"], lame, _info(params, force)),
+                  write_fields(p_unc, fields_fine["uncracked"], lame, _info(params, force)))
         timings["vtu"] = time.perf_counter() - t0
     delta = [cc - cu for cc, cu in zip(c_cr, c_unc)]
     q = {"radial_compliance_mm_per_N": Quantity("radial_compliance_mm_per_N", c_unc[0], "mm/N",
@@ -311,7 +316,7 @@ def _run_uncracked(params, *, mesh_size_mm, order, vtu, progress, quick) -> Stud
             timings[key] = timings.get(key, 0.0) + v
     c = [s.compliance_mm_per_N for s in sols]
     h_used = [h * s.size_factor for h, s in zip(sizes, sols)]
-    fields = (write_fields(vtu, sols[0].field, lame),) if vtu is not None else ()
+    fields = (write_fields(vtu, sols[0].field, lame, _info(params, force)),) if vtu is not None else ()
     q = {"radial_compliance_mm_per_N": Quantity("radial_compliance_mm_per_N", c[0], "mm/N",
                                                 grid_convergence(h_used, c))}
     timings["total"] = time.perf_counter() - t_start

@@ -12,7 +12,7 @@ import time
 
 from ..errors import InputError
 from .assembly import Lame
-from .fields import write_solid_fields
+from .fields import field_info, write_solid_fields
 from .crack_seam import open_crack_for
 from .meshing import Refine
 from .refinement import DEFAULT_RATIO, crack_flexibility_quantities, crack_front_size_mm, refinement_sizes
@@ -116,7 +116,10 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
     fields = ()
     if vtu is not None:
         scale = params.gear.output_torque_Nmm / torque       # report fields at the design torque T
-        fields = (write_solid_fields(vtu, sol.md, sol.sk, sol.u * scale, sol.lame),)
+        fields = (write_solid_fields(vtu, sol.md, sol.sk, sol.u * scale, sol.lame,
+                                     info=field_info(STUDY, f"torque T = {params.gear.output_torque_Nmm:g} N*mm as "
+                                                     "tangential shear on 'loaded' (band), 'fixed' clamped",
+                                                     params.material)),)
     mat = params.material
     meta = {"torque_Nmm": params.gear.output_torque_Nmm, "teeth": teeth,
             "load": "uniform tangential shear on 'loaded' (band), moment T", "bc": "'fixed' (hub face) clamped",

@@ -31,7 +31,7 @@ import numpy as np
 from ..errors import StageError
 from .assembly import Lame
 from .convergence import grid_convergence
-from .fields import write_solid_fields
+from .fields import field_info, write_solid_fields
 from .meshing import MeshingFailed
 from .result import Quantity, StudyResult
 from .refinement import DEFAULT_RATIO, refinement_sizes
@@ -171,7 +171,9 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
     fields = ()
     if vtu is not None:
         t0 = time.perf_counter()
-        fields = tuple(write_force_field(path, sol[0]["force"], lame)
+        info = field_info(STUDY, f"diametral force F = {f_ref:g} N on the contact arcs (plane stress)",
+                          params.material)
+        fields = tuple(write_force_field(path, sol[0]["force"], lame, info)
                        for path, sol in zip(vtu_paths(vtu), (smooth, toothed)))
         timings["vtu"] = time.perf_counter() - t0
         meta["fields"] = {"force_case_N": f_ref, "files": [str(p) for p in fields],
@@ -217,10 +219,10 @@ def vtu_paths(vtu) -> tuple[Path, Path]:
     return v.with_name(f"{v.stem}_smooth.vtu"), v.with_name(f"{v.stem}_toothed.vtu")
 
 
-def write_force_field(path, sol, lame: Lame) -> Path:
+def write_force_field(path, sol, lame: Lame, info=None) -> Path:
     """Displacement, von Mises and stress (plane stress, zz = 0) of one 2D force-case solve, as VTU."""
     sk, u = sol.fields
-    return write_solid_fields(path, sol.mesh, sk, u, lame)
+    return write_solid_fields(path, sol.mesh, sk, u, lame, info=info)
 
 
 def _meta(params, geo, load, lame, smooth, toothed, sc, tc, w0, f_ref, sizes) -> dict:

@@ -13,7 +13,7 @@ import time
 from pathlib import Path
 from typing import Callable
 
-from .fields import write_vtu
+from .fields import field_info, write_vtu
 from .refinement import CRACK_ORDER_BOUNDS, converged_quantity, crack_flexibility_quantities, refinement_sizes
 from .result import StudyResult
 from .session import gmsh_session
@@ -47,7 +47,9 @@ def section_deltas(params, depth_mm: float, *, quick: bool, ratio: float, vtu: P
         deltas[h] = opened.flexibility_rad_per_Nmm - closed.flexibility_rad_per_Nmm
         nodes[h] = md.nodes_mm.shape[0]
         if vtu is not None and h == sizes[0]:
-            write_vtu(vtu, opened.md, section_fields(opened, G, params.gear.output_torque_Nmm))
+            write_vtu(vtu, opened.md, section_fields(opened, G, params.gear.output_torque_Nmm),
+                      info=field_info("shaft-torsion", f"torque T = {params.gear.output_torque_Nmm:g} N*mm, "
+                                      "axisymmetric (r, z) section with the crack opened", params.material))
         progress(f"shaft-torsion (axisymmetric): h = {h:.3g} mm, tip {tip:.3g} mm, {nodes[h]} nodes, "
                  f"delta lambda {deltas[h]:.4e}")
     info = {"section_sizes_mm": list(sizes), "tip_sizes_mm": [depth_mm / A_OVER_TIP[quick] * h / h_fine for h in sizes],

@@ -18,7 +18,7 @@ from typing import Callable, Sequence
 
 from ..errors import InputError
 from .assembly import Lame
-from .fields import write_solid_fields
+from .fields import field_info, write_solid_fields
 from .crack_seam import open_crack_for
 from .meshing import Refine
 from .refinement import DEFAULT_RATIO, crack_flexibility_quantities, crack_front_size_mm, refinement_sizes
@@ -94,10 +94,12 @@ def solve_seam(part, params, *, h_mm: float, order: int, refine: Sequence[Refine
     return lam0, lam1, sol0, sol1, t_mesh
 
 
-def _write_fields(vtu, sol: StaticSolution) -> tuple:
+def _write_fields(vtu, sol: StaticSolution, params) -> tuple:
     if vtu is None:
         return ()
-    path = write_solid_fields(vtu, sol.md, sol.sk, sol.u, sol.lame)
+    info = field_info(STUDY, f"torque T = {params.gear.output_torque_Nmm:g} N*mm on 'loaded', 'fixed' clamped",
+                      params.material)
+    path = write_solid_fields(vtu, sol.md, sol.sk, sol.u, sol.lame, info=info)
     return (path,)
 
 
@@ -171,7 +173,7 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
         lam0.append(lam)
     lam0, lam1 = lam0[::-1], lam1[::-1]             # finest first, like ``sizes``
     quantities = crack_flexibility_quantities(sizes, lam0, lam1 if cracked is not None else None, UNIT)
-    fields = _write_fields(vtu, finest)
+    fields = _write_fields(vtu, finest, params)
     mesh_q = finest.md.quality
     mat = params.material
     meta = {"torque_Nmm": params.gear.output_torque_Nmm, "load": "Saint-Venant shear traction tau = T r / J on 'loaded'",

@@ -205,8 +205,9 @@ def _common(top: bool) -> argparse.ArgumentParser:
 
 
 _JSON_HELP = "write the result as JSON to FILE; without FILE (or with -) print it on stdout instead of the text"
-_CRACK_HELP = ("crack depth a in mm, measured from the surface the crack starts at, in every part of the "
-               "command that carries a crack (default: uncracked)")
+_CRACK_HELP = ("crack depth a in mm, from the surface the crack starts at. --part assembly cracks every part "
+               "that carries a crack (flexspline cup, wave generator bearing ring, output shaft) to this same "
+               "depth; the EWG drive carries none (default: uncracked)")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -252,7 +253,8 @@ def build_parser() -> argparse.ArgumentParser:
                         "1.96x coarser); default: the study's own, from the part size")
     p.add_argument("--order", type=int, choices=(1, 2), default=2, help="element order: 1 linear, 2 curved quadratic")
     p.add_argument("--crack-depth-mm", type=_positive_float, default=None, metavar="A_MM",
-                   help="crack depth a in mm in the study's crack-bearing part (default: the study's own)")
+                   help="crack depth a in mm of the crack in the study's part (registry crack key, e.g. "
+                        "output_shaft.crack_depth_mm); ring-compression carries none (default: uncracked)")
     p.add_argument("--vtu", metavar="FILE.vtu",
                    help="write the finest mesh's fields (and FILE.boundary.vtu with the named faces)")
 

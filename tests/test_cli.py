@@ -211,3 +211,9 @@ def test_crack_deeper_than_its_own_wall_is_refused_before_any_mesh(strainwave_cm
 def test_crack_on_a_study_without_a_crack_is_refused(strainwave_cmd):
     out = _run(strainwave_cmd, "solve", "ring-compression", "--crack-depth-mm", "1")
     assert out.returncode == 2 and "--crack-depth-mm" in out.stderr and "carries no crack" in out.stderr
+
+
+def test_export_step_help_says_what_assembly_writes_and_cracks():
+    text = " ".join(_subparsers()["export-step"].format_help().split())
+    assert "FILE-ewg-drive.step" in text and "EWG drive" in text
+    assert "--part assembly cracks every part that carries a crack" in text

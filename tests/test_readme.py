@@ -1,0 +1,48 @@
+"""The README's examples are run, so they cannot drift from the code: the Python API block, the entry
+points it lists, and the worked parameter file."""
+import contextlib
+import importlib
+import io
+import re
+import tomllib
+import warnings
+from pathlib import Path
+
+README = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+
+
+def test_first_lines_are_the_two_commands():
+    block = README.split("```sh", 1)[1].split("```", 1)[0]
+    assert [line.split("#")[0].strip() for line in block.strip().splitlines()] == ["make validate", "make test"]
+
+
+def test_api_example_runs():
+    code = README.split("<!-- api-example", 1)[1].split("```python", 1)[1].split("```", 1)[0]
+    assert 3 <= len(code.strip().splitlines()) <= 5                 # "a five-line example"
+    out = io.StringIO()
+    with warnings.catch_warnings(), contextlib.redirect_stdout(out):
+        warnings.simplefilter("ignore")
+        exec(compile(code, "README.md", "exec"), {})
+    volume, faces = re.fullmatch(r"(\d+) mm\^3, faces: (.+)\n", out.getvalue()).groups()
+    # a 60 mm hollow shaft, D 70, d 45, minus the crack slot: within 1 % of the tube
+    tube = 3.141592653589793 / 4 * (70.0 ** 2 - 45.0 ** 2) * 60.0
+    assert abs(int(volume) / tube - 1) < 0.01
+    assert {"fixed", "loaded", "crack_face", "crack_front"} <= set(faces.split(", "))
+
+
+def test_listed_entry_points_exist():
+    listed = re.findall(r"^- `(strainwave(?:\.\w+)+)\.(\w+)\(", README, flags=re.M)
+    assert {name for _, name in listed} == {"load_params", "build_part", "run_study", "run_validate", "diagnose_file"}
+    for module, name in listed:
+        assert callable(getattr(importlib.import_module(module), name)), (module, name)
+
+
+def test_worked_parameter_file_loads():
+    from strainwave.params import load_params
+
+    toml = README.split("```toml", 1)[1].split("```", 1)[0]
+    overrides = tomllib.loads(toml)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        params = load_params(overrides=overrides)
+    assert params.output_shaft.length_mm == 60.0 and params.output_shaft.inner_diameter_mm == 50.0
