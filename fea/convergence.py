@@ -25,6 +25,17 @@ class Convergence:
     extrapolated: float
     gci_fine: float          # relative, e.g. 0.001 = 0.1 %
     monotone: bool
+    # the bounds p was clipped to: equal bounds = a fixed (formal) order, e.g. crack compliances (1, 1)
+    order_bounds: tuple[float, float] = (0.05, 8.0)
+
+    @property
+    def order_fixed(self) -> bool:
+        return self.order_bounds[0] == self.order_bounds[1]
+
+    @property
+    def order_clipped(self) -> bool:
+        """p sits on a bound (and the bounds leave it free): the data did not set it."""
+        return not self.order_fixed and math.isfinite(self.observed_order) and self.observed_order in self.order_bounds
 
     @property
     def uncertainty(self) -> float:
@@ -34,7 +45,7 @@ class Convergence:
     def to_dict(self) -> dict:
         return {"h_mm": list(self.h_mm), "values": list(self.values), "observed_order": self.observed_order,
                 "extrapolated": self.extrapolated, "gci_fine": self.gci_fine, "monotone": self.monotone,
-                "uncertainty": self.uncertainty}
+                "order_bounds": list(self.order_bounds), "uncertainty": self.uncertainty}
 
 
 def grid_convergence(h_mm, values, *, max_order: float = 8.0, min_order: float = 0.05) -> Convergence:
@@ -53,7 +64,7 @@ def grid_convergence(h_mm, values, *, max_order: float = 8.0, min_order: float =
     e21, e32 = f2 - f1, f3 - f2
     if e21 == 0.0:
         # The two finest meshes agree to round-off: the discretization error is below resolution.
-        return Convergence((h1, h2, h3), (f1, f2, f3), math.inf, f1, 0.0, True)
+        return Convergence((h1, h2, h3), (f1, f2, f3), math.inf, f1, 0.0, True, (min_order, max_order))
     ratio = e32 / e21
     monotone = ratio > 0
     s = 1.0 if monotone else -1.0
@@ -76,4 +87,4 @@ def grid_convergence(h_mm, values, *, max_order: float = 8.0, min_order: float =
         spread = (max(f1, f2, f3) - min(f1, f2, f3)) / abs(f1) if f1 != 0 else 0.0
         gci = SAFETY_FACTOR_THREE_GRIDS * spread
         extrapolated = f1
-    return Convergence((h1, h2, h3), (f1, f2, f3), p, extrapolated, gci, monotone)
+    return Convergence((h1, h2, h3), (f1, f2, f3), p, extrapolated, gci, monotone, (min_order, max_order))

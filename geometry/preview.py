@@ -1,4 +1,4 @@
-"""Off-screen PNG preview of a part (pyvista/VTK; no display needed, VTK falls back to EGL).
+"""Off-screen PNG preview of a part (pyvista/VTK through ``strainwave.render``: no display, no global state).
 
 Left: the whole part (grey), with the crack faces in red and contact/load faces in blue.
 Right: a close-up on the crack front (or, for an uncracked part, on the contact or loaded faces).
@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from strainwave.io_atomic import atomic_path
+from strainwave.render import RenderSettings, off_screen_plotter
 
 from .faces import find_faces
 from .part import Part
@@ -50,9 +51,6 @@ def _focus(part: Part):
 
 def render_preview(part: Part, png_path: Path | str, size: tuple[int, int] = (1400, 700)) -> Path:
     """Render ``part`` off-screen to ``png_path`` (written atomically) and return the path."""
-    import pyvista as pv
-
-    pv.OFF_SCREEN = True
     bb = part.solid.bounding_box()
     span = max(bb.size.X, bb.size.Y, bb.size.Z)
     body = _polydata([part.solid], 2e-3 * span)
@@ -65,10 +63,9 @@ def render_preview(part: Part, png_path: Path | str, size: tuple[int, int] = (14
         loads.points = loads.points + 2e-3 * span * radial / np.maximum(norm, 1e-12)
     centre, extent = _focus(part)
 
-    plotter = pv.Plotter(off_screen=True, shape=(1, 2), window_size=size)
+    plotter = off_screen_plotter(RenderSettings(size, shape=(1, 2)))
     for col in (0, 1):
         plotter.subplot(0, col)
-        plotter.set_background("white")
         plotter.add_mesh(body, color="lightsteelblue", smooth_shading=False, show_edges=False)
         if crack is not None:  # a 0.02 mm slot is seen edge-on: draw its edges too, unlit pure red
             plotter.add_mesh(crack, color="red", lighting=False)
@@ -76,7 +73,8 @@ def render_preview(part: Part, png_path: Path | str, size: tuple[int, int] = (14
         if loads is not None:
             plotter.add_mesh(loads, color="royalblue")
     plotter.subplot(0, 0)
-    plotter.add_text(f"{part.name.value}", font_size=10, color="black")
+    plotter.add_text(f"{part.name.value}", font_size=14, color="black")
+    plotter.add_axes(color="black", line_width=3)
     plotter.view_isometric()
     plotter.reset_camera()
     plotter.subplot(0, 1)
@@ -88,7 +86,7 @@ def render_preview(part: Part, png_path: Path | str, size: tuple[int, int] = (14
     plotter.camera.up = (0.0, 0.0, 1.0)
     plotter.camera.view_angle = 30.0
     plotter.camera.clipping_range = (1e-3 * extent, 100.0 * extent + span)
-    plotter.add_text("close-up: crack" if part.crack_front_mm else "close-up", font_size=10, color="black")
+    plotter.add_text("close-up: crack" if part.crack_front_mm else "close-up", font_size=14, color="black")
     png_path = Path(png_path)
     with atomic_path(png_path) as tmp:
         plotter.screenshot(str(tmp.with_suffix(".png")))
@@ -100,14 +98,11 @@ def render_preview(part: Part, png_path: Path | str, size: tuple[int, int] = (14
 def render_assembly_preview(drives: dict, png_path: Path | str, size: tuple[int, int] = (1400, 700)) -> Path:
     """Render every part of every drive (name -> list of ``step_xcaf.Placed``), one panel per drive,
     each part in its STEP colour and placed where the STEP file has it; crack faces in red."""
-    import pyvista as pv
-
     from .step_xcaf import PART_COLOURS_RGB
 
-    plotter = pv.Plotter(off_screen=True, shape=(1, len(drives)), window_size=size)
+    plotter = off_screen_plotter(RenderSettings(size, shape=(1, len(drives))))
     for col, (drive, placed) in enumerate(drives.items()):
         plotter.subplot(0, col)
-        plotter.set_background("white")
         names = []
         for item in placed:
             shape = item.shape

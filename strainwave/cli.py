@@ -11,6 +11,7 @@ place of the text when FILE is left out or is ``-``.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import logging
 import sys
@@ -140,11 +141,22 @@ def _cmd_export_step(args) -> int:
 
 
 def _cmd_solve(args) -> int:
+    import tempfile
+
     from .fea.studies import run_study
-    result = run_study(args.study, _params(args), mesh_size_mm=args.mesh_size_mm, order=args.order,
-                       crack_depth_mm=args.crack_depth_mm, vtu=Path(args.vtu) if args.vtu else None,
-                       progress=_progress)
-    _emit(args, result.summary(), result.to_dict)
+    from .rated_stress import stress_at_rated, stress_field_of
+    params = _params(args)
+    # The field is always written (to a scratch folder without --vtu): the rated-load peaks are read from it.
+    with tempfile.TemporaryDirectory(prefix="strainwave-solve-") as scratch:
+        vtu = Path(args.vtu) if args.vtu else Path(scratch) / f"{args.study}.vtu"
+        result = run_study(args.study, params, mesh_size_mm=args.mesh_size_mm, order=args.order,
+                           crack_depth_mm=args.crack_depth_mm, vtu=vtu, progress=_progress)
+        found = stress_field_of(args.study, result.fields, args.crack_depth_mm)
+        rated = None if found is None else stress_at_rated(args.study, params, result, found[0], cracked=found[1])
+    if not args.vtu:
+        result = dataclasses.replace(result, fields=())
+    text = result.summary() + ("" if rated is None else "\n" + "\n".join(rated.lines()))
+    _emit(args, text, lambda: {**result.to_dict(), "stress_at_rated": None if rated is None else rated.to_dict()})
     return 0
 
 

@@ -103,11 +103,13 @@ class Gear:
     radial_deformation_mm: float
     force_coefficient: float
     output_torque_Nmm: float
+    rated_output_torque_Nmm: float   # the load the report's stress pictures and safety factors are drawn at
 
     def __post_init__(self):
         if self.wave_number < 1:
             raise InputError("gear.wave_number", self.wave_number, "must be an integer >= 1")
-        for name in ("gear_ratio", "radial_deformation_mm", "force_coefficient", "output_torque_Nmm"):
+        for name in ("gear_ratio", "radial_deformation_mm", "force_coefficient", "output_torque_Nmm",
+                     "rated_output_torque_Nmm"):
             _positive(f"gear.{name}", getattr(self, name))
 
 

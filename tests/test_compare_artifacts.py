@@ -53,9 +53,9 @@ def _quantity(name: str, value: float, unit: str, spread: float) -> Quantity:
     return Quantity(name, value, unit, conv)
 
 
-def _outcome(case, quantities: dict, fields: tuple) -> CaseOutcome:
+def _outcome(case, quantities: dict, fields: tuple, meta: dict | None = None) -> CaseOutcome:
     mesh = MeshQuality(100, 200, 600, 2, 0.5, 0.8)
-    result = StudyResult(case.study, quantities, mesh, {"solve": 0.1}, fields, {})
+    result = StudyResult(case.study, quantities, mesh, {"solve": 0.1}, fields, meta or {})
     return CaseOutcome(case, result, 0.1, False)
 
 
@@ -82,11 +82,16 @@ def wired(tmp_path_factory):
                                                        "rad/(N*mm)", 1e-3)}, (shaft_vtu,))
     ring_q = {"delta_cd_mm": _quantity("delta_cd_mm", delta_cd, "mm", 1e-5),
               "delta_ab_mm": _quantity("delta_ab_mm", refs["ring.delta_ab"]["corrected"], "mm", 1e-5)}
-    outcomes[plan.ring.label] = _outcome(plan.ring, ring_q, (ring_vtu,))
+    # the field is at the closed forms' thin-ring force for W0; the ring's rated load is the force for W0 over
+    # the force solved: here 2 x that force
+    f_ref = refs["ring.delta_cd"]["force_N"]
+    ring_q["toothed_force_for_W0_N"] = Quantity("toothed_force_for_W0_N", 2 * f_ref, "N")
+    outcomes[plan.ring.label] = _outcome(plan.ring, ring_q, (ring_vtu,), {"reference_force_N": f_ref})
     book = FeaBook(outcomes)
     check_set = build_checks(book, plan, summary, params)
-    images, missing = make_images(out, book, plan, check_set, summary, progress=lambda m: None)
-    return out, check_set, images, missing, r_m, delta_cd
+    images, missing, stresses = make_images(out, book, plan, check_set, summary, progress=lambda m: None,
+                                            params=params)
+    return out, check_set, images, missing, r_m, delta_cd, stresses
 
 
 def test_exact_fields_pass_their_checks_and_missing_studies_do_not(wired):
@@ -111,7 +116,7 @@ def test_images_are_made_and_non_blank(wired):
 
 
 def test_mid_layer_sampling_recovers_the_thin_ring_diameter_changes(wired):
-    out, _, _, _, r_m, delta_cd = wired
+    out, _, _, _, r_m, delta_cd, _ = wired
     theta, u_r, _ = sample_circle(out / "ring.vtu", r_m, n=360)
     # loads on the y axis: D at +y moves in by delta_CD/2, B at +x moves out by 0.918 delta_CD/2;
     # linear interpolation over 1-degree cells of a smooth field: 0.5 % is ample
@@ -119,3 +124,22 @@ def test_mid_layer_sampling_recovers_the_thin_ring_diameter_changes(wired):
     assert at(math.pi / 2) == pytest.approx(-delta_cd / 2, rel=5e-3)
     ratio = (2 / math.pi - 0.5) / ((math.pi ** 2 - 8) / (4 * math.pi))
     assert at(0.0) == pytest.approx(ratio * delta_cd / 2, rel=5e-3)
+
+
+def test_stress_pictures_are_drawn_at_the_rated_load_with_their_peaks(wired):
+    out, _, images, _, _, _, stresses = wired
+    params = load_params()
+    # the shaft field was written at seed 000's T: drawn at the rated torque, every stress scales by their ratio
+    shaft = stresses["shaft"]
+    assert shaft.load.scale == pytest.approx(params.gear.rated_output_torque_Nmm / params.gear.output_torque_Nmm)
+    field = pv.read(str(out / "shaft.vtu"))
+    k = int(np.argmax(field.point_data["von_mises"]))
+    assert shaft.peaks.peak_von_mises_MPa == pytest.approx(shaft.load.scale * field.point_data["von_mises"][k])
+    assert shaft.peaks.peak_location_mm == pytest.approx(tuple(field.points[k]))
+    assert shaft.safety_factor == pytest.approx(params.material.fatigue_limit_MPa / shaft.peaks.peak_von_mises_MPa)
+    # the ring: the force for W0 over the solved reference force (2 here)
+    assert stresses["ring"].load.scale == pytest.approx(2.0)
+    assert stresses["ring"].peaks.peak_von_mises_MPa == pytest.approx(2 * 200.0, rel=1e-6)
+    captions = {i.component: i.caption for i in images if i.kind == "stress"}
+    assert "safety factor" in captions["shaft"] and "T = 1e+06 N*mm" in captions["shaft"]
+    assert "2D plane stress section" in captions["ring"]

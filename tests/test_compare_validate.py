@@ -118,6 +118,43 @@ def test_every_image_is_non_blank(quick_run, results):
         assert len(np.unique(pixels.reshape(-1, 3), axis=0)) > 8, png.name
 
 
+def test_every_component_states_its_inputs_rated_stress_and_gci(quick_run, results):
+    out, _ = quick_run
+    html = (out / "report.html").read_text(encoding="utf-8")
+    md = (out / "report.md").read_text(encoding="utf-8")
+    components = ("shaft", "cup", "bearing", "ring")
+    for component in components:
+        inputs = results["inputs"][component]
+        assert len(inputs["meshes"]) == 3 and inputs["meshes"][0]["dofs"] > 0
+        assert 0 < inputs["meshes"][0]["min_quality"] <= 1
+        assert f'id="inputs-{component}"' in html
+        rated = results["stress_at_rated"][component]
+        assert rated["safety_factor"] == pytest.approx(rated["fatigue_limit_MPa"] / rated["peak_von_mises_MPa"])
+        assert rated["load"]["rated"] > 0 and rated["load"]["scale"] > 0
+    assert md.count("### Inputs and model") == len(components)
+    assert "## Stress at the rated load" in md and 'id="rated"' in html
+    # at seed 000's T = 1000 N*mm the shaft showed 0.03 MPa: at the rated torque it is a designer's number
+    assert results["stress_at_rated"]["shaft"]["peak_von_mises_MPa"] > 10.0
+    # one GCI row per FEA quantity with three meshes, in the HTML table too
+    expected = sum(1 for c in results["metadata"]["cases"] if c["ok"]
+                   for q in c["result"]["quantities"].values() if q["convergence"])
+    assert len(results["gci_table"]) == expected > 0
+    table = html.split('id="gci-table"')[1].split("</table>")[0]
+    assert table.count("<tr>") == expected + 1          # + the header row
+    for row in results["gci_table"]:
+        assert row["asymptotic"] == (not row["flags"])
+
+
+def test_every_stress_image_states_its_load_and_section(results):
+    stress = {i["component"]: i["caption"] for i in results["images"] if i["kind"] == "stress"}
+    assert set(stress) == {"shaft", "cup", "bearing", "ring"}
+    for caption in stress.values():
+        assert "safety factor" in caption and "peak" in caption
+    assert "2D plane stress section" in stress["ring"]
+    previews = {i["component"] for i in results["images"] if i["kind"] == "preview"}
+    assert previews == {"shaft", "cup", "bearing", "ring"}
+
+
 class _Links(HTMLParser):
     def __init__(self):
         super().__init__()

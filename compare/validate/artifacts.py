@@ -15,6 +15,7 @@ from . import plots
 from .check_set import CheckSet
 from .fea_book import FeaBook
 from .plan import Plan
+from ...rated_stress import StressAtRated, stress_at_rated, stress_field_of
 from .torsion_checks import CUP_FLEX, SHAFT_FLEX
 
 COMPONENT_TITLES = {"shaft": "output shaft", "cup": "flexspline cup", "bearing": "bearing inner ring",
@@ -26,7 +27,7 @@ class Image:
     path: Path           # relative to the output folder
     caption: str
     component: str       # shaft | cup | bearing | ring | gear
-    kind: str            # stress | closeup | ring-shape | convergence | crack-sweep
+    kind: str            # preview | stress | closeup | ring-shape | convergence | crack-sweep | view3d
 
     def to_dict(self) -> dict:
         return {"path": self.path.as_posix(), "caption": self.caption, "component": self.component,
@@ -65,7 +66,8 @@ def _vtu(book: FeaBook, label: str, prefer: str = "") -> Path | None:
     outcome = book.outcomes.get(label)
     if outcome is None or outcome.result is None:
         return None
-    files = [Path(p) for p in outcome.result.fields if str(p).endswith(".vtu") and Path(p).exists()]
+    files = [Path(p) for p in outcome.result.fields if str(p).endswith(".vtu") and Path(p).exists()
+             and not str(p).endswith(".boundary.vtu")]
     preferred = [p for p in files if prefer and p.stem.endswith(prefer) and not p.stem.endswith("un" + prefer)]
     return (preferred or files or [None])[0]
 
@@ -76,16 +78,51 @@ def _require(path):
     return path
 
 
+# What a planar field of a component is, said on its picture
+SECTION_OF_PLANE = {"shaft": "axisymmetric (r, z) section: x = r, y = z",
+                    "ring": "2D plane stress section (x, y), thickness = face width B"}
+# Supports and loads as each study applies them (fea/: the 'bc'/'support' and 'load' of its meta)
+def _marks(images, study: str):
+    return {"shaft-torsion": images.Marks("fixed", "loaded", "T"),
+            "cup-torsion": images.Marks("fixed", "loaded", "T"),
+            "bearing-ring": images.Marks("bore", "contact", "F_r"),
+            # the 2D ring: u_y = 0 at A and B (180 and 0 deg), u_x = 0 at D (90 deg); the EWG's two strips
+            "ring-compression": images.Marks(None, "contact", "W0", (0.0, 90.0, 180.0))}[study]
+
+
+def _stress_picture(images, target: Path, book: FeaBook, component: str, case, params,
+                    records: dict[str, StressAtRated]) -> str:
+    outcome = book.outcomes.get(case.label)
+    if outcome is None or outcome.result is None:
+        raise FileNotFoundError(f"case {case.label} has no result")
+    found = stress_field_of(case.study, outcome.result.fields, case.crack_depth_mm)
+    if found is None or not found[0].exists():
+        raise FileNotFoundError("the case wrote no VTU field (or it failed)")
+    vtu, cracked = found
+    at = stress_at_rated(case.study, params, outcome.result, vtu, cracked=cracked)
+    records[component] = at
+    planar = bool(np.ptp(images._read(vtu).points[:, 2]) == 0.0)
+    # The whole EWG ring hides its thin rim: a second panel zooms on the root stress peak (4 modules wide).
+    zoom = images.Zoom(radius_mm=2.0 * params.ewg_drive.module_mm, title="tooth root at the peak") \
+        if case.study == "ring-compression" else None
+    rendered = images.render_stress(vtu, target, label=COMPONENT_TITLES[component], at=at,
+                                    marks=_marks(images, case.study),
+                                    section=SECTION_OF_PLANE.get(component, "2D section") if planar else "",
+                                    zoom=zoom)
+    return rendered.caption
+
+
 def make_images(out_dir: Path, book: FeaBook, plan: Plan, check_set: CheckSet, summary: dict,
-                progress: Callable[[str], None]) -> tuple[list[Image], list[Missing]]:
+                progress: Callable[[str], None], *, params
+                ) -> tuple[list[Image], list[Missing], dict[str, StressAtRated]]:
+    """Every picture; also the stress at the rated load per component (the numbers the pictures print)."""
     from . import images  # pyvista only here
 
     col = _Collector(out_dir, progress)
+    stresses: dict[str, StressAtRated] = {}
     for component, case in list(plan.headline.items()) + [("ring", plan.ring)]:
-        title = COMPONENT_TITLES[component]
-        vtu = _vtu(book, case.label)
-        col.attempt(f"{title} stress", component, "stress",
-                    lambda t, v=vtu, ti=title: images.render_stress(_require(v), t, label=ti).caption,
+        col.attempt(f"{COMPONENT_TITLES[component]} stress", component, "stress",
+                    lambda t, c=component, cs=case: _stress_picture(images, t, book, c, cs, params, stresses),
                     f"{component}_von_mises.png")
     for component, cases in plan.sweeps.items():
         if not cases:
@@ -97,8 +134,9 @@ def make_images(out_dir: Path, book: FeaBook, plan: Plan, check_set: CheckSet, s
         z0 = crack.get("crack_z_mm") if isinstance(crack, dict) else None
         radius = 3.0 * deepest.crack_depth_mm  # a few crack depths show the tip field and the slot
         col.attempt(f"{title} close-up", component, "closeup",
-                    lambda t, v=vtu, ti=title, z=z0, r=radius: images.render_closeup(
-                        _require(v), t, label=ti, radius_mm=r, near_z_mm=z).caption,
+                    lambda t, v=vtu, ti=title, z=z0, r=radius, c=component: images.render_closeup(
+                        _require(v), t, label=ti, radius_mm=r, near_z_mm=z,
+                        section=SECTION_OF_PLANE.get(c, "2D section")).caption,
                     f"{component}_crack_tip.png")
     col.attempt("ring mid-layer", "ring", "ring-shape",
                 lambda t: _ring_shape(t, book, plan, check_set, summary), "ring_mid_layer.png")
@@ -111,7 +149,7 @@ def make_images(out_dir: Path, book: FeaBook, plan: Plan, check_set: CheckSet, s
     for component, report in check_set.sweeps.items():
         col.attempt(f"{component} crack sweep", component, "crack-sweep",
                     lambda t, r=report, c=component: _sweep(t, r, c), f"{component}_crack_sweep.png")
-    return col.images, col.missing
+    return col.images, col.missing, stresses
 
 
 # quantity name per check whose convergence history is plotted

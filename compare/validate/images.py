@@ -1,27 +1,44 @@
-"""Off-screen stress images from the studies' VTU fields (pyvista; the only place it is used in compare/).
+"""Off-screen stress images from the studies' VTU fields (pyvista; the only place it renders in compare/).
 
-Rendering is off-screen (``pv.OFF_SCREEN``); nothing here sets DISPLAY or asks for an X server: VTK
-picks EGL when there is none. VTK errors inside a render are raised as exceptions (a silently
-black image would pass for a result). Every PNG is written under a temporary name and renamed.
+Every plotter comes from ``strainwave.render.off_screen_plotter`` with its settings passed in: nothing here
+changes pyvista or the environment. VTK errors inside a render are raised as exceptions (a silently black
+image would pass for a result). Every PNG is written under a temporary name and renamed.
+
+Stress pictures are drawn at the rated load: the fields are linear in the load, so stresses and
+displacements are multiplied by ``scale`` = rated / solved load before anything is drawn or measured.
 """
 from __future__ import annotations
 
 import io
-import os
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from ...io_atomic import atomic_write_bytes
+from ...rated_stress import StressAtRated, displacement3, field_names, scaled_to_rated
+from ...render import RenderSettings, off_screen_plotter
 
-WINDOW = (1000, 750)
+WINDOW = (1200, 900)
+TITLE_PT = 15        # legible when the report shows the image about 600 px wide (half the 1200 px render)
+SUPPORT_COLOR = "black"
+LOAD_COLOR = "magenta"
 
 
 @dataclass(frozen=True)
-class FieldNames:
-    displacement: str | None
-    von_mises: str | None
+class Marks:
+    """What the picture marks, from the study's named boundary facets (``NAME.boundary.vtu``)."""
+    support_group: str | None          # facets held fixed, e.g. "fixed" or "bore"
+    load_group: str | None             # facets the load acts on, e.g. "loaded" or "contact"
+    load_label: str                    # e.g. "T", "F_r"
+    support_points_deg: tuple[float, ...] = ()   # point supports at these polar angles on the outer rim (2D ring)
+
+
+@dataclass(frozen=True)
+class Zoom:
+    """A second panel around the peak von Mises point, ``radius_mm`` wide."""
+    radius_mm: float
+    title: str = "close-up at the peak"
 
 
 @dataclass(frozen=True)
@@ -31,45 +48,22 @@ class Rendered:
     exaggeration: float | None
 
 
-def field_names(mesh) -> FieldNames:
-    """Pick the displacement vector and the von Mises scalar among the point (or cell) arrays."""
-    arrays = {**{k: mesh.point_data[k] for k in mesh.point_data.keys()},
-              **{k: mesh.cell_data[k] for k in mesh.cell_data.keys()}}
-    vectors = [k for k, v in arrays.items() if v.ndim == 2 and v.shape[1] in (2, 3) and k in mesh.point_data]
-    disp = next((k for k in vectors if "disp" in k.lower()), None) or next(
-        (k for k in vectors if k.lower() in ("u", "displacement_mm")), None) or (vectors[0] if vectors else None)
-    mises = next((k for k, v in arrays.items() if "mises" in k.lower() and v.ndim == 1), None)
-    return FieldNames(disp, mises)
-
-
-def _pv():
-    if not os.environ.get("DISPLAY"):
-        # No X server: ask VTK for its EGL window directly instead of letting it try X first and log
-        # "bad X server connection" on every render. With a display, VTK's own choice stands.
-        os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
+def _read(vtu: Path):
     import pyvista as pv
 
-    pv.OFF_SCREEN = True
-    return pv
-
-
-def _displacement3(mesh, name: str) -> np.ndarray:
-    u = np.asarray(mesh.point_data[name], dtype=float)
-    if u.shape[1] == 2:  # plane meshes carry (ux, uy)
-        u = np.column_stack([u, np.zeros(len(u))])
-    return u
+    return pv.read(str(vtu))
 
 
 def auto_exaggeration(mesh, disp: str, fraction: float = 0.06) -> float:
     """Scale that makes the largest displacement ``fraction`` of the model's size (a round number)."""
-    u_max = float(np.max(np.linalg.norm(_displacement3(mesh, disp), axis=1)))
-    if u_max <= 0.0:
+    u_max = float(np.max(np.linalg.norm(displacement3(mesh, disp), axis=1)))
+    if u_max <= 0:
         return 1.0
     raw = fraction * mesh.length / u_max
     exponent = np.floor(np.log10(raw))
     mantissa = raw / 10 ** exponent
-    step = 1.0 if mantissa < 2 else (2.0 if mantissa < 5 else 5.0)
-    return float(step * 10 ** exponent)
+    nice = 5.0 if mantissa >= 5 else 2.0 if mantissa >= 2 else 1.0
+    return float(nice * 10 ** exponent)
 
 
 def _png_bytes(image: np.ndarray) -> bytes:
@@ -80,55 +74,180 @@ def _png_bytes(image: np.ndarray) -> bytes:
     return buffer.getvalue()
 
 
-def _plot(pv, mesh, scalars: str | None, title: str, *, plane: bool, focus=None):
-    plotter = pv.Plotter(off_screen=True, window_size=WINDOW)
-    plotter.set_background("white")
-    bar = {"title": title, "color": "black", "vertical": True, "position_x": 0.85, "position_y": 0.1}
-    plotter.add_mesh(mesh, scalars=scalars, cmap="turbo", show_edges=False, scalar_bar_args=bar,
-                     color=None if scalars else "lightsteelblue")
+def _bar(title: str) -> dict:
+    return {"title": title, "color": "black", "vertical": True, "position_x": 0.86, "position_y": 0.12,
+            "title_font_size": 16, "label_font_size": 14, "fmt": "%.3g", "width": 0.08, "height": 0.7}
+
+
+def _view(plotter, plane: bool) -> None:
     if plane:
         plotter.view_xy()
     else:
         plotter.view_isometric()
-    if focus is not None:
-        plotter.set_focus(focus)
-    plotter.reset_camera()
-    return plotter
 
 
-def render_stress(vtu: Path, png: Path, *, label: str, exaggeration: float | None = None) -> Rendered:
-    """von Mises stress on the deformed shape, displacements scaled by ``exaggeration`` (auto if None)."""
-    pv = _pv()
+def boundary_groups(vtu: Path, names: tuple[str, ...]):
+    """{name: facets} of the named groups of ``vtu``'s boundary file (fea/fields.py), those that exist."""
+    import pyvista as pv
+
+    path = Path(vtu).with_name(f"{Path(vtu).stem}.boundary.vtu")
+    if not path.exists():
+        return {}
+    boundary = pv.read(str(path))
+    known = [str(n) for n in np.asarray(boundary.field_data.get("physical_group_names", []))]
+    ids = np.asarray(boundary.cell_data["physical_group"])
+    out = {}
+    for name in names:
+        if name in known:
+            # id k is entry k - 1 of physical_group_names (fields.py)
+            cells = np.flatnonzero(ids == known.index(name) + 1)
+            if cells.size:
+                out[name] = boundary.extract_cells(cells)
+    return out
+
+
+def _deformed(mesh, disp: str | None, exaggeration: float):
+    if disp is None or disp not in mesh.point_data:
+        return mesh
+    shown = mesh.copy()
+    shown.points = mesh.points + exaggeration * displacement3(mesh, disp)
+    return shown
+
+
+def _draw_marks(pv, plotter, shown, groups: dict, marks: Marks, disp: str | None, scale: float,
+                exaggeration: float) -> list[str]:
+    """Supports (black) and loaded facets (magenta, with an arrow and label); returns the legend entries."""
+    legend = []
+    size = 0.12 * shown.length
+    if marks.support_group in groups:
+        facets = scaled_to_rated(groups[marks.support_group], scale)
+        plotter.add_mesh(_deformed(facets, disp, exaggeration), color=SUPPORT_COLOR, style="wireframe",
+                         line_width=2)
+        legend.append(f"black: supports ('{marks.support_group}' held fixed)")
+    if marks.support_points_deg:
+        r = np.hypot(shown.points[:, 0], shown.points[:, 1])
+        angle = np.degrees(np.arctan2(shown.points[:, 1], shown.points[:, 0]))
+        picks = []
+        for deg in marks.support_points_deg:
+            near = np.abs((angle - deg + 180.0) % 360.0 - 180.0) < 1.0
+            if near.any():
+                picks.append(shown.points[np.flatnonzero(near)[np.argmax(r[near])]])
+        if picks:
+            plotter.add_mesh(pv.PolyData(np.asarray(picks)), color=SUPPORT_COLOR, point_size=14,
+                             render_points_as_spheres=True)
+            legend.append("black dots: point supports (symmetry axes)")
+    if marks.load_group in groups:
+        loaded = _deformed(scaled_to_rated(groups[marks.load_group], scale), disp, exaggeration)
+        planar = np.ptp(shown.points[:, 2]) == 0.0
+        # a planar field's load group is its contact edges (thick lines); a 3D face is outlined by its facets
+        plotter.add_mesh(loaded, color=LOAD_COLOR, style="wireframe", line_width=5 if planar else 1)
+        arrows = _load_arrows(loaded, disp, np.asarray(shown.center))
+        for k, (start, direction) in enumerate(arrows):
+            plotter.add_mesh(pv.Arrow(start=start - size * direction, direction=direction, scale=size),
+                             color=LOAD_COLOR)
+            if k and len(arrows) > 2:
+                continue   # a torque's four arrows carry one label
+            plotter.add_point_labels([start - 1.1 * size * direction], [marks.load_label], font_size=18,
+                                     text_color=LOAD_COLOR, shape_opacity=0.0, show_points=False,
+                                     always_visible=True)
+        legend.append(f"magenta: load {marks.load_label} on '{marks.load_group}'")
+    return legend
+
+
+def _load_arrows(loaded, disp: str | None, model_center: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
+    """(point, unit direction) of the arrows that show a load: one per connected strip along its mean motion
+    (a force); where the strip turns rather than moves (mean motion below a fifth of its mean |u|: a torque),
+    four arrows along the motion at its outer rim, 90 degrees apart."""
+    arrows = []
+    for body in loaded.connectivity().split_bodies() if loaded.n_points else []:
+        center = np.asarray(body.center)
+        u = displacement3(body, disp) if disp and disp in body.point_data else np.zeros((body.n_points, 3))
+        mean, size = u.mean(axis=0), np.linalg.norm(u, axis=1).mean()
+        if size > 0 and np.linalg.norm(mean) < 0.2 * size:
+            pts = np.asarray(body.points)
+            r = np.hypot(pts[:, 0], pts[:, 1])
+            rim = np.flatnonzero(r >= 0.98 * r.max())
+            angle = np.arctan2(pts[rim, 1], pts[rim, 0])
+            for target in (0.0, 0.5 * np.pi, np.pi, -0.5 * np.pi):
+                k = rim[np.argmin(np.abs(np.angle(np.exp(1j * (angle - target)))))]
+                arrows.append((pts[k], u[k] / max(np.linalg.norm(u[k]), 1e-30)))
+            continue
+        direction = mean if np.linalg.norm(mean) > 0 else center - model_center
+        arrows.append((center, direction / max(np.linalg.norm(direction), 1e-30)))
+    return arrows
+
+
+def render_stress(vtu: Path, png: Path, *, label: str, at: StressAtRated, marks: Marks, section: str = "",
+                  zoom: Zoom | None = None, exaggeration: float | None = None) -> Rendered:
+    """von Mises at the rated load (fields x the load's scale) on the deformed shape: supports and loads
+    marked, axis triad, peak marked and printed; ``zoom`` adds a close-up panel around the peak."""
+    import pyvista as pv
+
+    shape = (1, 2) if zoom is not None else (1, 1)
+    window = (2 * WINDOW[0], WINDOW[1]) if zoom is not None else WINDOW
     with pv.VtkErrorCatcher(raise_errors=True):
-        mesh = pv.read(str(vtu))
+        mesh = scaled_to_rated(_read(vtu), at.load.scale)
         names = field_names(mesh)
         plane = bool(np.ptp(mesh.points[:, 2]) == 0.0)
-        shown = mesh
-        if names.displacement is not None:
-            exaggeration = exaggeration or auto_exaggeration(mesh, names.displacement)
-            shown = mesh.copy()
-            shown.points = mesh.points + exaggeration * _displacement3(mesh, names.displacement)
-        scalar_title = "von Mises (MPa)" if names.von_mises else "no stress field in VTU"
-        plotter = _plot(pv, shown, names.von_mises, scalar_title, plane=plane)
-        scale = "undeformed (no displacement field)" if names.displacement is None else \
-            f"displacements x {exaggeration:g}"
-        plotter.add_text(f"{label}: von Mises on deformed shape, {scale}", font_size=10, color="black")
+        exaggeration = exaggeration or (auto_exaggeration(mesh, names.displacement) if names.displacement else 1.0)
+        shown = _deformed(mesh, names.displacement, exaggeration)
+        groups = boundary_groups(vtu, tuple(g for g in (marks.support_group, marks.load_group) if g))
+        scale_text = ("undeformed (no displacement field)" if names.displacement is None else
+                      f"displacements x {exaggeration:g}")
+        p = at.peaks
+        where = ", ".join(f"{x:.4g}" for x in p.peak_location_mm)
+        lines = [f"{label}: von Mises at {at.load.name} = {at.load.rated:.4g} {at.load.unit}",
+                 scale_text + (f"; {section}" if section else ""),
+                 f"peak {p.peak_von_mises_MPa:.4g} MPa at ({where}) mm, peak displacement {p.peak_displacement_mm:.3g} mm,",
+                 f"safety factor {at.safety_factor:.3g} vs fatigue limit {at.fatigue_limit_MPa:g} MPa"]
+        plotter = off_screen_plotter(RenderSettings(window, shape=shape))
+        peak_index = int(np.argmax(np.asarray(mesh.point_data[names.von_mises])))
+        legend: list[str] = []
+        for col, z in [(0, None)] + ([(1, zoom)] if zoom is not None else []):
+            plotter.subplot(0, col)
+            region = shown
+            if z is not None:
+                c, r = shown.points[peak_index], z.radius_mm
+                region = shown.clip_box([c[0] - r, c[0] + r, c[1] - r, c[1] + r, c[2] - r, c[2] + r], invert=False)
+                if region.n_points == 0:
+                    raise ValueError(f"{vtu}: nothing within {r:g} mm of the peak")
+            plotter.add_mesh(region, scalars=names.von_mises, cmap="turbo", show_edges=False,
+                             scalar_bar_args=_bar("von Mises (MPa)"), show_scalar_bar=col == 0,
+                             clim=(0.0, p.peak_von_mises_MPa))
+            if z is None:
+                legend = _draw_marks(pv, plotter, shown, groups, marks, names.displacement, at.load.scale,
+                                     exaggeration)
+            plotter.add_point_labels([shown.points[peak_index]], ["peak"], font_size=16, point_color="white",
+                                     point_size=12, render_points_as_spheres=True, always_visible=True)
+            plotter.add_axes(color="black", line_width=3, labels_off=False)
+            _view(plotter, plane)
+            plotter.reset_camera()
+            if z is None:
+                plotter.camera.zoom(0.85)   # room for the four title lines above the model
+            if z is not None:
+                plotter.add_text(f"{z.title} ({2 * z.radius_mm:.3g} mm box)" + (f"\n{section}" if section else ""),
+                                 font_size=TITLE_PT, color="black")
+            else:
+                plotter.add_text("\n".join(lines), font_size=TITLE_PT, color="black")
         image = plotter.screenshot(None, return_img=True)
         plotter.close()
     atomic_write_bytes(png, _png_bytes(image))
-    return Rendered(Path(png), f"{label}: von Mises stress on the deformed shape ({scale})", exaggeration)
+    caption = " ".join(lines) + (f" ({'; '.join(legend)})" if legend else "")
+    return Rendered(Path(png), caption, exaggeration)
 
 
 def render_closeup(vtu: Path, png: Path, *, label: str, center_mm=None, radius_mm: float | None = None,
-                   near_z_mm: float | None = None) -> Rendered:
+                   near_z_mm: float | None = None, section: str = "") -> Rendered:
     """Close-up of the crack tip: the region around the stress peak (or ``center_mm``), undeformed.
 
     ``near_z_mm`` restricts the peak search to a slab around the crack plane z (loads and supports
-    elsewhere have their own stress peaks).
+    elsewhere have their own stress peaks). ``section`` is said on a planar field (e.g. the axisymmetric
+    (r, z) section of the shaft). Drawn at the solved load: the picture shows where the tip field sits.
     """
-    pv = _pv()
+    import pyvista as pv
+
     with pv.VtkErrorCatcher(raise_errors=True):
-        mesh = pv.read(str(vtu))
+        mesh = _read(vtu)
         names = field_names(mesh)
         if center_mm is None:
             if names.von_mises is None or names.von_mises not in mesh.point_data:
@@ -145,15 +264,21 @@ def render_closeup(vtu: Path, png: Path, *, label: str, center_mm=None, radius_m
         if region.n_points == 0:
             raise ValueError(f"{vtu}: nothing within {radius:g} mm of the crack tip")
         plane = bool(np.ptp(mesh.points[:, 2]) == 0.0)
-        plotter = _plot(pv, region, names.von_mises, "von Mises (MPa)", plane=plane)
+        plotter = off_screen_plotter(RenderSettings(WINDOW))
+        plotter.add_mesh(region, scalars=names.von_mises, cmap="turbo", show_edges=False,
+                         scalar_bar_args=_bar("von Mises (MPa)"))
         plotter.add_mesh(region.extract_feature_edges(), color="black", line_width=1)
-        text = (f"{label}: crack-tip close-up, {2 * radius:.3g} mm box at "
-                f"({center[0]:.3g}, {center[1]:.3g}, {center[2]:.3g}) mm, undeformed")
-        plotter.add_text(text, font_size=10, color="black")
+        plotter.add_axes(color="black", line_width=3)
+        _view(plotter, plane)
+        plotter.reset_camera()
+        text = (f"{label}: crack-tip close-up, {2 * radius:.3g} mm box at\n"
+                f"({center[0]:.3g}, {center[1]:.3g}, {center[2]:.3g}) mm, undeformed"
+                + (f";\n{section}" if section and plane else ""))
+        plotter.add_text(text, font_size=TITLE_PT, color="black")
         image = plotter.screenshot(None, return_img=True)
         plotter.close()
     atomic_write_bytes(png, _png_bytes(image))
-    return Rendered(Path(png), text, None)
+    return Rendered(Path(png), text.replace("\n", " "), None)
 
 
 def sample_circle(vtu: Path, radius_mm: float, n: int = 360) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
@@ -161,9 +286,10 @@ def sample_circle(vtu: Path, radius_mm: float, n: int = 360) -> tuple[np.ndarray
 
     Returns (theta, u_r, u_t) for the points that lie inside the mesh, or None without a displacement field.
     """
-    pv = _pv()
+    import pyvista as pv
+
     with pv.VtkErrorCatcher(raise_errors=True):
-        mesh = pv.read(str(vtu))
+        mesh = _read(vtu)
         names = field_names(mesh)
         if names.displacement is None:
             return None
@@ -172,7 +298,7 @@ def sample_circle(vtu: Path, radius_mm: float, n: int = 360) -> tuple[np.ndarray
         pts = np.column_stack([radius_mm * np.cos(theta), radius_mm * np.sin(theta), np.full(n, z_mid)])
         probe = pv.PolyData(pts).sample(mesh)
         valid = np.asarray(probe.point_data["vtkValidPointMask"], dtype=bool)
-        u = _displacement3(probe, names.displacement)
+        u = displacement3(probe, names.displacement)
     radial = u[:, 0] * np.cos(theta) + u[:, 1] * np.sin(theta)
     tangential = -u[:, 0] * np.sin(theta) + u[:, 1] * np.cos(theta)
     return theta[valid], radial[valid], tangential[valid]

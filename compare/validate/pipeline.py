@@ -21,6 +21,7 @@ from ...cache import ResultCache
 from .check_set import CheckSet, build_checks
 from .checks import Check
 from .fea_book import FeaBook
+from .gci_table import gci_rows
 from .plan import make_plan
 from .report_html import write_html
 from .report_md import write_markdown
@@ -124,6 +125,34 @@ def _run_cases(cases, params, *, fields_dir: Path, cache, quick: bool, progress)
     return outcomes
 
 
+# the part each component's study meshes, whose preview opens the component's inputs section
+PREVIEW_OF = {"output-shaft": "shaft", "flexspline-cup": "cup", "wg-bearing-ring": "bearing",
+              "ewg-flexspline-ring": "ring"}
+
+
+def _previews(steps, out_dir: Path) -> list:
+    from .artifacts import Image
+
+    return [Image(Path(_relative(s.preview, out_dir)), f"{s.part}: the part as built (teeth on, uncracked), "
+                  "contact/load faces in blue", PREVIEW_OF[s.part], "preview")
+            for s in steps if s.preview is not None and s.part in PREVIEW_OF and Path(s.preview).exists()]
+
+
+def _inputs(plan, book: FeaBook, params) -> dict:
+    """The inputs-and-model record of every component that solved."""
+    from ...rated_stress import rated_load_of
+    from .inputs import component_inputs
+
+    out = {}
+    for component, case in list(plan.headline.items()) + [("ring", plan.ring)]:
+        outcome = book.outcomes.get(case.label)
+        if outcome is None or outcome.result is None:
+            continue
+        rated = rated_load_of(case.study, params, outcome.result)
+        out[component] = component_inputs(component, case, outcome.result, params, rated).to_dict()
+    return out
+
+
 def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str], None]) -> Outcome:
     """Run the whole validation into ``out_dir``; returns the checks and timings (see module docstring)."""
     from ...analytic.summary import analytic_summary, crack_headline_lines, designer_headline
@@ -140,7 +169,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
         summary = analytic_summary(params)
     plan = make_plan(params, quick=quick)
     progress(f"[2/{total}] step: every part as STEP, in parallel with the FEA")
-    step_job = StepJob(params, out_dir / "step", cache, progress)
+    step_job = StepJob(params, out_dir / "step", cache, progress, preview_dir=out_dir / "images")
     try:
         with _stage("fea", timings, progress, 3, total):
             outcomes = _run_cases(plan.all_cases(), params, fields_dir=out_dir / "fields", cache=cache,
@@ -159,7 +188,8 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
                                     shaft_exponent=_shaft_exponent(check_set),
                                     crack_headline=summary.get("crack_headline"))
     with _stage("images", timings, progress, 5, total):
-        images, missing = make_images(out_dir, book, plan, check_set, summary, progress)
+        images, missing, stresses = make_images(out_dir, book, plan, check_set, summary, progress, params=params)
+        images = _previews(steps, out_dir) + images
     with _stage("reports", timings, progress, 6, total):
         checks = [c.to_dict() for c in check_set.checks]
         failed = [c["id"] for c in checks if not c["passed"]]
@@ -184,6 +214,9 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
             # FEA-confirmed forms
             "designer": ((designer_headline(summary["seed003"]) if "seed003" in summary else [])
                          + (crack_headline_lines(summary["crack_headline"]) if "crack_headline" in summary else [])),
+            "inputs": _inputs(plan, book, params),
+            "stress_at_rated": {c: s.to_dict() for c, s in stresses.items()},
+            "gci_table": [r.to_dict() for r in gci_rows(book, ORDER)],
             "checks": checks, "audit": audit,
             "crack_sweeps": {k: r.to_dict() for k, r in check_set.sweeps.items()},
             "images": [i.to_dict() for i in images], "missing_images": [m.to_dict() for m in missing],

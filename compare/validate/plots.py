@@ -36,31 +36,54 @@ def _save(fig, png: Path) -> Path:
     return atomic_write_bytes(png, buffer.getvalue())
 
 
-def convergence_plot(png: Path, *, title: str, unit: str, h_mm, values, extrapolated: float,
-                     gci_fine: float, observed_order: float, analytic: dict[str, float] | None = None) -> Path:
-    """Headline value against element size, Richardson value at h = 0, GCI band, closed forms as lines."""
-    fig = _figure()
-    ax = fig.add_subplot(1, 1, 1)
+def convergence_plot(png: Path, **kwargs) -> Path:
+    """``convergence_figure`` written to ``png``."""
+    return _save(convergence_figure(**kwargs), png)
+
+
+def convergence_figure(*, title: str, unit: str, h_mm, values, extrapolated: float, gci_fine: float,
+                       observed_order: float, analytic: dict[str, float] | None = None):
+    """Left: the FEA against element size on its own y-scale (Richardson value at h = 0, GCI band on the fine
+    value). Right: the fine FEA value with its GCI band beside the closed forms, each labelled with its number
+    and its difference from the FEA (a closed form far away would otherwise flatten the FEA points)."""
+    fig = _figure(10.0, 4.2)
+    ax, cmp_ax = fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)
     h = np.asarray(h_mm, dtype=float)
     v = np.asarray(values, dtype=float)
+    fine = float(v[np.argmin(h)])
+    band = abs(gci_fine * fine)
     ax.plot(h, v, "o-", color="tab:blue", label="FEA (three refinements)")
-    ax.plot([0.0], [extrapolated], "s", color="tab:blue", mfc="white",
-            label=f"Richardson extrapolated (p = {observed_order:.2f})")
-    band = abs(gci_fine * v[np.argmin(h)])
-    ax.errorbar([h.min()], [v[np.argmin(h)]], yerr=[band], color="tab:red", capsize=5,
-                label=f"GCI fine = {100 * gci_fine:.3g} %")
-    styles = {"published": ("--", "tab:orange"), "corrected": (":", "tab:green")}
-    for variant, value in (analytic or {}).items():
-        if value is not None and np.isfinite(value):
-            style, color = styles.get(variant, ("-.", "gray"))
-            ax.axhline(value, ls=style, color=color, label=f"{variant} closed form")
+    if np.isfinite(extrapolated):
+        ax.plot([0.0], [extrapolated], "s", color="tab:blue", mfc="white",
+                label=f"Richardson extrapolated (p = {observed_order:.2f})")
+    ax.errorbar([h.min()], [fine], yerr=[band], color="tab:red", capsize=5, label=f"GCI fine = {100 * gci_fine:.3g} %")
     ax.set_xlim(left=-0.05 * h.max())
     ax.set_xlabel("element size h (mm)")
     ax.set_ylabel(unit)
-    ax.set_title(title)
+    ax.set_title("FEA on three meshes (own scale)")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
-    return _save(fig, png)
+    ax.ticklabel_format(axis="y", style="sci", scilimits=(-3, 4), useOffset=False)
+    styles = {"published": "tab:orange", "corrected": "tab:green"}
+    names, numbers, colors, errors = ["FEA (fine)"], [fine], ["tab:blue"], [band]
+    for variant, value in (analytic or {}).items():
+        if value is not None and np.isfinite(value):
+            names.append(f"{variant}")
+            numbers.append(float(value))
+            colors.append(styles.get(variant, "gray"))
+            errors.append(0.0)
+    y = np.arange(len(names))[::-1]
+    cmp_ax.barh(y, numbers, xerr=errors, color=colors, alpha=0.8, capsize=4)
+    for yi, name, value in zip(y, names, numbers):
+        diff = "" if name.startswith("FEA") or fine == 0 else f" (FEA {100 * (fine - value) / value:+.3g} %)"
+        cmp_ax.annotate(f"{value:.5g}{diff}", (0, yi), xytext=(4, 0), textcoords="offset points", va="center",
+                        fontsize=8, color="black")
+    cmp_ax.set_yticks(y, names)
+    cmp_ax.set_xlabel(unit)
+    cmp_ax.set_title("fine FEA vs closed forms")
+    cmp_ax.grid(True, axis="x", alpha=0.3)
+    fig.suptitle(title, fontsize=11)
+    return fig
 
 
 def crack_sweep_plot(png: Path, *, title: str, unit: str, depths_mm, fea, fea_uncertainty,

@@ -28,7 +28,7 @@ figure img{max-width:100%;border:1px solid #ddd} figcaption{font-size:.8em;color
 """
 
 
-def _table(columns, rows, *, result_col: int | None = None) -> str:
+def _table(columns, rows, *, result_col: int | None = None, table_id: str = "") -> str:
     head = "".join(f"<th>{escape(c)}</th>" for c in columns)
     body = []
     for row in rows:
@@ -37,7 +37,8 @@ def _table(columns, rows, *, result_col: int | None = None) -> str:
             cls = f' class="{escape(str(cell).split()[0])}"' if i == result_col else ""
             cells.append(f"<td{cls}>{escape(str(cell))}</td>")
         body.append("<tr>" + "".join(cells) + "</tr>")
-    return f"<table><thead><tr>{head}</tr></thead><tbody>{''.join(body)}</tbody></table>"
+    ident = f' id="{escape(table_id, quote=True)}"' if table_id else ""
+    return f"<table{ident}><thead><tr>{head}</tr></thead><tbody>{''.join(body)}</tbody></table>"
 
 
 def _figure(image: dict) -> str:
@@ -60,12 +61,26 @@ def render_html(doc: dict) -> str:
     failing = [c for c in doc["checks"] if not c["passed"]]
     if failing:
         parts.append("<h2>Failing checks</h2><ul>")
-        parts += [f"<li><code>{escape(c['id'])}</code>: {escape(c['reason_not_evaluated'] or rt.check_row(c)[6])}"
-                  "</li>" for c in failing]
+        parts += [f"<li><code>{escape(c['id'])}</code>: {escape(rt.failing_line(c))}</li>" for c in failing]
         parts.append("</ul>")
+    rated = doc.get("stress_at_rated", {})
+    if rated:
+        parts.append('<h2 id="rated">Stress at the rated load</h2>')
+        parts.append(_table(rt.RATED_COLUMNS, [rt.rated_row(c, s) for c, s in rated.items()]))
     for component, title in rt.COMPONENTS:
         checks = [c for c in doc["checks"] if c["component"] == component]
         parts.append(f'<h2 id="{component}">{escape(title)}</h2>')
+        inputs = doc.get("inputs", {}).get(component)
+        if inputs:
+            parts.append(f'<h3 id="inputs-{component}">Inputs and model</h3><div class="inputs">')
+            parts += [_figure(i) for i in doc["images"] if i["component"] == component and i["kind"] == "preview"]
+            parts.append(_table(("input", "value"), rt.input_lines(inputs)))
+            parts.append(_table(rt.INPUT_MESH_COLUMNS, rt.input_mesh_rows(inputs)))
+            parts.append(f'<p class="notes">{escape(inputs["mesh_note"])}</p></div>')
+        if component in rated:
+            parts.append("<p><b>At the rated load:</b> " + escape("; ".join(rt.rated_row(component, rated[component])[1:7]))
+                         + "</p>")
+        parts.append(f'<h3 id="checks-{component}">Checks</h3>')
         parts.append(_table(rt.CHECK_COLUMNS, [rt.check_row(c) for c in checks], result_col=7))
         parts.append('<ul class="notes">' + "".join(
             f"<li><code>{escape(c['id'])}</code>: {escape(rt.check_notes(c))}</li>" for c in checks) + "</ul>")
@@ -74,9 +89,12 @@ def render_html(doc: dict) -> str:
             parts.append(f"<h3>Crack-depth sweep ({escape(sweep['quantity'])}, {escape(sweep['unit'])})</h3>")
             parts.append(_table(rt.SWEEP_COLUMNS, rt.sweep_rows(sweep)))
             parts.append(f"<p>{escape(rt.sweep_fit_line(sweep))}</p>")
-        figures = [_figure(i) for i in doc["images"] if i["component"] == component]
+        figures = [_figure(i) for i in doc["images"] if i["component"] == component and i["kind"] != "preview"]
         if figures:
             parts.append("<div>" + "".join(figures) + "</div>")
+    parts.append('<h2 id="gci">Discretization error (GCI table)</h2>')
+    parts.append(f'<p class="notes">{escape(rt.GCI_INTRO)}</p>')
+    parts.append(_table(rt.GCI_COLUMNS, [rt.gci_cells(r) for r in doc.get("gci_table", [])], table_id="gci-table"))
     parts.append('<h2 id="audit">Seed audit</h2><p>Every inconsistency found in the seeds, with the FEA evidence '
                  "where the FEA can settle it.</p>")
     parts.append(_table(rt.AUDIT_COLUMNS, [rt.audit_row(a) for a in doc["audit"]]))

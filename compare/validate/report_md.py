@@ -23,19 +23,35 @@ def render_markdown(doc: dict) -> str:
     failing = [c for c in doc["checks"] if not c["passed"]]
     if failing:
         lines += ["## Failing checks", ""]
-        lines += [f"- `{c['id']}`: {c['reason_not_evaluated'] or rt.check_row(c)[6]}" for c in failing] + [""]
+        lines += [f"- `{c['id']}`: {rt.failing_line(c)}" for c in failing] + [""]
     images = doc["images"]
+    rated = doc.get("stress_at_rated", {})
+    if rated:
+        lines += ["## Stress at the rated load", ""]
+        lines += _table(rt.RATED_COLUMNS, [rt.rated_row(c, s) for c, s in rated.items()]) + [""]
     for component, title in rt.COMPONENTS:
         checks = [c for c in doc["checks"] if c["component"] == component]
         lines += [f"## {title}", ""]
+        inputs = doc.get("inputs", {}).get(component)
+        if inputs:
+            lines += ["### Inputs and model", ""]
+            for image in (i for i in images if i["component"] == component and i["kind"] == "preview"):
+                lines += [f"![{image['caption']}]({image['path']})", ""]
+            lines += _table(("input", "value"), rt.input_lines(inputs)) + [""]
+            lines += _table(rt.INPUT_MESH_COLUMNS, rt.input_mesh_rows(inputs)) + ["", inputs["mesh_note"], ""]
+        if component in rated:
+            lines += ["**At the rated load:** " + "; ".join(rt.rated_row(component, rated[component])[1:7]), ""]
+        lines += ["### Checks", ""]
         lines += _table(rt.CHECK_COLUMNS, [rt.check_row(c) for c in checks]) + [""]
         lines += [f"- `{c['id']}`: {rt.check_notes(c)}" for c in checks] + [""]
         sweep = doc["crack_sweeps"].get(component)
         if sweep:
             lines += [f"### Crack-depth sweep ({sweep['quantity']}, {sweep['unit']})", ""]
             lines += _table(rt.SWEEP_COLUMNS, rt.sweep_rows(sweep)) + ["", rt.sweep_fit_line(sweep), ""]
-        for image in (i for i in images if i["component"] == component):
+        for image in (i for i in images if i["component"] == component and i["kind"] != "preview"):
             lines += [f"![{image['caption']}]({image['path']})", "", f"*{image['caption']}*", ""]
+    lines += ["## Discretization error (GCI table)", "", rt.GCI_INTRO, ""]
+    lines += _table(rt.GCI_COLUMNS, [rt.gci_cells(r) for r in doc.get("gci_table", [])]) + [""]
     lines += ["## Seed audit", "", "Every inconsistency found in the seeds, with the FEA evidence where the FEA can "
               "settle it.", ""]
     lines += _table(rt.AUDIT_COLUMNS, [rt.audit_row(a) for a in doc["audit"]]) + [""]

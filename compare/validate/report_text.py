@@ -5,6 +5,8 @@ never show a number the JSON does not have.
 """
 from __future__ import annotations
 
+from .gci_table import GCI_COLUMNS, gci_cells  # noqa: F401 - the GCI table's layout, for both writers
+
 COMPONENTS = (("shaft", "Output shaft (seed 000)"), ("cup", "Flexspline cup (seed 000)"),
               ("bearing", "Wave-generator bearing inner ring (seed 000)"),
               ("ring", "EWG flexspline ring (seed 003)"), ("gear", "Drive stiffness (seed 000)"))
@@ -114,3 +116,55 @@ def case_row(c: dict) -> tuple[str, ...]:
     status = ("cached" if c["cached"] else "solved") if c["ok"] else f"FAILED: {c['error']}"
     dofs = num(c["result"]["mesh"]["dofs"]) if c.get("result") else "-"
     return (c["label"], c["study"], num(c["crack_depth_mm"], 3), status, dofs, f"{c['seconds']:.1f}")
+
+
+def failing_line(c: dict) -> str:
+    """A failing check with its numbers and the one-sentence reason (not only the verdict)."""
+    if c["verdict"] == "not evaluated":
+        return f"not evaluated: {c['reason_not_evaluated']}"
+    asserted = c["asserts"]
+    err = c["rel_error"].get(asserted)
+    tol = c["tolerance"]
+    unc = f" +/- {num(c['fea_uncertainty'], 2)}" if c["fea_uncertainty"] is not None else ""
+    others = ", ".join(f"{v} {num(c['analytic'][v])} ({pct(c['rel_error'][v])})" for v in ("published", "corrected")
+                       if v != asserted and c["analytic"].get(v) is not None and c["rel_error"].get(v) is not None)
+    bound = "above the upper bound by" if c.get("relation") == "at_most" else "off by"
+    return (f"FEA {num(c['fea'])}{unc} {c['unit']} vs the asserted {asserted} form {num(c['analytic'].get(asserted))}: "
+            f"rel. error {pct(err)}, tolerance {100 * tol['relative']:.3g} % ({tol['reason']})"
+            + (f"; {others}" if others else "") + f". Reason: the FEA is {bound} {abs(100 * err):.3g} %, more than "
+            f"the tolerance, so it supports {'neither form' if c['verdict'] == 'neither' else 'the ' + c['verdict'] + ' form only'}.")
+
+
+INPUT_MESH_COLUMNS = ("mesh", "h (mm)", "dofs", "min element quality")
+
+
+def input_lines(i: dict) -> list[tuple[str, str]]:
+    """(what, value) rows of a component's inputs-and-model record."""
+    rows = [(name, value) for name, value in i["dimensions"]]
+    rows += [("material", i["material"]), ("load", i["load"]), ("supports", i["supports"]),
+             ("element", i["element"]), ("FEA case", f"{i['case']} ({i['study']})")]
+    return rows
+
+
+def input_mesh_rows(i: dict) -> list[tuple[str, ...]]:
+    names = ("h1 (fine)", "h2", "h3 (coarse)")
+    return [(names[k], num(m["h_mm"], 4), num(m["dofs"]) if m["dofs"] is not None else "not recorded",
+             num(m["min_quality"], 3) if m["min_quality"] is not None else "not recorded")
+            for k, m in enumerate(i["meshes"])]
+
+
+RATED_COLUMNS = ("component", "rated load", "peak von Mises (MPa)", "at (x, y, z) mm", "peak |u| (mm)",
+                 "fatigue limit (MPa)", "safety factor", "note")
+
+
+def rated_row(component: str, s: dict) -> tuple[str, ...]:
+    return (component, f"{s['load_text']}; fields x {s['load']['scale']:.4g}", num(s["peak_von_mises_MPa"], 4),
+            "(" + ", ".join(f"{x:.4g}" for x in s["peak_location_mm"]) + ")", num(s["peak_displacement_mm"], 3),
+            num(s["fatigue_limit_MPa"], 4), num(s["safety_factor"], 3), s["note"])
+
+
+GCI_INTRO = ("ASME V&V 20 (Roache) three-mesh estimate of every FEA quantity: h1 < h2 < h3, f1..f3 the values on "
+             "them, r the refinement ratios, p the observed order (the element's formal order in brackets), "
+             "f_ext the Richardson value, GCI_fine = 1.25 |f2 - f1| / |f1| / (r21^p - 1). Not in the asymptotic "
+             "range: non-monotone series, p < 1, p above the formal order, p fixed by the study (crack "
+             "compliances at 1) or clipped to its bounds; such a GCI is an estimate, not a proven bound.")

@@ -50,7 +50,7 @@ def study_from_dict(data: dict) -> StudyResult:
         conv = q.get("convergence")
         convergence = None if conv is None else Convergence(
             tuple(conv["h_mm"]), tuple(conv["values"]), conv["observed_order"], conv["extrapolated"],
-            conv["gci_fine"], conv["monotone"])
+            conv["gci_fine"], conv["monotone"], tuple(conv["order_bounds"]))
         quantities[name] = Quantity(q["name"], q["value"], q["unit"], convergence)
     mesh = MeshQuality(**data["mesh"])
     return StudyResult(data["study"], quantities, mesh, dict(data.get("timings_s", {})),

@@ -19,49 +19,64 @@ from ...cache import ResultCache, case_key
 @dataclass(frozen=True)
 class StepOutcome:
     part: str
-    files: tuple[Path, ...]
+    files: tuple[Path, ...]          # the STEP file(s)
     seconds: float
     cached: bool
     error: str = ""
+    preview: Path | None = None      # the part's PNG preview (the report's inputs section), if drawn
 
 
-def export_one(part: str, params, target: Path) -> tuple[list[str], float, str]:
-    """Build and write one part (runs in the worker process); errors come back as text, not exceptions."""
+def _outcome(part: str, written, seconds: float, cached: bool) -> StepOutcome:
+    paths = [Path(p) for p in written]
+    previews = [p for p in paths if p.suffix == ".png"]
+    return StepOutcome(part, tuple(p for p in paths if p.suffix != ".png"), seconds, cached, "",
+                       previews[0] if previews else None)
+
+
+# The parts the FEA studies mesh get a preview (the report's inputs section shows it); the EWG cam does not.
+PREVIEWED = ("flexspline-cup", "ewg-flexspline-ring", "output-shaft", "wg-bearing-ring")
+
+
+def export_one(part: str, params, target: Path, png: Path | None = None) -> tuple[list[str], float, str]:
+    """Build and write one part and its preview (runs in the worker process); errors come back as text."""
     start = time.perf_counter()
     try:
         from ...geometry.export import export_part
 
-        files = [str(p) for p in export_part(part, params, Path(target), crack_depth_mm=None, teeth=True, png=None)]
+        files = [str(p) for p in export_part(part, params, Path(target), crack_depth_mm=None, teeth=True, png=png)]
         return files, time.perf_counter() - start, ""
     except Exception as exc:  # noqa: BLE001 - one part that cannot be built is reported, the rest go on
         return [], time.perf_counter() - start, f"{type(exc).__name__}: {exc}"
 
 
-def _worker(conn, jobs: list[tuple[str, Path]], params) -> None:
+def _worker(conn, jobs: list[tuple[str, Path, Path | None]], params) -> None:
     """Background process: export each part in turn and send (part, files, seconds, error) back."""
-    for part, target in jobs:
-        conn.send((part, *export_one(part, params, target)))
+    for part, target, png in jobs:
+        conn.send((part, *export_one(part, params, target, png)))
     conn.close()
 
 
 class StepJob:
     """STEP export of every ``PartName`` (teeth on, uncracked: the parts as designed), started in the background."""
 
-    def __init__(self, params, step_dir: Path, cache: ResultCache, progress: Callable[[str], None]):
+    def __init__(self, params, step_dir: Path, cache: ResultCache, progress: Callable[[str], None],
+                 preview_dir: Path | None = None):
         self.cache, self.progress = cache, progress
         self.started = time.perf_counter()
         self.done: list[StepOutcome] = []
         self.keys: dict[str, str] = {}
         jobs = []
         for part in PartName:
-            key = case_key("validate-step", {"part": part.value, "params": params.to_dict()})
+            png = Path(preview_dir) / f"{part.value}_preview.png" if preview_dir and part.value in PREVIEWED else None
+            key = case_key("validate-step", {"part": part.value, "params": params.to_dict(),
+                                             "preview": png is not None})
             hit = cache.get(key)
             if hit is not None and hit.get("files") and all(Path(p).exists() for p in hit["files"]):
                 progress(f"  {part.value}: reusing cached STEP ({hit['seconds']:.1f} s originally)")
-                self.done.append(StepOutcome(part.value, tuple(Path(p) for p in hit["files"]), hit["seconds"], True))
+                self.done.append(_outcome(part.value, hit["files"], hit["seconds"], True))
                 continue
             self.keys[part.value] = key
-            jobs.append((part.value, Path(step_dir) / f"{part.value}.step"))
+            jobs.append((part.value, Path(step_dir) / f"{part.value}.step", png))
         self.process = None
         if jobs:
             # spawn, not fork: a clean interpreter for OCC; a daemon, so it never outlives the run
@@ -71,7 +86,7 @@ class StepJob:
             self.process.start()
             child.close()
             progress(f"  building {len(jobs)} STEP part(s) in a background process: "
-                     + ", ".join(p for p, _ in jobs))
+                     + ", ".join(p for p, _, _ in jobs))
 
     def result(self) -> tuple[list[StepOutcome], float]:
         """Wait for the background parts; returns every part's outcome and the wall time of the export."""
@@ -88,7 +103,7 @@ class StepJob:
                 continue
             self.cache.put(self.keys[part], {"files": files, "seconds": seconds})
             self.progress(f"  {part}: wrote {', '.join(Path(p).name for p in files)} in {seconds:.1f} s")
-            self.done.append(StepOutcome(part, tuple(Path(p) for p in files), seconds, False))
+            self.done.append(_outcome(part, files, seconds, False))
         for part in self.keys:
             if part not in received:
                 code = None if self.process is None else self.process.exitcode

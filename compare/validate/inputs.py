@@ -1,0 +1,111 @@
+"""The report's inputs-and-model section: per component what was built, loaded, held and meshed.
+
+Dimensions and material come from the parameters (typed), the load magnitude from the rated-load record
+(``strainwave.rated_stress``), the element and the three meshes from the study result (``MeshQuality`` of the
+finest mesh, the three sizes from its quantities' convergence records). How each study loads and holds its
+part is declared here once, in the words of its fea/ module.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["ComponentInputs", "MODEL", "component_inputs"]
+
+
+@dataclass(frozen=True)
+class StudyModel:
+    part: str
+    load: str
+    supports: str
+    element: str        # {order} is filled with the element degree
+
+
+MODEL = {
+    "shaft-torsion": StudyModel(
+        "output-shaft", "Saint-Venant shear traction tau = T r / J on the 'loaded' end face (moment T)",
+        "'fixed' end face clamped (all displacement components zero)",
+        "P{order} tetrahedra (curved, isoparametric); the crack on an axisymmetric (r, z) section of P2 triangles"),
+    "cup-torsion": StudyModel(
+        "flexspline-cup", "uniform tangential shear on the 'loaded' tooth band, moment T",
+        "'fixed' hub face clamped", "P{order} tetrahedra (curved, isoparametric); crack as a seam, closed and opened"),
+    "bearing-ring": StudyModel(
+        "wg-bearing-ring", "Hertzian ellipsoidal pressure p0 = 3F/(2 pi a'b') on the race 'contact' patch",
+        "bore fixed (rigid cam, bonded)",
+        "P{order} tetrahedra (curved, isoparametric); crack as a seam with frictionless crack-face contact"),
+    "ring-compression": StudyModel(
+        "ewg-flexspline-ring", "elliptical pressure on two diametral contact arcs (the EWG's strips), force F",
+        "u_y(A) = u_y(B) = 0, u_x(D) = 0 on the symmetry axes (no reaction in the symmetric solution)",
+        "P{order} triangles (curved), 2D plane stress, thickness = face width B; 3D check on curved P2 tetrahedra"),
+}
+
+
+@dataclass(frozen=True)
+class MeshRow:
+    h_mm: float
+    dofs: int | None
+    min_quality: float | None
+
+
+@dataclass(frozen=True)
+class ComponentInputs:
+    component: str
+    case: str
+    study: str
+    dimensions: tuple[tuple[str, str], ...]      # (name, value with unit)
+    material: str
+    load: str
+    supports: str
+    element: str
+    meshes: tuple[MeshRow, ...]                  # fine to coarse
+    mesh_note: str
+
+    def to_dict(self) -> dict:
+        return {"component": self.component, "case": self.case, "study": self.study,
+                "part": MODEL[self.study].part, "dimensions": [list(d) for d in self.dimensions],
+                "material": self.material, "load": self.load, "supports": self.supports, "element": self.element,
+                "meshes": [{"h_mm": m.h_mm, "dofs": m.dofs, "min_quality": m.min_quality} for m in self.meshes],
+                "mesh_note": self.mesh_note}
+
+
+def _dimensions(study: str, params) -> tuple[tuple[str, str], ...]:
+    if study == "shaft-torsion":
+        s = params.output_shaft
+        return (("outer diameter d_s", f"{s.outer_diameter_mm:g} mm"), ("inner diameter d_s2", f"{s.inner_diameter_mm:g} mm"),
+                ("length L_s", f"{s.length_mm:g} mm"), ("wall", f"{s.wall_mm:g} mm"))
+    if study == "cup-torsion":
+        c = params.flexspline_cup
+        return (("pitch diameter d1", f"{c.pitch_diameter_mm:g} mm"), ("wall delta", f"{c.wall_thickness_mm:g} mm"),
+                ("length L", f"{c.length_mm:g} mm"), ("shape", f"{c.shape}{', cup' if c.cup else ''}"),
+                ("teeth x module", f"{c.teeth} x {c.module_mm:g} mm"))
+    if study == "bearing-ring":
+        w = params.wave_generator
+        a, b = w.contact_semi_axes_mm
+        return (("inner ring thickness t_i", f"{w.bearing_inner_ring_thickness_mm:g} mm"),
+                ("contact ellipse a' x b'", f"{a:g} x {b:g} mm"), ("wave generator", w.kind.value),
+                ("flexspline pitch diameter d1", f"{params.flexspline_cup.pitch_diameter_mm:g} mm"))
+    e = params.ewg_drive
+    return (("teeth Z_R, tooth difference dZ", f"{e.flexspline_teeth}, {e.tooth_difference}"),
+            ("module m", f"{e.module_mm:g} mm"), ("reference diameter d_R", f"{e.reference_diameter_mm:g} mm"),
+            ("rim thickness delta", f"{e.rim_thickness_mm:.4g} mm"), ("face width B", f"{e.face_width_mm:g} mm"),
+            ("root fillet rho_f", f"{e.root_fillet_coefficient:g} m"))
+
+
+def component_inputs(component: str, case, result, params, rated) -> ComponentInputs:
+    """The inputs of ``component`` solved as ``case`` (its ``StudyResult``; ``rated``: its ``RatedLoad``)."""
+    model = MODEL[case.study]
+    m = params.material
+    material = (f"E = {m.youngs_modulus_MPa:g} MPa, nu = {m.poisson_ratio:g} (the FEA's G = E/2(1+nu) = "
+                f"{m.youngs_modulus_MPa / (2 * (1 + m.poisson_ratio)):.5g} MPa; seed 000's mu = "
+                f"{m.shear_modulus_MPa:g} MPa), fatigue limit sigma_-1 = {m.fatigue_limit_MPa:g} MPa")
+    load = (f"{model.load}; solved at {rated.solved:.4g} {rated.unit}, drawn at {rated.describe()}")
+    crack = "" if case.crack_depth_mm is None else f"; crack depth a = {case.crack_depth_mm:g} mm"
+    sizes = next((q.convergence.h_mm for q in result.quantities.values() if q.convergence is not None), ())
+    finest = result.mesh
+    meshes = tuple(MeshRow(h, finest.dofs if k == 0 else None, finest.min_quality if k == 0 else None)
+                   for k, h in enumerate(sizes))
+    note = (f"finest mesh: {finest.elements} elements, {finest.nodes} nodes, {finest.dofs} dofs, element quality "
+            f"(gmsh SICN) min {finest.min_quality:.3g}, mean {finest.mean_quality:.3g}; the coarser meshes' dofs "
+            "and quality are not recorded by the study")
+    return ComponentInputs(component, case.label, case.study, _dimensions(case.study, params) + (
+        (("crack depth a", f"{case.crack_depth_mm:g} mm"),) if crack else ()), material, load, model.supports,
+        model.element.format(order=finest.order), meshes, note)

@@ -1,0 +1,161 @@
+"""A study's stress field at its rated load: peak von Mises and where, peak displacement, fatigue safety factor.
+
+Read from the study's own VTU field (the finest mesh) and scaled by rated / solved load (linear elasticity).
+Both ``strainwave solve`` and the validation report state these numbers; the pictures draw the same scaled
+field (``compare/validate/images.py``).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .analytic.rated_load import RatedLoad, fatigue_safety_factor, rated_load
+from .registry import study as registered
+
+__all__ = ["FieldNames", "field_names", "displacement3", "scaled_to_rated", "FieldPeaks", "field_peaks",
+           "StressAtRated", "stress_field_of", "rated_load_of", "stress_at_rated"]
+
+
+@dataclass(frozen=True)
+class FieldNames:
+    displacement: str | None
+    von_mises: str | None
+
+
+def field_names(mesh) -> FieldNames:
+    """The displacement and von Mises arrays of a VTU the studies wrote (names carry units: *_mm, *_MPa)."""
+    keys = list(mesh.point_data.keys()) + list(mesh.cell_data.keys())
+    disp = next((k for k in keys if k.lower().startswith("disp")), None)
+    mises = next((k for k in keys if "mises" in k.lower()), None)
+    return FieldNames(disp, mises)
+
+
+def displacement3(mesh, name: str) -> np.ndarray:
+    """(N, 3) displacement (2D fields padded with z = 0)."""
+    u = np.asarray(mesh.point_data[name], dtype=float)
+    if u.ndim == 1 or u.shape[1] < 3:
+        u = np.column_stack([u.reshape(len(u), -1), np.zeros((len(u), 3 - u.reshape(len(u), -1).shape[1]))])
+    return u
+
+
+# arrays that are linear in the load: displacements and stresses (never ids such as physical_group)
+_LINEAR = ("disp", "mises", "stress")
+
+
+def scaled_to_rated(mesh, scale: float):
+    """A copy of ``mesh`` with every displacement and stress array multiplied by ``scale`` (linear problem)."""
+    if not (np.isfinite(scale) and scale > 0):
+        raise ValueError(f"load scale must be finite and > 0, got {scale}")
+    out = mesh.copy()
+    for data in (out.point_data, out.cell_data):
+        for key in list(data.keys()):
+            if any(word in key.lower() for word in _LINEAR):
+                data[key] = np.asarray(data[key], dtype=float) * scale
+    return out
+
+
+@dataclass(frozen=True)
+class FieldPeaks:
+    peak_von_mises_MPa: float
+    peak_location_mm: tuple[float, float, float]
+    peak_displacement_mm: float
+
+    def __post_init__(self):
+        if not (np.isfinite(self.peak_von_mises_MPa) and self.peak_von_mises_MPa >= 0):
+            raise ValueError(f"peak von Mises must be finite and >= 0, got {self.peak_von_mises_MPa}")
+
+
+def field_peaks(mesh) -> FieldPeaks:
+    """Peak nodal von Mises with its location, and the peak |u|, of a (scaled) field."""
+    names = field_names(mesh)
+    if names.von_mises is None or names.von_mises not in mesh.point_data:
+        raise ValueError("the field has no nodal von Mises array")
+    vm = np.asarray(mesh.point_data[names.von_mises], dtype=float)
+    k = int(np.argmax(vm))
+    u = displacement3(mesh, names.displacement) if names.displacement else np.zeros((mesh.n_points, 3))
+    return FieldPeaks(float(vm[k]), tuple(float(x) for x in mesh.points[k]), float(np.linalg.norm(u, axis=1).max()))
+
+
+# Which of a study's field files the stress picture shows: the toothed EWG ring (the root stress a designer
+# wants), otherwise the uncracked part (a crack tip's peak is singular and grows with refinement).
+_PREFERRED_SUFFIX = {"ring-compression": "_toothed", "bearing-ring": "_uncracked"}
+
+
+def stress_field_of(study: str, fields, crack_depth_mm: float | None) -> tuple[Path, bool] | None:
+    """(VTU, cracked) of ``fields`` (a study's written files) that its rated-load stress picture shows; cracked
+    says whether that field carries the crack (a solve with a crack whose fields hold no separate
+    ``_cracked``/``_uncracked`` pair wrote the cracked field)."""
+    files = [Path(p) for p in fields if str(p).endswith(".vtu") and not str(p).endswith(".boundary.vtu")]
+    suffix = _PREFERRED_SUFFIX.get(study)
+    chosen = [p for p in files if suffix and p.stem.endswith(suffix)] or \
+             [p for p in files if not p.stem.endswith(("_cracked", "_smooth"))] or files
+    if not chosen:
+        return None
+    path = chosen[0]
+    paired = any(p.stem.endswith("_cracked") for p in files) and not path.stem.endswith("_cracked")
+    return path, crack_depth_mm is not None and not paired
+
+
+def rated_load_of(study: str, params, result) -> RatedLoad:
+    """The rated load of a solved study (a ``StudyResult``): the load it solved, read from its registry entry."""
+    spec = registered(study)
+    if study == "ring-compression":
+        # the toothed field is solved at the reference force; the force for W0 is the toothed ring's own
+        return rated_load(study, params, spec.applied_force_N(result.meta),
+                          ring_force_for_W0_N=result.quantities["toothed_force_for_W0_N"].value)
+    if spec.force_key:
+        solved = spec.applied_force_N(result.meta)
+        if solved is None:
+            raise ValueError(f"{study} states no applied force under {spec.force_key!r}")
+        return rated_load(study, params, solved)
+    return rated_load(study, params, params.gear.output_torque_Nmm)   # the torsion studies apply gear T
+
+
+@dataclass(frozen=True)
+class StressAtRated:
+    """A study's stress field at its rated load, as ``solve`` prints it and the report states it."""
+    study: str
+    field_file: str
+    load: RatedLoad
+    peaks: FieldPeaks
+    fatigue_limit_MPa: float
+    cracked: bool
+
+    @property
+    def safety_factor(self) -> float:
+        return fatigue_safety_factor(self.fatigue_limit_MPa, self.peaks.peak_von_mises_MPa)
+
+    @property
+    def note(self) -> str:
+        text = ("material-only factor sigma_-1 / sigma_vM,peak (peak taken as a fully reversed amplitude, "
+                "no notch, size or mean-stress factor)")
+        if self.cracked:
+            text += "; the field has a crack: its tip peak is singular and grows with refinement"
+        return text
+
+    def lines(self) -> list[str]:
+        p = self.peaks
+        where = ", ".join(f"{x:.4g}" for x in p.peak_location_mm)
+        return [f"at the rated load: {self.load.describe()}, fields x {self.load.scale:.4g}",
+                f"  peak von Mises {p.peak_von_mises_MPa:.4g} MPa at ({where}) mm; peak displacement "
+                f"{p.peak_displacement_mm:.4g} mm",
+                f"  safety factor vs fatigue limit {self.fatigue_limit_MPa:g} MPa: {self.safety_factor:.3g} "
+                f"({self.note})"]
+
+    def to_dict(self) -> dict:
+        return {"study": self.study, "field_file": self.field_file, "load": self.load.to_dict(),
+                "load_text": self.load.describe(), "peak_von_mises_MPa": self.peaks.peak_von_mises_MPa,
+                "peak_location_mm": list(self.peaks.peak_location_mm),
+                "peak_displacement_mm": self.peaks.peak_displacement_mm, "fatigue_limit_MPa": self.fatigue_limit_MPa,
+                "safety_factor": self.safety_factor, "cracked": self.cracked, "note": self.note}
+
+
+def stress_at_rated(study: str, params, result, vtu: Path, *, cracked: bool) -> StressAtRated:
+    """Peaks of ``vtu`` (one of ``result``'s fields) at the study's rated load."""
+    import pyvista as pv
+
+    load = rated_load_of(study, params, result)
+    mesh = scaled_to_rated(pv.read(str(vtu)), load.scale)
+    return StressAtRated(study, Path(vtu).name, load, field_peaks(mesh), params.material.fatigue_limit_MPa, cracked)
