@@ -89,9 +89,8 @@ def wired(tmp_path_factory):
     outcomes[plan.ring.label] = _outcome(plan.ring, ring_q, (ring_vtu,), {"reference_force_N": f_ref})
     book = FeaBook(outcomes)
     check_set = build_checks(book, plan, summary, params)
-    images, missing, stresses = make_images(out, book, plan, check_set, summary, progress=lambda m: None,
-                                            params=params)
-    return out, check_set, images, missing, r_m, delta_cd, stresses
+    made = make_images(out, book, plan, check_set, summary, progress=lambda m: None, params=params)
+    return out, check_set, made.images, made.missing, r_m, delta_cd, made.stresses, made.views
 
 
 def test_exact_fields_pass_their_checks_and_missing_studies_do_not(wired):
@@ -116,7 +115,7 @@ def test_images_are_made_and_non_blank(wired):
 
 
 def test_mid_layer_sampling_recovers_the_thin_ring_diameter_changes(wired):
-    out, _, _, _, r_m, delta_cd, _ = wired
+    out, _, _, _, r_m, delta_cd, _, _ = wired
     theta, u_r, _ = sample_circle(out / "ring.vtu", r_m, n=360)
     # loads on the y axis: D at +y moves in by delta_CD/2, B at +x moves out by 0.918 delta_CD/2;
     # linear interpolation over 1-degree cells of a smooth field: 0.5 % is ample
@@ -127,7 +126,7 @@ def test_mid_layer_sampling_recovers_the_thin_ring_diameter_changes(wired):
 
 
 def test_stress_pictures_are_drawn_at_the_rated_load_with_their_peaks(wired):
-    out, _, images, _, _, _, stresses = wired
+    out, _, images, _, _, _, stresses, _ = wired
     params = load_params()
     # the shaft field was written at seed 000's T: drawn at the rated torque, every stress scales by their ratio
     shaft = stresses["shaft"]
@@ -143,3 +142,21 @@ def test_stress_pictures_are_drawn_at_the_rated_load_with_their_peaks(wired):
     captions = {i.component: i.caption for i in images if i.kind == "stress"}
     assert "safety factor" in captions["shaft"] and "T = 1e+06 N*mm" in captions["shaft"]
     assert "2D plane stress section" in captions["ring"]
+
+
+def test_3d_views_carry_the_scaled_surface_field(wired):
+    import base64
+    import json
+
+    *_, stresses, views = wired
+    assert set(views) == set(stresses)
+    for component, view in views.items():
+        data = json.loads(view.payload)
+        points = np.frombuffer(base64.b64decode(data["positions"]), dtype=np.float32).reshape(-1, 3)
+        scalars = np.frombuffer(base64.b64decode(data["scalars"]), dtype=np.float32)
+        faces = np.frombuffer(base64.b64decode(data["indices"]), dtype=np.uint32).reshape(-1, 3)
+        assert len(points) == len(scalars) and faces.max() < len(points) and len(faces) == view.triangles > 0
+        assert np.linalg.norm(points, axis=1).max() == pytest.approx(1.0, abs=1e-6)   # fits the viewer's sphere
+        # the surface carries the rated-load stress: its largest value is the field's peak (an outer node)
+        peak = stresses[component].peaks.peak_von_mises_MPa
+        assert data["range"] == [0.0, pytest.approx(peak)] and scalars.max() == pytest.approx(peak, rel=1e-5)

@@ -207,8 +207,8 @@ def _chromium() -> str:
 def test_report_opens_in_headless_chromium_and_every_image_loads(quick_run, results, tmp_path):
     out, _ = quick_run
     chromium = _chromium()
-    # A copy of the report with a probe script next to it (same folder, so relative links resolve); the report
-    # itself stays script-free.
+    # A copy of the report with a probe script next to it (same folder, so relative links resolve); the report's
+    # own one script is the 3D viewer (checked below).
     probe = out / "report_probe.html"
     html = (out / "report.html").read_text(encoding="utf-8")
     script = ("<script>window.addEventListener('load',function(){var im=[].slice.call(document.images);"
@@ -299,3 +299,50 @@ def test_quick_checks_reproduce_the_reference_or_are_listed_as_deliberate(result
         if now[check_id]["verdict"] != ref["verdict"]:
             changed.setdefault(check_id, []).append(f"verdict: {ref['verdict']} -> {now[check_id]['verdict']}")
     assert not changed, f"undeclared changes (list them in DELIBERATE_CHANGES with a reason): {changed}"
+
+
+# Injected first into <head>: records every script error and console.error, then, once the page has loaded,
+# counts the drawn (non-white) pixels and distinct colours of every 3D view canvas.
+_VIEW_PROBE = (
+    "<script>window.__errors=[];window.addEventListener('error',function(e){window.__errors.push(String(e.message));});"
+    "window.addEventListener('unhandledrejection',function(e){window.__errors.push(String(e.reason));});"
+    "var __ce=console.error;console.error=function(){window.__errors.push([].join.call(arguments,' '));"
+    "__ce.apply(console,arguments);};"
+    "window.addEventListener('load',function(){setTimeout(function(){var out=[];"
+    "[].forEach.call(document.querySelectorAll('canvas.sw-view'),function(c){var t=document.createElement('canvas');"
+    "t.width=c.width;t.height=c.height;var x=t.getContext('2d');x.drawImage(c,0,0);"
+    "var d=x.getImageData(0,0,t.width,t.height).data,n=0,cols={};"
+    "for(var i=0;i<d.length;i+=4){if(d[i]<250||d[i+1]<250||d[i+2]<250){n++;"
+    "cols[(d[i]>>4)+','+(d[i+1]>>4)+','+(d[i+2]>>4)]=1;}}"
+    "out.push(c.getAttribute('data-source')+'='+n+'/'+Object.keys(cols).length);});"
+    "var p=document.createElement('pre');p.id='probe3d';p.textContent='VIEWS '+out.join(' ')+' ERRORS '"
+    "+window.__errors.length+': '+window.__errors.join(' | ');document.body.appendChild(p);},500);});</script>")
+
+
+def test_report_3d_views_render_in_headless_chromium_without_errors(quick_run, results, tmp_path):
+    out, _ = quick_run
+    chromium = _chromium()
+    html = (out / "report.html").read_text(encoding="utf-8")
+    assert html.count('<canvas class="sw-view"') == len(results["views"]) == 4
+    # the page is self-contained: nothing is fetched from anywhere (no src/href leaves the folder, no import)
+    assert "://" not in html.split("<script>")[-1] and "import(" not in html
+    probe = out / "report_probe3d.html"
+    probe.write_text(html.replace('<meta charset="utf-8">', '<meta charset="utf-8">' + _VIEW_PROBE, 1),
+                     encoding="utf-8")
+    try:
+        base = [chromium, *CHROMIUM_FLAGS, f"--user-data-dir={tmp_path / 'profile'}", "--virtual-time-budget=15000"]
+        dom = subprocess.run(base + ["--dump-dom", probe.as_uri()], capture_output=True, text=True, timeout=180)
+    finally:
+        probe.unlink()
+        shutil.rmtree(tmp_path / "profile", ignore_errors=True)
+    report = dom.stdout.split('<pre id="probe3d">')[1].split("</pre>")[0]
+    assert report.endswith("ERRORS 0: "), report
+    counts = dict(item.split("=") for item in report.split(" ERRORS")[0].split()[1:])
+    assert set(counts) == {f"view-data-{c}" for c in results["views"]}
+    for name, value in counts.items():
+        drawn, colours = (int(v) for v in value.split("/"))
+        # a blank canvas has 0 drawn pixels; a drawn stress field covers thousands of pixels (the thin EWG ring
+        # about 11,000 of the 307,200) in many colours of the map
+        assert drawn > 3000 and colours > 8, (name, value)
+    # the inputs section and the GCI table are on the rendered page
+    assert 'id="inputs-shaft"' in dom.stdout and 'id="gci-table"' in dom.stdout

@@ -28,6 +28,7 @@ def test_wheel_builds_without_warnings_and_ships_data(tmp_path):
     shipped = set(zipfile.ZipFile(wheel).namelist())
     expected = {f"{SOURCES[top]}/{path.relative_to(ROOT / top)}"
                 for top in SOURCES for path in (ROOT / top).rglob("*")
-                if path.is_file() and path.suffix in (".py", ".toml", ".csv", ".json") and "__pycache__" not in path.parts}
-    assert {"strainwave/data/defaults.toml", "strainwave/data/cha_torsional_stiffness.csv"} <= expected
+                if path.is_file() and path.suffix in (".py", ".toml", ".csv", ".json", ".js") and "__pycache__" not in path.parts}
+    assert {"strainwave/data/defaults.toml", "strainwave/data/cha_torsional_stiffness.csv",
+            "strainwave/compare/validate/view3d.js"} <= expected
     assert expected - shipped == set()

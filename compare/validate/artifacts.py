@@ -91,7 +91,7 @@ def _marks(images, study: str):
 
 
 def _stress_picture(images, target: Path, book: FeaBook, component: str, case, params,
-                    records: dict[str, StressAtRated]) -> str:
+                    records: dict[str, StressAtRated], views: dict, col: _Collector) -> str:
     outcome = book.outcomes.get(case.label)
     if outcome is None or outcome.result is None:
         raise FileNotFoundError(f"case {case.label} has no result")
@@ -109,20 +109,36 @@ def _stress_picture(images, target: Path, book: FeaBook, component: str, case, p
                                     marks=_marks(images, case.study),
                                     section=SECTION_OF_PLANE.get(component, "2D section") if planar else "",
                                     zoom=zoom)
+    from .view3d import make_view
+    try:
+        views[component] = make_view(component, vtu, at, exaggeration=rendered.exaggeration or 1.0,
+                                     label=COMPONENT_TITLES[component])
+    except Exception as exc:  # noqa: BLE001 - a view that cannot be made is reported, the PNG stands
+        col.missing.append(Missing(f"{COMPONENT_TITLES[component]} 3D view", f"{type(exc).__name__}: {exc}"))
     return rendered.caption
 
 
+@dataclass(frozen=True)
+class Artifacts:
+    images: list[Image]
+    missing: list[Missing]
+    stresses: dict[str, StressAtRated]     # component -> its stress field at the rated load
+    views: dict                            # component -> view3d.View (interactive 3D, for report.html)
+
+
 def make_images(out_dir: Path, book: FeaBook, plan: Plan, check_set: CheckSet, summary: dict,
-                progress: Callable[[str], None], *, params
-                ) -> tuple[list[Image], list[Missing], dict[str, StressAtRated]]:
-    """Every picture; also the stress at the rated load per component (the numbers the pictures print)."""
+                progress: Callable[[str], None], *, params) -> Artifacts:
+    """Every picture; also the stress at the rated load per component (the numbers the pictures print) and
+    the interactive 3D view of each stress field."""
     from . import images  # pyvista only here
 
     col = _Collector(out_dir, progress)
     stresses: dict[str, StressAtRated] = {}
+    views: dict = {}
     for component, case in list(plan.headline.items()) + [("ring", plan.ring)]:
         col.attempt(f"{COMPONENT_TITLES[component]} stress", component, "stress",
-                    lambda t, c=component, cs=case: _stress_picture(images, t, book, c, cs, params, stresses),
+                    lambda t, c=component, cs=case: _stress_picture(images, t, book, c, cs, params, stresses,
+                                                                    views, col),
                     f"{component}_von_mises.png")
     for component, cases in plan.sweeps.items():
         if not cases:
@@ -149,7 +165,7 @@ def make_images(out_dir: Path, book: FeaBook, plan: Plan, check_set: CheckSet, s
     for component, report in check_set.sweeps.items():
         col.attempt(f"{component} crack sweep", component, "crack-sweep",
                     lambda t, r=report, c=component: _sweep(t, r, c), f"{component}_crack_sweep.png")
-    return col.images, col.missing, stresses
+    return Artifacts(col.images, col.missing, stresses, views)
 
 
 # quantity name per check whose convergence history is plotted

@@ -188,8 +188,8 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
                                     shaft_exponent=_shaft_exponent(check_set),
                                     crack_headline=summary.get("crack_headline"))
     with _stage("images", timings, progress, 5, total):
-        images, missing, stresses = make_images(out_dir, book, plan, check_set, summary, progress, params=params)
-        images = _previews(steps, out_dir) + images
+        made = make_images(out_dir, book, plan, check_set, summary, progress, params=params)
+        images, missing, stresses = _previews(steps, out_dir) + made.images, made.missing, made.stresses
     with _stage("reports", timings, progress, 6, total):
         checks = [c.to_dict() for c in check_set.checks]
         failed = [c["id"] for c in checks if not c["passed"]]
@@ -216,6 +216,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
                          + (crack_headline_lines(summary["crack_headline"]) if "crack_headline" in summary else [])),
             "inputs": _inputs(plan, book, params),
             "stress_at_rated": {c: s.to_dict() for c, s in stresses.items()},
+            "views": {c: v.to_dict() for c, v in made.views.items()},
             "gci_table": [r.to_dict() for r in gci_rows(book, ORDER)],
             "checks": checks, "audit": audit,
             "crack_sweeps": {k: r.to_dict() for k, r in check_set.sweeps.items()},
@@ -227,7 +228,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
         doc = plain(doc)
         # The reports are written before results.json so that results.json appearing marks a complete run.
         write_markdown(out_dir / "report.md", doc)
-        write_html(out_dir / "report.html", doc)
+        write_html(out_dir / "report.html", doc, views={c: v.payload for c, v in made.views.items()})
         write_results(out_dir / "results.json", doc)
     timings["total"] = time.perf_counter() - start
     return Outcome(out_dir, check_set.checks, timings, tuple(outcomes.values()))

@@ -1,7 +1,8 @@
 """report.html: the validation report as one HTML page with relative links (opens from its folder).
 
-Inline CSS, no scripts, no network: images, STEP, VTU and results.json are linked by relative paths
-inside the output folder, so the folder can be moved or zipped and still opens in any browser.
+Inline CSS, no network: images, STEP, VTU and results.json are linked by relative paths inside the output
+folder, so the folder can be moved or zipped and still opens in any browser. The one script is the inline
+WebGL viewer of the interactive 3D stress views (``view3d.js``), whose data is embedded in the page.
 """
 from __future__ import annotations
 
@@ -25,6 +26,9 @@ td.NOT{background:#fff4d6;font-weight:bold}
 figure{display:inline-block;margin:.5em;max-width:48%;vertical-align:top}
 figure img{max-width:100%;border:1px solid #ddd} figcaption{font-size:.8em;color:#555}
 .notes{font-size:.8em;color:#444} code{background:#f5f5f5;padding:0 3px}
+figure.view3d{max-width:100%} canvas.sw-view{border:1px solid #ddd;cursor:grab;width:640px;height:480px;
+max-width:100%} .colorbar{display:flex;align-items:center;gap:.5em;font-size:.8em;max-width:640px}
+.colorbar .ramp{flex:1;height:12px;border:1px solid #999}
 """
 
 
@@ -48,7 +52,24 @@ def _figure(image: dict) -> str:
             f"<figcaption>{caption}</figcaption></figure>")
 
 
-def render_html(doc: dict) -> str:
+def _view(component: str, view: dict, payload: str, ramp: str) -> str:
+    source = f"view-data-{component}"
+    low, high = view["range_MPa"]
+    # "</" never occurs in the JSON (base64 and numbers), so it cannot end the script element early
+    return (f'<figure class="view3d" id="view-{component}"><canvas class="sw-view" width="640" height="480" '
+            f'data-source="{source}" aria-label="{escape(view["caption"], quote=True)}"></canvas>'
+            f'<div class="colorbar"><span>{low:.3g}</span><span class="ramp" style="background:{ramp}"></span>'
+            f"<span>{high:.4g} MPa (von Mises)</span></div><figcaption>{escape(view['caption'])}</figcaption></figure>"
+            f'<script type="application/json" id="{source}">{payload}</script>')
+
+
+def render_html(doc: dict, views: dict[str, str] | None = None) -> str:
+    """The page; ``views`` = {component: the 3D view's JSON payload} (kept out of results.json)."""
+    views = {c: p for c, p in (views or {}).items() if c in doc.get("views", {})}
+    ramp = ""
+    if views:
+        from .view3d import colorbar_css
+        ramp = colorbar_css()
     passed = doc["passed"]
     parts = ["<!DOCTYPE html>", '<html lang="en"><head><meta charset="utf-8">',
              '<meta name="viewport" content="width=device-width, initial-scale=1">',
@@ -92,6 +113,9 @@ def render_html(doc: dict) -> str:
         figures = [_figure(i) for i in doc["images"] if i["component"] == component and i["kind"] != "preview"]
         if figures:
             parts.append("<div>" + "".join(figures) + "</div>")
+        if component in views:
+            parts.append(f'<h3 id="view3d-{component}">Interactive 3D view of the stress field</h3>')
+            parts.append(_view(component, doc["views"][component], views[component], ramp))
     parts.append('<h2 id="gci">Discretization error (GCI table)</h2>')
     parts.append(f'<p class="notes">{escape(rt.GCI_INTRO)}</p>')
     parts.append(_table(rt.GCI_COLUMNS, [rt.gci_cells(r) for r in doc.get("gci_table", [])], table_id="gci-table"))
@@ -111,9 +135,12 @@ def render_html(doc: dict) -> str:
     parts.append('<h2 id="files">Files</h2><ul>' + "".join(
         f'<li><a href="{escape(p, quote=True)}">{escape(n)}</a></li>' for n, p in links) + "</ul>")
     parts.append("<h2>Versions</h2>" + _table(("package", "version"), list(meta["versions"].items())))
+    if views:
+        from .view3d import viewer_script
+        parts.append(f"<script>{viewer_script()}</script>")
     parts.append("</body></html>")
     return "\n".join(parts)
 
 
-def write_html(path: Path, doc: dict) -> Path:
-    return atomic_write_text(path, render_html(doc))
+def write_html(path: Path, doc: dict, views: dict[str, str] | None = None) -> Path:
+    return atomic_write_text(path, render_html(doc, views))

@@ -50,6 +50,8 @@ def render_markdown(doc: dict) -> str:
             lines += _table(rt.SWEEP_COLUMNS, rt.sweep_rows(sweep)) + ["", rt.sweep_fit_line(sweep), ""]
         for image in (i for i in images if i["component"] == component and i["kind"] != "preview"):
             lines += [f"![{image['caption']}]({image['path']})", "", f"*{image['caption']}*", ""]
+        if component in doc.get("views", {}):
+            lines += ["An interactive 3D view of this stress field is in report.html.", ""]
     lines += ["## Discretization error (GCI table)", "", rt.GCI_INTRO, ""]
     lines += _table(rt.GCI_COLUMNS, [rt.gci_cells(r) for r in doc.get("gci_table", [])]) + [""]
     lines += ["## Seed audit", "", "Every inconsistency found in the seeds, with the FEA evidence where the FEA can "
