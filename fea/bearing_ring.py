@@ -238,7 +238,7 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
     seam = build_seam_part(params, a)
     timings = {"geometry": time.perf_counter() - t0}
     front = list(seam.crack_front_mm)
-    c_unc, c_cr, qual, info, fields_fine, factors = [], [], None, None, {}, {}
+    c_unc, c_cr, qual, info, fields_fine, factors, meshes = [], [], None, None, {}, {}, []
     h_used = []     # sizes as meshed (a gmsh retry scales them a little)
     for k, h in enumerate(sizes):
         scale = REFINEMENT_RATIO ** k
@@ -249,6 +249,7 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
                                    force_N=force, contact_mm=contact, keep_field=(k == 0 and vtu is not None))
         c_unc.append(unc.compliance_mm_per_N)
         c_cr.append(cr.compliance_mm_per_N)
+        meshes.append(unc.quality)
         factors[f"h{k}"] = unc.size_factor
         h_used.append(h * unc.size_factor)
         for label, sol in (("uncracked", unc), ("cracked", cr)):
@@ -288,7 +289,7 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
             "crack_model": "seam (one mesh per refinement, solved closed and opened)",
             "mesh_size_factors": factors, "solver": info, "part": {k: v for k, v in (seam.meta or {}).items() if isinstance(v, (int, float, str))},
             "E_MPa": mat.youngs_modulus_MPa, "nu": mat.poisson_ratio, "G_implied_MPa": mat.implied_shear_modulus_MPa}
-    return StudyResult(STUDY, q, qual, timings, fields, meta)
+    return StudyResult(STUDY, q, qual, timings, fields, meta, tuple(meshes))
 
 
 def _setup(params, mesh_size_mm, quick):
@@ -326,4 +327,4 @@ def _run_uncracked(params, *, mesh_size_mm, order, vtu, progress, quick) -> Stud
             "seed_uncracked_stiffness_N_per_mm": params.wave_generator.uncracked_radial_stiffness_N_per_mm,
             "fea_uncracked_stiffness_N_per_mm": 1.0 / c[0], "mesh_sizes_mm": sizes, "solver": sols[0].solver,
             "E_MPa": mat.youngs_modulus_MPa, "nu": mat.poisson_ratio, "G_implied_MPa": mat.implied_shear_modulus_MPa}
-    return StudyResult(STUDY, q, sols[0].quality, timings, fields, meta)
+    return StudyResult(STUDY, q, sols[0].quality, timings, fields, meta, tuple(s.quality for s in sols))

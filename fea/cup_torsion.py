@@ -96,7 +96,7 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
     cracked = _build(params, crack_depth_mm, teeth) if crack_depth_mm is not None else None
     plain = _build(params, None, teeth) if cracked is None else cracked   # the seam part IS the uncracked cup
     timings["geometry"] = time.perf_counter() - t0
-    lam0, lam1, finest = [], [], None
+    lam0, lam1, finest, meshes = [], [], None, []
     for k, hk in enumerate(reversed(sizes)):
         progress(f"{STUDY}: refinement {k + 1}/3, h = {hk:.3g} mm")
         refine = (crack_refine(cracked, hk, crack_depth_mm, h_fine_mm=sizes[0]),) if cracked is not None else ()
@@ -110,6 +110,7 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
             timings["assembly"] += sol.timings_s["assembly"]
             timings["solve"] += sol.timings_s["solve"]
             finest = (sol, torque)
+        meshes.append(finest[0].md.quality)     # the mesh the result's ``mesh`` states, per refinement
     lam0, lam1 = lam0[::-1], lam1[::-1]
     quantities = crack_flexibility_quantities(sizes, lam0, lam1 if cracked is not None else None, UNIT)
     sol, torque = finest
@@ -130,4 +131,4 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
     if cracked is not None:
         meta["crack"] = {k: v for k, v in cracked.meta.items() if isinstance(v, (int, float, str))}
     timings["total"] = time.perf_counter() - t0
-    return StudyResult(STUDY, quantities, sol.md.quality, timings, fields, meta)
+    return StudyResult(STUDY, quantities, sol.md.quality, timings, fields, meta, tuple(meshes[::-1]))

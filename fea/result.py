@@ -46,6 +46,7 @@ class StudyResult:
     timings_s: dict[str, float] = field(default_factory=dict)
     fields: tuple[Path, ...] = ()                # VTU files written
     meta: dict = field(default_factory=dict)     # loads, BCs, solver settings, material constants used
+    meshes: tuple[MeshQuality, ...] = ()         # the three refinements of ``mesh``'s series, finest first
 
     def __getitem__(self, name: str) -> Quantity:
         return self.quantities[name]
@@ -53,7 +54,8 @@ class StudyResult:
     def to_dict(self) -> dict:
         return {"study": self.study, "quantities": {k: q.to_dict() for k, q in self.quantities.items()},
                 "mesh": self.mesh.to_dict(), "timings_s": dict(self.timings_s),
-                "fields": [str(p) for p in self.fields], "meta": self.meta}
+                "fields": [str(p) for p in self.fields], "meta": self.meta,
+                "meshes": [m.to_dict() for m in self.meshes]}
 
     def summary(self) -> str:
         lines = [f"{self.study}: {self.mesh.elements} elements, {self.mesh.dofs} dofs, P{self.mesh.order}, "

@@ -179,7 +179,8 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
         meta["fields"] = {"force_case_N": f_ref, "files": [str(p) for p in fields],
                           "note": "force case at the reference force (delta_CD ~ 2 W0), finest mesh; plane stress"}
     timings["total"] = time.perf_counter() - t_start
-    return StudyResult(STUDY, q, fine.mesh.quality, timings, fields, meta)
+    return StudyResult(STUDY, q, fine.mesh.quality, timings, fields, meta,
+                       tuple(s["force"].mesh.quality for s in smooth))
 
 
 def _solid_3d(params, geo, load, q2d, progress) -> tuple[dict[str, Quantity], dict]:

@@ -78,4 +78,4 @@ def run_axisymmetric(params, uncracked: StudyResult, depth_mm: float, *, quick: 
     timings = dict(uncracked.timings_s, axisymmetric=time.perf_counter() - t0)
     timings["total"] = uncracked.timings_s.get("total", 0.0) + timings["axisymmetric"]
     fields = tuple(uncracked.fields) + ((section_vtu,) if section_vtu is not None else ())
-    return StudyResult(uncracked.study, quantities, uncracked.mesh, timings, fields, meta)
+    return StudyResult(uncracked.study, quantities, uncracked.mesh, timings, fields, meta, uncracked.meshes)

@@ -146,7 +146,7 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
     cracked = _build_seam(params, crack_depth_mm) if crack_depth_mm is not None else None
     plain = _build(params, None) if cracked is None else None
     timings["geometry"] = time.perf_counter() - t0
-    lam0, lam1, finest = [], [], None
+    lam0, lam1, finest, meshes = [], [], None, []
 
     def add(sol, tm):
         timings["mesh"] += tm
@@ -166,10 +166,12 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
             add(sol0, tm)
             add(sol1, 0.0)
             finest = sol1
+            meshes.append(sol1.md.quality)
             continue
         lam, sol, tm = solve_once(plain, params, h_mm=hk, order=order, progress=progress)
         add(sol, tm)
         finest = sol
+        meshes.append(sol.md.quality)
         lam0.append(lam)
     lam0, lam1 = lam0[::-1], lam1[::-1]             # finest first, like ``sizes``
     quantities = crack_flexibility_quantities(sizes, lam0, lam1 if cracked is not None else None, UNIT)
@@ -184,4 +186,4 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
     if cracked is not None:
         meta["crack"] = {k: v for k, v in cracked.meta.items() if isinstance(v, (int, float, str))}
     timings["total"] = time.perf_counter() - t0
-    return StudyResult(STUDY, quantities, mesh_q, timings, fields, meta)
+    return StudyResult(STUDY, quantities, mesh_q, timings, fields, meta, tuple(meshes[::-1]))

@@ -164,3 +164,17 @@ def test_convergence_plot_keeps_the_fea_on_its_own_scale_and_the_closed_forms_be
     assert cmp_ax.get_xlim()[1] >= 1.59e-5                          # the closed forms are on the second panel
     labels = " ".join(t.get_text() for t in cmp_ax.texts)
     assert "1.59e-05" in labels and "5.2e-07" in labels             # ... with their numbers
+
+
+def test_rated_stress_sentence_and_row_name_every_number():
+    from strainwave.compare.validate.report_text import rated_row, rated_sentence
+
+    s = {"load": {"name": "output torque T", "unit": "N*mm", "rated": 1e6, "scale": 1000.0},
+         "load_text": "output torque T = 1e+06 N*mm (chosen)", "peak_von_mises_MPa": 31.34,
+         "peak_location_mm": [35.0, -8.6e-15, 0.0], "peak_displacement_mm": 0.0443, "fatigue_limit_MPa": 625.0,
+         "safety_factor": 19.94, "note": "material only"}
+    assert rated_sentence(s) == ("at output torque T = 1e+06 N*mm: peak von Mises 31.34 MPa at (35, 0, 0) mm, peak "
+                                 "displacement 0.0443 mm, safety factor 19.9 against sigma_-1 = 625 MPa")
+    row = rated_row("shaft", s)
+    assert row[3] == "(35, 0, 0)" and row[6] == "19.9" and "fields x 1000" in row[1]
+    assert not any("|" in cell for cell in row)   # a Markdown table cell

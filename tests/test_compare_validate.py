@@ -125,8 +125,11 @@ def test_every_component_states_its_inputs_rated_stress_and_gci(quick_run, resul
     components = ("shaft", "cup", "bearing", "ring")
     for component in components:
         inputs = results["inputs"][component]
-        assert len(inputs["meshes"]) == 3 and inputs["meshes"][0]["dofs"] > 0
-        assert 0 < inputs["meshes"][0]["min_quality"] <= 1
+        meshes = inputs["meshes"]
+        assert len(meshes) == 3 and all(0 < m["min_quality"] <= 1 for m in meshes)
+        # h1 < h2 < h3: the finer mesh has more dofs (every study states all three)
+        assert meshes[0]["h_mm"] < meshes[1]["h_mm"] < meshes[2]["h_mm"], component
+        assert meshes[0]["dofs"] > meshes[1]["dofs"] > meshes[2]["dofs"] > 0, component
         assert f'id="inputs-{component}"' in html
         rated = results["stress_at_rated"][component]
         assert rated["safety_factor"] == pytest.approx(rated["fatigue_limit_MPa"] / rated["peak_von_mises_MPa"])

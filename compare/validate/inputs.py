@@ -1,8 +1,8 @@
 """The report's inputs-and-model section: per component what was built, loaded, held and meshed.
 
 Dimensions and material come from the parameters (typed), the load magnitude from the rated-load record
-(``strainwave.rated_stress``), the element and the three meshes from the study result (``MeshQuality`` of the
-finest mesh, the three sizes from its quantities' convergence records). How each study loads and holds its
+(``strainwave.rated_stress``), the element and the three meshes from the study result (``StudyResult.meshes``:
+the ``MeshQuality`` of each refinement; their sizes from the quantities' convergence records). How each study loads and holds its
 part is declared here once, in the words of its fea/ module.
 """
 from __future__ import annotations
@@ -99,13 +99,15 @@ def component_inputs(component: str, case, result, params, rated) -> ComponentIn
                 f"{m.shear_modulus_MPa:g} MPa), fatigue limit sigma_-1 = {m.fatigue_limit_MPa:g} MPa")
     load = (f"{model.load}; solved at {rated.solved:.4g} {rated.unit}, drawn at {rated.describe()}")
     crack = "" if case.crack_depth_mm is None else f"; crack depth a = {case.crack_depth_mm:g} mm"
+    # the three sizes of the quantity the headline mesh serves first (its own series: smooth ring, 3D shaft)
     sizes = next((q.convergence.h_mm for q in result.quantities.values() if q.convergence is not None), ())
     finest = result.mesh
-    meshes = tuple(MeshRow(h, finest.dofs if k == 0 else None, finest.min_quality if k == 0 else None)
-                   for k, h in enumerate(sizes))
+    recorded = result.meshes if len(result.meshes) == len(sizes) else (finest,)
+    meshes = tuple(MeshRow(h, recorded[k].dofs if k < len(recorded) else None,
+                           recorded[k].min_quality if k < len(recorded) else None) for k, h in enumerate(sizes))
     note = (f"finest mesh: {finest.elements} elements, {finest.nodes} nodes, {finest.dofs} dofs, element quality "
-            f"(gmsh SICN) min {finest.min_quality:.3g}, mean {finest.mean_quality:.3g}; the coarser meshes' dofs "
-            "and quality are not recorded by the study")
+            f"(gmsh SICN) min {finest.min_quality:.3g}, mean {finest.mean_quality:.3g}"
+            + ("" if len(recorded) == len(sizes) else "; the coarser meshes were not recorded by the study"))
     return ComponentInputs(component, case.label, case.study, _dimensions(case.study, params) + (
         (("crack depth a", f"{case.crack_depth_mm:g} mm"),) if crack else ()), material, load, model.supports,
         model.element.format(order=finest.order), meshes, note)

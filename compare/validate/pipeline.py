@@ -133,8 +133,8 @@ PREVIEW_OF = {"output-shaft": "shaft", "flexspline-cup": "cup", "wg-bearing-ring
 def _previews(steps, out_dir: Path) -> list:
     from .artifacts import Image
 
-    return [Image(Path(_relative(s.preview, out_dir)), f"{s.part}: the part as built (teeth on, uncracked), "
-                  "contact/load faces in blue", PREVIEW_OF[s.part], "preview")
+    return [Image(Path(_relative(s.preview, out_dir)), f"{s.part}: the part as designed (uncracked), contact/load "
+                  "faces in blue; right: close-up", PREVIEW_OF[s.part], "preview")
             for s in steps if s.preview is not None and s.part in PREVIEW_OF and Path(s.preview).exists()]
 
 

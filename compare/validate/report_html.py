@@ -99,8 +99,7 @@ def render_html(doc: dict, views: dict[str, str] | None = None) -> str:
             parts.append(_table(rt.INPUT_MESH_COLUMNS, rt.input_mesh_rows(inputs)))
             parts.append(f'<p class="notes">{escape(inputs["mesh_note"])}</p></div>')
         if component in rated:
-            parts.append("<p><b>At the rated load:</b> " + escape("; ".join(rt.rated_row(component, rated[component])[1:7]))
-                         + "</p>")
+            parts.append(f"<p><b>Stress at the rated load</b> {escape(rt.rated_sentence(rated[component]))}</p>")
         parts.append(f'<h3 id="checks-{component}">Checks</h3>')
         parts.append(_table(rt.CHECK_COLUMNS, [rt.check_row(c) for c in checks], result_col=7))
         parts.append('<ul class="notes">' + "".join(

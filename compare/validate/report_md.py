@@ -40,7 +40,7 @@ def render_markdown(doc: dict) -> str:
             lines += _table(("input", "value"), rt.input_lines(inputs)) + [""]
             lines += _table(rt.INPUT_MESH_COLUMNS, rt.input_mesh_rows(inputs)) + ["", inputs["mesh_note"], ""]
         if component in rated:
-            lines += ["**At the rated load:** " + "; ".join(rt.rated_row(component, rated[component])[1:7]), ""]
+            lines += [f"**Stress at the rated load** {rt.rated_sentence(rated[component])}", ""]
         lines += ["### Checks", ""]
         lines += _table(rt.CHECK_COLUMNS, [rt.check_row(c) for c in checks]) + [""]
         lines += [f"- `{c['id']}`: {rt.check_notes(c)}" for c in checks] + [""]

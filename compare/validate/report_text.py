@@ -153,14 +153,27 @@ def input_mesh_rows(i: dict) -> list[tuple[str, ...]]:
             for k, m in enumerate(i["meshes"])]
 
 
-RATED_COLUMNS = ("component", "rated load", "peak von Mises (MPa)", "at (x, y, z) mm", "peak |u| (mm)",
+RATED_COLUMNS = ("component", "rated load", "peak von Mises (MPa)", "at (x, y, z) mm", "peak displacement (mm)",
                  "fatigue limit (MPa)", "safety factor", "note")
+
+
+def point(xyz) -> str:
+    """(x, y, z) with round-off zeros shown as 0 (a coordinate below 1e-9 of the largest)."""
+    big = max(abs(v) for v in xyz) or 1.0
+    return "(" + ", ".join(f"{v if abs(v) > 1e-9 * big else 0.0:.4g}" for v in xyz) + ")"
 
 
 def rated_row(component: str, s: dict) -> tuple[str, ...]:
     return (component, f"{s['load_text']}; fields x {s['load']['scale']:.4g}", num(s["peak_von_mises_MPa"], 4),
-            "(" + ", ".join(f"{x:.4g}" for x in s["peak_location_mm"]) + ")", num(s["peak_displacement_mm"], 3),
+            point(s["peak_location_mm"]), num(s["peak_displacement_mm"], 3),
             num(s["fatigue_limit_MPa"], 4), num(s["safety_factor"], 3), s["note"])
+
+
+def rated_sentence(s: dict) -> str:
+    load = s["load"]
+    return (f"at {load['name']} = {load['rated']:.4g} {load['unit']}: peak von Mises {s['peak_von_mises_MPa']:.4g} MPa "
+            f"at {point(s['peak_location_mm'])} mm, peak displacement {s['peak_displacement_mm']:.3g} mm, safety "
+            f"factor {s['safety_factor']:.3g} against sigma_-1 = {s['fatigue_limit_MPa']:g} MPa")
 
 
 GCI_INTRO = ("ASME V&V 20 (Roache) three-mesh estimate of every FEA quantity: h1 < h2 < h3, f1..f3 the values on "

@@ -54,7 +54,8 @@ def study_from_dict(data: dict) -> StudyResult:
         quantities[name] = Quantity(q["name"], q["value"], q["unit"], convergence)
     mesh = MeshQuality(**data["mesh"])
     return StudyResult(data["study"], quantities, mesh, dict(data.get("timings_s", {})),
-                       tuple(Path(p) for p in data.get("fields", [])), dict(data.get("meta", {})))
+                       tuple(Path(p) for p in data.get("fields", [])), dict(data.get("meta", {})),
+                       tuple(MeshQuality(**m) for m in data["meshes"]))
 
 
 def _describe(case: Case) -> str:
