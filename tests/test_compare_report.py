@@ -178,3 +178,16 @@ def test_rated_stress_sentence_and_row_name_every_number():
     row = rated_row("shaft", s)
     assert row[3] == "(35, 0, 0)" and row[6] == "19.9" and "fields x 1000" in row[1]
     assert not any("|" in cell for cell in row)   # a Markdown table cell
+
+
+def test_convergence_plot_says_when_the_meshes_are_not_asymptotic():
+    from strainwave.compare.validate.plots import convergence_figure
+
+    conv = grid_convergence(H, [2.0633, 2.0385, 2.0400])          # ring.tooth_influence in --quick: non-monotone
+    flags = asymptotic_flags(conv, formal=2.0)
+    fig = convergence_figure(title="t", unit="1", h_mm=H, values=conv.values, extrapolated=conv.extrapolated,
+                             gci_fine=conv.gci_fine, observed_order=conv.observed_order, analytic={}, flags=flags)
+    assert "not asymptotic: non-monotone" in fig.axes[0].get_title()
+    clean = convergence_figure(title="t", unit="1", h_mm=H, values=_series(1.0, 0.01, 2.0), extrapolated=1.0,
+                               gci_fine=0.01, observed_order=2.0, analytic={}, flags=())
+    assert "not asymptotic" not in clean.axes[0].get_title()

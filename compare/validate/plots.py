@@ -42,11 +42,14 @@ def convergence_plot(png: Path, **kwargs) -> Path:
 
 
 def convergence_figure(*, title: str, unit: str, h_mm, values, extrapolated: float, gci_fine: float,
-                       observed_order: float, analytic: dict[str, float] | None = None):
+                       observed_order: float, analytic: dict[str, float] | None = None,
+                       flags: tuple[str, ...] = ()):
     """Left: the FEA against element size on its own y-scale (Richardson value at h = 0, GCI band on the fine
     value). Right: the fine FEA value with its GCI band beside the closed forms, each labelled with its number
-    and its difference from the FEA (a closed form far away would otherwise flatten the FEA points)."""
+    and its difference from the FEA (a closed form far away would otherwise flatten the FEA points). ``flags``:
+    why the meshes are not in the asymptotic range (gci_table.asymptotic_flags), said on the left panel."""
     fig = _figure(10.0, 4.2)
+    fig.set_layout_engine("constrained")
     ax, cmp_ax = fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)
     h = np.asarray(h_mm, dtype=float)
     v = np.asarray(values, dtype=float)
@@ -60,20 +63,21 @@ def convergence_figure(*, title: str, unit: str, h_mm, values, extrapolated: flo
     ax.set_xlim(left=-0.05 * h.max())
     ax.set_xlabel("element size h (mm)")
     ax.set_ylabel(unit)
-    ax.set_title("FEA on three meshes (own scale)")
+    ax.set_title("FEA on three meshes (own scale)" + ("\nnot asymptotic: " + ", ".join(flags) if flags else ""),
+                 fontsize=10, color="firebrick" if flags else "black")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     ax.ticklabel_format(axis="y", style="sci", scilimits=(-3, 4), useOffset=False)
     styles = {"published": "tab:orange", "corrected": "tab:green"}
-    names, numbers, colors, errors = ["FEA (fine)"], [fine], ["tab:blue"], [band]
+    names, numbers, colors = ["FEA (fine)"], [fine], ["tab:blue"]
     for variant, value in (analytic or {}).items():
         if value is not None and np.isfinite(value):
             names.append(f"{variant}")
             numbers.append(float(value))
             colors.append(styles.get(variant, "gray"))
-            errors.append(0.0)
     y = np.arange(len(names))[::-1]
-    cmp_ax.barh(y, numbers, xerr=errors, color=colors, alpha=0.8, capsize=4)
+    cmp_ax.barh(y, numbers, color=colors, alpha=0.8)
+    cmp_ax.errorbar([fine], [y[0]], xerr=[band], fmt="none", ecolor="tab:red", capsize=5)   # the GCI band
     for yi, name, value in zip(y, names, numbers):
         diff = "" if name.startswith("FEA") or fine == 0 else f" (FEA {100 * (fine - value) / value:+.3g} %)"
         cmp_ax.annotate(f"{value:.5g}{diff}", (0, yi), xytext=(4, 0), textcoords="offset points", va="center",
