@@ -132,7 +132,8 @@ class StressAtRated:
         text = ("material-only factor sigma_-1 / sigma_vM,peak (peak taken as a fully reversed amplitude, "
                 "no notch, size or mean-stress factor)")
         if self.cracked:
-            text += "; the field has a crack: its tip peak is singular and grows with refinement"
+            text += ("; the field carries the crack, whose tip stress is singular (it grows with refinement): a peak "
+                     "at the tip is not a design stress")
         return text
 
     def lines(self) -> list[str]:

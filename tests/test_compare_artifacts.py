@@ -142,6 +142,8 @@ def test_stress_pictures_are_drawn_at_the_rated_load_with_their_peaks(wired):
     captions = {i.component: i.caption for i in images if i.kind == "stress"}
     assert "safety factor" in captions["shaft"] and "T = 1e+06 N*mm" in captions["shaft"]
     assert "2D plane stress section" in captions["ring"]
+    closeup = next(i.caption for i in images if i.kind == "closeup")    # crack tips at the rated load too
+    assert "at output torque T = 1e+06 N*mm" in closeup
 
 
 def test_3d_views_carry_the_scaled_surface_field(wired):

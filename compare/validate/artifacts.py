@@ -15,7 +15,7 @@ from . import plots
 from .check_set import CheckSet
 from .fea_book import FeaBook
 from .plan import Plan
-from ...rated_stress import StressAtRated, stress_at_rated, stress_field_of
+from ...rated_stress import StressAtRated, rated_load_of, stress_at_rated, stress_field_of
 from .gci_table import asymptotic_flags, formal_order
 from .torsion_checks import CUP_FLEX, SHAFT_FLEX
 
@@ -151,9 +151,10 @@ def make_images(out_dir: Path, book: FeaBook, plan: Plan, check_set: CheckSet, s
         z0 = crack.get("crack_z_mm") if isinstance(crack, dict) else None
         radius = 3.0 * deepest.crack_depth_mm  # a few crack depths show the tip field and the slot
         col.attempt(f"{title} close-up", component, "closeup",
-                    lambda t, v=vtu, ti=title, z=z0, r=radius, c=component: images.render_closeup(
+                    lambda t, v=vtu, ti=title, z=z0, r=radius, c=component, cs=deepest: images.render_closeup(
                         _require(v), t, label=ti, radius_mm=r, near_z_mm=z,
-                        section=SECTION_OF_PLANE.get(c, "2D section")).caption,
+                        section=SECTION_OF_PLANE.get(c, "2D section"),
+                        load=rated_load_of(cs.study, params, book.outcomes[cs.label].result)).caption,
                     f"{component}_crack_tip.png")
     col.attempt("ring mid-layer", "ring", "ring-shape",
                 lambda t: _ring_shape(t, book, plan, check_set, summary), "ring_mid_layer.png")

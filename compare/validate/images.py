@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from ...io_atomic import atomic_write_bytes
+from ...analytic.rated_load import RatedLoad
 from ...rated_stress import StressAtRated, displacement3, field_names, scaled_to_rated
 from ...render import RenderSettings, off_screen_plotter
 
@@ -237,17 +238,18 @@ def render_stress(vtu: Path, png: Path, *, label: str, at: StressAtRated, marks:
 
 
 def render_closeup(vtu: Path, png: Path, *, label: str, center_mm=None, radius_mm: float | None = None,
-                   near_z_mm: float | None = None, section: str = "") -> Rendered:
-    """Close-up of the crack tip: the region around the stress peak (or ``center_mm``), undeformed.
+                   near_z_mm: float | None = None, section: str = "", load: RatedLoad | None = None) -> Rendered:
+    """Close-up of the crack tip: the region around the stress peak (or ``center_mm``), undeformed, at the
+    rated ``load`` (the field x its scale; None: as solved).
 
     ``near_z_mm`` restricts the peak search to a slab around the crack plane z (loads and supports
     elsewhere have their own stress peaks). ``section`` is said on a planar field (e.g. the axisymmetric
-    (r, z) section of the shaft). Drawn at the solved load: the picture shows where the tip field sits.
+    (r, z) section of the shaft). The tip's peak is singular (it grows with refinement): no safety factor here.
     """
     import pyvista as pv
 
     with pv.VtkErrorCatcher(raise_errors=True):
-        mesh = _read(vtu)
+        mesh = scaled_to_rated(_read(vtu), load.scale) if load is not None else _read(vtu)
         names = field_names(mesh)
         if center_mm is None:
             if names.von_mises is None or names.von_mises not in mesh.point_data:
@@ -264,15 +266,22 @@ def render_closeup(vtu: Path, png: Path, *, label: str, center_mm=None, radius_m
         if region.n_points == 0:
             raise ValueError(f"{vtu}: nothing within {radius:g} mm of the crack tip")
         plane = bool(np.ptp(mesh.points[:, 2]) == 0.0)
+        # the tip's singular peak would leave the rest of the map one colour: the range stops at the 99th
+        # percentile of the nodes shown, and the caption gives the tip value
+        shown_vm = np.asarray(region.point_data[names.von_mises], dtype=float)
+        top, tip = float(np.percentile(shown_vm, 99.0)), float(shown_vm.max())
         plotter = off_screen_plotter(RenderSettings(WINDOW))
         plotter.add_mesh(region, scalars=names.von_mises, cmap="turbo", show_edges=False,
-                         scalar_bar_args=_bar("von Mises (MPa)"))
+                         scalar_bar_args=_bar("von Mises (MPa)"), clim=(0.0, top), above_color="white")
         plotter.add_mesh(region.extract_feature_edges(), color="black", line_width=1)
         plotter.add_axes(color="black", line_width=3)
         _view(plotter, plane)
         plotter.reset_camera()
-        text = (f"{label}: crack-tip close-up, {2 * radius:.3g} mm box at\n"
-                f"({center[0]:.3g}, {center[1]:.3g}, {center[2]:.3g}) mm, undeformed"
+        plotter.camera.zoom(0.8)   # room for the title lines above the region
+        at = f" at {load.name} = {load.rated:.4g} {load.unit}" if load is not None else " as solved"
+        text = (f"{label}: crack-tip close-up{at},\n{2 * radius:.3g} mm box at "
+                f"({center[0]:.3g}, {center[1]:.3g}, {center[2]:.3g}) mm, undeformed;\ncolours to the 99th "
+                f"percentile {top:.3g} MPa (white above; tip {tip:.3g} MPa, singular)"
                 + (f";\n{section}" if section and plane else ""))
         plotter.add_text(text, font_size=TITLE_PT, color="black")
         image = plotter.screenshot(None, return_img=True)
