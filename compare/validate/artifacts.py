@@ -102,7 +102,7 @@ def _stress_picture(images, target: Path, book: FeaBook, component: str, case, p
     vtu, cracked = found
     at = stress_at_rated(case.study, params, outcome.result, vtu, cracked=cracked)
     records[component] = at
-    planar = bool(np.ptp(images._read(vtu).points[:, 2]) == 0.0)
+    planar = bool(np.ptp(images.read_field(vtu).points[:, 2]) == 0.0)
     # The whole EWG ring hides its thin rim: a second panel zooms on the root stress peak (4 modules wide).
     zoom = images.Zoom(radius_mm=2.0 * params.ewg_drive.module_mm, title="tooth root at the peak") \
         if case.study == "ring-compression" else None

@@ -49,7 +49,7 @@ class Rendered:
     exaggeration: float | None
 
 
-def _read(vtu: Path):
+def read_field(vtu: Path):
     import pyvista as pv
 
     return pv.read(str(vtu))
@@ -187,7 +187,7 @@ def render_stress(vtu: Path, png: Path, *, label: str, at: StressAtRated, marks:
     shape = (1, 2) if zoom is not None else (1, 1)
     window = (2 * WINDOW[0], WINDOW[1]) if zoom is not None else WINDOW
     with pv.VtkErrorCatcher(raise_errors=True):
-        mesh = scaled_to_rated(_read(vtu), at.load.scale)
+        mesh = scaled_to_rated(read_field(vtu), at.load.scale)
         names = field_names(mesh)
         plane = bool(np.ptp(mesh.points[:, 2]) == 0.0)
         exaggeration = exaggeration or (auto_exaggeration(mesh, names.displacement) if names.displacement else 1.0)
@@ -249,7 +249,7 @@ def render_closeup(vtu: Path, png: Path, *, label: str, center_mm=None, radius_m
     import pyvista as pv
 
     with pv.VtkErrorCatcher(raise_errors=True):
-        mesh = scaled_to_rated(_read(vtu), load.scale) if load is not None else _read(vtu)
+        mesh = scaled_to_rated(read_field(vtu), load.scale) if load is not None else read_field(vtu)
         names = field_names(mesh)
         if center_mm is None:
             if names.von_mises is None or names.von_mises not in mesh.point_data:
@@ -298,7 +298,7 @@ def sample_circle(vtu: Path, radius_mm: float, n: int = 360) -> tuple[np.ndarray
     import pyvista as pv
 
     with pv.VtkErrorCatcher(raise_errors=True):
-        mesh = _read(vtu)
+        mesh = read_field(vtu)
         names = field_names(mesh)
         if names.displacement is None:
             return None
