@@ -191,3 +191,11 @@ def test_convergence_plot_says_when_the_meshes_are_not_asymptotic():
     clean = convergence_figure(title="t", unit="1", h_mm=H, values=_series(1.0, 0.01, 2.0), extrapolated=1.0,
                                gci_fine=0.01, observed_order=2.0, analytic={}, flags=())
     assert "not asymptotic" not in clean.axes[0].get_title()
+
+
+def test_stress_pictures_are_shown_full_width_so_their_printed_numbers_stay_legible():
+    from strainwave.compare.validate.report_html import _figure
+
+    wide = _figure({"path": "images/ring_von_mises.png", "caption": "c", "kind": "stress", "component": "ring"})
+    half = _figure({"path": "images/x.png", "caption": "c", "kind": "convergence", "component": "ring"})
+    assert '<figure class="wide">' in wide and 'class="wide"' not in half

@@ -21,7 +21,7 @@ from ...rated_stress import StressAtRated, displacement3, field_names, scaled_to
 from ...render import RenderSettings, off_screen_plotter
 
 WINDOW = (1200, 900)
-TITLE_PT = 15        # legible when the report shows the image about 600 px wide (half the 1200 px render)
+TITLE_PT = 18        # report.html shows stress pictures full width (about 1150 px): ~12 px text
 SUPPORT_COLOR = "black"
 LOAD_COLOR = "magenta"
 
@@ -77,7 +77,7 @@ def _png_bytes(image: np.ndarray) -> bytes:
 
 def _bar(title: str) -> dict:
     return {"title": title, "color": "black", "vertical": True, "position_x": 0.86, "position_y": 0.12,
-            "title_font_size": 16, "label_font_size": 14, "fmt": "%.3g", "width": 0.08, "height": 0.7}
+            "title_font_size": 20, "label_font_size": 18, "fmt": "%.3g", "width": 0.08, "height": 0.7}
 
 
 def _view(plotter, plane: bool) -> None:

@@ -23,7 +23,7 @@ th{background:#f2f2f2} td.num{text-align:right;white-space:nowrap}
 .pass{background:#e3f6e3;border:1px solid #6c6} .fail{background:#fde8e8;border:1px solid #d66}
 td.PASS{background:#e3f6e3;font-weight:bold} td.FAIL{background:#fde8e8;font-weight:bold}
 td.NOT{background:#fff4d6;font-weight:bold}
-figure{display:inline-block;margin:.5em;max-width:48%;vertical-align:top}
+figure{display:inline-block;margin:.5em;max-width:48%;vertical-align:top} figure.wide{max-width:98%}
 figure img{max-width:100%;border:1px solid #ddd} figcaption{font-size:.8em;color:#555}
 .notes{font-size:.8em;color:#444} code{background:#f5f5f5;padding:0 3px}
 figure.view3d{max-width:100%} canvas.sw-view{border:1px solid #ddd;cursor:grab;width:640px;height:480px;
@@ -48,7 +48,9 @@ def _table(columns, rows, *, result_col: int | None = None, table_id: str = "") 
 def _figure(image: dict) -> str:
     path = escape(image["path"], quote=True)
     caption = escape(image["caption"])
-    return (f'<figure><a href="{path}"><img src="{path}" alt="{caption}" loading="eager"></a>'
+    # stress pictures carry their numbers in the image: shown at full width, their titles stay legible
+    wide = ' class="wide"' if image["kind"] == "stress" else ""
+    return (f'<figure{wide}><a href="{path}"><img src="{path}" alt="{caption}" loading="eager"></a>'
             f"<figcaption>{caption}</figcaption></figure>")
 
 
