@@ -6,6 +6,7 @@ field (``compare/validate/images.py``).
 """
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -15,7 +16,7 @@ from .analytic.rated_load import RatedLoad, fatigue_safety_factor, rated_load
 from .registry import study as registered
 
 __all__ = ["FieldNames", "field_names", "displacement3", "scaled_to_rated", "FieldPeaks", "field_peaks",
-           "StressAtRated", "stress_field_of", "rated_load_of", "stress_at_rated"]
+           "StressAtRated", "stress_field_of", "rated_load_of", "stress_at_rated", "groups_at_node"]
 
 
 @dataclass(frozen=True)
@@ -61,6 +62,8 @@ class FieldPeaks:
     peak_von_mises_MPa: float
     peak_location_mm: tuple[float, float, float]
     peak_displacement_mm: float
+    peak_node: int = -1                  # the node of the peak in the field file
+    peak_on: tuple[str, ...] = ()        # the named faces (or points) that node lies on, e.g. ("fixed",)
 
     def __post_init__(self):
         if not (np.isfinite(self.peak_von_mises_MPa) and self.peak_von_mises_MPa >= 0):
@@ -75,7 +78,22 @@ def field_peaks(mesh) -> FieldPeaks:
     vm = np.asarray(mesh.point_data[names.von_mises], dtype=float)
     k = int(np.argmax(vm))
     u = displacement3(mesh, names.displacement) if names.displacement else np.zeros((mesh.n_points, 3))
-    return FieldPeaks(float(vm[k]), tuple(float(x) for x in mesh.points[k]), float(np.linalg.norm(u, axis=1).max()))
+    return FieldPeaks(float(vm[k]), tuple(float(x) for x in mesh.points[k]), float(np.linalg.norm(u, axis=1).max()),
+                      k)
+
+
+def groups_at_node(vtu: Path, node: int) -> tuple[str, ...]:
+    """The named groups of ``vtu``'s boundary file (fea/fields.py: it shares the field's points) that hold ``node``."""
+    import pyvista as pv
+
+    path = Path(vtu).with_name(f"{Path(vtu).stem}.boundary.vtu")
+    if not path.exists() or node < 0:
+        return ()
+    boundary = pv.read(str(path))
+    names = [str(n) for n in np.asarray(boundary.field_data.get("physical_group_names", []))]
+    near = boundary.extract_points([node], adjacent_cells=True, include_cells=True)
+    ids = np.unique(np.asarray(near.cell_data["physical_group"])) if near.n_cells else []
+    return tuple(names[i - 1] for i in ids if 0 < i <= len(names))   # id k is entry k - 1
 
 
 # Which of a study's field files the stress picture shows: the toothed EWG ring (the root stress a designer
@@ -139,8 +157,9 @@ class StressAtRated:
     def lines(self) -> list[str]:
         p = self.peaks
         where = ", ".join(f"{x:.4g}" for x in p.peak_location_mm)
+        on = f" on {', '.join(repr(g) for g in p.peak_on)}" if p.peak_on else ""
         return [f"at the rated load: {self.load.describe()}, fields x {self.load.scale:.4g}",
-                f"  peak von Mises {p.peak_von_mises_MPa:.4g} MPa at ({where}) mm; peak displacement "
+                f"  peak von Mises {p.peak_von_mises_MPa:.4g} MPa at ({where}) mm{on}; peak displacement "
                 f"{p.peak_displacement_mm:.4g} mm",
                 f"  safety factor vs fatigue limit {self.fatigue_limit_MPa:g} MPa: {self.safety_factor:.3g} "
                 f"({self.note})"]
@@ -148,7 +167,7 @@ class StressAtRated:
     def to_dict(self) -> dict:
         return {"study": self.study, "field_file": self.field_file, "load": self.load.to_dict(),
                 "load_text": self.load.describe(), "peak_von_mises_MPa": self.peaks.peak_von_mises_MPa,
-                "peak_location_mm": list(self.peaks.peak_location_mm),
+                "peak_location_mm": list(self.peaks.peak_location_mm), "peak_on": list(self.peaks.peak_on),
                 "peak_displacement_mm": self.peaks.peak_displacement_mm, "fatigue_limit_MPa": self.fatigue_limit_MPa,
                 "safety_factor": self.safety_factor, "cracked": self.cracked, "note": self.note}
 
@@ -159,4 +178,6 @@ def stress_at_rated(study: str, params, result, vtu: Path, *, cracked: bool) -> 
 
     load = rated_load_of(study, params, result)
     mesh = scaled_to_rated(pv.read(str(vtu)), load.scale)
-    return StressAtRated(study, Path(vtu).name, load, field_peaks(mesh), params.material.fatigue_limit_MPa, cracked)
+    peaks = field_peaks(mesh)
+    peaks = dataclasses.replace(peaks, peak_on=groups_at_node(vtu, peaks.peak_node))
+    return StressAtRated(study, Path(vtu).name, load, peaks, params.material.fatigue_limit_MPa, cracked)

@@ -142,6 +142,8 @@ def test_solve_prints_the_peak_stress_and_safety_factor_at_the_rated_load():
     out = proc.stdout
     assert "at the rated load: output torque T = 1e+06 N*mm" in out and "fields x 1000" in out
     peak = float(out.split("peak von Mises ")[1].split(" MPa")[0])
+    # where: the outer fibre (r = 35 mm) at the clamped end, the named faces 'fixed' and 'outer'
+    assert "mm on 'fixed', 'outer';" in out
     factor = float(out.split("fatigue limit 625 MPa: ")[1].split(" ")[0])
     # Saint-Venant at the rated torque: tau = T r_o / J on the outer fibre, von Mises sqrt(3) tau = 31.0 MPa; the
     # clamped end adds a few per cent on this coarse mesh (the peak sits there)
@@ -171,12 +173,13 @@ def test_rated_stress_sentence_and_row_name_every_number():
 
     s = {"load": {"name": "output torque T", "unit": "N*mm", "rated": 1e6, "scale": 1000.0},
          "load_text": "output torque T = 1e+06 N*mm (chosen)", "peak_von_mises_MPa": 31.34,
-         "peak_location_mm": [35.0, -8.6e-15, 0.0], "peak_displacement_mm": 0.0443, "fatigue_limit_MPa": 625.0,
+         "peak_location_mm": [35.0, -8.6e-15, 0.0], "peak_on": ["fixed"], "peak_displacement_mm": 0.0443,
+         "fatigue_limit_MPa": 625.0,
          "safety_factor": 19.94, "note": "material only"}
-    assert rated_sentence(s) == ("at output torque T = 1e+06 N*mm: peak von Mises 31.34 MPa at (35, 0, 0) mm, peak "
-                                 "displacement 0.0443 mm, safety factor 19.9 against sigma_-1 = 625 MPa")
+    assert rated_sentence(s) == ("at output torque T = 1e+06 N*mm: peak von Mises 31.34 MPa at (35, 0, 0) mm on "
+                                 "'fixed', peak displacement 0.0443 mm, safety factor 19.9 against sigma_-1 = 625 MPa")
     row = rated_row("shaft", s)
-    assert row[3] == "(35, 0, 0)" and row[6] == "19.9" and "fields x 1000" in row[1]
+    assert row[3] == "(35, 0, 0) on fixed" and row[6] == "19.9" and "fields x 1000" in row[1]
     assert not any("|" in cell for cell in row)   # a Markdown table cell
 
 

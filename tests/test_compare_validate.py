@@ -154,6 +154,10 @@ def test_every_stress_image_states_its_load_and_section(results):
     for caption in stress.values():
         assert "safety factor" in caption and "peak" in caption
     assert "2D plane stress section" in stress["ring"]
+    # supports and loads marked from the named boundary groups (NAME.boundary.vtu), and said in the caption
+    assert "black: supports ('fixed')" in stress["shaft"] and "magenta: load T on 'loaded'" in stress["shaft"]
+    assert "black: supports ('bore')" in stress["bearing"] and "load F_r on 'contact'" in stress["bearing"]
+    assert "black: supports ('A', 'B', 'D')" in stress["ring"] and "load W0 on 'contact'" in stress["ring"]
     previews = {i["component"] for i in results["images"] if i["kind"] == "preview"}
     assert previews == {"shaft", "cup", "bearing", "ring"}
 

@@ -84,11 +84,11 @@ SECTION_OF_PLANE = {"shaft": "axisymmetric (r, z) section: x = r, y = z",
                     "ring": "2D plane stress section (x, y), thickness = face width B"}
 # Supports and loads as each study applies them (fea/: the 'bc'/'support' and 'load' of its meta)
 def _marks(images, study: str):
-    return {"shaft-torsion": images.Marks("fixed", "loaded", "T"),
-            "cup-torsion": images.Marks("fixed", "loaded", "T"),
-            "bearing-ring": images.Marks("bore", "contact", "F_r"),
-            # the 2D ring: u_y = 0 at A and B (180 and 0 deg), u_x = 0 at D (90 deg); the EWG's two strips
-            "ring-compression": images.Marks(None, "contact", "W0", (0.0, 90.0, 180.0))}[study]
+    return {"shaft-torsion": images.Marks(("fixed",), "loaded", "T"),
+            "cup-torsion": images.Marks(("fixed",), "loaded", "T"),
+            "bearing-ring": images.Marks(("bore",), "contact", "F_r"),
+            # the 2D ring: u_y = 0 at A and B, u_x = 0 at D (fea/ring_compression); the EWG's two strips
+            "ring-compression": images.Marks(("A", "B", "D"), "contact", "W0")}[study]
 
 
 def _stress_picture(images, target: Path, book: FeaBook, component: str, case, params,

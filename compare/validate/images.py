@@ -29,10 +29,9 @@ LOAD_COLOR = "magenta"
 @dataclass(frozen=True)
 class Marks:
     """What the picture marks, from the study's named boundary facets (``NAME.boundary.vtu``)."""
-    support_group: str | None          # facets held fixed, e.g. "fixed" or "bore"
+    support_groups: tuple[str, ...]    # held fixed: faces ("fixed", "bore") or points (the 2D ring's A, B, D)
     load_group: str | None             # facets the load acts on, e.g. "loaded" or "contact"
     load_label: str                    # e.g. "T", "F_r"
-    support_points_deg: tuple[float, ...] = ()   # point supports at these polar angles on the outer rim (2D ring)
 
 
 @dataclass(frozen=True)
@@ -120,23 +119,17 @@ def _draw_marks(pv, plotter, shown, groups: dict, marks: Marks, disp: str | None
     """Supports (black) and loaded facets (magenta, with an arrow and label); returns the legend entries."""
     legend = []
     size = 0.12 * shown.length
-    if marks.support_group in groups:
-        facets = scaled_to_rated(groups[marks.support_group], scale)
-        plotter.add_mesh(_deformed(facets, disp, exaggeration), color=SUPPORT_COLOR, style="wireframe",
-                         line_width=2)
-        legend.append(f"black: supports ('{marks.support_group}' held fixed)")
-    if marks.support_points_deg:
-        r = np.hypot(shown.points[:, 0], shown.points[:, 1])
-        angle = np.degrees(np.arctan2(shown.points[:, 1], shown.points[:, 0]))
-        picks = []
-        for deg in marks.support_points_deg:
-            near = np.abs((angle - deg + 180.0) % 360.0 - 180.0) < 1.0
-            if near.any():
-                picks.append(shown.points[np.flatnonzero(near)[np.argmax(r[near])]])
-        if picks:
-            plotter.add_mesh(pv.PolyData(np.asarray(picks)), color=SUPPORT_COLOR, point_size=14,
-                             render_points_as_spheres=True)
-            legend.append("black dots: point supports (symmetry axes)")
+    held = [g for g in marks.support_groups if g in groups]
+    for name in held:
+        support = _deformed(scaled_to_rated(groups[name], scale), disp, exaggeration)
+        if support.n_cells and support.get_cell(0).type == pv.CellType.VERTEX:   # a point support
+            plotter.add_mesh(support, color=SUPPORT_COLOR, point_size=14, render_points_as_spheres=True)
+            plotter.add_point_labels(support.points[:1], [name], font_size=18, text_color=SUPPORT_COLOR,
+                                     shape_opacity=0.0, show_points=False, always_visible=True)
+        else:
+            plotter.add_mesh(support, color=SUPPORT_COLOR, style="wireframe", line_width=2)
+    if held:
+        legend.append("black: supports (" + ", ".join(f"'{g}'" for g in held) + ")")
     if marks.load_group in groups:
         loaded = _deformed(scaled_to_rated(groups[marks.load_group], scale), disp, exaggeration)
         planar = np.ptp(shown.points[:, 2]) == 0.0
@@ -192,14 +185,15 @@ def render_stress(vtu: Path, png: Path, *, label: str, at: StressAtRated, marks:
         plane = bool(np.ptp(mesh.points[:, 2]) == 0.0)
         exaggeration = exaggeration or (auto_exaggeration(mesh, names.displacement) if names.displacement else 1.0)
         shown = _deformed(mesh, names.displacement, exaggeration)
-        groups = boundary_groups(vtu, tuple(g for g in (marks.support_group, marks.load_group) if g))
+        groups = boundary_groups(vtu, marks.support_groups + ((marks.load_group,) if marks.load_group else ()))
         scale_text = ("undeformed (no displacement field)" if names.displacement is None else
                       f"displacements x {exaggeration:g}")
         p = at.peaks
-        where = ", ".join(f"{x:.4g}" for x in p.peak_location_mm)
+        where = ", ".join(f"{x:.4g}" for x in p.peak_location_mm) + ")" + (
+            f" on {', '.join(repr(g) for g in p.peak_on)}" if p.peak_on else "")
         lines = [f"{label}: von Mises at {at.load.name} = {at.load.rated:.4g} {at.load.unit}",
                  scale_text + (f"; {section}" if section else ""),
-                 f"peak {p.peak_von_mises_MPa:.4g} MPa at ({where}) mm, peak displacement {p.peak_displacement_mm:.3g} mm,",
+                 f"peak {p.peak_von_mises_MPa:.4g} MPa at ({where} mm, peak displacement {p.peak_displacement_mm:.3g} mm,",
                  f"safety factor {at.safety_factor:.3g} vs fatigue limit {at.fatigue_limit_MPa:g} MPa"]
         plotter = off_screen_plotter(RenderSettings(window, shape=shape))
         peak_index = int(np.argmax(np.asarray(mesh.point_data[names.von_mises])))

@@ -165,14 +165,16 @@ def point(xyz) -> str:
 
 def rated_row(component: str, s: dict) -> tuple[str, ...]:
     return (component, f"{s['load_text']}; fields x {s['load']['scale']:.4g}", num(s["peak_von_mises_MPa"], 4),
-            point(s["peak_location_mm"]), num(s["peak_displacement_mm"], 3),
+            point(s["peak_location_mm"]) + (f" on {', '.join(s['peak_on'])}" if s["peak_on"] else ""),
+            num(s["peak_displacement_mm"], 3),
             num(s["fatigue_limit_MPa"], 4), num(s["safety_factor"], 3), s["note"])
 
 
 def rated_sentence(s: dict) -> str:
     load = s["load"]
+    on = f" on {', '.join(repr(g) for g in s['peak_on'])}" if s["peak_on"] else ""
     return (f"at {load['name']} = {load['rated']:.4g} {load['unit']}: peak von Mises {s['peak_von_mises_MPa']:.4g} MPa "
-            f"at {point(s['peak_location_mm'])} mm, peak displacement {s['peak_displacement_mm']:.3g} mm, safety "
+            f"at {point(s['peak_location_mm'])} mm{on}, peak displacement {s['peak_displacement_mm']:.3g} mm, safety "
             f"factor {s['safety_factor']:.3g} against sigma_-1 = {s['fatigue_limit_MPa']:g} MPa")
 
 
