@@ -29,6 +29,9 @@ def test_second_gear_is_another_size(second):
     assert p.ewg_drive.rim_thickness_ratio != d.ewg_drive.rim_thickness_ratio
     assert p.output_shaft.inner_diameter_mm / p.output_shaft.outer_diameter_mm != pytest.approx(
         d.output_shaft.inner_diameter_mm / d.output_shaft.outer_diameter_mm)
+    # its rated torque follows its size (torque capacity ~ d1^3 at equal shear), not the 160 mm gear's
+    ratio = (p.flexspline_cup.pitch_diameter_mm / d.flexspline_cup.pitch_diameter_mm) ** 3
+    assert p.gear.rated_output_torque_Nmm == pytest.approx(ratio * d.gear.rated_output_torque_Nmm, rel=0.05)
     # no coefficient of a model is a parameter: the fitted ones live in analytic/ and are the same objects
     assert p.ewg_drive.root_fillet_coefficient == tooth_factors.MODEL_ROOT_FILLET_COEFFICIENT
 
