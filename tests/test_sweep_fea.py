@@ -6,6 +6,7 @@ FEA uses G = E/(2(1+nu)) = 80769 MPa, the seed's closed forms mu = 8e4 MPa (form
 import json
 import math
 
+import dask
 import pandas as pd
 import pytest
 from distributed import LocalCluster
@@ -25,7 +26,10 @@ def test_shaft_torsion_sweep_with_closed_forms_beside(tmp_path):
     vary = ["output_shaft.inner_diameter_mm=40,50"]
     # an already running 2-worker cluster reached by address: the --scheduler path (test_sweep.py's resume
     # test covers the embedded default LocalCluster)
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+    scratch = str(tmp_path / "scratch")   # not /tmp/dask-scratch-space (issue 16 item 26)
+    with dask.config.set({"temporary-directory": scratch}), \
+            LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                         local_directory=scratch) as cluster, \
             pytest.warns(UserWarning):      # the default's E, nu and mu disagree (formula audit 18)
         outcome = run_sweep("shaft-torsion", vary=vary, scheduler=cluster.scheduler_address, params_path=short,
                             out_dir=out, quick=True, tolerance=0.05)

@@ -12,6 +12,7 @@ from __future__ import annotations
 import logging
 import math
 import os
+import shutil
 import time
 import warnings
 from contextlib import contextmanager
@@ -24,6 +25,7 @@ from ...params import default_dict, load_params, params_from_dict
 from ...cache import ResultCache
 from ...registry import study as registered
 from .grid import build_points
+from .reach import CONNECT_TIMEOUT_S, check_scheduler
 from .outputs import plot_sweep, records_frame, departures, write_markdown, write_records, write_table
 from .task import PointSpec, TaskFn, point_key, run_point, task_name
 
@@ -79,24 +81,43 @@ def refuse_impossible(specs: list[PointSpec], where: str) -> None:
 
 
 @contextmanager
-def dask_client(scheduler: str | None, workers: int | None) -> Iterator[tuple[object, int]]:
-    """A connected ``distributed.Client`` and its worker count; whatever it started is closed on exit."""
-    from distributed import Client, LocalCluster
+def dask_client(scheduler: str | None, workers: int | None,
+                scratch: Path | None = None) -> Iterator[tuple[object, int]]:
+    """A connected ``distributed.Client`` and its worker count; whatever it started is closed on exit.
+
+    ``scheduler``: checked first (``reach.check_scheduler``: bounded connect and handshake), then
+    connected with connect timeouts of ``CONNECT_TIMEOUT_S`` set in a config context, so an unreachable
+    address or something that is not a Dask scheduler fails in one line within 10 s. Without it, a
+    LocalCluster whose workers keep their scratch space under ``scratch`` (not /tmp/dask-scratch-space).
+    """
+    import dask
+    from distributed import Client
 
     if scheduler:
-        try:
-            client = Client(scheduler, timeout="15s")
-        except (OSError, TimeoutError, ValueError) as exc:
-            raise InputError("--scheduler", scheduler, f"no Dask scheduler answered ({exc})") from None
-        try:
-            yield client, max(1, len(client.scheduler_info().get("workers", {})))
-        finally:
-            client.close()
+        check_scheduler(scheduler)
+        timeout = f"{CONNECT_TIMEOUT_S:g}s"
+        with dask.config.set({"distributed.comm.timeouts.connect": timeout}):
+            try:
+                client = Client(scheduler, timeout=timeout)
+            except (OSError, TimeoutError, ValueError) as exc:
+                raise InputError("--scheduler", scheduler, f"no Dask scheduler answered ({exc})") from None
+            try:
+                yield client, max(1, len(client.scheduler_info().get("workers", {})))
+            finally:
+                client.close()
         return
     n = workers or os.cpu_count() or 1
+    with dask.config.set({"temporary-directory": str(scratch)} if scratch else {}):   # the scheduler's space too
+        yield from _local(n, scratch)
+
+
+def _local(n: int, scratch: Path | None) -> Iterator[tuple[object, int]]:
+    from distributed import Client, LocalCluster
+
     try:
         cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
-                               silence_logs=logging.ERROR, env=WORKER_ENV)
+                               silence_logs=logging.ERROR, env=WORKER_ENV,
+                               local_directory=str(scratch) if scratch else None)
     except (OSError, RuntimeError, TimeoutError) as exc:
         raise StageError("start LocalCluster", "sweep", f"{type(exc).__name__}: {exc}") from exc
     try:
@@ -195,10 +216,14 @@ def run_sweep(study: str, *, vary: list[str], params_path: str | Path | None = N
              f"{len(todo)} to compute")
     n_workers = 0
     if todo:
-        with dask_client(scheduler, workers) as (client, n_workers):
-            progress(f"sweep: {n_workers} Dask workers at {client.scheduler.address}")
-            by_key.update(_compute(client, todo, out_dir / "cache", task, n_workers, progress, len(by_key),
-                                   len(points), counts))
+        scratch = out_dir / ".dask-scratch"   # the workers' spill/lock space, removed when the sweep ends
+        try:
+            with dask_client(scheduler, workers, scratch) as (client, n_workers):
+                progress(f"sweep: {n_workers} Dask workers at {client.scheduler.address}")
+                by_key.update(_compute(client, todo, out_dir / "cache", task, n_workers, progress, len(by_key),
+                                       len(points), counts))
+        finally:
+            shutil.rmtree(scratch, ignore_errors=True)
 
     records = [{**by_key[key], "index": index, "inputs": spec.inputs}
                for index, (key, spec) in enumerate(zip(keys, specs))]
