@@ -9,6 +9,7 @@ import math
 
 import numpy as np
 
+from ..errors import InputError
 from . import fatigue, ring, thick_ring, tooth_factors, tooth_number
 from .variant import Variant
 
@@ -69,8 +70,16 @@ def tooth_numbers_with_model(params) -> dict:
     design = design_from_params(params)
     out = {}
     for dz in (2, 4):
-        r = tooth_number.minimal_teeth_with_model(dz, e.permissible_safety, mat.fatigue_limit_MPa,
-                                                  mat.youngs_modulus_MPa, design)
+        try:
+            r = tooth_number.minimal_teeth_with_model(dz, e.permissible_safety, mat.fatigue_limit_MPa,
+                                                      mat.youngs_modulus_MPa, design)
+        except ValueError as exc:
+            # Eq 14 has no answer here (no tooth count up to the search limit reaches [n], or [n] is so
+            # low that eq 14 has no real root): the design question itself is ill-posed for these
+            # parameters, which is the user's to change, not an internal failure.
+            raise InputError("ewg_drive.permissible_safety", e.permissible_safety,
+                             f"seed 003 eq 14 gives no minimal tooth number with material.fatigue_limit_MPa = "
+                             f"{mat.fatigue_limit_MPa:g} and these ring proportions ({exc})") from None
         out[f"dZ{dz}"] = {"Z_R_min": r.Z_R_min, "seed_constant_Z_R_min": r.seed_constant_Z_R_min,
                           "n_sigma": r.n_sigma, "K_delta": r.tooth_influence, "K_sigma": r.stress_concentration,
                           "h_over_delta": r.h_over_delta, "delta_over_m": r.delta_over_m}

@@ -21,7 +21,28 @@ class InputError(StrainwaveError, ValueError):
         self.key = key
         self.value = value
         self.allowed = allowed
-        super().__init__(f"{key} = {value!r}: {allowed}")
+        super().__init__(f"{_clip(str(key))} = {_clip(_repr(value))}: {_clip(allowed, ALLOWED_CHARS)}")
+
+
+# An error is one terminal line: a 10 MB string value must not become a 10-million-character line, so
+# the echoed key and value are cut to what a reader can still compare with the file (the full value
+# stays on the exception). The explanation may be longer (it lists allowed keys) but is bounded too.
+ECHO_CHARS = 120
+ALLOWED_CHARS = 2000
+
+
+def _repr(value: object) -> str:
+    """repr() that cannot fail: Python refuses to print integers of more than 4300 digits."""
+    if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 1000:
+        return f"an integer of about {int(value.bit_length() * 0.30103)} digits"
+    return repr(value)
+
+
+def _clip(text: str, limit: int = ECHO_CHARS) -> str:
+    text = text.replace("\n", " ").replace("\r", " ")
+    if len(text) <= limit:
+        return text
+    return f"{text[:limit]}... ({len(text)} characters)"
 
 
 class StageError(StrainwaveError, RuntimeError):

@@ -18,6 +18,7 @@ from importlib import resources
 from pathlib import Path
 
 from .errors import InputError, MaterialWarning, RangeWarning
+from .params_bounds import check_bounds
 
 
 class CupShape(enum.Enum):
@@ -83,6 +84,7 @@ class Material:
         _positive("material.shear_modulus_MPa", self.shear_modulus_MPa)
         _positive("material.fatigue_limit_MPa", self.fatigue_limit_MPa)
         _in_open("material.poisson_ratio", self.poisson_ratio, 0.0, 0.5)
+        check_bounds("material", self)   # before the warning: a refused material needs no comparison
         implied = self.implied_shear_modulus_MPa
         if abs(implied / self.shear_modulus_MPa - 1.0) > 0.005:
             warnings.warn(
@@ -111,6 +113,7 @@ class Gear:
         for name in ("gear_ratio", "radial_deformation_mm", "force_coefficient", "output_torque_Nmm",
                      "rated_output_torque_Nmm"):
             _positive(f"gear.{name}", getattr(self, name))
+        check_bounds("gear", self)   # after the checks above, whose messages are more specific
 
 
 @dataclass(frozen=True)
@@ -139,6 +142,7 @@ class FlexsplineCup:
                              "teeth taller than the cup radius: need 2.35 module < d1/2 - delta")
         _recommend("flexspline_cup.wall_thickness_mm / pitch_diameter_mm",
                    self.wall_thickness_mm / self.pitch_diameter_mm, 0.005, 0.03, "usual thin flexspline range")
+        check_bounds("flexspline_cup", self)   # after the checks above, whose messages are more specific
 
 
 @dataclass(frozen=True)
@@ -156,6 +160,7 @@ class OutputShaft:
                              f"must be >= 0 and < outer_diameter_mm = {self.outer_diameter_mm:g}")
         _crack_in_wall("output_shaft.crack_depth_mm", self.crack_depth_mm,
                        "the output_shaft wall (outer_diameter_mm - inner_diameter_mm)/2", self.wall_mm)
+        check_bounds("output_shaft", self)   # after the checks above, whose messages are more specific
 
     @property
     def wall_mm(self) -> float:
@@ -183,6 +188,7 @@ class WaveGenerator:
         _recommend("wave_generator.beta", self.beta, 0.4278, 0.5, "seed 000, from a'/b'")
         _crack_in_wall("wave_generator.bearing_crack_depth_mm", self.bearing_crack_depth_mm,
                        "wave_generator.bearing_inner_ring_thickness_mm", self.bearing_inner_ring_thickness_mm)
+        check_bounds("wave_generator", self)   # after the checks above, whose messages are more specific
 
 
 @dataclass(frozen=True)
@@ -201,6 +207,7 @@ class Cracks:
         _positive("cracks.stress_nonuniformity", self.stress_nonuniformity)
         _positive("cracks.dynamic_load_factor", self.dynamic_load_factor)
         _in_open("cracks.flexspline_crack_angle_deg", self.flexspline_crack_angle_deg, 0.0, 90.0)
+        check_bounds("cracks", self)   # after the checks above, whose messages are more specific
 
 
 @dataclass(frozen=True)
@@ -242,6 +249,7 @@ class EwgDrive:
         _recommend("ewg_drive.stress_concentration", self.stress_concentration, 1.8, 2.0, "seed 003, eq 13")
         _recommend("ewg_drive.mean_stress_influence", self.mean_stress_influence, 0.10, 0.15, "seed 003, eq 13")
         _recommend("ewg_drive.permissible_safety", self.permissible_safety, 1.3, 1.5, "seed 003, eq 12")
+        check_bounds("ewg_drive", self)   # after the checks above, whose messages are more specific
 
     @property
     def reference_diameter_mm(self) -> float:
@@ -268,6 +276,7 @@ class CrackGeometry:
         if self.flexspline_tooth_index < 0:
             raise InputError("crack_geometry.flexspline_tooth_index", self.flexspline_tooth_index, "must be >= 0")
         _in_open("crack_geometry.flexspline_axial_position_ratio", self.flexspline_axial_position_ratio, 0.0, 1.0)
+        check_bounds("crack_geometry", self)   # after the checks above, whose messages are more specific
 
 
 @dataclass(frozen=True)
@@ -360,6 +369,8 @@ def _coerce(key: str, value: object, annotation: object):
     if annotation is float:
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise InputError(key, value, "must be a number")
+        if isinstance(value, int) and abs(value) > _MAX_MAGNITUDE:   # before float(): 1e400 overflows it
+            raise InputError(key, value, f"magnitude must be <= {_MAX_MAGNITUDE:g}")
         value = float(value)
         if not math.isfinite(value):
             raise InputError(key, value, "must be a finite number")
@@ -418,24 +429,58 @@ def merge_overrides(base: dict, overrides: dict, source: str = "params") -> dict
     return merged
 
 
-def read_toml(path: Path) -> dict:
+# The default file is 4 KiB; a parameter file 250x that is not a parameter file (e.g. /dev/zero, a log),
+# and reading it whole would take the memory a mistaken path can point at.
+MAX_PARAMS_BYTES = 1 << 20
+
+
+def read_limited(path: Path, limit: int, what: str) -> bytes:
+    """The bytes of ``path``, refused (InputError naming ``what``) if unreadable or above ``limit`` bytes;
+    reads at most ``limit + 1`` bytes, so endless devices and FIFOs fed forever cost nothing."""
     try:
-        raw = Path(path).read_bytes()
+        with open(path, "rb") as stream:
+            raw = stream.read(limit + 1)
     except OSError as exc:
-        raise InputError("--params", str(path), f"cannot read file ({exc.strerror})") from None
+        raise InputError(what, str(path), f"cannot read file ({exc.strerror or exc})") from None
+    if len(raw) > limit:
+        raise InputError(what, str(path), f"larger than the {limit // 1024} KiB a file of this kind may have")
+    return raw
+
+
+def parse_toml_text(text: str, where: str) -> dict:
+    """tomllib, with every way it can fail on user text turned into one InputError naming ``where``."""
     try:
-        return tomllib.loads(raw.decode("utf-8-sig"))
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(where, "malformed TOML", str(exc)) from None
+    except RecursionError:
+        raise InputError(where, "nested arrays or tables", "nested too deeply to be a parameter value") from None
+    except ValueError as exc:   # an integer literal beyond Python's 4300-digit conversion limit
+        raise InputError(where, "a number", f"not a usable TOML number ({exc})") from None
+
+
+def read_toml(path: Path) -> dict:
+    raw = read_limited(Path(path), MAX_PARAMS_BYTES, "--params")
+    try:
+        text = raw.decode("utf-8-sig")
     except UnicodeDecodeError:
         raise InputError("--params", str(path), "must be a UTF-8 TOML text file") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise InputError(f"{path}", "malformed TOML", str(exc)) from None
+    return parse_toml_text(text, f"{path}")
 
 
 def load_params(path: Path | str | None = None, overrides: dict | None = None) -> Params:
-    """The embedded default, updated by an optional partial TOML file and an optional dict."""
+    """The embedded default, updated by an optional partial TOML file and an optional dict.
+
+    Range warnings are held back until every key has passed: a refused file gets its one error line,
+    not a warning about another key printed before it."""
     data = default_dict()
-    if path is not None:
-        data = merge_overrides(data, read_toml(Path(path)), str(path))
-    if overrides:
-        data = merge_overrides(data, overrides)
-    return params_from_dict(data)
+    with warnings.catch_warnings(record=True) as held:
+        warnings.simplefilter("always")
+        if path is not None:
+            data = merge_overrides(data, read_toml(Path(path)), str(path))
+        if overrides:
+            data = merge_overrides(data, overrides)
+        params = params_from_dict(data)
+    for w in held:
+        warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    return params
