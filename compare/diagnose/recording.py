@@ -22,14 +22,30 @@ import csv
 import enum
 import math
 import tomllib
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from ...errors import InputError
+from ...errors import InputError, RangeWarning
+from ...params import load_params, read_limited
 
 MIN_ROWS = 20
+# Size limits, so a mistaken path (/dev/zero, a day of raw DAQ data) is refused before it takes the
+# machine's memory: diagnose fits on at most 2,500 strided rows, and 200,000 rows are over an hour of
+# a 50 Hz test (100,000 rows take 3.4 s); a data row is a few numbers, well under 150 bytes.
+MAX_ROWS = 200_000
+MAX_BYTES = 150 * MAX_ROWS
+# Magnitudes a rig can record, per column. Beyond them the fits' sums of squares overflow to inf and the
+# JSON would carry Infinity; below the response floor (1e-12 rad or mm, orders under any sensor's
+# resolution) the stiffness would overflow. A response column of exact zeros is allowed (a rigid fixture).
+MAX_ABS = {"torque_Nmm": 1e10, "force_N": 1e8, "twist_rad": 10.0, "delta_cd_mm": 1e3, "delta_ab_mm": 1e3,
+           "input_angle_rad": 1e9, "time_s": 1e9}
+MIN_LOAD_FULL_SCALE = 1e-6      # N*mm or N: a load range below it is float noise, not a test
+MIN_RESPONSE_FULL_SCALE = 1e-12
+BASELINE_UNCERTAINTY_RANGE = (1e-6, 1.0)   # relative; below 1e-6 no simulation is that certain
+BASELINE_STIFFNESS_RANGE = (1e-6, 1e15)    # N*mm/rad or N/mm: a rubber coupling to a solid steel block
 
 
 class RecordingKind(enum.Enum):
@@ -81,11 +97,7 @@ class Recording:
 def parse_recording(path: Path | str) -> Recording:
     """Read and parse one recording file; any defect is an ``InputError`` naming the file and line."""
     path = Path(path)
-    try:
-        raw = path.read_bytes()
-    except OSError as exc:
-        raise InputError(str(path), "recording", f"cannot read file ({exc.strerror})") from None
-    return parse_bytes(raw, path.name)
+    return parse_bytes(read_limited(path, MAX_BYTES, str(path)), path.name)
 
 
 def parse_bytes(raw: bytes, name: str = "recording.csv") -> Recording:
@@ -114,6 +126,7 @@ def parse_text(text: str, name: str = "recording.csv") -> Recording:
             break
     header = _parse_header(header_lines, name)
     kind, specimen, test = _parse_test(header, header_lines, name)
+    _check_overrides(header.get("params", {}), header_lines, name)
     (load_col, resp_col), optional = COLUMNS[kind]
     if body_start >= len(lines):
         raise InputError(f"{name}:{len(lines)}", "end of file", f"expected a CSV header row '{load_col},{resp_col}'")
@@ -133,7 +146,19 @@ def parse_text(text: str, name: str = "recording.csv") -> Recording:
     if data.shape[0] < MIN_ROWS:
         raise InputError(f"{name}:{len(lines)}", f"{data.shape[0]} data rows", f"need at least {MIN_ROWS} rows")
     col = {c: data[:, j] for j, c in enumerate(columns)}
+    for c, values in col.items():
+        if np.any(np.abs(values) > MAX_ABS[c]):
+            bad = int(np.argmax(np.abs(values) > MAX_ABS[c]))
+            raise InputError(f"{name}:{_row_line(lines, body_start, bad)}", float(values[bad]),
+                             f"|{c}| must be <= {MAX_ABS[c]:g} (beyond any rig; the fit would overflow)")
     load, resp = col[load_col], col[resp_col]
+    if np.max(np.abs(load)) < MIN_LOAD_FULL_SCALE:
+        raise InputError(f"{name}:{hline + 1}", float(np.max(np.abs(load))),
+                         f"the {load_col} full scale must be >= {MIN_LOAD_FULL_SCALE:g} (float noise, not a test)")
+    if 0.0 < np.max(np.abs(resp)) < MIN_RESPONSE_FULL_SCALE:
+        raise InputError(f"{name}:{hline + 1}", float(np.max(np.abs(resp))),
+                         f"the {resp_col} full scale must be 0 or >= {MIN_RESPONSE_FULL_SCALE:g} "
+                         "(below any sensor's resolution)")
     if np.ptp(load) <= 0:
         raise InputError(f"{name}:{hline + 1}", load_col, "the load column is constant; nothing to compare")
     if kind is RecordingKind.RING_COMPRESSION and np.any(load < -0.01 * np.max(np.abs(load))):
@@ -160,22 +185,69 @@ def _parse_header(header_lines: list[tuple[int, str]], name: str) -> dict:
     doc = "\n".join(text for _, text in header_lines)
     try:
         header = tomllib.loads(doc)
-    except tomllib.TOMLDecodeError as exc:
-        # tomllib reports "(at line N, column M)" counted inside the header document
-        msg = str(exc)
-        lineno = header_lines[0][0]
-        if "line " in msg:
-            try:
-                k = int(msg.rsplit("line ", 1)[1].split(",")[0].split(")")[0])
-                lineno = header_lines[min(k, len(header_lines)) - 1][0]
-            except ValueError:
-                pass
-        raise InputError(f"{name}:{lineno}", "header", f"the '#' header is not valid TOML ({msg})") from None
+    except RecursionError:
+        raise InputError(f"{name}:{header_lines[0][0]}", "header",
+                         "arrays or tables in the '#' header are nested too deeply") from None
+    except ValueError as exc:   # not TOMLDecodeError: an integer beyond Python's 4300-digit limit
+        if isinstance(exc, tomllib.TOMLDecodeError):
+            raise _header_syntax(exc, header_lines, name) from None
+        raise InputError(f"{name}:{header_lines[0][0]}", "header", f"a number in the '#' header is unusable ({exc})") \
+            from None
     for key in header:
         if key not in TOP_TABLES:
             raise InputError(f"{name}:{_find(header_lines, key)}", key,
                              f"unknown header table; allowed: {', '.join(sorted(TOP_TABLES))}")
     return header
+
+
+def _header_syntax(exc: tomllib.TOMLDecodeError, header_lines, name: str) -> InputError:
+    """tomllib reports "(at line N, column M)" counted inside the header document: map N to the file line."""
+    msg = str(exc)
+    lineno = header_lines[0][0]
+    if "line " in msg:
+        try:
+            k = int(msg.rsplit("line ", 1)[1].split(",")[0].split(")")[0])
+            lineno = header_lines[min(k, len(header_lines)) - 1][0]
+        except ValueError:
+            pass
+    return InputError(f"{name}:{lineno}", "header", f"the '#' header is not valid TOML ({msg})")
+
+
+def _check_overrides(overrides: object, header_lines, name: str) -> None:
+    """The header's [params.*] tables against the parameter schema, refused at their own file line."""
+    if not isinstance(overrides, dict):
+        raise InputError(f"{name}:{_find(header_lines, 'params')}", overrides,
+                         "params must be [params.<section>] tables of parameter keys")
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RangeWarning)   # the pipeline loads them again and warns there
+            load_params(overrides=overrides)
+    except InputError as exc:
+        section, _, key = str(exc.key).strip("[]").partition(".")
+        raise InputError(f"{name}:{_find_param(header_lines, section, key)}", exc.value,
+                         f"[params.{section}]{'.' + key if key else ''}: {exc.allowed}") from None
+
+
+def _find_param(header_lines, section: str, key: str) -> int:
+    """File line of ``key`` inside ``[params.<section>]`` (or of the table itself)."""
+    inside, table_line = False, None
+    for lineno, text in header_lines:
+        stripped = text.strip()
+        if stripped.startswith("["):
+            inside = stripped.replace(" ", "").startswith(f"[params.{section}]")
+            if inside:
+                table_line = lineno
+            continue
+        if inside and key and stripped.split("=", 1)[0].strip() == key:
+            return lineno
+    return table_line if table_line is not None else _find(header_lines, "params")
+
+
+def _number_in(value: object, lo: float, hi: float) -> bool:
+    """A TOML number within [lo, hi]; huge integers are compared as integers (float() would overflow)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return False
+    return lo <= value <= hi
 
 
 def _parse_test(header: dict, header_lines, name: str):
@@ -195,9 +267,10 @@ def _parse_test(header: dict, header_lines, name: str):
                          f"test.specimen for {kind.value} must be one of {list(SPECIMENS[kind])}")
     out = {"baseline_uncertainty": 0.02, "description": test.get("description", "")}
     u = test.get("baseline_uncertainty", 0.02)
-    if isinstance(u, bool) or not isinstance(u, (int, float)) or not (0.0 < u < 1.0):
+    lo, hi = BASELINE_UNCERTAINTY_RANGE
+    if not _number_in(u, lo, hi) or u == hi:
         raise InputError(f"{name}:{_find(header_lines, 'baseline_uncertainty')}", u,
-                         "test.baseline_uncertainty must be a number in (0, 1)")
+                         f"test.baseline_uncertainty must be a relative uncertainty in [{lo:g}, {hi:g})")
     out["baseline_uncertainty"] = float(u)
     stiff_key = "baseline_stiffness_Nmm_per_rad" if kind is RecordingKind.TORSION else "baseline_stiffness_N_per_mm"
     wrong_key = "baseline_stiffness_N_per_mm" if kind is RecordingKind.TORSION else "baseline_stiffness_Nmm_per_rad"
@@ -205,8 +278,10 @@ def _parse_test(header: dict, header_lines, name: str):
         raise InputError(f"{name}:{_find(header_lines, wrong_key)}", wrong_key, f"for {kind.value} use {stiff_key}")
     if stiff_key in test:
         k = test[stiff_key]
-        if isinstance(k, bool) or not isinstance(k, (int, float)) or not (math.isfinite(k) and k > 0):
-            raise InputError(f"{name}:{_find(header_lines, stiff_key)}", k, f"test.{stiff_key} must be a number > 0")
+        lo, hi = BASELINE_STIFFNESS_RANGE
+        if not _number_in(k, lo, hi):
+            raise InputError(f"{name}:{_find(header_lines, stiff_key)}", k,
+                             f"test.{stiff_key} must be a number in [{lo:g}, {hi:g}]")
         out["baseline_stiffness"] = float(k)
     return kind, test["specimen"], out
 
@@ -241,6 +316,8 @@ def _split(line: str, delimiter: str = ",") -> list[str]:
 
 def _number(cell: str, delimiter: str) -> float:
     """A numeric cell; with a semicolon or tab separator a decimal comma is accepted (1,5e-3)."""
+    if "_" in cell:   # float() reads 1_000 as 1000; no spreadsheet writes that, a typo does
+        raise ValueError(cell)
     if delimiter != "," and "," in cell and "." not in cell:
         cell = cell.replace(",", ".")
     return float(cell)
@@ -269,6 +346,9 @@ def _parse_rows(lines: list[str], start: int, columns: list[str], name: str, del
         if not all(math.isfinite(v) for v in values):
             raise InputError(f"{name}:{i + 1}", line.strip()[:60], "NaN or infinite values are not allowed")
         rows.append(values)
+        if len(rows) > MAX_ROWS:
+            raise InputError(f"{name}:{i + 1}", f"more than {MAX_ROWS} data rows",
+                             "decimate the recording (diagnose fits on at most 2,500 strided rows)")
     return np.asarray(rows, dtype=float).reshape(-1, ncol)
 
 
