@@ -199,6 +199,25 @@ def _cmd_sweep(args) -> int:
     return 0 if outcome.n_ok else 1
 
 
+def _check_outputs(args) -> None:
+    """Every output path the command will write, checked before any work (a solve must not run for
+    minutes and then find that --vtu points into a file), and never one of the command's inputs."""
+    from .io_atomic import check_output_path
+
+    inputs = tuple(getattr(args, name, None) for name in ("params", "recording", "samples"))
+    files = [("--json", getattr(args, "json", None)), ("--plot", getattr(args, "plot", None)),
+             ("--vtu", getattr(args, "vtu", None)), ("--png", getattr(args, "png", None)),
+             ("-o", getattr(args, "output", None))]
+    if getattr(args, "vtu", None):   # solve also writes FILE.boundary.vtu next to it
+        files.append(("--vtu", str(Path(args.vtu).with_suffix("")) + ".boundary.vtu"))
+    for flag, path in files:
+        if path is not None and path != "-":
+            check_output_path(path, flag, inputs=inputs)
+    out = getattr(args, "out", None)
+    if out is not None:
+        check_output_path(out, "--out", directory=True, inputs=inputs)
+
+
 # ---- parser ------------------------------------------------------------------------------------
 
 def _common(top: bool) -> argparse.ArgumentParser:
@@ -310,6 +329,34 @@ class _StderrFormat(logging.Formatter):
         return msg if record.levelno < logging.WARNING else f"{record.levelname.lower()}: {msg}"
 
 
+class _HeldWarnings(logging.StreamHandler):
+    """Warnings are held until the command starts working (its first progress line) or ends well, and
+    dropped when the input is refused: a refusal is its one error line, not a warning about the
+    material printed before it."""
+
+    def __init__(self, stream):
+        super().__init__(stream)
+        self.held: list[logging.LogRecord] = []
+        self.working = False
+
+    def emit(self, record: logging.LogRecord) -> None:
+        if not self.working and record.levelno == logging.WARNING:
+            self.held.append(record)
+            return
+        if record.levelno < logging.WARNING:
+            self.show_held()
+        super().emit(record)
+
+    def show_held(self) -> None:
+        self.working = True
+        held, self.held = self.held, []
+        for record in held:
+            super().emit(record)
+
+    def drop_held(self) -> None:
+        self.held = []
+
+
 def _verbosity(argv: list[str]) -> tuple[int, bool]:
     """(log level, debug) from the raw arguments, so they hold even when parsing fails."""
     quiet = any(a in ("-q", "--quiet") for a in argv)
@@ -322,7 +369,7 @@ def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     level, debug = _verbosity(argv)
     logger = logging.getLogger(LOG)
-    handler = logging.StreamHandler(sys.stderr)
+    handler = _HeldWarnings(sys.stderr)
     handler.setFormatter(_StderrFormat())
     saved_level, saved_propagate = logger.level, logger.propagate
     logger.addHandler(handler)
@@ -337,8 +384,18 @@ def main(argv: list[str] | None = None) -> int:
                 if not args.uses_material:
                     warnings.simplefilter("ignore", MaterialWarning)
                 logger.debug("strainwave %s: %s", _version(), " ".join(argv))
-                return args.func(args)
+                _check_outputs(args)
+                status = args.func(args)
+                handler.show_held()
+                return status
+            except InputError as exc:
+                handler.drop_held()
+                print(f"error: {exc}", file=sys.stderr)
+                if debug:
+                    traceback.print_exc()
+                return exc.exit_status
             except StrainwaveError as exc:
+                handler.show_held()
                 print(f"error: {exc}", file=sys.stderr)
                 if debug:
                     traceback.print_exc()

@@ -9,10 +9,13 @@ from __future__ import annotations
 
 import os
 import secrets
+import stat
 from contextlib import contextmanager
 from pathlib import Path
 
-__all__ = ["atomic_path", "atomic_write_text", "atomic_write_bytes"]
+from .errors import InputError
+
+__all__ = ["atomic_path", "atomic_write_text", "atomic_write_bytes", "check_output_path"]
 
 _ATTEMPTS = 100
 
@@ -66,3 +69,45 @@ def atomic_write_bytes(target: Path, data: bytes) -> Path:
     with atomic_path(target) as tmp:
         tmp.write_bytes(data)
     return Path(target)
+
+
+def _probe_writable(directory: Path) -> str | None:
+    """None if a file can be created in ``directory`` (tried, then removed), else why not. Asking the
+    file system is the only honest test: os.access says yes to root on a read-only mount."""
+    for _ in range(_ATTEMPTS):
+        probe = directory / f".strainwave-probe-{secrets.token_hex(6)}"
+        try:
+            os.close(os.open(probe, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600))
+        except FileExistsError:
+            continue
+        except OSError as exc:
+            return exc.strerror or str(exc)
+        os.unlink(probe)
+        return None
+    return "no free probe name"
+
+
+def check_output_path(path: Path | str, flag: str, *, directory: bool = False,
+                      inputs: tuple[Path | str | None, ...] = ()) -> None:
+    """Refuse (InputError naming ``flag`` and the path) an output that cannot be written, BEFORE any work:
+    a file target that is a directory (or a directory target that is a file), a parent that is a file,
+    a folder the user may not write in, or a target that is one of the command's ``inputs``."""
+    target = Path(path)
+    if target.exists():
+        if directory and not target.is_dir():
+            raise InputError(flag, str(path), "exists and is not a directory; name a folder")
+        if not directory and target.is_dir():
+            raise InputError(flag, str(path), "is a directory; name a file inside it")
+        if not directory and not stat.S_ISREG(target.stat().st_mode):
+            raise InputError(flag, str(path), "is not a regular file (a device or pipe); name a file")
+    for source in inputs:
+        if source is not None and target.exists() and Path(source).exists() and os.path.samefile(source, target):
+            raise InputError(flag, str(path), f"is the input {source}; writing it would destroy the input")
+    existing = target if directory and target.is_dir() else target.parent
+    while not existing.exists():
+        existing = existing.parent
+    if not existing.is_dir():
+        raise InputError(flag, str(path), f"{existing} is a file, not a directory")
+    why = _probe_writable(existing)
+    if why is not None:
+        raise InputError(flag, str(path), f"cannot write in {existing} ({why})")

@@ -324,6 +324,20 @@ class Params:
         return out
 
 
+def schema_types() -> dict[str, type]:
+    """Dotted key -> the type the schema declares (float, int, bool, str for enums, list for tuples):
+    what a value must be, whatever literal the default file happens to use (``gear_ratio = 100``)."""
+    out = {}
+    for name, cls in typing.get_type_hints(Params).items():
+        for key, hint in typing.get_type_hints(cls).items():
+            if isinstance(hint, type) and issubclass(hint, enum.Enum):
+                hint = str
+            elif typing.get_origin(hint) is tuple:
+                hint = list
+            out[f"{name}.{key}"] = hint
+    return out
+
+
 def _plain(value):
     if isinstance(value, enum.Enum):
         return value.value

@@ -17,9 +17,13 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import InputError
-from ...params import REMOVED_KEYS
+from ...params import REMOVED_KEYS, read_limited, schema_types
 
 VARY_FORMS = "KEY=START:STOP:N (N >= 1 evenly spaced values) or KEY=v1,v2,..."
+# A sweep point is at least one FEA study (0.5..5 s on quick meshes, minutes on full ones): 10,000 points
+# are a day of two cores. Larger grids are refused before they are built (1e8 points took 4 GB).
+MAX_POINTS = 10_000
+MAX_SAMPLES_BYTES = 200 * MAX_POINTS   # a sample row is a few numbers; 2 MB holds 10,000 generous rows
 
 
 @dataclass(frozen=True)
@@ -31,8 +35,11 @@ class VaryAxis:
 
 
 def schema_kinds(base: dict) -> dict[str, type]:
-    """Dotted key -> the Python type of its value in a ``Params.to_dict()`` (float, int, bool, str, list)."""
-    return {f"{section}.{key}": type(value) for section, table in base.items() for key, value in table.items()}
+    """Dotted key -> the type the parameter schema declares for each key of ``base`` (float, int, bool, str,
+    list), not the type of the literal in ``base`` (the default file writes ``gear_ratio = 100``, a float key)."""
+    declared = schema_types()
+    return {f"{section}.{key}": declared.get(f"{section}.{key}", type(value))
+            for section, table in base.items() for key, value in table.items()}
 
 
 def _check_key(key: str, kinds: dict[str, type], where: str) -> type:
@@ -88,6 +95,8 @@ def _linspace(key: str, spec: str, kind: type, where: str) -> tuple:
         raise InputError(where, spec, "N after the second ':' must be an integer >= 1") from None
     if n < 1:
         raise InputError(where, spec, "N after the second ':' must be an integer >= 1")
+    if n > MAX_POINTS:
+        raise InputError(where, spec, f"N after the second ':' must be <= {MAX_POINTS} (points of one sweep)")
     if n > 1 and start == stop:
         raise InputError(where, spec, "START equals STOP with N > 1: every point would be the same")
     values = np.linspace(start, stop, n)
@@ -110,6 +119,8 @@ def parse_vary(text: str, base: dict) -> VaryAxis:
         values = _linspace(key, spec, kind, f"--vary {key}")
     else:
         items = spec.split(",")
+        if len(items) > MAX_POINTS:
+            raise InputError(f"--vary {key}", f"{len(items)} values", f"at most {MAX_POINTS} points per sweep")
         if any(not item.strip() for item in items):
             raise InputError(f"--vary {key}", spec, f"empty value in the list; expected {VARY_FORMS}")
         values = tuple(coerce_value(key, item, kind, f"--vary {key}") for item in items)
@@ -123,16 +134,19 @@ def full_grid(axes: list[VaryAxis]) -> list[dict]:
     keys = [axis.key for axis in axes]
     if len(set(keys)) != len(keys):
         raise InputError("--vary", ", ".join(keys), "each key may be varied only once")
+    size = math.prod(len(axis.values) for axis in axes)
+    if size > MAX_POINTS:
+        raise InputError("--vary", " x ".join(str(len(axis.values)) for axis in axes) + f" = {size} points",
+                         f"a sweep may have at most {MAX_POINTS} points")
     return [dict(zip(keys, combo)) for combo in itertools.product(*(axis.values for axis in axes))]
 
 
 def read_samples(path: Path, base: dict) -> list[dict]:
     """Rows of a CSV whose header names dotted keys (Latin hypercube or measured designs)."""
     path = Path(path)
+    raw = read_limited(path, MAX_SAMPLES_BYTES, "--samples")
     try:
-        text = path.read_text(encoding="utf-8-sig")
-    except OSError as exc:
-        raise InputError("--samples", str(path), f"cannot read file ({exc.strerror})") from None
+        text = raw.decode("utf-8-sig")
     except UnicodeDecodeError:
         raise InputError("--samples", str(path), "must be a UTF-8 CSV text file") from None
     rows = list(csv.reader(line for line in text.splitlines() if line.strip() and not line.startswith("#")))
@@ -161,6 +175,9 @@ def build_points(vary: list[str], sample_file: Path | None, base: dict) -> tuple
     axes = [parse_vary(text, base) for text in vary]
     grid = full_grid(axes) if axes else []
     samples = read_samples(sample_file, base) if sample_file is not None else []
+    if len(samples) * max(1, len(grid)) > MAX_POINTS:
+        raise InputError("--samples", f"{len(samples)} rows x {max(1, len(grid))} grid points",
+                         f"a sweep may have at most {MAX_POINTS} points")
     if not grid and not samples:
         raise InputError("--vary", "", f"give at least one --vary {VARY_FORMS} or --samples FILE.csv")
     if grid and samples:
