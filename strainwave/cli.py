@@ -140,14 +140,28 @@ def _cmd_export_step(args) -> int:
     return 0
 
 
-def _cmd_solve(args) -> int:
+def _scratch_dir(args):
+    """A scratch folder next to the command's own output (--json FILE) when there is one, so nothing is
+    written elsewhere; else in the system's temporary directory. Removed when the command ends."""
     import tempfile
 
-    from .fea.studies import run_study
+    target = getattr(args, "json", None)
+    where = Path(target).resolve().parent if target not in (None, "-") else None
+    if where is not None:
+        where.mkdir(parents=True, exist_ok=True)
+    return tempfile.TemporaryDirectory(prefix=".strainwave-scratch-", dir=where)
+
+
+def _cmd_solve(args) -> int:
+    from .fea.budget import check_budget
+    from .fea.studies import run_study, with_crack
     from .rated_stress import stress_at_rated, stress_field_of
     params = _params(args)
+    # Refusable before any CAD or meshing: a crack through the wall, a mesh beyond the element budget.
+    with_crack(args.study, params, args.crack_depth_mm)
+    check_budget(args.study, params, args.mesh_size_mm)
     # The field is always written (to a scratch folder without --vtu): the rated-load peaks are read from it.
-    with tempfile.TemporaryDirectory(prefix="strainwave-solve-") as scratch:
+    with _scratch_dir(args) as scratch:
         vtu = Path(args.vtu) if args.vtu else Path(scratch) / f"{args.study}.vtu"
         result = run_study(args.study, params, mesh_size_mm=args.mesh_size_mm, order=args.order,
                            crack_depth_mm=args.crack_depth_mm, vtu=vtu, progress=_progress)
@@ -162,7 +176,11 @@ def _cmd_solve(args) -> int:
 
 def _cmd_validate(args) -> int:
     from .compare.validate.pipeline import run_validate
-    outcome = run_validate(_params(args), Path(args.out), quick=args.quick, progress=_progress)
+    from .fea.budget import check_budget
+    params = _params(args)
+    for study in STUDIES:   # every study runs at its default size: the parameters alone may blow the budget
+        check_budget(study, params, None, args.quick, flag="--params")
+    outcome = run_validate(params, Path(args.out), quick=args.quick, progress=_progress)
     _emit(args, outcome.summary(), lambda: {
         "passed": outcome.passed, "out_dir": str(outcome.out_dir), "timings_s": outcome.timings_s,
         "checks": [c.to_dict() for c in outcome.checks],
@@ -365,8 +383,22 @@ def _verbosity(argv: list[str]) -> tuple[int, bool]:
     return level, "--debug" in argv
 
 
+def _no_stray_writes() -> None:
+    """Environment defaults that keep libraries from writing outside the outputs (issue 16, item 26):
+    pypardiso looks for MKL with ctypes.util.find_library, which runs ldconfig and gcc on temporary
+    files unless told where libmkl_rt is (the MKL wheel installs it under sys.prefix/lib); Mesa keeps a
+    shader cache in ~/.cache unless disabled. Only defaults: a user's own setting wins."""
+    import os
+
+    mkl = sorted(Path(sys.prefix, "lib").glob("libmkl_rt.so*"))
+    if mkl:
+        os.environ.setdefault("PYPARDISO_MKL_RT", str(mkl[0]))
+    os.environ.setdefault("MESA_SHADER_CACHE_DISABLE", "true")
+
+
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
+    _no_stray_writes()
     level, debug = _verbosity(argv)
     logger = logging.getLogger(LOG)
     handler = _HeldWarnings(sys.stderr)

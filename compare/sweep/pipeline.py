@@ -21,6 +21,7 @@ from pathlib import Path
 from typing import Callable, Iterator
 
 from ...errors import InputError, RangeWarning, StageError
+from ...fea.budget import check_budget
 from ...params import default_dict, load_params, params_from_dict
 from ...cache import ResultCache
 from ...registry import study as registered
@@ -70,7 +71,7 @@ def refuse_impossible(specs: list[PointSpec], where: str) -> None:
         warnings.simplefilter("ignore", RangeWarning)   # possible-but-unusual points warn in their worker
         for index, spec in enumerate(specs):
             try:
-                params_from_dict(spec.merged())
+                check_budget(spec.study, params_from_dict(spec.merged()), None, spec.quick, flag="mesh")
             except InputError as exc:
                 values = ", ".join(f"{k}={v}" for k, v in spec.values)
                 bad.append(f"point {index} ({values}): {exc}")

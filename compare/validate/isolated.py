@@ -5,15 +5,23 @@ ScaledJac") kills the whole Python process, which would leave no report at all. 
 runs in a process forked from a clean fork server that has the FEA stack preloaded (so a case starts in
 milliseconds, not seconds of imports). Progress messages and the result come back through a pipe; a
 case that exceeds its time limit is terminated and reported as such.
+
+Children never outlive the run: they stay in the run's process group (``kill -9 -PGID`` reaches them),
+ask the kernel for SIGKILL when their parent dies (a ``kill -9`` of the run alone: the fork server
+exits with the run, and its children follow), ignore the terminal's Ctrl-C (the run decides, and stops
+them together with their own children: ``stop_descendants``), and exit silently when the run that
+reads their pipe is gone instead of printing BrokenPipeError tracebacks.
 """
 from __future__ import annotations
 
+import ctypes
 import multiprocessing
 import os
 import signal
 import time
 import traceback
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Callable
 
 PRELOAD = ["numpy", "scipy.sparse", "skfem", "gmsh", "pyamg", "strainwave.fea.studies", "strainwave.params"]
@@ -26,21 +34,43 @@ class ChildOutcome:
     seconds: float
 
 
+_PR_SET_PDEATHSIG = 1   # linux/prctl.h
+
+
+def bind_to_parent() -> None:
+    """Make this (child) process die with its parent and leave Ctrl-C to the parent.
+
+    prctl comes from the symbols already loaded in this process (``CDLL(None)``): looking libc up with
+    ``ctypes.util.find_library`` would run ldconfig/gcc, i.e. write outside the outputs."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+    if os.getppid() == 1:   # the parent died before prctl took effect
+        os._exit(1)
+
+
+def send_or_exit(conn, message) -> None:
+    """Send to the parent; if it is gone (its end of the pipe closed), leave at once and quietly."""
+    try:
+        conn.send(message)
+    except (BrokenPipeError, ConnectionResetError, EOFError, OSError):
+        os._exit(1)
+
+
 def _child(conn, study: str, params, kwargs: dict) -> None:
     """Child side: solve, stream progress, send ("result", dict) or ("error", text)."""
-    os.setpgid(0, 0)  # own process group: a time-out also stops any worker the study started
+    bind_to_parent()
     try:
         from ...fea.studies import run_study
 
         def progress(msg: str) -> None:
-            conn.send(("progress", msg))
+            send_or_exit(conn, ("progress", msg))
 
         result = run_study(study, params, progress=progress, **kwargs)
-        conn.send(("result", result.to_dict()))
+        send_or_exit(conn, ("result", result.to_dict()))
     except BaseException as exc:  # noqa: BLE001 - everything goes back to the parent as text
         last = traceback.extract_tb(exc.__traceback__)[-1:] if exc.__traceback__ else []
         where = f" at {last[0].filename.rsplit('/', 1)[-1]}:{last[0].lineno}" if last else ""
-        conn.send(("error", f"{type(exc).__name__}: {exc}{where}"))
+        send_or_exit(conn, ("error", f"{type(exc).__name__}: {exc}{where}"))
     finally:
         conn.close()
 
@@ -85,19 +115,49 @@ def run_isolated(study: str, params, kwargs: dict, *, timeout_s: float,
                 break
     finally:
         if process.is_alive():
-            _stop_group(process.pid)
-            process.terminate()
+            stop_descendants(process.pid)   # the workers the study started (mesh attempts), then the child
+            process.kill()
         process.join(5)
         parent_conn.close()
     return ChildOutcome(result, error, time.perf_counter() - start)
 
 
-def _stop_group(pid: int) -> None:
-    """SIGTERM the child's process group (the child and the workers it started, nothing else)."""
-    try:
-        os.killpg(pid, signal.SIGTERM)
-    except (ProcessLookupError, PermissionError):
-        pass  # already gone
+def _children_of() -> dict[int, list[int]]:
+    """ppid -> pids of every process visible in /proc (one pass; a process may vanish meanwhile)."""
+    tree: dict[int, list[int]] = {}
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            stat = (entry / "stat").read_text()
+        except OSError:
+            continue
+        # "pid (comm) state ppid ...": comm may hold spaces and parentheses, so split after the last ')'
+        ppid = int(stat.rsplit(")", 1)[1].split()[1])
+        tree.setdefault(ppid, []).append(int(entry.name))
+    return tree
+
+
+def descendants(pid: int) -> list[int]:
+    """Every process below ``pid`` (children first)."""
+    tree, out, todo = _children_of(), [], [pid]
+    while todo:
+        kids = tree.get(todo.pop(), [])
+        out.extend(kids)
+        todo.extend(kids)
+    return out
+
+
+def stop_descendants(pid: int) -> int:
+    """SIGKILL every process below ``pid`` (not ``pid`` itself); returns how many were signalled.
+    SIGKILL, not SIGTERM: a study in a native gmsh/BLAS call would not act on SIGTERM before its time."""
+    victims = descendants(pid)
+    for victim in victims:
+        try:
+            os.kill(victim, signal.SIGKILL)
+        except (ProcessLookupError, PermissionError):
+            pass  # already gone
+    return len(victims)
 
 
 def _death(process) -> str:

@@ -22,6 +22,7 @@ from .check_set import CheckSet, build_checks
 from .checks import Check
 from .fea_book import FeaBook
 from .gci_table import gci_rows
+from .isolated import stop_descendants
 from .plan import make_plan
 from .report_html import write_html
 from .report_md import write_markdown
@@ -115,11 +116,22 @@ def _run_cases(cases, params, *, fields_dir: Path, cache, quick: bool, progress)
     workers = max(1, min(2, os.cpu_count() or 1))
     timing_file = durations_file(Path(cache.root), quick)
     durations = load_durations(timing_file)
-    with ThreadPoolExecutor(max_workers=workers) as pool:
+    pool = ThreadPoolExecutor(max_workers=workers)
+    try:
         futures = {case.label: pool.submit(run_case, case, params, fields_dir=fields_dir, cache=cache, quick=quick,
                                            order=ORDER, progress=progress)
                    for case in longest_first(cases, durations)}
         outcomes = {case.label: futures[case.label].result() for case in cases}
+    except KeyboardInterrupt:
+        # Ctrl-C: queued cases must not start, running ones stop now. Their threads only wait on child
+        # processes, which die with every process this run started below it.
+        pool.shutdown(wait=False, cancel_futures=True)
+        stop_descendants(os.getpid())
+        raise
+    except BaseException:
+        pool.shutdown(wait=False, cancel_futures=True)   # a bug in a case runner: the rest need not start
+        raise
+    pool.shutdown(wait=True)
     save_durations(timing_file, [(o.case.label, o.seconds) for o in outcomes.values() if not o.cached],
                    durations)
     return outcomes

@@ -50,9 +50,13 @@ def export_one(part: str, params, target: Path, png: Path | None = None) -> tupl
 
 
 def _worker(conn, jobs: list[tuple[str, Path, Path | None]], params) -> None:
-    """Background process: export each part in turn and send (part, files, seconds, error) back."""
+    """Background process: export each part in turn and send (part, files, seconds, error) back.
+    It dies with the run and leaves Ctrl-C to it (the run cancels it): no KeyboardInterrupt traceback."""
+    from .isolated import bind_to_parent, send_or_exit
+
+    bind_to_parent()
     for part, target, png in jobs:
-        conn.send((part, *export_one(part, params, target, png)))
+        send_or_exit(conn, (part, *export_one(part, params, target, png)))
     conn.close()
 
 
@@ -117,5 +121,5 @@ class StepJob:
         """Stop the background export (on an interrupted run; harmless after it finished)."""
         if self.process is not None:
             if self.process.is_alive():
-                self.process.terminate()
+                self.process.kill()   # OCC ignores SIGTERM while it builds; nothing it holds needs saving
             self.process.join(5)

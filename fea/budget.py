@@ -1,0 +1,103 @@
+"""Element-count estimate of a study's finest mesh, made from the parameters before any CAD or meshing.
+
+A 1e6 mm shaft or ``--mesh-size-mm 1e-6`` asked gmsh for billions of elements: 8 GB in 35 s, then a
+segfault. The estimate is the part's volume over the volume one element fills, with the through-wall
+size capped by the wall (a thin wall is meshed with at least one layer whatever the global size):
+
+    N ~ C * V / (min(h, t) * h^2)
+
+C is measured per study on its own meshes (``ELEMENTS_PER_CELL``; the estimate is within a factor of 2
+of the real count there), so the budget check refuses a run by what it would cost, with the estimate
+in the message, and lets every default run through.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ..errors import InputError
+
+# Finest-mesh elements one run may ask for. 300,000 P2 tets are ~1.3 M dofs: ~1 min and ~3 GB for the
+# p-multigrid solve on this 2-core machine (bench_fea: 957k dofs 43.5 s), shared by the three meshes'
+# coarser two (1/2.7 and 1/7.5 of it). Above it a machine shared with other jobs runs out of memory.
+MAX_ELEMENTS = 300_000
+
+# Elements per min(h, t) * h^2 cell (per min(h, t) * h for the plane ring section), measured on the default
+# parameters: shaft h = 8 mm: 4,177 elements vs V/(t h^2) = 882 (4.7); quick cup h = 8.96 mm (4 walls):
+# 16,633 vs 1,251 (13.3: one flattened layer through the wall); bearing ring h = 5 mm: 5,910 vs 581 (10.2,
+# the contact patch is refined); toothed ring section h = delta/4: 12,361 vs 22,984 (0.54: the annulus
+# counted here includes the tooth gaps, and the section is graded away from the rim).
+ELEMENTS_PER_CELL = {"shaft-torsion": 4.7, "cup-torsion": 13.3, "bearing-ring": 10.2, "ring-compression": 0.54}
+
+
+@dataclass(frozen=True)
+class MeshEstimate:
+    study: str
+    h_mm: float              # finest global size
+    wall_mm: float           # through-wall size that caps the element size across the wall
+    volume_mm3: float        # the part's volume (the 2D ring: its section area x 1 mm)
+    elements: int
+
+    def __post_init__(self):
+        if not (self.h_mm > 0 and self.wall_mm > 0 and self.volume_mm3 > 0 and self.elements >= 0):
+            raise ValueError(f"MeshEstimate: sizes must be > 0, got {self}")
+
+
+def _default_h_mm(study: str, params, quick: bool) -> float:
+    """The study's own default finest size (read from the study module, not restated here)."""
+    if study == "shaft-torsion":
+        from .shaft_torsion import default_size_mm
+    elif study == "cup-torsion":
+        from .cup_torsion import default_size_mm
+    elif study == "bearing-ring":
+        from .bearing_ring import default_size_mm
+    else:
+        from .ring_compression import mesh_sizes_mm, ring_geometry
+        return mesh_sizes_mm(ring_geometry(params), None, quick)[0]
+    return default_size_mm(params, quick)
+
+
+def _volume_and_wall(study: str, params) -> tuple[float, float]:
+    if study == "shaft-torsion":
+        s = params.output_shaft
+        return math.pi / 4 * (s.outer_diameter_mm ** 2 - s.inner_diameter_mm ** 2) * s.length_mm, s.wall_mm
+    if study == "cup-torsion":
+        c = params.flexspline_cup
+        tube = math.pi * c.pitch_diameter_mm * c.wall_thickness_mm * c.length_mm
+        diaphragm = math.pi / 4 * c.pitch_diameter_mm ** 2 * c.wall_thickness_mm
+        return tube + diaphragm, c.wall_thickness_mm
+    if study == "bearing-ring":
+        wg, c = params.wave_generator, params.flexspline_cup
+        t = wg.bearing_inner_ring_thickness_mm
+        # geometry/bearing_ring.py: race radius d1/2 - delta - 1.5 t_i, bore 1 t_i inside, width 4 a'
+        r_race = max(c.pitch_diameter_mm / 2 - c.wall_thickness_mm - 1.5 * t, t)
+        return math.pi * (r_race ** 2 - max(r_race - t, 0.0) ** 2) * 4 * wg.contact_semi_axes_mm[0], t
+    e = params.ewg_drive   # ring-compression: the plane section (toothed rim), per mm of depth
+    r_in = 0.5 * e.module_mm * e.flexspline_teeth
+    r_out = r_in + e.dedendum_coefficient * e.module_mm + e.rim_thickness_mm + 2.25 * e.module_mm
+    return math.pi * (r_out ** 2 - r_in ** 2), e.rim_thickness_mm
+
+
+def estimate(study: str, params, mesh_size_mm: float | None, quick: bool = False) -> MeshEstimate:
+    """Elements of ``study``'s finest mesh at ``mesh_size_mm`` (None: the study's default)."""
+    if study not in ELEMENTS_PER_CELL:
+        raise ValueError(f"no element estimate for study {study!r}")   # a registry/budget mismatch, not input
+    h = float(mesh_size_mm) if mesh_size_mm else _default_h_mm(study, params, quick)
+    volume, wall = _volume_and_wall(study, params)
+    # the ring is meshed as a plane section: triangles per min(h, t) * h of its area
+    cells = volume / (min(h, wall) * h) if study == "ring-compression" else volume / (min(h, wall) * h * h)
+    return MeshEstimate(study, h, wall, volume, int(min(ELEMENTS_PER_CELL[study] * cells, 1e18)))
+
+
+def check_budget(study: str, params, mesh_size_mm: float | None, quick: bool = False,
+                 flag: str = "--mesh-size-mm") -> MeshEstimate:
+    """Refuse (InputError naming ``flag``, the estimate and the budget) a run whose finest mesh would
+    exceed ``MAX_ELEMENTS``; returns the estimate when it fits."""
+    est = estimate(study, params, mesh_size_mm, quick)
+    if est.elements > MAX_ELEMENTS:
+        raise InputError(flag, mesh_size_mm if mesh_size_mm else f"default h = {est.h_mm:.3g} mm",
+                         f"{study} would need about {est.elements:.3g} elements on its finest mesh (part volume "
+                         f"{est.volume_mm3:.3g} mm^3, h = {est.h_mm:.3g} mm, wall {est.wall_mm:.3g} mm); the budget "
+                         f"is {MAX_ELEMENTS:,}: " + ("choose a larger --mesh-size-mm or a smaller part" if flag == "--mesh-size-mm"
+                                                      else "the part is too large for its wall to mesh"))
+    return est
