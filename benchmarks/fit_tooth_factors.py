@@ -3,7 +3,7 @@
     .venv/bin/python benchmarks/fit_tooth_factors.py            # the fitting set (Z_R = 100), ~1 min
     .venv/bin/python benchmarks/fit_tooth_factors.py --held-out # rims the model was NOT fitted on
 
-Each rim runs ``fea/ring_compression.run(quick=True)`` (finest toothed mesh delta/1.5) and prints one
+Each rim runs ``run_study("ring-compression", quick=True)`` (finest toothed mesh delta/1.5) and prints one
 FitRow; the fitting set's constants are then printed next to the stored ones, and for --held-out the
 model's error on each rim.
 """
@@ -13,7 +13,7 @@ import argparse
 import warnings
 
 from strainwave.analytic import tooth_factors as tf
-from strainwave.fea import ring_compression
+from strainwave.fea.studies import run_study
 from strainwave.params import load_params
 
 FIT_RIMS = ((100, 0.75), (100, 1.1), (100, 1.5), (100, 2.0), (100, 3.0))
@@ -24,10 +24,10 @@ def fea_row(teeth: int, delta_over_m: float, fillet: float = tf.MODEL_ROOT_FILLE
     p = load_params().with_value("ewg_drive.flexspline_teeth", teeth)
     p = p.with_value("ewg_drive.rim_thickness_ratio", delta_over_m / teeth)
     p = p.with_value("ewg_drive.root_fillet_coefficient", fillet)
-    r = ring_compression.run(p, quick=True)
+    r = run_study("ring-compression", p, quick=True)
     e = p.ewg_drive
     return tf.FitRow(teeth, e.module_mm, delta_over_m, tf.tooth_height_mm(1.0, e.dedendum_coefficient),
-                     r.meta["tooth_stiffness_ratio"], r["tooth_influence"].value, r["root_stress_factor"].value)
+                     r["toothed_force_for_W0_N"].value / r["force_for_W0_N"].value, r["tooth_influence"].value, r["root_stress_factor"].value)
 
 
 def main() -> None:

@@ -1,9 +1,11 @@
 """Study `bearing-ring` (seed 000): radial compliance of the wave-generator bearing inner ring, with and
 without the semi-elliptical surface crack at the ball contact.
 
-Load: F_r = 1.15 k_r T / d1 (seed 000) as a Hertzian pressure p = p0 sqrt(1 - (s/b')^2 - (z'/a')^2),
-p0 = 3 F_r/(2 pi a' b') (seed 000), on the race around the contact centre (+x); a' along the ring axis
-(across the race), b' along the circumference (rolling direction). The resultant is made exactly F_r.
+Load: the radial force F_r, an input (the registry computes seed 000's F_r = 1.15 k_r T / d1 in
+``analytic/study_loads.py``; fea/ holds no closed form), as a Hertzian pressure
+p = p0 sqrt(1 - (s/b')^2 - (z'/a')^2), p0 = 3 F_r/(2 pi a' b'), on the race around the contact centre (+x);
+a' along the ring axis (across the race), b' along the circumference (rolling direction). The resultant is
+made exactly F_r.
 Support: the whole bore fixed. The inner ring sits on the wave generator's cam, which is far stiffer
 than the ring locally and carries it all round; a bonded bore is that rigid-cam limit (it also removes
 every rigid-body mode without a point constraint that would add its own compliance).
@@ -15,37 +17,33 @@ cancels in the difference.
 """
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass
 from pathlib import Path
+from typing import ClassVar, Mapping
 
 import numpy as np
 
-from ..errors import StageError
+from ..errors import InputError, StageError
 from .assembly import Lame, elasticity_stiffness, scalar_basis
-from .convergence import grid_convergence
-from .refinement import CRACK_ORDER_BOUNDS, DEFAULT_RATIO
-from .fields import field_info, write_solid_fields
-from .facet_traction import facet_traction_load
 from .crack_contact import crack_pairs, solve_with_contact
-from .crack_seam import open_crack_for
+from .crack_seam import open_crack_for, seam_crack
+from .facet_traction import facet_traction_load
+from .fields import field_info, write_solid_fields
 from .mesh_data import group_dofs, to_skfem
 from .mesh_isolated import mesh_part_isolated
 from .meshing import MeshingFailed, Refine
-from .result import Quantity, StudyResult
+from .refinement import CRACK_ORDER_BOUNDS, DEFAULT_RATIO, refinement_sizes
+from .result import CrackRecord, Load, StudyResult, Support
+from .skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, run_variant
 from .solver import solve_elasticity
 
 STUDY = "bearing-ring"
 PART = "wg-bearing-ring"
-REFINEMENT_RATIO = DEFAULT_RATIO    # every study refines at the one ratio of fea/refinement.py
 # Iterative solve (p-multigrid / AMG-CG, fea/solver.py): 3D P2 fill-in makes a sparse direct solve lose
 # early; the crossover is measured by benchmarks/bench_fea.py --compare, not asserted here.
 SOLVER = "amg"
-
-
-def radial_force_N(params) -> float:
-    """Seed 000: F_r = 1.15 k_r T / d1."""
-    return 1.15 * params.gear.force_coefficient * params.gear.output_torque_Nmm / params.flexspline_cup.pitch_diameter_mm
 
 
 def hertz_pressure(force_N: float, semi_axes_mm: tuple[float, float], centre_mm, race_radius_mm: float):
@@ -71,18 +69,6 @@ def contact_centre_mm(part, contact_name: str) -> np.ndarray:
         psi = np.arctan2(c[1], c[0])
         return np.array([r_out * np.cos(psi), r_out * np.sin(psi), c[2]])
     return np.array([r_out, 0.0, 0.5 * (bb.min.Z + bb.max.Z)])
-
-
-@dataclass(frozen=True)
-class ComplianceSolve:
-    """One bearing-ring solve: compliance, mesh facts and (optionally) the field for VTU output."""
-
-    compliance_mm_per_N: float
-    quality: object
-    timings_s: dict
-    solver: dict
-    field: tuple = ()          # (MeshData, SkfemMesh, u) when asked for
-    size_factor: float = 1.0   # sizes scaled by this after a failed gmsh attempt (mesh_isolated)
 
 
 def ring_refine(part, params, *, size_mm, refine_points, local_mm, contact_mm=None) -> list[Refine]:
@@ -148,40 +134,6 @@ def mesh_ring(part, params, *, size_mm, order, refine_points, local_mm, contact_
         raise StageError("mesh", STUDY, f"h = {size_mm:g} mm: {exc}") from exc
 
 
-def solve_compliance(part, params, lame, *, size_mm, order, refine_points, local_mm, force_N,
-                     contact_mm=None, method=SOLVER, keep_field=False) -> ComplianceSolve:
-    """Mesh, load (Hertzian patch, resultant F_r), fix the bore, solve once.
-
-    ``contact_mm`` is the element size over the contact ellipse (default min(size, b'/3)); the study
-    scales it with the global size so that all three refinements refine the contact zone too."""
-    t0 = time.perf_counter()
-    md, size_factor = mesh_ring(part, params, size_mm=size_mm, order=order, refine_points=refine_points,
-                                local_mm=local_mm, contact_mm=contact_mm)
-    t1 = time.perf_counter()
-    c, info, field = compliance_on_mesh(md, part, params, lame, force_N=force_N, method=method, keep_field=keep_field)
-    t2 = time.perf_counter()
-    return ComplianceSolve(c, md.quality, {"mesh": t1 - t0, "assemble+solve": t2 - t1}, info, field, size_factor)
-
-
-def seam_compliances(part, params, lame, *, size_mm, order, refine_points, local_mm, force_N, contact_mm=None,
-                     keep_field=False) -> tuple[ComplianceSolve, ComplianceSolve]:
-    """Mesh the seam part ONCE; (uncracked, cracked) solves on that mesh as is and with the crack opened."""
-    t0 = time.perf_counter()
-    md, size_factor = mesh_ring(part, params, size_mm=size_mm, order=order, refine_points=refine_points,
-                                local_mm=local_mm, contact_mm=contact_mm)
-    t_mesh = time.perf_counter() - t0
-    out = []
-    for m, contact in ((md, False), (open_crack_for(md, STUDY), True)):
-        t1 = time.perf_counter()
-        # the opened crack's faces may separate but not interpenetrate (crack_contact)
-        c, info, field = compliance_on_mesh(m, part, params, lame, force_N=force_N, keep_field=keep_field,
-                                            contact=contact)
-        out.append(ComplianceSolve(c, m.quality, {"mesh": t_mesh, "assemble+solve": time.perf_counter() - t1},
-                                   info, field, size_factor))
-        t_mesh = 0.0
-    return out[0], out[1]
-
-
 # Crack-front size floor as a fraction of the finest global size (see crack_front_size_mm). None: the
 # semi-elliptical front is short (~ pi (a + c) / 2), so a/3 is affordable at any depth. Measured (seam,
 # h = 3.33 mm, 3 refinements x 2 solves, 2 shared cores): a = 1.04 mm: 79k dofs, 39 s, delta C
@@ -213,118 +165,135 @@ def vtu_paths(vtu) -> tuple[Path, Path]:
     return v.with_name(f"{v.stem}_cracked.vtu"), v.with_name(f"{v.stem}_uncracked.vtu")
 
 
-def write_fields(path, field, lame, info=None) -> Path:
-    """Displacement, von Mises and the stress tensor at the mesh nodes, as VTU (``info``: FieldData)."""
-    return write_solid_fields(path, *field, lame, info=info)
+COMPLIANCE = "radial_compliance_mm_per_N"
+CRACKED = "cracked_radial_compliance_mm_per_N"
+DELTA = "delta_radial_compliance_mm_per_N"
 
 
-def _info(params, force_N: float) -> dict:
-    return field_info(STUDY, f"radial force F = {force_N:g} N as Hertz pressure on 'contact'", params.material)
+def default_size_mm(params, quick: bool) -> float:
+    """Finest global size: t_i / 3 (t_i / 2 with --quick)."""
+    return params.wave_generator.bearing_inner_ring_thickness_mm / (2.0 if quick else 3.0)
 
 
-def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, progress=lambda m: None,
-        quick=False) -> StudyResult:
-    """Radial compliance on three meshes (GCI), cracked and uncracked, and their difference per mesh.
+@dataclass(frozen=True)
+class BearingRing(StudyVariant):
+    """The skeleton's hooks for the bearing ring: one 3D series. Every length of the size field scales with
+    the refinement: global size h, contact size min(h, b'/3) r^k and crack-front size a/3 r^k, so the GCI
+    covers the contact zone and the crack front too. With a crack each mesh carries the seam and is solved
+    closed and opened (faces in frictionless contact)."""
 
-    Every length of the size field scales with the refinement: global size h, contact size
-    min(h, b'/3) r^k and crack-front size a/3 r^k, so the GCI covers the contact zone too."""
-    if crack_depth_mm is None:      # None means uncracked, as in every study
-        return _run_uncracked(params, mesh_size_mm=mesh_size_mm, order=order, vtu=vtu, progress=progress,
-                              quick=quick)
-    t_start = time.perf_counter()
-    a = crack_depth_mm
-    force, mat, lame, b_circ, fine, sizes = _setup(params, mesh_size_mm, quick)
-    t0 = time.perf_counter()
-    seam = build_seam_part(params, a)
-    timings = {"geometry": time.perf_counter() - t0}
-    front = list(seam.crack_front_mm)
-    c_unc, c_cr, qual, info, fields_fine, factors, meshes = [], [], None, None, {}, {}, []
-    h_used = []     # sizes as meshed (a gmsh retry scales them a little)
-    for k, h in enumerate(sizes):
-        scale = REFINEMENT_RATIO ** k
-        local = crack_front_size_mm(a, fine) * scale      # the crack-tip size refines with the mesh
-        contact = min(fine, b_circ / 3.0) * scale
-        progress(f"{STUDY}: a = {a:g} mm, h = {h:.3g} mm: one mesh, solved uncracked and with the crack opened")
-        unc, cr = seam_compliances(seam, params, lame, size_mm=h, order=order, refine_points=front, local_mm=local,
-                                   force_N=force, contact_mm=contact, keep_field=(k == 0 and vtu is not None))
-        c_unc.append(unc.compliance_mm_per_N)
-        c_cr.append(cr.compliance_mm_per_N)
-        meshes.append(unc.quality)
-        factors[f"h{k}"] = unc.size_factor
-        h_used.append(h * unc.size_factor)
-        for label, sol in (("uncracked", unc), ("cracked", cr)):
-            for key, v in sol.timings_s.items():
-                timings[f"{key}_{label}"] = timings.get(f"{key}_{label}", 0.0) + v
-            if k == 0:
-                fields_fine[label] = sol.field
-        if k == 0:   # the uncracked mesh's facts; the opened one adds the duplicated crack nodes
-            qual, info = unc.quality, dict(unc.solver, dofs_total=unc.quality.dofs, dofs_cracked=cr.quality.dofs,
-                                           **{k: v for k, v in cr.solver.items() if k.startswith(('contact', 'compliance'))})
-    fields = ()
-    if vtu is not None:
+    study: ClassVar[str] = STUDY
+    params: object
+    order: int
+    h_fine_mm: float
+    force_N: float
+    crack_depth_mm: float | None
+
+    @property
+    def lame(self) -> Lame:
+        mat = self.params.material
+        return Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio)
+
+    def build(self):
+        if self.crack_depth_mm is None:
+            return build_plain_part(self.params)
+        return build_seam_part(self.params, self.crack_depth_mm)
+
+    def series(self) -> tuple[SeriesPlan, ...]:
+        return (SeriesPlan("solid", refinement_sizes(self.h_fine_mm, DEFAULT_RATIO)),)
+
+    def _local_sizes_mm(self, k: int) -> tuple[float, float]:
+        """(contact size, crack-front size) on refinement k: both refine with the global size."""
+        scale = DEFAULT_RATIO ** k
+        b_circ = self.params.wave_generator.contact_semi_axes_mm[1]
+        front = crack_front_size_mm(self.crack_depth_mm, self.h_fine_mm) if self.crack_depth_mm else self.h_fine_mm
+        return min(self.h_fine_mm, b_circ / 3.0) * scale, front * scale
+
+    def solve(self, part, series, h_mm, k, keep_fields, progress) -> MeshSolve:
+        contact_mm, local_mm = self._local_sizes_mm(k)
+        cracked = self.crack_depth_mm is not None
+        what = f"a = {self.crack_depth_mm:g} mm: one mesh, solved uncracked and with the crack opened" if cracked \
+            else "uncracked"
+        progress(f"{STUDY}: {what}, h = {h_mm:.3g} mm")
         t0 = time.perf_counter()
-        p_cr, p_unc = vtu_paths(vtu)
-        fields = (write_fields(p_cr, fields_fine["cracked"], lame, _info(params, force)),
-                  write_fields(p_unc, fields_fine["uncracked"], lame, _info(params, force)))
-        timings["vtu"] = time.perf_counter() - t0
-    delta = [cc - cu for cc, cu in zip(c_cr, c_unc)]
-    q = {"radial_compliance_mm_per_N": Quantity("radial_compliance_mm_per_N", c_unc[0], "mm/N",
-                                                grid_convergence(h_used, c_unc)),
-         "cracked_radial_compliance_mm_per_N": Quantity("cracked_radial_compliance_mm_per_N", c_cr[0], "mm/N",
-                                                        grid_convergence(h_used, c_cr)),
-         "delta_radial_compliance_mm_per_N": Quantity("delta_radial_compliance_mm_per_N", delta[0], "mm/N",
-                                                      grid_convergence(h_used, delta, min_order=CRACK_ORDER_BOUNDS[0],
-                                                                       max_order=CRACK_ORDER_BOUNDS[1]))}
-    dq = q["delta_radial_compliance_mm_per_N"]
-    timings["total"] = time.perf_counter() - t_start
-    meta = {"radial_force_N": force, "crack_depth_mm": a,
-            "load": "Hertzian ellipsoidal pressure on the race, a' axial x b' circumferential, p0 = 3F/(2 pi a'b')",
-            "support": "bore fixed (rigid cam, bonded)", "compliance": "work-conjugate f.u/F^2",
-            "seed_uncracked_stiffness_N_per_mm": params.wave_generator.uncracked_radial_stiffness_N_per_mm,
-            "fea_uncracked_stiffness_N_per_mm": 1.0 / c_unc[0],
-            # |delta| below its GCI band means the crack is below the resolution of these meshes
-            "delta_resolved": bool(abs(dq.value) > dq.uncertainty),
-            "mesh_sizes_mm": sizes, "contact_sizes_mm": [min(fine, b_circ / 3.0) * REFINEMENT_RATIO ** k for k in range(3)],
-            "crack_front_sizes_mm": [crack_front_size_mm(a, fine) * REFINEMENT_RATIO ** k for k in range(3)],
-            "crack_model": "seam (one mesh per refinement, solved closed and opened)",
-            "mesh_size_factors": factors, "solver": info, "part": {k: v for k, v in (seam.meta or {}).items() if isinstance(v, (int, float, str))},
-            "E_MPa": mat.youngs_modulus_MPa, "nu": mat.poisson_ratio, "G_implied_MPa": mat.implied_shear_modulus_MPa}
-    return StudyResult(STUDY, q, qual, timings, fields, meta, tuple(meshes))
+        md, size_factor = mesh_ring(part, self.params, size_mm=h_mm, order=self.order,
+                                    refine_points=list(part.crack_front_mm) if cracked else (),
+                                    local_mm=local_mm if cracked else h_mm, contact_mm=contact_mm)
+        timings = {"mesh": time.perf_counter() - t0}
+        t1 = time.perf_counter()
+        c0, info, field0 = compliance_on_mesh(md, part, self.params, self.lame, force_N=self.force_N,
+                                              keep_field=keep_fields)
+        timings["assemble+solve_uncracked"] = time.perf_counter() - t1
+        values, fields, solver = {COMPLIANCE: c0}, {"uncracked": field0}, info
+        if cracked:
+            t1 = time.perf_counter()
+            # the opened crack's faces may separate but not interpenetrate (crack_contact)
+            opened = open_crack_for(md, STUDY)
+            c1, info1, field1 = compliance_on_mesh(opened, part, self.params, self.lame, force_N=self.force_N,
+                                                   keep_field=keep_fields, contact=True)
+            timings["assemble+solve_cracked"] = time.perf_counter() - t1
+            values[CRACKED] = c1
+            fields["cracked"] = field1
+            # the uncracked mesh's facts; the opened one adds the duplicated crack nodes
+            solver = dict(info, dofs_total=md.quality.dofs, dofs_cracked=opened.quality.dofs,
+                          **{key: v for key, v in info1.items() if key.startswith(("contact", "compliance"))})
+        solver = dict(solver, size_factor=size_factor)
+        return MeshSolve(h_mm * size_factor, values, md.quality, timings, solver,
+                         fields if keep_fields else {})
+
+    def quantities(self, series: Mapping[str, Series]) -> dict:
+        s = series["solid"]
+        q = {COMPLIANCE: s.converged(COMPLIANCE, "mm/N")}
+        if self.crack_depth_mm is not None:
+            q[CRACKED] = s.converged(CRACKED, "mm/N")
+            q[DELTA] = s.converged(DELTA, "mm/N", [cc - cu for cc, cu in zip(s.values(CRACKED), s.values(COMPLIANCE))],
+                                   order_bounds=CRACK_ORDER_BOUNDS)
+        return q
+
+    def load(self, part) -> Load:
+        a_ax, b_circ = self.params.wave_generator.contact_semi_axes_mm
+        on = "contact" if "contact" in part.named_faces else "race"      # the patch compliance_on_mesh loads
+        return Load("wave generator radial force F_r", self.force_N, "N", (on,),
+                    "Hertzian ellipsoidal pressure p0 sqrt(1 - (s/b')^2 - (z'/a')^2), p0 = 3 F_r/(2 pi a' b'), "
+                    "a' axial x b' circumferential, on the race",
+                    (("semi_axis_axial_mm", float(a_ax)), ("semi_axis_circumferential_mm", float(b_circ))))
+
+    def supports(self) -> tuple[Support, ...]:
+        return (Support(("bore",), "fixed (the wave generator's cam: rigid and bonded)"),)
+
+    def crack(self, part) -> CrackRecord | None:
+        if self.crack_depth_mm is None:
+            return None
+        return seam_crack(self.crack_depth_mm, part, "at the Hertz centre, frictionless crack-face contact")
+
+    def write_fields(self, series: Mapping[str, Series], vtu: Path, load: Load) -> tuple[Path, ...]:
+        fields = series["solid"].finest.fields
+        info = field_info(STUDY, load.describe(), self.params.material)
+        if self.crack_depth_mm is None:
+            return (write_solid_fields(vtu, *fields["uncracked"], self.lame, info=info),)
+        return tuple(write_solid_fields(path, *fields[label], self.lame, info=info)
+                     for path, label in zip(vtu_paths(vtu), ("cracked", "uncracked")))
+
+    def meta(self, part, series: Mapping[str, Series]) -> dict:
+        s = series["solid"]
+        mat = self.params.material
+        out = {"compliance": "work-conjugate f.u/F^2",
+               "seed_uncracked_stiffness_N_per_mm": self.params.wave_generator.uncracked_radial_stiffness_N_per_mm,
+               "fea_uncracked_stiffness_N_per_mm": 1.0 / s.finest.values[COMPLIANCE],
+               "mesh_sizes_mm": list(s.h_mm), "contact_sizes_mm": [self._local_sizes_mm(k)[0] for k in range(3)],
+               "mesh_size_factors": {f"h{k}": m.solver["size_factor"] for k, m in enumerate(s.solves)},
+               "E_MPa": mat.youngs_modulus_MPa, "nu": mat.poisson_ratio, "G_implied_MPa": mat.implied_shear_modulus_MPa}
+        if self.crack_depth_mm is not None:
+            out["crack_front_sizes_mm"] = [self._local_sizes_mm(k)[1] for k in range(3)]
+            out["part"] = {k: v for k, v in (part.meta or {}).items() if isinstance(v, (int, float, str))}
+        return out
 
 
-def _setup(params, mesh_size_mm, quick):
-    """(F_r, material, Lame, b', finest size, three sizes finest first) shared by the cracked and uncracked runs."""
-    mat = params.material
-    t_i = params.wave_generator.bearing_inner_ring_thickness_mm
-    fine = mesh_size_mm if mesh_size_mm else t_i / (2.0 if quick else 3.0)
-    return (radial_force_N(params), mat, Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio),
-            params.wave_generator.contact_semi_axes_mm[1], fine, [fine * REFINEMENT_RATIO ** k for k in range(3)])
-
-
-def _run_uncracked(params, *, mesh_size_mm, order, vtu, progress, quick) -> StudyResult:
-    """The uncracked ring alone: radial compliance on three meshes (same sizes as the cracked run)."""
-    t_start = time.perf_counter()
-    force, mat, lame, b_circ, fine, sizes = _setup(params, mesh_size_mm, quick)
-    part = build_plain_part(params)
-    timings = {"geometry": time.perf_counter() - t_start}
-    sols = []
-    for k, h in enumerate(sizes):
-        progress(f"{STUDY}: uncracked, h = {h:.3g} mm")
-        sols.append(solve_compliance(part, params, lame, size_mm=h, order=order, refine_points=(), local_mm=h,
-                                     force_N=force, contact_mm=min(fine, b_circ / 3.0) * REFINEMENT_RATIO ** k,
-                                     keep_field=(k == 0 and vtu is not None)))
-        for key, v in sols[-1].timings_s.items():
-            timings[key] = timings.get(key, 0.0) + v
-    c = [s.compliance_mm_per_N for s in sols]
-    h_used = [h * s.size_factor for h, s in zip(sizes, sols)]
-    fields = (write_fields(vtu, sols[0].field, lame, _info(params, force)),) if vtu is not None else ()
-    q = {"radial_compliance_mm_per_N": Quantity("radial_compliance_mm_per_N", c[0], "mm/N",
-                                                grid_convergence(h_used, c))}
-    timings["total"] = time.perf_counter() - t_start
-    meta = {"radial_force_N": force, "crack_depth_mm": None,
-            "load": "Hertzian ellipsoidal pressure on the race, a' axial x b' circumferential, p0 = 3F/(2 pi a'b')",
-            "support": "bore fixed (rigid cam, bonded)", "compliance": "work-conjugate f.u/F^2",
-            "seed_uncracked_stiffness_N_per_mm": params.wave_generator.uncracked_radial_stiffness_N_per_mm,
-            "fea_uncracked_stiffness_N_per_mm": 1.0 / c[0], "mesh_sizes_mm": sizes, "solver": sols[0].solver,
-            "E_MPa": mat.youngs_modulus_MPa, "nu": mat.poisson_ratio, "G_implied_MPa": mat.implied_shear_modulus_MPa}
-    return StudyResult(STUDY, q, sols[0].quality, timings, fields, meta, tuple(s.quality for s in sols))
+def run(params, *, force_N: float, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None,
+        progress=lambda m: None, quick=False) -> StudyResult:
+    """Radial compliance at the radial force ``force_N`` on three meshes (GCI); with a crack also the
+    cracked compliance and their difference on each mesh. None means uncracked, as in every study."""
+    if not (isinstance(force_N, (int, float)) and math.isfinite(force_N) and force_N > 0):
+        raise InputError("force_N", force_N, "the bearing's radial force must be finite and > 0 N")
+    h = mesh_size_mm or default_size_mm(params, quick)
+    return run_variant(BearingRing(params, order, h, float(force_N), crack_depth_mm), vtu=vtu, progress=progress)

@@ -17,6 +17,7 @@ from scipy.spatial import cKDTree
 
 from ..errors import StageError
 from .mesh_data import MeshData
+from .result import CrackRecord
 
 _TET_FACES = ((0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3))
 _TRI_EDGES = ((0, 1, 3), (1, 2, 4), (2, 0, 5))       # vertex a, vertex b, mid-node column (triangle6)
@@ -139,3 +140,9 @@ def open_crack_for(md: MeshData, study: str, group: str = "crack") -> MeshData:
         return open_crack(md, group)
     except ValueError as exc:
         raise StageError("mesh", study, str(exc)) from exc
+
+
+def seam_crack(depth_mm: float, part, what: str) -> CrackRecord:
+    """A crack solved as a 3D seam; its plane's z (from the part) centres the report's close-up."""
+    return CrackRecord(depth_mm, f"3D seam ({what}): one mesh per refinement, solved closed and opened",
+                       part.meta.get("crack_z_mm"))

@@ -8,18 +8,22 @@ d1^3), published with 0.1 and the seed's mu; corrected with pi/32; k_G = 0.83 fo
 """
 from __future__ import annotations
 
-import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import ClassVar, Mapping
 
 from ..errors import InputError
 from .assembly import Lame
+from .crack_seam import open_crack_for, seam_crack
 from .fields import field_info, write_solid_fields
-from .crack_seam import open_crack_for
 from .meshing import Refine
 from .refinement import DEFAULT_RATIO, crack_flexibility_quantities, crack_front_size_mm, refinement_sizes
-from .result import StudyResult
+from .result import CrackRecord, Load, StudyResult, Support
+from .skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, run_variant
 from .static import StaticSolution, solve_static
 from .study_mesh import mesh_for_study
-from .torsion_load import mean_rotation_rad, moment_arm_mm3, uniform_tangential_traction
+from .torsion_load import (clamped, mean_rotation_rad, moment_arm_mm3, torque_load, torsion_meta,
+                           uniform_tangential_traction)
 
 STUDY = "cup-torsion"
 UNIT = "rad/(N*mm)"
@@ -68,19 +72,82 @@ def solve_mesh(md, params, *, progress=lambda m: None) -> tuple[float, StaticSol
     return mean_rotation_rad(sol, "loaded") / torque, sol, torque
 
 
-def solve_once(part, params, *, h_mm: float, order: int, refine=(), progress=lambda m: None
-               ) -> tuple[float, StaticSolution, float, float]:
-    """(lambda_f, solution for unit shear, applied torque of the unit shear, mesh time)."""
-    md, t_mesh = mesh_for_study(part, study=STUDY, h_mm=h_mm, order=order, refine=refine, progress=progress)
-    return (*solve_mesh(md, params, progress=progress), t_mesh)
-
-
 def _build(params, depth_mm, teeth):
     from strainwave.geometry.part import CrackModel
     from strainwave.geometry.parts import build_part
     # a crack is the zero-width seam (FEA on one mesh, cracked and uncracked); the CAD slot is for STEP
     model = CrackModel.SEAM if depth_mm is not None else CrackModel.SLOT
     return build_part("flexspline-cup", params, crack_depth_mm=depth_mm, teeth=teeth, crack_model=model)
+
+
+FLEX = "flexibility_rad_per_Nmm"
+CRACKED = "cracked_flexibility_rad_per_Nmm"
+
+
+@dataclass(frozen=True)
+class CupTorsion(StudyVariant):
+    """The skeleton's hooks for the cup: one 3D series; with a crack each mesh carries the seam and is
+    solved closed and opened. The load is a unit shear, rescaled (linear problem)."""
+
+    study: ClassVar[str] = STUDY
+    params: object
+    order: int
+    h_fine_mm: float
+    ratio: float
+    crack_depth_mm: float | None
+    teeth: bool
+
+    def build(self):
+        # the seam part IS the uncracked cup when solved closed
+        return _build(self.params, self.crack_depth_mm, self.teeth)
+
+    def series(self) -> tuple[SeriesPlan, ...]:
+        return (SeriesPlan("solid", refinement_sizes(self.h_fine_mm, self.ratio)),)
+
+    def solve(self, part, series, h_mm, k, keep_fields, progress) -> MeshSolve:
+        cracked = self.crack_depth_mm is not None
+        refine = (crack_refine(part, h_mm, self.crack_depth_mm, h_fine_mm=self.h_fine_mm),) if cracked else ()
+        md, t_mesh = mesh_for_study(part, study=STUDY, h_mm=h_mm, order=self.order, refine=refine, progress=progress)
+        # with a crack: the same mesh solved as is (embedded surface closed) and opened
+        meshes = [(FLEX, md)] + ([(CRACKED, open_crack_for(md, STUDY))] if cracked else [])
+        values, sols = {}, []
+        for name, mdk in meshes:
+            values[name], sol, torque = solve_mesh(mdk, self.params, progress=progress)
+            sols.append(sol)
+        timings = {"mesh": t_mesh, "assembly": sum(s.timings_s["assembly"] for s in sols),
+                   "solve": sum(s.timings_s["solve"] for s in sols)}
+        last = sols[-1]
+        return MeshSolve(h_mm, values, last.md.quality, timings, last.solver.to_dict(),
+                         {"solution": last, "unit_shear_torque_Nmm": torque} if keep_fields else {})
+
+    def quantities(self, series: Mapping[str, Series]) -> dict:
+        s = series["solid"]
+        return crack_flexibility_quantities(s.h_mm, s.values(FLEX),
+                                            s.values(CRACKED) if self.crack_depth_mm is not None else None, UNIT)
+
+    def load(self, parts) -> Load:
+        return torque_load(self.params, "uniform tangential shear on the toothed band, moment T")
+
+    def supports(self) -> tuple[Support, ...]:
+        return clamped("hub face")
+
+    def crack(self, part) -> CrackRecord | None:
+        if self.crack_depth_mm is None:
+            return None
+        return seam_crack(self.crack_depth_mm, part, "the seed's through-wall 45 deg crack in the tube")
+
+    def write_fields(self, series: Mapping[str, Series], vtu: Path, load: Load) -> tuple[Path, ...]:
+        finest = series["solid"].finest.fields
+        sol = finest["solution"]
+        scale = self.params.gear.output_torque_Nmm / finest["unit_shear_torque_Nmm"]   # fields at the design T
+        return (write_solid_fields(vtu, sol.md, sol.sk, sol.u * scale, sol.lame,
+                                   info=field_info(STUDY, load.describe(), self.params.material)),)
+
+    def meta(self, part, series: Mapping[str, Series]) -> dict:
+        out = dict(torsion_meta(self.params, self.order, self.ratio, series["solid"].h_mm), teeth=self.teeth)
+        if self.crack_depth_mm is not None:
+            out["crack_part"] = {k: v for k, v in part.meta.items() if isinstance(v, (int, float, str))}
+        return out
 
 
 def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, progress=lambda m: None,
@@ -90,45 +157,4 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
     h = mesh_size_mm or default_size_mm(params, quick)
     if h >= fc.length_mm / 4:
         raise InputError("--mesh-size-mm", h, f"must be < L/4 = {fc.length_mm / 4:g} mm for the cup")
-    sizes = refinement_sizes(h, ratio)
-    timings = {"geometry": 0.0, "mesh": 0.0, "assembly": 0.0, "solve": 0.0}
-    t0 = time.perf_counter()
-    cracked = _build(params, crack_depth_mm, teeth) if crack_depth_mm is not None else None
-    plain = _build(params, None, teeth) if cracked is None else cracked   # the seam part IS the uncracked cup
-    timings["geometry"] = time.perf_counter() - t0
-    lam0, lam1, finest, meshes = [], [], None, []
-    for k, hk in enumerate(reversed(sizes)):
-        progress(f"{STUDY}: refinement {k + 1}/3, h = {hk:.3g} mm")
-        refine = (crack_refine(cracked, hk, crack_depth_mm, h_fine_mm=sizes[0]),) if cracked is not None else ()
-        md, tm = mesh_for_study(plain, study=STUDY, h_mm=hk, order=order, refine=refine, progress=progress)
-        timings["mesh"] += tm
-        # with a crack: the same mesh solved as is (embedded surface closed) and opened
-        cases = [(md, lam0)] + ([(open_crack_for(md, STUDY), lam1)] if cracked is not None else [])
-        for mdk, out in cases:
-            lam, sol, torque = solve_mesh(mdk, params, progress=progress)
-            out.append(lam)
-            timings["assembly"] += sol.timings_s["assembly"]
-            timings["solve"] += sol.timings_s["solve"]
-            finest = (sol, torque)
-        meshes.append(finest[0].md.quality)     # the mesh the result's ``mesh`` states, per refinement
-    lam0, lam1 = lam0[::-1], lam1[::-1]
-    quantities = crack_flexibility_quantities(sizes, lam0, lam1 if cracked is not None else None, UNIT)
-    sol, torque = finest
-    fields = ()
-    if vtu is not None:
-        scale = params.gear.output_torque_Nmm / torque       # report fields at the design torque T
-        fields = (write_solid_fields(vtu, sol.md, sol.sk, sol.u * scale, sol.lame,
-                                     info=field_info(STUDY, f"torque T = {params.gear.output_torque_Nmm:g} N*mm as "
-                                                     "tangential shear on 'loaded' (band), 'fixed' clamped",
-                                                     params.material)),)
-    mat = params.material
-    meta = {"torque_Nmm": params.gear.output_torque_Nmm, "teeth": teeth,
-            "load": "uniform tangential shear on 'loaded' (band), moment T", "bc": "'fixed' (hub face) clamped",
-            "twist": "area-weighted mean rotation of 'loaded'",
-            "G_fea_MPa": mat.implied_shear_modulus_MPa, "mu_seed_MPa": mat.shear_modulus_MPa,
-            "order": order, "refinement_ratio": ratio, "mesh_sizes_mm": list(sizes),
-            "solver": sol.solver.to_dict(), "crack_depth_mm": crack_depth_mm}
-    if cracked is not None:
-        meta["crack"] = {k: v for k, v in cracked.meta.items() if isinstance(v, (int, float, str))}
-    timings["total"] = time.perf_counter() - t0
-    return StudyResult(STUDY, quantities, sol.md.quality, timings, fields, meta, tuple(meshes[::-1]))
+    return run_variant(CupTorsion(params, order, h, ratio, crack_depth_mm, teeth), vtu=vtu, progress=progress)

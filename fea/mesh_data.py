@@ -4,7 +4,8 @@
 edges 01, 12, 20, 30, 32, 31; triangle6: 01, 12, 20). ``to_skfem`` turns it into a scikit-fem mesh whose
 P2 mid-edge dofs sit exactly on gmsh's (curved, geometry-following) mid nodes, and returns the map from
 MeshData node index to scikit-fem scalar dof so boundary groups and fields can be translated.
-Measured ``to_skfem`` (curved P2 shaft): 0.43-0.54 -> 0.08-0.10 s at 224k dofs, 2.0-2.2 -> 0.23 s at 957k.
+Measured ``to_skfem`` (curved P2 shaft): 0.43-0.54 -> 0.08-0.10 s at 224k dofs, 2.0-2.2 -> 0.23 s at 957k
+(part of ``benchmarks/bench_fea.py``'s ``assembly_s``).
 """
 from __future__ import annotations
 

@@ -5,12 +5,13 @@ ask for while the coarse mesh stays cheap.
 """
 from __future__ import annotations
 
-from typing import Callable, Sequence
+from typing import Callable, Sequence, TypeVar
 
 from .convergence import grid_convergence
 from .result import Quantity
 
 DEFAULT_RATIO = 1.4
+T = TypeVar("T")
 
 
 def refinement_sizes(h_fine_mm: float, ratio: float = DEFAULT_RATIO) -> tuple[float, float, float]:
@@ -44,15 +45,17 @@ def converged_quantity(name: str, unit: str, h_mm: Sequence[float], values: Sequ
     return Quantity(name, float(conv.values[0]), unit, conv)
 
 
-def on_three_meshes(solve: Callable[[float], float], h_fine_mm: float, *, ratio: float = DEFAULT_RATIO,
-                    progress: Callable[[str], None] = lambda m: None) -> tuple[tuple[float, ...], tuple[float, ...]]:
-    """Run ``solve(h)`` coarse to fine on the three sizes; returns (sizes, values) finest first."""
-    sizes = refinement_sizes(h_fine_mm, ratio)
-    values = {}
-    for k, h in enumerate(reversed(sizes)):
-        progress(f"refinement {k + 1}/3: h = {h:.3g} mm")
-        values[h] = solve(h)
-    return sizes, tuple(values[h] for h in sizes)
+def on_three_meshes(solve: Callable[[float, int], T], refinements: Sequence[float], *,
+                    progress: Callable[[str], None] = lambda m: None, label: str = "") -> tuple[T, T, T]:
+    """Run ``solve(refinement, k)`` coarse to fine over three refinements given finest first (k = 0 is the
+    finest); returns the three results finest first. The one three-mesh loop of every study."""
+    if len(refinements) != 3:
+        raise ValueError(f"three refinements are needed, got {len(refinements)}")
+    out: dict[int, T] = {}
+    for step, k in enumerate((2, 1, 0)):
+        progress(f"{label}refinement {step + 1}/3: {refinements[k]:.3g}")
+        out[k] = solve(refinements[k], k)
+    return out[0], out[1], out[2]
 
 
 def crack_flexibility_quantities(sizes, uncracked: list[float], cracked: list[float] | None,

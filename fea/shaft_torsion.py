@@ -12,20 +12,22 @@ is a difference on one mesh, free of the far field's mesh-to-mesh noise.
 from __future__ import annotations
 
 import math
-import time
-from typing import Callable, Sequence
-
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable, ClassVar, Mapping, Sequence
 
 from ..errors import InputError
 from .assembly import Lame
+from .crack_seam import open_crack_for, seam_crack
 from .fields import field_info, write_solid_fields
-from .crack_seam import open_crack_for
 from .meshing import Refine
-from .refinement import DEFAULT_RATIO, crack_flexibility_quantities, crack_front_size_mm, refinement_sizes
-from .result import StudyResult
+from .refinement import (CRACK_ORDER_BOUNDS, DEFAULT_RATIO, crack_flexibility_quantities, crack_front_size_mm,
+                         refinement_sizes)
+from .result import CrackRecord, Load, StudyResult, Support
+from .skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, run_variant
 from .static import StaticSolution, solve_static
 from .study_mesh import mesh_for_study
-from .torsion_load import mean_rotation_rad, saint_venant_traction
+from .torsion_load import clamped, mean_rotation_rad, saint_venant_traction, torque_load, torsion_meta
 
 STUDY = "shaft-torsion"
 UNIT = "rad/(N*mm)"
@@ -75,14 +77,6 @@ def solve_mesh(md, params, *, progress: Callable[[str], None] = lambda m: None) 
     return mean_rotation_rad(sol, "loaded") / T, sol
 
 
-def solve_once(part, params, *, h_mm: float, order: int, refine: Sequence[Refine] = (),
-               progress: Callable[[str], None] = lambda m: None) -> tuple[float, StaticSolution, float]:
-    """Mesh ``part`` at h, solve the torsion case, return (lambda, solution, mesh time)."""
-    md, t_mesh = mesh_for_study(part, study=STUDY, h_mm=h_mm, order=order, refine=refine, progress=progress)
-    lam, sol = solve_mesh(md, params, progress=progress)
-    return lam, sol, t_mesh
-
-
 def solve_seam(part, params, *, h_mm: float, order: int, refine: Sequence[Refine] = (),
                progress: Callable[[str], None] = lambda m: None
                ) -> tuple[float, float, StaticSolution, StaticSolution, float]:
@@ -92,15 +86,6 @@ def solve_seam(part, params, *, h_mm: float, order: int, refine: Sequence[Refine
     lam0, sol0 = solve_mesh(md, params, progress=progress)
     lam1, sol1 = solve_mesh(open_crack_for(md, STUDY), params, progress=progress)
     return lam0, lam1, sol0, sol1, t_mesh
-
-
-def _write_fields(vtu, sol: StaticSolution, params) -> tuple:
-    if vtu is None:
-        return ()
-    info = field_info(STUDY, f"torque T = {params.gear.output_torque_Nmm:g} N*mm on 'loaded', 'fixed' clamped",
-                      params.material)
-    path = write_solid_fields(vtu, sol.md, sol.sk, sol.u, sol.lame, info=info)
-    return (path,)
 
 
 def _build(params, depth_mm, crack_model=None):
@@ -125,65 +110,121 @@ def crack_model_for(params, crack_model: str) -> str:
     return crack_model if crack_model != "auto" else ("axisymmetric" if full else "seam")
 
 
+FLEX = "flexibility_rad_per_Nmm"
+CRACKED = "cracked_flexibility_rad_per_Nmm"
+DELTA = "delta_flexibility_rad_per_Nmm"
+
+
+def _timings(sols, t_mesh: float) -> dict[str, float]:
+    return {"mesh": t_mesh, "assembly": sum(s.timings_s["assembly"] for s in sols),
+            "solve": sum(s.timings_s["solve"] for s in sols)}
+
+
+@dataclass(frozen=True)
+class ShaftTorsion(StudyVariant):
+    """The skeleton's hooks for the shaft: the 3D series (uncracked, or the seam closed and opened on each
+    mesh) and, for a full circumferential crack, the (r, z) section series of the crack's added flexibility."""
+
+    study: ClassVar[str] = STUDY
+    params: object
+    order: int
+    h_fine_mm: float
+    ratio: float
+    crack_depth_mm: float | None
+    crack_model: str | None          # None (uncracked), "seam" or "axisymmetric"
+    quick: bool
+
+    @property
+    def seam(self) -> bool:
+        return self.crack_model == "seam"
+
+    def build(self):
+        return _build_seam(self.params, self.crack_depth_mm) if self.seam else _build(self.params, None)
+
+    def series(self) -> tuple[SeriesPlan, ...]:
+        plans = (SeriesPlan("solid", refinement_sizes(self.h_fine_mm, self.ratio)),)
+        if self.crack_model == "axisymmetric":
+            from .shaft_axisym_study import section_fine_mm
+            plans += (SeriesPlan("section", refinement_sizes(section_fine_mm(self.params, self.quick), self.ratio)),)
+        return plans
+
+    def solve(self, part, series, h_mm, k, keep_fields, progress) -> MeshSolve:
+        if series == "section":
+            from .shaft_axisym_study import section_fine_mm, solve_section_refinement
+            return solve_section_refinement(self.params, self.crack_depth_mm, h_mm,
+                                            section_fine_mm(self.params, self.quick), quick=self.quick,
+                                            keep_fields=keep_fields, progress=progress)
+        refine = [crack_refine(part, h_mm, self.crack_depth_mm, h_fine_mm=self.h_fine_mm)] if self.seam else []
+        md, t_mesh = mesh_for_study(part, study=STUDY, h_mm=h_mm, order=self.order, refine=refine, progress=progress)
+        lam0, sol0 = solve_mesh(md, self.params, progress=progress)
+        values, sols = {FLEX: lam0}, [sol0]
+        if self.seam:
+            # one mesh with the embedded crack surface, solved as is (uncracked) and opened (cracked):
+            # the difference then carries almost none of the far field's discretization error
+            lam1, sol1 = solve_mesh(open_crack_for(md, STUDY), self.params, progress=progress)
+            values[CRACKED] = lam1
+            sols.append(sol1)
+        last = sols[-1]
+        return MeshSolve(h_mm, values, last.md.quality, _timings(sols, t_mesh), last.solver.to_dict(),
+                         {"solution": last} if keep_fields else {})
+
+    def quantities(self, series: Mapping[str, Series]) -> dict:
+        solid = series["solid"]
+        lam0 = solid.values(FLEX)
+        if self.crack_model == "axisymmetric":
+            section = series["section"]
+            deltas = section.values(DELTA)
+            # the 3D uncracked flexibility plus the section's delta, refinement k with refinement k
+            q = crack_flexibility_quantities(solid.h_mm, lam0, [l0 + d for l0, d in zip(lam0, deltas)], UNIT)
+            q[DELTA] = section.converged(DELTA, UNIT, order_bounds=CRACK_ORDER_BOUNDS)
+            return q
+        return crack_flexibility_quantities(solid.h_mm, lam0, solid.values(CRACKED) if self.seam else None, UNIT)
+
+    def load(self, parts) -> Load:
+        return torque_load(self.params, "Saint-Venant shear traction tau = T r / J (tangential) on the end face")
+
+    def supports(self) -> tuple[Support, ...]:
+        return clamped("end face z = 0")
+
+    def crack(self, part) -> CrackRecord | None:
+        if self.crack_model is None:
+            return None
+        if self.seam:
+            return seam_crack(self.crack_depth_mm, part, "part-through circumferential crack")
+        # the cracked field is the (r, z) section (x = r, y = z): it has no z axis for a close-up to centre on
+        return CrackRecord(self.crack_depth_mm, "axisymmetric (r, z) section: exact for a full circumferential "
+                                                "crack; closed and opened on one mesh")
+
+    def write_fields(self, series: Mapping[str, Series], vtu: Path, load: Load) -> tuple[Path, ...]:
+        sol = series["solid"].finest.fields["solution"]
+        info = field_info(STUDY, load.describe(), self.params.material)
+        paths = (write_solid_fields(vtu, sol.md, sol.sk, sol.u, sol.lame, info=info),)
+        if "section" in series:
+            from .shaft_axisym_study import write_section_fields
+            paths += (write_section_fields(self.params, series["section"].finest,
+                                           vtu.with_name(vtu.stem + "_cracked.vtu")),)
+        return paths
+
+    def meta(self, part, series: Mapping[str, Series]) -> dict:
+        out = torsion_meta(self.params, self.order, self.ratio, series["solid"].h_mm)
+        if self.seam:
+            out["crack_part"] = {k: v for k, v in part.meta.items() if isinstance(v, (int, float, str))}
+        if "section" in series:
+            s = series["section"]
+            out["axisymmetric"] = {"section_sizes_mm": list(s.h_mm),
+                                   "tip_sizes_mm": [m.values["tip_size_mm"] for m in s.solves],
+                                   "section_nodes": [m.mesh.nodes for m in s.solves]}
+        return out
+
+
 def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, progress=lambda m: None,
         quick=False, ratio: float = DEFAULT_RATIO, crack_model: str = "auto") -> StudyResult:
     """Flexibility on three meshes (GCI); with a crack also delta lambda = cracked - uncracked, both on
     the same mesh: the (r, z) section for a full circumferential crack (``crack_model`` "auto" or
     "axisymmetric", exact and cheap), the 3D seam otherwise ("seam")."""
-    model = crack_model_for(params, crack_model)
-    if crack_depth_mm is not None and model == "axisymmetric":
-        from .shaft_axisym_study import run_axisymmetric
-        uncracked = run(params, mesh_size_mm=mesh_size_mm, order=order, crack_depth_mm=None, vtu=vtu,
-                        progress=progress, quick=quick, ratio=ratio)
-        return run_axisymmetric(params, uncracked, crack_depth_mm, quick=quick, ratio=ratio, vtu=vtu,
-                                progress=progress)
+    model = crack_model_for(params, crack_model) if crack_depth_mm is not None else None
     h = mesh_size_mm or default_size_mm(params, quick)
     if h >= params.output_shaft.length_mm / 2:
         raise InputError("--mesh-size-mm", h, f"must be < L_s/2 = {params.output_shaft.length_mm / 2:g} mm")
-    sizes = refinement_sizes(h, ratio)
-    timings = {"geometry": 0.0, "mesh": 0.0, "assembly": 0.0, "solve": 0.0}
-    t0 = time.perf_counter()
-    cracked = _build_seam(params, crack_depth_mm) if crack_depth_mm is not None else None
-    plain = _build(params, None) if cracked is None else None
-    timings["geometry"] = time.perf_counter() - t0
-    lam0, lam1, finest, meshes = [], [], None, []
-
-    def add(sol, tm):
-        timings["mesh"] += tm
-        timings["assembly"] += sol.timings_s["assembly"]
-        timings["solve"] += sol.timings_s["solve"]
-
-    for k, hk in enumerate(reversed(sizes)):        # coarse to fine
-        progress(f"{STUDY}: refinement {k + 1}/3, h = {hk:.3g} mm")
-        if cracked is not None:
-            # one mesh with the embedded crack surface, solved as is (uncracked) and opened (cracked):
-            # the difference then carries almost none of the far field's discretization error
-            l0, l1, sol0, sol1, tm = solve_seam(cracked, params, h_mm=hk, order=order,
-                                                refine=[crack_refine(cracked, hk, crack_depth_mm, h_fine_mm=sizes[0])],
-                                                progress=progress)
-            lam0.append(l0)
-            lam1.append(l1)
-            add(sol0, tm)
-            add(sol1, 0.0)
-            finest = sol1
-            meshes.append(sol1.md.quality)
-            continue
-        lam, sol, tm = solve_once(plain, params, h_mm=hk, order=order, progress=progress)
-        add(sol, tm)
-        finest = sol
-        meshes.append(sol.md.quality)
-        lam0.append(lam)
-    lam0, lam1 = lam0[::-1], lam1[::-1]             # finest first, like ``sizes``
-    quantities = crack_flexibility_quantities(sizes, lam0, lam1 if cracked is not None else None, UNIT)
-    fields = _write_fields(vtu, finest, params)
-    mesh_q = finest.md.quality
-    mat = params.material
-    meta = {"torque_Nmm": params.gear.output_torque_Nmm, "load": "Saint-Venant shear traction tau = T r / J on 'loaded'",
-            "bc": "'fixed' clamped (all components)", "twist": "area-weighted mean rotation of 'loaded'",
-            "G_fea_MPa": mat.implied_shear_modulus_MPa, "mu_seed_MPa": mat.shear_modulus_MPa,
-            "order": order, "refinement_ratio": ratio, "mesh_sizes_mm": list(sizes),
-            "solver": finest.solver.to_dict(), "crack_depth_mm": crack_depth_mm}
-    if cracked is not None:
-        meta["crack"] = {k: v for k, v in cracked.meta.items() if isinstance(v, (int, float, str))}
-    timings["total"] = time.perf_counter() - t0
-    return StudyResult(STUDY, quantities, mesh_q, timings, fields, meta, tuple(meshes[::-1]))
+    variant = ShaftTorsion(params, order, h, ratio, crack_depth_mm, model, quick)
+    return run_variant(variant, vtu=vtu, progress=progress)

@@ -5,7 +5,7 @@ mesh -> scikit-fem numbering (curved P2) -> element geometry -> vectorised stiff
 scikit-fem CellBasis is built on the way (``StaticSolution.basis`` makes one on first use).
 Measured assembly phase (to_skfem + geometry + K + loads; fresh process, 2 shared cores, +-1.5x), curved
 P2 output shaft: 224k dofs 3.4-3.7 -> 0.80-0.88 s, peak RSS 1.1 -> 0.51 GB; 957k dofs 19.9-20.9 ->
-5.5-6.4 s, 2.33 -> 1.77 GB.
+5.5-6.4 s, 2.33 -> 1.77 GB (``benchmarks/bench_fea.py`` measures it per size: ``assembly_s``, ``peak_GB``).
 """
 from __future__ import annotations
 

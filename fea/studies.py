@@ -1,7 +1,9 @@
 """Run one study of the registry (``strainwave/registry.py``) by name.
 
-Each study module exposes ``run(params, *, mesh_size_mm, order, crack_depth_mm, vtu, progress, quick)``
-and returns a ``StudyResult``; the import is lazy so choosing one study loads only its code.
+Each study module exposes ``run(params, *, mesh_size_mm, order, crack_depth_mm, vtu, progress, quick, **load)``
+and returns a ``StudyResult``; the import is lazy so choosing one study loads only its code. A load that
+follows from a seed formula (the bearing's F_r, the ring's F and W0) is computed by the ``analytic``
+function the registry names (``Study.load_for``) and passed in as numbers: fea/ holds no closed form.
 
 ``crack_depth_mm``: None means the study's component is uncracked, for every study. A depth is the
 crack of the study's own component: it is written into ``params`` under the registry's crack key, so it
@@ -39,4 +41,4 @@ def run_study(study: str, params, *, mesh_size_mm: float | None = None, order: i
     params = with_crack(study, params, crack_depth_mm)
     module = importlib.import_module(spec.module)
     return module.run(params, mesh_size_mm=mesh_size_mm, order=order, crack_depth_mm=crack_depth_mm,
-                      vtu=vtu, progress=progress or (lambda msg: None), quick=quick)
+                      vtu=vtu, progress=progress or (lambda msg: None), quick=quick, **spec.load_for(params))

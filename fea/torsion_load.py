@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .result import Load, Support
 from .static import StaticSolution
 
 
@@ -35,3 +36,21 @@ def mean_rotation_rad(sol: StaticSolution, group: str) -> float:
     u = q.interpolate(sol.nodal_u())
     x, y = q.x[..., 0], q.x[..., 1]
     return q.integrate((x * u[..., 1] - y * u[..., 0]) / (x ** 2 + y ** 2)) / q.area
+
+
+def torque_load(params, distribution: str) -> Load:
+    """Seed 000's output torque T on the 'loaded' faces, as both torsion studies apply it."""
+    return Load("output torque T", params.gear.output_torque_Nmm, "N*mm", ("loaded",), distribution)
+
+
+def clamped(where: str) -> tuple[Support, ...]:
+    """The 'fixed' faces clamped: how both torsion studies hold their part."""
+    return (Support(("fixed",), f"{where} clamped (all displacement components zero)"),)
+
+
+def torsion_meta(params, order: int, ratio: float, sizes_mm) -> dict:
+    """What a reader of a torsion study's result needs to reproduce it: twist definition, moduli, sizes."""
+    mat = params.material
+    return {"twist": "area-weighted mean rotation of 'loaded'", "G_fea_MPa": mat.implied_shear_modulus_MPa,
+            "mu_seed_MPa": mat.shear_modulus_MPa, "order": order, "refinement_ratio": ratio,
+            "mesh_sizes_mm": list(sizes_mm)}

@@ -117,18 +117,13 @@ def stress_field_of(study: str, fields, crack_depth_mm: float | None) -> tuple[P
 
 
 def rated_load_of(study: str, params, result) -> RatedLoad:
-    """The rated load of a solved study (a ``StudyResult``): the load it solved, read from its registry entry."""
-    spec = registered(study)
+    """The rated load of a solved study (a ``StudyResult``) against the load it solved (its typed ``Load``)."""
+    registered(study)      # an unknown study is an InputError (exit 2), before any field is read
     if study == "ring-compression":
         # the toothed field is solved at the reference force; the force for W0 is the toothed ring's own
-        return rated_load(study, params, spec.applied_force_N(result.meta),
+        return rated_load(study, params, result.load.magnitude,
                           ring_force_for_W0_N=result.quantities["toothed_force_for_W0_N"].value)
-    if spec.force_key:
-        solved = spec.applied_force_N(result.meta)
-        if solved is None:
-            raise ValueError(f"{study} states no applied force under {spec.force_key!r}")
-        return rated_load(study, params, solved)
-    return rated_load(study, params, params.gear.output_torque_Nmm)   # the torsion studies apply gear T
+    return rated_load(study, params, result.load.magnitude)
 
 
 @dataclass(frozen=True)

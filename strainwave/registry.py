@@ -3,15 +3,18 @@
 A ``Study`` names its CLI name, the module whose ``run`` solves it, the part it meshes, the component
 whose crack it can seed (the dotted parameter key of that crack, or none), its quantities (name, unit,
 meaning, and the ``analytic_summary(params)["checks"]`` entry each is compared with, published and
-corrected), the key under which its result states the force its closed forms scale with, the
-parameter overrides under which its closed forms are evaluated (the FEA's load conditions) and the
-VTU fields it writes. Readers: the CLI (``STUDY_NAMES``), ``fea/studies.run_study``, validate's plan and
+corrected), the ``analytic`` function that gives it its load when the load follows from a seed formula
+(``load_inputs``: fea/ receives numbers, never a closed form), the parameter overrides under which its
+closed forms are evaluated (the FEA's load conditions) and the VTU fields it writes. A study's result
+states the load it applied as a typed ``Load``; a force-loaded study's closed forms scale with its force. Readers: the CLI (``STUDY_NAMES``), ``fea/studies.run_study``, validate's plan and
 checks, diagnose's FEA baseline and the sweep. Adding a study is its module plus one entry here.
 
-Pure declarations: importing this module does no work and imports nothing heavy.
+Pure declarations: importing this module does no work and imports nothing heavy (``load_for`` imports
+its analytic function when called).
 """
 from __future__ import annotations
 
+import importlib
 from dataclasses import dataclass
 
 from .errors import InputError
@@ -46,7 +49,7 @@ class Study:
     component: str | None                      # validate's component name ("shaft", ...); None: no crack
     crack_key: str | None                      # dotted params key of the crack it seeds; None: refuses a crack
     quantities: tuple[QuantitySpec, ...]
-    force_key: str | None = None               # result field (meta key) with the force the closed forms scale to
+    load_inputs: str | None = None             # "module:function" of analytic/: params -> run's load keywords
     analytic_overrides: tuple[tuple[str, float], ...] = ()   # params under which its closed forms are evaluated
     vtu_fields: tuple[str, ...] = SOLID_FIELDS
     specimen: str | None = None                # diagnose recording specimen this study models
@@ -64,12 +67,13 @@ class Study:
                 return q
         raise KeyError(f"study {self.name} has no quantity {name!r}")
 
-    def applied_force_N(self, meta: dict) -> float | None:
-        """The force the study states it applied (under ``force_key``), or None when it states none."""
-        value = meta.get(self.force_key) if self.force_key else None
-        if isinstance(value, (int, float)) and not isinstance(value, bool) and value > 0:
-            return float(value)
-        return None
+    def load_for(self, params) -> dict[str, float]:
+        """The keyword arguments of the study's ``run`` that set its load ({} when the load is a parameter):
+        computed by the ``analytic`` function the entry names, so fea/ receives numbers, not closed forms."""
+        if self.load_inputs is None:
+            return {}
+        module, _, name = self.load_inputs.partition(":")
+        return dict(getattr(importlib.import_module(module), name)(params))
 
     @property
     def checked(self) -> dict[str, str]:
@@ -117,7 +121,7 @@ STUDIES: dict[str, Study] = {s.name: s for s in (
               QuantitySpec("cracked_radial_compliance_mm_per_N", "mm/N", "radial compliance of the cracked ring"),
               QuantitySpec("delta_radial_compliance_mm_per_N", "mm/N", "added radial compliance of the race crack",
                            "bearing.crack_compliance"),
-          ), force_key="radial_force_N"),
+          ), load_inputs="strainwave.analytic.study_loads:bearing_ring_load"),
     # The ring closed forms are given at the thin-ring force for W0; they scale linearly to the FEA's force.
     Study("ring-compression", "strainwave.fea.ring_compression", "ewg-flexspline-ring", None, None, (
         QuantitySpec("delta_cd_mm", "mm", "diameter shortening along the load line CD", "ring.delta_cd"),
@@ -130,7 +134,7 @@ STUDIES: dict[str, Study] = {s.name: s for s in (
                      "ring.tooth_influence"),
         QuantitySpec("stress_concentration", "1", "K_sigma: toothed root over smooth rim stress range",
                      "ring.stress_concentration"),
-    ), force_key="reference_force_N", specimen="ewg_ring"),
+    ), load_inputs="strainwave.analytic.study_loads:ring_compression_load", specimen="ewg_ring"),
 )}
 
 STUDY_NAMES = tuple(STUDIES)

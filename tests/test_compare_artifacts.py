@@ -22,7 +22,7 @@ from strainwave.compare.validate.plan import make_plan
 from strainwave.compare.validate.ring_shape import radial_displacement_mm
 from strainwave.compare.validate.runner import CaseOutcome
 from strainwave.fea.convergence import grid_convergence
-from strainwave.fea.result import MeshQuality, Quantity, StudyResult
+from strainwave.fea.result import Load, MeshQuality, Quantity, StudyResult, Support
 from strainwave.params import load_params
 
 
@@ -53,9 +53,14 @@ def _quantity(name: str, value: float, unit: str, spread: float) -> Quantity:
     return Quantity(name, value, unit, conv)
 
 
-def _outcome(case, quantities: dict, fields: tuple, meta: dict | None = None) -> CaseOutcome:
+# The stand-ins state the load the real studies apply: seed 000's T on the shaft, the thin-ring force on the ring.
+TORQUE = Load("output torque T", 1000.0, "N*mm", ("loaded",), "stand-in: shear traction on the end face")
+CLAMPED = (Support(("fixed",), "stand-in: clamped"),)
+
+
+def _outcome(case, quantities: dict, fields: tuple, load: Load = TORQUE) -> CaseOutcome:
     mesh = MeshQuality(100, 200, 600, 2, 0.5, 0.8)
-    result = StudyResult(case.study, quantities, mesh, {"solve": 0.1}, fields, meta or {})
+    result = StudyResult(case.study, quantities, mesh, load, CLAMPED, timings_s={"solve": 0.1}, fields=fields)
     return CaseOutcome(case, result, 0.1, False)
 
 
@@ -86,7 +91,8 @@ def wired(tmp_path_factory):
     # the force solved: here 2 x that force
     f_ref = refs["ring.delta_cd"]["force_N"]
     ring_q["toothed_force_for_W0_N"] = Quantity("toothed_force_for_W0_N", 2 * f_ref, "N")
-    outcomes[plan.ring.label] = _outcome(plan.ring, ring_q, (ring_vtu,), {"reference_force_N": f_ref})
+    ring_load = Load("diametral force F", f_ref, "N", ("contact",), "stand-in: arcs", (("half_angle_rad", 0.01),))
+    outcomes[plan.ring.label] = _outcome(plan.ring, ring_q, (ring_vtu,), ring_load)
     book = FeaBook(outcomes)
     check_set = build_checks(book, plan, summary, params)
     made = make_images(out, book, plan, check_set, summary, progress=lambda m: None, params=params)

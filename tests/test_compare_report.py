@@ -62,12 +62,13 @@ def test_formal_orders_follow_the_quantity_kind():
 def test_gci_rows_read_every_convergence_record_of_the_book():
     from strainwave.compare.validate.fea_book import FeaBook
     from strainwave.compare.validate.runner import Case, CaseOutcome
-    from strainwave.fea.result import MeshQuality, Quantity, StudyResult
+    from strainwave.fea.result import Load, MeshQuality, Quantity, StudyResult, Support
 
     q = {"a_mm": Quantity("a_mm", 1.0, "mm", grid_convergence(H, _series(1.0, 0.01, 3.0))),
          "b_MPa": Quantity("b_MPa", 2.0, "MPa", grid_convergence(H, [2.0, 2.1, 1.9])),
          "none": Quantity("none", 3.0, "1")}
-    result = StudyResult("ring-compression", q, MeshQuality(1, 1, 1, 2, 1.0, 1.0))
+    result = StudyResult("ring-compression", q, MeshQuality(1, 1, 1, 2, 1.0, 1.0),
+                         Load("diametral force F", 1.0, "N", ("contact",), "stand-in"), (Support(("A",), "stand-in"),))
     book = FeaBook({"ring": CaseOutcome(Case("ring", "ring-compression", None), result, 0.0, False)})
     rows = {r.quantity: r for r in gci_rows(book, order=2)}
     assert set(rows) == {"a_mm", "b_MPa"}            # a quantity without three meshes has no row

@@ -131,12 +131,13 @@ def test_fea_baseline_reads_the_ring_study_compliance(monkeypatch):
     from strainwave.compare.diagnose import baseline as bl
     from strainwave.fea import studies
     from strainwave.fea.convergence import grid_convergence
-    from strainwave.fea.result import MeshQuality, Quantity, StudyResult
+    from strainwave.fea.result import Load, MeshQuality, Quantity, StudyResult, Support
     from strainwave.params import load_params
 
     conv = grid_convergence([1.0, 1.5, 2.25], [2.0, 2.002, 2.0065])
     fake = StudyResult("ring-compression", {"delta_cd_mm": Quantity("delta_cd_mm", 2.0, "mm", conv)},
-                       MeshQuality(1, 1, 1, 2, 1.0, 1.0), meta={"reference_force_N": 40.0})
+                       MeshQuality(1, 1, 1, 2, 1.0, 1.0), Load("diametral force F", 40.0, "N", ("contact",), "arcs"),
+                       (Support(("A", "B"), "u_y = 0"),))
     monkeypatch.setattr(studies, "run_study", lambda study, params, **kw: fake)
     T = np.linspace(0.0, 30.0, 25)
     rec = parse_text(format_recording(RecordingKind.RING_COMPRESSION, "ewg_ring", T, 0.05 * T))

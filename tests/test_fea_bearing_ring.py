@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from strainwave.fea.bearing_ring import radial_force_N
+from strainwave.analytic.study_loads import bearing_ring_load
 from strainwave.geometry.part import FaceRef, Part, PartName
 from strainwave.params import load_params
 
@@ -42,12 +42,18 @@ def study(tmp_path_factory):
     vtu = tmp_path_factory.mktemp("bearing") / "ring.vtu"
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(br, "build_seam_part", lambda params, a: _ring(a))
-        return br.run(load_params(), mesh_size_mm=H_MM, order=2, crack_depth_mm=A_MM, vtu=vtu)
+        return br.run(load_params(), mesh_size_mm=H_MM, order=2, crack_depth_mm=A_MM, vtu=vtu,
+                      **bearing_ring_load(load_params()))
 
 
-def test_radial_force_is_seed_000():
-    # F_r = 1.15 k_r T / d1 = 1.15 * 0.35 * 1000 / 160
-    assert radial_force_N(load_params()) == pytest.approx(2.515625, rel=1e-12)
+def test_radial_force_is_seed_000_and_the_study_states_it(study):
+    # F_r = 1.15 k_r T / d1 = 1.15 * 0.35 * 1000 / 160, computed in analytic/ and passed to fea/ as a number;
+    # the result states it as its typed load, on the face it loaded (the stand-in names only its 'race'; the
+    # real part's contact patch is 'contact')
+    assert bearing_ring_load(load_params())["force_N"] == pytest.approx(2.515625, rel=1e-12)
+    assert study.load.force_N == pytest.approx(2.515625, rel=1e-12) and study.load.unit == "N"
+    assert study.load.on == ("race",) and [s.on for s in study.supports] == [("bore",)]
+    assert study.crack.depth_mm == A_MM
 
 
 def test_uncracked_compliance_positive_and_converging(study):
@@ -74,7 +80,7 @@ def test_crack_at_the_hertz_centre_closes(study):
     d = study["delta_radial_compliance_mm_per_N"]
     c0 = study["radial_compliance_mm_per_N"].value
     assert all(abs(v) < 1e-4 * c0 for v in d.convergence.values)
-    solver = study.meta["solver"]
+    solver = study.solver
     assert solver["compliance_without_contact_mm_per_N"] - c0 > 0.05 * c0
     assert solver["contact_closed_pairs"] > 0.8 * solver["contact_pairs"]
     assert solver["contact_min_opening_mm"] > -1e-12
@@ -85,7 +91,7 @@ def test_crack_at_the_hertz_centre_closes(study):
 def test_fea_crack_compliance_against_the_seed_forms(study):
     from strainwave.analytic.cracks import bearing_displacement_mm
     from strainwave.analytic.variant import Variant
-    f_r = study.meta["radial_force_N"]
+    f_r = study.load.force_N
     p, wg = load_params(), load_params().wave_generator
     an = {v.value: {"delta_u_H_mm": bearing_displacement_mm(f_r, wg.bearing_inner_ring_thickness_mm, wg.beta,
                                                            tuple(wg.contact_semi_axes_mm), A_MM,
@@ -116,7 +122,7 @@ def test_vtu_fields_written(study):
     # file the same mesh with the crack opened: more nodes (the duplicated crack-face nodes)
     n_unc = int(re.search(r'NumberOfPoints="(\d+)"', uncracked.read_text()).group(1))
     assert n_unc == study.mesh.nodes
-    assert npts == study.meta["solver"]["dofs_cracked"] // 3 and npts > n_unc
+    assert npts == study.solver["dofs_cracked"] // 3 and npts > n_unc
     # the arrays are zlib-compressed binary (fea/fields.py): read them as ParaView would
     import pyvista as pv
     vm = np.asarray(pv.read(str(cracked)).point_data["von_mises_MPa"], dtype=np.float64)
@@ -151,7 +157,8 @@ def test_no_crack_means_uncracked_and_agrees_with_the_seam_runs_uncracked_solve(
     import strainwave.fea.bearing_ring as br
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(br, "build_plain_part", lambda params: _ring(None))
-        plain = br.run(load_params(), mesh_size_mm=H_MM, order=2, crack_depth_mm=None)
-    assert set(plain.quantities) == {"radial_compliance_mm_per_N"} and plain.meta["crack_depth_mm"] is None
+        plain = br.run(load_params(), mesh_size_mm=H_MM, order=2, crack_depth_mm=None,
+                       **bearing_ring_load(load_params()))
+    assert set(plain.quantities) == {"radial_compliance_mm_per_N"} and plain.crack is None
     a, b = plain["radial_compliance_mm_per_N"], study["radial_compliance_mm_per_N"]
     assert abs(a.value - b.value) <= 3.0 * (a.uncertainty + b.uncertainty)

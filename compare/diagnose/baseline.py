@@ -114,15 +114,14 @@ def fea_baseline(rec: Recording, params) -> Baseline:
 
 def _compliance_from(result) -> tuple[float, str]:
     """The study's linear compliance, its registry ``flexibility`` quantity: a torsion study's flexibility
-    in rad/(N*mm); the ring's delta_cd_mm divided by the force the study applied (its ``force_key``)."""
+    in rad/(N*mm); the ring's delta_cd_mm divided by the force the study applied (its typed ``Load``)."""
     spec = STUDIES[result.study]
     q = spec.flexibility
     if q is not None and q.name in result.quantities:
         value = result.quantities[q.name].value
-        if spec.force_key is None:
+        force = result.load.force_N
+        if force is None:          # a torque-loaded study's flexibility is already per unit load
             return value, q.name
-        force = spec.applied_force_N(result.meta)
-        if force:
-            return value / force, f"{q.name} / {spec.force_key}"
+        return value / force, f"{q.name} / {result.load.name}"
     raise InputError("--baseline", "fea", f"study {result.study!r} reports no linear compliance "
                      f"(quantities: {', '.join(result.quantities)})")

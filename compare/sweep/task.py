@@ -21,6 +21,7 @@ from typing import Callable
 
 from ...cache import ResultCache, case_key
 from ...errors import StrainwaveError
+from ...fea.result import Load
 from ...registry import STUDIES
 
 # A task computes the quantities of one point: (study, params, quick) -> a ``StudyResult.to_dict()``-shaped
@@ -92,8 +93,9 @@ def closed_form_probe(study: str, params, quick: bool, *, delay_s: float = 0.0) 
         "value": compliance, "unit": "rad/(N mm)", "uncertainty": 0.0}}, "mesh": None}
 
 
-def analytic_beside(study: str, params, names, meta: dict | None = None) -> dict:
-    """{quantity: {key, published, corrected}} from ``analytic_summary`` for the FEA quantities ``names``."""
+def analytic_beside(study: str, params, names, force_N: float | None = None) -> dict:
+    """{quantity: {key, published, corrected}} from ``analytic_summary`` for the FEA quantities ``names``;
+    a closed form given at a force (its ``force_N``) is scaled to the force the FEA applied, ``force_N``."""
     spec = STUDIES[study]
     table = spec.checked
     wanted = [name for name in names if name in table]
@@ -103,7 +105,7 @@ def analytic_beside(study: str, params, names, meta: dict | None = None) -> dict
     for dotted, value in spec.analytic_overrides:
         params = params.with_value(dotted, value)
     checks = analytic_summary(params).get("checks", {})
-    force = spec.applied_force_N(meta or {})
+    force = force_N
     out = {}
     for name in wanted:
         entry = checks.get(table[name]) or {}
@@ -126,7 +128,8 @@ def _compute(spec: PointSpec, task: TaskFn | None) -> dict:
             result = task(spec.study, params, spec.quick)
         fea = {name: {"value": q["value"], "unit": q["unit"], "uncertainty": q.get("uncertainty")}
                for name, q in result["quantities"].items()}
-        analytic = analytic_beside(spec.study, params, fea, result.get("meta"))
+        load = result.get("load")
+        analytic = analytic_beside(spec.study, params, fea, None if load is None else Load.from_dict(load).force_N)
     notes = {str(w.message) for w in caught}
     for name, entry in analytic.items():
         if entry.get("unit") and _unit(entry["unit"]) != _unit(fea[name]["unit"]):

@@ -147,8 +147,8 @@ def make_images(out_dir: Path, book: FeaBook, plan: Plan, check_set: CheckSet, s
         deepest = cases[-1]
         vtu = _vtu(book, deepest.label, "_cracked")
         title = f"{COMPONENT_TITLES[component]}, crack a = {deepest.crack_depth_mm:g} mm"
-        crack = book.meta(deepest.label).get("crack") or {}
-        z0 = crack.get("crack_z_mm") if isinstance(crack, dict) else None
+        solved = book.result(deepest.label)
+        z0 = solved.crack.z_mm if solved is not None and solved.crack is not None else None
         radius = 3.0 * deepest.crack_depth_mm  # a few crack depths show the tip field and the slot
         col.attempt(f"{title} close-up", component, "closeup",
                     lambda t, v=vtu, ti=title, z=z0, r=radius, c=component, cs=deepest: images.render_closeup(

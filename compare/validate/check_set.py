@@ -43,7 +43,7 @@ class CheckSet:
 
 def _curves(params, s000: dict, book: FeaBook, plan: Plan):
     """component -> (depth -> {variant: closed form}) under the FEA's load conditions."""
-    F_r = STUDIES[COMPONENT_STUDY["bearing"]].applied_force_N(book.meta(plan.headline["bearing"].label)) or s000.get("F_r_N", 1.0)
+    F_r = book.applied_force_N(plan.headline["bearing"].label) or s000.get("F_r_N", 1.0)
     return {"shaft": lambda a: shaft_crack_curve(params, a),
             "cup": lambda a: cup_crack_curve(params, a),
             "bearing": lambda a: bearing_crack_curve(params, a, F_r)}
@@ -117,8 +117,7 @@ def build_checks(book: FeaBook, plan: Plan, summary: dict, params) -> CheckSet:
             note += (f"; the bore raises the outer-fibre shear stress by {hollow:.3f} and so a shallow crack's "
                      f"compliance by {hollow ** 2:.3f} over the solid-bar forms; G = E/2(1+nu) as the FEA")
         if component == "bearing":
-            F_r = STUDIES[COMPONENT_STUDY["bearing"]].applied_force_N(book.meta(plan.headline["bearing"].label)) \
-                or s000.get("F_r_N", 1.0)
+            F_r = book.applied_force_N(plan.headline["bearing"].label) or s000.get("F_r_N", 1.0)
             checks.append(bearing_closed_crack_check(book, case_labels, params, F_r))
             continue
         checks.append(crack_check(check_id, quantity, unit, sweep, curves[component], allowances, note,

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...fea.result import Quantity
+from ...fea.result import Quantity, StudyResult
 from .runner import CaseOutcome
 
 
@@ -49,9 +49,15 @@ class FeaBook:
             return None, f"{outcome.case.study} produced no {name} (it has: {have})"
         return outcome.result.quantities[name], ""
 
-    def meta(self, label: str) -> dict:
+    def result(self, label: str) -> StudyResult | None:
+        """The solved case's typed result (its load, supports, crack, solver facts), or None if it failed."""
         outcome = self.outcomes.get(label)
-        return {} if outcome is None or outcome.result is None else dict(outcome.result.meta)
+        return None if outcome is None else outcome.result
+
+    def applied_force_N(self, label: str) -> float | None:
+        """The force the case's study applied (its typed ``Load``), or None (failed, or a torque load)."""
+        result = self.result(label)
+        return None if result is None else result.load.force_N
 
     def sweep(self, component: str, labels: list[str], name: str) -> Sweep | None:
         """The crack sweep of ``component`` over the cases ``labels`` that produced ``name``."""

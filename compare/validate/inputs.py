@@ -2,40 +2,26 @@
 
 Dimensions and material come from the parameters (typed), the load magnitude from the rated-load record
 (``strainwave.rated_stress``), the element and the three meshes from the study result (``StudyResult.meshes``:
-the ``MeshQuality`` of each refinement; their sizes from the quantities' convergence records). How each study loads and holds its
-part is declared here once, in the words of its fea/ module.
+the ``MeshQuality`` of each refinement; their sizes from the quantities' convergence records). How each study
+loaded and held its part is read from the result's typed ``Load`` and ``Support`` records; the part from the
+registry. Only the element family is worded here (the mesh records state the degree).
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["ComponentInputs", "MODEL", "component_inputs"]
+from ...registry import study as registered
 
+__all__ = ["ComponentInputs", "ELEMENT", "component_inputs"]
 
-@dataclass(frozen=True)
-class StudyModel:
-    part: str
-    load: str
-    supports: str
-    element: str        # {order} is filled with the element degree
-
-
-MODEL = {
-    "shaft-torsion": StudyModel(
-        "output-shaft", "Saint-Venant shear traction tau = T r / J on the 'loaded' end face (moment T)",
-        "'fixed' end face clamped (all displacement components zero)",
-        "P{order} tetrahedra (curved, isoparametric); the crack on an axisymmetric (r, z) section of P2 triangles"),
-    "cup-torsion": StudyModel(
-        "flexspline-cup", "uniform tangential shear on the 'loaded' tooth band, moment T",
-        "'fixed' hub face clamped", "P{order} tetrahedra (curved, isoparametric); crack as a seam, closed and opened"),
-    "bearing-ring": StudyModel(
-        "wg-bearing-ring", "Hertzian ellipsoidal pressure p0 = 3F/(2 pi a'b') on the race 'contact' patch",
-        "bore fixed (rigid cam, bonded)",
-        "P{order} tetrahedra (curved, isoparametric); crack as a seam with frictionless crack-face contact"),
-    "ring-compression": StudyModel(
-        "ewg-flexspline-ring", "elliptical pressure on two diametral contact arcs (the EWG's strips), force F",
-        "u_y(A) = u_y(B) = 0, u_x(D) = 0 on the symmetry axes (no reaction in the symmetric solution)",
-        "P{order} triangles (curved), 2D plane stress, thickness = face width B; 3D check on curved P2 tetrahedra"),
+# The element family of each study, in words ({order} is filled with the degree of the finest mesh).
+ELEMENT = {
+    "shaft-torsion": "P{order} tetrahedra (curved, isoparametric); the crack on an axisymmetric (r, z) section of "
+                     "P2 triangles",
+    "cup-torsion": "P{order} tetrahedra (curved, isoparametric); crack as a seam, closed and opened",
+    "bearing-ring": "P{order} tetrahedra (curved, isoparametric); crack as a seam with frictionless crack-face contact",
+    "ring-compression": "P{order} triangles (curved), 2D plane stress, thickness = face width B; 3D check on curved "
+                        "P2 tetrahedra",
 }
 
 
@@ -51,6 +37,7 @@ class ComponentInputs:
     component: str
     case: str
     study: str
+    part: str
     dimensions: tuple[tuple[str, str], ...]      # (name, value with unit)
     material: str
     load: str
@@ -61,7 +48,7 @@ class ComponentInputs:
 
     def to_dict(self) -> dict:
         return {"component": self.component, "case": self.case, "study": self.study,
-                "part": MODEL[self.study].part, "dimensions": [list(d) for d in self.dimensions],
+                "part": self.part, "dimensions": [list(d) for d in self.dimensions],
                 "material": self.material, "load": self.load, "supports": self.supports, "element": self.element,
                 "meshes": [{"h_mm": m.h_mm, "dofs": m.dofs, "min_quality": m.min_quality} for m in self.meshes],
                 "mesh_note": self.mesh_note}
@@ -92,12 +79,14 @@ def _dimensions(study: str, params) -> tuple[tuple[str, str], ...]:
 
 def component_inputs(component: str, case, result, params, rated) -> ComponentInputs:
     """The inputs of ``component`` solved as ``case`` (its ``StudyResult``; ``rated``: its ``RatedLoad``)."""
-    model = MODEL[case.study]
     m = params.material
     material = (f"E = {m.youngs_modulus_MPa:g} MPa, nu = {m.poisson_ratio:g} (the FEA's G = E/2(1+nu) = "
                 f"{m.youngs_modulus_MPa / (2 * (1 + m.poisson_ratio)):.5g} MPa; seed 000's mu = "
                 f"{m.shear_modulus_MPa:g} MPa), fatigue limit sigma_-1 = {m.fatigue_limit_MPa:g} MPa")
-    load = (f"{model.load}; solved at {rated.solved:.4g} {rated.unit}, drawn at {rated.describe()}")
+    applied = result.load
+    load = (f"{applied.distribution} on {', '.join(repr(g) for g in applied.on)} ({applied.name}); solved at "
+            f"{rated.solved:.4g} {rated.unit}, drawn at {rated.describe()}")
+    supports = "; ".join(s.describe() for s in result.supports)
     crack = "" if case.crack_depth_mm is None else f"; crack depth a = {case.crack_depth_mm:g} mm"
     # the three sizes of the quantity the headline mesh serves first (its own series: smooth ring, 3D shaft)
     sizes = next((q.convergence.h_mm for q in result.quantities.values() if q.convergence is not None), ())
@@ -108,6 +97,7 @@ def component_inputs(component: str, case, result, params, rated) -> ComponentIn
     note = (f"finest mesh: {finest.elements} elements, {finest.nodes} nodes, {finest.dofs} dofs, element quality "
             f"(gmsh SICN) min {finest.min_quality:.3g}, mean {finest.mean_quality:.3g}"
             + ("" if len(recorded) == len(sizes) else "; the coarser meshes were not recorded by the study"))
-    return ComponentInputs(component, case.label, case.study, _dimensions(case.study, params) + (
-        (("crack depth a", f"{case.crack_depth_mm:g} mm"),) if crack else ()), material, load, model.supports,
-        model.element.format(order=finest.order), meshes, note)
+    return ComponentInputs(component, case.label, case.study, registered(case.study).part,
+                           _dimensions(case.study, params) + ((("crack depth a", f"{case.crack_depth_mm:g} mm"),)
+                                                              if crack else ()),
+                           material, load, supports, ELEMENT[case.study].format(order=finest.order), meshes, note)

@@ -4,8 +4,8 @@
   ring) and Roark's thick ring (corrected), both at the force the FEA applied.
 - ``ring.sigma_max`` / ``ring.sigma_min``: the FEA hoop stress at the outer fibre of sections D and B
   against eqs 8 / 9 (thin) and Winkler-Bach (corrected), all at the prescribed deformation W0.
-- The FEA spreads each force over a small arc; the thin-ring effect of that (from the study's meta) is
-  one modelling allowance, the second-order thick-ring terms (delta/r_m)^2 the other; the rest of the
+- The FEA spreads each force over a small arc; the thin-ring effect of that (``analytic/ring_arc_load.py``
+  for the arc the study states in its typed ``Load``) is one modelling allowance, the second-order thick-ring terms (delta/r_m)^2 the other; the rest of the
   tolerance is 3 x GCI.
 - ``ring.tooth_influence`` / ``ring.stress_concentration``: the FEA's K_delta and K_sigma (in the seed's
   terms: K_sigma = root-fillet peak / (K_delta x smooth inner fibre), the factor eq 13 applies to sigma_a,
@@ -17,62 +17,67 @@ from __future__ import annotations
 
 import math
 
-from ...registry import STUDIES
+from ...analytic import ring
+from ...analytic.ring_arc_load import thin_ring_deflections_mm, thin_ring_moment_Nmm
 from .checks import Check, evaluate, fea_tolerance, not_evaluated
 from .fea_book import FeaBook
-from .plan import RING_STUDY
 
 def _scaled(ref: dict, factor: float) -> dict[str, float]:
     return {k: float(ref[k]) * factor for k in ("published", "corrected") if isinstance(ref.get(k), (int, float))}
 
 
-def _arc_allowances(meta: dict, refs: dict, F_ref: float | None) -> dict[str, float]:
+def _mid_layer_radius_mm(params) -> float:
+    e = params.ewg_drive
+    return ring.mid_layer_radius_mm(e.module_mm, e.flexspline_teeth, e.rim_thickness_mm, e.dedendum_coefficient)
+
+
+def _arc_allowances(load, params, refs: dict, F_ref: float | None) -> dict[str, float]:
     """How far the thin-ring answer for the FEA's arc load lies from the seed's point-load formula.
 
-    The FEA spreads each force over a small arc (a point force has infinite local displacement); fea/
-    reports the thin-ring deflections and moments of exactly that load in ``meta["thin_ring_arc_load"]``.
-    The gap to the point-load formula is a stated property of the load, granted as an allowance.
+    The FEA spreads each force over a small arc (a point force has infinite local displacement); its typed
+    ``Load`` states the force and the arc's half angle, and ``analytic/ring_arc_load.py`` gives the thin-ring
+    deflections and moments of exactly that load. The gap to the point-load formula is a stated property of
+    the load, granted as an allowance.
     """
-    arc = meta.get("thin_ring_arc_load") or {}
-    r_m = (meta.get("geometry") or {}).get("r_m_mm")
+    if load is None or load.force_N is None:
+        return {}
+    e, E = params.ewg_drive, params.material.youngs_modulus_MPa
+    F, theta0, r_m = load.force_N, load.parameter("half_angle_rad"), _mid_layer_radius_mm(params)
+    cd, ab = thin_ring_deflections_mm(F, theta0, r_m, E * ring.second_moment_mm4(e.face_width_mm, e.rim_thickness_mm))
+    m_B, m_D = thin_ring_moment_Nmm([0.0, 0.5 * math.pi], F, theta0, r_m)
     out = {}
-    why = "arc load instead of a point force (thin-ring theory of the FEA's load, fea meta)"
+    why = "arc load instead of a point force (thin-ring theory of the FEA's load, analytic/ring_arc_load.py)"
     pub_cd = refs.get("ring.delta_cd", {}).get("published")
     pub_ab = refs.get("ring.delta_ab", {}).get("published")
-    if isinstance(arc.get("delta_cd_mm"), (int, float)) and pub_cd:
-        out["ring.delta_cd"] = {why: abs(arc["delta_cd_mm"] / pub_cd - 1.0)}
-    if isinstance(arc.get("delta_ab_mm"), (int, float)) and pub_ab:
-        out["ring.delta_ab"] = {why: abs(arc["delta_ab_mm"] / pub_ab - 1.0)}
-    if isinstance(arc.get("moment_D_over_point_load"), (int, float)):
-        out["ring.sigma_max"] = {why: abs(arc["moment_D_over_point_load"] - 1.0)}
-    if isinstance(arc.get("moment_B_Nmm"), (int, float)) and F_ref and r_m:
-        point_B = F_ref * r_m * (0.5 - 1.0 / math.pi)   # seed 003 eq 2 at phi = 0
-        out["ring.sigma_min"] = {why: abs(arc["moment_B_Nmm"] / point_B - 1.0)}
+    if pub_cd:
+        out["ring.delta_cd"] = {why: abs(cd / pub_cd - 1.0)}
+    if pub_ab:
+        out["ring.delta_ab"] = {why: abs(ab / pub_ab - 1.0)}
+    out["ring.sigma_max"] = {why: abs(m_D / ring.bending_moment_Nmm(0.5 * math.pi, F, r_m) - 1.0)}
+    if F_ref:
+        out["ring.sigma_min"] = {why: abs(m_B / ring.bending_moment_Nmm(0.0, F_ref, r_m) - 1.0)}
     return out
 
 
-def _second_order_allowance(meta: dict, params) -> dict[str, float]:
+def _second_order_allowance(params) -> dict[str, float]:
     """Roark's thick-ring terms (shear, normal force, curvature) are first order in delta/r_m: what the
     corrected closed form leaves out is of order (delta/r_m)^2, which a converged 2D FEA does contain."""
-    r_m = (meta.get("geometry") or {}).get("r_m_mm")
-    if not isinstance(r_m, (int, float)) or r_m <= 0:
-        return {}
-    ratio = params.ewg_drive.rim_thickness_mm / r_m
+    ratio = params.ewg_drive.rim_thickness_mm / _mid_layer_radius_mm(params)
     return {f"terms of order (delta/r_m)^2 = ({ratio:.4f})^2 beyond Roark's first-order thick ring": ratio ** 2}
 
 
 def ring_checks(book: FeaBook, label: str, refs: dict, params) -> list[Check]:
     """All six ring checks from the ring case ``label`` and the analytic reference values ``refs``."""
-    meta = book.meta(label)
+    solved = book.result(label)
     F_ref = refs.get("ring.delta_cd", {}).get("force_N")
-    F_fea = STUDIES[RING_STUDY].applied_force_N(meta)
+    F_fea = book.applied_force_N(label)
     # Deflections are at the force the FEA applied; stresses at the prescribed W0 (both sides of the
     # comparison state them that way), so only the deflections are rescaled.
     load_factor = 1.0 if F_fea is None or not F_ref else F_fea / F_ref
     load_note = (f"deflections at the FEA's force F = {F_fea:.6g} N (analytic rescaled by {load_factor:.6f}), "
                  "stresses at the prescribed W0" if F_fea else
-                 f"analytic at the thin-ring force for W0, F = {F_ref:.6g} N (the study states no force in meta)")
-    arc = _arc_allowances(meta, refs, F_ref)
+                 f"analytic at the thin-ring force for W0, F = {F_ref:.6g} N (the ring case states no force)")
+    arc = _arc_allowances(None if solved is None else solved.load, params, refs, F_ref)
     out = []
     specs = (
         ("ring.delta_cd", "shortening of the loaded diameter delta_CD", "mm", "delta_cd_mm", load_factor),
@@ -87,7 +92,7 @@ def ring_checks(book: FeaBook, label: str, refs: dict, params) -> list[Check]:
         if q is None:
             out.append(not_evaluated(check_id, quantity, unit, why, analytic=analytic))
             continue
-        allowances = {**arc.get(check_id, {}), **_second_order_allowance(meta, params)}
+        allowances = {**arc.get(check_id, {}), **_second_order_allowance(params)}
         tol = fea_tolerance(q.value, q.uncertainty, allowances=allowances)
         note = f"{load_note}; {ref.get('note', '')}"
         out.append(evaluate(Check(check_id, quantity, unit, q.value, q.uncertainty, analytic, "corrected", tol,
@@ -124,14 +129,14 @@ def solid_ring_check(book: FeaBook, label: str, refs: dict, params, load_factor:
     q, why = book.quantity(label, "delta_cd_3d_mm")
     if q is None:
         return not_evaluated(check_id, quantity, unit, why, analytic=analytic)
-    meta = book.meta(label)
     e = params.ewg_drive
-    r_m = (meta.get("geometry") or {}).get("r_m_mm", math.nan)
+    r_m = _mid_layer_radius_mm(params)
     searle = e.face_width_mm ** 2 / (r_m * e.rim_thickness_mm)
     allowances = {f"width: plane stress (E I) .. plane strain (E I/(1 - nu^2)) bounds, B^2/(r_m delta) = "
                   f"{searle:.3g}; midpoint asserted, half spread": half_spread, **arc_allowance}
     tol = fea_tolerance(q.value, q.uncertainty, allowances=allowances)
-    ratio = (meta.get("solid_3d") or {}).get("ratio_cd_3d_over_2d", math.nan)
+    q2d, _ = book.quantity(label, "delta_cd_mm")
+    ratio = math.nan if q2d is None else q.value / q2d.value
     note = (f"3D solid (one eighth, P2, 2/3/4 elements through the rim, load uniform over B = {e.face_width_mm:g} mm) "
             f"at the FEA's force; 3D / 2D plane stress = {ratio:.4f} (bounds {1 - nu ** 2:.3f}..1); published = "
             f"eq 3 (E I), corrected = Roark thick ring x (1 - nu^2/2) = {factor:.4f}")

@@ -11,8 +11,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-from ...fea.convergence import Convergence
-from ...fea.result import MeshQuality, Quantity, StudyResult
+from ...fea.result import StudyResult
 from ...cache import ResultCache, case_key
 
 
@@ -43,21 +42,6 @@ class CaseOutcome:
         return self.result is not None
 
 
-def study_from_dict(data: dict) -> StudyResult:
-    """Inverse of ``StudyResult.to_dict`` (for cached cases)."""
-    quantities = {}
-    for name, q in data["quantities"].items():
-        conv = q.get("convergence")
-        convergence = None if conv is None else Convergence(
-            tuple(conv["h_mm"]), tuple(conv["values"]), conv["observed_order"], conv["extrapolated"],
-            conv["gci_fine"], conv["monotone"], tuple(conv["order_bounds"]))
-        quantities[name] = Quantity(q["name"], q["value"], q["unit"], convergence)
-    mesh = MeshQuality(**data["mesh"])
-    return StudyResult(data["study"], quantities, mesh, dict(data.get("timings_s", {})),
-                       tuple(Path(p) for p in data.get("fields", [])), dict(data.get("meta", {})),
-                       tuple(MeshQuality(**m) for m in data["meshes"]))
-
-
 def _describe(case: Case) -> str:
     depth = "" if case.crack_depth_mm is None else f", crack {case.crack_depth_mm:g} mm"
     return f"{case.study}{depth}"
@@ -77,7 +61,7 @@ def run_case(case: Case, params, *, fields_dir: Path, cache: ResultCache, quick:
     hit = cache.get(key)
     if hit is not None:
         try:
-            result = study_from_dict(hit["result"])
+            result = StudyResult.from_dict(hit["result"])
             if all(Path(p).exists() for p in result.fields):
                 progress(f"  {case.label}: reusing cached {_describe(case)} (computed in {hit['seconds']:.1f} s)")
                 return CaseOutcome(case, result, float(hit["seconds"]), True)
@@ -93,7 +77,7 @@ def run_case(case: Case, params, *, fields_dir: Path, cache: ResultCache, quick:
         # others: it is recorded with its message and every check that needed it is reported as failed.
         progress(f"  {case.label}: FAILED after {child.seconds:.1f} s ({child.error})")
         return CaseOutcome(case, None, child.seconds, False, child.error)
-    result = study_from_dict(child.result)
+    result = StudyResult.from_dict(child.result)
     cache.put(key, {"case": case.label, "seconds": child.seconds, "result": child.result})
     progress(f"  {case.label}: done in {child.seconds:.1f} s ({result.mesh.dofs} dofs)")
     return CaseOutcome(case, result, child.seconds, False)

@@ -231,14 +231,14 @@ def bearing_closed_crack_check(book: FeaBook, labels: list[str], params, radial_
         q0, _ = book.quantity(label, "radial_compliance_mm_per_N")
         qd, _ = book.quantity(label, "delta_radial_compliance_mm_per_N")
         if q0 is not None and qd is not None:
-            rows.append((book.meta(label).get("crack_depth_mm", 0.0), q0, qd, label))
+            rows.append((book.result(label).crack_depth_mm or 0.0, q0, qd, label))
     if not rows:
         return not_evaluated(check_id, quantity, unit, "no bearing case produced the crack compliance")
     depth, q0, qd, label = max(rows, key=lambda r: r[0])
     seed = bearing_crack_curve(params, depth, radial_force_N)
     c0 = q0.value
     analytic = {"corrected": c0, "published": c0 + seed["published"], "seed_corrected_tensile": c0 + seed["corrected"]}
-    info = book.meta(label).get("solver", {})
+    info = book.result(label).solver
     tol = fea_tolerance(c0 + qd.value, qd.uncertainty, allowances={})
     note = (f"a = {depth:g} mm at the contact centre; FEA delta C = {qd.value:.3g} mm/N "
             f"({qd.value / c0:+.2e} of the uncracked {c0:.4g} mm/N) with frictionless face contact; the linear "
