@@ -17,6 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import InputError
+
 
 @dataclass(frozen=True)
 class ToothSpec:
@@ -165,7 +167,9 @@ def gear_wire(spec: ToothSpec, n_flank: int = 9):
     if dphi is None:
         dphi = float(psi[0])
     if dphi >= pitch / 2:
-        raise ValueError("teeth overlap at the root circle")
+        # too few teeth for the profile (e.g. Z = 8 on the EWG ring): the user's parameters, not a CAD fault
+        raise InputError(f"teeth ({'internal' if spec.internal else 'external'} toothing)", spec.teeth,
+                         "teeth overlap at the root circle: too few teeth for this module and profile; use more teeth")
     s = -1.0 if spec.internal else 1.0
     r_c = r_f + s * rho
 

@@ -133,8 +133,12 @@ def _cmd_params(args) -> int:
 
 
 def _cmd_export_step(args) -> int:
+    from .fea.budget import TOOTHED_PARTS, check_cad_teeth
     from .geometry.export import export_part
-    written = export_part(args.part, _params(args), Path(args.output), crack_depth_mm=args.crack_depth_mm,
+    params = _params(args)
+    if not args.no_teeth:
+        check_cad_teeth(params, list(TOOTHED_PARTS) if args.part == "assembly" else [args.part])
+    written = export_part(args.part, params, Path(args.output), crack_depth_mm=args.crack_depth_mm,
                           teeth=not args.no_teeth, png=Path(args.png) if args.png else None)
     _emit(args, "\n".join(f"wrote {path}" for path in written), {"written": [str(p) for p in written]})
     return 0
@@ -176,10 +180,11 @@ def _cmd_solve(args) -> int:
 
 def _cmd_validate(args) -> int:
     from .compare.validate.pipeline import run_validate
-    from .fea.budget import check_budget
+    from .fea.budget import TOOTHED_PARTS, check_budget, check_cad_teeth
     params = _params(args)
     for study in STUDIES:   # every study runs at its default size: the parameters alone may blow the budget
         check_budget(study, params, None, args.quick, flag="--params")
+    check_cad_teeth(params, list(TOOTHED_PARTS))   # validate exports every part as designed, teeth on
     outcome = run_validate(params, Path(args.out), quick=args.quick, progress=_progress)
     _emit(args, outcome.summary(), lambda: {
         "passed": outcome.passed, "out_dir": str(outcome.out_dir), "timings_s": outcome.timings_s,
