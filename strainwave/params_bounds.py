@@ -35,6 +35,7 @@ _FACTOR = "a dimensionless design factor of order one"
 BOUNDS: dict[str, Bound] = {
     "material.youngs_modulus_MPa": Bound(100.0, 2e6, "polymers (~1e3 MPa) to diamond (1.2e6 MPa)"),
     "material.shear_modulus_MPa": Bound(40.0, 1e6, "polymers to diamond"),
+    "material.poisson_ratio": Bound(0.001, 0.499, "(0, 0.5): 0.5 is incompressible, where the FEA locks"),
     "material.fatigue_limit_MPa": Bound(1.0, 1e4, "polymers to the strongest steels"),
     "gear.wave_number": Bound(1, 16, "strain wave gears are single- to triple-wave"),
     "gear.gear_ratio": Bound(2.0, 1e4, "a strain wave gear reduces (ratio >= 2); catalogue stages 30..320"),
