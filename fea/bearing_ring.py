@@ -29,7 +29,6 @@ from ..errors import InputError, StageError
 from .assembly import Lame, elasticity_stiffness, scalar_basis
 from .crack_contact import crack_pairs, solve_with_contact
 from .crack_seam import open_crack_for, seam_crack
-from .facet_traction import facet_traction_load
 from .fields import field_info, write_solid_fields
 from .mesh_data import group_dofs, to_skfem
 from .mesh_isolated import mesh_part_isolated
@@ -38,6 +37,7 @@ from .refinement import CRACK_ORDER_BOUNDS, DEFAULT_RATIO, refinement_sizes
 from .result import CrackRecord, Load, StudyResult, Support
 from .skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, run_variant
 from .solver import solve_elasticity
+from .surface import SurfaceQuadrature
 
 STUDY = "bearing-ring"
 PART = "wg-bearing-ring"
@@ -98,9 +98,10 @@ def compliance_on_mesh(md, part, params, lame, *, force_N, method=SOLVER, keep_f
     race_nodes = group_dofs(sk, md, contact_name)
     r_race = float(np.median(np.hypot(*sb.doflocs[:2, race_nodes])))
     p = hertz_pressure(force_N, (a_ax, b_circ), centre, r_race)
-    # integrated on the facet triangles: FacetBasis's inverse mapping fails on curved sliver tets
-    f = facet_traction_load(md, sk, contact_name,
-                            lambda x: -p(x) * np.stack([x[0], x[1], 0 * x[2]]) / np.hypot(x[0], x[1]))
+    # integrated on the facet triangles (FacetBasis's inverse mapping fails on curved sliver tets), degree 6
+    # for the sqrt profile's edge
+    f = SurfaceQuadrature.of(md, contact_name, order=6).load_vector(
+        lambda x: -p(x) * np.stack([x[0], x[1], 0 * x[2]]) / np.hypot(x[0], x[1]), sk.node_to_dof, 3, 3 * sb.N)
     fx = f[0::3].sum() * np.cos(np.arctan2(centre[1], centre[0])) + f[1::3].sum() * np.sin(np.arctan2(centre[1], centre[0]))
     f *= force_N / -fx                  # the resultant is F_r exactly (quadrature of the sqrt profile)
     fixed = (3 * group_dofs(sk, md, "bore")[:, None] + np.arange(3)).ravel()

@@ -22,12 +22,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from .assembly import Lame, elasticity_stiffness, scalar_basis
-from .facet_traction import facet_traction_load
 from .mesh_data import GMSH_EDGES, MeshData, to_skfem
 from .result import MeshQuality
 from .ring_loads import ArcLoad
 from .ring_plane import RingGeometry
 from .solver import solve_elasticity
+from .surface import SurfaceQuadrature
 
 ARC_ELEMENTS = 4          # elements over the contact half-arc
 ASPECT = 4.0              # in-plane (theta, z) element size over the through-thickness size
@@ -159,8 +159,8 @@ def solve_ring_solid(geo: RingGeometry, load: ArcLoad, lame: Lame, *, n_radial: 
     sb = scalar_basis(sk.mesh, sk.element)
     K = elasticity_stiffness(sb, lame)
     t1 = time.perf_counter()
-    f = facet_traction_load(md, sk, "outer", lambda x: -load.pressure_MPa(x[0], x[1]) * np.stack(
-        [x[0], x[1], 0 * x[2]]) / np.hypot(x[0], x[1]))
+    f = SurfaceQuadrature.of(md, "outer", order=6).load_vector(lambda x: -load.pressure_MPa(x[0], x[1]) * np.stack(
+        [x[0], x[1], 0 * x[2]]) / np.hypot(x[0], x[1]), sk.node_to_dof, 3, 3 * sb.N)
     f *= 0.25 * load.force_N / -f[1::3].sum()     # the eighth carries F/4 (half arc, half width) exactly
     x = sb.doflocs
     tol = 1e-9 * geo.r_outer_mm

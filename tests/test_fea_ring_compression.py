@@ -181,18 +181,20 @@ def test_solid_3d_between_plane_stress_and_plane_strain(ring):
 
 
 def test_facet_traction_on_curved_p2_surface(ring):
-    from strainwave.fea.facet_traction import facet_traction_load
     from strainwave.fea.mesh_data import to_skfem
+    from strainwave.fea.surface import SurfaceQuadrature
     from strainwave.fea.ring_solid import ring_lattice_mesh
     geo, load, _, _ = ring
     md = ring_lattice_mesh(geo, load, n_radial=1).md
     sk = to_skfem(md)
+    n = 3 * (int(sk.node_to_dof.max()) + 1)
+    quad = SurfaceQuadrature.of(md, "outer", order=6)     # the order the 3D ring and the bearing load with
     r, half_b = geo.r_outer_mm, geo.width_mm / 2
-    ones = facet_traction_load(md, sk, "outer", lambda x: np.stack([np.ones_like(x[0])] * 3))
+    ones = quad.load_vector(lambda x: np.stack([np.ones_like(x[0])] * 3), sk.node_to_dof, 3, n)
     # a uniform unit traction: the resultant is the curved surface's area (pi/2) r (B/2); curved P2
     # facets reproduce the cylinder to O(h^4) (1e-8 here), the 1e-6 covers the element chords
     assert ones[2::3].sum() == pytest.approx(0.5 * np.pi * r * half_b, rel=1e-6)
     # a unit radial pressure on the quarter cylinder: x-resultant = r (B/2) (int cos over [0, pi/2])
-    radial = facet_traction_load(md, sk, "outer", lambda x: np.stack([x[0], x[1], 0 * x[2]]) / np.hypot(x[0], x[1]))
+    radial = quad.load_vector(lambda x: np.stack([x[0], x[1], 0 * x[2]]) / np.hypot(x[0], x[1]), sk.node_to_dof, 3, n)
     assert radial[0::3].sum() == pytest.approx(r * half_b, rel=1e-6)
     assert radial[2::3].sum() == pytest.approx(0.0, abs=1e-12)
