@@ -14,14 +14,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .assembly import Lame, elasticity_stiffness, facet_vector_basis, scalar_basis, traction_load, vector_basis_of
-from .mesh_data import MeshData, SkfemMesh, facet_indices, to_skfem
+from .assembly import Lame, elasticity_stiffness, facet_vector_basis, scalar_basis, vector_basis_of
+from .mesh_data import MeshData, SkfemMesh, to_skfem
 from .meshing import Refine, mesh_section
 from .ring_loads import ArcLoad
 from .ring_sections import (MidLayer, boundary_stress_MPa, hoop_at, mid_layer, peak_near, section_hoop_MPa,
                             signed_principal)
 from .session import gmsh_session
 from .solver import solve_elasticity
+from .surface import SurfaceQuadrature
 
 
 @dataclass(frozen=True)
@@ -161,8 +162,10 @@ def solve_ring_section(face, geo: RingGeometry, load: ArcLoad, lame: Lame, *, si
     base_fixed = np.concatenate([dof("A", 1), dof("B", 1), dof("D", 0)])
     arc = np.unique(sk.node_to_dof[md.group_nodes("contact")])
     arc_top, arc_bottom = arc[sb.doflocs[1, arc] > 0], arc[sb.doflocs[1, arc] < 0]
-    fb = facet_vector_basis(sk.mesh, sk.element, facet_indices(sk, md, "contact"), intorder=8)
-    f = traction_load(fb, lambda x: -load.pressure_MPa(x[0], x[1]) * x / np.hypot(x[0], x[1]) * geo.width_mm)
+    # on the curved contact edges themselves (fea/surface.py, the one facet quadrature), degree 8 for the
+    # square-root profile's ends
+    f = geo.width_mm * SurfaceQuadrature.of(md, "contact", order=8).load_vector(
+        lambda x: -load.pressure_MPa(x[0], x[1]) * x / np.hypot(x[0], x[1]), sk.node_to_dof, 2, 2 * sb.N)
     # each arc's y-resultant is F up to the quadrature of the square-root profile: make it exact
     top = sb.doflocs[1] > 0
     fy = f[1::2]

@@ -222,7 +222,8 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
     """Flexibility on three meshes (GCI); with a crack also delta lambda = cracked - uncracked, both on
     the same mesh: the (r, z) section for a full circumferential crack (``crack_model`` "auto" or
     "axisymmetric", exact and cheap), the 3D seam otherwise ("seam")."""
-    model = crack_model_for(params, crack_model) if crack_depth_mm is not None else None
+    model = crack_model_for(params, crack_model)       # a wrong choice is refused with or without a crack
+    model = model if crack_depth_mm is not None else None
     h = mesh_size_mm or default_size_mm(params, quick)
     if h >= params.output_shaft.length_mm / 2:
         raise InputError("--mesh-size-mm", h, f"must be < L_s/2 = {params.output_shaft.length_mm / 2:g} mm")
