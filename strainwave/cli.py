@@ -11,6 +11,7 @@ place of the text when FILE is left out or is ``-``.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import dataclasses
 import json
 import logging
@@ -144,19 +145,9 @@ def _cmd_export_step(args) -> int:
     return 0
 
 
-def _scratch_dir(args):
-    """A scratch folder next to the command's own output (--json FILE) when there is one, so nothing is
-    written elsewhere; else in the system's temporary directory. Removed when the command ends."""
+def _cmd_solve(args) -> int:
     import tempfile
 
-    target = getattr(args, "json", None)
-    where = Path(target).resolve().parent if target not in (None, "-") else None
-    if where is not None:
-        where.mkdir(parents=True, exist_ok=True)
-    return tempfile.TemporaryDirectory(prefix=".strainwave-scratch-", dir=where)
-
-
-def _cmd_solve(args) -> int:
     from .fea.budget import check_budget
     from .fea.studies import run_study, with_crack
     from .rated_stress import stress_at_rated, stress_field_of
@@ -165,7 +156,7 @@ def _cmd_solve(args) -> int:
     with_crack(args.study, params, args.crack_depth_mm)
     check_budget(args.study, params, args.mesh_size_mm)
     # The field is always written (to a scratch folder without --vtu): the rated-load peaks are read from it.
-    with _scratch_dir(args) as scratch:
+    with tempfile.TemporaryDirectory(prefix="strainwave-solve-") as scratch:   # under the run's scratch
         vtu = Path(args.vtu) if args.vtu else Path(scratch) / f"{args.study}.vtu"
         result = run_study(args.study, params, mesh_size_mm=args.mesh_size_mm, order=args.order,
                            crack_depth_mm=args.crack_depth_mm, vtu=vtu, progress=_progress)
@@ -214,6 +205,9 @@ def _cmd_benchmark_diagnose(args) -> int:
 
 def _cmd_sweep(args) -> int:
     from .compare.sweep.pipeline import run_sweep
+    if args.scheduler:   # a bad address is bad input: refused before the sweep announces any work
+        from .compare.sweep.reach import check_scheduler
+        check_scheduler(args.scheduler)
     outcome = run_sweep(args.study, vary=args.vary, params_path=args.params, sample_file=args.samples,
                         scheduler=args.scheduler, workers=args.workers, out_dir=Path(args.out),
                         quick=args.quick, tolerance=args.tolerance, progress=_progress)
@@ -239,6 +233,62 @@ def _check_outputs(args) -> None:
     out = getattr(args, "out", None)
     if out is not None:
         check_output_path(out, "--out", directory=True, inputs=inputs)
+
+
+def _output_folder(args) -> Path | None:
+    """The folder the command writes into (--out, else the parent of its first output file), if any."""
+    if getattr(args, "out", None):
+        return Path(args.out)
+    for name in ("json", "vtu", "output", "plot", "png"):
+        target = getattr(args, name, None)
+        if target not in (None, "-"):
+            return Path(target).resolve().parent
+    return None
+
+
+# sun_path holds 107 bytes; multiprocessing appends "/pymp-XXXXXXXX/listener-XXXXXXXX" (33) to the scratch
+_MAX_SCRATCH_BYTES = 107 - 33
+
+
+@contextlib.contextmanager
+def _scratch_under_outputs(args):
+    """Every temporary file of the command (ours, gmsh's BREP hand-over, the children's) goes to a scratch
+    folder inside the output folder, removed at the end: nothing lands in /tmp, and a run killed with
+    -9 leaves its scratch where the user looks, not in a shared temporary directory (issue 16, item 26).
+    Commands without an output folder keep the system's temporary directory."""
+    import os
+    import shutil
+    import tempfile
+
+    folder = _output_folder(args)
+    if folder is None:
+        yield
+        return
+    created = [p for p in (folder, *folder.parents) if not p.exists()]   # deepest first
+    folder.mkdir(parents=True, exist_ok=True)
+    scratch = tempfile.mkdtemp(prefix=".strainwave-scratch-", dir=folder)
+    if len(os.fsencode(scratch)) > _MAX_SCRATCH_BYTES:
+        # multiprocessing's AF_UNIX sockets (fork server) live in its own temporary folder, whose path must
+        # fit the kernel's 108 bytes: under a deep output folder it is made in the system's temporary
+        # directory instead (removed at exit), before TMPDIR points into the scratch
+        import multiprocessing.util
+        multiprocessing.util.get_temp_dir()
+    saved_env, saved_dir = os.environ.get("TMPDIR"), tempfile.tempdir
+    os.environ["TMPDIR"], tempfile.tempdir = scratch, scratch   # children inherit TMPDIR
+    try:
+        yield
+    finally:
+        tempfile.tempdir = saved_dir
+        if saved_env is None:
+            os.environ.pop("TMPDIR", None)
+        else:
+            os.environ["TMPDIR"] = saved_env
+        shutil.rmtree(scratch, ignore_errors=True)
+        for made in created:   # a refused command leaves no empty output folder behind
+            try:
+                made.rmdir()
+            except OSError:
+                break   # not empty: the command wrote its outputs there
 
 
 # ---- parser ------------------------------------------------------------------------------------
@@ -422,7 +472,8 @@ def main(argv: list[str] | None = None) -> int:
                     warnings.simplefilter("ignore", MaterialWarning)
                 logger.debug("strainwave %s: %s", _version(), " ".join(argv))
                 _check_outputs(args)
-                status = args.func(args)
+                with _scratch_under_outputs(args):
+                    status = args.func(args)
                 handler.show_held()
                 return status
             except InputError as exc:
