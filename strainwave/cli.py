@@ -476,14 +476,9 @@ def main(argv: list[str] | None = None) -> int:
                     status = args.func(args)
                 handler.show_held()
                 return status
-            except InputError as exc:
-                handler.drop_held()
-                print(f"error: {exc}", file=sys.stderr)
-                if debug:
-                    traceback.print_exc()
-                return exc.exit_status
             except StrainwaveError as exc:
-                handler.show_held()
+                # a refused input is its one line; a stage failure keeps the warnings that may explain it
+                handler.drop_held() if isinstance(exc, InputError) else handler.show_held()
                 print(f"error: {exc}", file=sys.stderr)
                 if debug:
                     traceback.print_exc()
