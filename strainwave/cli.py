@@ -478,7 +478,10 @@ def main(argv: list[str] | None = None) -> int:
                 return status
             except StrainwaveError as exc:
                 # a refused input is its one line; a stage failure keeps the warnings that may explain it
-                handler.drop_held() if isinstance(exc, InputError) else handler.show_held()
+                if isinstance(exc, InputError):
+                    handler.drop_held()
+                else:
+                    handler.show_held()
                 print(f"error: {exc}", file=sys.stderr)
                 if debug:
                     traceback.print_exc()
