@@ -20,7 +20,7 @@ import traceback
 import warnings
 from pathlib import Path
 
-from .errors import InputError, MaterialWarning, RangeWarning, StrainwaveError
+from .errors import InputError, MaterialWarning, RangeWarning, StageError, StrainwaveError
 from .geometry.part import PartName
 from .registry import STUDY_NAMES as STUDIES
 
@@ -139,8 +139,14 @@ def _cmd_export_step(args) -> int:
     params = _params(args)
     if not args.no_teeth:
         check_cad_teeth(params, list(TOOTHED_PARTS) if args.part == "assembly" else [args.part])
-    written = export_part(args.part, params, Path(args.output), crack_depth_mm=args.crack_depth_mm,
-                          teeth=not args.no_teeth, png=Path(args.png) if args.png else None)
+    try:
+        written = export_part(args.part, params, Path(args.output), crack_depth_mm=args.crack_depth_mm,
+                              teeth=not args.no_teeth, png=Path(args.png) if args.png else None)
+    except (StrainwaveError, OSError):
+        raise
+    except Exception as exc:   # noqa: BLE001 - OCC's own failures ("Could not create line", "No geometry")
+        # on a geometry it cannot build: a failure of the CAD stage of this part, said as such (exit 1)
+        raise StageError("CAD", args.part, f"{type(exc).__name__}: {exc}") from exc
     _emit(args, "\n".join(f"wrote {path}" for path in written), {"written": [str(p) for p in written]})
     return 0
 

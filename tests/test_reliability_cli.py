@@ -92,3 +92,17 @@ def test_commands_write_nothing_outside_their_outputs(harness, tmp_path):
     if row.notes and "not installed" in row.notes[0]:
         pytest.skip("strace is not installed")
     assert row.tried == 4 and row.accepted == 4, row.notes
+
+
+def test_a_cad_kernel_failure_is_a_named_stage_failure(tmp_path, capsys, monkeypatch):
+    """Item 8: OCC's own exceptions on a geometry it cannot build say which stage and part failed (exit 1),
+    not 'internal error'. The kernel's failure is stood in for: no in-range parameter set is known to cause one."""
+    from strainwave.geometry import export
+
+    def occ_fails(*args, **kwargs):
+        raise RuntimeError("BRepAdaptor_Curve::No geometry")
+
+    monkeypatch.setattr(export, "export_part", occ_fails)
+    assert main(["export-step", "--part", "output-shaft", "-o", str(tmp_path / "s.step")]) == 1
+    err = capsys.readouterr().err
+    assert err == "error: output-shaft: CAD failed: RuntimeError: BRepAdaptor_Curve::No geometry\n"
