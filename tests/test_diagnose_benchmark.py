@@ -28,6 +28,21 @@ def test_maxwell_slip_dissipates_and_has_its_loss(fraction):
     assert 0.2 * 1e-4 * 2 * A < loop.energy_Nmm_rad < 1e-4 * 2 * A
 
 
+@pytest.mark.parametrize("loss_over_cT", [0.005, 0.08])
+def test_family1_friction_on_the_stiffest_gear_is_passive(loss_over_cT):
+    """The widest loop family 1 draws, with its narrowest slip range, on its stiffest contact spread: the
+    twist still moves with the torque along every monotonic stretch (a spring-and-slider chain is passive)."""
+    from strainwave.compare.diagnose.generate_recordings import STIFFEST, passive_slip_fraction
+    c = 1e-8
+    loss = loss_over_cT * c * A
+    frac = passive_slip_fraction(0.05, loss, A, c)
+    assert frac <= 0.5
+    twist = c * CYCLE + ht.contact_spread_twist(CYCLE, 1 / c, STIFFEST / c, 0.15 * A, 2.5) + \
+        ht.maxwell_slip_twist(CYCLE, loss, frac)
+    steps = np.diff(CYCLE) != 0
+    assert np.all(np.diff(twist)[steps] * np.sign(np.diff(CYCLE)[steps]) > 0)
+
+
 def test_backlash_with_friction_dissipates_and_without_is_odd_and_centred():
     law = lambda T: ht.backlash_twist(T, 1e-4, 0.05 * A, 0.01 * A)
     assert measure_loop(law, A).energy_Nmm_rad > 0 and set_after_unloading(law, A) > 0

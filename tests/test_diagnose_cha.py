@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from strainwave.compare.diagnose.cha import ARCMIN, ENCODER_STEP_RAD, cha_recording, cha_rows
+from strainwave.compare.diagnose.cha import ARCMIN, CHA_SLIP_FRACTION, ENCODER_STEP_RAD, cha_recording, cha_rows
 from strainwave.compare.diagnose.hifi_torsion import maxwell_slip_twist
 from strainwave.compare.diagnose.loop_metrics import measure_loop
 from strainwave.compare.diagnose.recording import parse_text
@@ -37,8 +37,19 @@ def test_curve_has_the_table_slopes_and_the_recording_resolves_them(row):
 
 def test_the_cha_loop_is_dissipative_and_inside_the_catalogue_limit():
     row = ROWS[0]
-    law = lambda T: maxwell_slip_twist(T, 0.8 * row.hysteresis_limit_arcmin * ARCMIN, 0.15)
+    law = lambda T: maxwell_slip_twist(T, 0.8 * row.hysteresis_limit_arcmin * ARCMIN, CHA_SLIP_FRACTION)
     loop = measure_loop(law, 1.5 * row.T2_Nmm)
     assert loop.energy_Nmm_rad > 0
     assert loop.loss_rad / ARCMIN == pytest.approx(0.8 * row.hysteresis_limit_arcmin, rel=1e-9)
     assert math.isfinite(loop.secant_compliance)
+
+
+@pytest.mark.parametrize("row", ROWS, ids=lambda r: f"CHA-{r.size}-{r.ratio}")
+def test_the_cha_gear_with_its_loop_is_passive(row):
+    """A chain of springs and Coulomb sliders has a positive tangent compliance everywhere: along every
+    monotonic stretch of torque the twist moves with the torque, also right after a reversal at 1.5 T2."""
+    T_max = 1.5 * row.T2_Nmm
+    T = np.concatenate([np.linspace(0, T_max, 400), np.linspace(T_max, -T_max, 800)[1:],
+                        np.linspace(-T_max, T_max, 800)[1:]])
+    twist = row.twist_rad(T) + maxwell_slip_twist(T, 0.8 * row.hysteresis_limit_arcmin * ARCMIN, CHA_SLIP_FRACTION)
+    assert np.all(np.diff(twist) * np.sign(np.diff(T)) > 0)

@@ -109,8 +109,13 @@ def test_cli_good_recording_writes_json_with_stable_keys_and_png(strainwave_cmd,
     from strainwave.compare.diagnose.baseline import torsion_compliance
     from strainwave.params import load_params
     c0, _ = torsion_compliance("output_shaft", load_params())
-    # friction: the twist lags the torque (below the elastic line while loading, dissipative)
-    twist = c0 * T - 2e-4 * c0 * 1e6 * np.sign(np.gradient(T)) + 1e-3 * c0 * 1e6 * rng.standard_normal(400) * 0.05
+    # friction: a spring and a Coulomb slider (slip torque r) in series with the shaft; the twist lags the
+    # torque and, stuck right after each reversal, still moves with it (passive, dissipative). The first
+    # version jumped by 4e-4 c0 T_max at each reversal, the twist moving against the torque: a time lag
+    r, slip = 5e4, np.zeros(400)
+    for k in range(1, 400):
+        slip[k] = min(max(slip[k - 1], T[k] - r), T[k] + r)
+    twist = c0 * T + 4e-3 * c0 * (slip - T) + 1e-3 * c0 * 1e6 * rng.standard_normal(400) * 0.05
     rec = tmp_path / "r.csv"
     rec.write_text(format_recording(RecordingKind.TORSION, "output_shaft", T, twist))
     out = _run(strainwave_cmd, "diagnose", str(rec), "--json", str(tmp_path / "d.json"), "--plot",

@@ -54,16 +54,26 @@ _THETAS = (0.0, 0.3, 0.5, 0.7, 0.8, 0.9, 0.95, 0.98)
 
 def noise_filter(r: np.ndarray) -> tuple[float, np.ndarray, np.ndarray]:
     """(innovation sum of squares, b, a): the best two-parameter noise filter e = lfilter(b, a, r), AR(2) or
-    ARMA(1,1), by least innovation variance (both have two parameters, so the comparison is fair)."""
+    ARMA(1,1), by least innovation variance (both have two parameters, so the comparison is fair).
+
+    Only white or red noise is allowed (spectral density at zero frequency >= at Nyquist): sensor noise is
+    white, low-pass filtered or wandering, never short of slow power. A residual from which structures were
+    fitted away IS short of slow power, and a blue filter fitted to it would amplify every slow departure
+    (measured: white noise with 4 time hats removed gave ARMA phi 0.95, theta 0.98 and a false alarm)."""
     from scipy.signal import lfilter
     n = len(r)
+    white = (float(r @ r), np.array([1.0]), np.array([1.0]))
     rss, coef = ar_profile(r)
-    best = (rss, np.concatenate([[1.0], -coef]), np.array([1.0]))
+    # AR whitening polynomial A(z) = 1 - a1 z - a2 z^2; noise spectrum 1/|A|^2 is red when |A(1)| <= |A(-1)|
+    red = abs(1.0 - coef.sum()) <= abs(1.0 + coef[0] - coef[1:].sum()) if len(coef) else True
+    best = (rss, np.concatenate([[1.0], -coef]), np.array([1.0])) if red and rss < white[0] else white
     if n <= 8:
         return best
     for phi in _PHIS:
         d = r[1:] - phi * r[:-1]
         for th in _THETAS:
+            if th > phi:
+                continue                      # (1 - theta z)/(1 - phi z) with theta > phi is blue
             e = lfilter([1.0], [1.0, -th], d) if th else d
             val = float(e @ e) * n / (n - 1)
             if val < best[0]:

@@ -28,6 +28,7 @@ from .recording import RecordingKind, format_recording
 UNCERTAINTY = 0.02
 ARCMIN = math.pi / (180.0 * 60.0)
 COLOURED = ("ar1", "lowpass", "random_walk")
+STIFFEST = 1.8          # largest K3/K1 of the contact-spread stiffening drawn here
 TORSION_CLASSES = ("clean_torsion", "clean_torsion_coloured", "compliance_offset", "nonlinear_stiffness", "hysteresis", "lost_motion",
                    "crack_closure", "nonlinear_stiffness+hysteresis", "hysteresis+lost_motion")
 RING_CLASSES = ("clean_ring", "clean_ring_coloured", "compliance_offset_ring", "thick_ring", "large_deflection", "plasticity")
@@ -69,6 +70,16 @@ def _noisy(rng, u_true, y_true_Y, effect_Y, snr, clean_noise, n, noise_kind="whi
     return u, y, math.sqrt(white ** 2 + q ** 2 / 12.0) if q else white, peak
 
 
+def passive_slip_fraction(frac: float, loss_rad: float, T_max: float, c: float) -> float:
+    """The slip range of a Maxwell-slip loop, widened where needed so the chain stays passive.
+
+    A spring-and-slider chain's stuck compliance drop (right after a reversal) must stay below the specimen's
+    compliance at full load, c / STIFFEST with the stiffest contact spread drawn; it is kept below half of
+    it. The drop scales as 1/frac, so a loop too wide for its slip range gets a wider slip range (<= 0.5
+    for loops up to 0.09 c T_max wide)."""
+    return max(frac, frac * ht.maxwell_slip_stuck_drop(loss_rad, frac, T_max) / (0.5 * c / STIFFEST))
+
+
 def generate(cls: str, rng: np.random.Generator, params, *, rows: tuple[int, int] = (200, 2000),
              elastica_table=None) -> Concealed:
     """One concealed recording of class ``cls`` (see CLASSES)."""
@@ -97,10 +108,11 @@ def _torsion(cls, rng, params, n, snr, clean_noise, eps) -> Concealed:
             effect += ht.series_compliance_twist(T, c0 * rng.choice([-1, 1]) * rng.uniform(0.06, 0.4))
         elif p == "nonlinear_stiffness":
             K1 = 1.0 / c
-            effect += ht.contact_spread_twist(T, K1, K1 * rng.uniform(1.1, 1.8), X * rng.uniform(0.15, 0.5),
+            effect += ht.contact_spread_twist(T, K1, K1 * rng.uniform(1.1, STIFFEST), X * rng.uniform(0.15, 0.5),
                                               rng.uniform(1.0, 2.5))
         elif p == "hysteresis":
             target, frac = Y * rng.uniform(0.005, 0.08), rng.uniform(0.05, 0.4)
+            frac = passive_slip_fraction(frac, target, X, c)
             effect += ht.maxwell_slip_twist(T, target, frac)
             loop = measure_loop(lambda x: ht.maxwell_slip_twist(x, target, frac), float(np.max(np.abs(T))))
             loss, energy = loop.loss_rad / ARCMIN, loop.energy_Nmm_rad

@@ -37,6 +37,14 @@ def maxwell_slip_twist(T: np.ndarray, loss_rad: float, slip_fraction: float, n_e
     return out * (loss_rad / width)
 
 
+def maxwell_slip_stuck_drop(loss_rad: float, slip_fraction: float, T_max: float, n_elements: int = 40) -> float:
+    """Compliance the chain of ``maxwell_slip_twist`` removes while every element is stuck (right after a
+    reversal): sum_i w_i of the scaled weights. Passive only if it stays below the specimen's own compliance."""
+    r = np.linspace(1.0 / n_elements, 1.0, n_elements) * slip_fraction * T_max
+    w = np.linspace(1.0, 0.2, n_elements)
+    return float(w.sum()) * loss_rad / (2.0 * float(w @ r))
+
+
 def contact_spread_twist(T: np.ndarray, K1: float, K3: float, T_c: float, p: float = 1.5) -> np.ndarray:
     """Stiffness growing smoothly as contact spreads: K(|T|) = K1 + (K3 - K1)(1 - exp(-(|T|/T_c)^p)).
 

@@ -37,7 +37,7 @@ from .fit import NOISE_FLOOR, Fit, fit_effects
 from .locate import Located, locate, locate_effect
 from .noise import noise_std
 from .recording import Recording, parse_recording
-from .structure import StructureTest, describe, structure_test
+from .structure import StructureTest, describe, reference_noise, structure_test
 
 BIC_THRESHOLD = 10.0       # "very strong" on the Kass-Raftery scale
 AMBIGUOUS_BIC = 6.0        # "strong": closer than this, the data cannot tell the two apart
@@ -212,7 +212,9 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     base_fit = fit_effects(ctx, (), sigma, u_rel)
     singles = [fit_effects(ctx, (e,), sigma, u_rel) for e in effects_for(rec.kind.value) if e.applicable(ctx)]
     ranked_singles = _best_per_set(singles)
-    gof_base = structure_test(ctx, ctx.y - base_fit.model, sigma, base_fit.prior_chi2)
+    # one noise model for the whole recording: every residual is judged against the same noise
+    noise = reference_noise(ctx, ctx.y - base_fit.model)
+    gof_base = structure_test(ctx, ctx.y - base_fit.model, sigma, base_fit.prior_chi2, noise)
     best_single = ranked_singles[0] if ranked_singles else None
     # a catalogue model is evidence of a mismatch only with physically plausible parameters
     plausible = [f for f in ranked_singles if not _implausible(ctx, f)]
@@ -225,7 +227,7 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
 
     def gof(f: Fit) -> StructureTest:
         if id(f) not in gofs:
-            gofs[id(f)] = structure_test(ctx, ctx.y - f.model, sigma, f.prior_chi2)
+            gofs[id(f)] = structure_test(ctx, ctx.y - f.model, sigma, f.prior_chi2, noise)
         return gofs[id(f)]
 
     if mismatch and best_single is not None:
@@ -253,7 +255,9 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
         # it must explain a structure the first one cannot: some generic structure of the first's residual
         # loses more than 10 BIC units of evidence once the second effect is added
         before, after = gof(first), gof(p)
-        if not any(s.delta_bic - after.get(s.name).delta_bic > BIC_THRESHOLD for s in before.structures):
+        # a structure the pair's residual no longer offers (no spectral line left) counts as fully taken
+        if not any(s.delta_bic - (after.get(s.name).delta_bic if after.get(s.name) else min(s.delta_bic, 0.0))
+                   > BIC_THRESHOLD for s in before.structures):
             continue
         candidates.append(p)
     candidates.sort(key=lambda f: f.bic)

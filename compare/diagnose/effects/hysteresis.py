@@ -91,6 +91,28 @@ def _loop_report(ctx: Context, model) -> dict:
     return out
 
 
+def _plausible_dahl(ctx: Context, theta, s: float) -> list[str]:
+    # right after a reversal from z_r = +/-1 the Dahl term changes the compliance by -2 h / w
+    return _passive(s, 2.0 * theta[0] / 10.0 ** theta[1])
+
+
+def _plausible_play(ctx: Context, theta, s: float) -> list[str]:
+    # right after a reversal every play element is stuck: the compliance drops by the sum of the weights
+    return _passive(s, float(np.sum(theta)))
+
+
+def _passive(s: float, drop: float) -> list[str]:
+    """A friction joint is passive: right after a load reversal its sliders stick and the twist follows the
+    torque with a positive (stiffer) compliance s - drop > 0. A loop that needs the twist to keep moving the
+    old way after the torque has turned (negative tangent compliance) is a channel lagging in time or a rate
+    effect, not friction."""
+    if s - drop <= 0.0:
+        return [f"the loop needs a negative tangent compliance ({s - drop:.3g} of the baseline's) right after a "
+                f"load reversal: the twist keeps moving after the torque has turned (a lagging channel or a "
+                f"rate effect), which friction cannot do"]
+    return []
+
+
 EXPLANATION = ("friction in the tooth mesh and the wave-generator bearing makes the twist lag the torque: the "
                "unloading branch lies above the loading branch, leaving a twist (hysteresis loss) at zero torque "
                "and dissipating energy every cycle")
@@ -109,6 +131,7 @@ EFFECT = Effect(
     explanation=EXPLANATION,
     applicable=_applicable,
     variant="dahl",
+    plausible=_plausible_dahl,
 )
 
 PLAY = Effect(
@@ -120,6 +143,7 @@ PLAY = Effect(
     explanation=EXPLANATION,
     applicable=_applicable,
     variant="play",
+    plausible=_plausible_play,
 )
 
 __all__ = ["EFFECT", "PLAY", "PLAY_THRESHOLDS", "dahl_unit", "play_operator"]
