@@ -17,7 +17,6 @@ cancels in the difference.
 """
 from __future__ import annotations
 
-import math
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -25,7 +24,7 @@ from typing import ClassVar, Mapping
 
 import numpy as np
 
-from ..errors import InputError, StageError
+from ..errors import StageError
 from .assembly import Lame, elasticity_stiffness, scalar_basis
 from .crack_contact import crack_pairs, solve_with_contact
 from .crack_seam import open_crack_for, seam_crack
@@ -35,7 +34,7 @@ from .mesh_isolated import mesh_part_isolated
 from .meshing import MeshingFailed, Refine
 from .refinement import CRACK_ORDER_BOUNDS, DEFAULT_RATIO, refinement_sizes
 from .result import CrackRecord, Load, StudyResult, Support
-from .skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, run_variant
+from .skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, check_variant, run_variant
 from .solver import solve_elasticity
 from .surface import SurfaceQuadrature
 
@@ -190,6 +189,10 @@ class BearingRing(StudyVariant):
     force_N: float
     crack_depth_mm: float | None
 
+    def __post_init__(self):
+        check_variant(STUDY, order=self.order, sizes_mm=(self.h_fine_mm,), crack_depth_mm=self.crack_depth_mm,
+                      force_N=self.force_N)
+
     @property
     def lame(self) -> Lame:
         mat = self.params.material
@@ -294,7 +297,5 @@ def run(params, *, force_N: float, mesh_size_mm=None, order=2, crack_depth_mm=No
         progress=lambda m: None, quick=False) -> StudyResult:
     """Radial compliance at the radial force ``force_N`` on three meshes (GCI); with a crack also the
     cracked compliance and their difference on each mesh. None means uncracked, as in every study."""
-    if not (isinstance(force_N, (int, float)) and math.isfinite(force_N) and force_N > 0):
-        raise InputError("force_N", force_N, "the bearing's radial force must be finite and > 0 N")
     h = mesh_size_mm or default_size_mm(params, quick)
     return run_variant(BearingRing(params, order, h, float(force_N), crack_depth_mm), vtu=vtu, progress=progress)

@@ -19,7 +19,7 @@ from .fields import field_info, write_solid_fields
 from .meshing import Refine
 from .refinement import DEFAULT_RATIO, crack_flexibility_quantities, crack_front_size_mm, refinement_sizes
 from .result import CrackRecord, Load, StudyResult, Support
-from .skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, run_variant
+from .skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, check_variant, run_variant
 from .static import StaticSolution, solve_static
 from .study_mesh import mesh_for_study
 from .torsion_load import (clamped, mean_rotation_rad, moment_arm_mm3, torque_load, torsion_meta,
@@ -96,6 +96,10 @@ class CupTorsion(StudyVariant):
     ratio: float
     crack_depth_mm: float | None
     teeth: bool
+
+    def __post_init__(self):
+        check_variant(STUDY, order=self.order, sizes_mm=(self.h_fine_mm,), crack_depth_mm=self.crack_depth_mm,
+                      ratio=self.ratio)
 
     def build(self):
         # the seam part IS the uncracked cup when solved closed

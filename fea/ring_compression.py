@@ -25,7 +25,6 @@ linear problem, so each force solution is scaled to delta_CD = 2 W0):
 """
 from __future__ import annotations
 
-import math
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -41,7 +40,7 @@ from .refinement import DEFAULT_RATIO, refinement_sizes
 from .result import Load, StudyResult, Support
 from .ring_loads import ArcLoad
 from .ring_plane import RingGeometry, solve_ring_section
-from .skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, run_variant
+from .skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, check_variant, run_variant
 
 STUDY = "ring-compression"
 SOLID_LAYERS = (4, 3, 2)    # 3D: P2 tets through the thickness, fine first (ratios 1.33, 1.5 > 1.3)
@@ -100,6 +99,10 @@ class RingCompression(StudyVariant):
     w0_mm: float             # the prescribed mid-layer deformation W0 of the EWG case and of every ratio
     sizes_mm: tuple[float, float, float]          # toothed series
     smooth_sizes_mm: tuple[float, float, float]   # smooth series
+
+    def __post_init__(self):
+        check_variant(STUDY, order=self.order, sizes_mm=self.sizes_mm + self.smooth_sizes_mm, force_N=self.force_N,
+                      w0_mm=self.w0_mm)
 
     @property
     def geometry(self) -> RingGeometry:
@@ -254,9 +257,6 @@ def run(params, *, force_N: float, w0_mm: float, mesh_size_mm=None, order=2, cra
     ``analytic/study_loads.py`` through the registry). The ring carries no crack."""
     if crack_depth_mm is not None:
         raise InputError("--crack-depth-mm", crack_depth_mm, f"study {STUDY} meshes a ring without a crack; leave it out")
-    for key, value in (("force_N", force_N), ("w0_mm", w0_mm)):
-        if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-            raise InputError(key, value, f"the ring's {key} must be finite and > 0")
     geo = ring_geometry(params)
     # The smooth ring is cheap (2.9 to 4.4 s a mesh at delta/4), and its fibre stresses are sampled on the
     # boundary, where one or two P2 elements across the rim are 0.6 % off (sigma_B outer 153.31 MPa at

@@ -24,7 +24,7 @@ from .meshing import Refine
 from .refinement import (CRACK_ORDER_BOUNDS, DEFAULT_RATIO, crack_flexibility_quantities, crack_front_size_mm,
                          refinement_sizes)
 from .result import CrackRecord, Load, StudyResult, Support
-from .skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, run_variant
+from .skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, check_variant, run_variant
 from .static import StaticSolution, solve_static
 from .study_mesh import mesh_for_study
 from .torsion_load import clamped, mean_rotation_rad, saint_venant_traction, torque_load, torsion_meta
@@ -133,6 +133,13 @@ class ShaftTorsion(StudyVariant):
     crack_depth_mm: float | None
     crack_model: str | None          # None (uncracked), "seam" or "axisymmetric"
     quick: bool
+
+    def __post_init__(self):
+        check_variant(STUDY, order=self.order, sizes_mm=(self.h_fine_mm,), crack_depth_mm=self.crack_depth_mm,
+                      ratio=self.ratio)
+        if (self.crack_model is None) != (self.crack_depth_mm is None) or \
+                self.crack_model not in (None, "seam", "axisymmetric"):
+            raise ValueError(f"{STUDY}: crack model {self.crack_model!r} with depth {self.crack_depth_mm!r}")
 
     @property
     def seam(self) -> bool:

@@ -11,6 +11,7 @@ the GCI is ``refinement.converged_quantity``.
 """
 from __future__ import annotations
 
+import math
 import time
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
@@ -117,6 +118,20 @@ class StudyVariant(ABC):
     def meta(self, parts, series: Mapping[str, Series]) -> dict:
         """Further facts for the reader of results.json (no stage reads them)."""
         return {}
+
+
+def check_variant(study: str, *, order: int, sizes_mm: Sequence[float], crack_depth_mm: float | None = None,
+                  **positive: float) -> None:
+    """What every variant's ``__post_init__`` asserts: a P1/P2 element, positive finite sizes and loads, a crack
+    depth > 0 when there is one (the CLI refuses bad input before this with exit 2; this guards direct use)."""
+    if order not in (1, 2):
+        raise ValueError(f"{study}: element order must be 1 or 2, got {order!r}")
+    named = {f"size {k}": h for k, h in enumerate(sizes_mm)} | dict(positive)
+    if crack_depth_mm is not None:
+        named["crack_depth_mm"] = crack_depth_mm
+    for name, value in named.items():
+        if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+            raise ValueError(f"{study}: {name} must be finite and > 0, got {value!r}")
 
 
 def _add(timings: dict, more: Mapping[str, float]) -> None:

@@ -75,3 +75,13 @@ def test_fea_imports_no_closed_form():
             elif isinstance(node, ast.Import):
                 offenders += [f"{path.name}: import {a.name}" for a in node.names if "analytic" in a.name]
     assert not offenders
+
+
+@pytest.mark.parametrize("kwargs", [dict(order=3), dict(h_fine_mm=0.0), dict(force_N=-1.0),
+                                    dict(crack_depth_mm=0.0), dict(force_N=math.inf)])
+def test_a_variant_refuses_what_no_solve_could_use(kwargs):
+    from strainwave.fea.bearing_ring import BearingRing
+    good = dict(params=None, order=2, h_fine_mm=5.0, force_N=2.5, crack_depth_mm=None)
+    BearingRing(**good)                     # the good record is accepted: the refusals below are the inputs'
+    with pytest.raises(ValueError):
+        BearingRing(**(good | kwargs))
