@@ -173,3 +173,19 @@ def test_family2_cha_recording_carries_the_table_and_a_dissipative_loop():
     assert c.stiffness_Nmm_per_rad == (row.K1_Nmm_per_rad, row.K2_Nmm_per_rad, row.K3_Nmm_per_rad)
     assert 0 < c.loss_arcmin < row.hysteresis_limit_arcmin and c.energy_Nmm_rad > 0
     assert c.loss_arcmin * ARCMIN > 0
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_a_spliced_recording_changes_its_compliance_inside_the_test(seed, params):
+    """Two specimens spliced: the slopes of the first and the last quarter differ by more than the 2 %
+    stiffness uncertainty (the splice is 10-30 %), for the two-sided torsion paths and the one-sided ring
+    paths alike (the first version spliced rings at their end point: nothing changed)."""
+    c = g2.generate("spliced", np.random.default_rng(seed), params, rows=(600, 800))
+    rec = parse_text(c.text)
+    q = rec.n // 4
+    slopes = []
+    for part in (slice(0, q), slice(rec.n - q, rec.n)):
+        u, y = rec.load[part], rec.response[part]
+        A = np.column_stack([np.ones_like(u), np.arange(len(u)), u])
+        slopes.append(np.linalg.lstsq(A, y, rcond=None)[0][2])
+    assert abs(slopes[1] / slopes[0] - 1.0) > 0.05

@@ -295,8 +295,12 @@ def _artefact(cls, rng, kind, specimen, T, y, c, c0, snr, noise_kind, *, Y, t_s,
         effect = fs.delay(y, lag) - y
         return _finish(rng, cls, kind, specimen, T, fs.delay(y, lag), effect + (c - c0) * T, snr, noise_kind,
                        **common)
-    # splice and re-clamp happen where the load passes zero near the middle of the test
-    zero = np.flatnonzero(np.diff(np.sign(T)) != 0)
+    # splice and re-clamp happen where the load is least near the middle of the test: a zero crossing of a
+    # two-sided path, the unloaded point between two ring cycles, or (one ring cycle) the middle itself.
+    # The first version looked only for sign changes, found the ring's end points and spliced nothing.
+    interior = np.arange(n // 10, n - n // 10)
+    zero = interior[np.diff(np.sign(T))[interior - 1] != 0] if kind == "torsion" else \
+        interior[np.abs(T[interior]) <= 0.1 * float(np.max(np.abs(T)))]
     mid = int(zero[np.argmin(np.abs(zero - n // 2))]) + 1 if len(zero) else n // 2
     after = np.arange(n) >= mid
     if cls == "spliced":
