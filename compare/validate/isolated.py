@@ -24,7 +24,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-PRELOAD = ["numpy", "scipy.sparse", "skfem", "gmsh", "pyamg", "strainwave.fea.studies", "strainwave.params"]
+# build123d too: every case builds its part, and importing build123d (OCP, and scikit-learn through its
+# STL reader) took 3.2-3.6 s in each case's child. Preloaded once in the fork server: three quick shaft
+# cases in a row 18.9 / 15.3 s -> 6.8 / 10.6 s, each case after the first 4.6-7.1 s -> 1.1-1.9 s (load 6).
+PRELOAD = ["numpy", "scipy.sparse", "skfem", "gmsh", "pyamg", "build123d", "strainwave.fea.studies",
+           "strainwave.params"]
 
 
 @dataclass(frozen=True)
