@@ -18,11 +18,11 @@ from .crack_seam import open_crack_for, seam_crack
 from .fields import field_info, write_solid_fields
 from .meshing import Refine
 from .refinement import DEFAULT_RATIO, crack_flexibility_quantities, crack_front_size_mm, refinement_sizes
-from .result import CrackRecord, Load, StudyResult, Support
-from .skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, check_variant, run_variant
+from .result import CrackRecord, Load, StudyResult
+from .skeleton import MeshSolve, Series, SeriesPlan, check_variant, run_variant
 from .static import StaticSolution, solve_static
 from .study_mesh import mesh_for_study
-from .torsion_load import (clamped, mean_rotation_rad, moment_arm_mm3, torque_load, torsion_meta,
+from .torsion_load import (TorsionVariant, mean_rotation_rad, moment_arm_mm3, torsion_meta,
                            uniform_tangential_traction)
 
 STUDY = "cup-torsion"
@@ -85,11 +85,13 @@ CRACKED = "cracked_flexibility_rad_per_Nmm"
 
 
 @dataclass(frozen=True)
-class CupTorsion(StudyVariant):
+class CupTorsion(TorsionVariant):
     """The skeleton's hooks for the cup: one 3D series; with a crack each mesh carries the seam and is
     solved closed and opened. The load is a unit shear, rescaled (linear problem)."""
 
     study: ClassVar[str] = STUDY
+    load_distribution: ClassVar[str] = "uniform tangential shear on the toothed band, moment T"
+    clamped_face: ClassVar[str] = "hub face"
     params: object
     order: int
     h_fine_mm: float
@@ -128,12 +130,6 @@ class CupTorsion(StudyVariant):
         s = series["solid"]
         return crack_flexibility_quantities(s.h_mm, s.values(FLEX),
                                             s.values(CRACKED) if self.crack_depth_mm is not None else None, UNIT)
-
-    def load(self, parts) -> Load:
-        return torque_load(self.params, "uniform tangential shear on the toothed band, moment T")
-
-    def supports(self) -> tuple[Support, ...]:
-        return clamped("hub face")
 
     def crack(self, part) -> CrackRecord | None:
         if self.crack_depth_mm is None:

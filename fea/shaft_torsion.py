@@ -23,11 +23,11 @@ from .fields import field_info, write_solid_fields
 from .meshing import Refine
 from .refinement import (CRACK_ORDER_BOUNDS, DEFAULT_RATIO, crack_flexibility_quantities, crack_front_size_mm,
                          refinement_sizes)
-from .result import CrackRecord, Load, StudyResult, Support
-from .skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, check_variant, run_variant
+from .result import CrackRecord, Load, StudyResult
+from .skeleton import MeshSolve, Series, SeriesPlan, check_variant, run_variant
 from .static import StaticSolution, solve_static
 from .study_mesh import mesh_for_study
-from .torsion_load import clamped, mean_rotation_rad, saint_venant_traction, torque_load, torsion_meta
+from .torsion_load import TorsionVariant, mean_rotation_rad, saint_venant_traction, torsion_meta
 
 STUDY = "shaft-torsion"
 UNIT = "rad/(N*mm)"
@@ -121,11 +121,13 @@ def _timings(sols, t_mesh: float) -> dict[str, float]:
 
 
 @dataclass(frozen=True)
-class ShaftTorsion(StudyVariant):
+class ShaftTorsion(TorsionVariant):
     """The skeleton's hooks for the shaft: the 3D series (uncracked, or the seam closed and opened on each
     mesh) and, for a full circumferential crack, the (r, z) section series of the crack's added flexibility."""
 
     study: ClassVar[str] = STUDY
+    load_distribution: ClassVar[str] = "Saint-Venant shear traction tau = T r / J (tangential) on the end face"
+    clamped_face: ClassVar[str] = "end face z = 0"
     params: object
     order: int
     h_fine_mm: float
@@ -186,12 +188,6 @@ class ShaftTorsion(StudyVariant):
             q[DELTA] = section.converged(DELTA, UNIT, order_bounds=CRACK_ORDER_BOUNDS)
             return q
         return crack_flexibility_quantities(solid.h_mm, lam0, solid.values(CRACKED) if self.seam else None, UNIT)
-
-    def load(self, parts) -> Load:
-        return torque_load(self.params, "Saint-Venant shear traction tau = T r / J (tangential) on the end face")
-
-    def supports(self) -> tuple[Support, ...]:
-        return clamped("end face z = 0")
 
     def crack(self, part) -> CrackRecord | None:
         if self.crack_model is None:

@@ -1,9 +1,13 @@
-"""Torque as a tangential traction and twist as a mean face rotation: shared by the torsion studies."""
+"""Torque as a tangential traction, twist as a mean face rotation, and the load and supports hooks: shared by
+the torsion studies."""
 from __future__ import annotations
+
+from typing import ClassVar
 
 import numpy as np
 
 from .result import Load, Support
+from .skeleton import StudyVariant
 from .static import StaticSolution
 
 
@@ -38,14 +42,19 @@ def mean_rotation_rad(sol: StaticSolution, group: str) -> float:
     return q.integrate((x * u[..., 1] - y * u[..., 0]) / (x ** 2 + y ** 2)) / q.area
 
 
-def torque_load(params, distribution: str) -> Load:
-    """Seed 000's output torque T on the 'loaded' faces, as both torsion studies apply it."""
-    return Load("output torque T", params.gear.output_torque_Nmm, "N*mm", ("loaded",), distribution)
+class TorsionVariant(StudyVariant):
+    """The hooks both torsion studies share: seed 000's output torque T on the 'loaded' faces, spread as the
+    study's ``load_distribution`` says, and the 'fixed' faces (``clamped_face``) clamped."""
 
+    load_distribution: ClassVar[str]
+    clamped_face: ClassVar[str]
 
-def clamped(where: str) -> tuple[Support, ...]:
-    """The 'fixed' faces clamped: how both torsion studies hold their part."""
-    return (Support(("fixed",), f"{where} clamped (all displacement components zero)"),)
+    def load(self, parts) -> Load:
+        return Load("output torque T", self.params.gear.output_torque_Nmm, "N*mm", ("loaded",),
+                    self.load_distribution)
+
+    def supports(self) -> tuple[Support, ...]:
+        return (Support(("fixed",), f"{self.clamped_face} clamped (all displacement components zero)"),)
 
 
 def torsion_meta(params, order: int, ratio: float, sizes_mm) -> dict:
