@@ -259,7 +259,7 @@ class BearingRing(StudyVariant):
         on = "contact" if "contact" in part.named_faces else "race"      # the patch compliance_on_mesh loads
         return Load("wave generator radial force F_r", self.force_N, "N", (on,),
                     "Hertzian ellipsoidal pressure p0 sqrt(1 - (s/b')^2 - (z'/a')^2), p0 = 3 F_r/(2 pi a' b'), "
-                    "a' axial x b' circumferential, on the race",
+                    "a' axial x b' circumferential",
                     (("semi_axis_axial_mm", float(a_ax)), ("semi_axis_circumferential_mm", float(b_circ))))
 
     def supports(self) -> tuple[Support, ...]:

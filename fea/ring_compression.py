@@ -181,8 +181,8 @@ class RingCompression(StudyVariant):
     def load(self, parts) -> Load:
         arc = self.arc_load
         return Load("diametral force F", self.force_N, "N", ("contact",),
-                    "elliptical pressure normal to the outer surface on two opposite arcs (the EWG's contact "
-                    "strips); plane stress, thickness = face width B",
+                    "elliptical pressure normal to the outer surface, over two opposite arcs (the EWG's contact "
+                    "strips)",
                     (("half_angle_rad", float(arc.half_angle_rad)), ("radius_mm", float(arc.radius_mm)),
                      ("w0_mm", float(self.w0_mm))))
 

@@ -126,7 +126,7 @@ class ShaftTorsion(TorsionVariant):
     mesh) and, for a full circumferential crack, the (r, z) section series of the crack's added flexibility."""
 
     study: ClassVar[str] = STUDY
-    load_distribution: ClassVar[str] = "Saint-Venant shear traction tau = T r / J (tangential) on the end face"
+    load_distribution: ClassVar[str] = "Saint-Venant shear traction tau = T r / J (tangential)"
     clamped_face: ClassVar[str] = "end face z = 0"
     params: object
     order: int
