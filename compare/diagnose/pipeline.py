@@ -212,10 +212,13 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     base_fit = fit_effects(ctx, (), sigma, u_rel)
     singles = [fit_effects(ctx, (e,), sigma, u_rel) for e in effects_for(rec.kind.value) if e.applicable(ctx)]
     ranked_singles = _best_per_set(singles)
-    # one noise model for the whole recording: every residual is judged against the same noise
-    noise = reference_noise(ctx, ctx.y - base_fit.model)
-    gof_base = structure_test(ctx, ctx.y - base_fit.model, sigma, base_fit.prior_chi2, noise)
     best_single = ranked_singles[0] if ranked_singles else None
+    # one noise model for the whole recording, every residual is judged against it: read from the residual of
+    # the best-scoring single model, where a strong effect the generic structures draw only coarsely (three
+    # slopes with sharp knees) no longer leaks its misfit into the noise estimate
+    closest = best_single if best_single is not None and best_single.bic < base_fit.bic else base_fit
+    noise = reference_noise(ctx, ctx.y - closest.model)
+    gof_base = structure_test(ctx, ctx.y - base_fit.model, sigma, base_fit.prior_chi2, noise)
     # a catalogue model is evidence of a mismatch only with physically plausible parameters
     plausible = [f for f in ranked_singles if not _implausible(ctx, f)]
     cat_gain = base_fit.bic - plausible[0].bic if plausible else 0.0
