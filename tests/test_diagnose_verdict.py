@@ -171,3 +171,15 @@ def test_parameters_carry_standard_errors(params):
     # Fisher information: a 10 % compliance step seen at 2e-3 noise over 400 samples is known to < 1 %
     assert 0 < se < 0.01 * top.parameters["stiffness_crack_open"][0]
     assert 0.0 < top.weight <= 1.0
+
+
+@pytest.mark.parametrize("seed", range(2))
+def test_a_channel_lagging_by_four_samples_is_unexplained_and_rate_dependent(params, seed):
+    """A twist channel recorded 4 samples late draws a loop that looks like friction on a triangle path, but
+    its twist keeps moving for 4 samples after each reversal (no passive joint does that) and its offset
+    follows the loading rate: unexplained, described as rate-dependent, never named hysteresis."""
+    def lagged(u, t, c, lag=4):
+        return np.concatenate([np.full(lag, u[0]), u[:-lag]]) - u
+    diag, _ = _diagnose(params, lagged, seed=seed)
+    assert diag.verdict is Verdict.UNEXPLAINED and "hysteresis" not in diag.named
+    assert "loading rate" in diag.structure
