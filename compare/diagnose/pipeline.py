@@ -101,6 +101,7 @@ class Diagnosis:
     gof_model: StructureTest | None = None
     quantities: dict = field(default_factory=dict)   # name -> (value, unit) of the best model
     fitted_rows: int = 0
+    noise_model: str = ""                      # the recording's noise model the structures were judged against
 
     def __post_init__(self):
         if not isinstance(self.verdict, Verdict):
@@ -139,7 +140,8 @@ class Diagnosis:
                 "suggestion": self.suggestion.to_dict() if self.suggestion else None,
                 "structure": self.structure,
                 "goodness_of_fit": {"baseline": self.gof_baseline.to_dict() if self.gof_baseline else None,
-                                    "model": self.gof_model.to_dict() if self.gof_model else None},
+                                    "model": self.gof_model.to_dict() if self.gof_model else None,
+                                    "noise_model": self.noise_model},
                 "noise_std": self.noise_std, "located": self.located.to_dict(),
                 "effects": [e.to_dict() for e in self.effects] if self.mismatch else [],
                 "fit": {"rms_before": self.rms_before, "rms_after": self.rms_after,
@@ -150,7 +152,7 @@ class Diagnosis:
     def summary(self) -> str:
         lines = [f"{self.recording}: {self.kind} / {self.specimen}, {self.n_samples} samples; "
                  f"baseline {self.baseline.source}",
-                 f"  noise std {self.noise_std:.3g}; rms {self.rms_before:.3g} -> {self.rms_after:.3g}; "
+                 f"  noise std {self.noise_std:.3g} ({self.noise_model or 'white'}); rms {self.rms_before:.3g} -> {self.rms_after:.3g}; "
                  f"BIC {self.bic_before:.1f} -> {self.bic_after:.1f}",
                  f"  verdict: {self.verdict.value}" + (f" ({' + '.join(self.named)})" if self.named else "")
                  + (" - AMBIGUOUS with " + str(self.runner_up) if self.ambiguous else "")]
@@ -311,7 +313,7 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
                      runner_up=runner.label if runner is not None and mismatch else None, margin_bic=margin,
                      suggestion=effects[0] if verdict is Verdict.UNEXPLAINED and effects else None,
                      structure=structure, gof_baseline=gof_base, gof_model=gof_best if mismatch else None,
-                     quantities=quantities, fitted_rows=n)
+                     quantities=quantities, fitted_rows=n, noise_model=noise.describe())
     diag = dataclasses.replace(diag, explanation=explain(diag))
     arrays = {"load": fit_rec.load, "response": fit_rec.response, "baseline": base_fit.model * ctx.Y,
               "augmented": after.model * ctx.Y, "model_label": after.label}

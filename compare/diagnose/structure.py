@@ -203,7 +203,11 @@ class NoiseModel:
         return lfilter(self.b, self.a, x, axis=0)[len(self.b) - 1:]
 
     def describe(self) -> str:
-        if len(self.a) > 1 and self.a[1] != 0.0:
+        if len(self.b) == 1:
+            return "white"
+        if len(self.b) == 2:
+            if -self.b[1] == 1.0:
+                return f"random walk + white, theta {-self.a[1]:.3g}"
             return f"ARMA(1,1) phi {-self.b[1]:.3g}, theta {-self.a[1]:.3g}"
         return "AR(2) " + ", ".join(f"{-c:.3g}" for c in self.b[1:])
 
