@@ -391,12 +391,39 @@ def torsion_cases(rng):
          truth={"crack_side": "+"})
     x = T + 0.04 * TR
     tors("backlash_offcentre_pure", "in", {"lost_motion"}, T, T / K0 + b * x / np.sqrt(x ** 2 + wb ** 2), t=t)
+    # torque channel noise (errors in variables) on a clean specimen
+    tors("clean_torque_channel_noise", "clean", set(), T + rng.normal(0, 0.003 * TR, len(T)), T / K0, t=t)
+    # a long recording (6000 rows, strided by the tool) with a friction loop
+    T6 = TR * hist_full(6000)
+    ph = bouc_wen_torque_driven(T6, K0, 3 * K0, 0.02 * TR, sub=8)
+    e, w = loop_truth(T6, ph)
+    tors("hyst_boucwen_6000rows", "in", {"hysteresis"}, T6, ph, t=np.arange(len(T6)) * 0.004,
+         truth={"energy": e, "width": w})
     # ---------------- harder out-of-catalogue cases
     tors("ooc_softening_clamp", "out", None, T, T / K0 * (1 + 0.3 * (T / TR) ** 2), t=t)
     tors("ooc_even_sensor_nonlin", "out", None, T, T / K0 + 3e-5 * (T / TR) ** 2, t=t)
     phl1 = np.concatenate([np.zeros(5), (T / K0)[:-5]])
     tors("ooc_channel_lag_onerate", "out", None, T, phl1, t=t)
     tors("ooc_zener_onerate", "out", None, T, zener(T, t, 1.15 * K0, 1.15 * K0 / 0.15, 1.5), t=t)
+    tors("ooc_torque_saturation_onesided", "out", None, np.minimum(To, 0.9 * TR), To / K0,
+         t=np.arange(len(To)) * dt)
+    # friction that grows during the test (wear-in / lubricant squeezed out): slip torque 2 % -> 5 %
+    ph = np.zeros_like(T)
+    p_, z_ = 0.0, 0.0
+    for i in range(1, len(T)):
+        zs_ = TR * (0.02 + 0.03 * i / len(T))
+        dT = (T[i] - T[i - 1]) / 20
+        for _ in range(20):
+            sg = 1.0 if dT * z_ > 0 else 0.0
+            gg = max(0.0, 1 - sg * abs(z_ / zs_))
+            dp = dT / (K0 + 3 * K0 * gg)
+            p_ += dp
+            z_ += 3 * K0 * gg * dp
+        ph[i] = p_
+    tors("ooc_friction_growing", "out", None, T, ph, t=t)
+    # a crack that grows during the test: open-side extra compliance 5 % -> 25 %
+    tors("ooc_crack_growing", "out", None, T, T / K0 + (0.05 + 0.20 * t / t[-1]) / K0 * softplus(T, 0.05 * TR),
+         t=t)
     tors("ooc_gain_drift_linear", "out", None, T * (1 - 0.07 * t / t[-1]), T / K0, t=t)
     # ---------------- out of catalogue
     tors("ooc_warmup_drift", "out", None, T, T / K0 + 2.5e-4 * (1 - np.exp(-t / (0.3 * t[-1]))), t=t)
@@ -494,6 +521,9 @@ def ring_cases(rng, c_thin, c_thin_thick, r_thick, t_thick):
     dd = c_thin * 40 * tri_path([0, 1, 0.12, 1, 0.12, 1, 0.12], 1500)   # plates keep contact
     Fr = maxwell_slip_twist_driven(dd, 1 / c_thin, np.full(6, 0.5 / c_thin), 40 * np.linspace(0.005, 0.02, 6))
     ring("ring_ooc_friction_loop", "out", None, Fr, dd, sig)
+    d95 = c_thin * Fl / (1 + 0.5 * c_thin * Fl / r_m)
+    cols_nz = noise(rng, len(Fl), "ar1", sigma=0.002 * d95.max(), rho=0.95)
+    ring("ring_large_deflection_ar95", "in", {"large_deflection"}, Fl, d95 + cols_nz, 1e-9)
     # out of catalogue: viscoelastic creep of a polymer-coated/fixtured ring at a hold, clipping
     Fh = 40.0 * np.concatenate([np.linspace(0, 1, 300), np.ones(800), np.linspace(1, 0, 300)])
     tt = np.arange(len(Fh)) * 0.01
