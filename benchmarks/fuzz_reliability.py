@@ -17,6 +17,7 @@ import argparse
 import json
 import os
 import random
+import re
 import shutil
 import signal
 import subprocess
@@ -465,12 +466,14 @@ def interruption(work: Path, moments_s: tuple[float, ...], sweep: bool, resume: 
                                        "--out", str(sw)], sw, 12.0, sig, group)
             row.add(outcome, f"sweep, signal {sig}: {note}")
     if resume:
-        cached_before = len(list((out / "cache").rglob("*.json"))) if (out / "cache").exists() else 0
-        run = cli(["validate", "--quick", "--out", str(out)], timeout_s=900)
-        reused = run.stderr.count("reusing cached")
-        ok = run.status in (0, 1) and not _leftovers(out) and (cached_before == 0 or reused > 0)
+        # after the interruptions: a complete run, then a rerun that must reuse every FEA case it finished
+        first = cli(["validate", "--quick", "--out", str(out)], timeout_s=1200)
+        again = cli(["validate", "--quick", "--out", str(out)], timeout_s=1200)
+        counts = re.search(r"(\d+) FEA cases \((\d+) reused from cache\)", again.stdout)
+        ok = (first.status in (0, 1) and again.status == first.status and counts is not None
+              and counts.group(1) == counts.group(2) and not _leftovers(out) and "Traceback" not in first.stderr)
         row.add("accepted" if ok else "internal",
-                f"rerun: exit {run.status}, {reused} cached item(s) reused of {cached_before} cache files")
+                f"resume: exit {first.status} then {again.status}, {counts.group(0) if counts else 'no case count'}")
     return row
 
 
@@ -478,7 +481,7 @@ def interruption(work: Path, moments_s: tuple[float, ...], sweep: bool, resume: 
 
 def _close(a, b, rel: float = 1e-12) -> bool:
     if isinstance(a, dict) and isinstance(b, dict):
-        return a.keys() == b.keys() and all(_close(a[k], b[k], rel) for k in a if k not in _VOLATILE)
+        return a.keys() == b.keys() and all(_close(a[k], b[k], _AMPLIFIED.get(k, rel)) for k in a if k not in _VOLATILE)
     if isinstance(a, list) and isinstance(b, list):
         return len(a) == len(b) and all(_close(x, y, rel) for x, y in zip(a, b))
     if isinstance(a, float) and isinstance(b, float):
@@ -486,7 +489,11 @@ def _close(a, b, rel: float = 1e-12) -> bool:
     return a == b
 
 
-_VOLATILE = {"timings_s", "seconds", "fields", "total_s", "created_utc", "recording"}   # wall times, paths
+_VOLATILE = {"timings_s", "seconds", "fields", "total_s", "created_utc", "recording", "time_s"}   # wall times, paths
+# Numbers that amplify the round-off of the FEA values (two solves of the shaft differ by 3e-14: the order of
+# BLAS sums follows memory alignment): the GCI and its band are differences of refinements ~1e-5 apart, so
+# they move by ~1e-10; the iterative solver's final residual is itself a round-off quantity.
+_AMPLIFIED = {"gci_fine": 1e-6, "uncertainty": 1e-6, "residual": 1e-2}
 
 
 def determinism(work: Path, solve: bool) -> Row:
@@ -534,6 +541,13 @@ def _writes_outside(trace: Path, allowed: list[Path]) -> list[str]:
 # counted apart, and reported: fea/session.py would have to run gmsh with another HOME to avoid it.
 DOCUMENTED_CACHES = ("ezdxf", "matplotlib")
 KNOWN_STRAY = ("/.fltk", "/.fltk/fltk.org", "/fltk.org/fltk.prefs")
+
+
+def _transient_temp(path: Path, tmp: Path) -> bool:
+    if not path.is_relative_to(tmp) or path.exists():
+        return False
+    first = path.relative_to(tmp).parts[0]
+    return first.startswith("pymp-") or (len(first) == 8 and first.replace("_", "").isalnum())
 
 
 def side_effects(work: Path, solve: bool) -> Row:
@@ -586,6 +600,9 @@ def _side_effects(row: Row, work: Path, short: Path, solve: bool) -> None:
         stray = [p for p in _writes_outside(trace, [out, *caches]) if p not in map(str, roots)] + \
             [str(p) for p in (*home.rglob("*"), *tmp.rglob("*"))
              if p not in roots and not any(p == c or p.is_relative_to(c) for c in caches)]
+        # multiprocessing's own socket folder (pymp-*, removed by it at exit) and tempfile's probe of TMPDIR
+        # (an 8-character name, removed at once): transient use of the temporary directory, not scratch
+        stray = [p for p in stray if not _transient_temp(Path(p), tmp)]
         known = [p for p in stray if any(p.endswith(k) for k in KNOWN_STRAY)]
         stray = [p for p in stray if p not in known]
         if known:
@@ -611,28 +628,42 @@ def table(rows: list[Row]) -> str:
     return "\n".join(lines)
 
 
-def run(quick: bool, seed: int, work: Path) -> list[Row]:
+CATEGORIES = ("params", "params-cli", "recordings", "paths", "resources", "interruption", "determinism",
+              "side-effects")
+
+
+def run(quick: bool, seed: int, work: Path, only: tuple[str, ...] = CATEGORIES) -> list[Row]:
     n_params, n_cli, n_rec = (300, 40, 400) if quick else (3000, 400, 5000)
-    files = param_files(n_params, seed, work)
-    rows = [params_in_process(files), params_cli(files[:n_cli], work),
-            recordings(n_rec, seed, diagnose_every=50 if quick else 20),
-            refusals("flags and paths (exit 2, one line, before any work)", path_table(work)),
-            refusals("resource bounds (mesh, CAD, grid, input size)", resource_table(work)),
-            interruption(work, (3.0, 10.0) if quick else (3.0, 10.0, 40.0), sweep=not quick, resume=not quick),
-            determinism(work, solve=not quick),
-            side_effects(work, solve=not quick)]
-    return rows
+    files = param_files(n_params, seed, work) if {"params", "params-cli"} & set(only) else []
+    steps = {
+        "params": lambda: params_in_process(files),
+        "params-cli": lambda: params_cli(files[:n_cli], work),
+        "recordings": lambda: recordings(n_rec, seed, diagnose_every=50 if quick else 20),
+        "paths": lambda: refusals("flags and paths (exit 2, one line, before any work)", path_table(work)),
+        "resources": lambda: refusals("resource bounds (mesh, CAD, grid, input size)", resource_table(work)),
+        "interruption": lambda: interruption(work, (3.0, 10.0) if quick else (3.0, 10.0, 40.0), sweep=not quick,
+                                             resume=not quick),
+        "determinism": lambda: determinism(work, solve=not quick),
+        "side-effects": lambda: side_effects(work, solve=not quick),
+    }
+    return [steps[name]() for name in CATEGORIES if name in only]
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--quick", action="store_true", help="reduced counts (what the test runs)")
     parser.add_argument("--seed", type=int, default=0, help="seed of every generated file")
+    parser.add_argument("--only", default=",".join(CATEGORIES),
+                        help=f"comma-separated categories to run (default: all of {', '.join(CATEGORIES)})")
     args = parser.parse_args(argv)
+    only = tuple(c.strip() for c in args.only.split(","))
+    unknown = set(only) - set(CATEGORIES)
+    if unknown:
+        parser.error(f"--only: unknown categories {sorted(unknown)}; choose from {', '.join(CATEGORIES)}")
     with tempfile.TemporaryDirectory(prefix="fuzz-reliability-") as tmp:
         work = Path(tmp)
         try:
-            rows = run(args.quick, args.seed, work)
+            rows = run(args.quick, args.seed, work, only)
         finally:
             for d in work.rglob("cwd"):
                 d.chmod(0o755)   # so the temporary folder can be removed

@@ -252,10 +252,6 @@ def _output_folder(args) -> Path | None:
     return None
 
 
-# sun_path holds 107 bytes; multiprocessing appends "/pymp-XXXXXXXX/listener-XXXXXXXX" (33) to the scratch
-_MAX_SCRATCH_BYTES = 107 - 33
-
-
 @contextlib.contextmanager
 def _scratch_under_outputs(args):
     """Every temporary file of the command (ours, gmsh's BREP hand-over, the children's) goes to a scratch
@@ -272,13 +268,13 @@ def _scratch_under_outputs(args):
         return
     created = [p for p in (folder, *folder.parents) if not p.exists()]   # deepest first
     folder.mkdir(parents=True, exist_ok=True)
+    # multiprocessing keeps its AF_UNIX sockets (fork server) in a temporary folder of its own that it removes
+    # itself at exit, after this block has ended; its path must fit the kernel's 108 bytes. So it is made
+    # now, in the system's short temporary directory, before TMPDIR points into the scratch: inside the
+    # scratch it would be removed under multiprocessing's feet (a traceback at exit) or be too long.
+    import multiprocessing.util
+    multiprocessing.util.get_temp_dir()
     scratch = tempfile.mkdtemp(prefix=".strainwave-scratch-", dir=folder)
-    if len(os.fsencode(scratch)) > _MAX_SCRATCH_BYTES:
-        # multiprocessing's AF_UNIX sockets (fork server) live in its own temporary folder, whose path must
-        # fit the kernel's 108 bytes: under a deep output folder it is made in the system's temporary
-        # directory instead (removed at exit), before TMPDIR points into the scratch
-        import multiprocessing.util
-        multiprocessing.util.get_temp_dir()
     saved_env, saved_dir = os.environ.get("TMPDIR"), tempfile.tempdir
     os.environ["TMPDIR"], tempfile.tempdir = scratch, scratch   # children inherit TMPDIR
     try:

@@ -48,7 +48,10 @@ def bind_to_parent() -> None:
     ``ctypes.util.find_library`` would run ldconfig/gcc, i.e. write outside the outputs."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
-    if os.getppid() == 1:   # the parent died before prctl took effect
+    # The run may have died while this child was still starting (before prctl): then it was re-parented
+    # (to init or a sub-reaper, so getppid() proves nothing) and the run's sentinel pipe is closed.
+    initiator = multiprocessing.parent_process()
+    if initiator is not None and not initiator.is_alive():
         os._exit(1)
 
 
