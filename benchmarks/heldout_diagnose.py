@@ -594,7 +594,7 @@ def main(argv=None):
         cases = [c for c in cases if a.only in c["name"]]
     rows = []
     t_all = time.time()
-    hdr = f"{'case':32s} {'expected':40s} {'verdict':12s} {'named (primary) amb':48s} {'rms/noise':>9s} {'dBIC':>8s} {'s':>5s} ok"
+    hdr = f"{'case':32s} {'expected':40s} {'verdict':12s} {'named (primary) amb':48s} {'rms/noise':>9s} {'dBIC':>8s} {'chi2':>6s} {'lag1':>5s} {'s':>5s} ok"
     print(hdr)
     print("-" * len(hdr))
     for c in cases:
@@ -611,13 +611,16 @@ def main(argv=None):
         fit = j.get("fit", {})
         ratio = (fit.get("rms_after") or float("nan")) / (j.get("noise_std") or float("nan"))
         dbic = (j["effects"][0]["delta_bic"] if j.get("effects") else float("nan"))
+        gof = (j.get("goodness_of_fit") or {})
+        gm = gof.get("model") or gof.get("baseline") or {}
+        chi2, lag1 = gm.get("chi2_per_sample", float("nan")), gm.get("lag1", float("nan"))
         nm = "+".join(sorted(r["named"])) + (f" ({r['primary']})" if r["primary"] else "")
         if j.get("suggestion"):
             sg = j["suggestion"]
             nm += " sugg:" + (sg.get("id", "") if isinstance(sg, dict) else str(sg))[:20]
         nm += " AMB" if r["amb"] else ""
         print(f"{c['name']:32s} {expected_str(c):40s} {str(r['verdict']):12s} {nm:48s} {ratio:9.2f} "
-              f"{dbic:8.1f} {dt:5.1f} {'OK' if r['ok'] else 'WRONG'}{' CONF-WRONG' if r['conf_wrong'] else ''}",
+              f"{dbic:8.1f} {chi2:6.1f} {lag1:5.2f} {dt:5.1f} {'OK' if r['ok'] else 'WRONG'}{' CONF-WRONG' if r['conf_wrong'] else ''}",
               flush=True)
         rows.append((c, j, r))
 
