@@ -390,9 +390,11 @@ def _running(pid: int, start_time: str | None) -> bool:
     return fields is not None and fields[0] != "Z" and fields[19] == start_time
 
 
-def _leftovers(out: Path) -> list[str]:
-    """Half files: temporary names left behind, or a results.json that is not valid JSON."""
-    bad = [str(p) for p in out.rglob("*.tmp")] if out.exists() else []
+def _leftovers(out: Path, temps: bool = True) -> list[str]:
+    """Half files: a results.json that is not valid JSON, and (``temps``) temporary names left behind. A writer
+    killed with -9 cannot remove its temporary file (the target is untouched): after SIGKILL the next run
+    must remove them (the resume check), after SIGINT none may be left at all."""
+    bad = [str(p) for p in out.rglob("*.tmp")] if out.exists() and temps else []
     results = out / "results.json"
     if results.exists():
         try:
@@ -437,7 +439,7 @@ def interrupt(argv: list[str], out: Path, after_s: float, sig: int, group: bool)
         for pid in orphans:
             os.kill(pid, signal.SIGKILL)
         return "internal", f"{len(orphans)} orphan process(es) after signal {sig} to {argv[0]}"
-    left = _leftovers(out)
+    left = _leftovers(out, temps=sig != signal.SIGKILL)
     if left:
         return "lost", "; ".join(left[:3])
     if "Traceback" in err:

@@ -8,6 +8,7 @@ old or the new file under the target name, never an empty or partial one.
 from __future__ import annotations
 
 import os
+import re
 import secrets
 import stat
 from contextlib import contextmanager
@@ -15,7 +16,7 @@ from pathlib import Path
 
 from .errors import InputError
 
-__all__ = ["atomic_path", "atomic_write_text", "atomic_write_bytes", "check_output_path"]
+__all__ = ["atomic_path", "atomic_write_text", "atomic_write_bytes", "check_output_path", "remove_stale_temps"]
 
 _ATTEMPTS = 100
 
@@ -31,6 +32,24 @@ def _create_temp(target: Path) -> Path:
         os.close(fd)
         return tmp
     raise FileExistsError(f"no free temporary name next to {target}")
+
+
+# ".<target name>.<12 hex>.<suffix>.tmp", as _create_temp names them: nothing else in a folder matches
+_TEMP_NAME = re.compile(r"^\..+\.[0-9a-f]{12}(\.[^.]*)?\.tmp$")
+
+
+def remove_stale_temps(folder: Path) -> int:
+    """Remove the temporary files a killed writer left in ``folder`` (a process killed with -9 between
+    creating its temporary file and the rename cannot remove it itself); the targets were never touched.
+    Returns how many were removed. Call it where no other writer of the same outputs runs."""
+    removed = 0
+    if not Path(folder).is_dir():
+        return 0
+    for entry in Path(folder).iterdir():
+        if _TEMP_NAME.match(entry.name) and entry.is_file():
+            entry.unlink(missing_ok=True)
+            removed += 1
+    return removed
 
 
 def _fsync_path(path: Path, *, directory: bool = False) -> None:

@@ -66,3 +66,30 @@ def test_temporary_keeps_the_target_suffix(tmp_path):
     with atomic_path(tmp_path / "plot.png") as tmp:
         assert tmp.name.endswith(".png.tmp") and tmp.parent == tmp_path
         tmp.write_bytes(b"png")
+
+
+def test_stale_temporary_files_of_a_killed_writer_are_removed_and_nothing_else(tmp_path):
+    """A writer killed with -9 inside atomic_path leaves its temporary file (issue 16, interruption): the next
+    run removes exactly those, never a target or another hidden file."""
+    import os
+    import signal
+    import subprocess
+    import sys
+
+    from strainwave.io_atomic import remove_stale_temps
+
+    target = tmp_path / "part.step"
+    target.write_text("old, complete\n")
+    (tmp_path / ".keep").write_text("")
+    (tmp_path / "notes.tmp").write_text("a user's file")
+    writer = subprocess.Popen([sys.executable, "-c", (
+        "import sys, time; from pathlib import Path; from strainwave.io_atomic import atomic_path\n"
+        f"with atomic_path(Path({str(target)!r})) as tmp:\n"
+        "    tmp.write_text('half'); print('writing', flush=True); time.sleep(60)\n")], stdout=subprocess.PIPE, text=True)
+    assert writer.stdout.readline().strip() == "writing"
+    os.kill(writer.pid, signal.SIGKILL)
+    writer.wait(10)
+    left = sorted(p.name for p in tmp_path.iterdir())
+    assert len(left) == 4 and target.read_text() == "old, complete\n"
+    assert remove_stale_temps(tmp_path) == 1
+    assert sorted(p.name for p in tmp_path.iterdir()) == [".keep", "notes.tmp", "part.step"]

@@ -23,6 +23,7 @@ from .checks import Check
 from .fea_book import FeaBook
 from .gci_table import gci_rows
 from .isolated import stop_descendants
+from ...io_atomic import remove_stale_temps
 from .plan import make_plan
 from .report_html import write_html
 from .report_md import write_markdown
@@ -108,6 +109,11 @@ def _shaft_exponent(check_set: CheckSet) -> dict | None:
     return exponent_evidence(report.fit, report.analytic_fits or {"published": 3.0, "corrected": 2.0})
 
 
+def _output_folders(out_dir: Path) -> tuple[Path, ...]:
+    """Every folder a validation writes files into."""
+    return (out_dir, out_dir / "step", out_dir / "fields", out_dir / "images", out_dir / "cache")
+
+
 def _run_cases(cases, params, *, fields_dir: Path, cache, quick: bool, progress) -> dict[str, CaseOutcome]:
     """Solve the cases two at a time, longest first: each runs in its own child process (the threads only
     wait on them), and the machine this targets has two cores. Results keep the plan's order."""
@@ -127,6 +133,7 @@ def _run_cases(cases, params, *, fields_dir: Path, cache, quick: bool, progress)
         # processes, which die with every process this run started below it.
         pool.shutdown(wait=False, cancel_futures=True)
         stop_descendants(os.getpid())
+        remove_stale_temps(fields_dir)   # the stopped cases' half-written fields, under temporary names
         raise
     except BaseException:
         pool.shutdown(wait=False, cancel_futures=True)   # a bug in a case runner: the rest need not start
@@ -174,6 +181,8 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
     start = time.perf_counter()
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
+    for folder in _output_folders(out_dir):   # what a run killed with -9 left under temporary names
+        remove_stale_temps(folder)
     cache = ResultCache(out_dir / "cache")
     timings: dict[str, float] = {}
     total = 6

@@ -14,6 +14,7 @@ from typing import Callable
 
 from ...geometry.part import PartName
 from ...cache import ResultCache, case_key
+from ...io_atomic import remove_stale_temps
 
 
 @dataclass(frozen=True)
@@ -69,6 +70,7 @@ class StepJob:
         self.started = time.perf_counter()
         self.done: list[StepOutcome] = []
         self.keys: dict[str, str] = {}
+        self.folders = tuple(Path(d) for d in (step_dir, preview_dir) if d is not None)
         jobs = []
         for part in PartName:
             png = Path(preview_dir) / f"{part.value}_preview.png" if preview_dir and part.value in PREVIEWED else None
@@ -122,4 +124,8 @@ class StepJob:
         if self.process is not None:
             if self.process.is_alive():
                 self.process.kill()   # OCC ignores SIGTERM while it builds; nothing it holds needs saving
+                self.process.join(5)
+                # a file it was writing stays under its temporary name: the target was never touched
+                for folder in self.folders:
+                    remove_stale_temps(folder)
             self.process.join(5)
