@@ -115,10 +115,13 @@ def dask_client(scheduler: str | None, workers: int | None,
 def _local(n: int, scratch: Path | None) -> Iterator[tuple[object, int]]:
     from distributed import Client, LocalCluster
 
+    from ...interrupt import children_ignore_sigint
+
     try:
-        cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
-                               silence_logs=logging.ERROR, env=WORKER_ENV,
-                               local_directory=str(scratch) if scratch else None)
+        with children_ignore_sigint():   # Ctrl-C stops the sweep here; the workers are closed by it
+            cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+                                   silence_logs=logging.ERROR, env=WORKER_ENV,
+                                   local_directory=str(scratch) if scratch else None)
     except (OSError, RuntimeError, TimeoutError) as exc:
         raise StageError("start LocalCluster", "sweep", f"{type(exc).__name__}: {exc}") from exc
     try:
@@ -223,6 +226,11 @@ def run_sweep(study: str, *, vary: list[str], params_path: str | Path | None = N
                 progress(f"sweep: {n_workers} Dask workers at {client.scheduler.address}")
                 by_key.update(_compute(client, todo, out_dir / "cache", task, n_workers, progress, len(by_key),
                                        len(points), counts))
+        except KeyboardInterrupt:
+            # Interrupted, the in-process scheduler has not purged its workspace when the scratch goes below;
+            # its exit finalizer would then log an ERROR about a folder that is removed on purpose.
+            logging.getLogger("distributed.diskutils").setLevel(logging.CRITICAL)
+            raise
         finally:
             shutil.rmtree(scratch, ignore_errors=True)
 

@@ -45,12 +45,13 @@ class Missing:
 
 
 class _Collector:
-    def __init__(self, out_dir: Path, progress):
-        self.out_dir, self.progress = Path(out_dir), progress
+    def __init__(self, out_dir: Path, progress, checkpoint: Callable[[], None] = lambda: None):
+        self.out_dir, self.progress, self.checkpoint = Path(out_dir), progress, checkpoint
         self.images: list[Image] = []
         self.missing: list[Missing] = []
 
     def attempt(self, what: str, component: str, kind: str, make: Callable[[Path], str], name: str) -> None:
+        self.checkpoint()   # a Ctrl-C during the previous picture stops the run here, between pictures
         target = self.out_dir / "images" / name
         try:
             caption = make(target)
@@ -128,12 +129,14 @@ class Artifacts:
 
 
 def make_images(out_dir: Path, book: FeaBook, plan: Plan, check_set: CheckSet, summary: dict,
-                progress: Callable[[str], None], *, params) -> Artifacts:
+                progress: Callable[[str], None], *, params,
+                checkpoint: Callable[[], None] = lambda: None) -> Artifacts:
     """Every picture; also the stress at the rated load per component (the numbers the pictures print) and
-    the interactive 3D view of each stress field."""
+    the interactive 3D view of each stress field. ``checkpoint`` is called before each picture (see
+    ``strainwave.interrupt``)."""
     from . import images  # pyvista only here
 
-    col = _Collector(out_dir, progress)
+    col = _Collector(out_dir, progress, checkpoint)
     stresses: dict[str, StressAtRated] = {}
     views: dict = {}
     for component, case in list(plan.headline.items()) + [("ring", plan.ring)]:

@@ -175,6 +175,7 @@ def _inputs(plan, book: FeaBook, params) -> dict:
 def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str], None]) -> Outcome:
     """Run the whole validation into ``out_dir``; returns the checks and timings (see module docstring)."""
     from ...analytic.summary import analytic_summary, crack_headline_lines, designer_headline
+    from ...interrupt import deferred_interrupt
     from .artifacts import make_images
     from .step_export import StepJob
 
@@ -208,8 +209,9 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
         audit = audit_with_evidence(summary.get("audit", []), check_set.by_id(),
                                     shaft_exponent=_shaft_exponent(check_set),
                                     crack_headline=summary.get("crack_headline"))
-    with _stage("images", timings, progress, 5, total):
-        made = make_images(out_dir, book, plan, check_set, summary, progress, params=params)
+    with _stage("images", timings, progress, 5, total), deferred_interrupt() as checkpoint:
+        made = make_images(out_dir, book, plan, check_set, summary, progress, params=params,
+                           checkpoint=checkpoint)
         images, missing, stresses = _previews(steps, out_dir) + made.images, made.missing, made.stresses
     with _stage("reports", timings, progress, 6, total):
         checks = [c.to_dict() for c in check_set.checks]
