@@ -52,7 +52,7 @@ def make_view(component: str, vtu: Path, at: StressAtRated, *, exaggeration: flo
     if names.displacement is not None:
         mesh.points = mesh.points + exaggeration * displacement3(mesh, names.displacement)
     planar = bool(np.ptp(mesh.points[:, 2]) == 0.0)
-    surface = mesh.extract_surface(nonlinear_subdivision=0).triangulate().clean()
+    surface = mesh.extract_surface(nonlinear_subdivision=0, algorithm="dataset_surface").triangulate().clean()
     if surface.n_cells > MAX_TRIANGLES:
         surface = surface.decimate(1.0 - MAX_TRIANGLES / surface.n_cells, attribute_error=True).triangulate()
     faces = np.asarray(surface.faces).reshape(-1, 4)[:, 1:].astype(np.uint32)
