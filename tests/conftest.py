@@ -1,6 +1,8 @@
 """Shared test set-up: one BLAS thread per process (2-core machine), off-screen rendering only."""
+import importlib.util
 import os
 import sys
+from contextlib import contextmanager
 from pathlib import Path
 
 import pytest
@@ -15,3 +17,20 @@ STRAINWAVE = str(Path(sys.executable).with_name("strainwave"))
 def strainwave_cmd():
     """The installed console script, run in a subprocess exactly as a user runs it."""
     return [STRAINWAVE]
+
+
+BENCHMARKS = Path(__file__).resolve().parents[1] / "benchmarks"
+
+
+@contextmanager
+def benchmark_module(name: str):
+    """A script of benchmarks/ (scripts, not a package) imported as a module for the test's duration;
+    registered in sys.modules while loaded because its dataclasses look their module up there."""
+    spec = importlib.util.spec_from_file_location(name, BENCHMARKS / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module
+    try:
+        spec.loader.exec_module(module)
+        yield module
+    finally:
+        sys.modules.pop(spec.name, None)

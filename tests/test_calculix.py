@@ -6,35 +6,24 @@ calculix-ccx when missing (as the bench does); skips only when it cannot be inst
 """
 from __future__ import annotations
 
-import importlib.util
-import sys
 import warnings
-from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import benchmark_module
 
-BENCH = Path(__file__).resolve().parents[1] / "benchmarks" / "calculix_job.py"
 # Same stiffness (same 4-point rule), same load: the difference is the solvers' stopping tolerances
 # (strainwave's CG at 1e-7: 2e-9 against SPOOLES; ccx's iterative solver 1.1e-6 on this mesh).
 AGREE_REL = 1e-5
 H_MM = 16.0      # the coarsest mesh the shaft's wall takes: a few thousand dofs, ccx well under a second
 
 
-def _load():
-    spec = importlib.util.spec_from_file_location("calculix_job", BENCH)
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = mod          # its dataclasses look their module up there
-    spec.loader.exec_module(mod)
-    return mod
-
-
 @pytest.fixture(scope="module")
 def cj():
-    mod = _load()
-    if mod.ensure_ccx() is None:
-        pytest.skip("ccx is not installed and cannot be installed here (not root or no apt-get)")
-    return mod
+    with benchmark_module("calculix_job") as mod:
+        if mod.ensure_ccx() is None:
+            pytest.skip("ccx is not installed and cannot be installed here (not root or no apt-get)")
+        yield mod
 
 
 @pytest.fixture(scope="module")

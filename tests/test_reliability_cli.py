@@ -2,29 +2,22 @@
 each bad path, flag and oversized request exits 2 in one line before any work (items 6, 7, 15-22); an
 interrupted validate leaves no process, no half file and no traceback (items 23, 24); two runs agree
 (determinism); nothing is written outside the outputs (item 26); the mesh estimate is near the real mesh."""
-import importlib.util
 import json
 import signal
-import sys
 import time
 import warnings
-from pathlib import Path
 
 import pytest
 
+from conftest import benchmark_module
 from strainwave.cli import main
 
-_HARNESS = Path(__file__).resolve().parents[1] / "benchmarks" / "fuzz_reliability.py"
 
 
 @pytest.fixture(scope="module")
 def harness():
-    spec = importlib.util.spec_from_file_location("fuzz_reliability", _HARNESS)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module   # its dataclasses look their module up there
-    spec.loader.exec_module(module)
-    yield module
-    sys.modules.pop(spec.name, None)
+    with benchmark_module("fuzz_reliability") as module:
+        yield module
 
 
 def _table(harness, tmp_path):
