@@ -4,6 +4,25 @@ from __future__ import annotations
 from .effects import CATALOGUE
 
 
+def loss_sentence(quantities: dict) -> str:
+    """Which hysteresis loss is reported: read from the data at zero torque, or from the fitted loop model."""
+    if "hysteresis_loss_arcmin" not in quantities:
+        return ""
+    value = quantities["hysteresis_loss_arcmin"][0]
+    model = quantities["hysteresis_loss_model_arcmin"][0]
+    if "hysteresis_loss_data_arcmin" in quantities:
+        data = quantities["hysteresis_loss_data_arcmin"][0]
+        se = quantities["hysteresis_loss_data_std_error_arcmin"][0]
+        if quantities["hysteresis_loss_source"][0] == "data":
+            return (f"Hysteresis loss {value:.4g} +/- {se:.2g} arcmin, read from the data at zero torque (steady "
+                    f"branches, model-free): the fitted loop model's {model:.4g} arcmin is contradicted by the data "
+                    f"(its loop has another shape there).")
+        return (f"Hysteresis loss {value:.4g} arcmin from the fitted loop model; the data at zero torque agree "
+                f"({data:.4g} +/- {se:.2g} arcmin, model-free).")
+    return (f"Hysteresis loss {value:.4g} arcmin from the fitted loop model (the data do not cover zero torque on "
+            f"both steady full-scale branches, or a backlash band sits there).")
+
+
 def explain(diag) -> str:
     noise = diag.noise_std
     verdict = diag.verdict.value
@@ -36,4 +55,4 @@ def explain(diag) -> str:
             f"The best explanation is {top.id.replace('+', ' together with ')}: {why}. Fitted: {params}. "
             f"It lowers the residual RMS from {diag.rms_before:.3g} to {diag.rms_after:.3g} (BIC by "
             f"{top.delta_bic:.1f}, weight {top.weight:.2f}) and leaves a residual consistent with the noise."
-            f"{runner}{warn}")
+            f"{runner}{warn}" + (" " + loss_sentence(diag.quantities) if diag.quantities else ""))

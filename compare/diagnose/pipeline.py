@@ -33,15 +33,17 @@ from .context import build_context
 from .effects import CATALOGUE, effects_for
 from .effects.loop import ARCMIN_PER_RAD, loop_quantities
 from .explain import explain
-from .fit import NOISE_FLOOR, Fit, fit_effects
+from .fit import NOISE_FLOOR, Fit, fit_effects, lag1
 from .locate import Located, locate, locate_effect
 from .noise import noise_std
 from .recording import Recording, parse_recording
 from .structure import StructureTest, describe, reference_noise, structure_test
+from .zero_load_width import zero_load_width
 
 BIC_THRESHOLD = 10.0       # "very strong" on the Kass-Raftery scale
 AMBIGUOUS_BIC = 6.0        # "strong": closer than this, the data cannot tell the two apart
 MAX_GOF_TRIES = 6          # model forms offered the goodness-of-fit test, best BIC first
+LOSS_CONTRADICTION = 2.58  # standard errors (99 %): the data's width at zero torque overrides the loop model's
 MAX_FIT_ROWS = 2500        # model selection on an evenly strided subsample beyond this (speed, issue 12)
 # Pairs that cannot be told apart: both are a pure linear compliance change.
 _DEGENERATE = {frozenset({"compliance_offset", "thick_ring"})}
@@ -299,7 +301,7 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     weights = np.exp(-0.5 * (bics - bics.min())) if len(bics) else bics
     weights = weights / weights.sum() if len(bics) else weights
     effects = tuple(_ranked(ctx, f, base_fit, n, float(w), detail=i < 3) for i, (f, w) in enumerate(zip(candidates, weights)))
-    quantities = _quantities(ctx, best) if mismatch and best is not base_fit else {}
+    quantities = _quantities(ctx, best, sigma) if mismatch and best is not base_fit else {}
     located = _located(ctx, rec, best if verdict is Verdict.EXPLAINED else None, base_fit, sigma, mismatch,
                        gof_best)
     dt = None if rec.time_s is None else float(np.median(np.diff(fit_rec.time_s)))
@@ -326,7 +328,7 @@ def _implausible(ctx, fit: Fit) -> list[str]:
             for w in e.plausible(ctx, th, fit.scale)]
 
 
-def _quantities(ctx, fit: Fit) -> dict:
+def _quantities(ctx, fit: Fit, sigma: float) -> dict:
     """Shape-free loop quantities of the model's effects (hysteresis-type effects only)."""
     if ctx.response_unit != "rad" or not any(e.id == "hysteresis" for e in fit.effects) or ctx.reversals < 1:
         return {}
@@ -335,8 +337,27 @@ def _quantities(ctx, fit: Fit) -> dict:
     def model(c):
         return sum(e.contribution(c, th) for e, th in zip(fit.effects, thetas))
     width, energy = loop_quantities(ctx, model)
+    model_width, data = width, {}
+    # the same width read from the data (zero_load_width.py): the residual without the model's hysteresis
+    hyst = sum(e.contribution(ctx, th) for e, th in zip(fit.effects, thetas) if e.id == "hysteresis")
+    r = ctx.y - fit.model
+    # not beside a backlash: its band sits at zero torque, where the width is read, and the flanks' own
+    # sliding friction would be counted as the loss (and its steep band is no quadratic)
+    measured = None if any(e.id == "lost_motion" for e in fit.effects) else \
+        zero_load_width(ctx, ctx.y - (fit.model - hyst), sigma, lag1(r), float(np.mean(r ** 2)))
+    source = "model"
+    if measured is not None:
+        w, se = measured.width * ctx.Y, measured.std_error * ctx.Y
+        data = {"hysteresis_loss_data_arcmin": (w * ARCMIN_PER_RAD, "arcmin"),
+                "hysteresis_loss_data_std_error_arcmin": (se * ARCMIN_PER_RAD, "arcmin")}
+        # the model's width uses the whole loop (smaller variance) and stands while the data agree with it; a
+        # width at zero torque the data contradict (99 %) means the loop law has the wrong shape there
+        if abs(w - width) > LOSS_CONTRADICTION * se:
+            width, source = w, "data"
     return {"hysteresis_loss_arcmin": (width * ARCMIN_PER_RAD, "arcmin"), "hysteresis_loss": (width, "rad"),
-            "hysteresis_energy_per_cycle_Nmm_rad": (energy, "N*mm*rad")}
+            "hysteresis_loss_source": (source, ""),
+            "hysteresis_energy_per_cycle_Nmm_rad": (energy, "N*mm*rad"),
+            "hysteresis_loss_model_arcmin": (model_width * ARCMIN_PER_RAD, "arcmin"), **data}
 
 
 def _located(ctx, rec, fit: Fit | None, base_fit: Fit, sigma: float, mismatch: bool, gof_best) -> Located:
