@@ -20,9 +20,12 @@ import os
 import signal
 import time
 import traceback
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
+
+from ...errors import MaterialWarning
 
 # build123d too: every case builds its part, and importing build123d (OCP, and scikit-learn through its
 # STL reader) took 3.2-3.6 s in each case's child. Preloaded once in the fork server: three quick shaft
@@ -66,6 +69,9 @@ def send_or_exit(conn, message) -> None:
 def _child(conn, study: str, params, kwargs: dict) -> None:
     """Child side: solve, stream progress, send ("result", dict) or ("error", text)."""
     bind_to_parent()
+    # The run printed the material's E/G/nu warning once; each case re-validates the same material and
+    # would print it again in Python's raw format (with a source line) on every case.
+    warnings.simplefilter("ignore", MaterialWarning)
     try:
         from ...fea.studies import run_study
 
