@@ -92,11 +92,6 @@ class CupTorsion(TorsionVariant):
     study: ClassVar[str] = STUDY
     load_distribution: ClassVar[str] = "uniform tangential shear on the toothed band, moment T"
     clamped_face: ClassVar[str] = "hub face"
-    params: object
-    order: int
-    h_fine_mm: float
-    ratio: float
-    crack_depth_mm: float | None
     teeth: bool
 
     def __post_init__(self):

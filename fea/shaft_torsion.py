@@ -128,11 +128,6 @@ class ShaftTorsion(TorsionVariant):
     study: ClassVar[str] = STUDY
     load_distribution: ClassVar[str] = "Saint-Venant shear traction tau = T r / J (tangential)"
     clamped_face: ClassVar[str] = "end face z = 0"
-    params: object
-    order: int
-    h_fine_mm: float
-    ratio: float
-    crack_depth_mm: float | None
     crack_model: str | None          # None (uncracked), "seam" or "axisymmetric"
     quick: bool
 

@@ -2,6 +2,7 @@
 the torsion studies."""
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import ClassVar
 
 import numpy as np
@@ -42,12 +43,19 @@ def mean_rotation_rad(sol: StaticSolution, group: str) -> float:
     return q.integrate((x * u[..., 1] - y * u[..., 0]) / (x ** 2 + y ** 2)) / q.area
 
 
+@dataclass(frozen=True)
 class TorsionVariant(StudyVariant):
     """The hooks both torsion studies share: seed 000's output torque T on the 'loaded' faces, spread as the
-    study's ``load_distribution`` says, and the 'fixed' faces (``clamped_face``) clamped."""
+    study's ``load_distribution`` says, and the 'fixed' faces (``clamped_face``) clamped; and the fields
+    both are made of (a study adds its own after them)."""
 
     load_distribution: ClassVar[str]
     clamped_face: ClassVar[str]
+    params: object
+    order: int
+    h_fine_mm: float
+    ratio: float
+    crack_depth_mm: float | None
 
     def load(self, parts) -> Load:
         return Load("output torque T", self.params.gear.output_torque_Nmm, "N*mm", ("loaded",),
