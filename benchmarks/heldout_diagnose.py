@@ -132,6 +132,25 @@ def bouc_wen_torque_driven(T, Ke, A, zs, sub=20):
     return phi
 
 
+def slip_torque_loop(T, Ke, A, slip_torque, sub=20):
+    """Torque-driven friction element with a slip torque that may depend on the step i and the loading
+    direction (slip_torque(i, dT)): a stick spring A in parallel with the elastic path, whose force z
+    saturates at the slip torque while loading in z's direction (dissipative, non-Masing if direction-dependent)."""
+    ph = np.zeros_like(T)
+    p_, z_ = 0.0, 0.0
+    for i in range(1, len(T)):
+        dT = (T[i] - T[i - 1]) / sub
+        for _ in range(sub):
+            zs_ = slip_torque(i, dT)
+            sg = 1.0 if dT * z_ > 0 else 0.0
+            gg = max(0.0, 1 - sg * abs(z_ / zs_))
+            dp = dT / (Ke + A * gg)
+            p_ += dp
+            z_ += A * gg * dp
+        ph[i] = p_
+    return ph
+
+
 def maxwell_slip_twist_driven(phi, Ke, k, f):
     """Generalised Maxwell slip: T = Ke phi + sum F_i, F_i = clip(F_i + k_i dphi, -f_i, f_i)."""
     F = np.zeros(len(k))
@@ -367,18 +386,7 @@ def torsion_cases(rng):
     e, w = loop_truth(T, ph)
     tors("hyst_boucwen_weak_snr2", "in", {"hysteresis"}, T, ph, t=t, truth={"energy": e, "width": w})
     # direction-dependent friction: slip torque 4 % loading in +, 1.5 % in - (non-Masing, still dissipative)
-    ph = np.zeros_like(T)
-    p_, z_ = 0.0, 0.0
-    for i in range(1, len(T)):
-        dT = (T[i] - T[i - 1]) / 20
-        for _ in range(20):
-            zs_ = 0.04 * TR if dT > 0 else 0.015 * TR
-            sg = 1.0 if dT * z_ > 0 else 0.0
-            gg = max(0.0, 1 - sg * abs(z_ / zs_))
-            dp = dT / (K0 + 3 * K0 * gg)
-            p_ += dp
-            z_ += 3 * K0 * gg * dp
-        ph[i] = p_
+    ph = slip_torque_loop(T, K0, 3 * K0, lambda i, dT: 0.04 * TR if dT > 0 else 0.015 * TR)
     e, w = loop_truth(T, ph)
     tors("hyst_direction_asym", "in", {"hysteresis"}, T, ph, t=t, truth={"energy": e, "width": w})
     phi = T / K3 + (1 / K1 - 1 / K3) * T0 * np.tanh(T / T0)
@@ -408,18 +416,7 @@ def torsion_cases(rng):
     tors("ooc_torque_saturation_onesided", "out", None, np.minimum(To, 0.9 * TR), To / K0,
          t=np.arange(len(To)) * dt)
     # friction that grows during the test (wear-in / lubricant squeezed out): slip torque 2 % -> 5 %
-    ph = np.zeros_like(T)
-    p_, z_ = 0.0, 0.0
-    for i in range(1, len(T)):
-        zs_ = TR * (0.02 + 0.03 * i / len(T))
-        dT = (T[i] - T[i - 1]) / 20
-        for _ in range(20):
-            sg = 1.0 if dT * z_ > 0 else 0.0
-            gg = max(0.0, 1 - sg * abs(z_ / zs_))
-            dp = dT / (K0 + 3 * K0 * gg)
-            p_ += dp
-            z_ += 3 * K0 * gg * dp
-        ph[i] = p_
+    ph = slip_torque_loop(T, K0, 3 * K0, lambda i, dT: TR * (0.02 + 0.03 * i / len(T)))
     tors("ooc_friction_growing", "out", None, T, ph, t=t)
     # a crack that grows during the test: open-side extra compliance 5 % -> 25 %
     tors("ooc_crack_growing", "out", None, T, T / K0 + (0.05 + 0.20 * t / t[-1]) / K0 * softplus(T, 0.05 * TR),
