@@ -6,6 +6,7 @@ calculix-ccx when missing (as the bench does); skips only when it cannot be inst
 """
 from __future__ import annotations
 
+import os
 import warnings
 
 import numpy as np
@@ -22,6 +23,8 @@ H_MM = 16.0      # the coarsest mesh the shaft's wall takes: a few thousand dofs
 def cj():
     with benchmark_module("calculix_job") as mod:
         if mod.ensure_ccx() is None:
+            if os.environ.get("CI"):   # .ci/run installs calculix-ccx: missing there is a broken set-up
+                pytest.fail("ccx is not installed although .ci/run installs it")
             pytest.skip("ccx is not installed and cannot be installed here (not root or no apt-get)")
         yield mod
 

@@ -3,6 +3,7 @@ each bad path, flag and oversized request exits 2 in one line before any work (i
 interrupted validate leaves no process, no half file and no traceback (items 23, 24); two runs agree
 (determinism); nothing is written outside the outputs (item 26); the mesh estimate is near the real mesh."""
 import json
+import os
 import signal
 import time
 import warnings
@@ -83,7 +84,9 @@ def test_commands_write_nothing_outside_their_outputs(harness, tmp_path):
     XDG_CACHE_HOME is the one documented cache allowed; gmsh's FLTK prefs are listed apart (not fixed)."""
     row = harness.side_effects(tmp_path, solve=True)
     if row.notes and "not installed" in row.notes[0]:
-        pytest.skip("strace is not installed")
+        if os.environ.get("CI"):   # .ci/run installs strace: missing there is a broken set-up, not a skip
+            pytest.fail("strace is not installed although .ci/run installs it")
+        pytest.skip("strace is not installed (.ci/run installs it)")
     assert row.tried == 4 and row.accepted == 4, row.notes
 
 
