@@ -118,18 +118,7 @@ def quantise(x, q):
 # ---------------------------------------------------------------- torsion physics (twist from torque)
 def bouc_wen_torque_driven(T, Ke, A, zs, sub=20):
     """T = Ke*phi + z, dz = A dphi (1 - (0.5 sgn(dphi z) + 0.5) |z/zs|). Dissipative (z opposes motion)."""
-    phi = np.zeros_like(T)
-    p, z = 0.0, 0.0
-    for i in range(1, len(T)):
-        dT = (T[i] - T[i - 1]) / sub
-        for _ in range(sub):
-            s = 1.0 if dT * z > 0 else 0.0
-            g = max(0.0, 1 - s * abs(z / zs))
-            dp = dT / (Ke + A * g)
-            p += dp
-            z += A * g * dp
-        phi[i] = p
-    return phi
+    return slip_torque_loop(T, Ke, A, lambda i, dT: zs, sub)
 
 
 def slip_torque_loop(T, Ke, A, slip_torque, sub=20):
