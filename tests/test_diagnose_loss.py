@@ -54,12 +54,15 @@ def _bouc_wen(c0):
     return lambda T: fh.bouc_wen_twist(T, 1.0 / c0, 0.2 * X, 0.2 * X * c0 / 5.0, beta=0.8, gamma=-0.5, n=2.0)
 
 
-def test_saturating_preisach_loop_loss_read_from_the_data(params):
-    # neither Dahl nor play operators draw this saturating loop: the fitted model's width is ~17 % low
+def test_saturating_preisach_loop_loss_from_model_and_data(params):
+    # neither Dahl nor play operators draw this saturating loop (their width was ~17 % low); the relay-density
+    # form does, and the width read from the data at zero torque must agree with it
     rec, true, _ = _loop_recording(params, _preisach)
-    q = diagnose(rec, params)[0].quantities
-    assert q["hysteresis_loss_source"][0] == "data"
+    d = diagnose(rec, params)[0]
+    q = d.quantities
+    assert d.named == ("hysteresis",) and d.effects[0].model == "hysteresis[preisach]"
     assert q["hysteresis_loss_arcmin"][0] == pytest.approx(true, rel=0.03)
+    assert q["hysteresis_loss_model_arcmin"][0] == pytest.approx(true, rel=0.03)
     assert abs(q["hysteresis_loss_data_arcmin"][0] - true) < 3.0 * q["hysteresis_loss_data_std_error_arcmin"][0]
 
 

@@ -71,13 +71,16 @@ def _bouc_wen(u, z_max=0.05, beta=0.5, gamma=0.5):
     return z / z_max
 
 
-@pytest.mark.parametrize("model", ["dahl", "play", "bouc_wen"])
+@pytest.mark.parametrize("model", ["dahl", "play", "preisach", "bouc_wen"])
 def test_every_loop_law_dissipates(params, model):
     """First principles: closed integral of T dphi > 0, and a positive twist remains after unloading."""
     u = _path(2001, (0, 1, -1, 1, 0))
     ctx = _ctx(params, u)
     laws = {"dahl": lambda c: hysteresis.EFFECT.contribution(c, np.array([0.02, -1.3])),
             "play": lambda c: hysteresis.PLAY.contribution(c, np.array([0.0, 0.0, 0.1, 0.0, 0.2, 0.05, 0.0, 0.0])),
+            # a saturating relay density: most weight at bias 0.4, half-width 0.2 (all slip before full torque)
+            "preisach": lambda c: hysteresis.PREISACH.contribution(c, 0.02 * np.array([0.2, 0.5, 0.1, 0.0, 0.3, 1.0,
+                                                                                       0.2, 0.0, 0.0, 0.2, 0.0, 0.0])),
             "bouc_wen": lambda c: -0.02 * _bouc_wen(c.u)}
     twist = laws[model](ctx)
     width, energy = loop_quantities(ctx, laws[model])
@@ -86,6 +89,20 @@ def test_every_loop_law_dissipates(params, model):
     assert twist[1000] - twist[0] > 0
     # energy of a loop of width w spanning +/- T_max: between a parallelogram (2 w T_max) and half of it
     assert width * 1.0 * X <= energy * 1.0001 <= 2.0 * width * X * 1.0001
+
+
+def test_relay_states_follow_the_relay_definition():
+    """Each relay against its own definition, sample by sample: +1 once u >= alpha, -1 once u <= beta, else it
+    keeps its state; demagnetised start (+1 below the alpha = -beta line)."""
+    rng = np.random.default_rng(3)
+    u = np.cumsum(rng.normal(0.0, 0.1, 400))
+    alpha = np.array([0.5, 0.2, -0.1, 1.0, 0.05])
+    beta = np.array([-0.5, 0.0, -0.6, 0.4, -0.05])
+    got = hysteresis.relay_states(u, alpha, beta)
+    state = np.where(alpha + beta < 0, 1.0, -1.0)
+    for k, x in enumerate(u):
+        state = np.where(x >= alpha, 1.0, np.where(x <= beta, -1.0, state))
+        assert np.array_equal(got[k], state)
 
 
 def test_mirrored_loop_is_not_named_hysteresis(params):

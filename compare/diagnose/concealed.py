@@ -23,7 +23,7 @@ class Concealed:
     name: str                          # the class, e.g. "hysteresis" or "f2:viscoelastic"
     text: str                          # the recording file (docs/recordings.md)
     truth: tuple[str, ...]             # catalogue effect ids; () when clean or out of catalogue
-    snr: float                         # peak of the visible effect / noise std (0 for clean)
+    snr: float                         # peak of the visible (weakest, if several) effect / noise std (0 for clean)
     kind: str                          # torsion | ring_compression
     family: int = 1
     noise: str = "white"               # measurement-noise colour, see NOISE_KINDS
@@ -65,4 +65,11 @@ def projected_peak(u: np.ndarray, t: np.ndarray, effect: np.ndarray, uncertainty
     return float(np.max(np.abs(effect - A @ sol.x)))
 
 
-__all__ = ["Concealed", "KINDS", "NOISE_KINDS", "PRIOR_SIGMAS", "projected_peak"]
+def weakest_peak(u: np.ndarray, t: np.ndarray, parts: list[np.ndarray], uncertainty: float) -> float:
+    """The signal of a recording with several effects, as scored: its WEAKEST effect's projected peak. An
+    exact set can only be named when every member stands above the noise; the sum's peak would score a pair
+    whose second effect is buried in the noise (e.g. a loop of 1.5 noise sigmas beside a strong stiffening)."""
+    return min(projected_peak(u, t, p, uncertainty) for p in parts)
+
+
+__all__ = ["Concealed", "KINDS", "NOISE_KINDS", "PRIOR_SIGMAS", "projected_peak", "weakest_peak"]

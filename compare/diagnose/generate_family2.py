@@ -21,7 +21,7 @@ from . import family2_outside as fo
 from . import family2_sensors as fs
 from .baseline import ring_geometry, torsion_compliance
 from .cha import ARCMIN, ChaRow
-from .concealed import Concealed, projected_peak
+from .concealed import Concealed, projected_peak, weakest_peak
 from .loop_metrics import measure_loop
 from .recording import RecordingKind, format_recording
 
@@ -146,7 +146,7 @@ def _torsion_effect(name: str, rng, T: np.ndarray, c: float, c0: float, X: float
 
 def _finish(rng, cls, kind, specimen, T, y_true, effect, snr, noise_kind, *, Y, t_s, with_time, params=None,
             truth=(), label="", loss=None, energy=None, load_transform=None, response_transform=None,
-            uncertainty=UNCERTAINTY) -> Concealed:
+            uncertainty=UNCERTAINTY, parts=None) -> Concealed:
     """Scale the noise to the signal, add drift, offsets, noise, quantisation, sensor artefacts; format."""
     n = len(T)
     t = (t_s - t_s[0]) / (t_s[-1] - t_s[0])
@@ -168,6 +168,8 @@ def _finish(rng, cls, kind, specimen, T, y_true, effect, snr, noise_kind, *, Y, 
     if load_transform is not None:
         T_meas = load_transform(T_meas)
     noise_std = math.sqrt(sigma_n ** 2 + q ** 2 / 12.0)
+    if parts is not None:      # several effects: scored by the weakest (the noise stays set by the sum)
+        peak = weakest_peak(T / X, t, [p / Y for p in parts], uncertainty) * Y
     rk = RecordingKind.TORSION if kind == "torsion" else RecordingKind.RING_COMPRESSION
     text = format_recording(rk, specimen, T_meas, y, baseline_uncertainty=uncertainty, params=params,
                             time_s=t_s if with_time else None)
@@ -211,13 +213,16 @@ def _torsion(cls, rng, params, n, noise_kind) -> Concealed:
         T = u * X
         effect = np.zeros(n)
         loss = energy = None
+        parts = []
         for part in cls.split("+"):
             e, l, en = _torsion_effect(part, rng, T, c, c0, X, Y)
             effect += e
+            parts.append(e)
             if l is not None:
                 loss, energy = l, en
         return _finish(rng, cls, "torsion", specimen, T, c * T + effect, effect + (c - c0) * T, snr, noise_kind,
-                       truth=IN_CATALOGUE[cls], loss=loss, energy=energy, **common)
+                       truth=IN_CATALOGUE[cls], loss=loss, energy=energy, parts=parts if len(parts) > 1 else None,
+                       **common)
     return _outside_torsion(cls, rng, specimen, n, c, c0, X, Y, snr, noise_kind, fs_hz, with_time)
 
 

@@ -21,7 +21,7 @@ from . import family2_sensors as fs
 from . import hifi_ring as hr
 from . import hifi_torsion as ht
 from .baseline import ring_geometry, torsion_compliance
-from .concealed import Concealed, projected_peak
+from .concealed import Concealed, projected_peak, weakest_peak
 from .loop_metrics import measure_loop
 from .recording import RecordingKind, format_recording
 
@@ -103,7 +103,9 @@ def _torsion(cls, rng, params, n, snr, clean_noise, eps) -> Concealed:
     parts = cls.split("+")
     effect = np.zeros(n)
     loss = energy = None
+    part_effects = []
     for p in parts:
+        effect_before = effect.copy()
         if p == "compliance_offset":
             effect += ht.series_compliance_twist(T, c0 * rng.choice([-1, 1]) * rng.uniform(0.06, 0.4))
         elif p == "nonlinear_stiffness":
@@ -122,9 +124,12 @@ def _torsion(cls, rng, params, n, snr, clean_noise, eps) -> Concealed:
         elif p == "crack_closure":
             effect += ht.breathing_crack_twist(T, c0 * rng.uniform(0.05, 0.4), X * rng.uniform(0.005, 0.05),
                                                int(rng.choice([-1, 1])))
+        part_effects.append(effect - effect_before)
     clean = cls.startswith("clean")
     noise_kind = str(rng.choice(COLOURED)) if cls.endswith("_coloured") else "white"
     un, yn, noise, peak = _noisy(rng, u, c * T / Y, None if clean else effect / Y, snr, clean_noise, n, noise_kind)
+    if not clean and len(parts) > 1:
+        peak = weakest_peak(u, np.linspace(0.0, 1.0, n), [e / Y for e in part_effects], UNCERTAINTY)
     text = format_recording(RecordingKind.TORSION, specimen, un * X, yn * Y, baseline_uncertainty=UNCERTAINTY)
     return Concealed(cls, text, () if clean else tuple(parts), peak / noise if not clean else 0.0, "torsion",
                      noise=noise_kind, loss_arcmin=loss, energy_Nmm_rad=energy)

@@ -33,7 +33,7 @@ from .context import build_context
 from .effects import CATALOGUE, effects_for
 from .effects.loop import ARCMIN_PER_RAD, loop_quantities
 from .explain import explain
-from .fit import NOISE_FLOOR, Fit, fit_effects, lag1
+from .fit import NOISE_FLOOR, Fit, fit_effects, lag1, rescored
 from .locate import Located, locate, locate_effect
 from .noise import noise_std
 from .recording import Recording, parse_recording
@@ -222,6 +222,11 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     # slopes with sharp knees) no longer leaks its misfit into the noise estimate
     closest = best_single if best_single is not None and best_single.bic < base_fit.bic else base_fit
     noise = reference_noise(ctx, ctx.y - closest.model)
+    # from here every model is scored under that one noise model (fit.bic_fixed_noise)
+    base_fit = rescored(base_fit, ctx, noise)
+    singles = [rescored(f, ctx, noise) for f in singles]
+    ranked_singles = _best_per_set(singles)
+    best_single = ranked_singles[0] if ranked_singles else None
     gof_base = structure_test(ctx, ctx.y - base_fit.model, sigma, base_fit.prior_chi2, noise)
     # a catalogue model is evidence of a mismatch only with physically plausible parameters
     plausible = [f for f in ranked_singles if not _implausible(ctx, f)]
@@ -242,7 +247,7 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
             if frozenset({a.id, b.id}) in _DEGENERATE:
                 continue
             start = np.concatenate([a.theta, b.theta])
-            pairs.append(fit_effects(ctx, a.effects + b.effects, sigma, u_rel, starts=[start]))
+            pairs.append(fit_effects(ctx, a.effects + b.effects, sigma, u_rel, starts=[start], noise=noise))
         # the best pair in every other combination of model forms: a loop law that loses as a single
         # (its misfit of the stiffening costs more) may be the one that fits beside the other effect
         if pairs:
@@ -253,7 +258,7 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
                 if x.effects[0] is top.effects[0] and y.effects[0] is top.effects[1]:
                     continue
                 pairs.append(fit_effects(ctx, x.effects + y.effects, sigma, u_rel,
-                                         starts=[np.concatenate([x.theta, y.theta])]))
+                                         starts=[np.concatenate([x.theta, y.theta])], noise=noise))
     candidates = list(ranked_singles)
     for p in pairs:
         first = next(s for s in ranked_singles if s.id == p.effects[0].id)
@@ -394,7 +399,7 @@ def _ranked(ctx, fit: Fit, base_fit: Fit, n: int, weight: float, detail: bool = 
 
 def _report_errors(ctx, effect, theta, cov, s, rep) -> dict:
     """Standard errors of the reported quantities: J_rep C J_rep^T with J_rep by finite differences."""
-    keys = [k for k, v in rep.items() if np.isfinite(v[0])]
+    keys = [k for k, v in rep.items() if np.isfinite(v[0]) and v[1] != "count"]   # a count has no derivative
     base = np.array([rep[k][0] for k in keys])
     J = np.zeros((len(keys), len(theta)))
     for j in range(len(theta)):

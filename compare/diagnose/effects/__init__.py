@@ -10,7 +10,8 @@ CATALOGUE = {m.EFFECT.id: m.EFFECT for m in (compliance_offset, nonlinear_stiffn
                                              kinematic_error)}
 
 # other model forms of the same physics: the named effect must not depend on one law's shape
-VARIANTS = (nonlinear_stiffness.TWO_SLOPE, nonlinear_stiffness.SMOOTH_KNEE, nonlinear_stiffness.MONOTONE, hysteresis.PLAY, crack_closure.GRADUAL)
+VARIANTS = (nonlinear_stiffness.TWO_SLOPE, nonlinear_stiffness.SMOOTH_KNEE, nonlinear_stiffness.MONOTONE, hysteresis.PLAY,
+            hysteresis.PREISACH, crack_closure.GRADUAL)
 
 
 def effects_for(kind: str) -> tuple[Effect, ...]:

@@ -40,6 +40,9 @@ class Context:
     geometry: dict = field(default_factory=dict)
     uncertainty: float = 0.02  # relative 1-sigma uncertainty of the baseline compliance
     angle: np.ndarray | None = None   # wave generator input angle, rad (optional column input_angle_rad)
+    # per-context memo of history bases that are linear in their parameters (e.g. the Preisach relay states);
+    # not an init field, so dataclasses.replace (a new load history) starts with an empty one
+    cache: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     @property
     def two_sided(self) -> bool:

@@ -13,7 +13,17 @@ elastic line and while it falls it is ABOVE it; after unloading from +T_max a po
   w_i >= 0 (Maxwell-slip elements in twist form): twist += sum_i w_i (P_ri[u] - u). Each element is an
   elastic-perfectly-plastic loop of width 2 w_i r_i; the sum approximates any Preisach-type loop
   with purely dissipative elements (w_i >= 0 is the physics constraint, not a fitting convenience).
-Both are reported through shape-free quantities (loop width at zero torque, energy per cycle).
+- ``preisach``: a Preisach sum of relay hysterons (Mayergoyz): a relay of switching thresholds
+  alpha > beta jumps to +1 once u >= alpha and to -1 once u <= beta; twist += sum mu(alpha, beta) relay.
+  The density mu >= 0 is continuous, piecewise bilinear in |bias| = |alpha + beta|/2 and half-width
+  (alpha - beta)/2 on a few nodes, zero at zero width (a zero-width relay is reversible: stiffness, not
+  friction) and symmetric in the bias (the same friction for both torque signs). Unlike the play sum, whose
+  tangent compliance can only grow with the travel since the reversal, relays whose thresholds the load has
+  passed stop contributing, so the loop can SATURATE (branches that flatten at full load: friction sources
+  that all slip before full torque, e.g. a bearing's balls and the tooth flanks at different loads).
+  Every relay with mu >= 0 dissipates 2 mu (alpha - beta) per cycle that crosses it: the form is passive
+  for any weights. Initial state: demagnetised (the relay staircase of a joint brought to zero load).
+All are reported through shape-free quantities (loop width at zero torque, energy per cycle).
 """
 from __future__ import annotations
 
@@ -57,6 +67,69 @@ def play_operator(ctx: Context, r: float) -> np.ndarray:
     return p
 
 
+# Preisach relays on a fine threshold grid (spacing 0.05 of full scale, beyond it so saturation is reachable);
+# the density's nodes (fractions of full scale): |bias| and half-width, hats between them
+RELAY_LEVELS = np.linspace(-1.25, 1.25, 51)
+PREISACH_BIAS_NODES = (0.0, 0.4, 0.8)
+PREISACH_WIDTH_NODES = (0.05, 0.2, 0.45, 0.8)
+
+
+def _hats(x: np.ndarray, nodes: tuple[float, ...], left_zero: float | None) -> np.ndarray:
+    """Piecewise-linear hat functions on ``nodes`` evaluated at x (len(x) x len(nodes)); the first hat ramps
+    up from ``left_zero`` (None: flat to the left), the last one down to zero one spacing beyond its node."""
+    ext = [left_zero if left_zero is not None else nodes[0] - 1e9, *nodes, 2 * nodes[-1] - nodes[-2]]
+    out = np.empty((len(x), len(nodes)))
+    for k in range(len(nodes)):
+        a, m, b = ext[k], ext[k + 1], ext[k + 2]
+        up = np.clip((x - a) / (m - a), 0.0, 1.0) if m > a else np.ones_like(x)
+        down = np.clip((b - x) / (b - m), 0.0, 1.0)
+        out[:, k] = np.where(x <= m, up, down)
+    if left_zero is None:
+        out[x <= nodes[0], 0] = 1.0
+    return out
+
+
+def relay_states(u: np.ndarray, alpha: np.ndarray, beta: np.ndarray) -> np.ndarray:
+    """States (len(u) x n relays) of relay hysterons (alpha > beta) driven by u, demagnetised start.
+
+    A relay is +1 if the load last reached its upper threshold after it last reached its lower one: with
+    the running index of the last sample at or beyond each threshold level, every state is one comparison."""
+    idx = np.arange(len(u))
+    levels = np.unique(np.concatenate([alpha, beta]))
+    last_up = np.maximum.accumulate(np.where(u[:, None] >= levels[None, :], idx[:, None], -1), axis=0)
+    last_dn = np.maximum.accumulate(np.where(u[:, None] <= levels[None, :], idx[:, None], -1), axis=0)
+    ia, ib = np.searchsorted(levels, alpha), np.searchsorted(levels, beta)
+    up, dn = last_up[:, ia], last_dn[:, ib]
+    start = np.where(alpha + beta < 0.0, 1.0, -1.0)
+    return np.where(up > dn, 1.0, np.where(dn > up, -1.0, start[None, :]))
+
+
+def preisach_basis(ctx: Context) -> np.ndarray:
+    """Twist per unit node weight (len(u) x nodes): relay states times the density's hat functions."""
+    if "preisach" not in ctx.cache:
+        a, b = np.meshgrid(RELAY_LEVELS, RELAY_LEVELS, indexing="ij")
+        keep = a > b
+        alpha, beta = a[keep], b[keep]
+        bias, half = np.abs(0.5 * (alpha + beta)), 0.5 * (alpha - beta)
+        wb = _hats(bias, PREISACH_BIAS_NODES, None)
+        wh = _hats(half, PREISACH_WIDTH_NODES, 0.0)
+        density = (wb[:, :, None] * wh[:, None, :]).reshape(len(alpha), -1)
+        # unit node weight = one unit of compliance spread over the relay grid's cell area
+        cell = (RELAY_LEVELS[1] - RELAY_LEVELS[0]) ** 2
+        states = relay_states(ctx.u, alpha, beta)
+        basis = states @ (density * cell)
+        # the loop only: the constant belongs to the channel offset and the least-squares line in the load to
+        # the stiffness scale, so a relay sum's mean compliance does not pull the stiffness off its prior
+        # (the width at zero torque and the energy per cycle of a line are zero: the loop quantities stay)
+        A = np.column_stack([np.ones_like(ctx.u), ctx.u])
+        ctx.cache["preisach"] = basis - A @ np.linalg.lstsq(A, basis, rcond=None)[0]
+    return ctx.cache["preisach"]
+
+
+def _preisach(ctx: Context, theta):
+    return preisach_basis(ctx) @ np.asarray(theta, dtype=float)
+
+
 def _dahl(ctx: Context, theta):
     # minus: z -> +1 on loading and friction makes the loading twist LOWER (dissipative loop)
     return -theta[0] * dahl_unit(ctx, 10.0 ** theta[1])
@@ -78,7 +151,13 @@ def _report_dahl(ctx: Context, theta, s: float) -> dict:
 
 def _report_play(ctx: Context, theta, s: float) -> dict:
     out = _loop_report(ctx, lambda c: _play(c, theta))
-    out["play_elements"] = (float(np.count_nonzero(np.asarray(theta) > 1e-9)), "1")
+    out["play_elements"] = (float(np.count_nonzero(np.asarray(theta) > 1e-9)), "count")
+    return out
+
+
+def _report_preisach(ctx: Context, theta, s: float) -> dict:
+    out = _loop_report(ctx, lambda c: _preisach(c, theta))
+    out["relay_density_nodes"] = (float(np.count_nonzero(np.asarray(theta) > 1e-9)), "count")
     return out
 
 
@@ -146,4 +225,17 @@ PLAY = Effect(
     plausible=_plausible_play,
 )
 
-__all__ = ["EFFECT", "PLAY", "PLAY_THRESHOLDS", "dahl_unit", "play_operator"]
+PREISACH = Effect(
+    id="hysteresis",
+    kinds=("torsion",),
+    params=tuple(Param(f"mu_b{b:g}_h{h:g}", 0.0, 50.0, (0.0,)) for b in PREISACH_BIAS_NODES
+                 for h in PREISACH_WIDTH_NODES),
+    contribution=_preisach,
+    report=_report_preisach,
+    explanation=EXPLANATION,
+    applicable=_applicable,
+    variant="preisach",
+)
+
+__all__ = ["EFFECT", "PLAY", "PLAY_THRESHOLDS", "PREISACH", "dahl_unit", "play_operator", "preisach_basis",
+           "relay_states"]
