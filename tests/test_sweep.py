@@ -136,3 +136,54 @@ def test_impossible_grid_points_are_refused_before_any_worker(strainwave_cmd, tm
     assert run.returncode == 2 and run.stdout == "" and not out.exists()
     errors = [line for line in run.stderr.splitlines() if line.startswith("error:")]
     assert len(errors) == 1 and "point 1 (output_shaft.inner_diameter_mm=75.0)" in errors[0]
+
+
+def journal_length(study, params, quick, *, journal: str):
+    """closed_form_probe that appends the point's shaft length when it runs (one worker: one line at a time)."""
+    with open(journal, "a") as fh:
+        fh.write(f"{params.output_shaft.length_mm}\n")
+    return closed_form_probe(study, params, quick)
+
+
+def test_points_are_submitted_largest_first(tmp_path):
+    """Longest first: the element estimate of a shaft grows with its length, so on one worker the points run
+    300, 200, 100 mm whatever the grid's order; the table keeps the grid's order."""
+    journal = tmp_path / "journal.txt"
+    task = functools.partial(journal_length, journal=str(journal))
+    outcome = run_sweep("shaft-torsion", vary=["output_shaft.length_mm=100,300,200"], workers=1,
+                        out_dir=tmp_path / "sweep", task=task)
+    assert (outcome.n_points, outcome.n_ok) == (3, 3)
+    assert [float(x) for x in journal.read_text().split()] == [300.0, 200.0, 100.0]
+    frame = pd.read_parquet(tmp_path / "sweep" / "sweep.parquet")
+    assert frame["output_shaft.length_mm"].tolist() == [100.0, 300.0, 200.0]
+    assert frame["fea"].tolist() == [_compliance(45.0, length) for length in (100.0, 300.0, 200.0)]
+
+
+def test_own_workers_import_the_pipeline_before_any_point(tmp_path):
+    from strainwave.compare.sweep.pipeline import dask_client
+    from strainwave.compare.sweep.task import warm_modules
+
+    assert warm_modules("shaft-torsion", closed_form_probe) == ()      # a probe needs none of the FEA's libraries
+    fea = warm_modules("shaft-torsion", None)
+    assert "strainwave.fea.shaft_torsion" in fea and "build123d" in fea and "gmsh" in fea
+    # a light module stands for the FEA's here (build123d alone costs a worker 2.4 s)
+    with dask_client(None, 1, tmp_path / "scratch", warm=("strainwave.analytic.summary",)) as (client, _):
+        loaded = client.run(lambda: "strainwave.analytic.summary" in sys.modules)
+    assert list(loaded.values()) == [True]
+
+
+def test_sweep_worker_plugin_freezes_the_heap_at_teardown():
+    import gc
+
+    from strainwave.compare.sweep.worker import SweepWorker
+
+    sys.modules.pop("tabnanny", None)
+    plugin = SweepWorker(("strainwave.no_such_module", "tabnanny"))
+    assert gc.get_freeze_count() == 0
+    plugin.setup()   # the missing module is left to the points that need it; the next one still loads
+    assert "tabnanny" in sys.modules
+    try:
+        plugin.teardown()
+        assert gc.get_freeze_count() > 0
+    finally:
+        gc.unfreeze()

@@ -77,6 +77,20 @@ def fea_task(study: str, params, quick: bool, *, crack_depth_mm: float | None = 
     return run_study(study, params, quick=quick, crack_depth_mm=crack_depth_mm).to_dict()
 
 
+# The default task's libraries, which the pipeline imports inside the functions that use them (so that a
+# closed form or a refused point never pays for them): CAD, meshing, assembly and solver, the closed forms.
+FEA_MODULES = ("build123d", "gmsh", "skfem", "pyamg", "strainwave.geometry.parts", "strainwave.analytic.summary")
+
+
+def warm_modules(study: str, task: TaskFn | None) -> tuple[str, ...]:
+    """What a worker of the sweep's own cluster imports before it registers (``worker.SweepWorker``): the FEA
+    pipeline of ``study``; nothing for another task (its module comes with the first task it unpickles,
+    and it may need none of the FEA's libraries)."""
+    if task is not None:
+        return ()
+    return (__name__, STUDIES[study].module, *FEA_MODULES)
+
+
 def closed_form_probe(study: str, params, quick: bool, *, delay_s: float = 0.0) -> dict:
     """A cheap, real task for testing the sweep machinery: the hollow-shaft torsional compliance.
 
