@@ -9,6 +9,7 @@ import pytest
 
 from strainwave.compare.diagnose.baseline import analytic_baseline
 from strainwave.compare.diagnose.context import build_context
+from strainwave.compare.diagnose import rate_loop
 from strainwave.compare.diagnose.effects import hysteresis
 from strainwave.compare.diagnose.effects.loop import loop_quantities
 from strainwave.compare.diagnose.pipeline import Verdict, diagnose
@@ -200,3 +201,54 @@ def test_a_channel_lagging_by_four_samples_is_unexplained_and_rate_dependent(par
     diag, _ = _diagnose(params, lagged, seed=seed)
     assert diag.verdict is Verdict.UNEXPLAINED and "hysteresis" not in diag.named
     assert "loading rate" in diag.structure
+
+
+def test_first_order_lag_is_exact_for_a_ramp():
+    # dx/dt = (u - x)/tau with u = r t and x(0) = 0: x = r (t - tau (1 - exp(-t/tau)))
+    t = np.linspace(0.0, 2.0, 41)
+    tau = 0.3
+    x = rate_loop.lagged(0.7 * t, t, tau)
+    assert x == pytest.approx(0.7 * (t - tau * (1.0 - np.exp(-t / tau))), abs=1e-12)
+    # and on a non-uniform time grid (the sample-by-sample path)
+    t2 = np.sort(np.concatenate([[0.0, 2.0], np.random.default_rng(1).uniform(0.0, 2.0, 60)]))
+    assert rate_loop.lagged(0.7 * t2, t2, tau) == pytest.approx(0.7 * (t2 - tau * (1.0 - np.exp(-t2 / tau))), abs=1e-12)
+
+
+def test_creep_loop_at_one_rate_is_not_confidently_friction(params):
+    """Under one constant loading rate, creep (twist lagging in TIME) draws exactly Dahl's friction loop: the
+    diagnosis may name hysteresis only as ambiguous with the rate-dependent rival, never with confidence."""
+    diag, _ = _diagnose(params, lambda u, t, c: 0.05 * (rate_loop.lagged(u, t, 0.01) - u))
+    assert diag.verdict is not Verdict.AGREES
+    if diag.verdict is Verdict.EXPLAINED:
+        assert diag.named == ("hysteresis",) and diag.ambiguous and "rate" in diag.runner_up
+
+
+def test_creep_loop_at_two_rates_is_unexplained(params):
+    """At two loading rates creep's loop width changes with the rate, which no friction law does."""
+    n = 800
+    # the second half of the record is sampled 4x slower: the same load path at a quarter of the rate
+    time_s = np.concatenate([np.arange(n // 2) * 1e-3, (n // 2) * 1e-3 + np.arange(n - n // 2) * 4e-3])
+    t = (time_s - time_s[0]) / (time_s[-1] - time_s[0])
+    diag, _ = _diagnose(params, lambda u, _t, c: 0.05 * (rate_loop.lagged(u, t, 0.005) - u), time_s=time_s)
+    assert diag.verdict is Verdict.UNEXPLAINED
+    assert "rate" in diag.structure
+
+
+@pytest.mark.parametrize("d", [0.2, -0.2])
+def test_progressive_crack_closes_under_its_closing_load(params, d):
+    """First principles: the crack adds its full compliance |d| where it is open; where its faces are pressed
+    shut the added compliance falls monotonically from |d| towards zero (a crack under compression closes)."""
+    from strainwave.compare.diagnose.effects import crack_closure
+    u = np.linspace(-1.0, 1.0, 2001)
+    ctx = _ctx(params, u)
+    theta = np.array([d, 0.0, 0.1, 0.2, 0.3, 0.2, 0.1, 0.05, 0.05])
+    y = crack_closure.PROGRESSIVE.contribution(ctx, theta)
+    slope = np.gradient(y, u)
+    open_side, closing = (u > 0.01, u < -0.01) if d > 0 else (u < -0.01, u > 0.01)
+    assert slope[open_side] == pytest.approx(abs(d), rel=1e-9)
+    added = slope[closing]
+    assert np.all(added >= -1e-12) and np.all(added <= abs(d) + 1e-12)
+    # non-increasing with the closing load (ordered away from the zero)
+    away = added[::-1] if d > 0 else added
+    assert np.all(np.diff(away) <= 1e-9)
+    assert away[-1] == pytest.approx(0.0, abs=1e-9)          # the staircase sums to fully closed

@@ -2,17 +2,23 @@
 
 1. baseline (analytic or FEA), white-noise level from the data itself;
 2. fit the nuisance model (offsets, drift, stiffness within its prior) and every applicable catalogue
-   effect (each in more than one model form), scored by BIC under AR(2) noise (fit.py);
+   effect (each in more than one model form) by least squares (fit.py);
 3. goodness of fit without the catalogue (structure.py): does the residual of the nuisance fit show
-   structure beyond the (possibly coloured) noise? No, and no catalogue effect beats it by delta BIC > 10:
-   verdict *agrees*;
-4. name: the best single effect; a second effect joins only if it is significant given the first (its own
-   delta BIC > 10 against the single) AND removes a structure the first leaves; the named model's residual
-   must pass the same goodness-of-fit test: *explained*; otherwise *unexplained*, with the best model
-   kept as a suggestion and the residual's structure described physically;
-5. confidence: BIC weights, margin to the runner-up (ambiguous when < 6), parameter standard errors from
+   structure beyond the (possibly coloured) noise? No, and no plausible catalogue effect beats it by
+   delta BIC > 10 even under each model's own profiled noise filter (the most generous noise): *agrees*;
+4. from here every model is scored under the recording's ONE noise model (structure.reference_noise,
+   fit.bic_fixed_noise). Name the best single effect; a second effect joins only if it is significant given
+   the first (its own delta BIC > 10 against the single) AND removes a structure the first leaves; the named
+   model's residual must pass the same goodness-of-fit test, its parameters must be physical, and no
+   unphysical form (an active friction loop, a stiffening no tooth contact gives) may beat it by > 10:
+   *explained*; otherwise *unexplained*, with the best model kept as a suggestion and the residual's
+   structure described physically;
+5. a named friction loop meets its rate-dependent rival (rate_loop.py: viscoelastic creep, a lagging
+   channel): one loading rate cannot tell them apart (ambiguous), a rival better by > 10 makes the loop
+   *unexplained* (friction is rate-independent);
+6. confidence: BIC weights, margin to the runner-up (ambiguous when < 6), parameter standard errors from
    the Jacobian, parameters at a bound and physically implausible values flagged;
-6. locate from the fitted effect (cross-checked with the binned residual), JSON, plot.
+7. locate from the fitted effect (cross-checked with the binned residual), JSON, plot.
 """
 from __future__ import annotations
 
@@ -28,6 +34,7 @@ import numpy as np
 
 from ...errors import InputError
 from ...io_atomic import atomic_write_text
+from . import rate_loop
 from .baseline import Baseline, analytic_baseline, fea_baseline
 from .context import build_context
 from .effects import CATALOGUE, effects_for
@@ -222,15 +229,18 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     # slopes with sharp knees) no longer leaks its misfit into the noise estimate
     closest = best_single if best_single is not None and best_single.bic < base_fit.bic else base_fit
     noise = reference_noise(ctx, ctx.y - closest.model)
-    # from here every model is scored under that one noise model (fit.bic_fixed_noise)
+    # that anything is missing at all must hold under the most generous noise model, each model's own profiled
+    # filter (a misfit some plausible noise could have drawn is no evidence; a catalogue model is evidence
+    # only with physically plausible parameters) ...
+    plausible = [f for f in ranked_singles if not _implausible(ctx, f)]
+    cat_gain = base_fit.bic - plausible[0].bic if plausible else 0.0
+    # ... but models are ranked against each other under the recording's ONE noise model (fit.bic_fixed_noise):
+    # a profiled filter would let a wrong loop law buy its misfit back as "noise"
     base_fit = rescored(base_fit, ctx, noise)
     singles = [rescored(f, ctx, noise) for f in singles]
     ranked_singles = _best_per_set(singles)
     best_single = ranked_singles[0] if ranked_singles else None
     gof_base = structure_test(ctx, ctx.y - base_fit.model, sigma, base_fit.prior_chi2, noise)
-    # a catalogue model is evidence of a mismatch only with physically plausible parameters
-    plausible = [f for f in ranked_singles if not _implausible(ctx, f)]
-    cat_gain = base_fit.bic - plausible[0].bic if plausible else 0.0
     mismatch = bool(gof_base.structured or cat_gain > BIC_THRESHOLD)
 
     # pairs of the four best distinct singles; a pair is a candidate only if parsimonious (see module doc)
@@ -283,9 +293,18 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
         # by BIC (or, where the catalogue-free test found the mismatch, at least beats it), leaves a residual
         # consistent with the noise and has physically plausible parameters
         forms = sorted(singles + [p for p in candidates if len(p.effects) > 1], key=lambda f: f.bic)
+        # a model that fits only with unphysical parameters (an active friction loop, a stiffening beyond any
+        # tooth contact's) and beats a physical one by more than the threshold shows a feature of the data
+        # that no physical catalogue form draws (a lagging channel, a stop): the physical form cannot explain
+        # it, however well the goodness-of-fit test then tolerates what it leaves. Single effects only: a pair
+        # can trade a stiffening term against a loop's tangent until the loop is marginally active, which is
+        # the pair's freedom, not a feature of the data
+        unphysical_bic = min((f.bic for f in singles if _implausible(ctx, f)), default=math.inf)
         for f in forms[:MAX_GOF_TRIES]:
             gain = base_fit.bic - f.bic
             if not (gain > BIC_THRESHOLD or (gof_base.structured and gain > 0)):
+                break
+            if f.bic - unphysical_bic > BIC_THRESHOLD:
                 break
             if not gof(f).structured and not _implausible(ctx, f):
                 best, gof_best = f, gof(f)
@@ -301,6 +320,18 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
                   None)
     margin = float(runner.bic - best.bic) if runner is not None and mismatch else None
     ambiguous = bool(margin is not None and margin < AMBIGUOUS_BIC and verdict is Verdict.EXPLAINED)
+    runner_label = runner.label if runner is not None and mismatch else None
+    rate_note = ""
+    if verdict is Verdict.EXPLAINED and "hysteresis" in named:
+        rival_margin = _rate_rival_margin(ctx, best, sigma, u_rel, noise)
+        if rival_margin < -BIC_THRESHOLD:
+            # the loop keeps time, not travel: out of the catalogue (friction is rate-independent)
+            verdict, named, ambiguous = Verdict.UNEXPLAINED, (), False
+            rate_note = (f"the loop is rate-dependent: {rate_loop.LABEL} draws it better than any friction law "
+                         f"(by {-rival_margin:.0f} BIC units), and friction does not depend on the loading rate")
+        elif rival_margin < AMBIGUOUS_BIC and (margin is None or rival_margin < margin):
+            ambiguous, margin = True, rival_margin
+            runner_label = rate_loop.LABEL + "; a test at a second loading rate tells them apart"
 
     bics = np.array([f.bic for f in candidates]) if candidates else np.zeros(0)
     weights = np.exp(-0.5 * (bics - bics.min())) if len(bics) else bics
@@ -311,13 +342,15 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
                        gof_best)
     dt = None if rec.time_s is None else float(np.median(np.diff(fit_rec.time_s)))
     structure = describe(gof_best, ctx, located.description, dt) if mismatch else describe(gof_base, ctx, "", dt)
+    if rate_note:
+        structure = f"{rate_note}; {structure}"
     after = best if verdict is not Verdict.AGREES else base_fit
     diag = Diagnosis(recording=rec.source, kind=rec.kind.value, specimen=rec.specimen, baseline=base,
                      mismatch=mismatch, noise_std=sigma * ctx.Y, located=located,
                      effects=effects if mismatch else (), rms_before=base_fit.rms(n) * ctx.Y,
                      rms_after=after.rms(n) * ctx.Y, bic_before=base_fit.bic, bic_after=after.bic,
                      explanation="", n_samples=rec.n, verdict=verdict, named=named, ambiguous=ambiguous,
-                     runner_up=runner.label if runner is not None and mismatch else None, margin_bic=margin,
+                     runner_up=runner_label, margin_bic=margin,
                      suggestion=effects[0] if verdict is Verdict.UNEXPLAINED and effects else None,
                      structure=structure, gof_baseline=gof_base, gof_model=gof_best if mismatch else None,
                      quantities=quantities, fitted_rows=n, noise_model=noise.describe())
@@ -325,6 +358,17 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     arrays = {"load": fit_rec.load, "response": fit_rec.response, "baseline": base_fit.model * ctx.Y,
               "augmented": after.model * ctx.Y, "model_label": after.label}
     return diag, arrays
+
+
+def _rate_rival_margin(ctx, best: Fit, sigma: float, u_rel: float, noise) -> float:
+    """BIC(rival) - BIC(best) where the rival replaces the named friction loop by linear viscoelastic creep
+    (rate_loop.py), the other named effects kept: negative when a rate-dependent loop fits better."""
+    keep = [(e, th) for e, th in zip(best.effects, best.split_theta()) if e.id != "hysteresis"]
+    effects = tuple(e for e, _ in keep) + (rate_loop.RATE_LOOP,)
+    head = [th for _, th in keep]
+    starts = [np.concatenate([*head, np.array(x0)]) for x0 in ((0.05, -2.5), (0.05, -1.5))]
+    rival = fit_effects(ctx, effects, sigma, u_rel, starts=starts, noise=noise)
+    return float(rival.bic - best.bic)
 
 
 def _implausible(ctx, fit: Fit) -> list[str]:

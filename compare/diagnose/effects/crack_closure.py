@@ -7,6 +7,10 @@ the open crack adds a compliance c_x on one side of the load zero T0 only:
 extra twist |d| u for u < u0). K_open = 1/((s + |d|) c0), K_closed = 1/(s c0).
 Variant ``gradual``: the faces close over a load width w (the ramp's corner rounded by a softplus), for
 cracks whose faces touch progressively (rough faces, crack-tip plasticity).
+Variant ``progressive``: no closure law assumed. On the closing side the crack's remaining compliance
+|d| (1 - F(x)) falls monotonically with the load x past the zero, F a non-decreasing staircase of closed
+fractions f_k >= 0 at fixed loads (capped at fully closed): asperity contact stiffens with its contact load
+by whatever law the faces' roughness sets (a power-law tail, an exponential, a sharp stop).
 """
 from __future__ import annotations
 
@@ -26,6 +30,22 @@ def _contribution_gradual(ctx: Context, theta):
     w = 10.0 ** lw
     side = 1.0 if d >= 0 else -1.0
     return d * w * (np.logaddexp(0.0, side * (ctx.u - u0) / w) - np.logaddexp(0.0, -side * u0 / w))
+
+
+# loads (fraction of full scale) past the zero where part of the crack face closes; 0 = the sharp closure
+CLOSURE_KNOTS = (0.0, 0.03, 0.08, 0.15, 0.25, 0.4, 0.6)
+
+
+def _contribution_progressive(ctx: Context, theta):
+    d, u0 = theta[0], theta[1]
+    side = 1.0 if d >= 0 else -1.0
+    v = side * (ctx.u - u0)
+    x = np.maximum(-v, 0.0)                           # load past the zero on the closing side
+    closed = np.minimum(np.cumsum(theta[2:]), 1.0)    # closed fraction from each knot on
+    edges = (*CLOSURE_KNOTS[1:], np.inf)
+    # the integral of the remaining compliance fraction 1 - F over [0, x]
+    open_area = sum((1.0 - c) * np.clip(x - a, 0.0, b - a) for c, a, b in zip(closed, CLOSURE_KNOTS, edges))
+    return d * np.maximum(v, 0.0) - d * open_area
 
 
 def _where(ctx: Context, theta):
@@ -66,5 +86,18 @@ GRADUAL = Effect(
     explanation=EFFECT.explanation,
     applicable=lambda ctx: ctx.two_sided,
     variant="gradual",
+    where=_where,
+)
+
+PROGRESSIVE = Effect(
+    id="crack_closure",
+    kinds=("torsion",),
+    params=(Param("d", -0.8, 0.8, (0.05, -0.05)), Param("u0", -0.1, 0.1, (0.0,)),
+            *(Param(f"f_{k:g}", 0.0, 1.0, (1.0 if k == 0.0 else 0.0,)) for k in CLOSURE_KNOTS)),
+    contribution=_contribution_progressive,
+    report=_report,
+    explanation=EFFECT.explanation,
+    applicable=lambda ctx: ctx.two_sided,
+    variant="progressive",
     where=_where,
 )

@@ -1,0 +1,63 @@
+"""The rate-dependent rival of a friction loop: linear viscoelastic creep (a Zener / standard linear solid).
+
+Not a catalogue effect (it is never named): it is what a loop could be instead of friction. Creep compliance
+J(t) = J0 + J1 (1 - exp(-t/tau)) gives, for any torque history, twist = J0 u + J1 x with x the torque passed
+through a first-order lag of time constant tau (dx/dt = (u - x)/tau). With the stiffness scale s = J0 + J1
+fitted as always, the effect is J1 (x - u), J1 >= 0: the twist lags the torque IN TIME, and the loop dissipates.
+
+Why it is needed: under a constant loading rate, time since a reversal is proportional to the travel since
+it, so this law draws exactly the loop of Dahl's rate-independent friction law (h = J1 tau rate, w = tau rate).
+One loading rate cannot tell friction from creep (or from a channel recorded a few samples late, a lag x - u
+= -L du/dt); only a loop that keeps its width at another rate, or a branch shape creep cannot draw (sharp
+slip corners, saturation), can. The diagnosis fits this rival beside every named friction loop and says so.
+"""
+from __future__ import annotations
+
+import numpy as np
+from scipy.signal import lfilter
+
+from .effects.base import Context, Effect, Param
+
+LABEL = "a rate-dependent loop (viscoelastic creep, or a channel lagging in time)"
+
+
+def lagged(u: np.ndarray, t: np.ndarray, tau: float) -> np.ndarray:
+    """u through a first-order lag of time constant tau (units of t), exact for u linear between samples,
+    starting relaxed (x = u at the first sample)."""
+    dt = np.diff(t)
+    x0 = float(u[0])
+    if len(dt) and np.allclose(dt, dt[0], rtol=1e-6, atol=0.0):
+        a = float(np.exp(-dt[0] / tau))
+        g = 1.0 - tau / dt[0] * (1.0 - a)          # the weight of the current sample for a linear ramp
+        # x_k = a x_(k-1) + (1 - a - g) u_(k-1) + g u_k
+        x = lfilter([g, 1.0 - a - g], [1.0, -a], u - x0)
+        return x + x0
+    x = np.empty_like(u)
+    x[0] = x0
+    for k in range(1, len(u)):
+        a = float(np.exp(-dt[k - 1] / tau)) if dt[k - 1] > 0 else 1.0
+        g = 1.0 - tau / dt[k - 1] * (1.0 - a) if dt[k - 1] > 0 else 0.0
+        x[k] = a * x[k - 1] + (1.0 - a - g) * u[k - 1] + g * u[k]
+    return x
+
+
+def _contribution(ctx: Context, theta) -> np.ndarray:
+    return theta[0] * (lagged(ctx.u, ctx.t, 10.0 ** theta[1]) - ctx.u)
+
+
+def _report(ctx: Context, theta, s: float) -> dict:
+    return {"delayed_compliance_fraction": (float(theta[0]), "1"),
+            "time_constant_fraction_of_record": (float(10.0 ** theta[1]), "1")}
+
+
+RATE_LOOP = Effect(
+    id="rate_dependence",
+    kinds=("torsion",),
+    params=(Param("J1", 0.0, 5.0, (0.05,)), Param("log10_tau", -4.0, 0.0, (-2.5, -1.5))),
+    contribution=_contribution,
+    report=_report,
+    explanation=LABEL,
+    variant="zener",
+)
+
+__all__ = ["LABEL", "RATE_LOOP", "lagged"]
