@@ -99,6 +99,12 @@ def main(argv=None) -> int:
     result["load_avg_1_5_15"] = load
     print(f"  speed-up 1 -> 2 workers: {result['speedup']:.2f}x (goal >= 1.8x: "
           f"{'PASS' if result['speedup'] >= 1.8 else 'MISS'}; load average {load[0]:.2f} {load[1]:.2f} {load[2]:.2f})")
+    # What two workers could do at best (Amdahl): only the points' own time divides between them; the rest of
+    # the 1-worker wall (cluster start with each worker's imports, outputs, cluster close) is paid in full.
+    serial = one["wall_s"] - one["sum_task_s"]
+    result["serial_s"], result["speedup_bound"] = serial, one["wall_s"] / (serial + one["sum_task_s"] / 2)
+    print(f"  1 worker: {serial:.1f} s of its wall outside the points, {one['sum_task_s']:.1f} s in them: "
+          f"at most {result['speedup_bound']:.2f}x on 2 workers with perfectly parallel points")
     print(f"overhead, {cost['tasks']} near-free tasks: loop {cost['loop_per_task_ms']:.2f} ms/task, Dask "
           f"{cost['dask_per_task_ms']:.2f} ms/task -> {cost['overhead_per_task_ms']:.2f} ms per task added "
           f"(cluster start {cost['cluster_start_s']:.1f} s)")
