@@ -287,6 +287,7 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
 
     verdict = Verdict.AGREES
     named: tuple[str, ...] = ()
+    note = ""                                # why a model that fits is still not an explanation
     gof_best = gof(best) if mismatch else gof_base
     if mismatch:
         # explained when some catalogue model (any of its model forms, best BIC first) beats the nuisance fit
@@ -299,12 +300,15 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
         # it, however well the goodness-of-fit test then tolerates what it leaves. Single effects only: a pair
         # can trade a stiffening term against a loop's tangent until the loop is marginally active, which is
         # the pair's freedom, not a feature of the data
-        unphysical_bic = min((f.bic for f in singles if _implausible(ctx, f)), default=math.inf)
+        unphysical = min((f for f in singles if _implausible(ctx, f)), key=lambda f: f.bic, default=None)
         for f in forms[:MAX_GOF_TRIES]:
             gain = base_fit.bic - f.bic
             if not (gain > BIC_THRESHOLD or (gof_base.structured and gain > 0)):
                 break
-            if f.bic - unphysical_bic > BIC_THRESHOLD:
+            if unphysical is not None and f.bic - unphysical.bic > BIC_THRESHOLD:
+                note = (f"{unphysical.label} draws the data better than any physical form (by "
+                        f"{f.bic - unphysical.bic:.0f} BIC units) but only with unphysical parameters: "
+                        f"{_implausible(ctx, unphysical)[0]}")
                 break
             if not gof(f).structured and not _implausible(ctx, f):
                 best, gof_best = f, gof(f)
@@ -321,13 +325,12 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     margin = float(runner.bic - best.bic) if runner is not None and mismatch else None
     ambiguous = bool(margin is not None and margin < AMBIGUOUS_BIC and verdict is Verdict.EXPLAINED)
     runner_label = runner.label if runner is not None and mismatch else None
-    rate_note = ""
     if verdict is Verdict.EXPLAINED and "hysteresis" in named:
         rival_margin = _rate_rival_margin(ctx, best, sigma, u_rel, noise)
         if rival_margin < -BIC_THRESHOLD:
             # the loop keeps time, not travel: out of the catalogue (friction is rate-independent)
             verdict, named, ambiguous = Verdict.UNEXPLAINED, (), False
-            rate_note = (f"the loop is rate-dependent: {rate_loop.LABEL} draws it better than any friction law "
+            note = (f"the loop is rate-dependent: {rate_loop.LABEL} draws it better than any friction law "
                          f"(by {-rival_margin:.0f} BIC units), and friction does not depend on the loading rate")
         elif rival_margin < AMBIGUOUS_BIC and (margin is None or rival_margin < margin):
             ambiguous, margin = True, rival_margin
@@ -342,8 +345,8 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
                        gof_best)
     dt = None if rec.time_s is None else float(np.median(np.diff(fit_rec.time_s)))
     structure = describe(gof_best, ctx, located.description, dt) if mismatch else describe(gof_base, ctx, "", dt)
-    if rate_note:
-        structure = f"{rate_note}; {structure}"
+    if note:
+        structure = f"{note}; {structure}"
     after = best if verdict is not Verdict.AGREES else base_fit
     diag = Diagnosis(recording=rec.source, kind=rec.kind.value, specimen=rec.specimen, baseline=base,
                      mismatch=mismatch, noise_std=sigma * ctx.Y, located=located,

@@ -70,6 +70,7 @@ def play_operator(ctx: Context, r: float) -> np.ndarray:
 # Preisach relays on a fine threshold grid (spacing 0.05 of full scale, beyond it so saturation is reachable);
 # the density's nodes (fractions of full scale): |bias| and half-width, hats between them
 RELAY_LEVELS = np.linspace(-1.25, 1.25, 51)
+RELAY_SHIFTS = 4
 PREISACH_BIAS_NODES = (0.0, 0.4, 0.8)
 PREISACH_WIDTH_NODES = (0.05, 0.2, 0.45, 0.8)
 
@@ -115,9 +116,14 @@ def preisach_basis(ctx: Context) -> np.ndarray:
         wh = _hats(half, PREISACH_WIDTH_NODES, 0.0)
         density = (wb[:, :, None] * wh[:, None, :]).reshape(len(alpha), -1)
         # unit node weight = one unit of compliance spread over the relay grid's cell area
-        cell = (RELAY_LEVELS[1] - RELAY_LEVELS[0]) ** 2
-        states = relay_states(ctx.u, alpha, beta)
-        basis = states @ (density * cell)
+        step = RELAY_LEVELS[1] - RELAY_LEVELS[0]
+        # the same grid at RELAY_SHIFTS sub-grid offsets, averaged: a relay density on one grid switches in
+        # steps, which a constant loading rate turns into a staircase periodic in time (read as a ripple at
+        # high signal/noise); the shifted grids smooth it to a quarter of the step
+        basis = 0.0
+        for shift in np.arange(RELAY_SHIFTS) / RELAY_SHIFTS * step:
+            states = relay_states(ctx.u, alpha + shift, beta + shift)
+            basis = basis + states @ (density * step ** 2 / RELAY_SHIFTS)
         # the loop only: the constant belongs to the channel offset and the least-squares line in the load to
         # the stiffness scale, so a relay sum's mean compliance does not pull the stiffness off its prior
         # (the width at zero torque and the energy per cycle of a line are zero: the loop quantities stay)

@@ -23,7 +23,14 @@ N_LEG = 400
 
 
 def reference_cycle(ctx: Context) -> tuple[Context, int]:
-    """A noise-free context on the reference cycle and the index where the closed loop starts."""
+    """A noise-free context on the reference cycle and the index where the closed loop starts (one per
+    recording: its own memo then keeps the history bases, e.g. the relay states, across loop readings)."""
+    if "reference_cycle" not in ctx.cache:
+        ctx.cache["reference_cycle"] = _reference_cycle(ctx)
+    return ctx.cache["reference_cycle"]
+
+
+def _reference_cycle(ctx: Context) -> tuple[Context, int]:
     lo, hi = float(min(ctx.u.min(), 0.0)), float(max(ctx.u.max(), 0.0))
     up = np.linspace(0.0, hi, N_LEG)
     down = np.linspace(hi, lo, 2 * N_LEG)[1:]
