@@ -252,3 +252,24 @@ def test_progressive_crack_closes_under_its_closing_load(params, d):
     away = added[::-1] if d > 0 else added
     assert np.all(np.diff(away) <= 1e-9)
     assert away[-1] == pytest.approx(0.0, abs=1e-9)          # the staircase sums to fully closed
+
+
+def test_friction_loop_at_two_rates_stays_friction(params):
+    """The converse: a rate-independent loop (Dahl, a function of the load path only) recorded at two loading
+    rates is named hysteresis, and its rate-dependent rival does not take it."""
+    n = 800
+    time_s = np.concatenate([np.arange(n // 2) * 1e-3, (n // 2) * 1e-3 + np.arange(n - n // 2) * 4e-3])
+    diag, _ = _diagnose(params, lambda u, t, c: hysteresis.EFFECT.contribution(c, np.array([0.03, -1.0])),
+                        time_s=time_s)
+    assert diag.verdict is Verdict.EXPLAINED and diag.named == ("hysteresis",)
+    assert diag.runner_up is None or "rate" not in diag.runner_up
+
+
+def test_several_rates_reads_the_loading_rate_of_each_stretch(params):
+    u = _path(800)
+    one = _ctx(params, u)
+    assert not rate_loop.several_rates(one)
+    time_s = np.concatenate([np.arange(400) * 1e-3, 0.4 + np.arange(400) * 4e-3])
+    probe = parse_text(format_recording(K, "output_shaft", u * X, u, time_s=time_s))
+    two = build_context(probe, analytic_baseline(probe, params))
+    assert rate_loop.several_rates(two)

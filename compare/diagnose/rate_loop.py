@@ -41,6 +41,26 @@ def lagged(u: np.ndarray, t: np.ndarray, tau: float) -> np.ndarray:
     return x
 
 
+# loading rates within this factor are one rate (a rig's speed control holds a few per cent; a second test
+# speed is normally a factor of 2 or more)
+ONE_RATE_SPREAD = 1.3
+
+
+def several_rates(ctx: Context) -> bool:
+    """Does the recording load at more than one rate? The median |du/dt| of every monotonic stretch that
+    travels most of the load range, slowest against fastest (short stretches are dwell, noise, or the ramp
+    from zero that a rig often runs at its own speed)."""
+    span = float(np.ptp(ctx.u)) or 1.0
+    rates = []
+    for start, stop, _ in ctx.segments:
+        if stop - start >= 5 and abs(ctx.u[stop - 1] - ctx.u[start]) >= 0.6 * span:
+            du, dt = np.diff(ctx.u[start:stop]), np.diff(ctx.t[start:stop])
+            ok = dt > 0
+            if np.any(ok):
+                rates.append(float(np.median(np.abs(du[ok] / dt[ok]))))
+    return len(rates) >= 2 and max(rates) > ONE_RATE_SPREAD * min(rates)
+
+
 def _contribution(ctx: Context, theta) -> np.ndarray:
     return theta[0] * (lagged(ctx.u, ctx.t, 10.0 ** theta[1]) - ctx.u)
 
@@ -60,4 +80,4 @@ RATE_LOOP = Effect(
     variant="zener",
 )
 
-__all__ = ["LABEL", "RATE_LOOP", "lagged"]
+__all__ = ["LABEL", "ONE_RATE_SPREAD", "RATE_LOOP", "lagged", "several_rates"]
