@@ -295,7 +295,12 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
         forms = sorted(singles + [p for p in candidates if len(p.effects) > 1], key=lambda f: f.bic)
         for f in forms[:MAX_GOF_TRIES]:
             gain = base_fit.bic - f.bic
-            if not (gain > BIC_THRESHOLD or (gof_base.structured and gain > 0)):
+            # where the catalogue-free test rejects the baseline, a model that leaves noise need not also win
+            # on BIC by a margin: a stiffness 3 prior sigmas off costs the baseline about what one more
+            # parameter costs the compliance offset that removes it (the two are one linear term), so BIC is
+            # indifferent within AMBIGUOUS_BIC while the test has already decided (a specimen 15 % stiffer than
+            # a 5 %-uncertain simulation read "unexplained" at a residual on the noise)
+            if not (gain > BIC_THRESHOLD or (gof_base.structured and gain > -AMBIGUOUS_BIC)):
                 break
             if not gof(f).structured and not _implausible(ctx, f):
                 best, gof_best = f, gof(f)
