@@ -273,3 +273,21 @@ def test_several_rates_reads_the_loading_rate_of_each_stretch(params):
     probe = parse_text(format_recording(K, "output_shaft", u * X, u, time_s=time_s))
     two = build_context(probe, analytic_baseline(probe, params))
     assert rate_loop.several_rates(two)
+
+
+def test_backlash_flanks_stiffen_about_the_clearance_wherever_it_sits(params):
+    """A clearance centred off zero carries its flank contact with it: the twist is odd about the clearance's
+    centre u0 (not about zero torque), and past the band the contact stiffens monotonically with its load."""
+    from strainwave.compare.diagnose.effects import lost_motion
+    u = np.linspace(-1.0, 1.0, 4001)
+    ctx = _ctx(params, u)
+    u0 = 0.07
+    theta = np.array([0.02, -2.0, u0, 0.3, -1.2])
+    y = lost_motion.FLANK.contribution(ctx, theta)
+    i0 = int(np.argmin(np.abs(u - u0)))          # u0 is a grid point (step 5e-4)
+    k = np.arange(1, len(u) - i0)
+    k = k[i0 - k >= 0]
+    assert y[i0 + k] == pytest.approx(-y[i0 - k], abs=1e-12)
+    slope = np.gradient(y, u)
+    past = u > u0 + 0.1
+    assert np.all(slope[past] > 0) and np.all(np.diff(slope[past]) < 0)

@@ -11,7 +11,8 @@ CATALOGUE = {m.EFFECT.id: m.EFFECT for m in (compliance_offset, nonlinear_stiffn
 
 # other model forms of the same physics: the named effect must not depend on one law's shape
 VARIANTS = (nonlinear_stiffness.TWO_SLOPE, nonlinear_stiffness.SMOOTH_KNEE, nonlinear_stiffness.MONOTONE, hysteresis.PLAY,
-            hysteresis.PREISACH, crack_closure.GRADUAL, crack_closure.PROGRESSIVE)
+            hysteresis.PREISACH, crack_closure.GRADUAL, crack_closure.PROGRESSIVE,
+            lost_motion.FLANK)
 
 
 def effects_for(kind: str) -> tuple[Effect, ...]:

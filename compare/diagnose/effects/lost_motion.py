@@ -3,6 +3,10 @@
 Model: twist += b tanh((T - T0)/w): crossing zero torque takes up a clearance 2 b within a torque band w.
 The band is narrow by definition (w <= 10 % of the largest torque); a wider smooth S-shape is stiffening.
 T0 is the torque channel's zero offset (nuisance, reported for completeness).
+Variant ``flank``: the flanks meet in a contact that stiffens with its load (Hertzian tooth contact) and
+is centred on the clearance, wherever that sits: twist += b tanh(v/w) + a x_h sgn(v) ln(1 + |v|/x_h),
+v = u - u0, a >= 0: an added compliance a at first contact that falls as a/(1 + |v|/x_h) with the contact
+load. The catalogue's stiffening is odd about zero torque; a clearance off zero carries its flanks with it.
 """
 from __future__ import annotations
 
@@ -16,23 +20,37 @@ ARCMIN_PER_RAD = 60.0 * 180.0 / math.pi
 
 
 def _contribution(ctx: Context, theta):
-    b, lw, u0 = theta
+    b, lw, u0 = theta[:3]
     return b * np.tanh((ctx.u - u0) / 10.0 ** lw)
 
 
 def _where(ctx: Context, theta):
-    b, lw, u0 = theta
+    b, lw, u0 = theta[:3]
     w = 10.0 ** lw
     return ((float(u0 - 2.0 * w), float(u0 + 2.0 * w)),), "around zero load, both branches (the dead band)"
 
 
 def _report(ctx: Context, theta, s: float) -> dict:
-    b, lw, u0 = theta
+    b, lw, u0 = theta[:3]
     lost = 2.0 * b * ctx.Y
     out = {"lost_motion": (lost, ctx.response_unit), "band_width": (10.0 ** lw * ctx.X, ctx.load_unit),
            "load_zero_offset": (u0 * ctx.X, ctx.load_unit)}
     if ctx.response_unit == "rad":
         out["lost_motion_arcmin"] = (lost * ARCMIN_PER_RAD, "arcmin")
+    return out
+
+
+def _contribution_flank(ctx: Context, theta):
+    b, lw, u0, a, lx = theta
+    v = ctx.u - u0
+    xh = 10.0 ** lx
+    return b * np.tanh(v / 10.0 ** lw) + a * xh * np.sign(v) * np.log1p(np.abs(v) / xh)
+
+
+def _report_flank(ctx: Context, theta, s: float) -> dict:
+    out = _report(ctx, theta[:3], s)
+    out["flank_contact_compliance_fraction"] = (float(theta[3]), "1")
+    out["flank_contact_load"] = (10.0 ** theta[4] * ctx.X, ctx.load_unit)
     return out
 
 
@@ -46,5 +64,17 @@ EFFECT = Effect(
     explanation=("a clearance (backlash) between teeth or in a coupling is taken up each time the torque "
                  "changes sign, so the twist jumps by the lost motion in a narrow band around zero torque"),
     applicable=lambda ctx: ctx.two_sided,
+    where=_where,
+)
+
+FLANK = Effect(
+    id="lost_motion",
+    kinds=("torsion",),
+    params=(*EFFECT.params, Param("a", 0.0, 2.0, (0.05,)), Param("log10_xh", -2.5, -0.3, (-1.5,))),
+    contribution=_contribution_flank,
+    report=_report_flank,
+    explanation=EFFECT.explanation,
+    applicable=EFFECT.applicable,
+    variant="flank",
     where=_where,
 )
