@@ -291,3 +291,26 @@ def test_backlash_flanks_stiffen_about_the_clearance_wherever_it_sits(params):
     slope = np.gradient(y, u)
     past = u > u0 + 0.1
     assert np.all(slope[past] > 0) and np.all(np.diff(slope[past]) < 0)
+
+
+def test_a_saturated_torque_channel_is_unexplained_and_said(params):
+    """The torque reading clipped at 90 % of its full scale while the twist follows the true torque: whatever
+    fits the rest, the load there is not the load recorded."""
+    n = 800
+    u_true = _path(n)
+    rng = np.random.default_rng(5)
+    y = u_true + 2e-3 * rng.standard_normal(n)
+    ctx = _ctx(params, u_true)
+    recorded = np.clip(u_true, -0.9, 0.9)
+    rec = parse_text(format_recording(K, "output_shaft", recorded * X, y * ctx.Y))
+    diag = diagnose(rec, params)[0]
+    assert diag.verdict is Verdict.UNEXPLAINED
+    assert "saturated load channel" in diag.structure and "saturated load channel" in diag.explanation
+
+
+def test_a_sampled_triangle_peak_is_no_plateau():
+    from strainwave.compare.diagnose.channels import stuck_channel
+    rng = np.random.default_rng(2)
+    u = _path(2000) + 2e-4 * rng.standard_normal(2000)
+    y = u + 1e-3 * rng.standard_normal(2000)
+    assert stuck_channel(u, y, 1e-3, "torque", "twist") == ""

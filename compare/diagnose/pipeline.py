@@ -35,6 +35,7 @@ from ...errors import InputError
 from ...io_atomic import atomic_write_text
 from . import rate_loop
 from .baseline import Baseline, analytic_baseline, fea_baseline
+from .channels import stuck_channel
 from .context import build_context
 from .effects import CATALOGUE, effects_for
 from .effects.loop import ARCMIN_PER_RAD, loop_quantities
@@ -240,7 +241,9 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     ranked_singles = _best_per_set(singles)
     best_single = ranked_singles[0] if ranked_singles else None
     gof_base = structure_test(ctx, ctx.y - base_fit.model, sigma, base_fit.prior_chi2, noise)
-    mismatch = bool(gof_base.structured or cat_gain > BIC_THRESHOLD)
+    # a channel stuck at its extreme while the other moves (channels.py) is a mismatch no physics explains
+    stuck = stuck_channel(rec.load, rec.response, sigma * ctx.Y, rec.load_name, rec.response_name)
+    mismatch = bool(gof_base.structured or cat_gain > BIC_THRESHOLD or stuck)
 
     # pairs of the four best distinct singles; a pair is a candidate only if parsimonious (see module doc)
     pairs = []
@@ -286,9 +289,11 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
 
     verdict = Verdict.AGREES
     named: tuple[str, ...] = ()
-    note = ""                                # why a model that fits is still not an explanation
+    note = stuck                             # why a model that fits is still not an explanation
     gof_best = gof(best) if mismatch else gof_base
-    if mismatch:
+    if stuck:
+        verdict = Verdict.UNEXPLAINED
+    elif mismatch:
         # explained when some catalogue model (any of its model forms, best BIC first) beats the nuisance fit
         # by BIC (or, where the catalogue-free test found the mismatch, at least beats it), leaves a residual
         # consistent with the noise and has physically plausible parameters
