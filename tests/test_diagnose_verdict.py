@@ -314,3 +314,12 @@ def test_a_sampled_triangle_peak_is_no_plateau():
     u = _path(2000) + 2e-4 * rng.standard_normal(2000)
     y = u + 1e-3 * rng.standard_normal(2000)
     assert stuck_channel(u, y, 1e-3, "torque", "twist") == ""
+
+
+def test_a_loop_that_grows_during_the_test_is_unexplained(params):
+    """Friction that grows as the test runs (wear-in): each cycle is a friction loop, but no single loop law
+    with fixed parameters draws them all, and the residual says the loop changes in time."""
+    diag, _ = _diagnose(params, lambda u, t, c: (1.0 + 2.0 * t) * hysteresis.EFFECT.contribution(c, np.array([0.01, -1.5])),
+                        sigma=5e-4)
+    assert diag.verdict is Verdict.UNEXPLAINED
+    assert "the loop changes during the test" in diag.structure

@@ -4,6 +4,7 @@ The residual r of a model is offered a few generic, catalogue-free structures, e
 (binned means in disguise: piecewise-linear hats):
 - ``odd`` / ``even`` (two-sided loads) or ``load`` (one-sided): a smooth function of the load;
 - ``branch``: a function of the load that differs between loading and unloading (hysteretic);
+- ``branch_time``: a loading/unloading difference that drifts during the test (a loop that grows or shrinks);
 - ``rate``: proportional to the loading rate du/dt (viscous, viscoelastic, a channel lagging in time);
 - ``time``: a slow function of time at any load (drift that is not linear);
 - ``time_load``: a compliance that changes during the test (u times hats in time: re-clamping, a second
@@ -131,6 +132,10 @@ def _groups(ctx: Context, r: np.ndarray) -> dict[str, tuple[np.ndarray, int, str
         lo, hi = float(u.min()), float(u.max())
         out["load"] = (_hats(u, np.linspace(lo, hi, 6)), 0, "")
         out["branch"] = (d[:, None] * _hats(u, np.linspace(lo, hi, 3)), 0, "")
+    if ctx.reversals >= 3:
+        # a loop whose width changes during the test (friction growing with wear-in or as lubricant is squeezed
+        # out, a crack that grows): the branch difference times slow hats in time, beyond any loop law's fit
+        out["branch_time"] = (d[:, None] * _hats(t, np.linspace(0.0, 1.0, 4)), 0, "")
     if ctx.reversals < 1:
         out.pop("branch")
     else:
@@ -390,6 +395,9 @@ def describe(test: StructureTest, ctx: Context, located_text: str, dt_s: float |
         parts.append("the linear stiffness differs from the baseline by more than its stated uncertainty")
     if "branch" in sig:
         parts.append("it is hysteretic: loading and unloading branches differ")
+    if "branch_time" in sig and (test.get("branch_time").unique_delta_bic > THRESHOLD or "branch" not in sig):
+        parts.append("the loop changes during the test (friction that grows or wears in, a crack that grows): "
+                     "loading and unloading differ by an amount that drifts in time")
     if "rate" in sig and (test.get("rate").unique_delta_bic > THRESHOLD or "branch" not in sig):
         parts.append("it depends on the loading rate (a viscous or viscoelastic part, or one channel recorded "
                      "later than the other)")
