@@ -255,19 +255,26 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
         return gofs[id(f)]
 
     if mismatch and best_single is not None:
-        for a, b in itertools.combinations(ranked_singles[:4], 2):
-            if frozenset({a.id, b.id}) in _DEGENERATE:
+        # each effect enters a pair in its two best forms: the form that best fits the data ALONE need not be
+        # the one that fits beside the other effect (a relay loop drawing part of a stiffening's misfit)
+        by_id: dict[str, list[Fit]] = {}
+        for f in sorted(singles, key=lambda f: f.bic):
+            by_id.setdefault(f.id, []).append(f)
+        for a0, b0 in itertools.combinations(ranked_singles[:4], 2):
+            if frozenset({a0.id, b0.id}) in _DEGENERATE:
                 continue
-            start = np.concatenate([a.theta, b.theta])
-            pairs.append(fit_effects(ctx, a.effects + b.effects, sigma, u_rel, starts=[start], noise=noise))
+            for a, b in itertools.product(by_id[a0.id][:2], by_id[b0.id][:2]):
+                start = np.concatenate([a.theta, b.theta])
+                pairs.append(fit_effects(ctx, a.effects + b.effects, sigma, u_rel, starts=[start], noise=noise))
         # the best pair in every other combination of model forms: a loop law that loses as a single
         # (its misfit of the stiffening costs more) may be the one that fits beside the other effect
         if pairs:
             top = min(pairs, key=lambda f: f.bic)
             forms = {e.id: [f for f in singles if f.id == e.id] for e in top.effects}
             (ia, fa), (ib, fb) = forms.items()
+            done = {tuple(e.label for e in p.effects) for p in pairs}
             for x, y in itertools.product(fa, fb):
-                if x.effects[0] is top.effects[0] and y.effects[0] is top.effects[1]:
+                if (x.effects[0].label, y.effects[0].label) in done:
                     continue
                 pairs.append(fit_effects(ctx, x.effects + y.effects, sigma, u_rel,
                                          starts=[np.concatenate([x.theta, y.theta])], noise=noise))
