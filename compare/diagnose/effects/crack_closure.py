@@ -14,6 +14,8 @@ by whatever law the faces' roughness sets (a power-law tail, an exponential, a s
 """
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 from .base import Context, Effect, Param
@@ -77,27 +79,9 @@ EFFECT = Effect(
     where=_where,
 )
 
-GRADUAL = Effect(
-    id="crack_closure",
-    kinds=("torsion",),
-    params=(Param("d", -0.8, 0.8, (0.05, -0.05)), Param("u0", -0.1, 0.1, (0.0,)), Param("log10_w", -2.5, -0.7, (-1.5,))),
-    contribution=_contribution_gradual,
-    report=_report,
-    explanation=EFFECT.explanation,
-    applicable=lambda ctx: ctx.two_sided,
-    variant="gradual",
-    where=_where,
-)
-
-PROGRESSIVE = Effect(
-    id="crack_closure",
-    kinds=("torsion",),
-    params=(Param("d", -0.8, 0.8, (0.05, -0.05)), Param("u0", -0.1, 0.1, (0.0,)),
-            *(Param(f"f_{k:g}", 0.0, 1.0, (1.0 if k == 0.0 else 0.0,)) for k in CLOSURE_KNOTS)),
-    contribution=_contribution_progressive,
-    report=_report,
-    explanation=EFFECT.explanation,
-    applicable=lambda ctx: ctx.two_sided,
-    variant="progressive",
-    where=_where,
-)
+# the other forms are the sharp form with another closure law: same id, side, report and location
+GRADUAL = dataclasses.replace(EFFECT, params=(*EFFECT.params, Param("log10_w", -2.5, -0.7, (-1.5,))),
+                              contribution=_contribution_gradual, variant="gradual")
+PROGRESSIVE = dataclasses.replace(
+    EFFECT, params=(*EFFECT.params, *(Param(f"f_{k:g}", 0.0, 1.0, (1.0 if k == 0.0 else 0.0,)) for k in CLOSURE_KNOTS)),
+    contribution=_contribution_progressive, variant="progressive")

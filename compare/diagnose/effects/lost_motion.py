@@ -10,6 +10,7 @@ load. The catalogue's stiffening is odd about zero torque; a clearance off zero 
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -67,14 +68,6 @@ EFFECT = Effect(
     where=_where,
 )
 
-FLANK = Effect(
-    id="lost_motion",
-    kinds=("torsion",),
-    params=(*EFFECT.params, Param("a", 0.0, 2.0, (0.05,)), Param("log10_xh", -2.5, -0.3, (-1.5,))),
-    contribution=_contribution_flank,
-    report=_report_flank,
-    explanation=EFFECT.explanation,
-    applicable=EFFECT.applicable,
-    variant="flank",
-    where=_where,
-)
+FLANK = dataclasses.replace(EFFECT, params=(*EFFECT.params, Param("a", 0.0, 2.0, (0.05,)),
+                                            Param("log10_xh", -2.5, -0.3, (-1.5,))),
+                            contribution=_contribution_flank, report=_report_flank, variant="flank")
