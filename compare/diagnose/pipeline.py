@@ -255,15 +255,18 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
         return gofs[id(f)]
 
     if mismatch and best_single is not None:
-        # each effect enters a pair in its two best forms: the form that best fits the data ALONE need not be
-        # the one that fits beside the other effect (a relay loop drawing part of a stiffening's misfit)
+        # beside the best single effect, each effect enters a pair in its two best forms: the form that best
+        # fits the data ALONE need not be the one that fits beside the other effect (a relay loop drawing part
+        # of a stiffening's misfit); pairs without the best single keep one form each (time: issue 12's
+        # 10,000-row target)
         by_id: dict[str, list[Fit]] = {}
         for f in sorted(singles, key=lambda f: f.bic):
             by_id.setdefault(f.id, []).append(f)
         for a0, b0 in itertools.combinations(ranked_singles[:4], 2):
             if frozenset({a0.id, b0.id}) in _DEGENERATE:
                 continue
-            for a, b in itertools.product(by_id[a0.id][:2], by_id[b0.id][:2]):
+            k = 2 if a0 is best_single else 1
+            for a, b in itertools.product(by_id[a0.id][:k], by_id[b0.id][:k]):
                 start = np.concatenate([a.theta, b.theta])
                 pairs.append(fit_effects(ctx, a.effects + b.effects, sigma, u_rel, starts=[start], noise=noise))
         # the best pair in every other combination of model forms: a loop law that loses as a single
