@@ -227,7 +227,10 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     # one noise model for the whole recording, every residual is judged against it: read from the residual of
     # the best-scoring single model, where a strong effect the generic structures draw only coarsely (three
     # slopes with sharp knees) no longer leaks its misfit into the noise estimate
-    closest = best_single if best_single is not None and best_single.bic < base_fit.bic else base_fit
+    # ... but only a single that is itself evidence (delta BIC > 10): a flexible form that merely soaks up
+    # part of a coloured wander would whiten the noise estimate and turn the rest of the wander into structure
+    closest = best_single if best_single is not None and best_single.bic < base_fit.bic - BIC_THRESHOLD \
+        else base_fit
     noise = reference_noise(ctx, ctx.y - closest.model)
     # that anything is missing at all must hold under the most generous noise model, each model's own profiled
     # filter (a misfit some plausible noise could have drawn is no evidence; a catalogue model is evidence
