@@ -22,9 +22,9 @@ from pathlib import Path
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
-from strainwave.compare.sweep.pipeline import _compute, dask_client, run_sweep  # noqa: E402
-from strainwave.compare.sweep.task import PointSpec, closed_form_probe, point_key, run_point  # noqa: E402
-from strainwave.params import load_params  # noqa: E402
+# strainwave is imported inside the functions: every spawned Dask worker runs this script's top level again
+# (as __mp_main__), and the sweep pipeline imported here would cost each of them pandas (~0.4 s of its
+# start-up) that the workers of `strainwave sweep` do not pay.
 
 DEFAULT_VARY = {
     # 4 x 4 = 16 uncracked points (a cracked quick point costs minutes on a loaded 2-core machine)
@@ -33,6 +33,8 @@ DEFAULT_VARY = {
 
 
 def sweep_timing(study: str, vary: list[str], workers: int, root: Path) -> dict:
+    from strainwave.compare.sweep.pipeline import run_sweep
+
     started = time.perf_counter()
     outcome = run_sweep(study, vary=vary, workers=workers, out_dir=root / f"w{workers}", quick=True,
                         progress=lambda msg: print(f"  [{workers}w] {msg}", file=sys.stderr, flush=True))
@@ -49,6 +51,8 @@ HUNDRED_VARY = ["output_shaft.crack_depth_mm=0.5:5:10", "output_shaft.inner_diam
 
 def throughput(root: Path) -> dict:
     """Points per minute of the 100-point sweep on 2 local workers (cold cache, cluster start included)."""
+    from strainwave.compare.sweep.pipeline import run_sweep
+
     started = time.perf_counter()
     outcome = run_sweep("shaft-torsion", vary=HUNDRED_VARY, workers=2, out_dir=root / "hundred", quick=True)
     wall = time.perf_counter() - started
@@ -56,6 +60,10 @@ def throughput(root: Path) -> dict:
 
 
 def overhead(n: int, root: Path) -> dict:
+    from strainwave.compare.sweep.pipeline import _compute, dask_client
+    from strainwave.compare.sweep.task import PointSpec, closed_form_probe, point_key, run_point
+    from strainwave.params import load_params
+
     base = load_params().to_dict()
     specs = [PointSpec("shaft-torsion", (("output_shaft.length_mm", 100.0 + i),), base) for i in range(n)]
     loop_dir, dask_dir = root / "loop-cache", root / "dask-cache"
