@@ -4,7 +4,6 @@ The residual r of a model is offered a few generic, catalogue-free structures, e
 (binned means in disguise: piecewise-linear hats):
 - ``odd`` / ``even`` (two-sided loads) or ``load`` (one-sided): a smooth function of the load;
 - ``branch``: a function of the load that differs between loading and unloading (hysteretic);
-- ``branch_time``: a loading/unloading difference that drifts during the test (a loop that grows or shrinks);
 - ``rate``: proportional to the loading rate du/dt (viscous, viscoelastic, a channel lagging in time);
 - ``time``: a slow function of time at any load (drift that is not linear);
 - ``time_load``: a compliance that changes during the test (u times hats in time: re-clamping, a second
@@ -132,10 +131,6 @@ def _groups(ctx: Context, r: np.ndarray) -> dict[str, tuple[np.ndarray, int, str
         lo, hi = float(u.min()), float(u.max())
         out["load"] = (_hats(u, np.linspace(lo, hi, 6)), 0, "")
         out["branch"] = (d[:, None] * _hats(u, np.linspace(lo, hi, 3)), 0, "")
-    if ctx.reversals >= 3:
-        # a loop whose width changes during the test (friction growing with wear-in or as lubricant is squeezed
-        # out, a crack that grows): the branch difference times slow hats in time, beyond any loop law's fit
-        out["branch_time"] = (d[:, None] * _hats(t, np.linspace(0.0, 1.0, 4)), 0, "")
     if ctx.reversals < 1:
         out.pop("branch")
     else:
@@ -288,10 +283,7 @@ def reference_noise(ctx: Context, r: np.ndarray) -> NoiseModel:
     a ripple like a resonant AR(2) (both whiten it for free), and the test loses all its power. Fitted
     after the structures, on the fine scales, the filter sees only the noise."""
     Q, _ = np.linalg.qr(_nuisance(ctx))
-    # every structure but the loop's drift in time: its direction-times-time hats can draw part of any slow
-    # wander, so removing them too whitens the noise estimate (measured: a clean AR(0.95) quantised recording
-    # then showed a 'load' structure)
-    groups = {k: v for k, v in _groups(ctx, r).items() if k != "branch_time"}
+    groups = _groups(ctx, r)
     B, _ = _project_out(np.column_stack([g for g, *_ in groups.values()]), Q)
     r0 = r - Q @ (Q.T @ r)
     # a sensor whose wander is as strong as its white noise shows it sample to sample; then its wander, not
@@ -398,9 +390,6 @@ def describe(test: StructureTest, ctx: Context, located_text: str, dt_s: float |
         parts.append("the linear stiffness differs from the baseline by more than its stated uncertainty")
     if "branch" in sig:
         parts.append("it is hysteretic: loading and unloading branches differ")
-    if "branch_time" in sig and (test.get("branch_time").unique_delta_bic > THRESHOLD or "branch" not in sig):
-        parts.append("the loop changes during the test (friction that grows or wears in, a crack that grows): "
-                     "loading and unloading differ by an amount that drifts in time")
     if "rate" in sig and (test.get("rate").unique_delta_bic > THRESHOLD or "branch" not in sig):
         parts.append("it depends on the loading rate (a viscous or viscoelastic part, or one channel recorded "
                      "later than the other)")
