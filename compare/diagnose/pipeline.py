@@ -356,7 +356,8 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     weights = np.exp(-0.5 * (bics - bics.min())) if len(bics) else bics
     weights = weights / weights.sum() if len(bics) else weights
     effects = tuple(_ranked(ctx, f, base_fit, n, float(w), detail=i < 3) for i, (f, w) in enumerate(zip(candidates, weights)))
-    quantities = _quantities(ctx, best, sigma) if mismatch and best is not base_fit else {}
+    same_set = [f for f in singles + pairs if f is not best and f.id == best.id]
+    quantities = _quantities(ctx, best, sigma, same_set) if mismatch and best is not base_fit else {}
     located = _located(ctx, rec, best if verdict is Verdict.EXPLAINED else None, base_fit, sigma, mismatch,
                        gof_best)
     dt = None if rec.time_s is None else float(np.median(np.diff(fit_rec.time_s)))
@@ -396,15 +397,21 @@ def _implausible(ctx, fit: Fit) -> list[str]:
             for w in e.plausible(ctx, th, fit.scale)]
 
 
-def _quantities(ctx, fit: Fit, sigma: float) -> dict:
-    """Shape-free loop quantities of the model's effects (hysteresis-type effects only)."""
+def _loop_width(ctx, fit: Fit) -> tuple[float, float]:
+    thetas = fit.split_theta()
+    return loop_quantities(ctx, lambda c: sum(e.contribution(c, th) for e, th in zip(fit.effects, thetas)))
+
+
+def _quantities(ctx, fit: Fit, sigma: float, other_forms: list[Fit] = ()) -> dict:
+    """Shape-free loop quantities of the model's effects (hysteresis-type effects only). ``other_forms``: fits
+    of the same effects in other model forms; those the data do not reject (within 2 x BIC_THRESHOLD) give the
+    width's model-form spread, an uncertainty no Jacobian of one form can show."""
     if ctx.response_unit != "rad" or not any(e.id == "hysteresis" for e in fit.effects) or ctx.reversals < 1:
         return {}
     thetas = fit.split_theta()
-
-    def model(c):
-        return sum(e.contribution(c, th) for e, th in zip(fit.effects, thetas))
-    width, energy = loop_quantities(ctx, model)
+    width, energy = _loop_width(ctx, fit)
+    rivals = [_loop_width(ctx, f)[0] for f in other_forms if f.bic - fit.bic < 2.0 * BIC_THRESHOLD]
+    spread = 0.5 * (max(rivals + [width]) - min(rivals + [width]))
     model_width, data = width, {}
     # the same width read from the data (zero_load_width.py): the residual without the model's hysteresis
     hyst = sum(e.contribution(ctx, th) for e, th in zip(fit.effects, thetas) if e.id == "hysteresis")
@@ -425,7 +432,8 @@ def _quantities(ctx, fit: Fit, sigma: float) -> dict:
     return {"hysteresis_loss_arcmin": (width * ARCMIN_PER_RAD, "arcmin"), "hysteresis_loss": (width, "rad"),
             "hysteresis_loss_source": (source, ""),
             "hysteresis_energy_per_cycle_Nmm_rad": (energy, "N*mm*rad"),
-            "hysteresis_loss_model_arcmin": (model_width * ARCMIN_PER_RAD, "arcmin"), **data}
+            "hysteresis_loss_model_arcmin": (model_width * ARCMIN_PER_RAD, "arcmin"),
+            "hysteresis_loss_form_spread_arcmin": (spread * ARCMIN_PER_RAD, "arcmin"), **data}
 
 
 def _located(ctx, rec, fit: Fit | None, base_fit: Fit, sigma: float, mismatch: bool, gof_best) -> Located:
