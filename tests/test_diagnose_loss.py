@@ -82,3 +82,22 @@ def test_no_data_estimate_without_zero_on_both_steady_branches(params):
     assert zero_load_width(ctx, ctx.y - ctx.u, 2e-3) is None
     q = diagnose(rec, params)[0].quantities
     assert q["hysteresis_loss_source"][0] == "model" and "hysteresis_loss_data_arcmin" not in q
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_loss_error_bar_covers_the_truth_under_a_wandering_sensor(params, seed):
+    """Under a random-walk sensor the width at zero torque is the difference of two branches read half a cycle
+    apart, and the sensor's wander in between enters it in full: the reported standard error must say so
+    (3 standard errors cover the truth), where the fit's error alone does not have to."""
+    n = 1200
+    rng = np.random.default_rng(seed)
+    rec, true, c0 = _loop_recording(params, _bouc_wen, n=n)
+    ctx = build_context(rec, analytic_baseline(rec, params))
+    wander = np.cumsum(rng.standard_normal(n)) * 3e-4 * ctx.Y     # ~1 % of full scale over the record
+    noisy = parse_text(format_recording(RecordingKind.TORSION, "output_shaft", rec.load, rec.response + wander))
+    d = diagnose(noisy, params)[0]
+    assert "hysteresis" in d.named
+    q = d.quantities
+    se = q["hysteresis_loss_std_error_arcmin"][0]
+    assert se >= q["hysteresis_loss_wander_arcmin"][0] > 0
+    assert abs(q["hysteresis_loss_arcmin"][0] - true) <= 3.0 * se

@@ -17,10 +17,16 @@ def loss_sentence(quantities: dict) -> str:
             return (f"Hysteresis loss {value:.4g} +/- {se:.2g} arcmin, read from the data at zero torque (steady "
                     f"branches, model-free): the fitted loop model's {model:.4g} arcmin is contradicted by the data "
                     f"(its loop has another shape there).")
-        return (f"Hysteresis loss {value:.4g} arcmin from the fitted loop model; the data at zero torque agree "
-                f"({data:.4g} +/- {se:.2g} arcmin, model-free).")
-    return (f"Hysteresis loss {value:.4g} arcmin from the fitted loop model (the data do not cover zero torque on "
-            f"both steady full-scale branches, or a backlash band sits there).")
+        return (f"Hysteresis loss {value:.4g}{_pm(quantities)} arcmin from the fitted loop model; the data at zero "
+                f"torque agree ({data:.4g} +/- {se:.2g} arcmin, model-free).")
+    return (f"Hysteresis loss {value:.4g}{_pm(quantities)} arcmin from the fitted loop model (the data do not cover "
+            f"zero torque on both steady full-scale branches, or a backlash band sits there).")
+
+
+def _pm(quantities: dict) -> str:
+    """The model width's standard error (fit, model-form spread and the sensor's wander between readings)."""
+    se = quantities.get("hysteresis_loss_std_error_arcmin")
+    return f" +/- {se[0]:.2g}" if se is not None else ""
 
 
 def explain(diag) -> str:

@@ -358,6 +358,9 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     effects = tuple(_ranked(ctx, f, base_fit, n, float(w), detail=i < 3) for i, (f, w) in enumerate(zip(candidates, weights)))
     same_set = [f for f in singles + pairs if f is not best and f.id == best.id]
     quantities = _quantities(ctx, best, sigma, same_set) if mismatch and best is not base_fit else {}
+    if "hysteresis_loss_arcmin" in quantities and effects:
+        quantities = _with_loss_error(ctx, best, quantities, next((e for e in effects if e.model == best.label),
+                                                                   effects[0]))
     located = _located(ctx, rec, best if verdict is Verdict.EXPLAINED else None, base_fit, sigma, mismatch,
                        gof_best)
     dt = None if rec.time_s is None else float(np.median(np.diff(fit_rec.time_s)))
@@ -434,6 +437,34 @@ def _quantities(ctx, fit: Fit, sigma: float, other_forms: list[Fit] = ()) -> dic
             "hysteresis_energy_per_cycle_Nmm_rad": (energy, "N*mm*rad"),
             "hysteresis_loss_model_arcmin": (model_width * ARCMIN_PER_RAD, "arcmin"),
             "hysteresis_loss_form_spread_arcmin": (spread * ARCMIN_PER_RAD, "arcmin"), **data}
+
+
+def _with_loss_error(ctx, fit: Fit, quantities: dict, ranked: RankedEffect) -> dict:
+    """The loop width's standard error as a user should read it: the fitted form's (Jacobian, GLS), its spread
+    over the model forms the data do not reject, and the sensor's wander between the two moments the width is
+    read. The width at zero torque is the difference of the unloading and the loading branch at two TIMES
+    half a cycle apart, so whatever the sensor drifts in between enters it in full: 2 (gamma(L) - gamma(1)),
+    gamma the residual's empirical semivariogram at the lag L between consecutive zero crossings, averaged over
+    the K crossings (under a wandering sensor and one full-scale cycle this, not the fit, sets how well the loss
+    is known: a width was reported 3.7 of its fit errors from the truth)."""
+    key = next((k for k in ("hysteresis_loss_arcmin", "hysteresis.hysteresis_loss_arcmin") if k in ranked.errors),
+               None)
+    fit_se = ranked.errors.get(key, 0.0) if key else 0.0
+    r = ctx.y - fit.model
+    crossings = np.flatnonzero(np.diff(np.sign(ctx.u)) != 0)
+    lags = np.diff(crossings)
+    wander = 0.0
+    if len(lags):
+        L = int(np.median(lags))
+        if 1 < L < len(r):
+            # only what builds up beyond one sample: the white part is averaged away by the fit (its share is
+            # in the fit's error), a wander is not
+            gamma = 0.5 * float(np.mean((r[L:] - r[:-L]) ** 2)) - 0.5 * float(np.mean(np.diff(r) ** 2))
+            wander = math.sqrt(2.0 * max(gamma, 0.0) / len(lags)) * ctx.Y * ARCMIN_PER_RAD
+    spread = quantities.get("hysteresis_loss_form_spread_arcmin", (0.0, ""))[0]
+    total = math.sqrt(fit_se ** 2 + wander ** 2 + spread ** 2)
+    return {**quantities, "hysteresis_loss_std_error_arcmin": (total, "arcmin"),
+            "hysteresis_loss_wander_arcmin": (wander, "arcmin")}
 
 
 def _located(ctx, rec, fit: Fit | None, base_fit: Fit, sigma: float, mismatch: bool, gof_best) -> Located:
