@@ -37,7 +37,7 @@ from . import rate_loop
 from .baseline import Baseline, analytic_baseline, fea_baseline
 from .channels import stuck_channel
 from .context import build_context
-from .effects import CATALOGUE, effects_for
+from .effects import effects_for
 from .effects.loop import ARCMIN_PER_RAD, loop_quantities
 from .explain import explain
 from .fit import NOISE_FLOOR, Fit, fit_effects, lag1, rescored
