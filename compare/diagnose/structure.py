@@ -209,6 +209,8 @@ class NoiseModel:
             if -self.b[1] == 1.0:
                 return f"random walk + white, theta {-self.a[1]:.3g}"
             return f"ARMA(1,1) phi {-self.b[1]:.3g}, theta {-self.a[1]:.3g}"
+        if len(self.b) == 3 and abs(self.b[1] ** 2 - 4.0 * self.b[2]) < 1e-12:
+            return f"second-order low-pass, pole {-self.b[1] / 2.0:.3g}, theta {-self.a[-1]:.3g}"
         return "AR(2) " + ", ".join(f"{-c:.3g}" for c in self.b[1:])
 
 
@@ -254,6 +256,13 @@ def fine_scale_noise(x: np.ndarray) -> NoiseModel:
     if abs(1.0 - coef.sum()) <= abs(1.0 + coef[0] - coef[1:].sum()):
         candidates.append((np.concatenate([[1.0], -coef]), np.array([1.0])))
     candidates += [(np.array([1.0, -phi]), np.array([1.0, -th])) for phi in _PHIS for th in _THETAS if th <= phi]
+    # a second-order low-pass sensor (an anti-aliasing filter) is smooth sample to sample: its variogram rises
+    # quadratically over the first lags and then saturates, which no first-order model draws (a random walk
+    # rises linearly for ever; an AR(1) plus white rises linearly and saturates): taken as a random walk, its
+    # correlated steps read as a drift in time (a clean quantised low-pass recording read "varies in time at
+    # constant load", issue 12). A double pole plus the white part: (1 - phi z)^2 / (1 - theta z)
+    candidates += [(np.array([1.0, -2.0 * phi, phi * phi]), np.array([1.0, -th]))
+                   for phi in _PHIS[:-1] for th in _THETAS if th <= phi]
     best = None
     for bb, aa in candidates:
         model = _variogram(bb, aa, lags)
