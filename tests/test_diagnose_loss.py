@@ -10,7 +10,7 @@ import pytest
 from strainwave.compare.diagnose import family2_hysteresis as fh
 from strainwave.compare.diagnose.baseline import analytic_baseline
 from strainwave.compare.diagnose.context import build_context
-from strainwave.compare.diagnose.loop_metrics import measure_loop
+from strainwave.compare.diagnose.loop_metrics import measure_loop, recorded_loss
 from strainwave.compare.diagnose.pipeline import diagnose
 from strainwave.compare.diagnose.recording import RecordingKind, format_recording, parse_text
 from strainwave.compare.diagnose.zero_load_width import zero_load_width
@@ -101,3 +101,22 @@ def test_loss_error_bar_covers_the_truth_under_a_wandering_sensor(params, seed):
     se = q["hysteresis_loss_std_error_arcmin"][0]
     assert se >= q["hysteresis_loss_wander_arcmin"][0] > 0
     assert abs(q["hysteresis_loss_arcmin"][0] - true) <= 3.0 * se
+
+
+def test_recorded_loss_is_the_recordings_last_full_scale_cycle():
+    """The benchmark's truth is the width the recording contains. A play-operator sum has return-point memory:
+    its first full-scale cycle IS the steady one. A softening Bouc-Wen joint (gamma < 0, slow saturation) has
+    none: its first cycle after the virgin loading is wider than the steady one, and settles towards it."""
+    one_cycle = _torque([0, 1, -1, 0], 3000)
+    three = _torque([0, 1, -1, 1, -1, 1, -1, 0], 7000)
+    play = lambda x: fh.play_sum_twist(x, np.linspace(0.0, 0.4 * X, 10), np.full(10, 1e-7))
+    steady_play = measure_loop(play, X).loss_rad
+    assert recorded_loss(one_cycle, play(one_cycle)) == pytest.approx(steady_play, rel=1e-3)
+    bw = lambda x: fh.bouc_wen_twist(x, 1e-4 * X, 0.26 * X, 0.26 * X / (1.3 * 1e-4 * X), beta=0.83, gamma=-0.74,
+                                     n=2.1)
+    steady_bw = measure_loop(bw, X).loss_rad
+    first = recorded_loss(one_cycle, bw(one_cycle))
+    third = recorded_loss(three, bw(three))
+    assert first > 1.05 * steady_bw                      # 13 % wider (the unsettled joint)
+    assert abs(third - steady_bw) < 0.2 * abs(first - steady_bw)
+    assert recorded_loss(_torque([0, 1, 0], 500), play(_torque([0, 1, 0], 500))) is None   # no cycle, no width

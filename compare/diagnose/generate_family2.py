@@ -22,7 +22,7 @@ from . import family2_sensors as fs
 from .baseline import ring_geometry, torsion_compliance
 from .cha import ARCMIN, ChaRow
 from .concealed import Concealed, projected_peak, weakest_peak
-from .loop_metrics import measure_loop
+from .loop_metrics import measure_loop, recorded_loss
 from .recording import RecordingKind, format_recording
 
 UNCERTAINTY = 0.02
@@ -82,14 +82,19 @@ def _noise(rng, n: int, sigma: float, kind: str) -> np.ndarray:
 
 
 def _scaled_loop(law, T: np.ndarray, target_loss_rad: float):
-    """The law's loop on T with its secant compliance removed, scaled to ``target_loss_rad``.
+    """The law's loop on T with its secant compliance removed, its steady +/- max|T| width scaled to
+    ``target_loss_rad``.
 
-    Returns (effect, loss_rad, energy_Nmm_rad) measured on the +/- max|T| cycle of the same law."""
+    Returns (effect, loss_rad, energy_Nmm_rad): the loss is the width the recording itself contains, on its
+    last full-scale cycle (loop_metrics.recorded_loss; a Bouc-Wen joint's first cycle is wider than its steady
+    one), the steady width where the path holds no full-scale cycle; the energy is the steady cycle's."""
     A = float(np.max(np.abs(T)))
     m = measure_loop(law, A)
     scale = target_loss_rad / m.loss_rad
     raw = law(T)
-    return scale * (raw - raw[0] - m.secant_compliance * T), target_loss_rad, scale * m.energy_Nmm_rad
+    recorded = recorded_loss(T, raw)
+    loss = target_loss_rad if recorded is None else scale * recorded
+    return scale * (raw - raw[0] - m.secant_compliance * T), loss, scale * m.energy_Nmm_rad
 
 
 def _hysteresis(name: str, rng, T: np.ndarray, c0: float, X: float, Y: float):

@@ -45,7 +45,7 @@ from .locate import Located, locate, locate_effect
 from .noise import noise_std
 from .recording import Recording, parse_recording
 from .structure import StructureTest, describe, reference_noise, structure_test
-from .zero_load_width import zero_load_width
+from .zero_load_width import full_scale_cycles, zero_load_width
 
 BIC_THRESHOLD = 10.0       # "very strong" on the Kass-Raftery scale
 AMBIGUOUS_BIC = 6.0        # "strong": closer than this, the data cannot tell the two apart
@@ -436,7 +436,8 @@ def _quantities(ctx, fit: Fit, sigma: float, other_forms: list[Fit] = ()) -> dic
             "hysteresis_loss_source": (source, ""),
             "hysteresis_energy_per_cycle_Nmm_rad": (energy, "N*mm*rad"),
             "hysteresis_loss_model_arcmin": (model_width * ARCMIN_PER_RAD, "arcmin"),
-            "hysteresis_loss_form_spread_arcmin": (spread * ARCMIN_PER_RAD, "arcmin"), **data}
+            "hysteresis_loss_form_spread_arcmin": (spread * ARCMIN_PER_RAD, "arcmin"),
+            "hysteresis_full_scale_cycles": (full_scale_cycles(ctx), "count"), **data}
 
 
 def _with_loss_error(ctx, fit: Fit, quantities: dict, ranked: RankedEffect) -> dict:

@@ -67,6 +67,17 @@ def _fit(u, r, D, degree):
     return coef, float(e @ e), A
 
 
+def full_scale_cycles(ctx: Context) -> int:
+    """Full-scale cycles in the recording: a descending stretch from near +max|T| to near -max|T| followed by
+    an ascending one that reaches zero torque again, both to within the full-scale rule's 5 % of max|T| (a test
+    that ends unloaded stops at zero give or take the load channel's noise)."""
+    peak = float(np.max(np.abs(ctx.u)))
+    full, zero = FULL_SCALE * peak, -(1.0 - FULL_SCALE) * peak
+    segs = ctx.segments
+    return sum(1 for (a, b, d), (c, e, d2) in zip(segs[:-1], segs[1:])
+               if d < 0 < d2 and ctx.u[a] >= full and ctx.u[b - 1] <= -full and float(np.max(ctx.u[c:e])) >= zero)
+
+
 def zero_load_width(ctx: Context, residual: np.ndarray, sigma: float, rho: float = 0.0,
                     noise_var: float | None = None) -> ZeroLoadWidth | None:
     """Width at zero load of ``residual`` (data minus the model's non-hysteretic part), or None when the
@@ -99,4 +110,4 @@ def zero_load_width(ctx: Context, residual: np.ndarray, sigma: float, rho: float
     return None
 
 
-__all__ = ["FULL_SCALE", "LACK_OF_FIT_CHI2", "MIN_SIDE", "WINDOWS", "ZeroLoadWidth", "zero_load_width"]
+__all__ = ["FULL_SCALE", "full_scale_cycles", "LACK_OF_FIT_CHI2", "MIN_SIDE", "WINDOWS", "ZeroLoadWidth", "zero_load_width"]
