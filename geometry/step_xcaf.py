@@ -96,9 +96,15 @@ def _add_part(colours, label, part) -> None:
     _colour(colours, label, PART_COLOURS_RGB.get(part.name.value, (0.7, 0.7, 0.7)))
 
 
-def _faces_read_back(path: Path) -> list[tuple[int, str, tuple[float, float, float], float]]:
+def _faces_read_back(path: Path, wanted=None) -> list[tuple[int, str, tuple[float, float, float], float]]:
     """(entity number, name, centre, area) of every face of a STEP file as OCC's STEP reader transfers it.
-    The number is the face's ``#N``: OCC's writer numbers entities #1, #2, ... in file order."""
+    The number is the face's ``#N``: OCC's writer numbers entities #1, #2, ... in file order.
+
+    ``wanted(centres (F, 3), areas (F,)) -> (F,) bool``: only those faces get their entity looked up, the
+    others come back with number 0 and no name. The lookup is a search through the transfer's results:
+    2.4 s for the 1410 faces of the toothed cup, of which ~200 (the tooth tops and gaps) carry no name."""
+    import numpy as np
+
     from OCP.BRepGProp import BRepGProp
     from OCP.GProp import GProp_GProps
     from OCP.IFSelect import IFSelect_ReturnStatus
@@ -112,18 +118,25 @@ def _faces_read_back(path: Path) -> list[tuple[int, str, tuple[float, float, flo
             raise RuntimeError(f"OCC could not read {path}")
         reader.TransferRoots()
     transfer, model = reader.WS().TransferReader(), reader.Model()
-    faces = []
+    shapes, centres, areas = [], [], []
     explorer = TopExp_Explorer(reader.OneShape(), TopAbs_FACE)
     while explorer.More():
         face = explorer.Current()
         explorer.Next()
-        # mode 1 finds a face as transferred; a face of an assembly component carries the component's
-        # location on top, which only mode -1 (any location) resolves
-        entity = transfer.EntityFromShapeResult(face, 1) or transfer.EntityFromShapeResult(face, -1)
         props = GProp_GProps()
         BRepGProp.SurfaceProperties_s(face, props)
         c = props.CentreOfMass()
-        faces.append([entity, (c.X(), c.Y(), c.Z()), props.Mass(), _entity_name(entity)])
+        shapes.append(face)
+        centres.append((c.X(), c.Y(), c.Z()))
+        areas.append(props.Mass())
+    look_up = (np.ones(len(shapes), bool) if wanted is None or not shapes
+               else np.asarray(wanted(np.asarray(centres), np.asarray(areas)), bool))
+    faces = []
+    for face, centre, area, find in zip(shapes, centres, areas, look_up):
+        # mode 1 finds a face as transferred; a face of an assembly component carries the component's
+        # location on top, which only mode -1 (any location) resolves
+        entity = (transfer.EntityFromShapeResult(face, 1) or transfer.EntityFromShapeResult(face, -1)) if find else None
+        faces.append([entity, centre, area, _entity_name(entity)])
     # The entity's file number: model.Number() does not find the handles OCP returns, so each face
     # entity is tagged in memory and the model's entities are scanned for the tags.
     from OCP.TCollection import TCollection_HAsciiString
@@ -152,18 +165,31 @@ def _name_faces(path: Path, placed: list[Placed]) -> None:
     copy of another (the top of an extruded ring shares the bottom's TShape) to the other face's
     entity, so the top face lost its name or the bottom got the top's. Matching the read-back faces by
     centre and area (as the mesher matches faces) cannot confuse the two."""
-    import math
     import re
 
-    faces = list(_faces_read_back(path))
-    scale = max(1.0, max((math.dist((0, 0, 0), c) for _, _, c, _ in faces), default=1.0))
+    import numpy as np
+
+    refs = named_refs(placed)
+    ref_centres = np.asarray([c for _, c, _ in refs], float).reshape(-1, 3)
+    ref_areas = np.asarray([a for _, _, a in refs], float)
+
+    def matches(centres, areas):
+        """(refs, faces) bool: same area, same centre (within the file's size). One array operation,
+        not a Python loop over refs x faces (1205 x 1410 on the toothed cup: 0.8 s)."""
+        scale = max(1.0, float(np.linalg.norm(centres, axis=1).max(initial=1.0)))
+        near = np.linalg.norm(ref_centres[:, None, :] - centres[None, :, :], axis=2) <= 1e-5 * scale
+        return near & (np.abs(areas[None, :] - ref_areas[:, None]) <= 1e-6 * np.maximum(1.0, ref_areas)[:, None])
+
+    faces = list(_faces_read_back(path, wanted=lambda c, a: matches(c, a).any(axis=0)))
+    hit = matches(np.asarray([c for _, _, c, _ in faces], float).reshape(-1, 3),
+                  np.asarray([a for _, _, _, a in faces], float))
+    numbers = np.asarray([number for number, _, _, _ in faces], np.int64)
     names: dict[int, str] = {}
-    for name, centre, area in named_refs(placed):
-        hits = [number for number, _, c, a in faces
-                if abs(a - area) <= 1e-6 * max(1.0, area) and math.dist(c, centre) <= 1e-5 * scale]
+    for (name, centre, _), row in zip(refs, hit):
+        hits = numbers[row]
         if len(hits) != 1 or hits[0] <= 0:
             raise RuntimeError(f"{Path(path).name}: named face {name!r} at {centre} matches {len(hits)} faces")
-        names[hits[0]] = name
+        names[int(hits[0])] = name
     text = Path(path).read_text(encoding="ascii")
 
     def rename(match):
