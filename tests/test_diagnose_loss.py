@@ -120,3 +120,16 @@ def test_recorded_loss_is_the_recordings_last_full_scale_cycle():
     assert first > 1.05 * steady_bw                      # 13 % wider (the unsettled joint)
     assert abs(third - steady_bw) < 0.2 * abs(first - steady_bw)
     assert recorded_loss(_torque([0, 1, 0], 500), play(_torque([0, 1, 0], 500))) is None   # no cycle, no width
+
+
+def test_loss_sentence_says_when_the_recording_does_not_fix_the_loss():
+    from strainwave.compare.diagnose.explain import loss_sentence
+
+    q = {"hysteresis_loss_arcmin": (0.066, "arcmin"), "hysteresis_loss_model_arcmin": (0.066, "arcmin"),
+         "hysteresis_loss_source": ("model", ""), "hysteresis_loss_std_error_arcmin": (0.013, "arcmin"),
+         "hysteresis_full_scale_cycles": (1, "count")}
+    text = loss_sentence(q)
+    assert "only to +/- 20 %" in text and "only full-scale cycle" in text
+    precise = {**q, "hysteresis_loss_std_error_arcmin": (0.002, "arcmin"), "hysteresis_full_scale_cycles": (3, "count")}
+    text = loss_sentence(precise)
+    assert "fixes the loss only" not in text and "full-scale cycle:" not in text and "+/- 0.002" in text

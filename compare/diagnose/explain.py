@@ -14,7 +14,21 @@ def loss_sentence(quantities: dict) -> str:
     # be wider than the steady one the catalogue quotes (up to 13 % over family 2's laws)
     caveat = "" if cycles >= 2 else (" Read on the recording's only full-scale cycle: a joint that settles over "
                                      "cycles reaches the catalogue's steady loss only after several.")
-    return _loss_source(quantities) + caveat
+    return _loss_source(quantities) + _precision(quantities) + caveat
+
+
+# a reliability engineer compares a loss with a catalogue limit or an earlier test to about 10 %: a reading
+# less precise than that is said to be so, rather than left to a +/- in the text
+LOSS_PRECISION = 0.10
+
+
+def _precision(quantities: dict) -> str:
+    se = quantities.get("hysteresis_loss_std_error_arcmin")
+    value = quantities["hysteresis_loss_arcmin"][0]
+    if se is None or not value > 0.0 or se[0] <= LOSS_PRECISION * value:
+        return ""
+    return (f" This recording fixes the loss only to +/- {100 * se[0] / value:.0f} % (one standard error): more "
+            f"full-scale cycles or less noise would narrow it.")
 
 
 def _loss_source(quantities: dict) -> str:
