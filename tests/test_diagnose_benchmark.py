@@ -150,3 +150,13 @@ def test_bad_benchmark_flags_exit_2_with_one_line(argv, capsys):
     assert main(["benchmark-diagnose", *argv]) == 2
     err = capsys.readouterr().err.strip()
     assert err.startswith("error:") and len(err.splitlines()) == 1
+
+
+def test_loss_error_bar_scoring_from_hand_made_outcomes():
+    loop = dict(truth=("hysteresis",), verdict="explained", named=("hysteresis",), loss_true_arcmin=1.0)
+    covered = _outcome(**loop, loss_arcmin=1.25, loss_std_error_arcmin=0.15)     # a 25 % miss, 1.7 SE, said so
+    overconfident = _outcome(**loop, loss_arcmin=1.25, loss_std_error_arcmin=0.05)   # 5 SE: the bar lied
+    no_bar = _outcome(**loop, loss_arcmin=1.0)
+    assert covered.loss_within_3se and covered.loss_flagged_imprecise and not covered.loss_ok
+    assert overconfident.loss_within_3se is False and not overconfident.loss_flagged_imprecise
+    assert no_bar.loss_within_3se is None and not no_bar.loss_flagged_imprecise

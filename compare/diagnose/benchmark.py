@@ -72,6 +72,7 @@ class Outcome:
     noise_std: float
     seconds: float
     error: str = ""
+    loss_std_error_arcmin: float | None = None   # the loss's standard error as the diagnosis reported it
 
     @property
     def cha(self) -> bool:
@@ -106,6 +107,20 @@ class Outcome:
         if self.loss_true_arcmin is None or self.loss_arcmin is None:
             return None
         return self.loss_arcmin / self.loss_true_arcmin - 1.0
+
+    @property
+    def loss_within_3se(self) -> bool | None:
+        """Does the reported error bar cover the truth (3 standard errors)? None without both."""
+        e = self.loss_error
+        if e is None or self.loss_std_error_arcmin is None:
+            return None
+        return abs(self.loss_arcmin - self.loss_true_arcmin) <= 3.0 * self.loss_std_error_arcmin
+
+    @property
+    def loss_flagged_imprecise(self) -> bool:
+        """The diagnosis said the recording fixes the loss only beyond 10 % (explain.LOSS_PRECISION)."""
+        return (self.loss_std_error_arcmin is not None and self.loss_arcmin is not None
+                and self.loss_std_error_arcmin > 0.1 * self.loss_arcmin)
 
     @property
     def loss_ok(self) -> bool:
@@ -232,6 +247,14 @@ class BenchmarkReport:
             lines.append(f"  family {f}: median |loss error| {100 * float(np.median(errs)) if errs else math.nan:.1f} %"
                          f" ({len(errs)} loops with an estimate); mean time per recording "
                          f"{float(np.mean(secs)) if secs else 0.0:.2f} s")
+            # the error bar's honesty: the truth inside 3 reported standard errors, and the loss misses the
+            # diagnosis itself said it could not fix to 10 %
+            loops = [o for o in outs if not o.cha and o.loss_within_3se is not None and o.snr >= SNR_SCORED]
+            if loops:
+                misses = [o for o in loops if not o.loss_ok]
+                lines.append(f"  family {f}: loss inside 3 reported standard errors "
+                             f"{sum(o.loss_within_3se for o in loops)}/{len(loops)}; loss misses the text called "
+                             f"imprecise (SE > 10 %) {sum(o.loss_flagged_imprecise for o in misses)}/{len(misses)}")
             lines.append(f"  confusion, family {f} (class -> verdict / named set, ? = ambiguous):")
             for cls, row in confusion([o for o in outs if not o.cha and not o.out_of_catalogue]).items():
                 lines.append(f"    {cls:<34s} " + ", ".join(f"{k}: {v}" for k, v in row.items()))
@@ -309,12 +332,13 @@ def diagnose_concealed(c: Concealed, name: str, default_params) -> Outcome:
     effect = next((e for e in diag.effects if tuple(e.components) == named), diag.effects[0] if diag.effects else None)
     effect = effect if named else None
     loss = _quantity(diag, effect, "hysteresis_loss_arcmin") if "hysteresis" in named else None
+    loss_se = _quantity(diag, None, "hysteresis_loss_std_error_arcmin") if loss is not None else None
     stiff = None
     if c.stiffness_Nmm_per_rad is not None:
         stiff = tuple(_quantity(diag, effect, k) for k in ("K1", "K2", "K3"))
     return Outcome(c.family, name, c.name, c.truth, c.out_of_catalogue, c.noise, c.snr, rec.n,
                    diag.verdict.value, named, bool(diag.ambiguous), c.loss_arcmin, loss, c.stiffness_Nmm_per_rad,
-                   stiff, diag.rms_before, diag.rms_after, diag.noise_std, dt)
+                   stiff, diag.rms_before, diag.rms_after, diag.noise_std, dt, loss_std_error_arcmin=loss_se)
 
 
 def concealed_recordings(family: int, n_per_class: int, seed: int, params, *, rows=None, classes=None,
