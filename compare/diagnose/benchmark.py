@@ -34,6 +34,7 @@ from . import generate_recordings as gen1
 from .cha import cha_recording as cha_recording_f1
 from .cha import cha_rows
 from .concealed import Concealed
+from .explain import LOSS_PRECISION
 from .recording import parse_text
 
 FAMILIES = (1, 2)
@@ -120,7 +121,7 @@ class Outcome:
     def loss_flagged_imprecise(self) -> bool:
         """The diagnosis said the recording fixes the loss only beyond 10 % (explain.LOSS_PRECISION)."""
         return (self.loss_std_error_arcmin is not None and self.loss_arcmin is not None
-                and self.loss_std_error_arcmin > 0.1 * self.loss_arcmin)
+                and self.loss_std_error_arcmin > LOSS_PRECISION * self.loss_arcmin)
 
     @property
     def loss_ok(self) -> bool:

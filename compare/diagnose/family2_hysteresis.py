@@ -77,7 +77,8 @@ def preisach_twist(T: np.ndarray, scale_Nmm: float, *, coercive: float = 0.3, co
     Thresholds on a grid over +/- 1.3 ``scale_Nmm`` (120 levels: the law is a smooth density; on a grid the
     twist climbs in steps, which a constant loading rate turns into a line in time at the grid's period. On
     40 levels that staircase was 1.1 % of the loop's range, and diagnose rightly read a clean 10 sigma loop as
-    "periodic in time with period 6.03 samples"; at 120 levels it is a third of that); density exp(-b^2 / 2 s_b^2) * lognormal(h) with
+    "periodic in time with period 6.03 samples"; at 120 levels it is a third of that);
+    density exp(-b^2 / 2 s_b^2) * lognormal(h) with
     bias b = (alpha + beta)/2, half-width h = (alpha - beta)/2 (both relative to the scale).
     """
     g = np.linspace(-1.3, 1.3, levels)
