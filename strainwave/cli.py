@@ -83,7 +83,8 @@ def _emit(args, text: str, data) -> None:
     if target is None:
         print(text)
         return
-    payload = json.dumps(data() if callable(data) else data, indent=2, default=str, allow_nan=False) + "\n"
+    from .io_atomic import json_ready
+    payload = json.dumps(json_ready(data() if callable(data) else data), indent=2, default=str, allow_nan=False) + "\n"
     if target == "-":
         sys.stdout.write(payload)
     else:

@@ -7,6 +7,7 @@ old or the new file under the target name, never an empty or partial one.
 """
 from __future__ import annotations
 
+import math
 import os
 import re
 import secrets
@@ -16,7 +17,8 @@ from pathlib import Path
 
 from .errors import InputError
 
-__all__ = ["atomic_path", "atomic_write_text", "atomic_write_bytes", "check_output_path", "remove_stale_temps"]
+__all__ = ["atomic_path", "atomic_write_text", "atomic_write_bytes", "check_output_path", "json_ready",
+           "remove_stale_temps"]
 
 _ATTEMPTS = 100
 
@@ -36,6 +38,18 @@ def _create_temp(target: Path) -> Path:
 
 # ".<target name>.<12 hex>.<suffix>.tmp", as _create_temp names them: nothing else in a folder matches
 _TEMP_NAME = re.compile(r"^\..+\.[0-9a-f]{12}(\.[^.]*)?\.tmp$")
+
+
+def json_ready(x):
+    """``x`` with every non-finite float (an unbounded fitted stiffness, a target with no cases) as None: JSON has
+    no inf or NaN, and a writer that emits them (Python's default) leaves a file other readers reject."""
+    if isinstance(x, float):
+        return x if math.isfinite(x) else None
+    if isinstance(x, dict):
+        return {k: json_ready(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [json_ready(v) for v in x]
+    return x
 
 
 def remove_stale_temps(folder: Path) -> int:

@@ -128,3 +128,29 @@ def test_fea_baseline_end_to_end_on_the_shaft(params, tmp_path):
     # the hollow shaft's closed form is exact: quick P2 meshes agree to the GCI level (<< 1 %)
     assert diag.baseline.compliance == pytest.approx(c0, rel=0.01)
     assert not diag.mismatch          # 0.5 % stiffness error, inside the 2 % prior
+
+
+def test_elastica_constant_is_the_exact_elasticas_first_correction():
+    # the plausibility band of large_deflection is centred on this constant: it must be the exact elastica's
+    # (hifi_ring, shooting on the redundant moment), not a guess; at P = F R^2/EI = 0.02 the next terms are ~0.05 %
+    from strainwave.compare.diagnose.effects.large_deflection import GAMMA_ELASTICA
+    from strainwave.compare.diagnose.hifi_ring import THIN_DV, elastica_point
+    P = 0.02
+    linear = THIN_DV * P
+    assert (elastica_point(P) / linear - 1.0) / linear == pytest.approx(GAMMA_ELASTICA, rel=5e-3)
+
+
+@pytest.mark.parametrize("hertz_fraction", [0.02, 0.05, 0.10])
+def test_platen_contact_stiffening_is_not_named_large_deflection(params, hertz_fraction):
+    """A ring that stiffens (a Hertzian line contact flattening on the platens, delta ~ F^(2/3), 2-10 % of the
+    deflection at full load, delta/r_m = 0.02) has the u|u| shape's wrong sign: its geometry (the elastica)
+    softens it. At 2 % the contact was named large_deflection (gamma = -0.37) under an |gamma| <= 3 bound."""
+    rng = np.random.default_rng(0)
+    n, X = 1200, 12.0
+    u = np.interp(np.linspace(0, 2, n), [0, 1, 2], [0, 1, 0])
+    probe = parse_text(format_recording(RecordingKind.RING_COMPRESSION, "ewg_ring", u * X, u))
+    c0 = analytic_baseline(probe, params).compliance
+    Y = c0 * X
+    y = c0 * u * X + hertz_fraction * Y * u ** (2.0 / 3.0) + NOISE * Y * rng.standard_normal(n)
+    d = diagnose(parse_text(format_recording(RecordingKind.RING_COMPRESSION, "ewg_ring", u * X, y)), params)[0]
+    assert "large_deflection" not in d.named, (d.verdict, d.named)

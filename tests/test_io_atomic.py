@@ -1,12 +1,14 @@
 """Atomic writes: the user's umask decides the mode (not mkstemp's 0600), data and directory are fsync'ed
 around the rename, and a failing writer leaves the old file and no temporary behind."""
+import json
+import math
 import os
 import stat
 
 import pytest
 
 from strainwave import io_atomic
-from strainwave.io_atomic import atomic_path, atomic_write_bytes, atomic_write_text
+from strainwave.io_atomic import json_ready, atomic_path, atomic_write_bytes, atomic_write_text
 
 
 @pytest.fixture
@@ -93,3 +95,10 @@ def test_stale_temporary_files_of_a_killed_writer_are_removed_and_nothing_else(t
     assert len(left) == 4 and target.read_text() == "old, complete\n"
     assert remove_stale_temps(tmp_path) == 1
     assert sorted(p.name for p in tmp_path.iterdir()) == [".keep", "notes.tmp", "part.step"]
+
+
+def test_json_ready_turns_non_finite_floats_into_null():
+    # an unbounded fitted stiffness (K3 = inf of a runner-up stiffening form) crashed `diagnose --json`
+    data = {"K3": (math.inf, "N*mm/rad"), "list": [math.nan, 1.5, -math.inf], "n": 3, "s": "x"}
+    text = json.dumps(json_ready(data), allow_nan=False)
+    assert json.loads(text) == {"K3": [None, "N*mm/rad"], "list": [None, 1.5, None], "n": 3, "s": "x"}

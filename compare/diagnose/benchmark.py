@@ -28,7 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import RangeWarning
-from ...io_atomic import atomic_write_text
+from ...io_atomic import atomic_write_text, json_ready
 from . import generate_family2 as gen2
 from . import generate_recordings as gen1
 from .cha import cha_recording as cha_recording_f1
@@ -286,17 +286,7 @@ class BenchmarkReport:
                 "out_of_catalogue": ooc_table(outs),
                 "outcomes": [dict(asdict(o), predicted=o.predicted, primary_ok=o.primary_ok, set_ok=o.set_ok,
                                   loss_error=o.loss_error) for o in outs]}
-        return _finite(out)
-
-
-def _finite(x):
-    if isinstance(x, float):
-        return x if math.isfinite(x) else None
-    if isinstance(x, dict):
-        return {k: _finite(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [_finite(v) for v in x]
-    return x
+        return json_ready(out)
 
 
 def _quantity(diag, effect, name: str) -> float | None:

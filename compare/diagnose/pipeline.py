@@ -32,7 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import InputError
-from ...io_atomic import atomic_write_text
+from ...io_atomic import atomic_write_text, json_ready
 from . import rate_loop
 from .baseline import Baseline, analytic_baseline, fea_baseline
 from .channels import stuck_channel
@@ -41,6 +41,7 @@ from .effects import effects_for
 from .effects.loop import ARCMIN_PER_RAD, loop_quantities
 from .explain import explain
 from .fit import NOISE_FLOOR, Fit, fit_effects, lag1, rescored
+from .glitches import find_glitch
 from .locate import Located, locate, locate_effect
 from .noise import noise_std
 from .recording import Recording, parse_recording
@@ -171,11 +172,11 @@ class Diagnosis:
                 lines.append(f"  residual structure: {self.structure}")
             for e in self.effects[:5]:
                 lines.append(f"  {e.model or e.id:<52s} delta BIC {e.delta_bic:9.1f}  weight {e.weight:.2f}")
-            top = self.effects[0]
-            for name, (v, u) in top.parameters.items():
+            top = self.effects[0] if self.effects else None
+            for name, (v, u) in (top.parameters.items() if top else ()):
                 se = top.errors.get(name)
                 lines.append(f"    {name:<38s} {v:.6g}" + (f" +/- {se:.2g}" if se is not None else "") + f" {u}")
-            for w in top.warnings:
+            for w in (top.warnings if top else ()):
                 lines.append(f"    warning: {w}")
         lines.append(f"  {self.explanation}")
         return "\n".join(lines)
@@ -193,11 +194,15 @@ def diagnose(rec: Recording, params, baseline: str = "analytic") -> tuple[Diagno
         return _diagnose(rec, base)
 
 
+def _stride(n: int) -> int:
+    return 1 if n <= MAX_FIT_ROWS else math.ceil(n / MAX_FIT_ROWS)
+
+
 def _subsample(rec: Recording) -> Recording:
     """Every k-th row (acquisition order kept) so at most MAX_FIT_ROWS are fitted; white noise stays white."""
     if rec.n <= MAX_FIT_ROWS:
         return rec
-    k = math.ceil(rec.n / MAX_FIT_ROWS)
+    k = _stride(rec.n)
     return dataclasses.replace(rec, load=rec.load[::k], response=rec.response[::k],
                                time_s=None if rec.time_s is None else rec.time_s[::k],
                                extra={c: v[::k] for c, v in rec.extra.items()})
@@ -352,6 +357,20 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
             runner_label = rate_loop.LABEL + ("" if several_rates else ", at the recording's one loading rate") + \
                 "; a test at a second loading rate tells them apart"
 
+    # samples the noise cannot have made (a spike, a frozen reading, a jump) under a verdict that says the
+    # residual is noise (glitches.py): no smooth structure of the goodness-of-fit test draws them
+    glitch_only = False
+    if verdict in (Verdict.AGREES, Verdict.EXPLAINED):
+        glitch = find_glitch(ctx.y - (best if verdict is Verdict.EXPLAINED else base_fit).model, noise,
+                             np.arange(0, rec.n, _stride(rec.n)), rec.response, rec.load)
+        if glitch is not None:
+            glitch_only = verdict is Verdict.AGREES
+            verdict, named, ambiguous, mismatch = Verdict.UNEXPLAINED, (), False, True
+            note = glitch.sentence(rec.response_name, rec.load_name) + \
+                ("" if glitch_only else f"; without it {best.label} would explain the rest")
+            if glitch_only:
+                best, gof_best = base_fit, gof_base
+
     bics = np.array([f.bic for f in candidates]) if candidates else np.zeros(0)
     weights = np.exp(-0.5 * (bics - bics.min())) if len(bics) else bics
     weights = weights / weights.sum() if len(bics) else weights
@@ -364,17 +383,19 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     located = _located(ctx, rec, best if verdict is Verdict.EXPLAINED else None, base_fit, sigma, mismatch,
                        gof_best)
     dt = None if rec.time_s is None else float(np.median(np.diff(fit_rec.time_s)))
-    structure = describe(gof_best, ctx, located.description, dt) if mismatch else describe(gof_base, ctx, "", dt)
+    stride = _stride(rec.n)
+    structure = describe(gof_best, ctx, located.description, dt, stride) if mismatch else \
+        describe(gof_base, ctx, "", dt, stride)
     if note:
-        structure = f"{note}; {structure}"
+        structure = f"{note}; {'apart from it, ' if glitch_only else ''}{structure}"
     after = best if verdict is not Verdict.AGREES else base_fit
     diag = Diagnosis(recording=rec.source, kind=rec.kind.value, specimen=rec.specimen, baseline=base,
                      mismatch=mismatch, noise_std=sigma * ctx.Y, located=located,
-                     effects=effects if mismatch else (), rms_before=base_fit.rms(n) * ctx.Y,
+                     effects=effects if mismatch and not glitch_only else (), rms_before=base_fit.rms(n) * ctx.Y,
                      rms_after=after.rms(n) * ctx.Y, bic_before=base_fit.bic, bic_after=after.bic,
                      explanation="", n_samples=rec.n, verdict=verdict, named=named, ambiguous=ambiguous,
                      runner_up=runner_label, margin_bic=margin,
-                     suggestion=effects[0] if verdict is Verdict.UNEXPLAINED and effects else None,
+                     suggestion=effects[0] if verdict is Verdict.UNEXPLAINED and effects and not glitch_only else None,
                      structure=structure, gof_baseline=gof_base, gof_model=gof_best if mismatch else None,
                      quantities=quantities, fitted_rows=n, noise_model=noise.describe())
     diag = dataclasses.replace(diag, explanation=explain(diag))
@@ -523,7 +544,7 @@ def diagnose_file(path: Path, *, params_path=None, baseline: str = "analytic", j
     params = load_params(params_path, overrides=rec.param_overrides or None)
     diag, arrays = diagnose(rec, params, baseline)
     if json_out is not None:
-        atomic_write_text(Path(json_out), json.dumps(diag.to_dict(), indent=2) + "\n")
+        atomic_write_text(Path(json_out), json.dumps(json_ready(diag.to_dict()), indent=2, allow_nan=False) + "\n")
     if plot_out is not None:
         from .plot import plot_diagnosis
         title = f"{diag.recording}: {diag.verdict.value}" + (f" - {' + '.join(diag.named)}" if diag.named else "")

@@ -391,8 +391,9 @@ def structure_test(ctx: Context, r: np.ndarray, sigma_white: float, prior_chi2: 
                          float(w @ w) * n / max(len(w), 1))
 
 
-def describe(test: StructureTest, ctx: Context, located_text: str, dt_s: float | None) -> str:
-    """The residual's structure in physical terms (what a test engineer can act on)."""
+def describe(test: StructureTest, ctx: Context, located_text: str, dt_s: float | None, stride: int = 1) -> str:
+    """The residual's structure in physical terms (what a test engineer can act on). ``dt_s``: time between
+    fitted rows; ``stride``: recording rows per fitted row (periods are quoted in recording rows)."""
     if not test.structured:
         return "the residual is consistent with the noise"
     sig = {s.name for s in test.significant}
@@ -422,8 +423,11 @@ def describe(test: StructureTest, ctx: Context, located_text: str, dt_s: float |
         parts.append("it varies in time at constant load (a drift that is not linear, or creep)")
     if "periodic_time" in sig and (test.get("periodic_time").unique_delta_bic > THRESHOLD or len(sig) == 1):
         f = float(test.get("periodic_time").detail)
-        period = (f"{1.0 / f:.4g} samples" + (f" = {dt_s / f:.4g} s" if dt_s else "")) if f > 0 else "?"
-        parts.append(f"it is periodic in time with period {period} (not a function of the load)")
+        period = (f"{stride / f:.4g} samples" + (f" = {dt_s / f:.4g} s" if dt_s else "")) if f > 0 else "?"
+        # read on every stride-th row, a ripple faster than two strides folds onto a slower one
+        alias = (f"; read on every {stride}th row, so a ripple faster than {2 * stride} rows would show at this "
+                 f"period (an alias): check it on the full recording") if stride > 1 else ""
+        parts.append(f"it is periodic in time with period {period} (not a function of the load){alias}")
     if "periodic_angle" in sig:
         parts.append(f"it is periodic in the input angle, {test.get('periodic_angle').detail} per revolution")
     if not parts:
