@@ -154,3 +154,21 @@ def test_platen_contact_stiffening_is_not_named_large_deflection(params, hertz_f
     y = c0 * u * X + hertz_fraction * Y * u ** (2.0 / 3.0) + NOISE * Y * rng.standard_normal(n)
     d = diagnose(parse_text(format_recording(RecordingKind.RING_COMPRESSION, "ewg_ring", u * X, y)), params)[0]
     assert "large_deflection" not in d.named, (d.verdict, d.named)
+
+
+@pytest.mark.parametrize("side", [1.0, -1.0])
+def test_crack_still_opening_at_full_load_is_named_crack_closure(params, side):
+    """A crack held shut by residual stress separates progressively as the load grows: its extra compliance
+    rises linearly with the load on its open side up to full scale (twist a T^2 / 2 T_max there, nothing on the
+    other side). The closure laws all open fully within 60 % of full scale; the opening law draws it."""
+    rng = np.random.default_rng(2)
+    n, X = 1200, 1e6
+    u = _path(RecordingKind.TORSION, n)
+    probe = parse_text(format_recording(RecordingKind.TORSION, "output_shaft", u * X, u))
+    c0 = analytic_baseline(probe, params).compliance
+    Y = c0 * X
+    opening = np.where(side * u > 0.0, side * 0.15 * u ** 2 / 2.0, 0.0)
+    y = c0 * u * X + Y * opening + NOISE * Y * rng.standard_normal(n)
+    d = diagnose(parse_text(format_recording(RecordingKind.TORSION, "output_shaft", u * X, y)), params)[0]
+    assert d.named == ("crack_closure",), (d.verdict, d.named, d.structure)
+    assert d.effects[0].parameters["open_under_load_sign"][0] == side

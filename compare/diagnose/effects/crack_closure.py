@@ -11,6 +11,12 @@ Variant ``progressive``: no closure law assumed. On the closing side the crack's
 |d| (1 - F(x)) falls monotonically with the load x past the zero, F a non-decreasing staircase of closed
 fractions f_k >= 0 at fixed loads (capped at fully closed): asperity contact stiffens with its contact load
 by whatever law the faces' roughness sets (a power-law tail, an exponential, a sharp stop).
+Variant ``opening``: the mirror image, no opening law assumed. On the OPEN side the crack's compliance
+|d| G(x) rises monotonically with the load x past the zero, G a non-decreasing staircase of open fractions
+g_k >= 0 at fixed loads up to full scale (capped at fully open): a crack held shut by residual compressive
+stress or crack-tip plasticity (plasticity-induced closure) separates from its mouth towards its tip as the
+load grows, and may still be opening at full load (a crack whose compliance rose linearly with the load up to
+full scale was left unexplained by the three closure laws, which all open fully within 60 % of it).
 """
 from __future__ import annotations
 
@@ -50,6 +56,20 @@ def _contribution_progressive(ctx: Context, theta):
     return d * np.maximum(v, 0.0) - d * open_area
 
 
+# loads (fraction of full scale) past the zero where a further part of the crack opens
+OPENING_KNOTS = (0.0, 0.1, 0.2, 0.35, 0.5, 0.7, 0.85)
+
+
+def _contribution_opening(ctx: Context, theta):
+    d, u0 = theta[0], theta[1]
+    side = 1.0 if d >= 0 else -1.0
+    x = np.maximum(side * (ctx.u - u0), 0.0)          # load past the zero on the opening side
+    opened = np.minimum(np.cumsum(theta[2:]), 1.0)     # open fraction from each knot on
+    edges = (*OPENING_KNOTS[1:], np.inf)
+    # the integral of the open fraction G over [0, x]
+    return d * sum(g * np.clip(x - a, 0.0, b - a) for g, a, b in zip(opened, OPENING_KNOTS, edges))
+
+
 def _where(ctx: Context, theta):
     d, u0 = theta[0], theta[1]
     if d >= 0:
@@ -85,3 +105,8 @@ GRADUAL = dataclasses.replace(EFFECT, params=(*EFFECT.params, Param("log10_w", -
 PROGRESSIVE = dataclasses.replace(
     EFFECT, params=(*EFFECT.params, *(Param(f"f_{k:g}", 0.0, 1.0, (1.0 if k == 0.0 else 0.0,)) for k in CLOSURE_KNOTS)),
     contribution=_contribution_progressive, variant="progressive")
+# one start: a crack opening evenly up to full scale (the sharp crack is the form above)
+OPENING = dataclasses.replace(
+    EFFECT, params=(*EFFECT.params, *(Param(f"g_{k:g}", 0.0, 1.0, (1.0 / len(OPENING_KNOTS),))
+                                      for k in OPENING_KNOTS)),
+    contribution=_contribution_opening, variant="opening")
