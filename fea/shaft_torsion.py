@@ -110,6 +110,15 @@ def crack_model_for(params, crack_model: str) -> str:
     return crack_model if crack_model != "auto" else ("axisymmetric" if full else "seam")
 
 
+def cad_modules(params, cracked: bool) -> tuple[str, ...]:
+    """What a point imports to build its part (``sweep.task.warm_modules``): build123d for the seam of a
+    part-through crack, OCP alone for the bare uncracked solid (``ShaftTorsion.build``), which is also the
+    3D part beside the axisymmetric section of a full circumferential crack."""
+    if cracked and crack_model_for(params, "auto") == "seam":
+        return ("build123d", "strainwave.geometry.parts")
+    return ("OCP.BRepAlgoAPI", "OCP.BRepPrimAPI", "strainwave.geometry.output_shaft")
+
+
 FLEX = "flexibility_rad_per_Nmm"
 CRACKED = "cracked_flexibility_rad_per_Nmm"
 DELTA = "delta_flexibility_rad_per_Nmm"
@@ -143,7 +152,11 @@ class ShaftTorsion(TorsionVariant):
         return self.crack_model == "seam"
 
     def build(self):
-        return _build_seam(self.params, self.crack_depth_mm) if self.seam else _build(self.params, None)
+        if self.seam:
+            return _build_seam(self.params, self.crack_depth_mm)
+        # a bare OCC solid: an uncracked point imports no build123d (a sweep worker's start, ~2.3 s)
+        from strainwave.geometry.output_shaft import build_bare
+        return build_bare(self.params)
 
     def series(self) -> tuple[SeriesPlan, ...]:
         plans = (SeriesPlan("solid", refinement_sizes(self.h_fine_mm, self.ratio)),)

@@ -7,14 +7,14 @@ contact strips and patches), so fusing and cutting go through these helpers inst
 from __future__ import annotations
 
 
-def _run(op, a, tools, glue: bool = False):
+def _boolean(op, a, tools, glue: bool = False):
+    """``op`` run on bare OCC shapes (``TopoDS_Shape``); the result is a bare shape too."""
     from OCP.collections import List_TopoDS_Shape
-    from build123d import Shape
 
     args, tls = List_TopoDS_Shape(), List_TopoDS_Shape()
-    args.Append(a.wrapped)
+    args.Append(a)
     for t in tools:
-        tls.Append(t.wrapped)
+        tls.Append(t)
     op.SetArguments(args)
     op.SetTools(tls)
     op.SetRunParallel(False)      # the machine's two cores are shared; OCC threads do not pay here
@@ -27,7 +27,13 @@ def _run(op, a, tools, glue: bool = False):
     op.Build()
     if not op.IsDone():
         raise RuntimeError(f"OCC boolean {type(op).__name__} failed")
-    return Shape.cast(op.Shape())
+    return op.Shape()
+
+
+def _run(op, a, tools, glue: bool = False):
+    from build123d import Shape
+
+    return Shape.cast(_boolean(op, a.wrapped, [t.wrapped for t in tools], glue))
 
 
 def single_solid(shape):
@@ -47,6 +53,23 @@ def fuse(a, *tools, touching: bool = False):
 def cut(a, *tools):
     from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut
     return single_solid(_run(BRepAlgoAPI_Cut(), a, tools))
+
+
+def cut_bare(a, *tools):
+    """``cut`` of bare OCC shapes, without build123d (whose import costs a process ~2.3 s against OCP's
+    ~0.8 s): the same boolean and the same solid, as a ``TopoDS_Solid``."""
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut
+    from OCP.TopAbs import TopAbs_SOLID
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+
+    found, explorer = {}, TopExp_Explorer(_boolean(BRepAlgoAPI_Cut(), a, tools), TopAbs_SOLID)
+    while explorer.More():
+        found[hash(explorer.Current())] = explorer.Current()   # what build123d's solids() keeps
+        explorer.Next()
+    if len(found) != 1:
+        raise RuntimeError(f"expected one solid, got {len(found)}")
+    return TopoDS.Solid(next(iter(found.values())))
 
 
 def imprint(a, *faces):

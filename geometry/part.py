@@ -32,7 +32,7 @@ class FaceRef:
 @dataclass(frozen=True)
 class Part:
     name: PartName
-    solid: object                                   # build123d Solid/Part (an OCC shape), mm
+    solid: object                                   # build123d Solid/Part, or a bare TopoDS_Solid (FEA only), mm
     named_faces: dict[str, tuple[FaceRef, ...]]     # e.g. fixed, loaded, bore, race, crack_face, crack_front
     crack_front_mm: tuple[tuple[float, float, float], ...] = ()   # points along the crack front, for size fields
     section: object | None = None                   # 2D build123d Face (xy plane) for prismatic parts, else None

@@ -49,6 +49,23 @@ def test_shaft_volume_and_end_faces(params):
     assert part.named_faces["bore"][0].area_mm2 == pytest.approx(math.pi * sh.inner_diameter_mm * sh.length_mm, rel=EXACT)
 
 
+@pytest.mark.parametrize("bore_mm", [45.0, 30.0, 0.0])
+def test_bare_shaft_is_the_cad_shaft_without_build123d(params, bore_mm, tmp_path):
+    """The FEA meshes ``build_bare``'s TopoDS_Solid: the same BREP file, faces and meta as ``build``'s."""
+    from OCP.BRepTools import BRepTools
+
+    from strainwave.geometry.output_shaft import build_bare
+
+    p = params.with_value("output_shaft.inner_diameter_mm", bore_mm)
+    cad, bare = build_part("output-shaft", p), build_bare(p)
+    assert not hasattr(bare.solid, "wrapped")    # a bare OCC shape, not a build123d one
+    BRepTools.Write_s(cad.solid.wrapped, str(tmp_path / "cad.brep"))
+    BRepTools.Write_s(bare.solid, str(tmp_path / "bare.brep"))
+    assert (tmp_path / "bare.brep").read_text() == (tmp_path / "cad.brep").read_text()
+    assert bare.named_faces == cad.named_faces and ("bore" in bare.named_faces) == (bore_mm > 0)
+    assert (bare.meta, bare.crack_front_mm, bare.crack_surface) == (cad.meta, cad.crack_front_mm, cad.crack_surface)
+
+
 @pytest.mark.parametrize("arc_deg", [360.0, 90.0])
 def test_shaft_slot_removes_its_own_volume(params, arc_deg):
     p = params.with_value("crack_geometry.shaft_arc_deg", arc_deg)

@@ -19,7 +19,7 @@ import pandas as pd
 from strainwave import cache
 from strainwave.compare.sweep.pipeline import run_sweep
 from strainwave.compare.sweep.task import PointSpec, closed_form_probe, point_key
-from strainwave.params import default_dict
+from strainwave.params import default_dict, load_params
 
 def _compliance(inner_mm, length_mm=200.0, outer_mm=70.0, mu_MPa=8.0e4):
     """lambda_so0 with the bore (Seed 000; formula audit): 32 L / (pi mu (D^4 - d^4))."""
@@ -164,8 +164,16 @@ def test_own_workers_import_the_pipeline_before_any_point(tmp_path):
     from strainwave.compare.sweep.task import warm_modules
 
     assert warm_modules("shaft-torsion", closed_form_probe) == ()      # a probe needs none of the FEA's libraries
-    fea = warm_modules("shaft-torsion", None)
-    assert "strainwave.fea.shaft_torsion" in fea and "build123d" in fea and "gmsh" in fea
+    base = load_params().to_dict()
+    plain = PointSpec("shaft-torsion", (("output_shaft.length_mm", 80.0),), base, True)
+    seam = PointSpec("shaft-torsion", (("output_shaft.crack_depth_mm", 2.0), ("crack_geometry.shaft_arc_deg", 90.0)),
+                     base, True, True)
+    full = PointSpec("shaft-torsion", (("output_shaft.crack_depth_mm", 2.0),), base, True, True)   # axisymmetric
+    fea = warm_modules("shaft-torsion", None, [plain, full])
+    assert "strainwave.fea.shaft_torsion" in fea and "gmsh" in fea and "OCP.BRepAlgoAPI" in fea
+    assert "build123d" not in fea    # the uncracked shaft is a bare OCC solid
+    assert "build123d" in warm_modules("shaft-torsion", None, [plain, seam])     # a part-through seam is not
+    assert "build123d" in warm_modules("cup-torsion", None)
     # a light module stands for the FEA's here (build123d alone costs a worker 2.4 s)
     with dask_client(None, 1, tmp_path / "scratch", warm=("strainwave.analytic.summary",)) as (client, _):
         loaded = client.run(lambda: "strainwave.analytic.summary" in sys.modules)

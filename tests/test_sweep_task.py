@@ -83,3 +83,23 @@ def test_closed_forms_only_beside_quantities_in_the_same_unit(tmp_path):
     other = run_point(spec, "other", str(tmp_path), _flexibility_in("deg/(N*m)"))
     assert other["analytic"]["flexibility_rad_per_Nmm"]["corrected"] is None
     assert any("not compared" in w for w in other["warnings"])
+
+
+def test_uncracked_shaft_point_imports_no_build123d(tmp_path):
+    """A worker solving uncracked shaft points never pays build123d's import (~2.3 s of its start): the shaft
+    it meshes is a bare OCC solid. Run in a fresh interpreter, since this one may have imported it already."""
+    import subprocess
+    import sys
+    import textwrap
+
+    script = textwrap.dedent(f"""
+        import sys, warnings
+        warnings.simplefilter("ignore")
+        from strainwave.compare.sweep.task import PointSpec, point_key, run_point
+        from strainwave.params import load_params
+        spec = PointSpec("shaft-torsion", (("output_shaft.length_mm", 60.0),), load_params().to_dict(), True)
+        record = run_point(spec, point_key(spec, None), {str(tmp_path)!r})
+        print(record["status"], "build123d" in sys.modules)
+    """)
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=300)
+    assert done.stdout.split() == ["ok", "False"], done.stderr

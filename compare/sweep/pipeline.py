@@ -233,7 +233,7 @@ def run_sweep(study: str, *, vary: list[str], params_path: str | Path | None = N
     if todo:
         scratch = out_dir / ".dask-scratch"   # the workers' spill/lock space, removed when the sweep ends
         try:
-            with dask_client(scheduler, workers, scratch, warm_modules(study, task)) as (client, n_workers):
+            with dask_client(scheduler, workers, scratch, warm_modules(study, task, specs)) as (client, n_workers):
                 progress(f"sweep: {n_workers} Dask workers at {client.scheduler.address}")
                 by_key.update(_compute(client, todo, out_dir / "cache", task, n_workers, progress, len(by_key),
                                        len(points), counts))

@@ -9,6 +9,7 @@ results; anything unexpected (a crashed library, memory) is recorded but *not* c
 """
 from __future__ import annotations
 
+import importlib
 import math
 import os
 import socket
@@ -17,7 +18,7 @@ import warnings
 from dataclasses import dataclass, field
 from datetime import datetime, timezone
 from pathlib import Path
-from typing import Callable
+from typing import Callable, Sequence
 
 from ...cache import ResultCache, case_key
 from ...errors import StrainwaveError
@@ -78,17 +79,31 @@ def fea_task(study: str, params, quick: bool, *, crack_depth_mm: float | None = 
 
 
 # The default task's libraries, which the pipeline imports inside the functions that use them (so that a
-# closed form or a refused point never pays for them): CAD, meshing, assembly and solver, the closed forms.
-FEA_MODULES = ("build123d", "gmsh", "skfem", "pyamg", "strainwave.geometry.parts", "strainwave.analytic.summary")
+# closed form or a refused point never pays for them): meshing, assembly and solver, the closed forms.
+FEA_MODULES = ("gmsh", "skfem", "pyamg", "strainwave.analytic.summary")
+# The CAD a point builds its part with, unless its study module says otherwise (``cad_modules(params, cracked)``):
+# build123d costs a worker ~2.3 s of its start, and a study whose part is a bare OCC solid needs only OCP (~0.8 s).
+CAD_MODULES = ("build123d", "strainwave.geometry.parts")
 
 
-def warm_modules(study: str, task: TaskFn | None) -> tuple[str, ...]:
+def warm_modules(study: str, task: TaskFn | None, specs: Sequence[PointSpec] = ()) -> tuple[str, ...]:
     """What a worker of the sweep's own cluster imports before it registers (``worker.SweepWorker``): the FEA
-    pipeline of ``study``; nothing for another task (its module comes with the first task it unpickles,
-    and it may need none of the FEA's libraries)."""
+    pipeline of ``study`` and the CAD its points ``specs`` build with; nothing for another task (its module
+    comes with the first task it unpickles, and it may need none of the FEA's libraries)."""
     if task is not None:
         return ()
-    return (__name__, STUDIES[study].module, *FEA_MODULES)
+    from ...params import params_from_dict
+
+    # the driver has imported the study module already, to estimate each point's elements (fea/budget.py)
+    cad_of = getattr(importlib.import_module(STUDIES[study].module), "cad_modules", None)
+    if cad_of is None:
+        return (__name__, STUDIES[study].module, *FEA_MODULES, *CAD_MODULES)
+    cad: dict[str, None] = {}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")   # a point's RangeWarnings are its worker's to record
+        for spec in specs:
+            cad.update(dict.fromkeys(cad_of(params_from_dict(spec.merged()), spec.seed_crack)))
+    return (__name__, STUDIES[study].module, *FEA_MODULES, *cad)
 
 
 def closed_form_probe(study: str, params, quick: bool, *, delay_s: float = 0.0) -> dict:
