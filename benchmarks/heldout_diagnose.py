@@ -5,7 +5,7 @@ Written independently of compare/ (the model and its own generators are not read
 Recordings come from physics written here: torque-driven Bouc-Wen and twist-driven Maxwell-slip
 friction (both dissipative), smooth/power-law/CHA-table stiffening, smooth backlash with Hertz-like
 flanks, a crack open on one torque sign, kinematic error from the wave-generator angle, Roark thick
-rings, a stiffening ring at large deflection, an elastic-plastic ring with permanent set; and physics
+rings, a softening ring at large deflection, an elastic-plastic ring with permanent set; and physics
 outside the catalogue (warm-up drift, thermal stiffness drift, gain step, ripple in time, channel lag,
 Zener viscoelasticity at two rates, log creep at a hold, clipping, torque saturation, spliced specimens).
 Noise: white, AR(1) up to rho 0.95, moving average, quantisation.
@@ -472,9 +472,12 @@ def ring_cases(rng, c_thin, c_thin_thick, r_thick, t_thick):
     sig = 0.002 * c_thin * 40
     ring("ring_clean", "clean", set(), F, c_thin * F, sig)
     ring("ring_clean_quant", "clean", set(), F, quantise(c_thin * F, 0.5 * sig), sig)
-    # large deflection: stiffening ring, delta = cF / (1 + 0.5 cF/r) (first order gamma = -0.5)
+    # large deflection: under diametral compression the ring's sides bulge out, lengthening the load's lever arm
+    # about them, so the ring SOFTENS (the exact inextensible elastica's first correction is about +0.77; this
+    # file's first version had a stiffening ring, gamma = -0.5, which no ring geometry gives):
+    # delta = cF / (1 - 0.75 cF/r), first order gamma = +0.75
     Fl = 150.0 * tri_path([0, 1, 0, 1, 0], 1500)
-    d = c_thin * Fl / (1 + 0.5 * c_thin * Fl / r_m)
+    d = c_thin * Fl / (1 - 0.75 * c_thin * Fl / r_m)
     ring("ring_large_deflection", "in", {"large_deflection"}, Fl, d, 0.002 * d.max())
     # plasticity: elastic-plastic with Ramberg-Osgood hardening above F_y, elastic unloading, permanent set
     sy = 400.0
@@ -507,7 +510,7 @@ def ring_cases(rng, c_thin, c_thin_thick, r_thick, t_thick):
     dd = c_thin * 40 * tri_path([0, 1, 0.12, 1, 0.12, 1, 0.12], 1500)   # plates keep contact
     Fr = maxwell_slip_twist_driven(dd, 1 / c_thin, np.full(6, 0.5 / c_thin), 40 * np.linspace(0.005, 0.02, 6))
     ring("ring_ooc_friction_loop", "out", None, Fr, dd, sig)
-    d95 = c_thin * Fl / (1 + 0.5 * c_thin * Fl / r_m)
+    d95 = c_thin * Fl / (1 - 0.75 * c_thin * Fl / r_m)
     cols_nz = noise(rng, len(Fl), "ar1", sigma=0.002 * d95.max(), rho=0.95)
     ring("ring_large_deflection_ar95", "in", {"large_deflection"}, Fl, d95 + cols_nz, 1e-9)
     # out of catalogue: viscoelastic creep of a polymer-coated/fixtured ring at a hold, clipping

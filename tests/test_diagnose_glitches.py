@@ -12,7 +12,7 @@ from strainwave.compare.diagnose import glitches
 from strainwave.compare.diagnose.glitches import ALPHA, GROSS_SIGMAS, GlitchKind, find_glitch
 from strainwave.compare.diagnose.pipeline import Verdict, diagnose
 from strainwave.compare.diagnose.recording import RecordingKind, format_recording, parse_text
-from strainwave.compare.diagnose.structure import NoiseModel
+from strainwave.compare.diagnose.structure import NoiseModel, fine_scale_noise
 from strainwave.errors import RangeWarning
 from strainwave.params import load_params
 
@@ -113,3 +113,32 @@ def test_a_departure_below_the_gross_floor_is_left_to_the_structure_test():
     assert find_glitch(r, WHITE, rows, r, rows * 1.0) is None
     r[300] += 8.0
     assert find_glitch(r, WHITE, rows, r, rows * 1.0).kind is GlitchKind.SPIKE
+
+
+def test_spike_on_a_row_the_fit_skipped_is_found(params):
+    # 10,000 rows are fitted on every 4th (MAX_FIT_ROWS 2,500): row 4,001 is not among them
+    T, y, sigma = _clean(params, n=10_000)
+    y = y.copy()
+    y[4001] += 30.0 * sigma
+    d = _diagnose(params, T, y)
+    assert d.verdict is Verdict.UNEXPLAINED and "sample 4002 " in d.structure and "spike" in d.structure
+
+
+@pytest.mark.parametrize("kind", ["white", "ar1", "random_walk", "quantised"])
+def test_clean_long_recording_raises_no_glitch(params, kind):
+    # every row is checked (the fit sees every 4th): the full-rate residual's own noise model keeps the
+    # innovations standard-normal for each noise colour. (The goodness-of-fit test itself is not under test
+    # here: on this random-walk draw it reads the wander as rate dependence, with or without the glitch check.)
+    def noise(sigma, n):
+        rng = np.random.default_rng(13)
+        if kind == "quantised":
+            return fs.quantise(sigma * rng.standard_normal(n), 1.5 * sigma)
+        return fs.coloured_noise(rng, n, sigma, kind, rho=0.95, fc=0.05, wander=0.7)
+    T, y, sigma = _clean(params, n=10_000, noise=noise)
+    d = _diagnose(params, T, y)
+    assert "departs from the model" not in d.structure
+    assert d.verdict is Verdict.AGREES or kind == "random_walk"
+    # the same full-rate path on the noise itself, whatever the verdict
+    e = noise(sigma, 10_000) / sigma
+    rows = np.arange(10_000)
+    assert find_glitch(e, fine_scale_noise(e), rows, e, rows * 1.0) is None

@@ -36,7 +36,7 @@ from ...io_atomic import atomic_write_text, json_ready
 from . import rate_loop
 from .baseline import Baseline, analytic_baseline, fea_baseline
 from .channels import stuck_channel
-from .context import build_context
+from .context import build_context, find_segments, reversal_threshold
 from .effects import effects_for
 from .effects.loop import ARCMIN_PER_RAD, loop_quantities
 from .explain import explain
@@ -45,7 +45,7 @@ from .glitches import find_glitch
 from .locate import Located, locate, locate_effect
 from .noise import noise_std
 from .recording import Recording, parse_recording
-from .structure import StructureTest, describe, reference_noise, structure_test
+from .structure import StructureTest, describe, fine_scale_noise, reference_noise, structure_test
 from .zero_load_width import full_scale_cycles, zero_load_width
 
 BIC_THRESHOLD = 10.0       # "very strong" on the Kass-Raftery scale
@@ -208,6 +208,28 @@ def _subsample(rec: Recording) -> Recording:
                                extra={c: v[::k] for c, v in rec.extra.items()})
 
 
+def _full_residual(rec: Recording, ctx, fit: Fit) -> np.ndarray:
+    """Data minus ``fit`` on EVERY row of ``rec`` (the fit ran on every k-th), in the fit's normalisation: the
+    same scales X, Y and the same map of time onto [0, 1]."""
+    stride = _stride(rec.n)
+    t_raw = rec.time_s if rec.time_s is not None else np.arange(rec.n, dtype=float) / stride
+    sub = t_raw[::stride]
+    span = float(sub[-1] - sub[0])
+    t = (t_raw - sub[0]) / span if span > 0 else np.linspace(0.0, 1.0, rec.n)
+    u = rec.load / ctx.X
+    segments = tuple(find_segments(u, reversal_threshold(u)))
+    direction = np.empty(rec.n)
+    for a, b, d in segments:
+        direction[a:b] = d
+    full = dataclasses.replace(ctx, u=u, y=rec.response / ctx.Y, t=t, direction=direction, segments=segments,
+                               angle=rec.extra.get("input_angle_rad"))
+    b0, b1, s = fit.nuisance
+    model = b0 + b1 * t + s * u
+    for e, th in zip(fit.effects, fit.split_theta()):
+        model = model + e.contribution(full, th)
+    return full.y - model
+
+
 def _best_per_set(fits: list[Fit]) -> list[Fit]:
     """The best-scoring model form of every distinct set of effect ids, ranked by BIC."""
     best: dict[frozenset, Fit] = {}
@@ -267,8 +289,10 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
         # fits the data ALONE need not be the one that fits beside the other effect (a relay loop drawing part
         # of a stiffening's misfit); pairs without the best single keep one form each (time: issue 12's
         # 10,000-row target)
+        # (a form that competes only alone, Effect.pairs, is left out of every pair)
+        pairable = [f for f in singles if all(e.pairs for e in f.effects)]
         by_id: dict[str, list[Fit]] = {}
-        for f in sorted(singles, key=lambda f: f.bic):
+        for f in sorted(pairable, key=lambda f: f.bic):
             by_id.setdefault(f.id, []).append(f)
         for a0, b0 in itertools.combinations(ranked_singles[:4], 2):
             if frozenset({a0.id, b0.id}) in _DEGENERATE:
@@ -281,7 +305,7 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
         # (its misfit of the stiffening costs more) may be the one that fits beside the other effect
         if pairs:
             top = min(pairs, key=lambda f: f.bic)
-            forms = {e.id: [f for f in singles if f.id == e.id] for e in top.effects}
+            forms = {e.id: [f for f in pairable if f.id == e.id] for e in top.effects}
             (ia, fa), (ib, fb) = forms.items()
             done = {tuple(e.label for e in p.effects) for p in pairs}
             for x, y in itertools.product(fa, fb):
@@ -361,8 +385,14 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     # residual is noise (glitches.py): no smooth structure of the goodness-of-fit test draws them
     glitch_only = False
     if verdict in (Verdict.AGREES, Verdict.EXPLAINED):
-        glitch = find_glitch(ctx.y - (best if verdict is Verdict.EXPLAINED else base_fit).model, noise,
-                             np.arange(0, rec.n, _stride(rec.n)), rec.response, rec.load)
+        final = best if verdict is Verdict.EXPLAINED else base_fit
+        if _stride(rec.n) == 1:
+            glitch = find_glitch(ctx.y - final.model, noise, np.arange(rec.n), rec.response, rec.load)
+        else:
+            # a glitch on a row the fit skipped is a glitch all the same: the final model on every row, judged
+            # against the noise model of that full-rate residual (the fitted rows' noise model is per stride)
+            r_full = _full_residual(rec, ctx, final)
+            glitch = find_glitch(r_full, fine_scale_noise(r_full), np.arange(rec.n), rec.response, rec.load)
         if glitch is not None:
             glitch_only = verdict is Verdict.AGREES
             verdict, named, ambiguous, mismatch = Verdict.UNEXPLAINED, (), False, True

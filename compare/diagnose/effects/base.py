@@ -69,6 +69,9 @@ class Effect:
     where: Callable[[Context, np.ndarray], tuple[tuple[tuple[float, float], ...], str]] | None = None
     # physical plausibility of fitted values: (ctx, theta, s) -> list of warnings (empty when plausible)
     plausible: Callable[[Context, np.ndarray, float], list[str]] | None = None
+    # False for a form free enough that, beside another effect, the two draw a rig artefact between them (a free
+    # one-sided curve beside a free odd one spans every even curve: a sensor's even nonlinearity)
+    pairs: bool = True
 
     @property
     def label(self) -> str:

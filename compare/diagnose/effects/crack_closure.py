@@ -17,6 +17,8 @@ g_k >= 0 at fixed loads up to full scale (capped at fully open): a crack held sh
 stress or crack-tip plasticity (plasticity-induced closure) separates from its mouth towards its tip as the
 load grows, and may still be opening at full load (a crack whose compliance rose linearly with the load up to
 full scale was left unexplained by the three closure laws, which all open fully within 60 % of it).
+It is offered alone, never in a pair: a free one-sided compliance beside a free odd stiffening spans every even
+curve, and the pair named a sensor's even nonlinearity (twist + k T^2) crack_closure + nonlinear_stiffness.
 """
 from __future__ import annotations
 
@@ -109,4 +111,4 @@ PROGRESSIVE = dataclasses.replace(
 OPENING = dataclasses.replace(
     EFFECT, params=(*EFFECT.params, *(Param(f"g_{k:g}", 0.0, 1.0, (1.0 / len(OPENING_KNOTS),))
                                       for k in OPENING_KNOTS)),
-    contribution=_contribution_opening, variant="opening")
+    contribution=_contribution_opening, variant="opening", pairs=False)
