@@ -314,6 +314,13 @@ def build(seed):
     def R(name):
         return np.random.default_rng([seed, zlib.crc32(name.encode())])
 
+    def sine_case(name, n_lo, n_hi, cycles, **path):
+        """The recording's own generator (seeded by its name), a row count in [n_lo, n_hi), its sine path."""
+        rng = R(name)
+        n = int(rng.integers(n_lo, n_hi))
+        t, T = sine_path(n, cycles=cycles, **path)
+        return rng, t, T
+
     snrs_in = [2.0, 4.0, 8.0, 25.0]
     # ---------------- in catalogue ----------------
     for j, snr in enumerate(snrs_in):
@@ -347,9 +354,7 @@ def build(seed):
 
         # cubic stiffening
         nm = f"in_cubic_{j}"
-        rng = R(nm)
-        n = int(rng.integers(600, 1400))
-        t, T = sine_path(n, cycles=2.3, phase=0.0)
+        rng, t, T = sine_case(nm, 600, 1400, 2.3, phase=0.0)
         ratio = rng.uniform(1.6, 2.6)
         phi = cubic_twist(T, ratio)
         recs.append(torsion_rec(nm, "in", ["nonlinear_stiffness"], t, T, phi, [phi - T / K0], rng, snr,
@@ -357,9 +362,7 @@ def build(seed):
 
         # 5-breakpoint table
         nm = f"in_table5_{j}"
-        rng = R(nm)
-        n = int(rng.integers(600, 1400))
-        t, T = sine_path(n, cycles=2.3)
+        rng, t, T = sine_case(nm, 600, 1400, 2.3)
         comp = np.array([1.0, 0.88, 0.74, 0.62, 0.52, 0.46]) * rng.uniform(0.95, 1.05)
         phi = table_twist(T, comp)
         recs.append(torsion_rec(nm, "in", ["nonlinear_stiffness"], t, T, phi, [phi - T / K0], rng, snr,
@@ -367,9 +370,7 @@ def build(seed):
 
         # smooth (viscous-layer) dead zone
         nm = f"in_smoothdead_{j}"
-        rng = R(nm)
-        n = int(rng.integers(800, 1600))
-        t, T = sine_path(n, cycles=2.4)
+        rng, t, T = sine_case(nm, 800, 1600, 2.4)
         b = PHI_FS * rng.uniform(0.03, 0.06)
         w = TFS * rng.uniform(0.02, 0.05)
         dz = b * T / np.sqrt(T ** 2 + w ** 2)
@@ -379,9 +380,7 @@ def build(seed):
 
         # crack: compliance rising linearly with |T| on one sign
         nm = f"in_crackramp_{j}"
-        rng = R(nm)
-        n = int(rng.integers(700, 1500))
-        t, T = sine_path(n, cycles=2.4)
+        rng, t, T = sine_case(nm, 700, 1500, 2.4)
         a = rng.uniform(0.12, 0.25)
         sgn = 1 if j % 2 == 0 else -1
         open_side = (sgn * T) > 0
@@ -392,9 +391,7 @@ def build(seed):
 
         # stiffening + LuGre loop (weaker effect's SNR)
         nm = f"in_cubic_lugre_{j}"
-        rng = R(nm)
-        n = int(rng.integers(1000, 1700))
-        t, T = sine_path(n, cycles=2.6)
+        rng, t, T = sine_case(nm, 1000, 1700, 2.6)
         ratio = rng.uniform(1.8, 2.4)
         base = cubic_twist(T, ratio)
         u = lugre_joint(t, T, K0 * 5, TFS * rng.uniform(0.2, 0.3), sig0=40 * K0,
@@ -411,9 +408,7 @@ def build(seed):
 
         # kinematic error: 2x, 4x and a weak 6x harmonic of the wave generator angle
         nm = f"in_kinematic_{j}"
-        rng = R(nm)
-        n = int(rng.integers(1500, 2400))
-        t, T = sine_path(n, cycles=2.2, period_s=60.0)
+        rng, t, T = sine_case(nm, 1500, 2400, 2.2, period_s=60.0)
         revs = rng.uniform(25, 45)
         theta = 2 * np.pi * revs * t / t[-1] + rng.uniform(0, 2 * np.pi)
         a2 = PHI_FS * 0.01

@@ -81,14 +81,20 @@ def test_jump_that_stays_is_named_a_jump():
     assert g is not None and g.kind is GlitchKind.JUMP and g.sample == 601
 
 
-@pytest.mark.parametrize("kind", ["ar1", "lowpass", "random_walk", "quantised"])
-def test_clean_coloured_or_quantised_noise_still_agrees(params, kind):
+def _sensor(kind: str, seed: int):
+    """noise(sigma, n) of one sensor: AR(1) 0.95, 2nd-order low-pass at 5 % of Nyquist, white + random walk
+    (wander 0.7), or white quantised at 1.5 sigma."""
     def noise(sigma, n):
-        rng = np.random.default_rng(11)
+        rng = np.random.default_rng(seed)
         if kind == "quantised":
             return fs.quantise(sigma * rng.standard_normal(n), 1.5 * sigma)
         return fs.coloured_noise(rng, n, sigma, kind, rho=0.95, fc=0.05, wander=0.7)
-    T, y, _ = _clean(params, noise=noise)
+    return noise
+
+
+@pytest.mark.parametrize("kind", ["ar1", "lowpass", "random_walk", "quantised"])
+def test_clean_coloured_or_quantised_noise_still_agrees(params, kind):
+    T, y, _ = _clean(params, noise=_sensor(kind, 11))
     d = _diagnose(params, T, y)
     assert d.verdict is Verdict.AGREES, d.structure
 
@@ -129,11 +135,7 @@ def test_clean_long_recording_raises_no_glitch(params, kind):
     # every row is checked (the fit sees every 4th): the full-rate residual's own noise model keeps the
     # innovations standard-normal for each noise colour. (The goodness-of-fit test itself is not under test
     # here: on this random-walk draw it reads the wander as rate dependence, with or without the glitch check.)
-    def noise(sigma, n):
-        rng = np.random.default_rng(13)
-        if kind == "quantised":
-            return fs.quantise(sigma * rng.standard_normal(n), 1.5 * sigma)
-        return fs.coloured_noise(rng, n, sigma, kind, rho=0.95, fc=0.05, wander=0.7)
+    noise = _sensor(kind, 13)
     T, y, sigma = _clean(params, n=10_000, noise=noise)
     d = _diagnose(params, T, y)
     assert "departs from the model" not in d.structure
