@@ -11,14 +11,18 @@ from .effects.base import Context
 from .recording import Recording
 
 
-def build_context(rec: Recording, baseline: Baseline) -> Context:
-    """Normalise: u = load / max|load|, y = response / (c0 max|load|), t in [0, 1]."""
-    X = float(np.max(np.abs(rec.load)))
+def build_context(rec: Recording, baseline: Baseline, *, X: float | None = None,
+                  time_map: tuple[float, float] | None = None) -> Context:
+    """Normalise: u = load / max|load|, y = response / (c0 max|load|), t in [0, 1].
+
+    ``X`` and ``time_map`` = (t0, span), in the recording's time (or row index) units, put the recording in
+    another context's normalisation (the full recording in that of its fitted subsample)."""
+    X = float(np.max(np.abs(rec.load))) if X is None else X
     Y = baseline.compliance * X
     u = rec.load / X
     t_raw = rec.time_s if rec.time_s is not None else np.arange(rec.n, dtype=float)
-    span = float(t_raw[-1] - t_raw[0])
-    t = (t_raw - t_raw[0]) / span if span > 0 else np.linspace(0.0, 1.0, rec.n)
+    t0, span = (float(t_raw[0]), float(t_raw[-1] - t_raw[0])) if time_map is None else time_map
+    t = (t_raw - t0) / span if span > 0 else np.linspace(0.0, 1.0, rec.n)
     segments = find_segments(u, reversal_threshold(u))
     direction = np.empty(rec.n)
     for start, stop, d in segments:

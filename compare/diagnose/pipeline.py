@@ -36,7 +36,7 @@ from ...io_atomic import atomic_write_text, json_ready
 from . import rate_loop
 from .baseline import Baseline, analytic_baseline, fea_baseline
 from .channels import stuck_channel
-from .context import build_context, find_segments, reversal_threshold
+from .context import build_context
 from .effects import effects_for
 from .effects.loop import ARCMIN_PER_RAD, loop_quantities
 from .explain import explain
@@ -208,23 +208,14 @@ def _subsample(rec: Recording) -> Recording:
                                extra={c: v[::k] for c, v in rec.extra.items()})
 
 
-def _full_residual(rec: Recording, ctx, fit: Fit) -> np.ndarray:
-    """Data minus ``fit`` on EVERY row of ``rec`` (the fit ran on every k-th), in the fit's normalisation: the
-    same scales X, Y and the same map of time onto [0, 1]."""
+def _full_residual(rec: Recording, base: Baseline, ctx, fit: Fit) -> np.ndarray:
+    """Data minus ``fit`` on EVERY row of ``rec`` (the fit ran on every k-th, ``ctx``), in the fit's
+    normalisation: the same scales and the same map of time onto [0, 1]."""
     stride = _stride(rec.n)
-    t_raw = rec.time_s if rec.time_s is not None else np.arange(rec.n, dtype=float) / stride
-    sub = t_raw[::stride]
-    span = float(sub[-1] - sub[0])
-    t = (t_raw - sub[0]) / span if span > 0 else np.linspace(0.0, 1.0, rec.n)
-    u = rec.load / ctx.X
-    segments = tuple(find_segments(u, reversal_threshold(u)))
-    direction = np.empty(rec.n)
-    for a, b, d in segments:
-        direction[a:b] = d
-    full = dataclasses.replace(ctx, u=u, y=rec.response / ctx.Y, t=t, direction=direction, segments=segments,
-                               angle=rec.extra.get("input_angle_rad"))
+    fitted = rec.time_s[::stride] if rec.time_s is not None else np.arange(0, rec.n, stride, dtype=float)
+    full = build_context(rec, base, X=ctx.X, time_map=(float(fitted[0]), float(fitted[-1] - fitted[0])))
     b0, b1, s = fit.nuisance
-    model = b0 + b1 * t + s * u
+    model = b0 + b1 * full.t + s * full.u
     for e, th in zip(fit.effects, fit.split_theta()):
         model = model + e.contribution(full, th)
     return full.y - model
@@ -391,7 +382,7 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
         else:
             # a glitch on a row the fit skipped is a glitch all the same: the final model on every row, judged
             # against the noise model of that full-rate residual (the fitted rows' noise model is per stride)
-            r_full = _full_residual(rec, ctx, final)
+            r_full = _full_residual(rec, base, ctx, final)
             glitch = find_glitch(r_full, fine_scale_noise(r_full), np.arange(rec.n), rec.response, rec.load)
         if glitch is not None:
             glitch_only = verdict is Verdict.AGREES
