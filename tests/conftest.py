@@ -1,6 +1,7 @@
 """Shared test set-up: one BLAS thread per process (2-core machine), off-screen rendering only."""
 import importlib.util
 import os
+import signal
 import sys
 from contextlib import contextmanager
 from pathlib import Path
@@ -9,6 +10,13 @@ import pytest
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+# A run started in the background of a non-interactive shell (`make test &`, nohup, some CI runners) inherits
+# SIGINT ignored (POSIX), and an ignored signal stays ignored across exec: the interrupt tests, and the CLI
+# processes they signal, would then never see the Ctrl-C they test (3 failures on such a run). The suite tests
+# what an interactive user gets, so it restores Python's handler; its children then start with SIGINT default.
+if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
 STRAINWAVE = str(Path(sys.executable).with_name("strainwave"))
 
