@@ -122,7 +122,11 @@ def _size_fields(model, size_mm: float, refine: Sequence[Refine], group_tags: Ma
         gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
 
 
-def _options(size_mm: float) -> None:
+# gmsh's default: tetrahedra below this quality are optimised
+OPTIMIZE_THRESHOLD = 0.3
+
+
+def _options(size_mm: float, optimize_threshold: float = OPTIMIZE_THRESHOLD) -> None:
     import gmsh
     gmsh.option.setNumber("Mesh.MeshSizeMax", size_mm)
     gmsh.option.setNumber("Mesh.MeshSizeMin", 0.0)
@@ -133,15 +137,18 @@ def _options(size_mm: float) -> None:
     gmsh.option.setNumber("Mesh.Algorithm3D", 10)
     gmsh.option.setNumber("General.NumThreads", 1)
     gmsh.option.setNumber("Mesh.Optimize", 1)
+    gmsh.option.setNumber("Mesh.OptimizeThreshold", optimize_threshold)
 
 
 def generate(model, dim: int, order: int, *, size_mm: float, refine: Sequence[Refine] | None = None,
-             group_tags: Mapping[str, list[int]] | None = None) -> None:
+             group_tags: Mapping[str, list[int]] | None = None,
+             optimize_threshold: float = OPTIMIZE_THRESHOLD) -> None:
     """Options, size fields and meshing of the synchronised ``model``; gmsh errors -> MeshingFailed.
 
     The one meshing tail of every builder here and of other fea modules that draw their own geometry
-    (e.g. the axisymmetric shaft section)."""
-    _options(size_mm)
+    (e.g. the axisymmetric shaft section). ``optimize_threshold``: tetrahedra below this quality are
+    optimised (gmsh's Mesh.OptimizeThreshold)."""
+    _options(size_mm, optimize_threshold)
     _size_fields(model, size_mm, refine or (), group_tags or {}, dim)
     try:
         _generate(model, dim, order)
@@ -228,7 +235,7 @@ def extract(model, dim: int, order: int, group_tags: Mapping[str, tuple[int, lis
 
 
 def mesh_part(model, part, *, size_mm: float, order: int = 2, refine: Sequence[Refine] | None = None,
-              match_tol_mm: float | None = None) -> MeshData:
+              match_tol_mm: float | None = None, optimize_threshold: float = OPTIMIZE_THRESHOLD) -> MeshData:
     """Tetrahedral mesh of ``part.solid`` with one physical group per entry of ``part.named_faces``.
 
     Parameters
@@ -238,6 +245,7 @@ def mesh_part(model, part, *, size_mm: float, order: int = 2, refine: Sequence[R
         ``crack_surface`` (CrackModel.SEAM) gets it embedded as the conforming internal group "crack".
     size_mm : global element size; ``refine`` adds local sizes (crack front points, named faces).
     order : 1 (straight P1) or 2 (curved P2).
+    optimize_threshold : tetrahedra below this quality are optimised (see ``generate``).
     """
     _import_shape(model, part.solid)
     if not model.getEntities(3):
@@ -251,7 +259,8 @@ def mesh_part(model, part, *, size_mm: float, order: int = 2, refine: Sequence[R
     for name, tags in group_tags.items():
         model.addPhysicalGroup(2, tags, name=name)
     model.addPhysicalGroup(3, [t for _, t in model.getEntities(3)], name="solid")
-    generate(model, 3, order, size_mm=size_mm, refine=refine, group_tags=group_tags)
+    generate(model, 3, order, size_mm=size_mm, refine=refine, group_tags=group_tags,
+             optimize_threshold=optimize_threshold)
     return extract(model, 3, order, {n: (2, t) for n, t in group_tags.items()}, size_mm)
 
 

@@ -6,18 +6,20 @@ from typing import Callable, Sequence
 
 from ..errors import StageError
 from .mesh_data import MeshData
-from .meshing import MeshingFailed, Refine, mesh_part
+from .meshing import OPTIMIZE_THRESHOLD, MeshingFailed, Refine, mesh_part
 from .session import gmsh_session
 
 
 def mesh_for_study(part, *, study: str, h_mm: float, order: int, refine: Sequence[Refine] = (),
-                   progress: Callable[[str], None] = lambda m: None) -> tuple[MeshData, float]:
+                   progress: Callable[[str], None] = lambda m: None,
+                   optimize_threshold: float = OPTIMIZE_THRESHOLD) -> tuple[MeshData, float]:
     """(mesh, seconds spent meshing); a gmsh failure becomes ``StageError("mesh", study, ...)`` (exit 1)."""
     t0 = time.perf_counter()
     progress(f"{study}: meshing h = {h_mm:.3g} mm")
     try:
         with gmsh_session() as model:
-            md = mesh_part(model, part, size_mm=h_mm, order=order, refine=list(refine))
+            md = mesh_part(model, part, size_mm=h_mm, order=order, refine=list(refine),
+                           optimize_threshold=optimize_threshold)
     except MeshingFailed as exc:
         raise StageError("mesh", study, str(exc)) from exc
     return md, time.perf_counter() - t0
