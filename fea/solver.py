@@ -7,6 +7,7 @@ by benchmarks/bench_fea.py (see its output); below it SuperLU is both faster and
 """
 from __future__ import annotations
 
+import contextlib
 import functools
 import time
 from dataclasses import dataclass
@@ -188,7 +189,8 @@ def _direct(A: sp.csr_matrix, b: np.ndarray, study: str) -> tuple[np.ndarray, st
     installed, else SuperLU. Measured on the 54k-dof flexspline cup: PARDISO 3.0 s / 0.4 GB, SuperLU
     22 s (COLAMD) to 80 s (MMD), AMG-CG 38 s (470 iterations: thin walls are hard for aggregation)."""
     try:
-        import pypardiso
+        with _mkl_rt_known():
+            import pypardiso
     except ImportError:
         pypardiso = None
     if pypardiso is not None:
@@ -210,19 +212,29 @@ def _direct(A: sp.csr_matrix, b: np.ndarray, study: str) -> tuple[np.ndarray, st
 
 
 def _pardiso_solver(pypardiso):
-    """A PyPardisoSolver for real symmetric positive definite matrices (mtype 2), told where mkl_rt is.
+    """A PyPardisoSolver for real symmetric positive definite matrices (mtype 2), told where mkl_rt is."""
+    with _mkl_rt_known():
+        return pypardiso.PyPardisoSolver(mtype=2)
 
-    Without PYPARDISO_MKL_RT, every PyPardisoSolver() runs ctypes' find_library (ldconfig and gcc
-    subprocesses) and then globs the whole venv recursively for the library: 0.47 s per solve, 2.8 s
-    of a 30 s quick cup case (six solves, cProfile). The library sits in the environment's lib/
-    (the mkl wheel), so one non-recursive look finds it; the variable is set only for the constructor."""
+
+@contextlib.contextmanager
+def _mkl_rt_known():
+    """PYPARDISO_MKL_RT set to the environment's mkl_rt while a PyPardisoSolver is made.
+
+    Without it, every PyPardisoSolver() runs ctypes' find_library (ldconfig and gcc subprocesses) and
+    then globs the whole venv recursively for the library: 0.47 s per solve, 2.8 s of a 30 s quick cup
+    case (six solves, cProfile). ``import pypardiso`` makes one at import (its scipy aliases' solver):
+    0.47-0.50 s of every case child that solves directly (cup, ring), 0.0 s with the variable. The library
+    sits in the environment's lib/ (the mkl wheel), so one non-recursive look finds it; the variable is set
+    only for the constructor (a user's own setting is kept)."""
     import os
     path = _mkl_rt()
     if path is None or "PYPARDISO_MKL_RT" in os.environ:
-        return pypardiso.PyPardisoSolver(mtype=2)
+        yield
+        return
     os.environ["PYPARDISO_MKL_RT"] = path
     try:
-        return pypardiso.PyPardisoSolver(mtype=2)
+        yield
     finally:
         del os.environ["PYPARDISO_MKL_RT"]
 
