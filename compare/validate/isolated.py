@@ -39,6 +39,7 @@ class ChildOutcome:
     result: dict | None       # StudyResult.to_dict() of the finished case
     error: str                # "" on success
     seconds: float
+    cpu_s: float | None = None   # CPU time of the case process (see _cpu_seconds); None when it failed
 
 
 _PR_SET_PDEATHSIG = 1   # linux/prctl.h
@@ -79,13 +80,22 @@ def _child(conn, study: str, params, kwargs: dict) -> None:
             send_or_exit(conn, ("progress", msg))
 
         result = run_study(study, params, progress=progress, **kwargs)
-        send_or_exit(conn, ("result", result.to_dict()))
+        send_or_exit(conn, ("result", (result.to_dict(), _cpu_seconds())))
     except BaseException as exc:  # noqa: BLE001 - everything goes back to the parent as text
         last = traceback.extract_tb(exc.__traceback__)[-1:] if exc.__traceback__ else []
         where = f" at {last[0].filename.rsplit('/', 1)[-1]}:{last[0].lineno}" if last else ""
         send_or_exit(conn, ("error", f"{type(exc).__name__}: {exc}{where}"))
     finally:
         conn.close()
+
+
+def _cpu_seconds() -> float:
+    """CPU time (user + system) of this case process and of the processes it started and waited for
+    (the bearing's mesh attempts). A forked child starts from zero. Unlike the wall time it hardly
+    depends on what else runs on the machine, so it states what a case costs."""
+    import resource
+    own, kids = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+    return own.ru_utime + own.ru_stime + kids.ru_utime + kids.ru_stime
 
 
 def _context():
@@ -105,7 +115,7 @@ def run_isolated(study: str, params, kwargs: dict, *, timeout_s: float,
     start = time.perf_counter()
     process.start()
     child_conn.close()
-    result, error = None, ""
+    result, error, cpu_s = None, "", None
     try:
         while True:
             remaining = timeout_s - (time.perf_counter() - start)
@@ -121,7 +131,7 @@ def run_isolated(study: str, params, kwargs: dict, *, timeout_s: float,
                 if kind == "progress":
                     progress(payload)
                     continue
-                result, error = (payload, "") if kind == "result" else (None, payload)
+                (result, cpu_s), error = (payload, "") if kind == "result" else ((None, None), payload)
                 break
             if not process.is_alive() and not parent_conn.poll(0):
                 error = _death(process)
@@ -132,7 +142,7 @@ def run_isolated(study: str, params, kwargs: dict, *, timeout_s: float,
             process.kill()
         process.join(5)
         parent_conn.close()
-    return ChildOutcome(result, error, time.perf_counter() - start)
+    return ChildOutcome(result, error, time.perf_counter() - start, cpu_s)
 
 
 def _children_of() -> dict[int, list[int]]:

@@ -116,7 +116,8 @@ def _case_record(outcome: CaseOutcome, out_dir: Path) -> dict:
         result = outcome.result.to_dict()
         result["fields"] = [_relative(p, out_dir) for p in outcome.result.fields]
     return {"label": outcome.case.label, "study": outcome.case.study, "crack_depth_mm": outcome.case.crack_depth_mm,
-            "ok": outcome.ok, "cached": outcome.cached, "seconds": outcome.seconds, "error": outcome.error,
+            "ok": outcome.ok, "cached": outcome.cached, "seconds": outcome.seconds, "cpu_s": outcome.cpu_s,
+            "error": outcome.error,
             "result": result}
 
 

@@ -36,6 +36,7 @@ class CaseOutcome:
     seconds: float          # wall time of the computation (of the original run when cached)
     cached: bool
     error: str = ""
+    cpu_s: float | None = None   # CPU time of the case process (of the original run when cached)
 
     @property
     def ok(self) -> bool:
@@ -64,7 +65,8 @@ def run_case(case: Case, params, *, fields_dir: Path, cache: ResultCache, quick:
             result = StudyResult.from_dict(hit["result"])
             if all(Path(p).exists() for p in result.fields):
                 progress(f"  {case.label}: reusing cached {_describe(case)} (computed in {hit['seconds']:.1f} s)")
-                return CaseOutcome(case, result, float(hit["seconds"]), True)
+                cpu = hit.get("cpu_s")
+                return CaseOutcome(case, result, float(hit["seconds"]), True, cpu_s=None if cpu is None else float(cpu))
         except (KeyError, TypeError, ValueError):
             pass  # an entry from an older layout is recomputed
     progress(f"  {case.label}: solving {_describe(case)} ...")
@@ -78,6 +80,7 @@ def run_case(case: Case, params, *, fields_dir: Path, cache: ResultCache, quick:
         progress(f"  {case.label}: FAILED after {child.seconds:.1f} s ({child.error})")
         return CaseOutcome(case, None, child.seconds, False, child.error)
     result = StudyResult.from_dict(child.result)
-    cache.put(key, {"case": case.label, "seconds": child.seconds, "result": child.result})
-    progress(f"  {case.label}: done in {child.seconds:.1f} s ({result.mesh.dofs} dofs)")
-    return CaseOutcome(case, result, child.seconds, False)
+    cache.put(key, {"case": case.label, "seconds": child.seconds, "cpu_s": child.cpu_s, "result": child.result})
+    cpu = "" if child.cpu_s is None else f", {child.cpu_s:.1f} s CPU"
+    progress(f"  {case.label}: done in {child.seconds:.1f} s ({result.mesh.dofs} dofs{cpu})")
+    return CaseOutcome(case, result, child.seconds, False, cpu_s=child.cpu_s)
