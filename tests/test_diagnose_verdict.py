@@ -333,3 +333,44 @@ def test_second_order_low_pass_sensor_raises_no_alarm(params, seed):
     smooth /= np.std(smooth)
     diag, _ = _diagnose(params, lambda u, t, c: 2e-3 * smooth, n=n, sigma=0.0)
     assert diag.verdict is Verdict.AGREES and not diag.mismatch, diag.structure
+
+
+def test_a_second_effect_of_noise_size_is_not_named_but_one_of_eight_sigmas_is(params):
+    """A friction loop (15 sigma) and a crack adding compliance under positive torque: at 8 noise sigmas at full
+    load the crack is a second finding (pipeline.MIN_COMPONENT_SIGMAS must not hide it)."""
+    sigma = 2e-3
+    diag, _ = _diagnose(params, lambda u, t, c: -0.03 * _bouc_wen(u) + 8.0 * sigma * np.maximum(u, 0.0),
+                        n=1600, sigma=sigma)
+    assert diag.verdict is Verdict.EXPLAINED
+    assert set(diag.named) == {"hysteresis", "crack_closure"}
+
+
+def test_contact_stiffening_is_not_a_backlash_without_a_clearance(params):
+    """Stiffening by a spreading contact, twist += B sgn(u) ((1 + |u|/u_c)^(2/3) - 1) (no clearance at all),
+    is drawn equally well by the flank-contact backlash form with a clearance far below the noise: a backlash
+    is its clearance (Effect.signature), so the stiffening is named."""
+    diag, _ = _diagnose(params, lambda u, t, c: 0.01 * np.sign(u) * ((1 + np.abs(u) / 0.2) ** (2 / 3) - 1),
+                        n=1600, sigma=1e-3)
+    assert diag.verdict is Verdict.EXPLAINED
+    assert diag.named == ("nonlinear_stiffness",)
+
+
+def test_a_loop_that_never_crosses_zero_torque_is_read_mid_range(params):
+    """A unipolar test (0 -> full scale -> 0) holds no width at zero torque, where its branches meet: the loop
+    is read at the middle of the recorded range, where a dissipative loop is open, and said to be so."""
+    rng = np.random.default_rng(3)
+    n = 1200
+    u = _path(n, knots=(0, 1, 0, 1, 0, 1, 0))
+    ctx = _ctx(params, u)
+    loop = -0.03 * _bouc_wen(u)
+    y = u + 0.01 + loop + 1e-3 * rng.standard_normal(n)
+    rec = parse_text(format_recording(K, "output_shaft", u * X, y * ctx.Y))
+    diag = diagnose(rec, params)[0]
+    assert diag.verdict is Verdict.EXPLAINED and "hysteresis" in diag.named
+    assert diag.quantity("hysteresis_loss_read_at_load") == pytest.approx(0.5 * X, rel=1e-3)
+    # the steady loop of the last full cycle: unloading over rows 600-800, reloading over rows 800-1000
+    true_width = float(np.interp(0.5, u[600:800][::-1], loop[600:800][::-1]) -
+                       np.interp(0.5, u[800:1000], loop[800:1000])) * ctx.Y * 60 * 180 / math.pi
+    assert true_width > 0.0
+    assert diag.quantity("hysteresis_loss_arcmin") == pytest.approx(true_width, rel=0.10)
+    assert "never crosses zero torque" in diag.explanation

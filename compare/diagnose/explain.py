@@ -9,6 +9,13 @@ def loss_sentence(quantities: dict) -> str:
     and a caveat where the recording holds a single full-scale cycle."""
     if "hysteresis_loss_arcmin" not in quantities:
         return ""
+    at, unit = quantities.get("hysteresis_loss_read_at_load", (0.0, ""))
+    if at != 0.0:
+        # a test that never crosses zero torque (unipolar, about a preload) holds no width at zero torque
+        return (f"Loop width {quantities['hysteresis_loss_arcmin'][0]:.4g}{_pm(quantities)} arcmin, read at "
+                f"{at:.4g} {unit}, the middle of the recorded load range (from the fitted loop model): the test never "
+                f"crosses zero torque, so the catalogue's hysteresis loss (the width at zero torque of a +/- rated "
+                f"torque cycle) is not measured by it.")
     cycles = quantities.get("hysteresis_full_scale_cycles", (2, ""))[0]
     # a joint without return-point memory (Bouc-Wen-like) settles over cycles: its first full-scale cycle may
     # be wider than the steady one the catalogue quotes (up to 13 % over family 2's laws)

@@ -38,7 +38,7 @@ from .baseline import Baseline, analytic_baseline, fea_baseline
 from .channels import stuck_channel
 from .context import build_context
 from .effects import effects_for
-from .effects.loop import ARCMIN_PER_RAD, loop_quantities
+from .effects.loop import ARCMIN_PER_RAD, loop_quantities, width_load
 from .explain import explain
 from .fit import NOISE_FLOOR, Fit, fit_effects, lag1, rescored
 from .glitches import find_glitch
@@ -52,6 +52,14 @@ BIC_THRESHOLD = 10.0       # "very strong" on the Kass-Raftery scale
 AMBIGUOUS_BIC = 6.0        # "strong": closer than this, the data cannot tell the two apart
 MAX_GOF_TRIES = 12         # model forms offered the goodness-of-fit test, best BIC first (3-4 forms per effect)
 LOSS_CONTRADICTION = 2.58  # standard errors (99 %): the data's width at zero torque overrides the loop model's
+# A named effect must be of a size a user can see: its defining part (Effect.signature: a backlash's clearance,
+# not its flanks' stiffening) must swing by this many white-noise sigmas over the record. The benchmarks
+# call an effect measurable from 3 sigma (the issue's "signal >= 3x noise", after the nuisance fit, which can
+# halve a one-sided effect); half of that leaves a factor two for a fitted contribution short of the true one.
+# Below it, many samples make a sub-noise misfit of another model form "significant": a Preisach loop drew a
+# crack of open/closed stiffness ratio 0.9994 beside it (peak 1.1 sigma, delta BIC 18; family 2, all three
+# seeds), and a contact-spread stiffening a backlash of 0.05 arcmin clearance at 0.1 arcmin noise (heldout4)
+MIN_COMPONENT_SIGMAS = 1.5
 MAX_FIT_ROWS = 2500        # model selection on an evenly strided subsample beyond this (speed, issue 12)
 # Pairs that cannot be told apart: both are a pure linear compliance change.
 _DEGENERATE = {frozenset({"compliance_offset", "thick_ring"})}
@@ -309,6 +317,8 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
         first = next(s for s in ranked_singles if s.id == p.effects[0].id)
         if first.bic - p.bic <= BIC_THRESHOLD:
             continue                         # the second effect is not significant given the first
+        if _unresolved(ctx, p, sigma):
+            continue                         # one effect of the pair stays below the noise everywhere
         # it must explain a structure the first one cannot: some generic structure of the first's residual
         # loses more than 10 BIC units of evidence once the second effect is added
         before, after = gof(first), gof(p)
@@ -340,7 +350,7 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
             # a 5 %-uncertain simulation read "unexplained" at a residual on the noise)
             if not (gain > BIC_THRESHOLD or (gof_base.structured and gain > -AMBIGUOUS_BIC)):
                 break
-            if not gof(f).structured and not _implausible(ctx, f):
+            if not gof(f).structured and not _implausible(ctx, f) and not _unresolved(ctx, f, sigma):
                 best, gof_best = f, gof(f)
                 verdict = Verdict.EXPLAINED
                 named = tuple(e.id for e in f.effects)
@@ -436,6 +446,14 @@ def _rate_rival_margin(ctx, best: Fit, sigma: float, u_rel: float, noise) -> flo
     return float(rival.bic - best.bic)
 
 
+def _unresolved(ctx, fit: Fit, sigma: float) -> list[str]:
+    """Effects of ``fit`` whose defining part swings less than MIN_COMPONENT_SIGMAS white-noise sigmas over the
+    record (its range, what a user sees: a backlash's jump 2b, the lost motion it reports; a crack's added twist
+    at full load)."""
+    return [e.id for e, th in zip(fit.effects, fit.split_theta())
+            if float(np.ptp(e.signature_of(ctx, th))) < MIN_COMPONENT_SIGMAS * sigma]
+
+
 def _implausible(ctx, fit: Fit) -> list[str]:
     """Physics bounds of the fitted effects (each effect's own plausibility check)."""
     return [w for e, th in zip(fit.effects, fit.split_theta()) if e.plausible is not None
@@ -479,7 +497,8 @@ def _quantities(ctx, fit: Fit, sigma: float, other_forms: list[Fit] = ()) -> dic
             "hysteresis_energy_per_cycle_Nmm_rad": (energy, "N*mm*rad"),
             "hysteresis_loss_model_arcmin": (model_width * ARCMIN_PER_RAD, "arcmin"),
             "hysteresis_loss_form_spread_arcmin": (spread * ARCMIN_PER_RAD, "arcmin"),
-            "hysteresis_full_scale_cycles": (full_scale_cycles(ctx), "count"), **data}
+            "hysteresis_full_scale_cycles": (full_scale_cycles(ctx), "count"),
+            "hysteresis_loss_read_at_load": (width_load(ctx) * ctx.X, ctx.load_unit), **data}
 
 
 def _with_loss_error(ctx, fit: Fit, quantities: dict, ranked: RankedEffect) -> dict:

@@ -72,6 +72,12 @@ class Effect:
     # False for a form free enough that, beside another effect, the two draw a rig artefact between them (a free
     # one-sided curve beside a free odd one spans every even curve: a sensor's even nonlinearity)
     pairs: bool = True
+    # the part of the contribution that makes the effect what it is (a backlash's clearance band, not its flanks'
+    # contact stiffening): (ctx, theta) -> twist; None: the whole contribution
+    signature: Callable[[Context, np.ndarray], np.ndarray] | None = None
+
+    def signature_of(self, ctx: Context, theta: np.ndarray) -> np.ndarray:
+        return (self.signature or self.contribution)(ctx, theta)
 
     @property
     def label(self) -> str:
