@@ -335,7 +335,7 @@ def test_second_order_low_pass_sensor_raises_no_alarm(params, seed):
     assert diag.verdict is Verdict.AGREES and not diag.mismatch, diag.structure
 
 
-def test_a_second_effect_of_noise_size_is_not_named_but_one_of_eight_sigmas_is(params):
+def test_a_second_effect_of_eight_noise_sigmas_is_still_named(params):
     """A friction loop (15 sigma) and a crack adding compliance under positive torque: at 8 noise sigmas at full
     load the crack is a second finding (pipeline.MIN_COMPONENT_SIGMAS must not hide it)."""
     sigma = 2e-3
