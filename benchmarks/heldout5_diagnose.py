@@ -777,6 +777,120 @@ def build_all(seed: int):
                              F, t, y, sigma, 0.05, None, drift=False, snr_override=s_target,
                              extra={"q": q, "tau_s": tau}))
 
+    # ---------------- ring: more protocols and rig realities
+    # A thin ring of a soft steel: plasticity with a strong elastica beside it
+    for i in range(2):
+        sy = rng.uniform(250, 400)
+        Fy = thin.first_yield_force(sy)
+        over = rng.uniform(1.2, 1.5)
+        F, n = ring_path(rng, ["cycles", "preload"][i], over * Fy)
+        t = ring_time(len(F))
+        fr = FibreRing(thin, sy, rng.uniform(0.01, 0.05) * E_STEEL)
+        dpl = fr.run(F)
+        pl_inc = dpl - thin.c_thin * F
+        xlin = thin.c_thin_nom * F
+        sigma = np.max(np.abs(nuisance_resid(pl_inc, xlin, t))) / loguni(rng, 5, 50)
+        tab = ElasticaTable(thin, 0, 1.05 * F.max(), 31)
+        ld = tab(F) - thin.c_thin * F
+        y = dpl + ld
+        truth, opt, snrs = ring_effects_truth({"plasticity": pl_inc, "large_deflection": ld}, xlin, t, sigma)
+        recs.append(ring_rec(rng, f"ring_thin_plastic_{i}", "ring_plasticity", truth, opt, snrs, F, t, y, sigma,
+                             0.012, None, drift=True, extra={"sigma_y_MPa": sy, "F_first_yield_N": Fy,
+                                                             "F_peak_over_Fy": over,
+                                                             "delta_over_r": float(y.max() / thin.r)}))
+    # B large deflection at high signal (100 and 300 sigma), load-unload cycles
+    for i, sn_i in enumerate([100.0, 300.0]):
+        fmax = rng.uniform(15, 40)
+        F, n = ring_path(rng, "cycles", fmax)
+        t = ring_time(len(F))
+        xlin = thin.c_thin_nom * F
+        inc = ld_inc(thin, el_thin, F)
+        sigma = np.max(np.abs(nuisance_resid(inc, xlin, t))) / sn_i
+        y = (1 + rng.uniform(-0.5, 0.5) * 0.02) * thin.c_thin * F + inc
+        truth, opt, snrs = ring_effects_truth({"large_deflection": inc}, xlin, t, sigma)
+        recs.append(ring_rec(rng, f"ring_ld_high_{int(sn_i)}", "ring_large_deflection", truth, opt, snrs, F, t, y,
+                             sigma, 0.012, None, drift=True, extra={"F_max_N": fmax,
+                                                                    "delta_over_r": float(y.max() / thin.r)}))
+    # C plasticity with AR(1) noise; large deflection read by a quantised transducer
+    sy = loguni(rng, 400, 1000)
+    Fy = med.first_yield_force(sy)
+    over = rng.uniform(1.2, 1.5)
+    F, n = ring_path(rng, "increasing", over * Fy)
+    t = ring_time(len(F))
+    fr = FibreRing(med, sy, rng.uniform(0.01, 0.05) * E_STEEL)
+    dpl = fr.run(F)
+    pl_inc = dpl - med.c_thin * F
+    xlin = med.c_thin_nom * F
+    sigma = np.max(np.abs(nuisance_resid(pl_inc, xlin, t))) / loguni(rng, 8, 50)
+    ld = el_med(F) - med.c_thin * F
+    y = thick_ring_compliance(med) / med.c_thin * dpl + ld
+    truth, opt, snrs = ring_effects_truth({"plasticity": pl_inc, "large_deflection": ld}, xlin, t, sigma)
+    rho = rng.uniform(0.9, 0.97)
+    recs.append(ring_rec(rng, "ring_plastic_ar1", "ring_plasticity", truth, opt, snrs, F, t, y, sigma, 0.05, None,
+                         rho=rho, extra={"sigma_y_MPa": sy, "F_peak_over_Fy": over, "rho": rho}))
+    fmax = rng.uniform(15, 40)
+    F, n = ring_path(rng, "preload", fmax)
+    t = ring_time(len(F))
+    xlin = thin.c_thin_nom * F
+    inc = ld_inc(thin, el_thin, F)
+    sigma = np.max(np.abs(nuisance_resid(inc, xlin, t))) / loguni(rng, 5, 50)
+    qs = rng.uniform(0.5, 2.0) * sigma
+    truth, opt, snrs = ring_effects_truth({"large_deflection": inc}, xlin, t, sigma)
+    recs.append(ring_rec(rng, "ring_ld_quantised", "ring_large_deflection", truth, opt, snrs, F, t,
+                         thin.c_thin * F + inc, sigma, 0.012, None, q=qs, extra={"quantum_over_sigma": qs / sigma}))
+    # D out of catalogue on a ring: non-linear thermal drift of the displacement channel; a spike
+    for i in range(2):
+        fmax = 0.6 * med.first_yield_force(600.0)
+        F, n = ring_path(rng, ["cycles", "preload"][i], fmax)
+        t = ring_time(len(F))
+        xlin = med.c_thin_nom * F
+        sigma = np.max(np.abs(xlin)) / loguni(rng, 100, 1000)
+        Fs = 1.0
+        while True:  # elastica below the noise
+            ld = el_med(F * Fs) - med.c_thin * F * Fs
+            _, opt, snrs = ring_effects_truth({"large_deflection": ld}, xlin * Fs, t, sigma * Fs)
+            if not opt:
+                break
+            Fs *= 0.7
+        F, xlin, sigma = F * Fs, xlin * Fs, sigma * Fs
+        y = thick_ring_compliance(med) * F + ld
+        if i == 0:
+            tt = t / t[-1]
+            shape = (1 - np.exp(-tt / rng.uniform(0.1, 0.3))) + rng.uniform(0.2, 0.6) * np.sin(
+                2 * math.pi * tt * rng.uniform(1.2, 2.5))
+            s_t = loguni(rng, 6, 50)
+            y = y + s_t * sigma * shape / np.max(np.abs(nuisance_resid(shape, xlin, t)))
+            recs.append(ring_rec(rng, "ring_thermal_drift", "ooc:thermal_drift_nonlinear", "ooc:thermal_drift_nonlinear",
+                                 [], snrs, F, t, y, sigma, 0.05, None, snr_override=s_t))
+        else:
+            j = int(rng.integers(50, len(F) - 50))
+            amp = float(rng.uniform(12, 40) * rng.choice([-1, 1]))
+            recs.append(ring_rec(rng, "ring_spike", "ooc:spike", "ooc:spike", [], snrs, F, t, y, sigma, 0.05, None,
+                                 spikes=[(j, amp)], snr_override=abs(amp), extra={"spikes": [(j, amp)]}))
+    # E compliance offset against a tight (0.5 %) and a loose (5 %) stated uncertainty
+    for i, (u, z_t) in enumerate([(0.005, rng.uniform(5, 12)), (0.05, rng.uniform(0.8, 1.4))]):
+        ratio_c = 1 + z_t * u
+        rg = Ring(0.012, h_scale=ratio_c ** (-1 / 3))
+        z = abs(rg.c_thin / rg.c_thin_nom - 1) / u
+        F0, n = ring_path(rng, "cycles", 1.0)
+        rel = loguni(rng, 300, 3000)
+        fmax = rng.uniform(2, 5)
+        while True:
+            F = F0 * fmax
+            t = ring_time(len(F))
+            xlin = rg.c_thin_nom * F
+            sigma = np.max(np.abs(xlin)) / rel
+            ld = ElasticaTable(rg, 0, 10, 11)(F) - rg.c_thin * F
+            _, opt, s_ld = ring_effects_truth({"large_deflection": ld}, xlin, t, sigma)
+            if not opt:
+                break
+            fmax *= 0.7
+        truth = ["compliance_offset"] if z >= 4 else []
+        recs.append(ring_rec(rng, f"ring_offset_u{u}", "ring_compliance_offset" if truth else
+                             "clean_ring_offset_within_prior", truth, [], {"compliance_offset": z, **s_ld}, F, t,
+                             rg.c_thin * F + ld, sigma, 0.012, u, extra={"compliance_ratio": rg.c_thin / rg.c_thin_nom},
+                             snr_override=z if truth else None))
+
     # ================= torsion
     K = 7.89e8  # given linear stiffness, N mm / rad (a 70/45 mm shaft of 200 mm)
 
@@ -823,7 +937,7 @@ def build_all(seed: int):
         recs.append(tors_rec(f"tors_clean_quantised_{i}", "clean_torsion_quantised", [], [], {}, T, t, phi, sigma,
                              q=qs, extra={"quantum_over_sigma": qs / sigma}))
     # clean AR(1)
-    for i in range(3):
+    for i in range(5):
         n = int(rng.integers(800, 2500))
         tmax = rng.uniform(2e5, 8e5)
         T = tors_path(n, tmax, cycles=int(rng.integers(1, 4)))
@@ -844,8 +958,8 @@ def build_all(seed: int):
                              T, t, phi, sigma, extra={"rows": n}))
     # in catalogue: short stiffening, quantised stiffening, AR(1) stiffening, long crack
     specs = [("short", "nonlinear_stiffness"), ("quantised", "nonlinear_stiffness"), ("ar1", "nonlinear_stiffness"),
-             ("long", "crack_closure")]
-    sn = snr_plan(4, n300=1)
+             ("long", "crack_closure"), ("quantised", "crack_closure"), ("short", "crack_closure")]
+    sn = snr_plan(6, n300=1)
     for i, (what, eff) in enumerate(specs):
         n = {"short": int(rng.integers(60, 151)), "long": 20000}.get(what, int(rng.integers(800, 2000)))
         tmax = rng.uniform(3e5, 8e5)
@@ -867,7 +981,7 @@ def build_all(seed: int):
         recs.append(tors_rec(f"tors_{what}_{eff}", f"torsion_{eff}", [eff], [], {eff: sn[i]}, T, t, phi, sigma,
                              noise=noise, rho=rho, q=qs, extra={"rows": n, "rho": rho, **params}))
     # OOC: torque sensor quadratic non-linearity
-    for i in range(3):
+    for i in range(5):
         n = int(rng.integers(800, 2000))
         tmax = rng.uniform(3e5, 8e5)
         Ttrue = tors_path(n, tmax)
@@ -883,7 +997,7 @@ def build_all(seed: int):
                              [], {"sensor": s_target}, Tm, t, phi, sigma, snr_override=s_target,
                              extra={"k_fs": kq}))
     # OOC: non-linear thermal drift
-    for i in range(3):
+    for i in range(4):
         n = int(rng.integers(1000, 3000))
         tmax = rng.uniform(3e5, 8e5)
         T = tors_path(n, tmax, cycles=int(rng.integers(2, 5)))
@@ -954,12 +1068,16 @@ def ring_path(rng, proto, fmax):
 
 
 def ring_rec(rng, name, cls, truth, opt, snrs, F, t, y, sigma, ratio, u, drift=True, rho=0.0, extra=None,
-             snr_override=None):
+             snr_override=None, q=0.0, spikes=()):
     n = len(F)
     e = ar1(rng, n, rho, sigma) if rho > 0 else rng.normal(0, sigma, n)
     off = rng.normal(0, 20 * sigma)
     dr = rng.normal(0, 5 * sigma) * t / t[-1] if drift else 0.0
     meas = y + e + off + dr
+    if q > 0:  # quantised displacement transducer
+        meas = np.round(meas / q) * q
+    for (j, amp) in spikes:
+        meas[j] += amp * sigma
     if isinstance(truth, list):
         s = snr_override if snr_override is not None else (min(snrs[k] for k in truth) if truth else None)
     else:
