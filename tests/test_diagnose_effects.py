@@ -172,3 +172,48 @@ def test_crack_still_opening_at_full_load_is_named_crack_closure(params, side):
     d = diagnose(parse_text(format_recording(RecordingKind.TORSION, "output_shaft", u * X, y)), params)[0]
     assert d.named == ("crack_closure",), (d.verdict, d.named, d.structure)
     assert d.effects[0].parameters["open_under_load_sign"][0] == side
+
+
+@pytest.mark.parametrize("q", [0.0, 1.0 / 3.0, 0.75])
+def test_contact_stiffening_never_levels_off_like_a_clearance(params, q):
+    """The contact variant (Hertzian spreading contact) stiffens from zero load on, and its extra twist over the
+    full-load tangent keeps growing with load even at its sharpest (x_c at its bound); a clearance's extra
+    twist levels off past its band (lost_motion at its widest band): what keeps the two physics apart."""
+    from strainwave.compare.diagnose.effects import lost_motion, nonlinear_stiffness
+    contact = nonlinear_stiffness.CONTACT
+    u = np.linspace(0.0, 1.0, 2001)
+    ctx = build_context(*(lambda p: (p, analytic_baseline(p, params)))(
+        parse_text(format_recording(RecordingKind.TORSION, "output_shaft", u * 1e6, u))))
+    s = 1.0
+    lx_min = contact.params[1].lo
+    y = s * ctx.u + contact.contribution(ctx, np.array([0.3, lx_min, q]))
+    compliance = np.gradient(y, ctx.u)
+    assert np.all(compliance > 0.0)
+    assert np.all(np.diff(compliance[5:-5]) <= 1e-12)          # stiffer at every higher load
+    # twist above the full-load tangent line through the origin's continuation: its gain from half to full load
+    extra = y - compliance[-1] * ctx.u
+    half, full = np.interp(0.5, u, extra), extra[-1]
+    assert full - half > 0.05 * half
+    band = lost_motion.EFFECT.contribution(ctx, np.array([0.3, lost_motion.LOG10_W_MAX, 0.0]))
+    assert band[-1] - np.interp(0.5, u, band) < 1e-3 * np.interp(0.5, u, band)
+
+
+def test_contact_stiffening_reports_the_catalogue_slopes(params):
+    """K1 is the tangent stiffness at zero load, K3 at the largest load; at T1 and T2 the compliance has made 1/3
+    and 2/3 of its fall: read off the curve itself (numerical tangent), not off the formula that reports them."""
+    from strainwave.compare.diagnose.effects import nonlinear_stiffness
+    contact = nonlinear_stiffness.CONTACT
+    u = np.linspace(-1.0, 1.0, 4001)
+    probe = parse_text(format_recording(RecordingKind.TORSION, "output_shaft", u * 1e6, u))
+    ctx = build_context(probe, analytic_baseline(probe, params))
+    theta, s = np.array([0.4, -0.8, 0.4]), 1.1
+    rep = contact.report(ctx, theta, s)
+    compliance = np.gradient(s * ctx.u + contact.contribution(ctx, theta), ctx.u) * ctx.c0   # rad per N*mm
+    m = ctx.u * ctx.X
+    at = lambda load: float(np.interp(load, m[2001:], compliance[2001:]))           # noqa: E731
+    assert rep["K1"][0] == pytest.approx(1.0 / compliance[2001], rel=1e-3)
+    assert rep["K3"][0] == pytest.approx(1.0 / compliance[-2], rel=1e-3)
+    fall = compliance[2001] - compliance[-2]
+    for name, frac in (("T1", 1.0 / 3.0), ("T2", 2.0 / 3.0)):
+        assert compliance[2001] - at(rep[name][0]) == pytest.approx(frac * fall, rel=1e-2)
+    assert rep["K1"][0] < rep["K2"][0] < rep["K3"][0]

@@ -10,7 +10,8 @@ CATALOGUE = {m.EFFECT.id: m.EFFECT for m in (compliance_offset, nonlinear_stiffn
                                              kinematic_error)}
 
 # other model forms of the same physics: the named effect must not depend on one law's shape
-VARIANTS = (nonlinear_stiffness.TWO_SLOPE, nonlinear_stiffness.SMOOTH_KNEE, nonlinear_stiffness.MONOTONE, hysteresis.PLAY,
+VARIANTS = (nonlinear_stiffness.TWO_SLOPE, nonlinear_stiffness.SMOOTH_KNEE, nonlinear_stiffness.MONOTONE,
+            nonlinear_stiffness.CONTACT, hysteresis.PLAY,
             hysteresis.PREISACH, crack_closure.GRADUAL, crack_closure.PROGRESSIVE,
             crack_closure.OPENING,
             lost_motion.FLANK)

@@ -12,6 +12,13 @@ Variant ``smooth-knee`` (five parameters): the same three slopes joined by knees
 (softplus instead of the ramp), so smooth stiffening laws (tanh, exponential, contact spread) are not forced
 into sharp knees and their misfit is not handed to another effect. It still reports K1, K2, K3 (the slopes
 far from the knees) and T1, T2 (the knee centres) for the comparison with the catalogue.
+Variant ``contact`` (three parameters): no flat K1 range at all; the compliance falls from zero load on as
+tooth contact spreads, c(|u|) = s - A (1 - (1 + |u|/x_c)^(q - 1)), the Hertzian way (a point contact's
+compliance falls as load^(-1/3), a line contact's about as 1/load: 0 <= q <= 0.75 spans them). The twist
+above the asymptotic line keeps growing, like |u|^q or ln|u|: a law whose extra twist levels off (q < 0)
+is a clearance taken up (lost_motion), which is why q stops at 0 and x_c at 2 % of full scale.
+K1 (zero load), K3 (full load) and T1, T2 (where the compliance has made 1/3 and 2/3 of its fall) are read
+from the curve.
 """
 from __future__ import annotations
 
@@ -67,10 +74,18 @@ def _report_smooth(ctx: Context, theta, s: float) -> dict:
 MAX_STIFFENING = 5.0
 
 
-def _plausible(ctx: Context, theta, s: float) -> list[str]:
-    a_total = float(theta[0] + (theta[1] if len(theta) in (4, 5) else 0.0))
+def _total_fall(ctx: Context, theta) -> float:
+    """The compliance fall over the recorded load range, whichever form."""
     if len(theta) == len(MONOTONE_KNOTS):
-        a_total = float(np.sum(theta))
+        return float(np.sum(theta))
+    if len(theta) == 3:   # contact: A (1 - (1 + m/x_c)^(q-1)) at the largest load
+        A, lx, q = theta
+        return float(A * (1.0 - (1.0 + np.max(np.abs(ctx.u)) / 10.0 ** lx) ** (q - 1.0)))
+    return float(theta[0] + (theta[1] if len(theta) in (4, 5) else 0.0))
+
+
+def _plausible(ctx: Context, theta, s: float) -> list[str]:
+    a_total = _total_fall(ctx, theta)
     if s - a_total <= s / MAX_STIFFENING:
         ratio = s / (s - a_total) if s > a_total else float("inf")
         return [f"the stiffness rises {ratio:.3g}x over the load range (tooth-contact stiffening gives at most "
@@ -79,6 +94,10 @@ def _plausible(ctx: Context, theta, s: float) -> list[str]:
 
 
 def _where(ctx: Context, theta):
+    if len(theta) == 3:
+        # the contact law has no knee: its compliance falls from zero load on
+        return (((float(ctx.u.min()), float(ctx.u.max())),),
+                "over the whole load range, stiffer at higher load on both load signs (odd in load)")
     if len(theta) == len(MONOTONE_KNOTS):
         nz = [p for a, p in zip(theta, MONOTONE_KNOTS) if a > 1e-6]
         p1 = nz[0] if nz else MONOTONE_KNOTS[-1]
@@ -122,6 +141,44 @@ def _report_monotone(ctx: Context, theta, s: float) -> dict:
     a_mid = float(np.sum(a[knots <= mid + 1e-12]))
     return {"K1": (stiff(s), inv), "K2": (stiff(s - a_mid), inv), "K3": (stiff(s - total), inv),
             "T1": (t1 * ctx.X, ctx.load_unit), "T2": (t2 * ctx.X, ctx.load_unit)}
+
+
+def _contact_twist(m, A, xc, q):
+    """A (m - x_c G(m/x_c)), G(x) = ((1 + x)^q - 1)/q (ln(1 + x) at q = 0): the integral of the compliance fall."""
+    L = np.log1p(m / xc)
+    grow = np.where(q > 1e-9, np.expm1(q * L) / max(q, 1e-9), L)
+    return A * (m - xc * grow)
+
+
+def _contribution_contact(ctx: Context, theta):
+    A, lx, q = theta
+    return -np.sign(ctx.u) * _contact_twist(np.abs(ctx.u), A, 10.0 ** lx, q)
+
+
+def _report_contact(ctx: Context, theta, s: float) -> dict:
+    """K1 at zero load, K3 at the largest load, T1 and T2 where the compliance has made 1/3 and 2/3 of its fall
+    over the recorded range (the monotone variant's reading), K2 midway between them."""
+    A, lx, q = theta
+    xc = 10.0 ** lx
+    inv = "N*mm/rad" if ctx.response_unit == "rad" else "N/mm"
+    m_max = float(np.max(np.abs(ctx.u)))
+
+    def fall(m):
+        return A * (1.0 - (1.0 + m / xc) ** (q - 1.0))
+
+    def load_at(frac):
+        # fall(m) = frac fall(m_max)  <=>  (1 + m/xc)^(q-1) = 1 - frac fall(m_max)/A
+        if A <= 0.0:
+            return float("nan")
+        return xc * ((1.0 - frac * fall(m_max) / A) ** (1.0 / (q - 1.0)) - 1.0)
+
+    def stiff(comp):
+        return 1.0 / (comp * ctx.c0) if comp > 0 else float("inf")
+    t1, t2 = load_at(1.0 / 3.0), load_at(2.0 / 3.0)
+    mid = 0.5 * (t1 + t2) if np.isfinite(t1) else 0.5 * m_max
+    return {"K1": (stiff(s), inv), "K2": (stiff(s - fall(mid)), inv), "K3": (stiff(s - fall(m_max)), inv),
+            "T1": (t1 * ctx.X, ctx.load_unit), "T2": (t2 * ctx.X, ctx.load_unit),
+            "contact_load": (xc * ctx.X, ctx.load_unit), "contact_exponent_q": (float(q), "1")}
 
 
 def _contribution_two(ctx: Context, theta):
@@ -172,6 +229,18 @@ SMOOTH_KNEE = Effect(
     report=_report_smooth,
     explanation=EXPLANATION,
     variant="smooth-knee",
+    where=_where,
+    plausible=_plausible,
+)
+
+CONTACT = Effect(
+    id="nonlinear_stiffness",
+    kinds=("torsion",),
+    params=(Param("A", 0.0, 0.95, (0.15,)), Param("log10_xc", -1.7, 0.0, (-1.2, -0.6)), Param("q", 0.0, 0.75, (0.5,))),
+    contribution=_contribution_contact,
+    report=_report_contact,
+    explanation=EXPLANATION,
+    variant="contact",
     where=_where,
     plausible=_plausible,
 )
