@@ -644,7 +644,7 @@ def build_all(seed: int):
             truth, cls = ["compliance_offset"], "ring_compliance_offset"
         else:
             truth, cls = [], "clean_ring_offset_within_prior"
-        opt = ["large_deflection"] if s_ld["large_deflection"] >= 1 else []
+        opt = ["large_deflection"] if s_ld["large_deflection"] >= 0.2 else []
         if s_ld["large_deflection"] >= 3:
             truth = truth + ["large_deflection"]
         recs.append(ring_rec(rng, f"ring_offset_{i}_{kind}", cls, truth, opt,
@@ -720,8 +720,8 @@ def build_all(seed: int):
             Fs = 1.0
             while True:  # the elastica kept below the noise: a clean recording
                 ld = el_med(F * Fs) - med.c_thin * F * Fs
-                _, opt, snrs = ring_effects_truth({"large_deflection": ld}, xlin * Fs, t, sigma * Fs)
-                if not opt:
+                tr_, opt, snrs = ring_effects_truth({"large_deflection": ld}, xlin * Fs, t, sigma * Fs)
+                if not tr_ and not opt:
                     break
                 Fs *= 0.7
             F, d, sigma = F * Fs, d * Fs, sigma * Fs
@@ -848,8 +848,8 @@ def build_all(seed: int):
         Fs = 1.0
         while True:  # elastica below the noise
             ld = el_med(F * Fs) - med.c_thin * F * Fs
-            _, opt, snrs = ring_effects_truth({"large_deflection": ld}, xlin * Fs, t, sigma * Fs)
-            if not opt:
+            tr_, opt, snrs = ring_effects_truth({"large_deflection": ld}, xlin * Fs, t, sigma * Fs)
+            if not tr_ and not opt:
                 break
             Fs *= 0.7
         F, xlin, sigma = F * Fs, xlin * Fs, sigma * Fs
@@ -881,8 +881,8 @@ def build_all(seed: int):
             xlin = rg.c_thin_nom * F
             sigma = np.max(np.abs(xlin)) / rel
             ld = ElasticaTable(rg, 0, 10, 11)(F) - rg.c_thin * F
-            _, opt, s_ld = ring_effects_truth({"large_deflection": ld}, xlin, t, sigma)
-            if not opt:
+            tr_, opt, s_ld = ring_effects_truth({"large_deflection": ld}, xlin, t, sigma)
+            if not tr_ and not opt:
                 break
             fmax *= 0.7
         truth = ["compliance_offset"] if z >= 4 else []
@@ -1046,7 +1046,36 @@ def build_all(seed: int):
         "".join(f"{i},{i * 0.06}\n" for i in range(20)) + "21,twelve\n" + \
         "".join(f"{i},{i * 0.06}\n" for i in range(22, 40))
     bad.append(b)
+    check_truths(recs)
     return recs + bad
+
+
+CATALOGUE = {"compliance_offset", "nonlinear_stiffness", "hysteresis", "lost_motion", "crack_closure",
+             "kinematic_error", "thick_ring", "large_deflection", "plasticity"}
+
+
+def check_truths(recs):
+    """every recording's truth follows the convention of the module docstring (guards the generators)."""
+    for r in recs:
+        snrs = getattr(r, "snrs", {})
+        if isinstance(r.truth, str):
+            continue
+        for k in r.truth + r.optional:
+            if k not in CATALOGUE:
+                raise RuntimeError(f"{r.name}: {k} is not a catalogue id")
+        for k, v in snrs.items():
+            if k not in CATALOGUE:
+                continue
+            if k in ("compliance_offset", "thick_ring"):
+                ok = (v >= 4 and k in r.truth) or (v < 2 and k not in r.truth)
+            elif v >= 3:
+                ok = k in r.truth
+            elif v >= 0.2:
+                ok = k in r.optional
+            else:
+                ok = k not in r.truth and k not in r.optional
+            if not ok:
+                raise RuntimeError(f"{r.name}: truth {r.truth} / optional {r.optional} contradict {k} at {v:.3g}")
 
 
 def ring_path(rng, proto, fmax):
