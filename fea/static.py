@@ -17,7 +17,7 @@ from typing import Callable, Mapping
 import numpy as np
 
 from .assembly import Lame, facet_vector_basis, scalar_basis, stiffness
-from .element_gradients import element_geometry
+from .element_gradients import default_intorder, element_geometry
 from .mesh_data import MeshData, SkfemMesh, facet_indices, group_dofs, to_skfem
 from ..errors import StageError
 from .solver import SolverInfo, solve_elasticity
@@ -59,7 +59,9 @@ def _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions, point_loads,
     sk = to_skfem(md)
     d = md.dim
     progress(f"{study}: assembling {sk.doflocs.shape[1] * d} dofs (P{md.order}, {md.cells.shape[0]} elements)")
-    K = stiffness(element_geometry(sk.doflocs, sk.element_dofs, md.order), lame, thickness_mm=thickness_mm)
+    # node blocks: solve_elasticity condenses them and reuses them for the AMG (no BSR -> CSR -> BSR)
+    K = stiffness(element_geometry(sk.doflocs, sk.element_dofs, md.order), lame, thickness_mm=thickness_mm,
+                  fmt="bsr")
     f = np.zeros(K.shape[0])
     for group, trac in (tractions or {}).items():
         # facet-own quadrature (no element inversion): robust on curved and sliver P2 elements
@@ -79,6 +81,16 @@ def _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions, point_loads,
     all_dofs = np.concatenate(dofs) if dofs else np.zeros(0, np.int64)
     all_vals = np.concatenate(vals) if vals else np.zeros(0)
     return sk, K, f, all_dofs, all_vals
+
+
+def p1_stiffness(sk: SkfemMesh, lame: Lame):
+    """Stiffness of the P1 field on the curved P2 mesh ``sk`` with the P2 stiffness' quadrature, in node
+    blocks over the vertex dofs: the p-multigrid's coarse operator (``solve_elasticity``)."""
+    nv = 4 if sk.element_dofs.shape[0] == 10 else 3
+    n_vertices = int(sk.element_dofs[:nv].max()) + 1
+    geom = element_geometry(sk.doflocs, sk.element_dofs[:nv], 1, intorder=default_intorder(2),
+                            geometry=(sk.element_dofs, 2), n_dofs=n_vertices)
+    return stiffness(geom, lame, fmt="bsr")
 
 
 def solve_static(md: MeshData, lame: Lame, *, fixed: Mapping[str, float | np.ndarray] | None = None,
@@ -102,7 +114,8 @@ def solve_static(md: MeshData, lame: Lame, *, fixed: Mapping[str, float | np.nda
     progress(f"{study}: solving ({K.shape[0]} dofs)")
     u, info = solve_elasticity(K, f, fixed_dofs=all_dofs, fixed_values=all_vals, coords=sk.doflocs, dim=d,
                                study=study, method=method,
-                               p2_element_dofs=sk.element_dofs if md.order == 2 else None)
+                               p2_element_dofs=sk.element_dofs if md.order == 2 else None,
+                               p1_stiffness=(lambda: p1_stiffness(sk, lame)) if md.order == 2 and d == 3 else None)
     t["solve"] = info.time_s
     progress(f"{study}: {info.method} {info.iterations} iterations, residual {info.residual:.1e}, {info.time_s:.1f} s")
     return StaticSolution(md, sk, u, lame, info, t)

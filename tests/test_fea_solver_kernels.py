@@ -55,3 +55,116 @@ def test_pcg_stops_at_maxiter_without_converging():
     b = np.ones(A.shape[0])
     x, its = pcg(A, b, lambda r: r.copy(), rtol=1e-14, maxiter=3)
     assert its == 3 and np.linalg.norm(b - A @ x) > 1e-3 * np.linalg.norm(b)
+
+
+def _random_block_spd(n_nodes, dim, seed):
+    rng = np.random.default_rng(seed)
+    A = sp.random(n_nodes * dim, n_nodes * dim, density=0.05, random_state=seed, format="csr")
+    return (A + A.T + sp.identity(n_nodes * dim) * n_nodes).tobsr(blocksize=(dim, dim)), rng
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_condense_blocks_is_condense_of_the_csr(dim):
+    from strainwave.fea.solver import condense_blocks
+    K, rng = _random_block_spd(40, dim, dim)
+    for _ in range(4):
+        keep_nodes = rng.random(40) < 0.7
+        got = condense_blocks(K, keep_nodes)
+        want = condense(K.tocsr(), np.repeat(keep_nodes, dim))
+        assert got.blocksize == (dim, dim)
+        # the same entries in the same order: the fine level's CSR is the one the scalar path makes
+        g = got.tocsr()
+        assert np.array_equal(g.indptr, want.indptr) and np.array_equal(g.indices, want.indices)
+        assert np.array_equal(g.data, want.data)
+
+
+def test_backward_sweep_is_pyamgs():
+    from pyamg.relaxation.relaxation import gauss_seidel
+    from strainwave.fea.pmultigrid import backward_sweep, reversed_rows
+    A = (_laplacian_3d(7) + sp.random(343, 343, density=0.02, random_state=1, format="csr") * 0.1).tocsr()
+    A = (A + A.T).tocsr()
+    J = sp.csr_matrix(np.eye(343)[::-1])
+    assert abs(reversed_rows(A) - J @ A @ J).max() == 0.0
+    b = np.random.default_rng(2).random(343)
+    x_pyamg = np.random.default_rng(3).random(343)
+    x_ours = x_pyamg.copy()
+    gauss_seidel(A, x_pyamg, b, sweep="backward")
+    backward_sweep(A)(A, x_ours, b)
+    np.testing.assert_allclose(x_ours, x_pyamg, rtol=1e-14, atol=0)
+
+
+def test_solve_with_node_blocks_equals_the_scalar_path():
+    """K in node blocks (condensed in blocks, static.py's path) and in CSR solve to the same u."""
+    from strainwave.fea.solver import solve_elasticity
+    K, rng = _random_block_spd(60, 3, 5)
+    f = rng.random(180)
+    fixed = np.arange(6 * 3)                              # whole nodes: the block path
+    coords = rng.random((3, 60))
+    u_csr, i_csr = solve_elasticity(K.tocsr(), f, fixed_dofs=fixed, coords=coords, dim=3, method="direct")
+    u_bsr, i_bsr = solve_elasticity(K, f, fixed_dofs=fixed, coords=coords, dim=3, method="direct")
+    np.testing.assert_allclose(u_bsr, u_csr, rtol=0, atol=1e-12 * abs(u_csr).max())
+    assert np.all(u_bsr[fixed] == 0.0)
+    # a fixed dof that is not a whole node falls back to the scalar condensation
+    u_part, _ = solve_elasticity(K, f, fixed_dofs=np.array([0, 1, 4]), coords=coords, dim=3, method="direct")
+    u_ref, _ = solve_elasticity(K.tocsr(), f, fixed_dofs=np.array([0, 1, 4]), coords=coords, dim=3, method="direct")
+    np.testing.assert_allclose(u_part, u_ref, rtol=0, atol=1e-12 * abs(u_ref).max())
+    # prescribed non-zero values go through f - K u on the blocks
+    vals = np.linspace(0.01, 0.02, fixed.size)
+    u_v, _ = solve_elasticity(K, f, fixed_dofs=fixed, fixed_values=vals, coords=coords, dim=3, method="direct")
+    u_vr, _ = solve_elasticity(K.tocsr(), f, fixed_dofs=fixed, fixed_values=vals, coords=coords, dim=3, method="direct")
+    np.testing.assert_allclose(u_v, u_vr, rtol=0, atol=1e-12 * abs(u_vr).max())
+    assert np.array_equal(u_v[fixed], vals)
+
+
+def test_p1_stiffness_is_the_galerkin_coarse_operator():
+    """The p-multigrid's coarse operator assembled on P1 equals R K P of the curved P2 stiffness."""
+    import skfem
+    from strainwave.fea.assembly import Lame, stiffness
+    from strainwave.fea.element_gradients import element_geometry
+    from strainwave.fea.mesh_data import to_skfem
+    from strainwave.fea.pmultigrid import p1_prolongation, vector_prolongation
+    from strainwave.fea.solver import condense_blocks
+    from strainwave.fea.static import p1_stiffness
+    from tests.test_fea_assembly import _as_gmsh
+    sk = to_skfem(_as_gmsh(skfem.MeshTet2.init_ball(2), 3))          # curved P2 elements
+    lame = Lame.from_young(2.1e5, 0.3)
+    K = stiffness(element_geometry(sk.doflocs, sk.element_dofs, 2), lame, fmt="bsr")
+    # a clamped cap: the lowest vertices and the mid nodes between two of them
+    n_vert = int(sk.element_dofs[:4].max()) + 1
+    keep = np.ones(K.shape[0] // 3, bool)
+    keep[np.argsort(sk.doflocs[2, :n_vert])[:12]] = False
+    S = p1_prolongation(sk.element_dofs)[0]
+    mids = np.arange(n_vert, keep.size)
+    keep[mids[~np.any(S[mids].toarray()[:, keep[:n_vert]] != 0, axis=1)]] = False
+    free = np.flatnonzero(np.repeat(keep, 3))
+    P, coarse_free = vector_prolongation(p1_prolongation(sk.element_dofs)[0], 3, free)
+    galerkin = (P.T @ condense_blocks(K, keep).tocsr() @ P).toarray()
+    K1 = p1_stiffness(sk, lame)
+    is_free = np.zeros(K1.shape[0], bool)
+    is_free[coarse_free] = True
+    ours = condense_blocks(K1, is_free.reshape(-1, 3)[:, 0]).toarray()
+    assert np.abs(ours - galerkin).max() <= 1e-13 * np.abs(galerkin).max()
+
+
+def test_p1_coarse_operator_only_where_it_is_the_galerkin_one():
+    """A fixed mid node on an edge with a free vertex: the hierarchy falls back to R K P."""
+    import skfem
+    from strainwave.fea import solver
+    from strainwave.fea.assembly import Lame, stiffness
+    from strainwave.fea.element_gradients import element_geometry
+    from strainwave.fea.mesh_data import to_skfem
+    from strainwave.fea.static import p1_stiffness
+    from tests.test_fea_assembly import _as_gmsh
+    sk = to_skfem(_as_gmsh(skfem.MeshTet2.init_ball(2), 3))
+    lame = Lame.from_young(2.1e5, 0.3)
+    K = stiffness(element_geometry(sk.doflocs, sk.element_dofs, 2), lame, fmt="bsr")
+    n_vert = int(sk.element_dofs[:4].max()) + 1
+    fixed_nodes = np.concatenate([np.argsort(sk.doflocs[2, :n_vert])[:12], [n_vert + 3]])   # + a lone mid node
+    fixed = (3 * fixed_nodes[:, None] + np.arange(3)).ravel()
+    f = np.random.default_rng(0).random(K.shape[0])
+    calls = []
+    kw = dict(fixed_dofs=fixed, coords=sk.doflocs, dim=3, method="amg", rtol=1e-10, p2_element_dofs=sk.element_dofs)
+    u1, _ = solver.solve_elasticity(K, f, p1_stiffness=lambda: calls.append(1) or p1_stiffness(sk, lame), **kw)
+    u0, _ = solver.solve_elasticity(K, f, **kw)
+    assert not calls
+    np.testing.assert_allclose(u1, u0, rtol=0, atol=1e-8 * abs(u0).max())
