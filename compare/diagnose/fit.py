@@ -117,10 +117,12 @@ class Fit:
     rss: float                   # plain residual sum of squares (normalised units)
     bic: float
     k: int
-    cov: np.ndarray | None = None     # covariance of theta (Jacobian, residual variance, AR inflation)
+    # covariance of (theta, s), s last: the stiffness scale's own error enters every slope read from it (K1)
+    cov: np.ndarray | None = None
     at_bound: tuple[str, ...] = ()    # parameters that ended on a bound of their plausible range
     prior_chi2: float = 0.0           # ((s - 1)/u)^2
-    jac: np.ndarray | None = None     # Jacobian of the data residual (without the prior row) at theta
+    design: np.ndarray | None = None  # d model / d (theta, b0, b1, s) at the fit (n x (p + 3))
+    uncertainty: float = 0.02         # the prior's relative sigma on s (its information 1/u^2 joins the data's)
 
     @property
     def id(self) -> str:
@@ -142,11 +144,13 @@ class Fit:
         return out
 
     def split_cov(self) -> list[np.ndarray | None]:
+        """Per effect: the covariance of (its theta, s), s last."""
         if self.cov is None:
             return [None] * len(self.effects)
         out, i = [], 0
         for e in self.effects:
-            out.append(self.cov[i:i + e.n_params, i:i + e.n_params])
+            idx = [*range(i, i + e.n_params), self.cov.shape[0] - 1]
+            out.append(self.cov[np.ix_(idx, idx)])
             i += e.n_params
         return out
 
@@ -193,7 +197,6 @@ def fit_effects(ctx: Context, effects: tuple[Effect, ...], sigma: float, uncerta
         return np.append(r, proj.lam * (beta[2] - 1.0))
 
     params = [p for e in effects for p in e.params]
-    jac = None
     at_bound: tuple[str, ...] = ()
     if params:
         lo = np.array([p.lo for p in params])
@@ -207,7 +210,6 @@ def fit_effects(ctx: Context, effects: tuple[Effect, ...], sigma: float, uncerta
             if best is None or sol.cost < best.cost:
                 best = sol
         theta = best.x
-        jac = best.jac
         # a parameter pinned at a bound that is not a physical zero (e.g. a weight >= 0) is reported
         names = [f"{e.id}.{p.name}" for e in effects for p in e.params]
         at_bound = tuple(nm for nm, x, a, b, p in zip(names, theta, lo, hi, params)
@@ -222,34 +224,59 @@ def fit_effects(ctx: Context, effects: tuple[Effect, ...], sigma: float, uncerta
     prior_chi2 = ((beta[2] - 1.0) / uncertainty) ** 2
     k = 3 + len(params)
     bic = bic_ar(r, k, prior_chi2) if noise is None else bic_fixed_noise(r, k, prior_chi2, noise)
+    design = _design(contribution, theta, proj.A, np.array([p.hi for p in params])) if params else None
     cov = None
-    data_jac = jac[:-1] if jac is not None else None
-    if jac is not None:
+    if design is not None:
         if noise is not None:
-            cov = gls_cov(data_jac, r, k, noise)
+            cov = gls_cov(design, r, k, noise, uncertainty)
         else:
             # residual variance with the AR(1) effective-sample inflation (1 + rho)/(1 - rho) for correlated noise
             rho = min(max(lag1(r), 0.0), 0.99)
             s2 = rss / max(n - k, 1) * (1.0 + rho) / (1.0 - rho)
-            cov = np.linalg.pinv(jac.T @ jac) * s2
+            cov = _theta_and_scale(design.T @ design / s2, uncertainty)
     return Fit(effects, theta, (float(beta[0]), float(beta[1]), float(beta[2])), model, rss, bic, k, cov,
-               at_bound, float(prior_chi2), data_jac)
+               at_bound, float(prior_chi2), design, uncertainty)
 
 
-def gls_cov(jac: np.ndarray, r: np.ndarray, k: int, noise) -> np.ndarray:
-    """Covariance of the parameters under the recording's noise model: the Jacobian and the residual both
-    whitened by its filter (generalised least squares). The lag-1 inflation of white least squares misses a
-    wandering sensor's long-range correlation: a loop width 7.6 of its standard errors from the truth was
-    reported under random-walk noise (issue 12)."""
-    jw, rw = noise.whiten(jac), noise.whiten(r)
+def _design(contribution, theta: np.ndarray, nuisance: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """d model / d (theta, b0, b1, s): forward differences of the effects (the optimiser's step, towards the
+    interior at an upper bound) beside the nuisance columns (1, t, u), which enter linearly."""
+    c0 = contribution(theta)
+    cols = []
+    for j in range(len(theta)):
+        h = 1e-4 * max(1.0, abs(theta[j]))
+        if theta[j] + h > hi[j]:
+            h = -h
+        th = theta.copy()
+        th[j] += h
+        cols.append((contribution(th) - c0) / h)
+    return np.column_stack([*cols, nuisance])
+
+
+def _theta_and_scale(information: np.ndarray, uncertainty: float) -> np.ndarray:
+    """Covariance of (theta, s) from the information of (theta, b0, b1, s) plus the prior's 1/u^2 on s: the
+    offset and drift are marginalised, not held fixed."""
+    info = information.copy()
+    info[-1, -1] += 1.0 / uncertainty ** 2
+    cov = np.linalg.pinv(info)
+    keep = [*range(info.shape[0] - 3), info.shape[0] - 1]
+    return cov[np.ix_(keep, keep)]
+
+
+def gls_cov(design: np.ndarray, r: np.ndarray, k: int, noise, uncertainty: float) -> np.ndarray:
+    """Covariance of (theta, s) under the recording's noise model: the design and the residual both whitened by
+    its filter (generalised least squares). The lag-1 inflation of white least squares misses a wandering
+    sensor's long-range correlation: a loop width 7.6 of its standard errors from the truth was reported under
+    random-walk noise (issue 12)."""
+    dw, rw = noise.whiten(design), noise.whiten(r)
     s2 = float(rw @ rw) / max(len(rw) - k, 1)
-    return np.linalg.pinv(jw.T @ jw) * s2
+    return _theta_and_scale(dw.T @ dw / s2, uncertainty)
 
 
 def rescored(fit: Fit, ctx: Context, noise) -> Fit:
     """The same fit with its BIC (and its parameter covariance) under the recording's fixed noise model."""
     r = ctx.y - fit.model
-    cov = gls_cov(fit.jac, r, fit.k, noise) if fit.jac is not None else fit.cov
+    cov = gls_cov(fit.design, r, fit.k, noise, fit.uncertainty) if fit.design is not None else fit.cov
     return dataclasses.replace(fit, bic=bic_fixed_noise(r, fit.k, fit.prior_chi2, noise), cov=cov)
 
 

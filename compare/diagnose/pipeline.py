@@ -562,15 +562,17 @@ def _ranked(ctx, fit: Fit, base_fit: Fit, n: int, weight: float, detail: bool = 
 
 
 def _report_errors(ctx, effect, theta, cov, s, rep) -> dict:
-    """Standard errors of the reported quantities: J_rep C J_rep^T with J_rep by finite differences."""
+    """Standard errors of the reported quantities: J_rep C J_rep^T with J_rep by finite differences over
+    (theta, s): a slope read from the stiffness scale (K1 = 1/(s c0)) carries the scale's error."""
     keys = [k for k, v in rep.items() if np.isfinite(v[0]) and v[1] != "count"]   # a count has no derivative
     base = np.array([rep[k][0] for k in keys])
-    J = np.zeros((len(keys), len(theta)))
-    for j in range(len(theta)):
-        h = 1e-6 * max(abs(theta[j]), 1e-3)
-        th = np.array(theta, dtype=float)
-        th[j] += h
-        r2 = effect.report(ctx, th, s)
+    x = np.append(np.asarray(theta, dtype=float), s)
+    J = np.zeros((len(keys), len(x)))
+    for j in range(len(x)):
+        h = 1e-6 * max(abs(x[j]), 1e-3)
+        xh = x.copy()
+        xh[j] += h
+        r2 = effect.report(ctx, xh[:-1], float(xh[-1]))
         J[:, j] = (np.array([r2[k][0] for k in keys]) - base) / h
     var = np.einsum("ij,jk,ik->i", J, cov, J)
     return {k: float(math.sqrt(v)) for k, v in zip(keys, var) if np.isfinite(v) and v >= 0}
