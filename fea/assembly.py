@@ -20,7 +20,6 @@ Measured (fresh process, 2 shared cores, +-1.5x), curved P2 output shaft: K 2.4-
 """
 from __future__ import annotations
 
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -28,10 +27,6 @@ import scipy.sparse as sp
 
 from .block_scatter import component_pairs, orient, pair_keys, split_matrix, symmetric_matrix, upper_blocks
 from .element_gradients import ElementGeometry, geometry_of_basis
-
-
-# Threads of the element loop of ``stiffness``: numpy releases the GIL in its products and gemms
-ASSEMBLY_THREADS = 2
 
 
 @dataclass(frozen=True)
@@ -70,11 +65,10 @@ def lame_map(lame: Lame, dim: int) -> np.ndarray:
 
 
 def stiffness(geom: ElementGeometry, lame: Lame, *, thickness_mm: float = 1.0, chunk: int = 4096,
-              fmt: str = "csr", threads: int | None = None) -> sp.spmatrix:
+              fmt: str = "csr") -> sp.spmatrix:
     """Global stiffness of isotropic linear elasticity (3D, or 2D with plane-stress ``lame`` and thickness)
     from the quadrature data of a P1/P2 simplex mesh. ``chunk`` elements at a time (memory ~ 3 kB each);
-    fmt "csr" or "bsr" (dim x dim blocks); ``threads`` for the element loop (default ASSEMBLY_THREADS)."""
-    threads = ASSEMBLY_THREADS if threads is None else threads
+    fmt "csr" or "bsr" (dim x dim blocks)."""
     dim, nq = geom.dim, geom.dx.shape[0]
     edofs = geom.element_dofs
     nloc, nel = edofs.shape
@@ -87,8 +81,7 @@ def stiffness(geom: ElementGeometry, lame: Lame, *, thickness_mm: float = 1.0, c
     m = npair * nel
     W = np.empty((m, k))
     keys = np.empty(m, np.int64)
-
-    def element_chunk(s: int) -> None:
+    for s in range(0, nel, chunk):
         e = slice(s, min(s + chunk, nel))
         ne = e.stop - e.start
         rows = slice(s * npair, (s + ne) * npair)                              # chunk-major, then pair
@@ -99,15 +92,6 @@ def stiffness(geom: ElementGeometry, lame: Lame, *, thickness_mm: float = 1.0, c
         I, J = edofs[iu, e], edofs[ju, e]                                      # (npair, ne)
         keys[rows] = pair_keys(I, J, geom.n_dofs).ravel()
         orient(I, J, W[rows].reshape(npair, ne, k), n_sym)                      # while in cache
-
-    # chunks write disjoint rows of W and keys, and numpy releases the GIL in their products and
-    # gemms: two threads give the same W bitwise
-    if threads > 1 and nel > chunk:
-        with ThreadPoolExecutor(threads) as pool:
-            list(pool.map(element_chunk, range(0, nel, chunk)))
-    else:
-        for s in range(0, nel, chunk):
-            element_chunk(s)
     rows, cols, blocks = upper_blocks(keys, W, geom.n_dofs, dim)
     del W, keys                                    # the peak is in the mirror: free what we can first
     K = symmetric_matrix(rows, cols, blocks, geom.n_dofs, dim)

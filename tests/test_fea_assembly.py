@@ -123,13 +123,3 @@ def test_sorted_groups_packed_and_argsort_agree():
     assert np.array_equal(a[2] + (1 << 60), b[2])
     assert np.array_equal(a[0], np.argsort(keys, kind="stable"))
 
-
-def test_stiffness_in_two_threads_is_the_same_matrix():
-    mesh, _ = _skfem_p2(3)
-    sk = to_skfem(_as_gmsh(mesh, 3))
-    geom = element_geometry(sk.doflocs, sk.element_dofs, 2)
-    lame = Lame.from_young(E, NU)
-    one = stiffness(geom, lame, chunk=17, threads=1, fmt="bsr")
-    two = stiffness(geom, lame, chunk=17, threads=2, fmt="bsr")    # many chunks over two threads
-    assert np.array_equal(one.indptr, two.indptr) and np.array_equal(one.indices, two.indices)
-    assert np.array_equal(one.data, two.data)
