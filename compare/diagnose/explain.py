@@ -71,12 +71,19 @@ def explain(diag) -> str:
     top = diag.effects[0] if diag.effects else None
     if verdict == "unexplained":
         sugg = ""
+        # the best model may reach the noise and still not explain: its values break its own physics
+        fits_noise = top is not None and diag.gof_model is not None and not diag.gof_model.structured
         if top is not None:
+            but = (f"it reaches the noise only with values its physics does not allow ({'; '.join(top.warnings)})"
+                   if fits_noise and top.warnings else
+                   "it reaches the noise only through an effect the noise does not resolve" if fits_noise else
+                   "it leaves a residual that is not noise")
             sugg = (f" The best partial model, offered only as a suggestion, is {top.id.replace('+', ' with ')} "
-                    f"(delta BIC {top.delta_bic:.1f}, RMS {diag.rms_before:.3g} -> {top.rms:.3g}), but it leaves a "
-                    f"residual that is not noise.")
+                    f"(delta BIC {top.delta_bic:.1f}, RMS {diag.rms_before:.3g} -> {top.rms:.3g}), but {but}.")
+        none = ("no catalogue model explains it with plausible values" if fits_noise else
+                "no catalogue model brings the residual back to the noise")
         return (f"MISMATCH NOT EXPLAINED: the recording departs from the baseline ({diag.baseline.source}) beyond "
-                f"its noise ({noise:.3g}), and no catalogue model brings the residual back to the noise. The residual: "
+                f"its noise ({noise:.3g}), and {none}. The residual: "
                 f"{diag.structure}.{sugg} Check the rig (sensor channels, clamping, drift, sampling) before trusting "
                 f"any named physics.")
     why = "; and ".join(CATALOGUE[c].explanation for c in top.components)

@@ -313,8 +313,16 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
                 pairs.append(fit_effects(ctx, x.effects + y.effects, sigma, u_rel,
                                          starts=[np.concatenate([x.theta, y.theta])], noise=noise))
     candidates = list(ranked_singles)
+    # the first effect of a pair is judged in its best PLAUSIBLE form: a form that fits only with values its
+    # physics forbids explains nothing, so it cannot make a real second effect redundant (heldout5: an elastica
+    # form with an implausible second coefficient soaked up a ring's plasticity, and the plausible one-term
+    # form was named alone)
+    plausible_first = {}
+    for f in sorted(singles, key=lambda f: f.bic):
+        if f.id not in plausible_first or (_implausible(ctx, plausible_first[f.id]) and not _implausible(ctx, f)):
+            plausible_first[f.id] = f
     for p in pairs:
-        first = next(s for s in ranked_singles if s.id == p.effects[0].id)
+        first = plausible_first[p.effects[0].id]
         if first.bic - p.bic <= BIC_THRESHOLD:
             continue                         # the second effect is not significant given the first
         if _unresolved(ctx, p, sigma):
@@ -415,7 +423,11 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
                        gof_best)
     dt = None if rec.time_s is None else float(np.median(np.diff(fit_rec.time_s)))
     stride = _stride(rec.n)
-    structure = describe(gof_best, ctx, located.description, dt, stride) if mismatch else \
+    # an unexplained verdict whose best model leaves noise (its values are implausible or its effect is not
+    # resolved) describes what that model was fitted to, the baseline's residual: "consistent with the noise"
+    # beside "not explained" told a user nothing
+    shown = gof_base if verdict is Verdict.UNEXPLAINED and not note and not gof_best.structured else gof_best
+    structure = describe(shown, ctx, located.description, dt, stride) if mismatch else \
         describe(gof_base, ctx, "", dt, stride)
     if note:
         structure = f"{note}; {'apart from it, ' if glitch_only else ''}{structure}"
