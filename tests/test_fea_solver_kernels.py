@@ -168,3 +168,16 @@ def test_p1_coarse_operator_only_where_it_is_the_galerkin_one():
     u0, _ = solver.solve_elasticity(K, f, **kw)
     assert not calls
     np.testing.assert_allclose(u1, u0, rtol=0, atol=1e-8 * abs(u0).max())
+
+
+def test_hierarchy_is_the_same_on_every_run_and_leaves_the_global_rng_alone():
+    from strainwave.fea.solver import _aggregation
+    A = _laplacian_3d(12).tobsr(blocksize=(1, 1))
+    B = np.ones((A.shape[0], 1))
+    np.random.seed(123)
+    before = np.random.get_state()[1].copy()
+    one, two = _aggregation(A, B), _aggregation(A, B)
+    assert np.array_equal(np.random.get_state()[1], before)
+    assert len(one.levels) == len(two.levels) > 1
+    for a, b in zip(one.levels, two.levels):
+        assert abs(a.A - b.A).max() == 0.0
