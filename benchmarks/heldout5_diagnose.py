@@ -545,6 +545,18 @@ def ring_effects_truth(effects, xlin, t, sigma):
     return truth, opt, snrs
 
 
+
+def elastica_below_noise(el_med, med, F, xlin, t, sigma):
+    """Scale the load down (x 0.7 per step) until the ring's elastica is neither a truth nor optional:
+    (load scale, elastica increment, optional list, SNRs) of a recording kept clean of it."""
+    Fs = 1.0
+    while True:
+        ld = el_med(F * Fs) - med.c_thin * F * Fs
+        truth, opt, snrs = ring_effects_truth({"large_deflection": ld}, xlin * Fs, t, sigma * Fs)
+        if not truth and not opt:
+            return Fs, ld, opt, snrs
+        Fs *= 0.7
+
 def build_all(seed: int):
     rng = np.random.default_rng(seed)
     recs = []
@@ -736,13 +748,8 @@ def build_all(seed: int):
                 raise RuntimeError("closed crack changed the ring's response")
             s_target = None
             sigma = np.max(np.abs(xlin)) / loguni(rng, 100, 1000)
-            Fs = 1.0
-            while True:  # the elastica kept below the noise: a clean recording
-                ld = el_med(F * Fs) - med.c_thin * F * Fs
-                tr_, opt, snrs = ring_effects_truth({"large_deflection": ld}, xlin * Fs, t, sigma * Fs)
-                if not tr_ and not opt:
-                    break
-                Fs *= 0.7
+            # the elastica kept below the noise: a clean recording
+            Fs, ld, opt, snrs = elastica_below_noise(el_med, med, F, xlin, t, sigma)
             F, d, sigma = F * Fs, d * Fs, sigma * Fs
         else:
             s_target = loguni(rng, 3, 50) if i % 2 == 0 else loguni(rng, 10, 50)
@@ -864,13 +871,7 @@ def build_all(seed: int):
         t = ring_time(len(F))
         xlin = med.c_thin_nom * F
         sigma = np.max(np.abs(xlin)) / loguni(rng, 100, 1000)
-        Fs = 1.0
-        while True:  # elastica below the noise
-            ld = el_med(F * Fs) - med.c_thin * F * Fs
-            tr_, opt, snrs = ring_effects_truth({"large_deflection": ld}, xlin * Fs, t, sigma * Fs)
-            if not tr_ and not opt:
-                break
-            Fs *= 0.7
+        Fs, ld, opt, snrs = elastica_below_noise(el_med, med, F, xlin, t, sigma)
         F, xlin, sigma = F * Fs, xlin * Fs, sigma * Fs
         y = thick_ring_compliance(med) * F + ld
         if i == 0:

@@ -22,6 +22,8 @@ from the curve.
 """
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 from .base import Context, Effect, Param
@@ -208,51 +210,24 @@ EFFECT = Effect(
     plausible=_plausible,
 )
 
-TWO_SLOPE = Effect(
-    id="nonlinear_stiffness",
-    kinds=("torsion",),
-    params=(Param("a1", 0.0, 0.95, (0.1,)), Param("p1", 0.02, 0.9, (0.1, 0.4))),
-    contribution=_contribution_two,
-    report=_report_two,
-    explanation=EXPLANATION,
-    variant="two-slope",
-    where=_where,
-    plausible=_plausible,
-)
+# the other model forms of the same physics share the catalogue form's id, explanation, location and bounds
 
-SMOOTH_KNEE = Effect(
-    id="nonlinear_stiffness",
-    kinds=("torsion",),
-    params=(Param("a1", 0.0, 0.95, (0.1,)), Param("a2", 0.0, 0.95, (0.1,)),
-            Param("p1", 0.02, 0.9, (0.1, 0.3)), Param("g", 0.03, 0.9, (0.3,)), Param("log10_w", -2.0, -0.5, (-1.0,))),
-    contribution=_contribution_smooth,
-    report=_report_smooth,
-    explanation=EXPLANATION,
-    variant="smooth-knee",
-    where=_where,
-    plausible=_plausible,
-)
 
-CONTACT = Effect(
-    id="nonlinear_stiffness",
-    kinds=("torsion",),
-    params=(Param("A", 0.0, 0.95, (0.15,)), Param("log10_xc", -1.7, 0.0, (-1.2, -0.6)), Param("q", 0.0, 0.75, (0.5,))),
-    contribution=_contribution_contact,
-    report=_report_contact,
-    explanation=EXPLANATION,
-    variant="contact",
-    where=_where,
-    plausible=_plausible,
-)
+def _variant(variant: str, params: tuple[Param, ...], contribution, report) -> Effect:
+    return dataclasses.replace(EFFECT, params=params, contribution=contribution, report=report, variant=variant)
 
-MONOTONE = Effect(
-    id="nonlinear_stiffness",
-    kinds=("torsion",),
-    params=tuple(Param(f"a_{p:g}", 0.0, 0.95, (0.0,)) for p in MONOTONE_KNOTS),
-    contribution=_contribution_monotone,
-    report=_report_monotone,
-    explanation=EXPLANATION,
-    variant="monotone",
-    where=_where,
-    plausible=_plausible,
-)
+
+TWO_SLOPE = _variant("two-slope", (Param("a1", 0.0, 0.95, (0.1,)), Param("p1", 0.02, 0.9, (0.1, 0.4))),
+                     _contribution_two, _report_two)
+
+SMOOTH_KNEE = _variant("smooth-knee", (Param("a1", 0.0, 0.95, (0.1,)), Param("a2", 0.0, 0.95, (0.1,)),
+                                       Param("p1", 0.02, 0.9, (0.1, 0.3)), Param("g", 0.03, 0.9, (0.3,)),
+                                       Param("log10_w", -2.0, -0.5, (-1.0,))),
+                       _contribution_smooth, _report_smooth)
+
+CONTACT = _variant("contact", (Param("A", 0.0, 0.95, (0.15,)), Param("log10_xc", -1.7, 0.0, (-1.2, -0.6)),
+                               Param("q", 0.0, 0.75, (0.5,))),
+                   _contribution_contact, _report_contact)
+
+MONOTONE = _variant("monotone", tuple(Param(f"a_{p:g}", 0.0, 0.95, (0.0,)) for p in MONOTONE_KNOTS),
+                    _contribution_monotone, _report_monotone)
