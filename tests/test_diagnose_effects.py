@@ -259,3 +259,28 @@ def test_exact_elastica_at_high_signal_is_large_deflection_to_second_order(param
     (g1, g2), *_ = np.linalg.lstsq(np.column_stack([x ** 2, x ** 3]), (y - x / 0.06) * 0.06, rcond=None)
     for name, true in (("gamma", g1), ("gamma2", g2)):
         assert abs(top.parameters[name][0] - true) <= 3.0 * top.errors[name], (name, top.parameters[name][0], true)
+
+
+def test_a_pair_is_judged_against_the_first_effects_plausible_form(params):
+    """The reference a pair's second effect must beat is its first effect's best form with plausible values:
+    a better-scoring form whose values break its physics (an elastica with gamma2 = -5) explains nothing, so it
+    must not make the second effect look redundant."""
+    import dataclasses as dc
+    from strainwave.compare.diagnose.effects import large_deflection
+    from strainwave.compare.diagnose.fit import fit_effects
+    from strainwave.compare.diagnose.pipeline import _best_plausible_per_effect, _implausible
+    kind = RecordingKind.RING_COMPRESSION
+    u = _path(kind, 400)
+    probe = parse_text(format_recording(kind, "ewg_ring", u * 2000.0, u))
+    ctx = build_context(probe, analytic_baseline(probe, params))
+    x = ctx.Y / ctx.geometry["r_m_mm"]                      # delta_lin / r at full load
+    # fits of the straight baseline, given the values to judge (the rule reads theta, scale and BIC only)
+    one = dc.replace(fit_effects(ctx, (large_deflection.EFFECT,), 1e-3, 0.02), theta=np.array([0.774 * x]))
+    second = fit_effects(ctx, (large_deflection.SECOND_ORDER,), 1e-3, 0.02)
+    wild = dc.replace(second, theta=np.array([0.774 * x, -5.0 * x ** 2]), bic=one.bic - 50.0)
+    tame = dc.replace(second, theta=np.array([0.774 * x, 0.35 * x ** 2]), bic=one.bic - 50.0)
+    assert _implausible(ctx, wild) and not _implausible(ctx, one) and not _implausible(ctx, tame)
+    assert _best_plausible_per_effect(ctx, [wild, one])["large_deflection"] is one
+    # a plausible better form is the reference, and with no plausible form the best one stays
+    assert _best_plausible_per_effect(ctx, [tame, one])["large_deflection"] is tame
+    assert _best_plausible_per_effect(ctx, [wild])["large_deflection"] is wild

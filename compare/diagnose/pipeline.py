@@ -239,6 +239,20 @@ def _best_per_set(fits: list[Fit]) -> list[Fit]:
     return sorted(best.values(), key=lambda f: f.bic)
 
 
+def _best_plausible_per_effect(ctx, singles: list[Fit]) -> dict[str, Fit]:
+    """Per effect id, its best-scoring form among those with plausible values (the best form if none is).
+
+    The first effect of a pair is judged in this form: a form that fits only with values its physics forbids
+    explains nothing, so it cannot make a real second effect redundant (heldout5: an elastica form with an
+    implausible second coefficient soaked up a ring's plasticity, and the plausible one-term form was named
+    alone)."""
+    best: dict[str, Fit] = {}
+    for f in sorted(singles, key=lambda f: f.bic):
+        if f.id not in best or (_implausible(ctx, best[f.id]) and not _implausible(ctx, f)):
+            best[f.id] = f
+    return best
+
+
 def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     fit_rec = _subsample(rec)
     ctx = build_context(fit_rec, base)
@@ -313,14 +327,7 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
                 pairs.append(fit_effects(ctx, x.effects + y.effects, sigma, u_rel,
                                          starts=[np.concatenate([x.theta, y.theta])], noise=noise))
     candidates = list(ranked_singles)
-    # the first effect of a pair is judged in its best PLAUSIBLE form: a form that fits only with values its
-    # physics forbids explains nothing, so it cannot make a real second effect redundant (heldout5: an elastica
-    # form with an implausible second coefficient soaked up a ring's plasticity, and the plausible one-term
-    # form was named alone)
-    plausible_first = {}
-    for f in sorted(singles, key=lambda f: f.bic):
-        if f.id not in plausible_first or (_implausible(ctx, plausible_first[f.id]) and not _implausible(ctx, f)):
-            plausible_first[f.id] = f
+    plausible_first = _best_plausible_per_effect(ctx, singles)
     for p in pairs:
         first = plausible_first[p.effects[0].id]
         if first.bic - p.bic <= BIC_THRESHOLD:
