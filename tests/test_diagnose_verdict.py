@@ -394,3 +394,6 @@ def test_hertz_contact_stiffening_at_high_signal_is_stiffening_alone(params):
         se = diag.effects[0].errors[name]
         assert 0.0 < se < 1e-3 * true
         assert abs(diag.quantity(name) - true) <= 3.0 * se, (name, diag.quantity(name) / true - 1.0, se / true)
+    # the scale itself is reported with its error, and K1 = 1/(s c0) carries exactly that relative error
+    s, s_se = diag.quantity("stiffness_scale_within_prior"), diag.effects[0].errors["stiffness_scale_within_prior"]
+    assert diag.effects[0].errors["K1"] / diag.quantity("K1") == pytest.approx(s_se / s, rel=1e-3)

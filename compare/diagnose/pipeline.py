@@ -570,7 +570,10 @@ def _ranked(ctx, fit: Fit, base_fit: Fit, n: int, weight: float, detail: bool = 
                 errors[f"{e.id}.{k}" if multi else k] = se
         if e.plausible is not None:
             warnings.extend(e.plausible(ctx, th, fit.scale))
-    parameters["stiffness_scale_within_prior" if not multi else "baseline.stiffness_scale"] = (fit.scale, "1")
+    scale_key = "stiffness_scale_within_prior" if not multi else "baseline.stiffness_scale"
+    parameters[scale_key] = (fit.scale, "1")
+    if detail and fit.cov is not None:
+        errors[scale_key] = float(math.sqrt(max(fit.cov[-1, -1], 0.0)))
     prior_sigmas = abs(fit.scale - 1.0) / ctx.uncertainty
     if prior_sigmas > 3.0:
         warnings.append(f"stiffness scale {fit.scale:.4g} is {prior_sigmas:.1f} prior sigmas from 1 (implausible "
