@@ -284,3 +284,17 @@ def test_a_pair_is_judged_against_the_first_effects_plausible_form(params):
     # a plausible better form is the reference, and with no plausible form the best one stays
     assert _best_plausible_per_effect(ctx, [tame, one])["large_deflection"] is tame
     assert _best_plausible_per_effect(ctx, [wild])["large_deflection"] is wild
+
+
+def test_unexplained_by_implausible_values_says_so_without_contradiction(params):
+    """A ring whose curve bends like the elastica but 13x as much (gamma = 10, out of the elastica's range):
+    the form fits to the noise, only with values its physics forbids. The text must say that, and show the
+    structure of the residual that model was fitted to, not 'consistent with the noise' beside 'not explained'."""
+    _, probe_ctx = _synth(params, RecordingKind.RING_COMPRESSION, None, [])
+    x = probe_ctx.Y / probe_ctx.geometry["r_m_mm"]
+    diag, _ = _synth(params, RecordingKind.RING_COMPRESSION, "large_deflection", [10.0 * x])
+    assert diag.verdict.value == "unexplained"
+    assert any("outside the elastica's range" in w for w in diag.effects[0].warnings)
+    assert "explains it with plausible values" in diag.explanation
+    assert "values its physics does not allow" in diag.explanation
+    assert "consistent with the noise" not in diag.explanation

@@ -71,16 +71,16 @@ def explain(diag) -> str:
     top = diag.effects[0] if diag.effects else None
     if verdict == "unexplained":
         sugg = ""
-        # the best model may reach the noise and still not explain: its values break its own physics
-        fits_noise = top is not None and diag.gof_model is not None and not diag.gof_model.structured
+        # the best model may reach the noise and still not explain: its values break its own physics (a glitch
+        # or a stuck channel, the other reasons, are said in the structure sentence)
+        implausible = (top is not None and bool(top.warnings) and diag.gof_model is not None
+                       and not diag.gof_model.structured)
         if top is not None:
             but = (f"it reaches the noise only with values its physics does not allow ({'; '.join(top.warnings)})"
-                   if fits_noise and top.warnings else
-                   "it reaches the noise only through an effect the noise does not resolve" if fits_noise else
-                   "it leaves a residual that is not noise")
+                   if implausible else "it leaves a residual that is not noise")
             sugg = (f" The best partial model, offered only as a suggestion, is {top.id.replace('+', ' with ')} "
                     f"(delta BIC {top.delta_bic:.1f}, RMS {diag.rms_before:.3g} -> {top.rms:.3g}), but {but}.")
-        none = ("no catalogue model explains it with plausible values" if fits_noise else
+        none = ("no catalogue model explains it with plausible values" if implausible else
                 "no catalogue model brings the residual back to the noise")
         return (f"MISMATCH NOT EXPLAINED: the recording departs from the baseline ({diag.baseline.source}) beyond "
                 f"its noise ({noise:.3g}), and {none}. The residual: "
