@@ -180,6 +180,32 @@ def test_own_workers_import_the_pipeline_before_any_point(tmp_path):
     assert list(loaded.values()) == [True]
 
 
+def _forked_worker_state():
+    import gc
+    return {"parent": os.getppid(), "sigint_ignored": signal.getsignal(signal.SIGINT) == signal.SIG_IGN,
+            "omp": os.environ.get("OMP_NUM_THREADS"), "frozen": gc.get_freeze_count() > 0,
+            "distributed": "distributed.worker" in sys.modules}
+
+
+def test_own_workers_are_forked_from_the_fork_server(tmp_path):
+    """The own LocalCluster's workers are forks of the fork server (prefork.py), which imported their libraries
+    once (its heap frozen, as a worker's at teardown), runs with one BLAS thread and leaves Ctrl-C to the driver."""
+    from strainwave.compare.sweep import pipeline
+
+    # one fork server per process, which keeps its first preload: this test's module may come from the plugin
+    assert pipeline._start_fork_server(("strainwave.analytic.summary",))
+    with pipeline.dask_client(None, 2, tmp_path / "scratch", ("strainwave.analytic.summary",), forked=True) as (client, n):
+        states = list(client.run(_forked_worker_state).values())
+        loaded = list(client.run(lambda: "strainwave.analytic.summary" in sys.modules).values())
+    assert n == 2 and loaded == [True, True]
+    assert all(state["parent"] != os.getpid() for state in states)   # not spawned by the driver
+    assert states[0]["parent"] == states[1]["parent"]                 # ... but forked by one server
+    assert all(state["sigint_ignored"] and state["omp"] == "1" and state["frozen"] and state["distributed"]
+               for state in states), states
+    assert signal.getsignal(signal.SIGINT) is not signal.SIG_IGN     # the driver still takes Ctrl-C
+    assert "STRAINWAVE_SWEEP_PRELOAD" not in os.environ
+
+
 def test_sweep_worker_plugin_freezes_the_heap_at_teardown():
     import gc
 
