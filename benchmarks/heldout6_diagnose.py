@@ -552,7 +552,10 @@ def hyst_recording(name, group, law, rng, snr, *, stiffen=0.0, rows=None, cycles
     # diagnostic only: least-squares secant stiffness of the noiseless recording against the stated
     # (frictionless, full-scale tangent) stiffness, in prior sigmas
     A = np.vstack([Tr, np.ones_like(Tr)]).T
-    Ksec = 1.0 / float(np.linalg.lstsq(A, pr, rcond=None)[0][0])
+    coef = np.linalg.lstsq(A, pr, rcond=None)[0]
+    Ksec = 1.0 / float(coef[0])
+    # diagnostic only: the docs' style of signal (peak of what a linear nuisance fit leaves / noise)
+    peak_left = float(np.max(np.abs(pr - A @ coef)))
     offset = float(rng.normal(0, 20 * sd))
     pr = pr + nz + offset
     unc = float(rng.choice([0.02, 0.03, 0.05]))
@@ -564,7 +567,7 @@ def hyst_recording(name, group, law, rng, snr, *, stiffen=0.0, rows=None, cycles
     return Rec(name, group, truth, Tr, pr, Kst, unc,
                loss_true_arcmin=W * RAD2ARCMIN, snr=snr, rows=rows,
                note=f"{law} {shape} {cycles:g}cyc {cdesc} width/amp {W / np.max(np.abs(phi)):.3f}"
-               f" secantK {(Ksec / Kst - 1) / unc:+.1f}prior-sd" + (f" stiff{1 + stiffen:.1f}x" if stiffen else "")
+               f" secantK {(Ksec / Kst - 1) / unc:+.1f}prior-sd peak-left/noise {peak_left / sd:.1f}" + (f" stiff{1 + stiffen:.1f}x" if stiffen else "")
                + (f" {note}" if note else ""))
 
 
