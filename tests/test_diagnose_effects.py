@@ -298,3 +298,57 @@ def test_unexplained_by_implausible_values_says_so_without_contradiction(params)
     assert "explains it with plausible values" in diag.explanation
     assert "values its physics does not allow" in diag.explanation
     assert "consistent with the noise" not in diag.explanation
+
+
+def _torsion_ctx(params, u):
+    probe = parse_text(format_recording(RecordingKind.TORSION, "output_shaft", u * 1e6, u))
+    return build_context(probe, analytic_baseline(probe, params))
+
+
+def test_shape_free_backlash_adds_a_unimodal_compliance_bump(params):
+    """First principles of a clearance taken up: the added compliance is >= 0, largest at the band's centre and
+    falls away from it on both sides (each bump is a biweight), and the twist saturates at +/- b = sum of the
+    weights, so the lost motion is 2 b whatever the weights."""
+    from strainwave.compare.diagnose.effects import lost_motion
+    shape = lost_motion.SHAPE
+    u = np.linspace(-1.0, 1.0, 8001)
+    ctx = _torsion_ctx(params, u)
+    theta = np.array([-1.5, 0.02, 0.3, 0.0, 0.5, 0.1, 0.2])
+    y = shape.contribution(ctx, theta)
+    bump = np.gradient(y, u)
+    centre = np.argmin(np.abs(u - 0.02))
+    assert np.all(bump >= -1e-12)
+    assert np.all(np.diff(bump[centre:]) <= 1e-9) and np.all(np.diff(bump[:centre + 1]) >= -1e-9)
+    b = theta[2:].sum()
+    assert y[-1] == pytest.approx(b, rel=1e-12) and y[0] == pytest.approx(-b, rel=1e-12)
+    assert shape.report(ctx, theta, 1.0)["lost_motion"][0] == pytest.approx(2.0 * b * ctx.Y, rel=1e-12)
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_erf_backlash_at_high_signal_is_lost_motion_alone(params, seed):
+    """A clearance taken up with Gaussian flanks (b erf((u - u0)/w), not the catalogue's tanh law) at 400x the
+    noise: the tanh band misses it by 1.9 % of b, which drew a stiffening beside it or left it unexplained; the
+    shape-free band names it alone and reads its lost motion 2 b within 3 of its standard errors."""
+    from scipy.special import erf
+    rng = np.random.default_rng(seed)
+    n, b, w, u0, sigma = 2000, 0.02, 0.05, 0.01, 1e-4
+    u = _path(RecordingKind.TORSION, n)
+    ctx = _torsion_ctx(params, u)
+    y = ctx.u + 0.01 + 0.003 * ctx.t + b * erf((ctx.u - u0) / w) + sigma * rng.standard_normal(n)
+    rec = parse_text(format_recording(RecordingKind.TORSION, "output_shaft", u * 1e6, y * ctx.Y))
+    diag = diagnose(rec, params)[0]
+    assert diag.named == ("lost_motion",), (diag.verdict, diag.named, diag.structure)
+    top = diag.effects[0]
+    lost, se = top.parameters["lost_motion"][0], top.errors["lost_motion"]
+    assert abs(lost - 2.0 * b * ctx.Y) <= 3.0 * se + 1e-3 * 2.0 * b * ctx.Y, (lost, se, 2.0 * b * ctx.Y)
+
+
+def test_stiffening_completed_within_a_clearance_band_is_implausible(params):
+    """A stiffness curve that has made 90 % of its rise within 10 % of the largest torque (lost_motion's widest
+    band) is a clearance taken up; the CHA catalogue's curve (T1 = 0.19, T2 = 0.67 of a 1.5 T2 test) is not."""
+    from strainwave.compare.diagnose.effects import nonlinear_stiffness as ns
+    ctx = _torsion_ctx(params, np.linspace(-1.0, 1.0, 2001))
+    assert ns.SMOOTH_KNEE.plausible(ctx, np.array([0.25, 0.0, 0.035, 0.1, -1.9]), 1.0)   # one knee at 3.5 %
+    assert ns.TWO_SLOPE.plausible(ctx, np.array([0.25, 0.06]), 1.0)
+    assert not ns.EFFECT.plausible(ctx, np.array([0.2, 0.15, 0.19, 0.48]), 1.0)           # CHA-like
+    assert not ns.TWO_SLOPE.plausible(ctx, np.array([0.25, 0.2]), 1.0)

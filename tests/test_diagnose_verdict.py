@@ -254,6 +254,33 @@ def test_progressive_crack_closes_under_its_closing_load(params, d):
     assert away[-1] == pytest.approx(0.0, abs=1e-9)          # the staircase sums to fully closed
 
 
+def test_gradual_crack_as_wide_as_its_bound_is_an_even_curvature_not_a_crack(params):
+    """First principles: as its width grows the gradual closure tends to a parabola (w ln 2 + v/2 + v^2/(8 w)),
+    an even curvature over the whole range with no linear closed side; at the width's bound it is reported
+    implausible, well inside it is not."""
+    from strainwave.compare.diagnose.effects import crack_closure
+    u = np.linspace(-1.0, 1.0, 2001)
+    ctx = _ctx(params, u)
+    wide = crack_closure.GRADUAL.contribution(ctx, np.array([0.1, 0.0, 1.5]))
+    parabola = np.polyval(np.polyfit(u, wide, 2), u)
+    assert np.max(np.abs(wide - parabola)) < 2e-3 * np.ptp(wide)
+    at_bound = np.array([0.1, 0.0, crack_closure.LOG10_W_MAX])
+    assert crack_closure.GRADUAL.plausible(ctx, at_bound, 1.0)
+    assert not crack_closure.GRADUAL.plausible(ctx, np.array([0.1, 0.0, -1.3]), 1.0)
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_torque_sensor_quadratic_is_not_confidently_a_crack(params, seed):
+    """A linear specimen read through a torque sensor with a quadratic error (twist - k T^2, k = 0.5 % of full
+    scale, 25x the noise) under AR(1) noise: an even curvature over the whole range, which a crack (softer on
+    one side, linear on its closed side) is not. Before the gradual form's width bound was a plausibility
+    bound, it was named crack_closure[gradual] with its width at the bound, without doubt."""
+    diag, _ = _diagnose(params, lambda u, t, c: -0.005 * u ** 2, sigma=2e-4, seed=seed, n=1500, noise="ar1")
+    assert diag.verdict is not Verdict.AGREES
+    assert not (diag.verdict is Verdict.EXPLAINED and not diag.ambiguous and "crack_closure" in diag.named), \
+        (diag.verdict, diag.named, diag.ambiguous)
+
+
 def test_friction_loop_at_two_rates_stays_friction(params):
     """The converse: a rate-independent loop (Dahl, a function of the load path only) recorded at two loading
     rates is named hysteresis, and its rate-dependent rival does not take it."""

@@ -14,7 +14,7 @@ VARIANTS = (nonlinear_stiffness.TWO_SLOPE, nonlinear_stiffness.SMOOTH_KNEE, nonl
             nonlinear_stiffness.CONTACT, hysteresis.PLAY,
             hysteresis.PREISACH, crack_closure.GRADUAL, crack_closure.PROGRESSIVE,
             crack_closure.OPENING,
-            lost_motion.FLANK, large_deflection.SECOND_ORDER)
+            lost_motion.FLANK, lost_motion.SHAPE, large_deflection.SECOND_ORDER)
 
 
 def effects_for(kind: str) -> tuple[Effect, ...]:

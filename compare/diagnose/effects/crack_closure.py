@@ -23,6 +23,7 @@ curve, and the pair named a sensor's even nonlinearity (twist + k T^2) crack_clo
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import numpy as np
 
@@ -101,9 +102,29 @@ EFFECT = Effect(
     where=_where,
 )
 
+# the gradual closure's widest load width in log10 of the normalised torque: 20 % of the largest torque, so
+# the faces are shut (99 %) within 5 w of the zero and the closed side is linear beyond
+LOG10_W_MAX = -0.7
+# a fit within this of the bound (a factor 1.05 in width) wants a wider closure than a crack's faces make
+AT_BOUND = math.log10(1.05)
+
+
+def _plausible_gradual(ctx: Context, theta, s: float) -> list[str]:
+    """A crack is softer on one side and LINEAR on its closed side once the faces are shut. Without the
+    bound, the gradual form tends to a parabola (w ln 2 + v/2 + v^2/(8 w) as w grows): a closure as wide as
+    the bound allows is an even curvature over the whole range, a sensor's non-linearity (heldout5: a torque
+    sensor reading T + k T^2 was named crack_closure[gradual] at 300x the noise, its width at the bound, its
+    stiffness ratio 0.995) or a stiffening, not a crack. As lost_motion's band at its bound is a stiffening."""
+    if theta[2] >= LOG10_W_MAX - AT_BOUND:
+        return [f"closure width {10.0 ** theta[2] * ctx.X:.4g} {ctx.load_unit} at its bound (20 % of the largest "
+                f"torque): a closure this wide is an even curvature over the whole range (a sensor's "
+                f"non-linearity or a stiffening), not crack faces closing"]
+    return []
+
+
 # the other forms are the sharp form with another closure law: same id, side, report and location
-GRADUAL = dataclasses.replace(EFFECT, params=(*EFFECT.params, Param("log10_w", -2.5, -0.7, (-1.5,))),
-                              contribution=_contribution_gradual, variant="gradual")
+GRADUAL = dataclasses.replace(EFFECT, params=(*EFFECT.params, Param("log10_w", -2.5, LOG10_W_MAX, (-1.5,))),
+                              contribution=_contribution_gradual, variant="gradual", plausible=_plausible_gradual)
 PROGRESSIVE = dataclasses.replace(
     EFFECT, params=(*EFFECT.params, *(Param(f"f_{k:g}", 0.0, 1.0, (1.0 if k == 0.0 else 0.0,)) for k in CLOSURE_KNOTS)),
     contribution=_contribution_progressive, variant="progressive")

@@ -86,12 +86,40 @@ def _total_fall(ctx: Context, theta) -> float:
     return float(theta[0] + (theta[1] if len(theta) in (4, 5) else 0.0))
 
 
+# A clearance is taken up within 10 % of the largest torque (lost_motion's band bound, LOG10_W_MAX); tooth
+# contact spreads over a large part of the rated torque (CHA table: T2 = 3.4-3.6 T1, so a test to 1.5 T2 makes
+# its fall at 0.19 and 0.67 of full scale). A curve that has made 90 % of its whole fall within the band is a
+# clearance taken up, not stiffening (heldout4: a backlash b erf((T - T0)/w), w = 4.6 % of full scale, beside a
+# loop was named a smooth-knee stiffening + hysteresis with K2 = K3 and its one knee at 3.5 % of full scale)
+CLEARANCE_BAND = 0.1
+FALL_DONE = 0.9
+
+
+def _fall_done_at(ctx: Context, theta) -> float:
+    """The load (fraction of the largest) by which the compliance has made FALL_DONE of its fall over the
+    recorded range, read from the form's own curve."""
+    m_max = float(np.max(np.abs(ctx.u)))
+    form = {4: _contribution, 2: _contribution_two, 5: _contribution_smooth, 3: _contribution_contact,
+            len(MONOTONE_KNOTS): _contribution_monotone}[len(theta)]
+    m = np.linspace(0.0, m_max, 2001)
+    # the extra twist on the positive side is minus the ramp; its slope's drop is the compliance fall
+    fall = np.gradient(-form(dataclasses.replace(ctx, u=m), theta), m)
+    if not fall[-1] > 0:
+        return 1.0
+    return float(m[np.argmax(fall >= FALL_DONE * fall[-1])] / m_max)
+
+
 def _plausible(ctx: Context, theta, s: float) -> list[str]:
     a_total = _total_fall(ctx, theta)
     if s - a_total <= s / MAX_STIFFENING:
         ratio = s / (s - a_total) if s > a_total else float("inf")
         return [f"the stiffness rises {ratio:.3g}x over the load range (tooth-contact stiffening gives at most "
                 f"~{MAX_STIFFENING:g}x): a stop, clipping or saturation, not stiffening"]
+    done = _fall_done_at(ctx, theta)
+    if a_total > 0 and done <= CLEARANCE_BAND:
+        return [f"the stiffness has made {100 * FALL_DONE:.0f} % of its rise by {done * ctx.X:.4g} {ctx.load_unit} "
+                f"({100 * done:.1f} % of the largest torque, within a clearance's band of "
+                f"{100 * CLEARANCE_BAND:.0f} %): a clearance taken up (lost_motion), not tooth-contact stiffening"]
     return []
 
 
