@@ -72,7 +72,7 @@ def _bouc_wen(u, z_max=0.05, beta=0.5, gamma=0.5):
     return z / z_max
 
 
-@pytest.mark.parametrize("model", ["dahl", "play", "preisach", "bouc_wen"])
+@pytest.mark.parametrize("model", ["dahl", "dahl_n0", "dahl_n05", "dahl_n2", "play", "preisach", "bouc_wen"])
 def test_every_loop_law_dissipates(params, model):
     """First principles: closed integral of T dphi > 0, and a positive twist remains after unloading."""
     u = _path(2001, (0, 1, -1, 1, 0))
@@ -82,7 +82,9 @@ def test_every_loop_law_dissipates(params, model):
             # a saturating relay density: most weight at bias 0.4, half-width 0.2 (all slip before full torque)
             "preisach": lambda c: hysteresis.PREISACH.contribution(c, 0.02 * np.array([0.2, 0.5, 0.1, 0.0, 0.3, 1.0,
                                                                                        0.2, 0.0, 0.0, 0.2, 0.0, 0.0])),
-            "bouc_wen": lambda c: -0.02 * _bouc_wen(c.u)}
+            "bouc_wen": lambda c: -0.02 * _bouc_wen(c.u),
+            **{f"dahl_n{str(n).replace('.', '')}": (lambda n: lambda c: hysteresis.DAHL_EXPONENT.contribution(
+                c, np.array([0.02 * 2 ** n / 10 ** -1.3, -1.3, n])))(n) for n in (0, 0.5, 2)}}
     twist = laws[model](ctx)
     width, energy = loop_quantities(ctx, laws[model])
     assert width > 0 and energy > 0
@@ -90,6 +92,27 @@ def test_every_loop_law_dissipates(params, model):
     assert twist[1000] - twist[0] > 0
     # energy of a loop of width w spanning +/- T_max: between a parallelogram (2 w T_max) and half of it
     assert width * 1.0 * X <= energy * 1.0001 <= 2.0 * width * X * 1.0001
+
+
+def test_dahl_exponent_spans_the_bristle_and_the_classic_dahl(params):
+    """Dahl's exponent n: n = 1 is the classic exponential form; n = 0 is the elastic-perfectly-plastic bristle,
+    i.e. one play operator of half-width w and weight h/w (a Jenkins element); each exact, sample by sample."""
+    u = _path(2001, (0, 1, -0.6, 0.8, -1, 0.3))
+    ctx = _ctx(params, u)
+    w = 10 ** -1.2
+    classic = hysteresis.EFFECT.contribution(ctx, np.array([0.02, -1.2]))
+    # f = h 2^n / w: h = 0.02 at n = 1 is f = 0.04 / w
+    assert np.allclose(hysteresis.DAHL_EXPONENT.contribution(ctx, np.array([0.04 / w, -1.2, 1.0])), classic,
+                       atol=1e-15)
+    play = np.empty(len(u))
+    p = ctx.u[0]
+    for k, x in enumerate(ctx.u):                  # the play operator's own recursion, sample by sample
+        p = min(max(p, x - w), x + w)
+        play[k] = p
+    assert np.allclose(hysteresis.play_operator(ctx, w), play, atol=1e-15)
+    bristle = 0.02 / w * (play - ctx.u)
+    assert np.allclose(hysteresis.DAHL_EXPONENT.contribution(ctx, np.array([0.02 / w, -1.2, 0.0])), bristle,
+                       atol=1e-12)
 
 
 def test_relay_states_follow_the_relay_definition():
