@@ -278,7 +278,7 @@ DAHL_EXPONENT = Effect(
     id="hysteresis",
     kinds=("torsion",),
     params=(Param("f", 0.0, 1.0, (0.5,)), Param("log10_w", -2.5, 0.0, (-1.5, -0.7)),
-            Param("n", 0.0, 3.0, (0.3, 1.0, 2.0))),
+            Param("n", 0.0, 3.0, (0.3, 2.0))),          # n = 1 is the classic form itself
     contribution=_dahl_exponent,
     report=_report_dahl_exponent,
     explanation=EXPLANATION,
