@@ -34,6 +34,8 @@ All are reported through shape-free quantities (loop width at zero torque, energ
 """
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 from .base import Context, Effect, Param
@@ -274,42 +276,22 @@ EFFECT = Effect(
     plausible=_plausible_dahl,
 )
 
-DAHL_EXPONENT = Effect(
-    id="hysteresis",
-    kinds=("torsion",),
-    params=(Param("f", 0.0, 1.0, (0.5,)), Param("log10_w", -2.5, 0.0, (-1.5, -0.7)),
-            Param("n", 0.0, 3.0, (0.3, 2.0))),          # n = 1 is the classic form itself
-    contribution=_dahl_exponent,
-    report=_report_dahl_exponent,
-    explanation=EXPLANATION,
-    applicable=_applicable,
-    variant="dahl-exponent",
-    plausible=_plausible_dahl_exponent,
-)
 
-PLAY = Effect(
-    id="hysteresis",
-    kinds=("torsion",),
-    params=tuple(Param(f"w_{r:g}", 0.0, 5.0, (0.0,)) for r in PLAY_THRESHOLDS),
-    contribution=_play,
-    report=_report_play,
-    explanation=EXPLANATION,
-    applicable=_applicable,
-    variant="play",
-    plausible=_plausible_play,
-)
+def _form(variant: str, params: tuple[Param, ...], contribution, report, plausible=None) -> Effect:
+    """Another loop law of the same physics: same id, explanation and applicability."""
+    return dataclasses.replace(EFFECT, params=params, contribution=contribution, report=report, variant=variant,
+                               plausible=plausible)
 
-PREISACH = Effect(
-    id="hysteresis",
-    kinds=("torsion",),
-    params=tuple(Param(f"mu_b{b:g}_h{h:g}", 0.0, 50.0, (0.0,)) for b in PREISACH_BIAS_NODES
-                 for h in PREISACH_WIDTH_NODES),
-    contribution=_preisach,
-    report=_report_preisach,
-    explanation=EXPLANATION,
-    applicable=_applicable,
-    variant="preisach",
-)
+
+DAHL_EXPONENT = _form("dahl-exponent", (Param("f", 0.0, 1.0, (0.5,)), Param("log10_w", -2.5, 0.0, (-1.5, -0.7)),
+                                        Param("n", 0.0, 3.0, (0.3, 2.0))),   # n = 1 is the classic form itself
+                      _dahl_exponent, _report_dahl_exponent, _plausible_dahl_exponent)
+
+PLAY = _form("play", tuple(Param(f"w_{r:g}", 0.0, 5.0, (0.0,)) for r in PLAY_THRESHOLDS), _play, _report_play,
+             _plausible_play)
+
+PREISACH = _form("preisach", tuple(Param(f"mu_b{b:g}_h{h:g}", 0.0, 50.0, (0.0,)) for b in PREISACH_BIAS_NODES
+                                   for h in PREISACH_WIDTH_NODES), _preisach, _report_preisach)
 
 __all__ = ["DAHL_EXPONENT", "EFFECT", "PLAY", "PLAY_THRESHOLDS", "PREISACH", "dahl_exponent_unit", "dahl_unit", "play_operator", "preisach_basis",
            "relay_states"]
