@@ -403,12 +403,15 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     if verdict in (Verdict.AGREES, Verdict.EXPLAINED):
         final = best if verdict is Verdict.EXPLAINED else base_fit
         if _stride(rec.n) == 1:
-            glitch = find_glitch(ctx.y - final.model, noise, np.arange(rec.n), rec.response, rec.load)
+            glitch = find_glitch(ctx.y - final.model, noise, np.arange(rec.n), rec.response, rec.load,
+                                 np.array([start for start, _, _ in ctx.segments[1:]], dtype=int))
         else:
             # a glitch on a row the fit skipped is a glitch all the same: the final model on every row, judged
             # against the noise model of that full-rate residual (the fitted rows' noise model is per stride)
             r_full = _full_residual(rec, base, ctx, final)
-            glitch = find_glitch(r_full, fine_scale_noise(r_full), np.arange(rec.n), rec.response, rec.load)
+            glitch = find_glitch(r_full, fine_scale_noise(r_full), np.arange(rec.n), rec.response, rec.load,
+                                 np.array([start * _stride(rec.n) + k for start, _, _ in ctx.segments[1:]
+                                           for k in range(-_stride(rec.n), _stride(rec.n) + 1)], dtype=int))
         if glitch is not None:
             glitch_only = verdict is Verdict.AGREES
             verdict, named, ambiguous, mismatch = Verdict.UNEXPLAINED, (), False, True

@@ -45,36 +45,40 @@ from .loop import ARCMIN_PER_RAD, loop_quantities
 PLAY_THRESHOLDS = (0.005, 0.01, 0.02, 0.04, 0.08, 0.15, 0.3, 0.5)
 
 
-def dahl_unit(ctx: Context, w: float) -> np.ndarray:
-    """Dahl state z for unit amplitude (the twist is linear in h); starts relaxed at z = 0."""
+def _dahl_state(ctx: Context, approach) -> np.ndarray:
+    """State z of a Dahl-type law, exact on each monotonic stretch: x = 1 - d z, the distance to saturation
+    in the stretch's direction d, falls with the travel tau since the stretch began, x = approach(x_r, tau).
+    Starts relaxed at z = 0. A stretch starts AT the previous one's extreme, which the load reached moving
+    the old way: the extreme sample is advanced by the old stretch (read with the new one's rule it lagged one
+    sample at every reversal, a spike in the residual at 100x the noise)."""
     z = np.empty_like(ctx.u)
     z_r = 0.0
     for start, stop, d in ctx.segments:
-        seg = ctx.u[start:stop]
+        seg = ctx.u[start:stop + 1]                  # with the next stretch's first sample, its own extreme
         travel = np.maximum.accumulate(np.maximum(d * (seg - seg[0]), 0.0))
-        z[start:stop] = d + (z_r - d) * np.exp(-travel / w)
-        z_r = z[stop - 1]
+        x = approach(max(1.0 - d * z_r, 0.0), travel)
+        zs = d * (1.0 - x)
+        z[start:stop] = zs[:stop - start]
+        z_r = zs[-1]
     return z
+
+
+def dahl_unit(ctx: Context, w: float) -> np.ndarray:
+    """Dahl state z for unit amplitude (the twist is linear in h); starts relaxed at z = 0."""
+    return _dahl_state(ctx, lambda x_r, travel: x_r * np.exp(-travel / w))
 
 
 def dahl_exponent_unit(ctx: Context, w: float, n: float) -> np.ndarray:
     """State z of Dahl's law with exponent n (unit amplitude), exact on each stretch; starts relaxed at z = 0."""
-    z = np.empty_like(ctx.u)
-    z_r = 0.0
-    for start, stop, d in ctx.segments:
-        seg = ctx.u[start:stop]
-        travel = np.maximum.accumulate(np.maximum(d * (seg - seg[0]), 0.0))
-        x_r = max(1.0 - d * z_r, 0.0)          # distance to saturation in the stretch's direction, in [0, 2]
+    def approach(x_r, travel):
         if abs(n - 1.0) < 1e-9:
-            x = x_r * np.exp(-travel / w)
-        elif n < 1.0:
-            x = np.maximum(x_r ** (1.0 - n) - (1.0 - n) * travel / w, 0.0) ** (1.0 / (1.0 - n))
-        else:
-            x = np.zeros_like(travel) if x_r == 0.0 else \
-                (x_r ** (1.0 - n) + (n - 1.0) * travel / w) ** (-1.0 / (n - 1.0))
-        z[start:stop] = d * (1.0 - x)
-        z_r = z[stop - 1]
-    return z
+            return x_r * np.exp(-travel / w)
+        if n < 1.0:
+            return np.maximum(x_r ** (1.0 - n) - (1.0 - n) * travel / w, 0.0) ** (1.0 / (1.0 - n))
+        if x_r == 0.0:
+            return np.zeros_like(travel)
+        return (x_r ** (1.0 - n) + (n - 1.0) * travel / w) ** (-1.0 / (n - 1.0))
+    return _dahl_state(ctx, approach)
 
 
 def play_operator(ctx: Context, r: float) -> np.ndarray:
