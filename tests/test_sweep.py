@@ -187,23 +187,39 @@ def _forked_worker_state():
             "distributed": "distributed.worker" in sys.modules}
 
 
+_FORKED_CHECK = """
+import json, os, signal, sys
+from pathlib import Path
+from strainwave.compare.sweep import pipeline
+sys.path.insert(0, {tests!r})
+from test_sweep import _forked_worker_state
+assert pipeline._start_fork_server(("strainwave.analytic.summary",))
+with pipeline.dask_client(None, 2, Path({scratch!r}), ("strainwave.analytic.summary",), forked=True) as (client, n):
+    states = list(client.run(_forked_worker_state).values())
+    loaded = list(client.run(lambda: "strainwave.analytic.summary" in sys.modules).values())
+print(json.dumps({{"n": n, "loaded": loaded, "states": states, "pid": os.getpid(),
+                  "driver_sigint_ignored": signal.getsignal(signal.SIGINT) is signal.SIG_IGN,
+                  "env_left": "STRAINWAVE_SWEEP_PRELOAD" in os.environ}}))
+"""
+
+
 def test_own_workers_are_forked_from_the_fork_server(tmp_path):
     """The own LocalCluster's workers are forks of the fork server (prefork.py), which imported their libraries
-    once (its heap frozen, as a worker's at teardown), runs with one BLAS thread and leaves Ctrl-C to the driver."""
-    from strainwave.compare.sweep import pipeline
-
-    # one fork server per process, which keeps its first preload: this test's module may come from the plugin
-    assert pipeline._start_fork_server(("strainwave.analytic.summary",))
-    with pipeline.dask_client(None, 2, tmp_path / "scratch", ("strainwave.analytic.summary",), forked=True) as (client, n):
-        states = list(client.run(_forked_worker_state).values())
-        loaded = list(client.run(lambda: "strainwave.analytic.summary" in sys.modules).values())
-    assert n == 2 and loaded == [True, True]
-    assert all(state["parent"] != os.getpid() for state in states)   # not spawned by the driver
+    once (its heap frozen, as a worker's at teardown), runs with one BLAS thread and leaves Ctrl-C to the driver.
+    In its own interpreter, as a sweep runs: a fork server is one per process and keeps its first start, and
+    earlier tests of this session may have started one (the full suite did: its workers kept SIGINT)."""
+    code = _FORKED_CHECK.format(tests=os.path.dirname(os.path.abspath(__file__)), scratch=str(tmp_path / "scratch"))
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr[-2000:]
+    got = json.loads(out.stdout.strip().splitlines()[-1])
+    states = got["states"]
+    assert got["n"] == 2 and got["loaded"] == [True, True]
+    assert all(state["parent"] != got["pid"] for state in states)    # not spawned by the driver
     assert states[0]["parent"] == states[1]["parent"]                 # ... but forked by one server
     assert all(state["sigint_ignored"] and state["omp"] == "1" and state["frozen"] and state["distributed"]
                for state in states), states
-    assert signal.getsignal(signal.SIGINT) is not signal.SIG_IGN     # the driver still takes Ctrl-C
-    assert "STRAINWAVE_SWEEP_PRELOAD" not in os.environ
+    assert not got["driver_sigint_ignored"]                           # the driver still takes Ctrl-C
+    assert not got["env_left"]
 
 
 def test_sweep_worker_plugin_freezes_the_heap_at_teardown():
