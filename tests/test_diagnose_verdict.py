@@ -213,6 +213,20 @@ def test_stiffness_beyond_its_prior_is_named_within_it_agrees(params):
     assert inside.verdict is Verdict.AGREES
 
 
+@pytest.mark.parametrize("seed", [0, 1])
+def test_stiffening_with_a_stiffness_beyond_its_prior_is_both(params, seed):
+    """tanh stiffening on a specimen 8 % more compliant than simulated (4 sigmas of the 2 % prior): the stiffening
+    alone leaves noise but for its stiffness, so the series compliance joins it (it read "unexplained"), with the
+    compliance change recovered."""
+    diag, _ = _diagnose(params, lambda u, t, c: -0.1 * (u - 0.4 * np.tanh(u / 0.4)) + 0.08 * u, sigma=1e-3,
+                        seed=seed)
+    assert diag.verdict is Verdict.EXPLAINED and diag.named == ("nonlinear_stiffness", "compliance_offset")
+    best = diag.effects[0]
+    change, se = best.parameters["compliance_offset.compliance_change_percent"][0], \
+        best.errors["compliance_offset.compliance_change_percent"]
+    assert abs(change - 8.0) < 3 * se + 1.0, (change, se)
+
+
 def test_clipped_response_is_not_stiffening(params):
     diag, _ = _diagnose(params, lambda u, t, c: np.clip(u, -0.85, 0.85) - u)
     assert diag.verdict is Verdict.UNEXPLAINED

@@ -63,6 +63,7 @@ MIN_COMPONENT_SIGMAS = 1.5
 MAX_FIT_ROWS = 2500        # model selection on an evenly strided subsample beyond this (speed, issue 12)
 # Pairs that cannot be told apart: both are a pure linear compliance change.
 _DEGENERATE = {frozenset({"compliance_offset", "thick_ring"})}
+OFFSET = "compliance_offset"
 
 
 class Verdict(str, enum.Enum):
@@ -312,8 +313,8 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
                 continue
             k = 2 if a0 is best_single else 1
             for a, b in itertools.product(by_id[a0.id][:k], by_id[b0.id][:k]):
-                start = np.concatenate([a.theta, b.theta])
-                pairs.append(fit_effects(ctx, a.effects + b.effects, sigma, u_rel, starts=[start], noise=noise))
+                pairs.append(fit_effects(ctx, a.effects + b.effects, sigma, u_rel, starts=_pair_starts(a, b),
+                                         noise=noise))
         # the best pair in every other combination of model forms: a loop law that loses as a single
         # (its misfit of the stiffening costs more) may be the one that fits beside the other effect
         if pairs:
@@ -324,16 +325,33 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
             for x, y in itertools.product(fa, fb):
                 if (x.effects[0].label, y.effects[0].label) in done:
                     continue
-                pairs.append(fit_effects(ctx, x.effects + y.effects, sigma, u_rel,
-                                         starts=[np.concatenate([x.theta, y.theta])], noise=noise))
+                pairs.append(fit_effects(ctx, x.effects + y.effects, sigma, u_rel, starts=_pair_starts(x, y),
+                                         noise=noise))
+        # a form that leaves nothing but a stiffness beyond its prior, beside a series compliance, whether or
+        # not the compliance ranked among the four best singles
+        offset = by_id.get(OFFSET, [])[:1]
+        done = {tuple(e.label for e in p.effects) for p in pairs}
+        for a, b in itertools.product(by_id.get(best_single.id, [])[:2], offset):
+            if a.id != OFFSET and _stiffness_only(gof(a)) and (a.effects[0].label, b.effects[0].label) not in done:
+                pairs.append(fit_effects(ctx, a.effects + b.effects, sigma, u_rel, starts=_pair_starts(a, b),
+                                         noise=noise))
     candidates = list(ranked_singles)
     plausible_first = _best_plausible_per_effect(ctx, singles)
     for p in pairs:
-        first = plausible_first[p.effects[0].id]
-        if first.bic - p.bic <= BIC_THRESHOLD:
+        ids = [e.id for e in p.effects]
+        first = plausible_first[ids[1] if ids[0] == OFFSET else ids[0]]
+        # a series compliance is significant as a stiffness outside its prior is: by the prior's own test (the
+        # one that names it alone), where one more linear term earns only chi2 - ln N of BIC (at 3-4 prior
+        # sigmas, less than 10). A stiffening drawn to the noise with a stiffness 3.5 sigmas off read
+        # "unexplained" (heldout3's table with a 5 % stiffness error)
+        offset_pair = OFFSET in ids and _stiffness_only(gof(first)) and not gof(p).structured
+        if first.bic - p.bic <= (-AMBIGUOUS_BIC if offset_pair else BIC_THRESHOLD):
             continue                         # the second effect is not significant given the first
         if _unresolved(ctx, p, sigma):
             continue                         # one effect of the pair stays below the noise everywhere
+        if offset_pair:
+            candidates.append(p)
+            continue
         # it must explain a structure the first one cannot: some generic structure of the first's residual
         # loses more than 10 BIC units of evidence once the second effect is added
         before, after = gof(first), gof(p)
@@ -455,6 +473,23 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     arrays = {"load": fit_rec.load, "response": fit_rec.response, "baseline": base_fit.model * ctx.Y,
               "augmented": after.model * ctx.Y, "model_label": after.label}
     return diag, arrays
+
+
+def _pair_starts(a: Fit, b: Fit) -> list[np.ndarray]:
+    """Starts for the pair of two singles: both singles' parameters; with a series compliance also the other
+    single's own fit with its stiffness scale's departure moved into the compliance (the compliance fitted
+    alone took the whole misfit's secant, a start far from the pair's optimum)."""
+    starts = [np.concatenate([a.theta, b.theta])]
+    if b.id == OFFSET and a.id != OFFSET:
+        starts.append(np.concatenate([a.theta, [a.nuisance[2] - 1.0]]))
+    elif a.id == OFFSET and b.id != OFFSET:
+        starts.append(np.concatenate([[b.nuisance[2] - 1.0], b.theta]))
+    return starts
+
+
+def _stiffness_only(g: StructureTest) -> bool:
+    """The residual is noise but for a stiffness outside its prior."""
+    return g.structured and all(s.name == "stiffness" for s in g.significant)
 
 
 def _rate_rival_margin(ctx, best: Fit, sigma: float, u_rel: float, noise) -> float:
