@@ -52,41 +52,6 @@ def vector_prolongation(scalar: sp.csr_matrix, dim: int, free: np.ndarray) -> tu
     return P[free][:, coarse_free].tocsr(), coarse_free
 
 
-def reversed_rows(A: sp.csr_matrix) -> sp.csr_matrix:
-    """J A J with J the reversal permutation (row and column i -> n-1-i): A's arrays read backwards.
-
-    Each row's entries come out in reverse order, so a sweep over it sums a row in the opposite order
-    to pyamg's backward sweep over A (round-off only: pyamg's own aggregation already moves the
-    solution by ~1e-13 from run to run). Keeping the order took a gather: 2.2-3.6 s at 1M dofs against
-    two streaming copies here."""
-    n = A.shape[0]
-    indptr = np.empty_like(A.indptr)
-    np.subtract(A.indptr[-1], A.indptr[::-1], out=indptr)
-    indices = np.empty_like(A.indices)
-    np.subtract(n - 1, A.indices[::-1], out=indices, dtype=indices.dtype)
-    return sp.csr_matrix((A.data[::-1].copy(), indices, indptr), shape=A.shape)
-
-
-def backward_sweep(A: sp.csr_matrix):
-    """A backward Gauss-Seidel smoother ``(A, x, b) -> None`` (x in place), pyamg's up to the order of
-    the sums within a row.
-
-    pyamg walks the rows of A from last to first, against the memory order, and its backward sweep took
-    2.3-2.6x its forward one over the 957k-dof P2 matrix (0.25-0.29 s vs 0.10-0.11 s, 76.6M entries);
-    a forward sweep over ``reversed_rows(A)`` runs in the memory order: 0.11-0.16 s, for one copy of A
-    more (0.9 GB at 1M dofs)."""
-    from pyamg import amg_core
-    R = reversed_rows(A)
-    n = A.shape[0]
-
-    def smooth(_A, x: np.ndarray, b: np.ndarray) -> None:
-        xr = x[::-1].copy()
-        amg_core.gauss_seidel(R.indptr, R.indices, R.data, xr, np.ascontiguousarray(b[::-1]), 0, n, 1)
-        x[:] = xr[::-1]
-
-    return smooth
-
-
 def v_cycle(levels, coarse_solver):
     """One V-cycle from a zero guess over pyamg ``levels`` (A, P, R, pre/postsmoother): a symmetric
     preconditioner r -> z for ``pcg``. pyamg's own ``solve(maxiter=1)`` also computes the residual norm
@@ -128,5 +93,50 @@ def pcg(A, b: np.ndarray, precondition, *, rtol: float, maxiter: int) -> tuple[n
         rz_next = float(r @ z)
         p *= rz_next / rz
         p += z
+        rz = rz_next
+    return x, maxiter
+
+
+def v_cycle_fused(sweeps, levels, coarse_solver):
+    """``v_cycle`` with the fine level in ``sweeps`` (a ``fused_sweeps.FineSweeps`` of levels[0].A):
+    r -> (z, A z) for ``pcg_with_products``. The forward sweep from zero hands back its residual and the
+    backward sweep the product, so the fine matrix is read twice per cycle instead of three times, and
+    CG needs no product of its own (see fused_sweeps)."""
+    below = v_cycle(levels[1:], coarse_solver)
+    P, R = levels[0].P, levels[0].R
+
+    def cycle(r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        x, ux = sweeps.forward_from_zero(r)
+        # the residual r - A x is -U x; the cycle below is linear (and negation exact), so the sign
+        # goes onto the correction instead of a negated copy of the vector
+        x -= P @ below(R @ ux)
+        return x, sweeps.backward(r, x)
+
+    return cycle
+
+
+def pcg_with_products(b: np.ndarray, precondition, *, rtol: float, maxiter: int) -> tuple[np.ndarray, int]:
+    """``pcg`` for a preconditioner that also returns A z: r -> (z, A z). The product A p of the search
+    direction p = z + beta p_old is A z + beta A p_old, with no pass over A. Its round-off accumulates
+    over the iterations like the recursive residual's own (the caller checks the true residual)."""
+    x = np.zeros_like(b)
+    r = b.copy()
+    limit = rtol * np.linalg.norm(b)
+    z, q = precondition(r)
+    p = z.copy()
+    rz = float(r @ z)
+    for it in range(1, maxiter + 1):
+        alpha = rz / float(p @ q)
+        x += alpha * p
+        r -= alpha * q
+        if np.linalg.norm(r) <= limit:
+            return x, it
+        z, az = precondition(r)
+        rz_next = float(r @ z)
+        beta = rz_next / rz
+        p *= beta
+        p += z
+        q *= beta
+        q += az
         rz = rz_next
     return x, maxiter

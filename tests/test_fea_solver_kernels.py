@@ -1,4 +1,5 @@
-"""Solver kernels: ``solver.condense`` is K[keep][:, keep]; ``pmultigrid.pcg`` with ``v_cycle`` solves SPD systems."""
+"""Solver kernels: ``solver.condense`` is K[keep][:, keep]; ``pmultigrid.pcg`` with ``v_cycle`` solves SPD systems;
+the fused fine level (``fused_sweeps``) equals the pyamg / scipy path it replaces."""
 import numpy as np
 import pytest
 import scipy.sparse as sp
@@ -78,19 +79,61 @@ def test_condense_blocks_is_condense_of_the_csr(dim):
         assert np.array_equal(g.data, want.data)
 
 
-def test_backward_sweep_is_pyamgs():
+def _ball_system():
+    """A small real system: the curved P2 stiffness of a ball with a clamped cap, condensed (CSR), and the
+    p-multigrid solve's arguments."""
+    import skfem
+    from strainwave.fea.assembly import Lame, stiffness
+    from strainwave.fea.element_gradients import element_geometry
+    from strainwave.fea.mesh_data import to_skfem
+    from strainwave.fea.solver import condense_blocks
+    from tests.test_fea_assembly import _as_gmsh
+    sk = to_skfem(_as_gmsh(skfem.MeshTet2.init_ball(2), 3))
+    K = stiffness(element_geometry(sk.doflocs, sk.element_dofs, 2), Lame.from_young(2.1e5, 0.3), fmt="bsr")
+    keep = np.ones(K.shape[0] // 3, bool)
+    keep[np.argsort(sk.doflocs[2])[:40]] = False
+    fixed = np.flatnonzero(np.repeat(~keep, 3))
+    return sk, K, condense_blocks(K, keep).tocsr(), fixed
+
+
+def test_fine_sweeps_are_pyamgs_gauss_seidel_with_residual_and_product():
+    """The fused forward sweep from zero is pyamg's forward sweep and returns U x (so b - A x = -U x);
+    the fused backward sweep is pyamg's backward sweep and returns A x of its result; to round-off."""
     from pyamg.relaxation.relaxation import gauss_seidel
-    from strainwave.fea.pmultigrid import backward_sweep, reversed_rows
-    A = (_laplacian_3d(7) + sp.random(343, 343, density=0.02, random_state=1, format="csr") * 0.1).tocsr()
-    A = (A + A.T).tocsr()
-    J = sp.csr_matrix(np.eye(343)[::-1])
-    assert abs(reversed_rows(A) - J @ A @ J).max() == 0.0
-    b = np.random.default_rng(2).random(343)
-    x_pyamg = np.random.default_rng(3).random(343)
-    x_ours = x_pyamg.copy()
-    gauss_seidel(A, x_pyamg, b, sweep="backward")
-    backward_sweep(A)(A, x_ours, b)
-    np.testing.assert_allclose(x_ours, x_pyamg, rtol=1e-14, atol=0)
+    from strainwave.fea.fused_sweeps import FineSweeps
+    A = _ball_system()[2]
+    sweeps = FineSweeps(A)
+    rng = np.random.default_rng(2)
+    b = rng.random(A.shape[0])
+    x, ux = sweeps.forward_from_zero(b)
+    want = np.zeros_like(b)
+    gauss_seidel(A, want, b, sweep="forward")
+    np.testing.assert_allclose(x, want, rtol=1e-13, atol=0)
+    np.testing.assert_allclose(b - A @ x, -ux, rtol=0, atol=1e-12 * abs(b).max())
+    np.testing.assert_allclose(ux, sp.triu(A, 1) @ x, rtol=0, atol=1e-13 * abs(ux).max())
+    x0 = rng.random(A.shape[0])
+    ours, want = x0.copy(), x0.copy()
+    ax = sweeps.backward(b, ours)
+    gauss_seidel(A, want, b, sweep="backward")
+    np.testing.assert_allclose(ours, want, rtol=1e-13, atol=0)
+    np.testing.assert_allclose(ax, A @ ours, rtol=0, atol=1e-13 * abs(ax).max())
+
+
+def test_fused_pcg_equals_the_plain_v_cycle_pcg():
+    """The fused fine level (fused_sweeps) and CG's product by recurrence: the same iterations and the
+    same solution, to round-off, as pcg with pyamg's smoothers on the same hierarchy."""
+    from strainwave.fea import solver
+    from strainwave.fea.pmultigrid import pcg, pcg_with_products, v_cycle, v_cycle_fused
+    sk, K, A, fixed = _ball_system()
+    free = np.setdiff1d(np.arange(K.shape[0]), fixed)
+    ml = solver._amg_hierarchy(A, free, sk.doflocs, 3, sk.element_dofs)
+    b = np.random.default_rng(4).random(A.shape[0])
+    x0, its0 = pcg(A, b, v_cycle(ml.levels, ml.coarse_solver), rtol=1e-10, maxiter=200)
+    x1, its1 = pcg_with_products(b, v_cycle_fused(ml.fine_sweeps, ml.levels, ml.coarse_solver), rtol=1e-10,
+                                 maxiter=200)
+    assert its1 == its0 and its0 < 40
+    np.testing.assert_allclose(x1, x0, rtol=0, atol=1e-9 * abs(x0).max())
+    assert np.linalg.norm(b - A @ x1) <= 2e-10 * np.linalg.norm(b)
 
 
 def test_solve_with_node_blocks_equals_the_scalar_path():
