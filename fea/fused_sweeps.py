@@ -23,29 +23,85 @@ The kernels are ``sweep_kernels`` (numba).
 """
 from __future__ import annotations
 
+import threading
+
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["FineSweeps"]
+__all__ = ["FineSweeps", "MIN_DOFS", "warm_up"]
+
+# Free dofs from which solve_elasticity takes the fused fine level (and solve_static warms the kernels
+# up): below, numba's load in a fresh process (~1.6 s of CPU, see warm_up) costs more than the sweeps
+# save (~0.035 s per CG iteration per 100k dofs), and pyamg's own smoothers on the CSR matrix serve.
+MIN_DOFS = 100_000
 
 def _kernels():
-    """The compiled kernels, imported on first use (numba's import and cache read: ~0.2 s)."""
+    """The compiled kernels, imported on first use."""
+    _join_warm_up()
     from . import sweep_kernels
     return sweep_kernels
 
 
+_warm_thread: threading.Thread | None = None
+
+
+def warm_up() -> None:
+    """Load numba and the kernels in a background thread, once per process.
+
+    A fresh process pays ~1.6 s before the first sweep even with the kernels cached on disk (numba's
+    import 0.6 s, its typing and lowering registries on the first call of any jitted function 0.9-1.0 s:
+    all Python, measured at load ~3). Started before the assembly, the thread runs beside it, and numpy's
+    large array operations there release the global lock. Called by ``static.solve_static`` for the
+    systems that will take the fused path."""
+    global _warm_thread
+    if _warm_thread is None:
+        _warm_thread = threading.Thread(target=_call_each_kernel, name="strainwave-sweep-warm-up", daemon=True)
+        _warm_thread.start()
+
+
+def _join_warm_up() -> None:
+    thread = _warm_thread
+    if thread is not None and thread is not threading.current_thread():
+        thread.join()
+
+
+def _call_each_kernel() -> None:
+    try:
+        from . import sweep_kernels as k
+        A = sp.csr_matrix(np.array([[2.0, -1.0], [-1.0, 2.0]]))
+        b = np.ones(2)
+        x, ux, ax = np.zeros(2), np.zeros(2), np.zeros(2)
+        diag = k.diagonal_positions(A.indptr, A.indices)
+        k.forward_from_zero(A.indptr, A.indices, A.data, diag, b, x, ux)
+        k.backward_with_product(A.indptr, A.indices, A.data, diag, b, x, ax)
+    except Exception:     # noqa: BLE001 - a failure here shows again, with its traceback, in FineSweeps
+        pass
+
+
 class FineSweeps:
-    """Forward sweep from zero with its residual, and backward sweep with its product, over one CSR matrix.
+    """Forward sweep from zero with its residual, and backward sweep with its product, over one matrix:
+    CSR, or BSR in 3x3 node blocks (the sweeps then run over the blocks, see sweep_kernels).
 
     ``A`` must be symmetric with every diagonal entry stored (a stiffness matrix, as CG requires anyway:
     an asymmetry of relative size e changes the products by e). Its arrays are used as they are."""
 
-    def __init__(self, A: sp.csr_matrix):
+    def __init__(self, A):
+        self.blocks = sp.issparse(A) and A.format == "bsr"
+        if self.blocks and A.blocksize != (3, 3):
+            raise ValueError(f"FineSweeps: blocks {A.blocksize}, only 3x3 node blocks are swept in blocks")
+        if not self.blocks:
+            A = A.tocsr()
         if not A.has_sorted_indices:
             A.sort_indices()
         self.A = A
-        self._k = _kernels()
-        self.diag = self._k.diagonal_positions(A.indptr, A.indices)
+        k = _kernels()
+        self._data = A.data.reshape(-1)
+        if self.blocks:
+            self.diag = k.block_diagonal_positions(A.indptr, A.indices)
+            self._forward, self._backward = k.block_forward_from_zero, k.block_backward_with_product
+        else:
+            self.diag = k.diagonal_positions(A.indptr, A.indices)
+            self._forward, self._backward = k.forward_from_zero, k.backward_with_product
         if self.diag.size and self.diag.min() < 0:
             raise ValueError("FineSweeps: a row without a diagonal entry")
 
@@ -53,13 +109,11 @@ class FineSweeps:
         """(x, U x) with x = (D + L)^-1 b: pyamg's forward sweep from zero, and b - A x = -U x."""
         x = np.zeros_like(b)
         ux = np.zeros_like(b)
-        A = self.A
-        self._k.forward_from_zero(A.indptr, A.indices, A.data, self.diag, b, x, ux)
+        self._forward(self.A.indptr, self.A.indices, self._data, self.diag, b, x, ux)
         return x, ux
 
     def backward(self, b: np.ndarray, x: np.ndarray) -> np.ndarray:
         """pyamg's backward sweep on ``x`` in place (up to the order of the sums); returns A x of the result."""
         ax = np.zeros_like(b)
-        A = self.A
-        self._k.backward_with_product(A.indptr, A.indices, A.data, self.diag, b, x, ax)
+        self._backward(self.A.indptr, self.A.indices, self._data, self.diag, b, x, ax)
         return ax

@@ -101,12 +101,8 @@ def solve_elasticity(K: sp.spmatrix, f: np.ndarray, *, fixed_dofs: np.ndarray, f
     node_mask = mask.reshape(-1, dim) if N % dim == 0 else None
     if sp.issparse(K) and K.format == "bsr" and K.blocksize == (dim, dim) and node_mask is not None \
             and np.array_equal(node_mask.all(axis=1), node_mask.any(axis=1)):
-        # whole nodes fixed: condense the 3x3 blocks (9x fewer index entries), keep them for the
-        # Galerkin product and convert once to CSR for the fine level (see condense_blocks)
+        # whole nodes fixed: condense the 3x3 blocks (9x fewer index entries, see condense_blocks)
         Kff_blocks = condense_blocks(K, node_mask[:, 0])
-        Kff = Kff_blocks.tocsr()
-        if p1_stiffness is not None:
-            Kff_blocks = None          # the coarse operator comes from p1_stiffness: free them now
     else:
         Kff = condense(K.tocsr(), mask)
     nb = np.linalg.norm(b)
@@ -115,6 +111,15 @@ def solve_elasticity(K: sp.spmatrix, f: np.ndarray, *, fixed_dofs: np.ndarray, f
     if method == "auto":
         pmg = p2_element_dofs is not None and dim == 3
         method = "amg" if pmg or free.size > DIRECT_MAX_DOFS else "direct"
+    from .fused_sweeps import MIN_DOFS
+    fused = method == "amg" and p2_element_dofs is not None and dim == 3 and free.size >= MIN_DOFS
+    if Kff_blocks is not None:
+        # the fused fine level sweeps the blocks as they are (no CSR copy: ~1 s and 0.9 GB at 1M dofs);
+        # the other paths take CSR, and keep the blocks for the Galerkin product unless p1_stiffness
+        # makes the coarse operator
+        Kff = Kff_blocks if fused else Kff_blocks.tocsr()
+        if fused or p1_stiffness is not None:
+            Kff_blocks = None
     if method == "direct":
         del Kff_blocks
         x, name = _direct(Kff, b, study)
@@ -125,7 +130,7 @@ def solve_elasticity(K: sp.spmatrix, f: np.ndarray, *, fixed_dofs: np.ndarray, f
         # the rest of its set-up (0.7 GB less at the peak, 1M dofs)
         blocks = [Kff_blocks]
         del Kff_blocks
-        ml = _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs, blocks, p1_stiffness)
+        ml = _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs, blocks, p1_stiffness, fused=fused)
         sweeps = getattr(ml, "fine_sweeps", None)
         if sweeps is not None:
             x, its = pcg_with_products(b, v_cycle_fused(sweeps, ml.levels, ml.coarse_solver), rtol=rtol,
@@ -221,11 +226,12 @@ def _sa_solver(pyamg, A, B):
 SMOOTHERS = (("gauss_seidel", {"sweep": "forward"}), ("gauss_seidel", {"sweep": "backward"}))
 
 
-def _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs, blocks=None, p1_stiffness=None):
+def _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs, blocks=None, p1_stiffness=None, fused=False):
     """Smoothed aggregation with the rigid-body modes; for P2, preceded by the P1 level (p-multigrid).
 
     Node blocks (BSR dim x dim) when the free dofs come in whole nodes: pyamg then aggregates nodes,
-    not single components."""
+    not single components. ``fused``: the p-multigrid's fine level is ``Kff`` as given (CSR or 3x3
+    blocks), swept by ``fused_sweeps`` (``ml.fine_sweeps``)."""
     import pyamg
     from pyamg.multilevel import MultilevelSolver
     node_complete = free.size % dim == 0 and np.array_equal(
@@ -248,7 +254,7 @@ def _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs, blocks=None, p1_stif
     # The fine level smooths in CSR: pyamg's Gauss-Seidel sweep over the P2 matrix costs 0.025 s in CSR
     # and 0.060 s in 3x3 blocks (300k-dof shaft, CPU time), with the same 23 CG iterations (the V-cycle
     # went from 0.36 to 0.23 s). Node blocks stay where they pay: the Galerkin product and below.
-    fine.A = Kff.tocsr()
+    fine.A = Kff if fused else Kff.tocsr()
     fine.P = P.tobsr(blocksize=(dim, dim))
     fine.R = fine.P.T.tobsr(blocksize=(dim, dim))
     if p1_stiffness is not None:
@@ -269,10 +275,11 @@ def _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs, blocks=None, p1_stif
     coarse = _aggregation(coarse_A, B[coarse_free])
     ml = MultilevelSolver([fine] + coarse.levels, coarse_solver="splu")
     pyamg.relaxation.smoothing.change_smoothers(ml, presmoother=SMOOTHERS[0], postsmoother=SMOOTHERS[1])
-    from .fused_sweeps import FineSweeps
-    # the fine level's sweeps, residual and CG product in two passes over its matrix (fused_sweeps);
-    # pyamg's smoothers stay on levels[0] for ml.solve
-    ml.fine_sweeps = FineSweeps(fine.A)
+    if fused:
+        from .fused_sweeps import FineSweeps
+        # the fine level's sweeps, residual and CG product in two passes over its matrix (fused_sweeps);
+        # pyamg's smoothers stay on levels[0] for ml.solve
+        ml.fine_sweeps = FineSweeps(fine.A)
     return ml
 
 

@@ -16,6 +16,7 @@ from typing import Callable, Mapping
 
 import numpy as np
 
+from . import fused_sweeps
 from .assembly import Lame, facet_vector_basis, scalar_basis, stiffness
 from .element_gradients import default_intorder, element_geometry
 from .mesh_data import MeshData, SkfemMesh, facet_indices, group_dofs, to_skfem
@@ -104,6 +105,8 @@ def solve_static(md: MeshData, lame: Lame, *, fixed: Mapping[str, float | np.nda
     is added to the load vector as is."""
     t = {}
     t0 = time.perf_counter()
+    if md.order == 2 and md.dim == 3 and method != "direct" and md.dim * md.nodes_mm.shape[0] >= fused_sweeps.MIN_DOFS:
+        fused_sweeps.warm_up()        # numba loads beside the assembly, for the solve's fused fine level
     try:
         sk, K, f, all_dofs, all_vals = _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions,
                                                  point_loads, thickness_mm, study, progress)

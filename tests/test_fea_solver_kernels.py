@@ -96,13 +96,15 @@ def _ball_system():
     return sk, K, condense_blocks(K, keep).tocsr(), fixed
 
 
-def test_fine_sweeps_are_pyamgs_gauss_seidel_with_residual_and_product():
+@pytest.mark.parametrize("blocks", [False, True])
+def test_fine_sweeps_are_pyamgs_gauss_seidel_with_residual_and_product(blocks):
     """The fused forward sweep from zero is pyamg's forward sweep and returns U x (so b - A x = -U x);
-    the fused backward sweep is pyamg's backward sweep and returns A x of its result; to round-off."""
+    the fused backward sweep is pyamg's backward sweep and returns A x of its result; to round-off, over
+    the CSR matrix and over its 3x3 node blocks."""
     from pyamg.relaxation.relaxation import gauss_seidel
     from strainwave.fea.fused_sweeps import FineSweeps
     A = _ball_system()[2]
-    sweeps = FineSweeps(A)
+    sweeps = FineSweeps(A.tobsr(blocksize=(3, 3)) if blocks else A)
     rng = np.random.default_rng(2)
     b = rng.random(A.shape[0])
     x, ux = sweeps.forward_from_zero(b)
@@ -119,21 +121,41 @@ def test_fine_sweeps_are_pyamgs_gauss_seidel_with_residual_and_product():
     np.testing.assert_allclose(ax, A @ ours, rtol=0, atol=1e-13 * abs(ax).max())
 
 
-def test_fused_pcg_equals_the_plain_v_cycle_pcg():
+@pytest.mark.parametrize("blocks", [False, True])
+def test_fused_pcg_equals_the_plain_v_cycle_pcg(blocks):
     """The fused fine level (fused_sweeps) and CG's product by recurrence: the same iterations and the
     same solution, to round-off, as pcg with pyamg's smoothers on the same hierarchy."""
     from strainwave.fea import solver
     from strainwave.fea.pmultigrid import pcg, pcg_with_products, v_cycle, v_cycle_fused
     sk, K, A, fixed = _ball_system()
     free = np.setdiff1d(np.arange(K.shape[0]), fixed)
-    ml = solver._amg_hierarchy(A, free, sk.doflocs, 3, sk.element_dofs)
+    plain = solver._amg_hierarchy(A, free, sk.doflocs, 3, sk.element_dofs)
+    assert not hasattr(plain, "fine_sweeps")
+    ml = solver._amg_hierarchy(A.tobsr(blocksize=(3, 3)) if blocks else A, free, sk.doflocs, 3, sk.element_dofs,
+                               fused=True)
     b = np.random.default_rng(4).random(A.shape[0])
-    x0, its0 = pcg(A, b, v_cycle(ml.levels, ml.coarse_solver), rtol=1e-10, maxiter=200)
+    x0, its0 = pcg(A, b, v_cycle(plain.levels, plain.coarse_solver), rtol=1e-10, maxiter=200)
     x1, its1 = pcg_with_products(b, v_cycle_fused(ml.fine_sweeps, ml.levels, ml.coarse_solver), rtol=1e-10,
                                  maxiter=200)
     assert its1 == its0 and its0 < 40
     np.testing.assert_allclose(x1, x0, rtol=0, atol=1e-9 * abs(x0).max())
     assert np.linalg.norm(b - A @ x1) <= 2e-10 * np.linalg.norm(b)
+
+
+def test_solve_takes_the_fused_fine_level_from_min_dofs(monkeypatch):
+    """solve_elasticity from fused_sweeps.MIN_DOFS free dofs on: the same u as below it, to the CG tolerance."""
+    from strainwave.fea import fused_sweeps, pmultigrid, solver
+    sk, K, _, fixed = _ball_system()
+    f = np.random.default_rng(5).random(K.shape[0])
+    kw = dict(fixed_dofs=fixed, coords=sk.doflocs, dim=3, method="amg", rtol=1e-10, p2_element_dofs=sk.element_dofs)
+    u0, i0 = solver.solve_elasticity(K, f, **kw)
+    calls = []
+    monkeypatch.setattr(fused_sweeps, "MIN_DOFS", 0)
+    monkeypatch.setattr(pmultigrid, "pcg_with_products",
+                        lambda *a, _f=pmultigrid.pcg_with_products, **k: calls.append(1) or _f(*a, **k))
+    u1, i1 = solver.solve_elasticity(K, f, **kw)
+    assert calls and i1.iterations == i0.iterations
+    np.testing.assert_allclose(u1, u0, rtol=0, atol=1e-8 * abs(u0).max())
 
 
 def test_solve_with_node_blocks_equals_the_scalar_path():
