@@ -98,21 +98,31 @@ def pcg(A, b: np.ndarray, precondition, *, rtol: float, maxiter: int) -> tuple[n
 
 
 def v_cycle_fused(sweeps, levels, coarse_solver):
-    """``v_cycle`` with the fine level in ``sweeps`` (a ``fused_sweeps.FineSweeps`` of levels[0].A):
-    r -> (z, A z) for ``pcg_with_products``. The forward sweep from zero hands back its residual and the
-    backward sweep the product, so the fine matrix is read twice per cycle instead of three times, and
-    CG needs no product of its own (see fused_sweeps)."""
-    below = v_cycle(levels[1:], coarse_solver)
-    P, R = levels[0].P, levels[0].R
+    """``v_cycle`` with fused sweeps (``fused_sweeps.FineSweeps`` of ``levels[k].A``, one per level or None
+    for pyamg's smoothers there; levels[0] must have one): r -> (z, A z) for ``pcg_with_products``. The
+    forward sweep from zero hands back its residual and the backward sweep the product, so a fused level's
+    matrix is read twice per cycle instead of three times, and CG needs no product of its own (see
+    fused_sweeps)."""
+    last = len(levels) - 1
 
-    def cycle(r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        x, ux = sweeps.forward_from_zero(r)
-        # the residual r - A x is -U x; the cycle below is linear (and negation exact), so the sign
+    def cycle(b: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray | None]:
+        if k == last:
+            return np.asarray(coarse_solver(levels[k].A, b)).reshape(b.shape), None
+        level = levels[k]
+        fused = sweeps[k] if k < len(sweeps) else None
+        if fused is None:
+            x = np.zeros_like(b)
+            level.presmoother(level.A, x, b)
+            x += level.P @ cycle(level.R @ (b - level.A @ x), k + 1)[0]
+            level.postsmoother(level.A, x, b)
+            return x, None
+        x, ux = fused.forward_from_zero(b)
+        # the residual b - A x is -U x; the cycle below is linear (and negation exact), so the sign
         # goes onto the correction instead of a negated copy of the vector
-        x -= P @ below(R @ ux)
-        return x, sweeps.backward(r, x)
+        x -= level.P @ cycle(level.R @ ux, k + 1)[0]
+        return x, fused.backward(b, x)
 
-    return cycle
+    return lambda r: cycle(r, 0)
 
 
 def pcg_with_products(b: np.ndarray, precondition, *, rtol: float, maxiter: int) -> tuple[np.ndarray, int]:

@@ -122,20 +122,22 @@ def test_fine_sweeps_are_pyamgs_gauss_seidel_with_residual_and_product(blocks):
 
 
 @pytest.mark.parametrize("blocks", [False, True])
-def test_fused_pcg_equals_the_plain_v_cycle_pcg(blocks):
-    """The fused fine level (fused_sweeps) and CG's product by recurrence: the same iterations and the
-    same solution, to round-off, as pcg with pyamg's smoothers on the same hierarchy."""
+def test_fused_pcg_equals_the_plain_v_cycle_pcg(blocks, monkeypatch):
+    """The fused fine and P1 levels (fused_sweeps) and CG's product by recurrence: the same iterations and
+    the same solution, to round-off, as pcg with pyamg's smoothers on the same hierarchy."""
     from strainwave.fea import solver
+    monkeypatch.setattr(solver, "MAX_COARSE", 60)         # a P1 level that is swept, not solved
     from strainwave.fea.pmultigrid import pcg, pcg_with_products, v_cycle, v_cycle_fused
     sk, K, A, fixed = _ball_system()
     free = np.setdiff1d(np.arange(K.shape[0]), fixed)
     plain = solver._amg_hierarchy(A, free, sk.doflocs, 3, sk.element_dofs)
-    assert not hasattr(plain, "fine_sweeps")
+    assert not hasattr(plain, "fused_sweeps")
     ml = solver._amg_hierarchy(A.tobsr(blocksize=(3, 3)) if blocks else A, free, sk.doflocs, 3, sk.element_dofs,
                                fused=True)
     b = np.random.default_rng(4).random(A.shape[0])
     x0, its0 = pcg(A, b, v_cycle(plain.levels, plain.coarse_solver), rtol=1e-10, maxiter=200)
-    x1, its1 = pcg_with_products(b, v_cycle_fused(ml.fine_sweeps, ml.levels, ml.coarse_solver), rtol=1e-10,
+    assert len(ml.fused_sweeps) == 2        # the fine and the P1 level
+    x1, its1 = pcg_with_products(b, v_cycle_fused(ml.fused_sweeps, ml.levels, ml.coarse_solver), rtol=1e-10,
                                  maxiter=200)
     assert its1 == its0 and its0 < 40
     np.testing.assert_allclose(x1, x0, rtol=0, atol=1e-9 * abs(x0).max())
