@@ -248,3 +248,20 @@ def test_hierarchy_is_the_same_on_every_run_and_leaves_the_global_rng_alone():
     assert len(one.levels) == len(two.levels) > 1
     for a, b in zip(one.levels, two.levels):
         assert abs(a.A - b.A).max() == 0.0
+
+
+def test_p1_prolongation_takes_each_mid_nodes_first_edge():
+    """p1_prolongation's scatter for first occurrences gives the matrix np.unique(return_index) gave."""
+    from strainwave.fea.pmultigrid import EDGE_VERTICES, p1_prolongation
+    sk = _ball_system()[0]
+    ed = sk.element_dofs
+    P, n_vert = p1_prolongation(ed)
+    mids = np.concatenate([ed[4 + k] for k in range(6)])
+    a = np.concatenate([ed[i] for i, _ in EDGE_VERTICES[10]])
+    b = np.concatenate([ed[j] for _, j in EDGE_VERTICES[10]])
+    mids, first = np.unique(mids, return_index=True)
+    want = sp.csr_matrix((np.concatenate([np.ones(n_vert), np.full(2 * mids.size, 0.5)]),
+                          (np.concatenate([np.arange(n_vert), mids, mids]),
+                           np.concatenate([np.arange(n_vert), a[first], b[first]]))), shape=P.shape)
+    assert np.array_equal(P.indptr, want.indptr) and np.array_equal(P.indices, want.indices)
+    assert np.array_equal(P.data, want.data)
