@@ -396,6 +396,30 @@ def test_a_sampled_triangle_peak_is_no_plateau():
 
 
 
+@pytest.mark.parametrize("seed", range(3))
+def test_a_sine_peak_under_low_pass_noise_is_no_stuck_channel(seed):
+    """A sine test lingers at its peaks (5-10 samples within 3 load-noise sigmas); a second-order low-pass
+    sensor's twist drifts there by 10-40 times its sample-to-sample noise, as it does everywhere else: no stuck
+    channel. A twist that moves as much across each peak while the rest of its residual is white still is one."""
+    from strainwave.compare.diagnose.channels import _plateaus, stuck_channel
+    from strainwave.compare.diagnose.noise import noise_std
+    rng = np.random.default_rng(seed)
+    n = 1400
+    u = np.sin(2 * np.pi * 3 * np.arange(n) / n) + 1e-3 * rng.standard_normal(n)
+    e, smooth = rng.standard_normal(n), np.zeros(n)
+    for i in range(2, n):                     # double pole at 0.9: a second-order low-pass sensor
+        smooth[i] = 1.8 * smooth[i - 1] - 0.81 * smooth[i - 2] + e[i]
+    smooth *= 1e-2 / np.std(smooth)
+    sigma = noise_std(smooth)
+    assert stuck_channel(u, u + smooth, sigma, "torque", "twist") != ""     # judged as white noise it would be
+    assert stuck_channel(u, u + smooth, sigma, "torque", "twist", residual=smooth) == ""
+    white = sigma * rng.standard_normal(n)
+    creep = np.zeros(n)
+    for a, b in _plateaus(u):                 # the twist keeps moving while the torque reading sits
+        creep[a:b] = np.linspace(0.0, 40 * sigma, b - a)
+    assert stuck_channel(u, u + white + creep, sigma, "torque", "twist", residual=white + creep) != ""
+
+
 @pytest.mark.parametrize("seed", range(6))
 def test_second_order_low_pass_sensor_raises_no_alarm(params, seed):
     """A sensor behind a second-order Butterworth anti-alias filter at 5 % of the Nyquist frequency: smooth

@@ -8,7 +8,10 @@ no effect fitted against that load can be trusted.
 
 A plateau is a run of at least MIN_RUN consecutive samples within PLATEAU_SIGMAS noise sigmas of the load's
 extreme (the channel's own white noise, from its second differences, ~1e-4 of full scale on a rig); it counts
-when the response moves by more than MOVE_SIGMAS of its noise during the run. A triangular test passes its
+when the response moves by more than MOVE_SIGMAS of what its noise moves over as many samples: a low-pass or
+wandering sensor's reading drifts over a few samples by many times its sample-to-sample noise (family 2: a
+sine test's flat peak, 7 samples long, under low-pass noise, moved 14 white-noise sigmas and read "a
+saturated load channel"). A triangular test passes its
 peak in one or two samples (a sample's load step is far above the load noise), so a sampled peak is no plateau.
 
 The response channel is not checked the same way: near the peak of a stiffening curve, and when the response
@@ -17,6 +20,8 @@ moves (such a check flagged in-catalogue stiffening and compliance recordings of
 clipped twist shows in the residual's structure instead.
 """
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
@@ -42,14 +47,37 @@ def _plateaus(x: np.ndarray) -> list[tuple[int, int]]:
     return out
 
 
+def _change_scale(residual: np.ndarray, plateaus: list[tuple[int, int]], lag: int, stride: int) -> float:
+    """sqrt of the residual's semivariogram at ``lag`` samples of the recording (0.5 mean (r_(t+lag) - r_t)^2),
+    read outside every plateau: what the noise, white or coloured, moves by over as many samples elsewhere.
+    ``residual`` is on every stride-th row of the recording."""
+    k = max(math.ceil(lag / stride), 1)
+    if len(residual) <= k + 1:
+        return 0.0
+    off = np.ones(len(residual), dtype=bool)
+    for a, b in plateaus:
+        off[a // stride:(b - 1) // stride + 1] = False
+    pair = off[k:] & off[:-k]
+    if not np.any(pair):
+        return 0.0
+    d = (residual[k:] - residual[:-k])[pair]
+    return math.sqrt(0.5 * float(np.mean(d * d)))
+
+
 def stuck_channel(load: np.ndarray, response: np.ndarray, sigma_response: float, load_name: str,
-                  response_name: str) -> str:
-    """A sentence describing a load channel stuck at its extreme while the response moves, or "" when none is."""
-    for a, b in _plateaus(load):
+                  response_name: str, residual: np.ndarray | None = None, stride: int = 1) -> str:
+    """A sentence describing a load channel stuck at its extreme while the response moves, or "" when none is.
+
+    ``residual``: the response's residual after the best model (physical units, on every ``stride``-th row),
+    from which a coloured noise's change over a plateau's length is read (white noise: sigma_response)."""
+    plateaus = _plateaus(load)
+    for a, b in plateaus:
         moved = float(np.ptp(response[a:b]))
-        if moved > MOVE_SIGMAS * sigma_response:
+        scale = sigma_response if residual is None else \
+            max(sigma_response, _change_scale(residual, plateaus, b - a - 1, stride))
+        if moved > MOVE_SIGMAS * scale:
             return (f"the {load_name} reading stays at its extreme {load[a]:.4g} for {b - a} samples "
-                    f"(samples {a + 1}-{b}) while {response_name} moves by {moved / sigma_response:.0f} noise sigmas: a "
+                    f"(samples {a + 1}-{b}) while {response_name} moves by {moved / scale:.0f} noise sigmas: a "
                     f"saturated load channel, a stop in the load train, or creep under a hold; the load that "
                     f"produced the response there is not the load recorded")
     return ""

@@ -286,7 +286,9 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     best_single = ranked_singles[0] if ranked_singles else None
     gof_base = structure_test(ctx, ctx.y - base_fit.model, sigma, base_fit.prior_chi2, noise)
     # a channel stuck at its extreme while the other moves (channels.py) is a mismatch no physics explains
-    stuck = stuck_channel(rec.load, rec.response, sigma * ctx.Y, rec.load_name, rec.response_name)
+    stride = _stride(rec.n)
+    stuck = stuck_channel(rec.load, rec.response, sigma * ctx.Y, rec.load_name, rec.response_name,
+                          residual=(ctx.y - closest.model) * ctx.Y, stride=stride)
     mismatch = bool(gof_base.structured or cat_gain > BIC_THRESHOLD or stuck)
 
     # pairs of the four best distinct singles; a pair is a candidate only if parsimonious (see module doc)
@@ -435,7 +437,6 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     located = _located(ctx, rec, best if verdict is Verdict.EXPLAINED else None, base_fit, sigma, mismatch,
                        gof_best)
     dt = None if rec.time_s is None else float(np.median(np.diff(fit_rec.time_s)))
-    stride = _stride(rec.n)
     # an unexplained verdict whose best model leaves noise (its values are implausible or its effect is not
     # resolved) describes what that model was fitted to, the baseline's residual: "consistent with the noise"
     # beside "not explained" told a user nothing
