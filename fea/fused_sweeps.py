@@ -30,9 +30,11 @@ import scipy.sparse as sp
 
 __all__ = ["FineSweeps", "MIN_DOFS", "warm_up"]
 
-# Free dofs from which solve_elasticity takes the fused fine level (and solve_static warms the kernels
-# up): below, numba's load in a fresh process (~1.6 s of CPU, see warm_up) costs more than the sweeps
-# save (~0.035 s per CG iteration per 100k dofs), and pyamg's own smoothers on the CSR matrix serve.
+# Free dofs from which solve_elasticity takes the fused fine level (and the mesher / solve_static warm the
+# kernels up). The sweeps save ~0.035 s per CG iteration per 100k dofs (~0.8 s per solve at 100k); numba's
+# load costs 0.3 s of CPU in a process that has imported the FEA stack (1.6 s in a bare one, 2.9 s the
+# first time on a machine, when it compiles). The crossover was not measured finer: 100k keeps every
+# validate --quick case and the sweeps' quick points on pyamg's smoothers, without numba.
 MIN_DOFS = 100_000
 
 def _kernels():
@@ -48,11 +50,12 @@ _warm_thread: threading.Thread | None = None
 def warm_up() -> None:
     """Load numba and the kernels in a background thread, once per process.
 
-    A fresh process pays ~1.6 s before the first sweep even with the kernels cached on disk (numba's
-    import 0.6 s, its typing and lowering registries on the first call of any jitted function 0.9-1.0 s:
-    all Python, measured at load ~3). Started before the assembly, the thread runs beside it, and numpy's
-    large array operations there release the global lock. Called by ``static.solve_static`` for the
-    systems that will take the fused path."""
+    With the kernels cached on disk, a bare process pays ~1.6 s before the first sweep (numba's import
+    0.6 s, its typing and lowering registries on the first call of any jitted function 0.9-1.0 s, partly
+    importing scipy.linalg), one that has imported the FEA stack 0.3 s: all Python, holding the global
+    lock. Started by ``meshing`` once gmsh has made a large enough tetrahedral mesh, it runs beside
+    setOrder and the optimiser (C++, lock released); ``static.solve_static`` and the bearing study start
+    it before their assembly when it has not run yet."""
     global _warm_thread
     if _warm_thread is None:
         _warm_thread = threading.Thread(target=_call_each_kernel, name="strainwave-sweep-warm-up", daemon=True)
