@@ -90,7 +90,7 @@ def compliance_on_mesh(md, part, params, lame, *, force_N, method=SOLVER, keep_f
     (compliance, solver info dict, field or ()). ``contact``: an opened crack's faces may not pass through
     each other (``crack_contact``, frictionless, solved by active set with the direct solver)."""
     if method != "direct" and not contact and md.order == 2 and 3 * md.nodes_mm.shape[0] >= fused_sweeps.MIN_DOFS:
-        fused_sweeps.warm_up()        # numba loads beside the assembly (meshed in a child: not there)
+        fused_sweeps.warm_up()        # numba loads beside the assembly (fused_sweeps.warm_up)
     a_ax, b_circ = params.wave_generator.contact_semi_axes_mm
     contact_name = "contact" if "contact" in part.named_faces else "race"
     centre = contact_centre_mm(part, contact_name)

@@ -30,8 +30,8 @@ import scipy.sparse as sp
 
 __all__ = ["FineSweeps", "MIN_DOFS", "warm_up"]
 
-# Free dofs from which solve_elasticity takes the fused fine level (and the mesher / solve_static warm the
-# kernels up). The sweeps save ~0.035 s per CG iteration per 100k dofs (~0.8 s per solve at 100k); numba's
+# Free dofs from which solve_elasticity takes the fused fine level (and solve_static warms the kernels
+# up). The sweeps save ~0.035 s per CG iteration per 100k dofs (~0.8 s per solve at 100k); numba's
 # load costs 0.3 s of CPU in a process that has imported the FEA stack (1.6 s in a bare one, 2.9 s the
 # first time on a machine, when it compiles). The crossover was not measured finer: 100k keeps every
 # validate --quick case and the sweeps' quick points on pyamg's smoothers, without numba.
@@ -53,9 +53,11 @@ def warm_up() -> None:
     With the kernels cached on disk, a bare process pays ~1.6 s before the first sweep (numba's import
     0.6 s, its typing and lowering registries on the first call of any jitted function 0.9-1.0 s, partly
     importing scipy.linalg), one that has imported the FEA stack 0.3 s: all Python, holding the global
-    lock. Started by ``meshing`` once gmsh has made a large enough tetrahedral mesh, it runs beside
-    setOrder and the optimiser (C++, lock released); ``static.solve_static`` and the bearing study start
-    it before their assembly when it has not run yet."""
+    lock. ``static.solve_static`` and the bearing study start it before their assembly, for systems
+    that will take the fused path. Started instead once gmsh had made the linear mesh (beside setOrder
+    and the optimiser, C++ with the lock released) it was not faster: 308k dofs end to end 5.86 s
+    against 5.65 s beside the assembly (medians of 5 alternating pairs, load 3.0-3.3; the mesh took
+    0.3-0.8 s longer)."""
     global _warm_thread
     if _warm_thread is None:
         _warm_thread = threading.Thread(target=_call_each_kernel, name="strainwave-sweep-warm-up", daemon=True)

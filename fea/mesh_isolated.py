@@ -26,8 +26,6 @@ SIZE_FACTORS = (1.0, 1.03, 0.98, 1.05)
 
 
 def _child(conn, part, size_mm, order, refine):
-    from . import meshing
-    meshing.warm_up_solver = False            # this fork only meshes: its parent solves
     try:
         with gmsh_session() as model:
             md = mesh_part(model, part, size_mm=size_mm, order=order, refine=refine)

@@ -156,31 +156,11 @@ def generate(model, dim: int, order: int, *, size_mm: float, refine: Sequence[Re
         raise MeshingFailed(f"gmsh meshing failed: {exc}") from exc
 
 
-# P2 tetrahedral meshes carry ~1.5 nodes per tetrahedron (shaft: 957k dofs on 210k tetrahedra)
-P2_DOFS_PER_TET = 4.5
-# False in a process that only meshes and hands the mesh on (mesh_isolated's child): it will not solve
-warm_up_solver = True
-
-
 def _generate(model, dim: int, order: int) -> None:
     model.mesh.generate(dim)
     if order == 2:
-        if dim == 3 and warm_up_solver:
-            import gmsh
-            _warm_up_solver(int(gmsh.option.getNumber("Mesh.NbTetrahedra")))
         model.mesh.setOrder(2)
         _straighten_inverted(model, dim)
-
-
-def _warm_up_solver(n_tets: int) -> None:
-    """P2 solids of ``fused_sweeps.MIN_DOFS`` dofs and more are solved by the fused p-multigrid (or, the
-    thin cup, directly): numba loads in a thread while gmsh raises the order and optimises (C++, with the
-    global lock released: setOrder alone takes 2.4 s at 1M dofs) instead of beside the assembly, where
-    the two share the lock. For a direct solve of that size the thread's ~1.6 s of CPU is a loss beside
-    minutes of factorisation."""
-    from . import fused_sweeps
-    if P2_DOFS_PER_TET * n_tets >= fused_sweeps.MIN_DOFS:
-        fused_sweeps.warm_up()
 
 
 def _straighten_inverted(model, dim: int, passes: int = 4) -> None:
