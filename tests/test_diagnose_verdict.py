@@ -227,6 +227,47 @@ def test_stiffening_with_a_stiffness_beyond_its_prior_is_both(params, seed):
     assert abs(change - 8.0) < 3 * se + 1.0, (change, se)
 
 
+def _one_sided(params, knots, extra, seed, n=800, sigma=2e-3):
+    rng = np.random.default_rng(seed)
+    u = _path(n, knots)
+    ctx = _ctx(params, u)
+    t = np.linspace(0, 1, n)
+    y = u + 0.01 + 0.003 * t + extra(u, t) + sigma * rng.standard_normal(n)
+    return diagnose(parse_text(format_recording(K, "output_shaft", u * X, y * ctx.Y)), params)[0]
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_a_crack_seen_in_one_cycle_is_also_an_exchanged_specimen(params, seed):
+    """One cycle (up to +T, then down to -T) visits each load sign in one half of the record only: a crack
+    open under negative torque is then the same curve as a specimen exchanged at the zero crossing, and the
+    answer names the crack as ambiguous with that rival. Two cycles tell them apart."""
+    crack = lambda u, t: 0.15 * np.minimum(u, 0.0)          # noqa: E731 (extra compliance when u < 0)
+    one = _one_sided(params, (0, 1, 0, -1, 0), crack, seed)
+    assert one.verdict is Verdict.EXPLAINED and one.named == ("crack_closure",) and one.ambiguous
+    assert "exchanged" in one.runner_up
+    two = _one_sided(params, (0, 1, -1, 1, -1, 0), crack, seed)
+    assert two.verdict is Verdict.EXPLAINED and two.named == ("crack_closure",)
+    assert "exchanged" not in (two.runner_up or "")
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_a_specimen_exchanged_with_its_zero_moved_is_not_a_crack(params, seed):
+    """Half way, unloaded, the specimen is exchanged for one 15 % more compliant whose zero sits 10 noise sigmas
+    higher: within one cycle a crack draws the compliance change but not the jump (it read crack_closure)."""
+    one = _one_sided(params, (0, 1, 0, -1, 0), lambda u, t: (t >= 0.5) * (0.15 * u + 0.02), seed)
+    assert one.verdict is Verdict.UNEXPLAINED and "exchanged" in one.structure
+
+
+def test_exchange_candidates_are_unloaded_rows_near_interior_zero_crossings(params):
+    from strainwave.compare.diagnose import exchange
+    u = _path(800, (0, 1, 0, -1, 0))
+    ctx = _ctx(params, u)
+    rows = exchange.candidate_splits(ctx)
+    assert rows and all(80 <= k <= 720 for k in rows)
+    assert all(min(abs(u[k]), abs(u[k - 1])) <= exchange.UNLOADED for k in rows)
+    assert any(np.sign(u[k]) != np.sign(u[k - 1]) for k in rows)
+
+
 def test_clipped_response_is_not_stiffening(params):
     diag, _ = _diagnose(params, lambda u, t, c: np.clip(u, -0.85, 0.85) - u)
     assert diag.verdict is Verdict.UNEXPLAINED

@@ -14,7 +14,9 @@
    structure described physically;
 5. a named friction loop meets its rate-dependent rival (rate_loop.py: viscoelastic creep, a lagging
    channel): within 6 BIC, or at one loading rate whatever the margin, the answer is ambiguous; at several
-   loading rates a rival better by > 10 makes the loop *unexplained* (friction is rate-independent);
+   loading rates a rival better by > 10 makes the loop *unexplained* (friction is rate-independent); a named
+   crack meets a specimen exchanged once while unloaded (exchange.py): within 6 BIC ambiguous (a test that
+   visits each load sign in one stretch of time cannot tell them apart), better by > 10 *unexplained*;
 6. confidence: BIC weights, margin to the runner-up (ambiguous when < 6), parameter standard errors from
    the Jacobian, parameters at a bound and physically implausible values flagged;
 7. locate from the fitted effect (cross-checked with the binned residual), JSON, plot.
@@ -33,7 +35,7 @@ import numpy as np
 
 from ...errors import InputError
 from ...io_atomic import atomic_write_text, json_ready
-from . import rate_loop
+from . import exchange, rate_loop
 from .baseline import Baseline, analytic_baseline, fea_baseline
 from .channels import stuck_channel
 from .context import build_context
@@ -402,6 +404,22 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
             runner_label = rate_loop.LABEL + ("" if several_rates else ", at the recording's one loading rate") + \
                 "; a test at a second loading rate tells them apart"
 
+    if verdict is Verdict.EXPLAINED and "crack_closure" in named:
+        rival_margin, split = _exchange_rival_margin(ctx, best, sigma, u_rel, noise)
+        row = split * _stride(rec.n) + 1
+        if rival_margin < -BIC_THRESHOLD:
+            # the zero jumped where the compliance changed: no crack draws that, an exchanged specimen does
+            verdict, named, ambiguous = Verdict.UNEXPLAINED, (), False
+            note = (f"the compliance and the zero change once, at row {row} while unloaded: {exchange.LABEL} draws "
+                    f"the one-sided compliance better than a breathing crack (by {-rival_margin:.0f} BIC units), "
+                    f"and a crack does not move the zero")
+        elif rival_margin < AMBIGUOUS_BIC and (margin is None or rival_margin < margin):
+            # each load sign was visited before or after one instant only: a one-sided compliance is then also
+            # a compliance that changed in time
+            ambiguous, margin = True, rival_margin
+            runner_label = (f"{exchange.LABEL}, at row {row}; a test that visits both load signs before and after "
+                            f"that row tells them apart")
+
     # samples the noise cannot have made (a spike, a frozen reading, a jump) under a verdict that says the
     # residual is noise (glitches.py): no smooth structure of the goodness-of-fit test draws them
     glitch_only = False
@@ -505,6 +523,19 @@ def _rate_rival_margin(ctx, best: Fit, sigma: float, u_rel: float, noise) -> flo
     starts = [np.concatenate([*head, np.array(x0)]) for x0 in ((0.05, -2.5), (0.05, -1.5))]
     rival = fit_effects(ctx, effects, sigma, u_rel, starts=starts, noise=noise)
     return float(rival.bic - best.bic)
+
+
+def _exchange_rival_margin(ctx, best: Fit, sigma: float, u_rel: float, noise) -> tuple[float, int]:
+    """(BIC(rival) - BIC(best), the rival's change row) where the rival replaces the named crack by a specimen
+    exchanged once while unloaded (exchange.py), the other named effects kept: negative when it fits better."""
+    keep = [(e, th) for e, th in zip(best.effects, best.split_theta()) if e.id != "crack_closure"]
+    head = [th for _, th in keep]
+    splits = exchange.candidate_splits(ctx)
+    rivals = [(fit_effects(ctx, tuple(e for e, _ in keep) + (exchange.exchanged_at(k),), sigma, u_rel,
+                           starts=[np.concatenate([*head, np.zeros(2)])], noise=noise), k) for k in splits]
+    rival, split = min(rivals, key=lambda fk: fk[0].bic)
+    # the change's row is chosen among len(splits) rows, each with prior 1/len(splits): -2 ln of that prior
+    return float(rival.bic + 2.0 * math.log(len(splits)) - best.bic), split
 
 
 def _unresolved(ctx, fit: Fit, sigma: float) -> list[str]:
