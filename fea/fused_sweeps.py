@@ -81,7 +81,7 @@ def _call_each_kernel() -> None:
         k.backward_with_product(A.indptr, A.indices, A.data, diag, b, x, ax)
         Ab = sp.bsr_matrix(np.eye(6) * 2.0, blocksize=(3, 3))        # the node-block kernels
         b, x, ux, ax = np.ones(6), np.zeros(6), np.zeros(6), np.zeros(6)
-        diag = k.block_diagonal_positions(Ab.indptr, Ab.indices)
+        diag = k.diagonal_positions(Ab.indptr, Ab.indices)
         k.block_forward_from_zero(Ab.indptr, Ab.indices, Ab.data.reshape(-1), diag, b, x, ux)
         k.block_backward_with_product(Ab.indptr, Ab.indices, Ab.data.reshape(-1), diag, b, x, ax)
     except Exception:     # noqa: BLE001 - a failure here shows again, with its traceback, in FineSweeps
@@ -107,7 +107,7 @@ class FineSweeps:
         k = _kernels()
         self._data = A.data.reshape(-1)
         if self.blocks:
-            self.diag = k.block_diagonal_positions(A.indptr, A.indices)
+            self.diag = k.diagonal_positions(A.indptr, A.indices)
             self._forward, self._backward = k.block_forward_from_zero, k.block_backward_with_product
         else:
             self.diag = k.diagonal_positions(A.indptr, A.indices)

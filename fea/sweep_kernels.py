@@ -9,7 +9,7 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
-__all__ = ["diagonal_positions", "forward_from_zero", "backward_with_product", "block_diagonal_positions",
+__all__ = ["diagonal_positions", "forward_from_zero", "backward_with_product",
            "block_forward_from_zero", "block_backward_with_product"]
 
 one = np.uint64(1)
@@ -60,7 +60,8 @@ def dot_down(data, indices, x, lo, hi):
 
 @nb.njit(cache=True)
 def diagonal_positions(indptr, indices):
-    """Position of each row's diagonal entry in the CSR arrays, -1 where a row has none."""
+    """Position of each row's diagonal entry in the CSR arrays, -1 where a row has none (of a BSR matrix's
+    block-row arrays: each block row's diagonal block)."""
     n = indptr.size - 1
     out = np.full(n, -1, np.int64)
     for i in range(n):
@@ -111,19 +112,6 @@ def backward_with_product(indptr, indices, data, diag, b, x, ax):
 # The three rows of a node are swept together: one read of each block serves them, nine partial sums
 # (row x column of the block) keep the addition chains short, and the node's own 3x3 diagonal block is
 # swept row by row as pointwise Gauss-Seidel does.
-
-
-@nb.njit(cache=True)
-def block_diagonal_positions(indptr, indices):
-    """Position of each block row's diagonal block, -1 where a block row has none."""
-    n = indptr.size - 1
-    out = np.full(n, -1, np.int64)
-    for i in range(n):
-        for k in range(indptr[i], indptr[i + 1]):
-            if indices[k] == i:
-                out[i] = k
-                break
-    return out
 
 
 @nb.njit(cache=True, inline="always")

@@ -387,38 +387,34 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     margin = float(runner.bic - best.bic) if runner is not None and mismatch else None
     ambiguous = bool(margin is not None and margin < AMBIGUOUS_BIC and verdict is Verdict.EXPLAINED)
     runner_label = runner.label if runner is not None and mismatch else None
+    answer = _Answer(verdict, named, ambiguous, margin, runner_label, note)
     if verdict is Verdict.EXPLAINED and "hysteresis" in named:
+        # the loop keeps time, not travel, across loading rates: out of the catalogue (friction is rate-independent);
+        # at one loading rate a better-fitting rival is only a better SHAPE (creep may keep twisting after the
+        # torque has turned, a passive friction law may not): no evidence of rate dependence
         rival_margin = _rate_rival_margin(ctx, best, sigma, u_rel, noise)
         several_rates = rate_loop.several_rates(ctx)
-        if rival_margin < -BIC_THRESHOLD and several_rates:
-            # the loop keeps time, not travel, across loading rates: out of the catalogue (friction is
-            # rate-independent)
-            verdict, named, ambiguous = Verdict.UNEXPLAINED, (), False
-            note = (f"the loop is rate-dependent: {rate_loop.LABEL} draws it better than any friction law "
-                    f"at the recording's several loading rates (by {-rival_margin:.0f} BIC units), and friction "
-                    f"does not depend on the loading rate")
-        elif rival_margin < AMBIGUOUS_BIC and (margin is None or rival_margin < margin):
-            # at one loading rate a better-fitting rival is only a better SHAPE (creep may keep twisting after
-            # the torque has turned, a passive friction law may not): no evidence of rate dependence
-            ambiguous, margin = True, rival_margin
-            runner_label = rate_loop.LABEL + ("" if several_rates else ", at the recording's one loading rate") + \
-                "; a test at a second loading rate tells them apart"
-
-    if verdict is Verdict.EXPLAINED and "crack_closure" in named:
+        answer = answer.judged_by_rival(
+            rival_margin, several_rates,
+            f"the loop is rate-dependent: {rate_loop.LABEL} draws it better than any friction law at the "
+            f"recording's several loading rates (by {-rival_margin:.0f} BIC units), and friction does not depend on "
+            f"the loading rate",
+            rate_loop.LABEL + ("" if several_rates else ", at the recording's one loading rate") +
+            "; a test at a second loading rate tells them apart")
+    if answer.verdict is Verdict.EXPLAINED and "crack_closure" in answer.named:
+        # the zero jumped where the compliance changed: no crack draws that, an exchanged specimen does; where each
+        # load sign was visited before or after one instant only, a one-sided compliance is also one that changed
+        # in time
         rival_margin, split = _exchange_rival_margin(ctx, best, sigma, u_rel, noise)
         row = split * _stride(rec.n) + 1
-        if rival_margin < -BIC_THRESHOLD:
-            # the zero jumped where the compliance changed: no crack draws that, an exchanged specimen does
-            verdict, named, ambiguous = Verdict.UNEXPLAINED, (), False
-            note = (f"the compliance and the zero change once, at row {row} while unloaded: {exchange.LABEL} draws "
-                    f"the one-sided compliance better than a breathing crack (by {-rival_margin:.0f} BIC units), "
-                    f"and a crack does not move the zero")
-        elif rival_margin < AMBIGUOUS_BIC and (margin is None or rival_margin < margin):
-            # each load sign was visited before or after one instant only: a one-sided compliance is then also
-            # a compliance that changed in time
-            ambiguous, margin = True, rival_margin
-            runner_label = (f"{exchange.LABEL}, at row {row}; a test that visits both load signs before and after "
-                            f"that row tells them apart")
+        answer = answer.judged_by_rival(
+            rival_margin, True,
+            f"the compliance and the zero change once, at row {row} while unloaded: {exchange.LABEL} draws the "
+            f"one-sided compliance better than a breathing crack (by {-rival_margin:.0f} BIC units), and a crack "
+            f"does not move the zero",
+            f"{exchange.LABEL}, at row {row}; a test that visits both load signs before and after that row tells "
+            f"them apart")
+    verdict, named, ambiguous, margin, runner_label, note = dataclasses.astuple(answer)
 
     # samples the noise cannot have made (a spike, a frozen reading, a jump) under a verdict that says the
     # residual is noise (glitches.py): no smooth structure of the goodness-of-fit test draws them
@@ -523,6 +519,29 @@ def _rate_rival_margin(ctx, best: Fit, sigma: float, u_rel: float, noise) -> flo
     starts = [np.concatenate([*head, np.array(x0)]) for x0 in ((0.05, -2.5), (0.05, -1.5))]
     rival = fit_effects(ctx, effects, sigma, u_rel, starts=starts, noise=noise)
     return float(rival.bic - best.bic)
+
+
+@dataclass(frozen=True)
+class _Answer:
+    """The verdict as it stands while rivals of the named effect are heard."""
+    verdict: Verdict
+    named: tuple[str, ...]
+    ambiguous: bool
+    margin: float | None
+    runner_up: str | None
+    note: str
+
+    def judged_by_rival(self, rival_margin: float, decisive: bool, unexplained_note: str,
+                        rival_label: str) -> "_Answer":
+        """A rival (a model outside the catalogue that draws the same data) fitting better by more than
+        BIC_THRESHOLD, where the recording can decide between them, makes the answer unexplained; within
+        AMBIGUOUS_BIC (or better) and closer than the runner-up, it makes the answer ambiguous with the rival."""
+        if rival_margin < -BIC_THRESHOLD and decisive:
+            return dataclasses.replace(self, verdict=Verdict.UNEXPLAINED, named=(), ambiguous=False,
+                                       note=unexplained_note)
+        if rival_margin < AMBIGUOUS_BIC and (self.margin is None or rival_margin < self.margin):
+            return dataclasses.replace(self, ambiguous=True, margin=rival_margin, runner_up=rival_label)
+        return self
 
 
 def _exchange_rival_margin(ctx, best: Fit, sigma: float, u_rel: float, noise) -> tuple[float, int]:
