@@ -56,13 +56,14 @@ class StaticSolution:
                                   intorder=intorder)
 
 
-def _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions, point_loads, thickness_mm, study, progress):
+def _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions, point_loads, thickness_mm, study, progress,
+              compiled=False):
     sk = to_skfem(md)
     d = md.dim
     progress(f"{study}: assembling {sk.doflocs.shape[1] * d} dofs (P{md.order}, {md.cells.shape[0]} elements)")
     # node blocks: solve_elasticity condenses them and reuses them for the AMG (no BSR -> CSR -> BSR)
     K = stiffness(element_geometry(sk.doflocs, sk.element_dofs, md.order), lame, thickness_mm=thickness_mm,
-                  fmt="bsr")
+                  fmt="bsr", compiled=compiled)
     f = np.zeros(K.shape[0])
     for group, trac in (tractions or {}).items():
         # facet-own quadrature (no element inversion): robust on curved and sliver P2 elements
@@ -84,14 +85,15 @@ def _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions, point_loads,
     return sk, K, f, all_dofs, all_vals
 
 
-def p1_stiffness(sk: SkfemMesh, lame: Lame):
+def p1_stiffness(sk: SkfemMesh, lame: Lame, *, compiled: bool = False):
     """Stiffness of the P1 field on the curved P2 mesh ``sk`` with the P2 stiffness' quadrature, in node
-    blocks over the vertex dofs: the p-multigrid's coarse operator (``solve_elasticity``)."""
+    blocks over the vertex dofs: the p-multigrid's coarse operator (``solve_elasticity``). ``compiled``:
+    by the numba kernels, as the P2 stiffness of the same solve."""
     nv = 4 if sk.element_dofs.shape[0] == 10 else 3
     n_vertices = int(sk.element_dofs[:nv].max()) + 1
     geom = element_geometry(sk.doflocs, sk.element_dofs[:nv], 1, intorder=default_intorder(2),
                             geometry=(sk.element_dofs, 2), n_dofs=n_vertices)
-    return stiffness(geom, lame, fmt="bsr")
+    return stiffness(geom, lame, fmt="bsr", compiled=compiled)
 
 
 def solve_static(md: MeshData, lame: Lame, *, fixed: Mapping[str, float | np.ndarray] | None = None,
@@ -105,11 +107,15 @@ def solve_static(md: MeshData, lame: Lame, *, fixed: Mapping[str, float | np.nda
     is added to the load vector as is."""
     t = {}
     t0 = time.perf_counter()
-    if md.order == 2 and md.dim == 3 and method != "direct" and md.dim * md.nodes_mm.shape[0] >= fused_sweeps.MIN_DOFS:
-        fused_sweeps.warm_up()        # numba loads beside the assembly, for the solve's fused fine level
+    # systems that will load numba for the solve's fused fine level also assemble with its kernels
+    # (assembly_kernels: 308k dofs, K 1.7 -> 0.55 s); numba starts loading in a thread beside to_skfem
+    compiled = md.order == 2 and md.dim == 3 and method != "direct" \
+        and md.dim * md.nodes_mm.shape[0] >= fused_sweeps.MIN_DOFS
+    if compiled:
+        fused_sweeps.warm_up()
     try:
         sk, K, f, all_dofs, all_vals = _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions,
-                                                 point_loads, thickness_mm, study, progress)
+                                                 point_loads, thickness_mm, study, progress, compiled)
     except (ValueError, KeyError, IndexError) as exc:   # mesh/group mismatch: name the stage, no traceback
         raise StageError("assembly", study, f"{type(exc).__name__}: {exc}") from exc
     d = md.dim
@@ -118,7 +124,8 @@ def solve_static(md: MeshData, lame: Lame, *, fixed: Mapping[str, float | np.nda
     u, info = solve_elasticity(K, f, fixed_dofs=all_dofs, fixed_values=all_vals, coords=sk.doflocs, dim=d,
                                study=study, method=method,
                                p2_element_dofs=sk.element_dofs if md.order == 2 else None,
-                               p1_stiffness=(lambda: p1_stiffness(sk, lame)) if md.order == 2 and d == 3 else None)
+                               p1_stiffness=(lambda: p1_stiffness(sk, lame, compiled=compiled))
+                               if md.order == 2 and d == 3 else None)
     t["solve"] = info.time_s
     progress(f"{study}: {info.method} {info.iterations} iterations, residual {info.residual:.1e}, {info.time_s:.1f} s")
     return StaticSolution(md, sk, u, lame, info, t)
