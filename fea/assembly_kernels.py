@@ -25,7 +25,7 @@ import numpy as np
 __all__ = ["block_pattern", "add_upper_elasticity_blocks", "mirror_upper"]
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)
 def _node_elements(element_dofs, n):
     """CSR of the elements of each node (ascending), from (nel, nloc) element dofs."""
     nel, nloc = element_dofs.shape
@@ -45,7 +45,7 @@ def _node_elements(element_dofs, n):
     return ptr, elems
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)
 def block_pattern(element_dofs, n):
     """(indptr int64, indices int32) of the node-block pattern of (nel, nloc) element dofs: block (I, J)
     where I and J share an element, every row's columns sorted, the diagonal included."""
@@ -91,7 +91,7 @@ def _find(indices, lo, hi, j):
     return lo
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)
 def add_upper_elasticity_blocks(dN, inv, dx, element_dofs, lam, mu, indptr, indices, data):
     """Add every element's 3x3 pair blocks of isotropic elasticity into the upper block triangle
     (row <= column) of the BSR ``data`` (nnzb, 3, 3), elements in the order given.
@@ -152,7 +152,7 @@ def add_upper_elasticity_blocks(dN, inv, dx, element_dofs, lam, mu, indptr, indi
                         data[p, a, a] += tr
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)
 def mirror_upper(indptr, indices, data):
     """Copy each upper block (r, c), c > r, transposed to (c, r). Row c's lower blocks are its first ones,
     in ascending r, so visiting rows r in order fills them front to back."""
@@ -167,3 +167,15 @@ def mirror_upper(indptr, indices, data):
                     for b in range(3):
                         data[m, b, a] = data[p, a, b]
                 nxt[c] = m + 1
+
+
+def load() -> None:
+    """Load (or on a fresh cache compile) the kernels now, on a tiny element, so that their load does
+    not compete for the interpreter lock with whatever runs beside the assembly."""
+    dofs = np.arange(10, dtype=np.int64)[None, :]
+    indptr, indices = block_pattern(dofs, 10)
+    dN = np.zeros((10, 3, 1))
+    inv = np.zeros((1, 1, 3, 3))
+    data = np.zeros((indices.size, 3, 3))
+    add_upper_elasticity_blocks(dN, inv, np.zeros((1, 1)), dofs, 1.0, 1.0, indptr, indices, data)
+    mirror_upper(indptr, indices, data)

@@ -61,9 +61,13 @@ def _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions, point_loads,
     sk = to_skfem(md)
     d = md.dim
     progress(f"{study}: assembling {sk.doflocs.shape[1] * d} dofs (P{md.order}, {md.cells.shape[0]} elements)")
+    geom = element_geometry(sk.doflocs, sk.element_dofs, md.order)
+    if compiled:
+        load_assembly_kernels()
+        fused_sweeps.warm_up()    # the sweeps' kernels load while the assembly's run (those release the lock)
     # node blocks: solve_elasticity condenses them and reuses them for the AMG (no BSR -> CSR -> BSR)
-    K = stiffness(element_geometry(sk.doflocs, sk.element_dofs, md.order), lame, thickness_mm=thickness_mm,
-                  fmt="bsr", compiled=compiled)
+    K = stiffness(geom, lame, thickness_mm=thickness_mm, fmt="bsr", compiled=compiled)
+    del geom
     f = np.zeros(K.shape[0])
     for group, trac in (tractions or {}).items():
         # facet-own quadrature (no element inversion): robust on curved and sliver P2 elements
@@ -83,6 +87,14 @@ def _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions, point_loads,
     all_dofs = np.concatenate(dofs) if dofs else np.zeros(0, np.int64)
     all_vals = np.concatenate(vals) if vals else np.zeros(0)
     return sk, K, f, all_dofs, all_vals
+
+
+def load_assembly_kernels() -> None:
+    """numba and the assembly's kernels, loaded in this thread before the sweeps' warm-up thread starts:
+    loaded beside it, both held the interpreter lock in turn and numpy's many short calls in to_skfem and
+    the geometry waited for it (308k dofs: 0.09 -> 0.39 s and 0.03 -> 0.43 s, the kernel 0.35 -> 0.96 s)."""
+    from . import assembly_kernels
+    assembly_kernels.load()
 
 
 def p1_stiffness(sk: SkfemMesh, lame: Lame, *, compiled: bool = False):
@@ -108,11 +120,9 @@ def solve_static(md: MeshData, lame: Lame, *, fixed: Mapping[str, float | np.nda
     t = {}
     t0 = time.perf_counter()
     # systems that will load numba for the solve's fused fine level also assemble with its kernels
-    # (assembly_kernels: 308k dofs, K 1.7 -> 0.55 s); numba starts loading in a thread beside to_skfem
+    # (assembly_kernels: 308k dofs, K 1.7 -> 0.55 s)
     compiled = md.order == 2 and md.dim == 3 and method != "direct" \
         and md.dim * md.nodes_mm.shape[0] >= fused_sweeps.MIN_DOFS
-    if compiled:
-        fused_sweeps.warm_up()
     try:
         sk, K, f, all_dofs, all_vals = _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions,
                                                  point_loads, thickness_mm, study, progress, compiled)
