@@ -104,7 +104,7 @@ def to_skfem(md: MeshData) -> SkfemMesh:
     from .element_gradients import SKFEM_EDGES
 
     nv = md.n_vertices_per_cell
-    vert_nodes = np.unique(md.cells[:, :nv])
+    vert_nodes = np.flatnonzero(np.bincount(md.cells[:, :nv].ravel(), minlength=md.nodes_mm.shape[0]))  # = np.unique
     node_to_dof = np.full(md.nodes_mm.shape[0], -1, dtype=np.int64)
     node_to_dof[vert_nodes] = np.arange(vert_nodes.size)
     p = md.nodes_mm[vert_nodes, :md.dim].T.copy()
