@@ -26,7 +26,8 @@ import numpy as np
 import scipy.sparse as sp
 
 from .block_scatter import component_pairs, orient, pair_keys, split_matrix, symmetric_matrix, upper_blocks
-from .element_gradients import ElementGeometry, geometry_of_basis
+from .element_gradients import (ElementGeometry, default_intorder, geometry_of_basis, reference_gradients,
+                                simplex_quadrature)
 
 
 @dataclass(frozen=True)
@@ -65,14 +66,11 @@ def lame_map(lame: Lame, dim: int) -> np.ndarray:
 
 
 def stiffness(geom: ElementGeometry, lame: Lame, *, thickness_mm: float = 1.0, chunk: int = 4096,
-              fmt: str = "csr", compiled: bool = False) -> sp.spmatrix:
+              fmt: str = "csr") -> sp.spmatrix:
     """Global stiffness of isotropic linear elasticity (3D, or 2D with plane-stress ``lame`` and thickness)
     from the quadrature data of a P1/P2 simplex mesh. ``chunk`` elements at a time (memory ~ 3 kB each);
-    fmt "csr" or "bsr" (dim x dim blocks). ``compiled`` (3D only): numba kernels scatter each element's
-    blocks straight into the block pattern (``assembly_kernels``), for systems that load numba anyway."""
-    if compiled and geom.dim == 3:
-        K = compiled_stiffness(geom, lame)
-        return K if fmt == "bsr" else K.tocsr()
+    fmt "csr" or "bsr" (dim x dim blocks). ``compiled_stiffness`` is the 3D path of systems that load
+    numba anyway."""
     dim, nq = geom.dim, geom.dx.shape[0]
     edofs = geom.element_dofs
     nloc, nel = edofs.shape
@@ -103,26 +101,39 @@ def stiffness(geom: ElementGeometry, lame: Lame, *, thickness_mm: float = 1.0, c
     return K if fmt == "bsr" else K.tocsr()
 
 
-def compiled_stiffness(geom: ElementGeometry, lame: Lame) -> sp.bsr_matrix:
-    """The 3D stiffness in 3x3 node blocks by ``assembly_kernels``: the same matrix as ``stiffness``'s
-    numpy path to round-off (summation order), with the same sorted pattern and exact symmetry."""
+def compiled_stiffness(nodes: np.ndarray, element_dofs: np.ndarray, order: int, lame: Lame, *,
+                       geometry: tuple[np.ndarray, int] | None = None, intorder: int | None = None,
+                       n_dofs: int | None = None) -> sp.bsr_matrix:
+    """The 3D stiffness in 3x3 node blocks by ``assembly_kernels``, straight from the mesh: the arguments
+    as ``element_gradients.element_geometry``'s (nodes (3, n), element_dofs (nloc, nel), the field's
+    order, ``geometry=(geo_dofs, geo_order)`` for a non-isoparametric map). The same matrix as
+    ``stiffness(element_geometry(...))`` to round-off (summation order), with the same sorted pattern and
+    exact symmetry. Raises ValueError on a degenerate element (det J = 0)."""
     from . import assembly_kernels as k
-    if geom.dim != 3:
-        raise ValueError(f"compiled_stiffness: 3D only, got dim {geom.dim}")
-    nv = 4                                             # the vertices come first in the local order
-    order = np.argsort(geom.element_dofs[:nv].min(axis=0), kind="stable")   # see assembly_kernels: locality
-    edofs = np.ascontiguousarray(geom.element_dofs.T[order], dtype=np.int64)
-    n = int(geom.n_dofs)
-    indptr, indices = k.block_pattern(edofs, n)
+    if nodes.shape[0] != 3:
+        raise ValueError(f"compiled_stiffness: 3D only, got dim {nodes.shape[0]}")
+    points, weights = simplex_quadrature(3, default_intorder(order) if intorder is None else intorder)
+    geo_dofs, geo_order = geometry or (element_dofs, order)
+    dG = reference_gradients(3, geo_order, points)
+    dN = dG if geometry is None else reference_gradients(3, order, points)
+    if n_dofs is None:
+        n_dofs = int(nodes.shape[1]) if geometry is None else int(element_dofs.max()) + 1
+    # elements by their lowest vertex (the vertices come first in the local order): see assembly_kernels
+    order_e = np.argsort(element_dofs[:4].min(axis=0), kind="stable")
+    edofs = np.ascontiguousarray(element_dofs.T[order_e], dtype=np.int64)
+    gdofs = edofs if geometry is None else np.ascontiguousarray(geo_dofs.T[order_e], dtype=np.int64)
+    indptr, indices = k.block_pattern(edofs, n_dofs)
     data = np.zeros((indices.size, 3, 3))
-    # element-first copies: the kernel reads one element's geometry from one place (18 MB at 308k dofs)
-    inv = np.ascontiguousarray(geom.inv.transpose(3, 2, 0, 1)[order])
-    dx = np.ascontiguousarray(geom.dx.T[order])
-    k.add_upper_elasticity_blocks(np.ascontiguousarray(geom.dN, dtype=float), inv, dx, edofs, float(lame.lam_MPa),
-                                  float(lame.mu_MPa), indptr, indices, data)
+    degenerate = k.add_upper_elasticity_blocks(np.ascontiguousarray(nodes.T, dtype=float), gdofs,
+                                               np.ascontiguousarray(dG), np.ascontiguousarray(dN),
+                                               np.ascontiguousarray(weights, dtype=float), edofs,
+                                               float(lame.lam_MPa), float(lame.mu_MPa), indptr, indices, data)
+    if degenerate:
+        raise ValueError("element_geometry: degenerate element (det J = 0)")
     k.mirror_upper(indptr, indices, data)
     itype = np.int32 if indices.size < 2 ** 31 else np.int64
-    K = sp.bsr_matrix((data, indices.astype(itype, copy=False), indptr.astype(itype)), shape=(3 * n, 3 * n))
+    K = sp.bsr_matrix((data, indices.astype(itype, copy=False), indptr.astype(itype)),
+                      shape=(3 * n_dofs, 3 * n_dofs))
     K.has_sorted_indices = True
     return K
 

@@ -12,7 +12,9 @@ The scatter is bound by cache misses, not arithmetic (308k dofs, one core: the b
 0.08 s, finding the places 0.18 s, adding them 0.45 s). Hence: only the upper blocks are added (both
 triangles: 0.45-0.76 s, upper then the copy: 0.32-0.52 + 0.04 s), and the elements are visited by
 their lowest vertex (0.65 -> 0.50 s in both triangles; random order 0.91 s), so that the rows they
-touch are still in cache from the elements before.
+touch are still in cache from the elements before. The element geometry is computed in the kernel from
+the node positions, not read from ``element_geometry``'s arrays (308k dofs, alternating, load 4.9: P2
+stiffness 0.61-1.10 -> 0.57-0.94 s, P1 0.11-0.23 -> 0.09-0.15 s, and no (3, 3, nq, nel) arrays).
 
 Compiled once per machine (``cache=True``) and imported only for systems that load numba anyway (the
 fused p-multigrid's, ``fused_sweeps.MIN_DOFS``): the small systems keep the numpy path.
@@ -91,26 +93,54 @@ def _find(indices, lo, hi, j):
     return lo
 
 
-@nb.njit(cache=True, nogil=True)
-def add_upper_elasticity_blocks(dN, inv, dx, element_dofs, lam, mu, indptr, indices, data):
+@nb.njit(cache=True, nogil=True, error_model="numpy")   # numpy's float rules: no zero-division test
+def add_upper_elasticity_blocks(X, geo_dofs, dG, dN, weights, element_dofs, lam, mu, indptr, indices, data):
     """Add every element's 3x3 pair blocks of isotropic elasticity into the upper block triangle
-    (row <= column) of the BSR ``data`` (nnzb, 3, 3), elements in the order given.
+    (row <= column) of the BSR ``data`` (nnzb, 3, 3), elements in the order given; returns the number of
+    degenerate elements (det J = 0), which add nothing finite.
 
-    dN (nloc, 3, nq) reference gradients; inv (nel, nq, 3, 3) inverse Jacobian inv[e, q, r, a] =
-    dxi_r/dx_a; dx (nel, nq) weight times |det J|; element_dofs (nel, nloc). Block of the local pair
-    (i, j): with Q_ab = sum_q dx g_ia g_jb, K_ij = lam Q + mu Q^T + mu tr(Q) I, added at (I, J) if
-    I < J, else K_ij^T at (J, I)."""
+    The geometry is computed here, element by element, as ``element_gradients.element_geometry`` does
+    for all at once (J_cr = sum_k x_ck dG_kr, its inverse by cofactors, g_k = J^-T dN_k): its (3, 3, nq,
+    nel) arrays were fresh memory the machine first had to map (957k dofs: 0.67 s in the bench's process).
+    X (n, 3) geometry node positions; geo_dofs (nel, ngeo) and dG (ngeo, 3, nq): the map's nodes and
+    reference gradients; dN (nloc, 3, nq) the field's; weights (nq,); element_dofs (nel, nloc). Block of
+    the local pair (i, j): with Q_ab = sum_q w |det J| g_ia g_jb, K_ij = lam Q + mu Q^T + mu tr(Q) I,
+    added at (I, J) if I < J, else K_ij^T at (J, I)."""
     nloc, dim, nq = dN.shape
+    ngeo = dG.shape[0]
     nel = element_dofs.shape[0]
     g = np.empty((nloc, 3, nq))
     gw = np.empty((nloc, 3, nq))
+    J = np.empty((3, 3))
+    adj = np.empty((3, 3))
     Q = np.empty((3, 3))
+    degenerate = 0
     for e in range(nel):
-        for k in range(nloc):
-            for q in range(nq):
-                w = dx[e, q]
+        for q in range(nq):
+            for c in range(3):
+                for r in range(3):
+                    J[c, r] = 0.0
+            for k in range(ngeo):
+                node = geo_dofs[e, k]
+                for c in range(3):
+                    x = X[node, c]
+                    for r in range(3):
+                        J[c, r] += x * dG[k, r, q]
+            for i in range(3):                 # adj[i, j] = cofactor C_ji, as element_gradients._inverse_det
+                i1, i2 = (i + 1) % 3, (i + 2) % 3
+                for j in range(3):
+                    j1, j2 = (j + 1) % 3, (j + 2) % 3
+                    adj[i, j] = J[j1, i1] * J[j2, i2] - J[j1, i2] * J[j2, i1]
+            det = J[0, 0] * adj[0, 0] + J[0, 1] * adj[1, 0] + J[0, 2] * adj[2, 0]
+            if det == 0.0:
+                degenerate += 1
+            for i in range(3):
+                for j in range(3):
+                    adj[i, j] /= det             # now the inverse, inv[r, a] = dxi_r / dx_a
+            w = weights[q] * abs(det)
+            for k in range(nloc):
                 for a in range(3):
-                    s = dN[k, 0, q] * inv[e, q, 0, a] + dN[k, 1, q] * inv[e, q, 1, a] + dN[k, 2, q] * inv[e, q, 2, a]
+                    s = dN[k, 0, q] * adj[0, a] + dN[k, 1, q] * adj[1, a] + dN[k, 2, q] * adj[2, a]
                     g[k, a, q] = s
                     gw[k, a, q] = w * s
         for i in range(nloc):
@@ -130,7 +160,7 @@ def add_upper_elasticity_blocks(dN, inv, dx, element_dofs, lam, mu, indptr, indi
                     data[p, a, b] += (lam + mu) * Q[a, b]
                 data[p, a, a] += tr
             for j in range(i + 1, nloc):
-                J = element_dofs[e, j]
+                Jd = element_dofs[e, j]
                 for a in range(3):
                     for b in range(3):
                         s = 0.0
@@ -138,18 +168,19 @@ def add_upper_elasticity_blocks(dN, inv, dx, element_dofs, lam, mu, indptr, indi
                             s += gw[i, a, q] * g[j, b, q]
                         Q[a, b] = s
                 tr = mu * (Q[0, 0] + Q[1, 1] + Q[2, 2])
-                if I < J:
-                    p = _find(indices, indptr[I], indptr[I + 1], J)
+                if I < Jd:
+                    p = _find(indices, indptr[I], indptr[I + 1], Jd)
                     for a in range(3):
                         for b in range(3):
                             data[p, a, b] += lam * Q[a, b] + mu * Q[b, a]
                         data[p, a, a] += tr
                 else:
-                    p = _find(indices, indptr[J], indptr[J + 1], I)
+                    p = _find(indices, indptr[Jd], indptr[Jd + 1], I)
                     for a in range(3):
                         for b in range(3):
                             data[p, b, a] += lam * Q[a, b] + mu * Q[b, a]
                         data[p, a, a] += tr
+    return degenerate
 
 
 @nb.njit(cache=True, nogil=True)
@@ -170,12 +201,12 @@ def mirror_upper(indptr, indices, data):
 
 
 def load() -> None:
-    """Load (or on a fresh cache compile) the kernels now, on a tiny element, so that their load does
+    """Load (or on a fresh cache compile) the kernels now, on one tiny element, so that their load does
     not compete for the interpreter lock with whatever runs beside the assembly."""
     dofs = np.arange(10, dtype=np.int64)[None, :]
     indptr, indices = block_pattern(dofs, 10)
+    X = np.zeros((10, 3))
     dN = np.zeros((10, 3, 1))
-    inv = np.zeros((1, 1, 3, 3))
     data = np.zeros((indices.size, 3, 3))
-    add_upper_elasticity_blocks(dN, inv, np.zeros((1, 1)), dofs, 1.0, 1.0, indptr, indices, data)
+    add_upper_elasticity_blocks(X, dofs, dN, dN, np.ones(1), dofs, 1.0, 1.0, indptr, indices, data)
     mirror_upper(indptr, indices, data)

@@ -17,7 +17,7 @@ from typing import Callable, Mapping
 import numpy as np
 
 from . import fused_sweeps
-from .assembly import Lame, facet_vector_basis, scalar_basis, stiffness
+from .assembly import Lame, compiled_stiffness, facet_vector_basis, scalar_basis, stiffness
 from .element_gradients import default_intorder, element_geometry
 from .mesh_data import MeshData, SkfemMesh, facet_indices, group_dofs, to_skfem
 from ..errors import StageError
@@ -61,13 +61,14 @@ def _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions, point_loads,
     sk = to_skfem(md)
     d = md.dim
     progress(f"{study}: assembling {sk.doflocs.shape[1] * d} dofs (P{md.order}, {md.cells.shape[0]} elements)")
-    geom = element_geometry(sk.doflocs, sk.element_dofs, md.order)
+    # node blocks: solve_elasticity condenses them and reuses them for the AMG (no BSR -> CSR -> BSR)
     if compiled:
         load_assembly_kernels()
         fused_sweeps.warm_up()    # the sweeps' kernels load while the assembly's run (those release the lock)
-    # node blocks: solve_elasticity condenses them and reuses them for the AMG (no BSR -> CSR -> BSR)
-    K = stiffness(geom, lame, thickness_mm=thickness_mm, fmt="bsr", compiled=compiled)
-    del geom
+        K = compiled_stiffness(sk.doflocs, sk.element_dofs, md.order, lame)
+    else:
+        K = stiffness(element_geometry(sk.doflocs, sk.element_dofs, md.order), lame, thickness_mm=thickness_mm,
+                      fmt="bsr")
     f = np.zeros(K.shape[0])
     for group, trac in (tractions or {}).items():
         # facet-own quadrature (no element inversion): robust on curved and sliver P2 elements
@@ -92,7 +93,8 @@ def _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions, point_loads,
 def load_assembly_kernels() -> None:
     """numba and the assembly's kernels, loaded in this thread before the sweeps' warm-up thread starts:
     loaded beside it, both held the interpreter lock in turn and numpy's many short calls in to_skfem and
-    the geometry waited for it (308k dofs: 0.09 -> 0.39 s and 0.03 -> 0.43 s, the kernel 0.35 -> 0.96 s)."""
+    the geometry waited for it (308k dofs, in the bench's process: to_skfem 0.09 -> 0.39 s, the geometry
+    0.03 -> 0.43 s)."""
     from . import assembly_kernels
     assembly_kernels.load()
 
@@ -103,9 +105,12 @@ def p1_stiffness(sk: SkfemMesh, lame: Lame, *, compiled: bool = False):
     by the numba kernels, as the P2 stiffness of the same solve."""
     nv = 4 if sk.element_dofs.shape[0] == 10 else 3
     n_vertices = int(sk.element_dofs[:nv].max()) + 1
+    if compiled and nv == 4:
+        return compiled_stiffness(sk.doflocs, sk.element_dofs[:nv], 1, lame, intorder=default_intorder(2),
+                                  geometry=(sk.element_dofs, 2), n_dofs=n_vertices)
     geom = element_geometry(sk.doflocs, sk.element_dofs[:nv], 1, intorder=default_intorder(2),
                             geometry=(sk.element_dofs, 2), n_dofs=n_vertices)
-    return stiffness(geom, lame, fmt="bsr", compiled=compiled)
+    return stiffness(geom, lame, fmt="bsr")
 
 
 def solve_static(md: MeshData, lame: Lame, *, fixed: Mapping[str, float | np.ndarray] | None = None,

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from strainwave.fea.assembly import Lame, stiffness
+from strainwave.fea.assembly import Lame, compiled_stiffness, stiffness
 from strainwave.fea.element_gradients import element_geometry
 from strainwave.fea.mesh_data import to_skfem
 from strainwave.fea.static import p1_stiffness
@@ -26,7 +26,7 @@ def test_compiled_p2_stiffness_equals_stock_skfem(curved_ball):
     from skfem.models.elasticity import linear_elasticity
     sk, elem = curved_ball
     lame = Lame.from_young(E, NU)
-    K = stiffness(element_geometry(sk.doflocs, sk.element_dofs, 2), lame, fmt="bsr", compiled=True)
+    K = compiled_stiffness(sk.doflocs, sk.element_dofs, 2, lame)
     assert K.format == "bsr" and K.blocksize == (3, 3)
     vb = skfem.Basis(sk.mesh, skfem.ElementVector(elem), intorder=2)
     K0 = skfem.asm(linear_elasticity(lame.lam_MPa, lame.mu_MPa), vb)
@@ -44,9 +44,8 @@ def test_compiled_equals_numpy_path_block_for_block(curved_ball, field):
     sk, _ = curved_ball
     lame = Lame.from_young(E, NU)
     if field == "p2":
-        geom = element_geometry(sk.doflocs, sk.element_dofs, 2)
-        Kn = stiffness(geom, lame, fmt="bsr")
-        Kc = stiffness(geom, lame, fmt="bsr", compiled=True)
+        Kn = stiffness(element_geometry(sk.doflocs, sk.element_dofs, 2), lame, fmt="bsr")
+        Kc = compiled_stiffness(sk.doflocs, sk.element_dofs, 2, lame)
     else:
         Kn = p1_stiffness(sk, lame)
         Kc = p1_stiffness(sk, lame, compiled=True)
@@ -55,19 +54,15 @@ def test_compiled_equals_numpy_path_block_for_block(curved_ball, field):
     # the same block pattern, in the same (sorted) order, so the solver sees the same structure
     assert np.array_equal(Kc.indptr, Kn.indptr) and np.array_equal(Kc.indices, Kn.indices)
     assert np.abs(Kc.data - Kn.data).max() <= 1e-13 * np.abs(Kn.data).max()
-    csr_c, csr_n = stiffness(element_geometry(sk.doflocs, sk.element_dofs, 2), lame, compiled=True), \
-        stiffness(element_geometry(sk.doflocs, sk.element_dofs, 2), lame)
-    assert csr_c.format == "csr" and abs(csr_c - csr_n).max() <= 1e-13 * abs(csr_n).max()
 
 
-def test_compiled_is_3d_only():
-    from strainwave.fea.assembly import compiled_stiffness
+def test_compiled_is_3d_only_and_refuses_a_degenerate_element(curved_ball):
     mesh, _ = _skfem_p2(2)
-    sk = to_skfem(_as_gmsh(mesh, 2))
-    geom = element_geometry(sk.doflocs, sk.element_dofs, 2)
+    sk2 = to_skfem(_as_gmsh(mesh, 2))
     with pytest.raises(ValueError, match="3D only"):
-        compiled_stiffness(geom, Lame.from_young(E, NU))
-    # stiffness() keeps the numpy path for 2D even when asked for the compiled one
-    K = stiffness(geom, Lame.from_young(E, NU, plane_stress=True), compiled=True)
-    K0 = stiffness(geom, Lame.from_young(E, NU, plane_stress=True))
-    assert abs(K - K0).max() == 0.0
+        compiled_stiffness(sk2.doflocs, sk2.element_dofs, 2, Lame.from_young(E, NU))
+    sk, _ = curved_ball
+    flat = sk.doflocs.copy()
+    flat[:, sk.element_dofs[:, 5]] = flat[:, sk.element_dofs[0, 5]][:, None]   # one element crushed to a point
+    with pytest.raises(ValueError, match="degenerate"):
+        compiled_stiffness(flat, sk.element_dofs, 2, Lame.from_young(E, NU))
