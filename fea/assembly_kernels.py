@@ -24,7 +24,7 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
-__all__ = ["block_pattern", "add_upper_elasticity_blocks", "mirror_upper"]
+__all__ = ["block_pattern", "add_upper_elasticity_blocks", "mirror_upper", "condense_blocks_in_place"]
 
 
 @nb.njit(cache=True, nogil=True)
@@ -68,16 +68,22 @@ def block_pattern(element_dofs, n):
     indices = np.empty(indptr[n], np.int32)
     mark[:] = -1
     for i in range(n):
-        c = indptr[i]
+        lo = indptr[i]
+        c = lo
         for p in range(ptr[i], ptr[i + 1]):
             e = elems[p]
             for k in range(nloc):
                 j = element_dofs[e, k]
                 if mark[j] != i:
                     mark[j] = i
-                    indices[c] = j
+                    # insertion into the sorted row so far: rows are short (~26 blocks at P2), and this
+                    # took 0.105-0.125 s at 308k dofs against 0.14-0.165 s with a sort of each row
+                    m = c
+                    while m > lo and indices[m - 1] > j:
+                        indices[m] = indices[m - 1]
+                        m -= 1
+                    indices[m] = j
                     c += 1
-        indices[indptr[i]:indptr[i + 1]].sort()
     return indptr, indices
 
 
@@ -200,6 +206,39 @@ def mirror_upper(indptr, indices, data):
                 nxt[c] = m + 1
 
 
+@nb.njit(cache=True, nogil=True)
+def condense_blocks_in_place(indptr, indices, data, keep):
+    """K[keep][:, keep] of a BSR matrix's node blocks (``solver.condense_blocks``: the same entries in
+    the same order), written over the front of its own ``indices`` and ``data`` (a kept block never
+    moves back: m <= p), so no fresh memory is mapped for the copy (308k dofs: 190 MB). Returns the
+    condensed indptr and its block count m; indices[:m], data[:m] are the condensed arrays."""
+    n = indptr.size - 1
+    new = np.full(n, -1, np.int64)
+    c = 0
+    for i in range(n):
+        if keep[i]:
+            new[i] = c
+            c += 1
+    out = np.zeros(c + 1, np.int64)
+    m = 0
+    r = 0
+    for i in range(n):
+        if not keep[i]:
+            continue
+        for p in range(indptr[i], indptr[i + 1]):
+            j = indices[p]
+            if keep[j]:
+                indices[m] = new[j]
+                if m != p:
+                    for a in range(data.shape[1]):
+                        for b in range(data.shape[2]):
+                            data[m, a, b] = data[p, a, b]
+                m += 1
+        r += 1
+        out[r] = m
+    return out, m
+
+
 def load() -> None:
     """Load (or on a fresh cache compile) the kernels now, on one tiny element, so that their load does
     not compete for the interpreter lock with whatever runs beside the assembly."""
@@ -210,3 +249,5 @@ def load() -> None:
     data = np.zeros((indices.size, 3, 3))
     add_upper_elasticity_blocks(X, dofs, dN, dN, np.ones(1), dofs, 1.0, 1.0, indptr, indices, data)
     mirror_upper(indptr, indices, data)
+    # int32 block pointers, as scipy gives a stiffness matrix's: the signature the solver calls
+    condense_blocks_in_place(indptr.astype(np.int32), indices, data, np.ones(10, np.bool_))

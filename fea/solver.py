@@ -70,7 +70,8 @@ def solve_elasticity(K: sp.spmatrix, f: np.ndarray, *, fixed_dofs: np.ndarray, f
                      coords: np.ndarray, dim: int, method: str = "auto", rtol: float = DEFAULT_RTOL,
                      maxiter: int = 2000, study: str = "fea",
                      p2_element_dofs: np.ndarray | None = None,
-                     p1_stiffness: Callable[[], sp.bsr_matrix] | None = None) -> tuple[np.ndarray, SolverInfo]:
+                     p1_stiffness: Callable[[], sp.bsr_matrix] | None = None,
+                     consume_K: bool = False) -> tuple[np.ndarray, SolverInfo]:
     """Solve the condensed system for the free dofs; fixed dofs take ``fixed_values``.
 
     Parameters
@@ -85,6 +86,10 @@ def solve_elasticity(K: sp.spmatrix, f: np.ndarray, *, fixed_dofs: np.ndarray, f
         blocks over the vertex dofs (the first ones of the P2 numbering): the p-multigrid's coarse
         operator without the Galerkin product R K P, which equals it up to round-off (the P1 functions
         lie in the P2 space and the quadrature is the same).
+    consume_K : K (3x3 node blocks) may be overwritten: the condensed matrix is formed in its own arrays
+        by the numba kernel ``assembly_kernels.condense_blocks_in_place`` (the caller has loaded numba;
+        ``static.solve_static`` for the systems it assembles with those kernels), and so is the P1
+        level's. The same matrices as without.
     Raises StageError("solve", study, ...) when CG does not reach ``rtol`` in ``maxiter`` iterations.
     """
     t0 = time.perf_counter()
@@ -102,7 +107,7 @@ def solve_elasticity(K: sp.spmatrix, f: np.ndarray, *, fixed_dofs: np.ndarray, f
     if sp.issparse(K) and K.format == "bsr" and K.blocksize == (dim, dim) and node_mask is not None \
             and np.array_equal(node_mask.all(axis=1), node_mask.any(axis=1)):
         # whole nodes fixed: condense the 3x3 blocks (9x fewer index entries, see condense_blocks)
-        Kff_blocks = condense_blocks(K, node_mask[:, 0])
+        Kff_blocks = condense_blocks(K, node_mask[:, 0], in_place=consume_K and dim == 3)
     else:
         Kff = condense(K.tocsr(), mask)
     nb = np.linalg.norm(b)
@@ -130,7 +135,8 @@ def solve_elasticity(K: sp.spmatrix, f: np.ndarray, *, fixed_dofs: np.ndarray, f
         # the rest of its set-up (0.7 GB less at the peak, 1M dofs)
         blocks = [Kff_blocks]
         del Kff_blocks
-        ml = _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs, blocks, p1_stiffness, fused=fused)
+        ml = _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs, blocks, p1_stiffness, fused=fused,
+                            in_place=consume_K)
         sweeps = getattr(ml, "fused_sweeps", None)
         if sweeps:
             x, its = pcg_with_products(b, v_cycle_fused(sweeps, ml.levels, ml.coarse_solver), rtol=rtol,
@@ -146,12 +152,21 @@ def solve_elasticity(K: sp.spmatrix, f: np.ndarray, *, fixed_dofs: np.ndarray, f
     return u, SolverInfo(name, int(free.size), int(its), residual, time.perf_counter() - t0)
 
 
-def condense_blocks(K: sp.bsr_matrix, keep_nodes: np.ndarray) -> sp.bsr_matrix:
+def condense_blocks(K: sp.bsr_matrix, keep_nodes: np.ndarray, *, in_place: bool = False) -> sp.bsr_matrix:
     """K[keep][:, keep] of a square BSR matrix whose kept dofs come in whole blocks (node blocks).
 
     The same entries, in the same order, as ``condense`` of K's CSR: one filter of the blocks instead
     of the scalar entries. 957k-dof shaft (9.6M blocks, one core): K -> CSR 0.2 s + ``condense`` 2.4 s,
-    against this 0.5 s + the condensed BSR -> CSR 0.2 s; the blocks also serve the Galerkin product."""
+    against this 0.5 s + the condensed BSR -> CSR 0.2 s; the blocks also serve the Galerkin product.
+    ``in_place``: formed over K's own arrays by a numba kernel (K is lost; numba must be wanted anyway):
+    the copy of the blocks was mostly the cost of mapping fresh memory."""
+    if in_place:
+        from .assembly_kernels import condense_blocks_in_place
+        indptr, m = condense_blocks_in_place(K.indptr, K.indices, K.data, np.ascontiguousarray(keep_nodes, bool))
+        n = (indptr.size - 1) * K.blocksize[0]
+        out = sp.bsr_matrix((K.data[:m], K.indices[:m], indptr.astype(K.indptr.dtype)), shape=(n, n))
+        out.has_sorted_indices = K.has_sorted_indices
+        return out
     r, c = K.blocksize
     counts = np.diff(K.indptr)
     block_kept = np.repeat(keep_nodes, counts) & keep_nodes[K.indices]
@@ -227,7 +242,8 @@ def _sa_solver(pyamg, A, B):
 SMOOTHERS = (("gauss_seidel", {"sweep": "forward"}), ("gauss_seidel", {"sweep": "backward"}))
 
 
-def _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs, blocks=None, p1_stiffness=None, fused=False):
+def _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs, blocks=None, p1_stiffness=None, fused=False,
+                   in_place=False):
     """Smoothed aggregation with the rigid-body modes; for P2, preceded by the P1 level (p-multigrid).
 
     Node blocks (BSR dim x dim) when the free dofs come in whole nodes: pyamg then aggregates nodes,
@@ -264,7 +280,7 @@ def _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs, blocks=None, p1_stif
         K1 = p1_stiffness()
         is_free = np.zeros(K1.shape[0], bool)
         is_free[coarse_free] = True
-        coarse_A = condense_blocks(K1, is_free.reshape(-1, dim)[:, 0])
+        coarse_A = condense_blocks(K1, is_free.reshape(-1, dim)[:, 0], in_place=in_place and dim == 3)
         del K1
     else:
         A_blocks = blocks.pop() if blocks and blocks[0] is not None else Kff.tobsr(blocksize=(dim, dim))

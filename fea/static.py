@@ -140,7 +140,7 @@ def solve_static(md: MeshData, lame: Lame, *, fixed: Mapping[str, float | np.nda
                                study=study, method=method,
                                p2_element_dofs=sk.element_dofs if md.order == 2 else None,
                                p1_stiffness=(lambda: p1_stiffness(sk, lame, compiled=compiled))
-                               if md.order == 2 and d == 3 else None)
+                               if md.order == 2 and d == 3 else None, consume_K=compiled)
     t["solve"] = info.time_s
     progress(f"{study}: {info.method} {info.iterations} iterations, residual {info.residual:.1e}, {info.time_s:.1f} s")
     return StaticSolution(md, sk, u, lame, info, t)

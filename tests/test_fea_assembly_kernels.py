@@ -66,3 +66,34 @@ def test_compiled_is_3d_only_and_refuses_a_degenerate_element(curved_ball):
     flat[:, sk.element_dofs[:, 5]] = flat[:, sk.element_dofs[0, 5]][:, None]   # one element crushed to a point
     with pytest.raises(ValueError, match="degenerate"):
         compiled_stiffness(flat, sk.element_dofs, 2, Lame.from_young(E, NU))
+
+
+def test_condense_blocks_in_place_equals_the_copy(curved_ball):
+    from strainwave.fea.solver import condense_blocks
+    sk, _ = curved_ball
+    K = compiled_stiffness(sk.doflocs, sk.element_dofs, 2, Lame.from_young(E, NU))
+    keep = np.random.default_rng(4).random(K.shape[0] // 3) > 0.3
+    want = condense_blocks(K, keep)
+    K2 = K.copy()
+    K2.has_sorted_indices = True                                # a copy forgets the flag; its rows are sorted
+    got = condense_blocks(K2, keep, in_place=True)
+    assert np.array_equal(got.indptr, want.indptr) and np.array_equal(got.indices, want.indices)
+    assert np.array_equal(got.data, want.data)                 # the same blocks, moved: bit for bit
+    assert got.shape == want.shape and got.has_sorted_indices
+
+
+def test_solve_with_consumed_stiffness_equals_the_kept_one(curved_ball):
+    from strainwave.fea.solver import solve_elasticity
+    sk, _ = curved_ball
+    lame = Lame.from_young(E, NU)
+    K = compiled_stiffness(sk.doflocs, sk.element_dofs, 2, lame)
+    x = sk.doflocs
+    fixed_nodes = np.flatnonzero(x[2] < x[2].min() + 0.3)
+    fixed = (3 * fixed_nodes[:, None] + np.arange(3)).ravel()
+    f = np.zeros(K.shape[0])
+    f[2::3] = np.where(x[2] > x[2].max() - 0.3, 1.0, 0.0)
+    kw = dict(fixed_dofs=fixed, coords=x, dim=3, method="amg", p2_element_dofs=sk.element_dofs,
+              p1_stiffness=lambda: p1_stiffness(sk, lame, compiled=True))
+    u0, i0 = solve_elasticity(K.copy(), f, **kw)
+    u1, i1 = solve_elasticity(K.copy(), f, consume_K=True, **kw)
+    assert i0.iterations == i1.iterations and np.array_equal(u0, u1)
