@@ -53,8 +53,9 @@ def warm_up() -> None:
     With the kernels cached on disk, a bare process pays ~1.6 s before the first sweep (numba's import
     0.6 s, its typing and lowering registries on the first call of any jitted function 0.9-1.0 s, partly
     importing scipy.linalg), one that has imported the FEA stack 0.3 s: all Python, holding the global
-    lock. ``static.solve_static`` and the bearing study start it before their assembly, for systems
-    that will take the fused path. Started instead once gmsh had made the linear mesh (beside setOrder
+    lock. ``static.solve_static`` starts it once the assembly's own numba kernels are loaded (they run
+    without the lock, so the two overlap), the bearing study before its assembly, for systems that will
+    take the fused path. Started instead once gmsh had made the linear mesh (beside setOrder
     and the optimiser, C++ with the lock released) it was not faster: 308k dofs end to end 5.86 s
     against 5.65 s beside the assembly (medians of 5 alternating pairs, load 3.0-3.3; the mesh took
     0.3-0.8 s longer)."""
