@@ -47,43 +47,51 @@ def _node_elements(element_dofs, n):
     return ptr, elems
 
 
+@nb.njit(cache=True, nogil=True, inline="always")
+def _neighbours(i, ptr, elems, element_dofs, mark, out, lo):
+    """Write the distinct blocks J of row i (J shares an element with i) to out[lo:], in the order met, each
+    once (mark[J] = i); returns how many."""
+    c = lo
+    for p in range(ptr[i], ptr[i + 1]):
+        e = elems[p]
+        for k in range(element_dofs.shape[1]):
+            j = element_dofs[e, k]
+            if mark[j] != i:
+                mark[j] = i
+                out[c] = j
+                c += 1
+    return c - lo
+
+
 @nb.njit(cache=True, nogil=True)
 def block_pattern(element_dofs, n):
     """(indptr int64, indices int32) of the node-block pattern of (nel, nloc) element dofs: block (I, J)
     where I and J share an element, every row's columns sorted, the diagonal included."""
     nloc = element_dofs.shape[1]
     ptr, elems = _node_elements(element_dofs, n)
+    widest = 0
+    for i in range(n):
+        widest = max(widest, (ptr[i + 1] - ptr[i]) * nloc)
+    scratch = np.empty(widest, np.int32)
     mark = np.full(n, -1, np.int64)
     indptr = np.zeros(n + 1, np.int64)
     for i in range(n):
-        c = 0
-        for p in range(ptr[i], ptr[i + 1]):
-            e = elems[p]
-            for k in range(nloc):
-                j = element_dofs[e, k]
-                if mark[j] != i:
-                    mark[j] = i
-                    c += 1
-        indptr[i + 1] = indptr[i] + c
+        indptr[i + 1] = indptr[i] + _neighbours(i, ptr, elems, element_dofs, mark, scratch, 0)
     indices = np.empty(indptr[n], np.int32)
     mark[:] = -1
     for i in range(n):
         lo = indptr[i]
-        c = lo
-        for p in range(ptr[i], ptr[i + 1]):
-            e = elems[p]
-            for k in range(nloc):
-                j = element_dofs[e, k]
-                if mark[j] != i:
-                    mark[j] = i
-                    # insertion into the sorted row so far: rows are short (~26 blocks at P2), and this
-                    # took 0.105-0.125 s at 308k dofs against 0.14-0.165 s with a sort of each row
-                    m = c
-                    while m > lo and indices[m - 1] > j:
-                        indices[m] = indices[m - 1]
-                        m -= 1
-                    indices[m] = j
-                    c += 1
+        c = lo + _neighbours(i, ptr, elems, element_dofs, mark, indices, lo)
+        # insertion sort of the short row (~26 blocks at P2), cheaper than a sort call per row (0.105-0.125 s
+        # against 0.14-0.165 s at 308k dofs). One neighbour walk serves both passes: 0.12 -> 0.145 s (medians
+        # of 11, 166k nodes, load 3.3) against the walk written out twice, 0.2 % of a 1M-dof run
+        for q in range(lo + 1, c):
+            j = indices[q]
+            m = q
+            while m > lo and indices[m - 1] > j:
+                indices[m] = indices[m - 1]
+                m -= 1
+            indices[m] = j
     return indptr, indices
 
 
