@@ -28,7 +28,7 @@ SIZE_FACTORS = (1.0, 1.03, 0.98, 1.05)
 def _child(conn, part, size_mm, order, refine):
     try:
         with gmsh_session() as model:
-            md = mesh_part(model, part, size_mm=size_mm, order=order, refine=refine)
+            md = mesh_part(model, part, size_mm=size_mm, order=order, refine=refine, preload_kernels=False)
         conn.send(("ok", md))
     except Exception as exc:          # noqa: BLE001 - every failure goes back to the parent as text
         conn.send(("error", f"{type(exc).__name__}: {exc}"))

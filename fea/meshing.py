@@ -146,23 +146,41 @@ def _options(size_mm: float, optimize_threshold: float = OPTIMIZE_THRESHOLD) -> 
 
 def generate(model, dim: int, order: int, *, size_mm: float, refine: Sequence[Refine] | None = None,
              group_tags: Mapping[str, list[int]] | None = None,
-             optimize_threshold: float = OPTIMIZE_THRESHOLD) -> None:
+             optimize_threshold: float = OPTIMIZE_THRESHOLD, preload_kernels: bool = True) -> None:
     """Options, size fields and meshing of the synchronised ``model``; gmsh errors -> MeshingFailed.
 
     The one meshing tail of every builder here and of other fea modules that draw their own geometry
     (e.g. the axisymmetric shaft section). ``optimize_threshold``: tetrahedra below this quality are
-    optimised (gmsh's Mesh.OptimizeThreshold)."""
+    optimised (gmsh's Mesh.OptimizeThreshold). ``preload_kernels``: a P2 tetrahedral mesh that will reach
+    ``fused_sweeps.MIN_DOFS`` loads the assembly's numba kernels beside setOrder (False where another
+    process assembles it: mesh_isolated's child)."""
     _options(size_mm, optimize_threshold)
     _size_fields(model, size_mm, refine or (), group_tags or {}, dim)
     try:
-        _generate(model, dim, order)
+        _generate(model, dim, order, preload_kernels)
     except Exception as exc:  # gmsh raises plain Exception with its log message
         raise MeshingFailed(f"gmsh meshing failed: {exc}") from exc
 
 
-def _generate(model, dim: int, order: int) -> None:
+# P2 nodes per vertex of a tetrahedral mesh, the low end of those measured (thin-walled cup 5.9, output shaft
+# 6.5-6.9): the dof estimate errs towards not loading the kernels near MIN_DOFS, where they save least
+P2_NODES_PER_VERTEX = 6.0
+
+
+def expected_p2_dofs(n_vertices: int) -> int:
+    """Displacement dofs the linear tetrahedral mesh of ``n_vertices`` will have once curved to P2."""
+    return int(3 * P2_NODES_PER_VERTEX * n_vertices)
+
+
+def _generate(model, dim: int, order: int, preload_kernels: bool = True) -> None:
     model.mesh.generate(dim)
     if order == 2:
+        if preload_kernels and dim == 3:
+            from . import fused_sweeps
+            # the assembly of a system this large runs numba kernels: they load beside setOrder, which runs
+            # in C++ with the interpreter lock released
+            if expected_p2_dofs(len(model.mesh.getNodes()[0])) >= fused_sweeps.MIN_DOFS:
+                fused_sweeps.warm_up_assembly()
         model.mesh.setOrder(2)
         _straighten_inverted(model, dim)
 
@@ -240,7 +258,8 @@ def extract(model, dim: int, order: int, group_tags: Mapping[str, tuple[int, lis
 
 
 def mesh_part(model, part, *, size_mm: float, order: int = 2, refine: Sequence[Refine] | None = None,
-              match_tol_mm: float | None = None, optimize_threshold: float = OPTIMIZE_THRESHOLD) -> MeshData:
+              match_tol_mm: float | None = None, optimize_threshold: float = OPTIMIZE_THRESHOLD,
+              preload_kernels: bool = True) -> MeshData:
     """Tetrahedral mesh of ``part.solid`` with one physical group per entry of ``part.named_faces``.
 
     Parameters
@@ -251,6 +270,7 @@ def mesh_part(model, part, *, size_mm: float, order: int = 2, refine: Sequence[R
     size_mm : global element size; ``refine`` adds local sizes (crack front points, named faces).
     order : 1 (straight P1) or 2 (curved P2).
     optimize_threshold : tetrahedra below this quality are optimised (see ``generate``).
+    preload_kernels : see ``generate``.
     """
     _import_shape(model, part.solid)
     if not model.getEntities(3):
@@ -265,7 +285,7 @@ def mesh_part(model, part, *, size_mm: float, order: int = 2, refine: Sequence[R
         model.addPhysicalGroup(2, tags, name=name)
     model.addPhysicalGroup(3, [t for _, t in model.getEntities(3)], name="solid")
     generate(model, 3, order, size_mm=size_mm, refine=refine, group_tags=group_tags,
-             optimize_threshold=optimize_threshold)
+             optimize_threshold=optimize_threshold, preload_kernels=preload_kernels)
     return extract(model, 3, order, {n: (2, t) for n, t in group_tags.items()}, size_mm)
 
 

@@ -97,3 +97,43 @@ def test_solve_with_consumed_stiffness_equals_the_kept_one(curved_ball):
     u0, i0 = solve_elasticity(K.copy(), f, **kw)
     u1, i1 = solve_elasticity(K.copy(), f, consume_K=True, **kw)
     assert i0.iterations == i1.iterations and np.array_equal(u0, u1)
+
+
+def test_the_mesher_loads_the_assembly_kernels_only_for_a_system_that_will_use_them():
+    """A P2 tetrahedral mesh that will reach fused_sweeps.MIN_DOFS starts the kernels' load beside setOrder;
+    a smaller one, or one meshed for another process (preload_kernels=False), does not. The dof estimate from
+    the linear mesh's vertices errs low (it must not load numba for systems that never use it). A fresh
+    interpreter: the load is once per process."""
+    import ast
+    import subprocess
+    import sys
+    import textwrap
+
+    script = textwrap.dedent("""
+        import warnings
+        warnings.simplefilter("ignore")
+        import numpy as np
+        from strainwave.fea import fused_sweeps
+        from strainwave.fea.meshing import expected_p2_dofs, mesh_part
+        from strainwave.fea.session import gmsh_session
+        from strainwave.geometry.parts import build_part
+        from strainwave.params import load_params
+        part = build_part("output-shaft", load_params())
+        seen = []
+        for size_mm, preload in ((3.2, False), (5.2, True), (3.2, True)):
+            with gmsh_session() as model:
+                md = mesh_part(model, part, size_mm=size_mm, order=2, preload_kernels=preload)
+            dofs = 3 * md.nodes_mm.shape[0]
+            estimate = expected_p2_dofs(len(np.unique(md.cells[:, :4])))
+            seen.append((size_mm, preload, dofs, estimate, fused_sweeps._assembly_thread is not None))
+        print(seen)
+    """)
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr[-2000:]
+    seen = ast.literal_eval(out.stdout.strip().splitlines()[-1])
+    (big_dofs, big_estimate), (small_dofs, small_estimate) = seen[0][2:4], seen[1][2:4]
+    assert big_dofs > 100_000 > small_dofs
+    # the estimate errs low, by at most the spread of P2 nodes per vertex measured (5.9-6.9 against 6.0)
+    for dofs, estimate in ((big_dofs, big_estimate), (small_dofs, small_estimate)):
+        assert 0.8 * dofs <= estimate <= dofs
+    assert [started for *_, started in seen] == [False, False, True]
