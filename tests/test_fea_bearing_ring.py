@@ -136,16 +136,17 @@ def test_isolated_meshing_survives_a_native_abort(monkeypatch):
     import strainwave.fea.mesh_isolated as mi
     from strainwave.fea.meshing import MeshingFailed, Refine
 
-    def fake_mesh_part(model, part, *, size_mm, order, refine):
+    def fake_mesh_part(model, part, *, size_mm, order, refine, preload_kernels):
         if size_mm == 2.0:            # the first attempt dies as gmsh's std::terminate does
             os.abort()
-        return {"size_mm": size_mm, "refine_mm": refine[0].size_mm}
+        return {"size_mm": size_mm, "refine_mm": refine[0].size_mm, "preload_kernels": preload_kernels}
 
     monkeypatch.setattr(mi, "mesh_part", fake_mesh_part)
     md, factor = mi.mesh_part_isolated(None, size_mm=2.0, order=2, refine=[Refine(0.5, 1.0, 2.0)])
     # the retry scales the global and the local sizes together, by the first factor after 1
     assert factor == mi.SIZE_FACTORS[1]
-    assert md == {"size_mm": 2.0 * factor, "refine_mm": 0.5 * factor}
+    # the child meshes for its parent, which assembles: it loads no assembly kernels of its own
+    assert md == {"size_mm": 2.0 * factor, "refine_mm": 0.5 * factor, "preload_kernels": False}
     monkeypatch.setattr(mi, "mesh_part", lambda *a, **k: os.abort())
     with pytest.raises(MeshingFailed, match="exited with code"):
         mi.mesh_part_isolated(None, size_mm=2.0, order=2, refine=[], factors=(1.0, 1.03))
