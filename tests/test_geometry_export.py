@@ -97,6 +97,65 @@ def test_step_round_trip(params, tmp_path, name, crack, teeth):
     _named_faces_come_back(path, expected, part.solid.bounding_box().diagonal)
 
 
+def _spy_on_read_back_naming(monkeypatch):
+    """Count the files whose names had to be put on by reading the written file back."""
+    from strainwave.geometry import step_xcaf
+
+    calls = []
+    original = step_xcaf._name_faces
+
+    def spy(path, placed):
+        calls.append(path)
+        return original(path, placed)
+    monkeypatch.setattr(step_xcaf, "_name_faces", spy)
+    return calls
+
+
+def test_toothed_cup_faces_are_named_in_the_writers_model(params, tmp_path, monkeypatch):
+    """The teeth of the cup are moved into place (their faces carry a location) and are still named by
+    the writer's own map, without reading the file back; the names are the read-back ones."""
+    from collections import Counter
+
+    from strainwave.geometry.step_xcaf import read_step_face_names
+
+    calls = _spy_on_read_back_naming(monkeypatch)
+    part = build_part("flexspline-cup", params, teeth=True)
+    path = write_step(part, tmp_path / "cup.step")
+    assert calls == []
+    back = read_step_face_names(path)
+    assert Counter(group for name, _, _ in back for group in name.split("+")) == \
+        Counter({group: len(refs) for group, refs in part.named_faces.items()})
+    # each name sits on the face it was given to: centre and area as recorded by the part
+    named_at = {(tuple(round(c, 6) for c in centre), round(area, 6)): name.split("+") for name, centre, area in back}
+    for group, refs in part.named_faces.items():
+        for ref in refs:
+            assert group in named_at[(tuple(round(c, 6) for c in ref.center_mm), round(ref.area_mm2, 6))]
+
+
+def test_faces_sharing_one_shape_are_named_from_the_written_file(tmp_path, monkeypatch):
+    """An extruded ring's top is a located copy of its bottom (one TShape): the writer's map cannot tell
+    them apart, so the names go on through the read-back, each on its own face."""
+    from build123d import Face, Wire, extrude
+
+    from strainwave.geometry.part import FaceRef, Part, PartName
+    from strainwave.geometry.step_xcaf import read_step_face_names
+
+    calls = _spy_on_read_back_naming(monkeypatch)
+    solid = extrude(Face(Wire.make_circle(10.0)) - Face(Wire.make_circle(5.0)), 3.0).solids()[0]
+    flat = [f for f in solid.faces() if abs(f.normal_at(f.center()).Z) > 0.5]
+    assert len(flat) == 2
+    bottom, top = sorted(flat, key=lambda f: f.center().Z)
+
+    def ref(face):
+        c = face.center()
+        return (FaceRef((c.X, c.Y, c.Z), float(face.area)),)
+    part = Part(PartName.WG_BEARING_RING, solid, {"bottom": ref(bottom), "top": ref(top)})
+    path = write_step(part, tmp_path / "ring.step")
+    assert len(calls) == 1
+    back = sorted(read_step_face_names(path), key=lambda item: item[1][2])
+    assert [(name, round(centre[2], 9)) for name, centre, _ in back] == [("bottom", 0.0), ("top", 3.0)]
+
+
 def test_brep_round_trip(params, tmp_path):
     from build123d import import_brep
 
