@@ -52,7 +52,7 @@ from .zero_load_width import full_scale_cycles, zero_load_width
 
 BIC_THRESHOLD = 10.0       # "very strong" on the Kass-Raftery scale
 AMBIGUOUS_BIC = 6.0        # "strong": closer than this, the data cannot tell the two apart
-MAX_GOF_TRIES = 12         # model forms offered the goodness-of-fit test, best BIC first (3-4 forms per effect)
+MAX_GOF_TRIES = 16         # model forms offered the goodness-of-fit test, best BIC first (3-6 forms per effect)
 LOSS_CONTRADICTION = 2.58  # standard errors (99 %): the data's width at zero torque overrides the loop model's
 # A named effect must be of a size a user can see: its defining part (Effect.signature: a backlash's clearance,
 # not its flanks' stiffening) must swing by this many white-noise sigmas over the record. The benchmarks
@@ -242,6 +242,22 @@ def _best_per_set(fits: list[Fit]) -> list[Fit]:
     return sorted(best.values(), key=lambda f: f.bic)
 
 
+def _pair_forms(forms: list[Fit], k: int) -> list[Fit]:
+    """The first ``k`` of ``forms`` (best BIC first) that a pair tries: the best form of each law class in turn
+    (Effect.law_class), then the next best of any class. Two forms of one class can both fail beside another
+    effect where a form of the other class fits (family 2's CHA curves with a Bouc-Wen loop: the two Preisach
+    densities fitted best alone, by drawing part of the stiffening, and neither fitted beside it)."""
+    picked: list[Fit] = []
+    classes: set[str] = set()
+    for f in forms:
+        law = f.effects[0].law_class or f.effects[0].label
+        if law not in classes:
+            picked.append(f)
+            classes.add(law)
+    picked += [f for f in forms if all(f is not g for g in picked)]
+    return picked[:k]
+
+
 def _best_plausible_per_effect(ctx, singles: list[Fit]) -> dict[str, Fit]:
     """Per effect id, its best-scoring form among those with plausible values (the best form if none is).
 
@@ -316,7 +332,7 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
             if frozenset({a0.id, b0.id}) in _DEGENERATE:
                 continue
             k = 2 if a0 is best_single else 1
-            for a, b in itertools.product(by_id[a0.id][:k], by_id[b0.id][:k]):
+            for a, b in itertools.product(_pair_forms(by_id[a0.id], k), _pair_forms(by_id[b0.id], k)):
                 start = np.concatenate([a.theta, b.theta])
                 pairs.append(fit_effects(ctx, a.effects + b.effects, sigma, u_rel, starts=[start], noise=noise))
         # the best pair in every other combination of model forms: a loop law that loses as a single

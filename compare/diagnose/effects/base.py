@@ -65,6 +65,10 @@ class Effect:
     explanation: str
     applicable: Callable[[Context], bool] = lambda ctx: True
     variant: str = ""          # a second, smaller model of the same effect (BIC picks between them)
+    # forms of one law class differ in detail, not in what they can draw beside another effect (a friction loop
+    # from one internal state vs from a density of elements, which can also bend the elastic line): a pair
+    # tries the best form of each class, not the two best forms of one class. "" = a class of its own
+    law_class: str = ""
     # where the fitted effect acts: (ranges of u in normalised units, branch/side text); None = everywhere
     where: Callable[[Context, np.ndarray], tuple[tuple[tuple[float, float], ...], str]] | None = None
     # physical plausibility of fitted values: (ctx, theta, s) -> list of warnings (empty when plausible)
