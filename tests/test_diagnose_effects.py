@@ -352,3 +352,40 @@ def test_stiffening_completed_within_a_clearance_band_is_implausible(params):
     assert ns.TWO_SLOPE.plausible(ctx, np.array([0.25, 0.06]), 1.0)
     assert not ns.EFFECT.plausible(ctx, np.array([0.2, 0.15, 0.19, 0.48]), 1.0)           # CHA-like
     assert not ns.TWO_SLOPE.plausible(ctx, np.array([0.25, 0.2]), 1.0)
+
+
+@pytest.mark.parametrize("forms", [("hysteresis[preisach-fine]",), ("nonlinear_stiffness", "hysteresis[play]"),
+                                   ("nonlinear_stiffness[smooth-knee]", "hysteresis[preisach]")])
+def test_the_exact_columns_of_a_linear_form_are_its_differences(params, forms):
+    """A form linear in its weights (Effect.basis) gives the fit its Jacobian columns exactly: they equal the
+    residual's differences, and the fit lands where the fully differenced one does."""
+    from scipy.optimize._numdiff import approx_derivative
+    from strainwave.compare.diagnose import fit as F
+    from strainwave.compare.diagnose.effects import VARIANTS
+    by_label = {e.label: e for e in (*CATALOGUE.values(), *VARIANTS)}
+    effects = tuple(by_label[f] for f in forms)
+    assert any(e.basis is not None for e in effects)
+    u = _path("torsion", 900)
+    y = u + 0.1 * np.tanh(3 * u) + 0.02 * np.sign(np.gradient(u)) * (1 - np.exp(-np.abs(u) * 5))
+    rec = parse_text(format_recording(RecordingKind.TORSION, "output_shaft", u * 1e6, y * 1e-3))
+    ctx = build_context(rec, analytic_baseline(rec, params))
+    rng = np.random.default_rng(1)
+    lo, hi = (np.array([getattr(p, b) for e in effects for p in e.params]) for b in ("lo", "hi"))
+    theta = lo + (hi - lo) * rng.uniform(0.2, 0.4, len(lo))
+    proj = F._Projector(ctx, 1e-3 / 0.3)
+
+    def residual(th):
+        z = ctx.y - sum(e.contribution(ctx, th[i:i + e.n_params])
+                        for e, i in zip(effects, np.cumsum([0] + [e.n_params for e in effects])))
+        beta = proj.solve(z)
+        return np.append(z - proj.A @ beta, proj.lam * (beta[2] - 1.0))
+    exact = F._jacobian(ctx, effects, proj, residual, lo, hi)(theta)
+    differenced = approx_derivative(residual, theta, rel_step=1e-4, method="2-point", bounds=(lo, hi))
+    assert np.max(np.abs(exact - differenced)) <= 1e-6 * np.max(np.abs(differenced))
+    a = F.fit_effects(ctx, effects, 1e-3, 0.3)
+    jacobian, F._jacobian = F._jacobian, lambda *args: "2-point"
+    try:
+        b = F.fit_effects(ctx, effects, 1e-3, 0.3)
+    finally:
+        F._jacobian = jacobian
+    assert abs(a.bic - b.bic) < 1.0          # the same optimum: BIC units are what the verdict reads

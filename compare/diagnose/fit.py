@@ -26,6 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import least_squares
+from scipy.optimize._numdiff import approx_derivative   # least_squares' own differences, for a part of theta
 
 from .effects.base import Context, Effect
 
@@ -201,12 +202,13 @@ def fit_effects(ctx: Context, effects: tuple[Effect, ...], sigma: float, uncerta
     if params:
         lo = np.array([p.lo for p in params])
         hi = np.array([p.hi for p in params])
+        jac = _jacobian(ctx, effects, proj, residual, lo, hi)
         candidates = starts if starts is not None else [np.array(c) for c in itertools.product(*(p.starts for p in params))]
         best = None
         for x0 in candidates:
             x0 = np.clip(np.asarray(x0, dtype=float), lo + 1e-9 * (hi - lo), hi - 1e-9 * (hi - lo))
-            sol = least_squares(residual, x0, bounds=(lo, hi), method="trf", x_scale=np.maximum(hi - lo, 1e-3) * 0.1,
-                                max_nfev=max_nfev, diff_step=1e-4)
+            sol = least_squares(residual, x0, jac=jac, bounds=(lo, hi), method="trf",
+                                x_scale=np.maximum(hi - lo, 1e-3) * 0.1, max_nfev=max_nfev, diff_step=1e-4)
             if best is None or sol.cost < best.cost:
                 best = sol
         theta = best.x
@@ -236,6 +238,35 @@ def fit_effects(ctx: Context, effects: tuple[Effect, ...], sigma: float, uncerta
             cov = _theta_and_scale(design.T @ design / s2, uncertainty)
     return Fit(effects, theta, (float(beta[0]), float(beta[1]), float(beta[2])), model, rss, bic, k, cov,
                at_bound, float(prior_chi2), design, uncertainty)
+
+
+def _jacobian(ctx: Context, effects: tuple[Effect, ...], proj: _Projector, residual, lo: np.ndarray, hi: np.ndarray):
+    """The residual's Jacobian for least_squares: "2-point" (scipy's own differences) unless some effect is linear
+    in its parameters (Effect.basis); then its columns are exact and constant, -(I - P) basis with the prior row
+    -lam d beta_s, and only the other parameters are differenced, with scipy's own step and bound rule."""
+    if not any(e.basis is not None for e in effects):
+        return "2-point"
+    sizes = [e.n_params for e in effects]
+    offsets = np.cumsum([0] + sizes)
+    linear = np.concatenate([np.arange(a, b) for e, a, b in zip(effects, offsets[:-1], offsets[1:])
+                             if e.basis is not None])
+    other = np.setdiff1d(np.arange(offsets[-1]), linear)
+    B = np.column_stack([e.basis(ctx) for e in effects if e.basis is not None])
+    dbeta = proj.Minv @ (proj.A.T @ B)             # beta = Minv (A^T (y - c) + lam^2 e_s): d beta = -Minv A^T b
+    J_linear = np.vstack([-(B - proj.A @ dbeta), -proj.lam * dbeta[2]])
+
+    def jac(theta):
+        J = np.empty((J_linear.shape[0], len(theta)))
+        J[:, linear] = J_linear
+        if other.size:
+            def partial(x):
+                th = theta.copy()
+                th[other] = x
+                return residual(th)
+            J[:, other] = approx_derivative(partial, theta[other], rel_step=1e-4, method="2-point",
+                                            bounds=(lo[other], hi[other])).reshape(len(J), other.size)
+        return J
+    return jac
 
 
 def _design(contribution, theta: np.ndarray, nuisance: np.ndarray, hi: np.ndarray) -> np.ndarray:

@@ -69,6 +69,9 @@ class Effect:
     # from one internal state vs from a density of elements, which can also bend the elastic line): a pair
     # tries the best form of each class, not the two best forms of one class. "" = a class of its own
     law_class: str = ""
+    # for a form linear in its parameters: ctx -> its columns (contribution = basis @ theta), so the fit takes
+    # their derivatives as they are instead of differencing the model once per weight (a relay density has 20)
+    basis: Callable[[Context], np.ndarray] | None = None
     # where the fitted effect acts: (ranges of u in normalised units, branch/side text); None = everywhere
     where: Callable[[Context, np.ndarray], tuple[tuple[tuple[float, float], ...], str]] | None = None
     # physical plausibility of fitted values: (ctx, theta, s) -> list of warnings (empty when plausible)

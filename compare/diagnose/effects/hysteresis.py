@@ -402,10 +402,10 @@ EFFECT = Effect(
 
 
 def _form(variant: str, params: tuple[Param, ...], contribution, report, plausible=None,
-          law_class: str = STATE_LAW) -> Effect:
+          law_class: str = STATE_LAW, basis=None) -> Effect:
     """Another loop law of the same physics: same id, explanation and applicability."""
     return dataclasses.replace(EFFECT, params=params, contribution=contribution, report=report, variant=variant,
-                               plausible=plausible, law_class=law_class)
+                               plausible=plausible, law_class=law_class, basis=basis)
 
 
 DAHL_EXPONENT = _form("dahl-exponent", (Param("f", 0.0, 1.0, (0.5,)), Param("log10_w", -2.5, 0.0, (-1.5, -0.7)),
@@ -417,15 +417,16 @@ BOUC_WEN = _form("bouc-wen", (Param("f", 0.0, 1.0, (0.5,)), Param("log10_w", -2.
                  _bouc_wen, _report_bouc_wen, _plausible_bouc_wen)
 
 PLAY = _form("play", tuple(Param(f"w_r{r:g}", 0.0, 50.0, (0.0,)) for r in PLAY_DENSITY_NODES), _play, _report_play,
-             _plausible_play, ELEMENT_LAW)
+             _plausible_play, ELEMENT_LAW, play_basis)
 
 PREISACH = _form("preisach", tuple(Param(f"mu_b{b:g}_h{h:g}", 0.0, 50.0, (0.0,)) for b in PREISACH_BIAS_NODES
                                    for h in PREISACH_WIDTH_NODES), _preisach, _report_preisach, _plausible_preisach,
-                   ELEMENT_LAW)
+                   ELEMENT_LAW, preisach_basis)
 
 PREISACH_FINE = _form("preisach-fine", tuple(Param(f"mu_b{b:g}_h{h:g}", 0.0, 50.0, (0.0,))
                                              for b in PREISACH_FINE_BIAS_NODES for h in PREISACH_WIDTH_NODES),
-                      _preisach_fine, _report_preisach_fine, _plausible_preisach_fine, ELEMENT_LAW)
+                      _preisach_fine, _report_preisach_fine, _plausible_preisach_fine, ELEMENT_LAW,
+                      lambda ctx: preisach_basis(ctx, PREISACH_FINE_BIAS_NODES))
 
 __all__ = ["BOUC_WEN", "DAHL_EXPONENT", "EFFECT", "ELEMENT_LAW", "PLAY", "PLAY_DENSITY_NODES", "PLAY_GRID", "PREISACH",
            "PREISACH_FINE", "STATE_LAW", "bouc_wen_travel", "bouc_wen_unit", "dahl_exponent_unit", "dahl_unit",
