@@ -55,10 +55,11 @@ from .loop import ARCMIN_PER_RAD, loop_quantities
 # sample step to beyond full scale; the density's nodes, hats between them (finest where a tight slip
 # makes the loop's corner)
 PLAY_GRID = np.arange(1, 211) * 0.005
+PLAY_DENSITY_NODES = (0.0, 0.05, 0.1, 0.2, 0.35, 0.5, 0.7, 1.0)
+
 # the two law classes: one internal state (Dahl, Bouc-Wen) draws a loop only; a density of elements (play
 # operators, Preisach relays) can also draw part of an elastic curvature (relays of narrow width at a bias)
 STATE_LAW, ELEMENT_LAW = "state", "elements"
-PLAY_DENSITY_NODES = (0.0, 0.05, 0.1, 0.2, 0.35, 0.5, 0.7, 1.0)
 
 
 def _dahl_state(ctx: Context, approach) -> np.ndarray:
