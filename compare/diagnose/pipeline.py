@@ -319,10 +319,10 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
         return gofs[id(f)]
 
     if mismatch and best_single is not None:
-        # beside the best single effect, each effect enters a pair in its two best forms: the form that best
-        # fits the data ALONE need not be the one that fits beside the other effect (a relay loop drawing part
-        # of a stiffening's misfit); pairs without the best single keep one form each (time: issue 12's
-        # 10,000-row target)
+        # beside the best single effect, each effect enters a pair in its two best forms, the best of each law
+        # class first (_pair_forms): the form that best fits the data ALONE need not be the one that fits beside
+        # the other effect (a relay loop drawing part of a stiffening's misfit); pairs without the best single
+        # keep one form each (time: issue 12's 10,000-row target)
         # (a form that competes only alone, Effect.pairs, is left out of every pair)
         pairable = [f for f in singles if all(e.pairs for e in f.effects)]
         by_id: dict[str, list[Fit]] = {}
