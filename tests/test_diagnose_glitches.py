@@ -156,3 +156,36 @@ def test_a_departure_at_a_load_reversal_is_not_judged():
     assert find_glitch(r, WHITE, rows, r, rows * 1.0, reversals=np.array([250, 499, 750])) is None
     g = find_glitch(r, WHITE, rows, r, rows * 1.0, reversals=np.array([250, 750]))
     assert g is not None and g.kind is GlitchKind.SPIKE and g.sample == 501
+
+
+def test_step_noise_std_is_the_line_extrapolation_error_on_white_noise():
+    # two independent 10-sample least-squares lines extrapolated one step past their ends: each has variance
+    # 1/10 + 5.5^2/82.5 (x from the line's mean, over the sum of squared deviations), the difference twice that
+    one_side = 1.0 / 10 + 5.5 ** 2 / 82.5
+    assert glitches.step_noise_std(WHITE) == pytest.approx(math.sqrt(2.0 * one_side), rel=1e-9)
+    # a sampled resonant sensor: the std of the step over many positions of a long record matches the model's
+    ar = NoiseModel(np.array([1.0, -1.65, 0.759]), np.array([1.0]), 1.0)
+    from scipy.signal import lfilter
+    r = lfilter([1.0], ar.b, np.random.default_rng(2).standard_normal(200_000))
+    w = glitches._step_weights()
+    steps = np.convolve(r, w[::-1], mode="valid")
+    assert np.std(steps) == pytest.approx(glitches.step_noise_std(ar), rel=0.03)
+
+
+def test_a_corner_in_resonant_noise_is_no_jump_but_a_real_jump_is():
+    # AR(2) 1.65, -0.76 (a resonant sensor; heldout6's Bouc-Wen loop at 50x read "a jump" behind it): one
+    # innovation of 12 sigma (a corner the model draws with another form, whitened into one large innovation)
+    # moves the two sides' lines by about what the sensor's own swing does; a slip of 6 step stds (41
+    # innovation sigmas) still reads a jump
+    ar = NoiseModel(np.array([1.0, -1.65, 0.759]), np.array([1.0]), 1.0)
+    from scipy.signal import lfilter
+    e = np.random.default_rng(4).standard_normal(1000)
+    e[500] += 12.0
+    r = lfilter([1.0], ar.b, e)
+    rows = np.arange(1000)
+    assert find_glitch(r, ar, rows, r, rows * 1.0) is None
+    e2 = np.random.default_rng(4).standard_normal(1000)
+    jumped = lfilter([1.0], ar.b, e2)
+    jumped[600:] += 6.0 * glitches.step_noise_std(ar)
+    g = find_glitch(jumped, ar, rows, jumped, rows * 1.0)
+    assert g is not None and g.kind is GlitchKind.JUMP and abs(g.sample - 601) <= 2

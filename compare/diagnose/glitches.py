@@ -41,6 +41,7 @@ GROSS_SIGMAS = 10.0   # innovation sigmas: beyond the form misfit of a right mod
 MIN_FROZEN = 5        # identical consecutive readings that count as a frozen channel
 NEIGHBOURS = 3        # samples each side that a spike's neighbours are read from
 STEP_SPAN = 10        # samples each side whose mean levels locate a jump
+_IMPULSE = 4000       # samples of the noise filter's impulse response (a pole at 0.998 decays to 3e-4)
 
 
 class GlitchKind(str, enum.Enum):
@@ -118,6 +119,30 @@ def _step_across(residual: np.ndarray, k: int) -> float:
     return math.inf if lines is None else abs(lines[1] - lines[0])
 
 
+def _step_weights() -> np.ndarray:
+    """w with w @ residual[k - STEP_SPAN:k + STEP_SPAN + 1] = right line - left line at k (_side_lines, full
+    sides): zero on a constant and on a straight line, so a random walk's step has a finite variance too."""
+    def extrapolation(x: np.ndarray, x0: float) -> np.ndarray:
+        # least-squares line through (x, r) evaluated at x0, as weights on r
+        d = x - x.mean()
+        return 1.0 / len(x) + (x0 - x.mean()) * d / float(d @ d)
+    left = extrapolation(np.arange(-STEP_SPAN, 0, dtype=float), 0.0)
+    right = extrapolation(np.arange(1, STEP_SPAN + 1, dtype=float), 0.0)
+    return np.concatenate([-left, [0.0], right])
+
+
+def step_noise_std(noise) -> float:
+    """Standard deviation of ``_step_across``'s signed step on noise alone, under the recording's noise model:
+    sqrt(innovation_var * sum((w * h)^2)), h the noise filter's impulse response. White noise gives 0.97
+    sigma; a resonant or low-pass sensor swings one side's line against the other's by many white sigmas
+    (heldout6: AR(2) 1.65, -0.76 behind a Bouc-Wen loop at 50x read "a jump")."""
+    from scipy.signal import lfilter
+    impulse = np.zeros(_IMPULSE)
+    impulse[0] = 1.0
+    h = lfilter(noise.a, noise.b, impulse)
+    return math.sqrt(noise.innovation_var * float(np.sum(np.convolve(_step_weights(), h) ** 2)))
+
+
 def find_glitch(residual: np.ndarray, noise, rows: np.ndarray, response: np.ndarray,
                 load: np.ndarray, reversals: np.ndarray | None = None) -> Glitch | None:
     """The worst sample the noise model cannot explain, or None.
@@ -168,9 +193,12 @@ def find_glitch(residual: np.ndarray, noise, rows: np.ndarray, response: np.ndar
         # a corner the model draws with another shape (a stick-slip knee, a reversal) that the whitening of a
         # smooth (low-pass) sensor turns into one large innovation; left to the goodness-of-fit test
         # (heldout6: Bouc-Wen and bristle loops at 80-260x behind a Butterworth sensor read "a jump")
-        if scale > 0.0 and max(_step_across(residual, at), _step_across(residual, worst)) < 0.5 * threshold * scale:
+        # ... judged against the larger of the white scale and what the noise model's own wander makes between
+        # the two lines (the same multiple of each)
+        allowed = 0.5 * threshold * max(scale, step_noise_std(noise))
+        if scale > 0.0 and max(_step_across(residual, at), _step_across(residual, worst)) < allowed:
             return None
         return Glitch(GlitchKind.JUMP, int(rows[at]) + 1, sigmas, threshold, len(beyond))
     return Glitch(GlitchKind.JUMP, row + 1, sigmas, threshold, len(beyond))
 
-__all__ = ["ALPHA", "GROSS_SIGMAS", "Glitch", "GlitchKind", "MIN_FROZEN", "find_glitch"]
+__all__ = ["ALPHA", "GROSS_SIGMAS", "Glitch", "GlitchKind", "MIN_FROZEN", "find_glitch", "step_noise_std"]
