@@ -72,7 +72,8 @@ def _bouc_wen(u, z_max=0.05, beta=0.5, gamma=0.5):
     return z / z_max
 
 
-@pytest.mark.parametrize("model", ["dahl", "dahl_n0", "dahl_n05", "dahl_n2", "play", "preisach", "preisach_fine",
+@pytest.mark.parametrize("model", ["dahl", "dahl_n0", "dahl_n05", "dahl_n2", "play", "play_fine", "preisach",
+                                   "preisach_fine",
                                    "bouc_wen", "bouc_wen_form", "bouc_wen_form_soft"])
 def test_every_loop_law_dissipates(params, model):
     """First principles: closed integral of T dphi > 0, and a positive twist remains after unloading."""
@@ -80,6 +81,9 @@ def test_every_loop_law_dissipates(params, model):
     ctx = _ctx(params, u)
     laws = {"dahl": lambda c: hysteresis.EFFECT.contribution(c, np.array([0.02, -1.3])),
             "play": lambda c: hysteresis.PLAY.contribution(c, np.array([0.0, 0.0, 0.1, 0.0, 0.2, 0.05, 0.0, 0.0])),
+            # the fine density (nodes 0, 0.02, 0.05, 0.1, 0.15, 0.2, 0.3, ..., 1): tight slips near the corner
+            "play_fine": lambda c: hysteresis.PLAY_FINE.contribution(c, np.array(
+                [0.0, 0.3, 0.2, 0.1, 0.0, 0.05, 0.1, 0.0, 0.0, 0.02, 0.0, 0.0, 0.0])),
             # a saturating relay density: most weight at bias 0.4, half-width 0.2 (all slip before full torque)
             # (bias nodes 0, 0.4, 0.8 x half-width nodes 0.05, 0.2, 0.45, 0.8)
             "preisach": lambda c: hysteresis.PREISACH.contribution(c, 0.02 * np.array([0.2, 0.5, 0.1, 0.0, 0.3, 1.0,
@@ -107,18 +111,20 @@ def test_passivity_is_judged_where_the_data_was_sampled(params):
     sample step cannot be tested by the recording, a lag of a few samples can.
 
     The same Jenkins element (Dahl's exponent 0: one play operator of half-width w and weight f) beside a
-    baseline compliance s = 0.5 with f = 0.9 > s: sampled in steps of 5 w the twist still moves with the torque
-    at every sample (0.5 x 5 w - 0.9 x 2 w > 0), so the fit is plausible; sampled in steps of w / 4 the twist
-    moves against the torque for 8 samples after each reversal, which friction cannot do. A channel lagging
-    the torque by 3 samples is refused however coarse the sampling."""
+    baseline compliance s = 0.5 with f = 0.9 > s, stuck for 2 w of load travel after each reversal. The step
+    out of the reversal sample is not judged (the true extreme may lie between two samples). Sampled in steps
+    of 1.5625 w, the element is stuck for that step and 0.28 of the next, where the twist still moves with the
+    torque (0.5 - 0.9 x 0.28 > 0): plausible; sampled in steps of w / 4 the twist moves against the torque for
+    7 judged samples after each reversal, which friction cannot do. A channel lagging the torque by 3 samples
+    is refused however coarse the sampling."""
     w = 0.004
     theta = np.array([0.9, math.log10(w), 0.0])
-    for step, passive in ((5 * w, True), (0.25 * w, False)):
+    for step, passive in ((1.5625 * w, True), (0.25 * w, False)):
         ctx = _ctx(params, _path(int(round(6.0 / step)) + 1, (-1, 1, -1, 1)))
         assert abs(np.median(np.abs(np.diff(ctx.u))) - step) < 1e-3 * step
         assert (not hysteresis.DAHL_EXPONENT.plausible(ctx, theta, 0.5)) is passive
         tangent = hysteresis.sampled_tangent(ctx, hysteresis.DAHL_EXPONENT.contribution(ctx, theta), 0.5)
-        expected = 1.0 - 0.9 * 2 * w / step / 0.5 if passive else 1.0 - 0.9 / 0.5
+        expected = 1.0 - 0.9 * (2 * w - step) / step / 0.5 if passive else 1.0 - 0.9 / 0.5
         assert tangent == pytest.approx(expected, rel=1e-6)
     ctx = _ctx(params, _path(121, (0, 1, -1, 1, 0)))
     lagged = np.concatenate([np.full(3, ctx.u[0]), ctx.u[:-3]])

@@ -296,6 +296,11 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     # only with physically plausible parameters) ...
     plausible = [f for f in ranked_singles if not _implausible(ctx, f)]
     cat_gain = base_fit.bic - plausible[0].bic if plausible else 0.0
+    if plausible:
+        # ... and in units of the sensor's own slow power, which a filter fitted to the fine scales may draw
+        # short (structure.slow_power_inflation: a steep low-pass sensor)
+        extra_ln_n = (plausible[0].k - base_fit.k) * math.log(n)
+        cat_gain = noise.deflate(cat_gain + extra_ln_n) - extra_ln_n
     # ... but models are ranked against each other under the recording's ONE noise model (fit.bic_fixed_noise):
     # a profiled filter would let a wrong loop law buy its misfit back as "noise"
     base_fit = rescored(base_fit, ctx, noise)
