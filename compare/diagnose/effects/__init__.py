@@ -11,9 +11,9 @@ CATALOGUE = {m.EFFECT.id: m.EFFECT for m in (compliance_offset, nonlinear_stiffn
 
 # other model forms of the same physics: the named effect must not depend on one law's shape
 VARIANTS = (nonlinear_stiffness.TWO_SLOPE, nonlinear_stiffness.SMOOTH_KNEE, nonlinear_stiffness.MONOTONE,
-            nonlinear_stiffness.CONTACT, hysteresis.DAHL_EXPONENT, hysteresis.BOUC_WEN, hysteresis.PLAY, hysteresis.PLAY_FINE,
-            hysteresis.PREISACH, hysteresis.PREISACH_FINE, crack_closure.GRADUAL, crack_closure.PROGRESSIVE,
-            crack_closure.OPENING,
+            nonlinear_stiffness.CONTACT, hysteresis.DAHL_EXPONENT, hysteresis.BOUC_WEN, hysteresis.PLAY,
+            hysteresis.PLAY_FINE, hysteresis.PREISACH, hysteresis.PREISACH_ELASTIC, hysteresis.PREISACH_FINE,
+            crack_closure.GRADUAL, crack_closure.PROGRESSIVE, crack_closure.OPENING,
             lost_motion.FLANK, lost_motion.SHAPE, large_deflection.SECOND_ORDER)
 
 
