@@ -62,6 +62,9 @@ LOSS_CONTRADICTION = 2.58  # standard errors (99 %): the data's width at zero to
 # crack of open/closed stiffness ratio 0.9994 beside it (peak 1.1 sigma, delta BIC 18; family 2, all three
 # seeds), and a contact-spread stiffening a backlash of 0.05 arcmin clearance at 0.1 arcmin noise (heldout4)
 MIN_COMPONENT_SIGMAS = 1.5
+# a form that rereads the stated stiffness (Effect.rereads) is fitted where the other form's stiffness is more
+# than this many prior sigmas off: closer, the prior costs that form under one BIC unit (speed, issue 12)
+REREAD_PRIOR_SIGMAS = 1.0
 MAX_FIT_ROWS = 2500        # model selection on an evenly strided subsample beyond this (speed, issue 12)
 # Pairs that cannot be told apart: both are a pure linear compliance change.
 _DEGENERATE = {frozenset({"compliance_offset", "thick_ring"})}
@@ -280,7 +283,11 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     # noise from the residual of a free linear fit (any smooth trend is cancelled by second differences)
     sigma = max(noise_std(ctx.y - np.polyval(np.polyfit(ctx.u, ctx.y, 1), ctx.u)), NOISE_FLOOR)
     base_fit = fit_effects(ctx, (), sigma, u_rel)
-    singles = [fit_effects(ctx, (e,), sigma, u_rel) for e in effects_for(rec.kind.value) if e.applicable(ctx)]
+    forms = [e for e in effects_for(rec.kind.value) if e.applicable(ctx)]
+    singles = [fit_effects(ctx, (e,), sigma, u_rel) for e in forms if e.rereads is None]
+    reread = {f.effects[0].variant: f for f in singles}
+    singles += [fit_effects(ctx, (e,), sigma, u_rel) for e in forms if e.rereads is not None
+                and e.rereads in reread and reread[e.rereads].prior_chi2 > REREAD_PRIOR_SIGMAS ** 2]
     ranked_singles = _best_per_set(singles)
     best_single = ranked_singles[0] if ranked_singles else None
     # one noise model for the whole recording, every residual is judged against it: read from the residual of

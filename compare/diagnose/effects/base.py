@@ -82,6 +82,10 @@ class Effect:
     # the part of the contribution that makes the effect what it is (a backlash's clearance band, not its flanks'
     # contact stiffening): (ctx, theta) -> twist; None: the whole contribution
     signature: Callable[[Context, np.ndarray], np.ndarray] | None = None
+    # another reading of the stated stiffness by the form of variant ``rereads`` (the same span, a different
+    # stiffness under the prior): fitted only where that form's stiffness is off its prior by more than
+    # pipeline.REREAD_PRIOR_SIGMAS (closer, the prior costs it under one BIC unit, which no decision turns on)
+    rereads: str | None = None
 
     def signature_of(self, ctx: Context, theta: np.ndarray) -> np.ndarray:
         return (self.signature or self.contribution)(ctx, theta)
