@@ -63,7 +63,8 @@ LOSS_CONTRADICTION = 2.58  # standard errors (99 %): the data's width at zero to
 # seeds), and a contact-spread stiffening a backlash of 0.05 arcmin clearance at 0.1 arcmin noise (heldout4)
 MIN_COMPONENT_SIGMAS = 1.5
 # a form that rereads the stated stiffness (Effect.rereads) is fitted where the other form's stiffness is more
-# than this many prior sigmas off: closer, the prior costs that form under one BIC unit (speed, issue 12)
+# than this many prior sigmas off: closer, the prior costs that form under one BIC unit, about all another
+# reading of the stiffness could win back (speed, issue 12)
 REREAD_PRIOR_SIGMAS = 1.0
 MAX_FIT_ROWS = 2500        # model selection on an evenly strided subsample beyond this (speed, issue 12)
 # Pairs that cannot be told apart: both are a pure linear compliance change.
