@@ -383,20 +383,60 @@ def _wander(drawn: np.ndarray) -> float:
     return WANDER_SIGMAS * math.sqrt(6.0 / math.pi ** 2 * float(np.sum(power / k ** 2)) / total)
 
 
-def _score(r: np.ndarray, basis: np.ndarray, noise: NoiseModel, skip: int = 0) -> tuple[float, np.ndarray | None]:
-    """-2 ln L (up to constants) of r minus the generalised-least-squares multiple of ``basis`` under the
-    recording's fixed noise filter, and the fitted part of r drawn by the columns after the first ``skip``
-    (the structure without the nuisance), or None without a basis."""
-    wr = noise.whiten(r)
-    m = len(wr)
-    drawn = None
-    if basis.shape[1]:
-        wb = noise.whiten(basis)
-        c, *_ = np.linalg.lstsq(wb, wr, rcond=None)
-        wr = wr - wb @ c
-        drawn = basis[:, skip:] @ c[skip:]
-    rss = float(wr @ wr)
-    return m * math.log(max(rss, m * NOISE_FLOOR ** 2) / m), drawn
+class _Scorer:
+    """Generalised least squares of residuals on ONE basis under ONE noise filter: the basis is whitened and
+    factored once, so each residual costs two products (structure_test scores ~40 residuals of a recording
+    on the same bases; speed, issue 12's 10,000-row target)."""
+
+    def __init__(self, basis: np.ndarray, noise: NoiseModel):
+        self.basis = basis
+        self.noise = noise
+        self.qw = self.rw = None
+        if basis.shape[1]:
+            wb = noise.whiten(basis)
+            qw, rw = np.linalg.qr(wb)
+            d = np.abs(np.diag(rw))
+            # a (nearly) dependent whitened column: least squares by SVD, as a factor would divide by ~0
+            self.wb = wb
+            if d.size and d.min() > 1e-10 * d.max():
+                self.qw, self.rw = qw, rw
+
+    def score(self, r: np.ndarray, skip: int = 0) -> tuple[float, np.ndarray | None]:
+        """-2 ln L (up to constants) of r minus its GLS multiple of the basis, and the fitted part of r drawn by
+        the columns after the first ``skip`` (the structure without the nuisance), or None without a basis."""
+        wr = self.noise.whiten(r)
+        m = len(wr)
+        drawn = None
+        if self.basis.shape[1]:
+            if self.qw is not None:
+                proj = self.qw.T @ wr
+                wr = wr - self.qw @ proj
+                c = np.linalg.solve(self.rw, proj) if skip < self.basis.shape[1] else None
+            else:
+                c, *_ = np.linalg.lstsq(self.wb, wr, rcond=None)
+                wr = wr - self.wb @ c
+            drawn = self.basis[:, skip:] @ c[skip:] if c is not None else np.zeros(len(r))
+        rss = float(wr @ wr)
+        return m * math.log(max(rss, m * NOISE_FLOOR ** 2) / m), drawn
+
+
+def _scorer(ctx: Context, noise: NoiseModel, key: tuple, build) -> _Scorer:
+    """The _Scorer of the basis ``build()`` names by ``key`` (group names and details), memoised on the
+    recording's context per noise filter: only the searched groups (a spectral line) change between residuals."""
+    memo = ctx.cache.setdefault("structure_scorers", {})
+    full = (key, noise.b.tobytes(), noise.a.tobytes())
+    if full not in memo:
+        memo[full] = _Scorer(build(), noise)
+    return memo[full]
+
+
+def _projected(ctx: Context, key: tuple, G) -> tuple[np.ndarray, int]:
+    """_project_out of the group columns ``G()`` from the nuisance, memoised on the context by ``key``."""
+    memo = ctx.cache.setdefault("structure_projections", {})
+    if key not in memo:
+        Q, _ = np.linalg.qr(_nuisance(ctx))
+        memo[key] = _project_out(G(), Q)
+    return memo[key]
 
 
 def structure_test(ctx: Context, r: np.ndarray, sigma_white: float, prior_chi2: float = 0.0,
@@ -414,29 +454,33 @@ def structure_test(ctx: Context, r: np.ndarray, sigma_white: float, prior_chi2: 
     n = len(r)
     ln_n = math.log(n)
     Q, _ = np.linalg.qr(_nuisance(ctx))
-    base_score, _ = _score(r, Q, noise)
+    base_score, _ = _scorer(ctx, noise, (), lambda: Q).score(r)
     groups = _groups(ctx, r)
+    # a group is named by its name and detail (a searched frequency), which fix its columns on this context
+    keys = {name: (name, detail) for name, (_, _, detail) in groups.items()}
     bases = {}
     alone = {}
     size = {}
     for name, (G, extra, detail) in groups.items():
-        B, rank = _project_out(G, Q)
+        B, rank = _projected(ctx, keys[name], lambda G=G: G)
         bases[name] = (B, rank, extra, detail)
-        score, drawn = _score(r, np.column_stack([Q, B]), noise, Q.shape[1])
+        score, drawn = _scorer(ctx, noise, (keys[name],), lambda B=B: np.column_stack([Q, B])).score(r, Q.shape[1])
         penalty = (rank + extra) * ln_n
         alone[name] = noise.deflate(base_score - score) - penalty
         size[name] = (math.sqrt(float(np.mean(drawn ** 2))) / sigma_white, _wander(drawn)) if rank else (0.0, 0.0)
+
+    def joint_of(names: tuple[str, ...]) -> float:
+        key = tuple(keys[nm] for nm in names)
+        B, _ = _projected(ctx, ("joint",) + key, lambda: np.column_stack([bases[nm][0] for nm in names]))
+        score, _ = _scorer(ctx, noise, ("joint",) + key, lambda: np.column_stack([Q, B])).score(r)
+        return score
+
     # joint fit: the unique share of each structure given all the others
-    allB, _ = _project_out(np.column_stack([b for b, *_ in bases.values()]), Q)
-    joint, _ = _score(r, np.column_stack([Q, allB]), noise)
+    joint = joint_of(tuple(bases))
     structures = []
     for name, (B, rank, extra, detail) in bases.items():
-        others = [b for nm, (b, *_rest) in bases.items() if nm != name]
-        if others:
-            ob, _ = _project_out(np.column_stack(others), Q)
-            without, _ = _score(r, np.column_stack([Q, ob]), noise)
-        else:
-            without = base_score
+        others = tuple(nm for nm in bases if nm != name)
+        without = joint_of(others) if others else base_score
         unique = noise.deflate(without - joint) - (rank + extra) * ln_n
         structures.append(Structure(name, float(alone[name]), float(unique), detail,
                                     size=size[name][0], wander=size[name][1]))
