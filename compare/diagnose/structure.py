@@ -314,7 +314,7 @@ def fine_scale_noise(x: np.ndarray) -> NoiseModel:
 # order 3 to 6, its passband flat down to zero frequency) is drawn there as an AR(2) whose power at the slow
 # structures' frequencies falls 2 to 7 times short of the sensor's (measured on Butterworth noise of order
 # 2-6 at 0.06-0.3 Nyquist, 1,500-4,000 samples), so every slow structure read as 2 to 7 times more evident
-# than it is: 7 of 20 clean recordings behind such sensors raised an alarm (heldout6's generator, 2 with this
+# than it is: 7 of 20 clean recordings behind such sensors raised an alarm (heldout6's generator, 0 with this
 # bound). Sensor noise is white, low-pass filtered or wandering, never short of slow power (fit.noise_filter);
 # so the noise's power at any frequency above the structures' band is a lower bound on its power within it.
 # The band: above SLOW_BINS cycles per record (the time structures' hats are a fifth of a record apart). The
@@ -425,9 +425,12 @@ class _Scorer:
         return m * math.log(max(rss, m * NOISE_FLOOR ** 2) / m), drawn
 
 
-def _scorer(ctx: Context, noise: NoiseModel, key: tuple, build) -> _Scorer:
-    """The _Scorer of the basis ``build()`` names by ``key`` (group names and details), memoised on the
-    recording's context per noise filter: only the searched groups (a spectral line) change between residuals."""
+def _scorer(ctx: Context, noise: NoiseModel, key: tuple | None, build) -> _Scorer:
+    """The _Scorer of the basis ``build()``, memoised on the recording's context per noise filter under ``key``
+    (group names and details); ``key`` None: a basis with a searched group (a spectral line of this residual),
+    rarely met again, built and not kept (a kept one holds two whitened copies of the basis)."""
+    if key is None:
+        return _Scorer(build(), noise)
     memo = ctx.cache.setdefault("structure_scorers", {})
     full = (key, noise.b.tobytes(), noise.a.tobytes())
     if full not in memo:
@@ -435,11 +438,14 @@ def _scorer(ctx: Context, noise: NoiseModel, key: tuple, build) -> _Scorer:
     return memo[full]
 
 
-def _projected(ctx: Context, key: tuple, G) -> tuple[np.ndarray, int]:
-    """_project_out of the group columns ``G()`` from the nuisance, memoised on the context by ``key``."""
+def _projected(ctx: Context, key: tuple | None, G) -> tuple[np.ndarray, int]:
+    """_project_out of the group columns ``G()`` from the nuisance, memoised on the context by ``key`` (None:
+    not kept, see _scorer)."""
     memo = ctx.cache.setdefault("structure_projections", {})
-    if key not in memo:
+    if key is None or key not in memo:
         Q, _ = np.linalg.qr(_nuisance(ctx))
+        if key is None:
+            return _project_out(G(), Q)
         memo[key] = _project_out(G(), Q)
     return memo[key]
 
@@ -463,21 +469,28 @@ def structure_test(ctx: Context, r: np.ndarray, sigma_white: float, prior_chi2: 
     groups = _groups(ctx, r)
     # a group is named by its name and detail (a searched frequency), which fix its columns on this context
     keys = {name: (name, detail) for name, (_, _, detail) in groups.items()}
+    searched = {name for name, (_, extra, _) in groups.items() if extra}
+
+    def kept(names) -> tuple | None:
+        return None if searched.intersection(names) else tuple(keys[nm] for nm in names)
+
     bases = {}
     alone = {}
     size = {}
     for name, (G, extra, detail) in groups.items():
-        B, rank = _projected(ctx, keys[name], lambda G=G: G)
+        key = kept((name,))
+        B, rank = _projected(ctx, key, lambda G=G: G)
         bases[name] = (B, rank, extra, detail)
-        score, drawn = _scorer(ctx, noise, (keys[name],), lambda B=B: np.column_stack([Q, B])).score(r, Q.shape[1])
+        score, drawn = _scorer(ctx, noise, key, lambda B=B: np.column_stack([Q, B])).score(r, Q.shape[1])
         penalty = (rank + extra) * ln_n
         alone[name] = noise.deflate(base_score - score) - penalty
         size[name] = (math.sqrt(float(np.mean(drawn ** 2))) / sigma_white, _wander(drawn)) if rank else (0.0, 0.0)
 
     def joint_of(names: tuple[str, ...]) -> float:
-        key = tuple(keys[nm] for nm in names)
-        B, _ = _projected(ctx, ("joint",) + key, lambda: np.column_stack([bases[nm][0] for nm in names]))
-        score, _ = _scorer(ctx, noise, ("joint",) + key, lambda: np.column_stack([Q, B])).score(r)
+        key = kept(names)
+        key = None if key is None else ("joint",) + key
+        B, _ = _projected(ctx, key, lambda: np.column_stack([bases[nm][0] for nm in names]))
+        score, _ = _scorer(ctx, noise, key, lambda: np.column_stack([Q, B])).score(r)
         return score
 
     # joint fit: the unique share of each structure given all the others
