@@ -324,8 +324,9 @@ def fine_scale_noise(x: np.ndarray) -> NoiseModel:
 # all bands of both widths), so white or correctly modelled noise gives 1. Two widths: 32-bin bands scatter
 # least, but on a short record a low cutoff leaves fewer than 32 passband bins above SLOW_BINS (0.1 Nyquist of
 # 458 rows is bin 23), and a band straddling the cutoff reads the stopband's level; 16-bin bands fit inside
-# (measured on heldout6's Butterworth sensors, seed 200: the bound rose from 3.9 and 3.2 to 10 and 4.9 on
-# the two recordings of about 450 rows that still alarmed, against sensor/filter slow-power ratios of 13 and 9).
+# (heldout6's Butterworth sensors, seed 200, read on each record's residual from a straight line: the bound
+# rose from 3.9 and 3.2 to 10 and 4.9 on the two records of about 450 rows that still alarmed, where the
+# sensor's slow power was 13 and 9 times the filter's; both alarms are gone).
 SLOW_BINS = 8
 SPECTRAL_BANDS = (16, 32)
 SLOW_ALPHA = 0.01
@@ -441,25 +442,27 @@ def _scorer(ctx: Context, noise: NoiseModel, key: tuple | None, build) -> _Score
     """The _Scorer of the basis ``build()``, memoised on the recording's context per noise filter under ``key``
     (group names and details); ``key`` None: a basis with a searched group (a spectral line of this residual),
     rarely met again, built and not kept (a kept one holds two whitened copies of the basis)."""
-    if key is None:
-        return _Scorer(build(), noise)
     memo = ctx.cache.setdefault("structure_scorers", {})
-    full = (key, noise.b.tobytes(), noise.a.tobytes())
-    if full not in memo:
-        memo[full] = _Scorer(build(), noise)
-    return memo[full]
+    full = None if key is None else (key, noise.b.tobytes(), noise.a.tobytes())
+    if full in memo:
+        return memo[full]
+    out = _Scorer(build(), noise)
+    if full is not None:
+        memo[full] = out
+    return out
 
 
 def _projected(ctx: Context, key: tuple | None, G) -> tuple[np.ndarray, int]:
     """_project_out of the group columns ``G()`` from the nuisance, memoised on the context by ``key`` (None:
     not kept, see _scorer)."""
     memo = ctx.cache.setdefault("structure_projections", {})
-    if key is None or key not in memo:
-        Q, _ = np.linalg.qr(_nuisance(ctx))
-        if key is None:
-            return _project_out(G(), Q)
-        memo[key] = _project_out(G(), Q)
-    return memo[key]
+    if key in memo:
+        return memo[key]
+    Q, _ = np.linalg.qr(_nuisance(ctx))
+    out = _project_out(G(), Q)
+    if key is not None:
+        memo[key] = out
+    return out
 
 
 def structure_test(ctx: Context, r: np.ndarray, sigma_white: float, prior_chi2: float = 0.0,
