@@ -46,6 +46,7 @@ from .fit import NOISE_FLOOR, Fit, fit_effects, lag1, rescored
 from .glitches import find_glitch
 from .locate import Located, locate, locate_effect
 from .noise import noise_std
+from .parallel import FitTask, fit_all, usable_workers
 from .recording import Recording, parse_recording
 from .structure import StructureTest, describe, fine_scale_noise, reference_noise, structure_test
 from .zero_load_width import full_scale_cycles, zero_load_width
@@ -197,8 +198,12 @@ class Diagnosis:
         return "\n".join(lines)
 
 
-def diagnose(rec: Recording, params, baseline: str = "analytic") -> tuple[Diagnosis, dict]:
-    """Run the diagnosis on a parsed recording; returns the diagnosis and the arrays for the plot."""
+def diagnose(rec: Recording, params, baseline: str = "analytic",
+             workers: int | None = None) -> tuple[Diagnosis, dict]:
+    """Run the diagnosis on a parsed recording; returns the diagnosis and the arrays for the plot.
+
+    ``workers``: processes sharing the independent fits (parallel.fit_all; the answer is the same for any
+    number); None takes what the machine safely offers (parallel.usable_workers)."""
     if baseline not in ("analytic", "fea"):
         raise InputError("--baseline", baseline, "must be analytic or fea")
     base = analytic_baseline(rec, params) if baseline == "analytic" else fea_baseline(rec, params)
@@ -206,7 +211,7 @@ def diagnose(rec: Recording, params, baseline: str = "analytic") -> tuple[Diagno
     # The fits are thousands of tiny (N x 4) linear-algebra calls: BLAS threads only add overhead
     # (measured 15x slower with threads on a shared 2-core machine).
     with threadpool_limits(limits=1):
-        return _diagnose(rec, base)
+        return _diagnose(rec, base, usable_workers() if workers is None else workers)
 
 
 def _stride(n: int) -> int:
@@ -276,7 +281,7 @@ def _best_plausible_per_effect(ctx, singles: list[Fit]) -> dict[str, Fit]:
     return best
 
 
-def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
+def _diagnose(rec: Recording, base: Baseline, workers: int) -> tuple[Diagnosis, dict]:
     fit_rec = _subsample(rec)
     ctx = build_context(fit_rec, base)
     u_rel = base.uncertainty
@@ -285,10 +290,10 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
     sigma = max(noise_std(ctx.y - np.polyval(np.polyfit(ctx.u, ctx.y, 1), ctx.u)), NOISE_FLOOR)
     base_fit = fit_effects(ctx, (), sigma, u_rel)
     forms = [e for e in effects_for(rec.kind.value) if e.applicable(ctx)]
-    singles = [fit_effects(ctx, (e,), sigma, u_rel) for e in forms if e.rereads is None]
+    singles = fit_all(ctx, [FitTask((e,)) for e in forms if e.rereads is None], sigma, u_rel, workers)
     reread = {f.effects[0].variant: f for f in singles}
-    singles += [fit_effects(ctx, (e,), sigma, u_rel) for e in forms if e.rereads is not None
-                and e.rereads in reread and reread[e.rereads].prior_chi2 > REREAD_PRIOR_SIGMAS ** 2]
+    singles += fit_all(ctx, [FitTask((e,)) for e in forms if e.rereads is not None and e.rereads in reread
+                             and reread[e.rereads].prior_chi2 > REREAD_PRIOR_SIGMAS ** 2], sigma, u_rel, workers)
     ranked_singles = _best_per_set(singles)
     best_single = ranked_singles[0] if ranked_singles else None
     # one noise model for the whole recording, every residual is judged against it: read from the residual of
@@ -341,13 +346,14 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
         by_id: dict[str, list[Fit]] = {}
         for f in sorted(pairable, key=lambda f: f.bic):
             by_id.setdefault(f.id, []).append(f)
+        tasks: list[FitTask] = []
         for a0, b0 in itertools.combinations(ranked_singles[:4], 2):
             if frozenset({a0.id, b0.id}) in _DEGENERATE:
                 continue
             k = 2 if a0 is best_single else 1
-            for a, b in itertools.product(_pair_forms(by_id[a0.id], k), _pair_forms(by_id[b0.id], k)):
-                start = np.concatenate([a.theta, b.theta])
-                pairs.append(fit_effects(ctx, a.effects + b.effects, sigma, u_rel, starts=[start], noise=noise))
+            tasks += [FitTask(a.effects + b.effects, (np.concatenate([a.theta, b.theta]),), noise)
+                      for a, b in itertools.product(_pair_forms(by_id[a0.id], k), _pair_forms(by_id[b0.id], k))]
+        pairs = fit_all(ctx, tasks, sigma, u_rel, workers)
         # the best pair in every other combination of model forms: a loop law that loses as a single
         # (its misfit of the stiffening costs more) may be the one that fits beside the other effect
         if pairs:
@@ -355,11 +361,9 @@ def _diagnose(rec: Recording, base: Baseline) -> tuple[Diagnosis, dict]:
             forms = {e.id: [f for f in pairable if f.id == e.id] for e in top.effects}
             (ia, fa), (ib, fb) = forms.items()
             done = {tuple(e.label for e in p.effects) for p in pairs}
-            for x, y in itertools.product(fa, fb):
-                if (x.effects[0].label, y.effects[0].label) in done:
-                    continue
-                pairs.append(fit_effects(ctx, x.effects + y.effects, sigma, u_rel,
-                                         starts=[np.concatenate([x.theta, y.theta])], noise=noise))
+            pairs += fit_all(ctx, [FitTask(x.effects + y.effects, (np.concatenate([x.theta, y.theta]),), noise)
+                                   for x, y in itertools.product(fa, fb)
+                                   if (x.effects[0].label, y.effects[0].label) not in done], sigma, u_rel, workers)
     candidates = list(ranked_singles)
     plausible_first = _best_plausible_per_effect(ctx, singles)
     if mismatch and best_single is not None:

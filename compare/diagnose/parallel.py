@@ -1,0 +1,116 @@
+"""Independent model fits shared between this process and one forked copy of it.
+
+A diagnosis fits each catalogue effect in every model form, then pairs of them: dozens of small
+trust-region fits that do not depend on one another. Threads gain nothing (the fits are Python loops
+around tiny BLAS calls: 0.74x measured with two threads, the GIL), so the second core is used by a
+forked copy of the process. It inherits the recording, the noise model and every memoised basis without
+pickling, takes the next unclaimed fit from a shared counter, and sends its fits back through a pipe
+with their effects left out (the parent already holds them). Each fit is the same computation whichever
+process runs it, so the answer does not depend on the number of workers.
+
+Forking is only safe, and only worth it, in a single-threaded process on a machine with a second core:
+anywhere else (another thread running, a daemonic worker, no fork) the fits run here, one after another.
+A copy that dies or fails leaves its unsent fits to this process.
+"""
+from __future__ import annotations
+
+import dataclasses
+import multiprocessing
+import os
+import threading
+from dataclasses import dataclass
+from typing import Sequence
+
+import numpy as np
+
+from .effects.base import Context, Effect
+from .fit import Fit, fit_effects
+
+__all__ = ["FitTask", "fit_all", "usable_workers"]
+
+
+@dataclass(frozen=True)
+class FitTask:
+    """One call of ``fit_effects``: the effects, optional starting points, optional fixed noise model."""
+
+    effects: tuple[Effect, ...]
+    starts: tuple[np.ndarray, ...] | None = None
+    noise: object | None = None
+
+
+def usable_workers() -> int:
+    """Processes the fits may use: 2 where forking is safe and a second core is ours, else 1."""
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except AttributeError:                      # no affinity call on this platform
+        cores = os.cpu_count() or 1
+    if cores < 2 or "fork" not in multiprocessing.get_all_start_methods():
+        return 1
+    # a fork copies only the calling thread: a lock another thread holds stays held in the copy forever
+    if threading.active_count() > 1 or multiprocessing.current_process().daemon:
+        return 1
+    return 2
+
+
+def _run(ctx: Context, task: FitTask, sigma: float, uncertainty: float) -> Fit:
+    return fit_effects(ctx, task.effects, sigma, uncertainty,
+                       starts=None if task.starts is None else list(task.starts), noise=task.noise)
+
+
+def _warm(ctx: Context, tasks: Sequence[FitTask]) -> None:
+    """Fill the context's memo of history bases before the fork, so neither process builds one twice."""
+    for e in {e.label: e for t in tasks for e in t.effects}.values():
+        if e.basis is not None:
+            e.basis(ctx)
+        theta = np.array([p.starts[0] for p in e.params])
+        e.contribution(ctx, np.clip(theta, [p.lo for p in e.params], [p.hi for p in e.params]))
+
+
+def fit_all(ctx: Context, tasks: Sequence[FitTask], sigma: float, uncertainty: float,
+            workers: int = 1) -> list[Fit]:
+    """``fit_effects`` for every task, in the order given; on ``workers`` = 2 processes when more than one
+    task waits."""
+    if workers < 2 or len(tasks) < 2:
+        return [_run(ctx, t, sigma, uncertainty) for t in tasks]
+    _warm(ctx, tasks)
+    mp = multiprocessing.get_context("fork")
+    claimed = mp.Value("l", 0)
+
+    def claim() -> int:
+        with claimed.get_lock():
+            i = claimed.value
+            claimed.value += 1
+        return i
+
+    def copy_side(conn) -> None:
+        done: list[tuple[int, Fit]] = []
+        try:
+            while (i := claim()) < len(tasks):
+                done.append((i, dataclasses.replace(_run(ctx, tasks[i], sigma, uncertainty), effects=())))
+            conn.send(done)
+        except BaseException:                  # noqa: BLE001 - whatever happens here, the parent finishes the work
+            pass
+        finally:
+            conn.close()
+            os._exit(0)                        # no atexit handlers, no flushing of the parent's buffers
+
+    receive, send = mp.Pipe(duplex=False)
+    copy = mp.Process(target=copy_side, args=(send,), daemon=True)
+    copy.start()
+    send.close()
+    fits: dict[int, Fit] = {}
+    try:
+        while (i := claim()) < len(tasks):
+            fits[i] = _run(ctx, tasks[i], sigma, uncertainty)
+        try:
+            for i, f in receive.recv():
+                fits[i] = dataclasses.replace(f, effects=tasks[i].effects)
+        except (EOFError, OSError):
+            pass                               # the copy died: its claimed fits are redone below
+    finally:
+        receive.close()
+        copy.join(timeout=1.0)
+        if copy.is_alive():
+            copy.terminate()
+            copy.join()
+    return [fits[i] if i in fits else _run(ctx, tasks[i], sigma, uncertainty) for i in range(len(tasks))]

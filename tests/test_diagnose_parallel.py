@@ -1,0 +1,67 @@
+"""The fits shared with a forked copy of the process (parallel.py) give the answer one process gives."""
+import dataclasses
+import os
+import warnings
+
+import numpy as np
+import pytest
+
+from strainwave.compare.diagnose.baseline import analytic_baseline
+from strainwave.compare.diagnose.cha import cha_recording, cha_rows
+from strainwave.compare.diagnose.context import build_context
+from strainwave.compare.diagnose.effects import effects_for
+from strainwave.compare.diagnose.parallel import FitTask, fit_all
+from strainwave.compare.diagnose.pipeline import diagnose
+from strainwave.compare.diagnose.recording import parse_text
+from strainwave.errors import RangeWarning
+from strainwave.params import load_params
+
+
+@pytest.fixture(scope="module")
+def params():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RangeWarning)
+        return load_params()
+
+
+def _same_fit(a, b):
+    assert [e.label for e in a.effects] == [e.label for e in b.effects]
+    assert a.bic == b.bic and a.nuisance == b.nuisance and a.at_bound == b.at_bound
+    np.testing.assert_array_equal(a.theta, b.theta)
+    np.testing.assert_array_equal(a.model, b.model)
+
+
+def test_two_workers_give_the_diagnosis_one_gives(params):
+    """A CHA gear with a friction loop: singles and pairs (dozens of fits) split between two processes."""
+    rec = parse_text(cha_recording(cha_rows()[3], hysteresis=True, n=1200))
+    one, _ = diagnose(rec, params, workers=1)
+    two, _ = diagnose(rec, params, workers=2)
+    assert one.named == two.named and set(one.named) == {"hysteresis", "nonlinear_stiffness"}
+    assert (one.verdict, one.bic_after, one.margin_bic, one.ambiguous) == \
+        (two.verdict, two.bic_after, two.margin_bic, two.ambiguous)
+    assert one.quantities == two.quantities and one.explanation == two.explanation
+
+
+def test_fits_a_copy_did_not_send_are_done_by_the_parent(params, tmp_path):
+    """The forked copy dies on its first fit (as a process killed by the OOM killer would): every fit still
+    comes back, in task order, equal to the fit made in one process."""
+    rec = parse_text(cha_recording(cha_rows()[3], hysteresis=True, n=600))
+    ctx = build_context(rec, analytic_baseline(rec, params))
+    forms = [e for e in effects_for(rec.kind.value) if e.applicable(ctx)][:6]
+    parent = os.getpid()
+
+    def dies_in_the_copy(e):
+        def contribution(c, theta):
+            if os.getpid() != parent:
+                (tmp_path / "copy-died").touch()
+                os._exit(3)
+            return e.contribution(c, theta)
+        return dataclasses.replace(e, contribution=contribution)
+
+    tasks = [FitTask((dies_in_the_copy(e),)) for e in forms]
+    serial = fit_all(ctx, tasks, 1e-3, 0.3, workers=1)
+    shared = fit_all(ctx, tasks, 1e-3, 0.3, workers=2)
+    assert (tmp_path / "copy-died").exists()          # the copy did take a fit, and died on it
+    assert len(shared) == len(tasks)
+    for a, b in zip(serial, shared):
+        _same_fit(a, b)
