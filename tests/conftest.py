@@ -3,6 +3,7 @@ import importlib.util
 import os
 import signal
 import sys
+import warnings
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -19,6 +20,17 @@ if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
     signal.signal(signal.SIGINT, signal.default_int_handler)
 
 STRAINWAVE = str(Path(sys.executable).with_name("strainwave"))
+
+
+@pytest.fixture(scope="module")
+def params():
+    """The embedded default parameters. Its RangeWarnings are the seeds' own examples outside their recommended
+    ranges (tested in test_params*.py); a module that tests them defines its own ``params``."""
+    from strainwave.errors import RangeWarning
+    from strainwave.params import load_params
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RangeWarning)
+        return load_params()
 
 
 @pytest.fixture

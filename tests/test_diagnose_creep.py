@@ -1,7 +1,6 @@
 """Creep under a held load behind a wandering sensor is a mismatch, not noise (issue 12: 'agrees' is the most
 dangerous answer). The creep here follows Andrade's law, growing as the cube root of the time under load and
 not recovered, a law the structure test's exponential lags do not share."""
-import warnings
 
 import numpy as np
 import pytest
@@ -10,19 +9,10 @@ from strainwave.compare.diagnose.baseline import analytic_baseline
 from strainwave.compare.diagnose.context import build_context
 from strainwave.compare.diagnose.pipeline import Verdict, diagnose
 from strainwave.compare.diagnose.recording import RecordingKind, format_recording, parse_text
-from strainwave.errors import RangeWarning
-from strainwave.params import load_params
 
 X = 1e6              # N*mm full scale
 SIGMA = 2e-3         # white noise, normalised twist
 HOLD = (0, 1, 1, -1, -1, 0)   # up, hold at +T, down, hold at -T, back: equal numbers of samples
-
-
-@pytest.fixture(scope="module")
-def params():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RangeWarning)
-        return load_params()
 
 
 def _load(n):

@@ -16,13 +16,6 @@ from strainwave.params import load_params
 NOISE = 2e-3      # white noise, fraction of the full-scale response
 
 
-@pytest.fixture(scope="module")
-def params():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RangeWarning)
-        return load_params()
-
-
 def _path(kind, n):
     knots = [0, 1, -1, 1, -1, 0] if kind is RecordingKind.TORSION else [0, 0.6, 0.05, 1.0, 0.0]
     return np.interp(np.linspace(0, len(knots) - 1, n), np.arange(len(knots)), knots)

@@ -1,7 +1,6 @@
 """Samples the noise cannot have made (glitches.py): a spike, a frozen reading, a jump, found on the innovations
 of the final residual; clean noise of every colour the noise model describes raises none."""
 import math
-import warnings
 
 import numpy as np
 import pytest
@@ -13,18 +12,9 @@ from strainwave.compare.diagnose.glitches import ALPHA, GROSS_SIGMAS, GlitchKind
 from strainwave.compare.diagnose.pipeline import Verdict, diagnose
 from strainwave.compare.diagnose.recording import RecordingKind, format_recording, parse_text
 from strainwave.compare.diagnose.structure import NoiseModel, fine_scale_noise
-from strainwave.errors import RangeWarning
-from strainwave.params import load_params
 
 X = 1e6
 WHITE = NoiseModel(np.array([1.0]), np.array([1.0]), 1.0)
-
-
-@pytest.fixture(scope="module")
-def params():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RangeWarning)
-        return load_params()
 
 
 def _clean(params, n=1500, noise=None, seed=0):

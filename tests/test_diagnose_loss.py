@@ -2,7 +2,6 @@
 laws that neither catalogue form draws (a saturating Preisach loop, a Bouc-Wen loop with n = 2), the width
 is read from the data at zero torque, and matches the law's own width (loop_metrics.measure_loop)."""
 import math
-import warnings
 
 import numpy as np
 import pytest
@@ -14,18 +13,9 @@ from strainwave.compare.diagnose.loop_metrics import measure_loop, recorded_loss
 from strainwave.compare.diagnose.pipeline import diagnose
 from strainwave.compare.diagnose.recording import RecordingKind, format_recording, parse_text
 from strainwave.compare.diagnose.zero_load_width import zero_load_width
-from strainwave.errors import RangeWarning
-from strainwave.params import load_params
 
 X = 1e6
 ARCMIN = 60.0 * 180.0 / math.pi
-
-
-@pytest.fixture(scope="module")
-def params():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RangeWarning)
-        return load_params()
 
 
 def _torque(knots, n):

@@ -1,10 +1,8 @@
 """The fits shared with a forked copy of the process (parallel.py) give the answer one process gives."""
 import dataclasses
 import os
-import warnings
 
 import numpy as np
-import pytest
 
 from strainwave.compare.diagnose.baseline import analytic_baseline
 from strainwave.compare.diagnose.cha import cha_recording, cha_rows
@@ -13,15 +11,6 @@ from strainwave.compare.diagnose.effects import effects_for
 from strainwave.compare.diagnose.parallel import FitTask, fit_all
 from strainwave.compare.diagnose.pipeline import diagnose
 from strainwave.compare.diagnose.recording import parse_text
-from strainwave.errors import RangeWarning
-from strainwave.params import load_params
-
-
-@pytest.fixture(scope="module")
-def params():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RangeWarning)
-        return load_params()
 
 
 def _same_fit(a, b):

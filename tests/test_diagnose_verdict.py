@@ -14,18 +14,10 @@ from strainwave.compare.diagnose.effects import hysteresis
 from strainwave.compare.diagnose.effects.loop import loop_quantities
 from strainwave.compare.diagnose.pipeline import Verdict, diagnose
 from strainwave.compare.diagnose.recording import RecordingKind, format_recording, parse_text
-from strainwave.errors import RangeWarning
 from strainwave.params import load_params
 
 K = RecordingKind.TORSION
 X = 1e6          # N*mm full scale
-
-
-@pytest.fixture(scope="module")
-def params():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RangeWarning)
-        return load_params()
 
 
 def _path(n, knots=(0, 1, -1, 1, -1, 0)):
