@@ -32,7 +32,8 @@ def test_api_example_runs():
 
 def test_listed_entry_points_exist():
     listed = re.findall(r"^- `(strainwave(?:\.\w+)+)\.(\w+)\(", README, flags=re.M)
-    assert {name for _, name in listed} == {"load_params", "build_part", "run_study", "run_validate", "diagnose_file"}
+    assert {name for _, name in listed} == {"load_params", "build_part", "run_study", "run_validate", "diagnose_file",
+                                          "diagnose"}
     for module, name in listed:
         assert callable(getattr(importlib.import_module(module), name)), (module, name)
 
