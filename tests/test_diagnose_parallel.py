@@ -54,3 +54,31 @@ def test_fits_a_copy_did_not_send_are_done_by_the_parent(params, tmp_path):
     assert len(shared) == len(tasks)
     for a, b in zip(serial, shared):
         _same_fit(a, b)
+
+
+def test_ctrl_c_mid_diagnosis_stops_both_processes_and_writes_nothing(tmp_path, strainwave_cmd):
+    """A terminal's Ctrl-C reaches the whole process group, the forked copy too: one line, exit 130, no JSON
+    file, and no process of the group left behind."""
+    import signal
+    import subprocess
+    import time
+    rec = tmp_path / "cha.csv"
+    rec.write_text(cha_recording(cha_rows()[10], hysteresis=True, n=10_000))
+    out = tmp_path / "d.json"
+    proc = subprocess.Popen([*strainwave_cmd, "diagnose", str(rec), "--json", str(out)], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, start_new_session=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    time.sleep(2.5)          # past the imports (about 1.1 s), among the fits
+    os.killpg(proc.pid, signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and err.strip().splitlines()[-1] == "error: interrupted", err
+    assert not out.exists()
+    deadline = time.monotonic() + 5.0
+    while time.monotonic() < deadline:
+        try:
+            os.killpg(proc.pid, 0)       # some process of the group still exists
+        except ProcessLookupError:
+            break
+        time.sleep(0.1)
+    else:
+        raise AssertionError("a process of the diagnosis outlived it")
