@@ -82,3 +82,23 @@ def test_ctrl_c_mid_diagnosis_stops_both_processes_and_writes_nothing(tmp_path, 
         time.sleep(0.1)
     else:
         raise AssertionError("a process of the diagnosis outlived it")
+
+
+def test_where_no_copy_can_start_the_fits_run_here(params, monkeypatch):
+    """A container without /dev/shm (no POSIX semaphore) or at its process limit: the same fits, in one process."""
+    import multiprocessing.context
+    rec = parse_text(cha_recording(cha_rows()[3], hysteresis=True, n=400))
+    ctx = build_context(rec, analytic_baseline(rec, params))
+    tasks = [FitTask((e,)) for e in [e for e in effects_for(rec.kind.value) if e.applicable(ctx)][:4]]
+    serial = fit_all(ctx, tasks, 1e-3, 0.3, workers=1)
+
+    def refuse(*args, **kwargs):
+        raise OSError(38, "Function not implemented")
+    for target in ("Value", "Process"):
+        with monkeypatch.context() as m:
+            if target == "Value":
+                m.setattr(multiprocessing.context.ForkContext, "Value", refuse, raising=False)
+            else:
+                m.setattr(multiprocessing.context.ForkProcess, "start", refuse)
+            for a, b in zip(serial, fit_all(ctx, tasks, 1e-3, 0.3, workers=2)):
+                _same_fit(a, b)

@@ -10,7 +10,8 @@ process runs it, so the answer does not depend on the number of workers.
 
 Forking is only safe, and only worth it, in a single-threaded process on a machine with a second core:
 anywhere else (another thread running, a daemonic worker, no fork) the fits run here, one after another.
-A copy that dies or fails leaves its unsent fits to this process.
+A copy that dies or fails leaves its unsent fits to this process; where no copy can be started (no shared
+semaphore, a process limit) the fits run here.
 """
 from __future__ import annotations
 
@@ -74,7 +75,11 @@ def fit_all(ctx: Context, tasks: Sequence[FitTask], sigma: float, uncertainty: f
         return [_run(ctx, t, sigma, uncertainty) for t in tasks]
     _warm(ctx, tasks)
     mp = multiprocessing.get_context("fork")
-    claimed = mp.Value("l", 0)
+    try:
+        # a shared counter needs a POSIX semaphore (/dev/shm): some containers have none
+        claimed = mp.Value("l", 0)
+    except OSError:
+        return [_run(ctx, t, sigma, uncertainty) for t in tasks]
 
     def claim() -> int:
         with claimed.get_lock():
@@ -96,7 +101,12 @@ def fit_all(ctx: Context, tasks: Sequence[FitTask], sigma: float, uncertainty: f
 
     receive, send = mp.Pipe(duplex=False)
     copy = mp.Process(target=copy_side, args=(send,), daemon=True)
-    copy.start()
+    try:
+        copy.start()
+    except OSError:                            # no process to spare (a process limit, no memory to fork)
+        receive.close()
+        send.close()
+        return [_run(ctx, t, sigma, uncertainty) for t in tasks]
     send.close()
     fits: dict[int, Fit] = {}
     try:
