@@ -5,9 +5,11 @@ ask for while the coarse mesh stays cheap.
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Callable, Sequence, TypeVar
 
 from .convergence import grid_convergence
+from .meshing import Refine
 from .result import Quantity
 
 DEFAULT_RATIO = 1.4
@@ -27,6 +29,26 @@ def crack_front_size_mm(h_mm: float, h_fine_mm: float, depth_mm: float, *, tip_o
     quarter-point elements: delta compliance error O(tip size), observed order ~1)."""
     return (h_mm / h_fine_mm) * max(min(h_fine_mm, tip_over_a * depth_mm), floor_over_h * h_fine_mm)
 
+
+
+@dataclass(frozen=True)
+class CrackFrontGrading:
+    """How a seam crack's front is meshed, in units of the crack depth a and the global size h: size
+    ``crack_front_size_mm`` (``tip_over_a``, ``floor_over_h``) within ``near_over_a`` a of the front,
+    growing linearly to h at ``zone_over_a`` a + ``grow_over_h`` h. Each study measures its own values
+    (their comments hold the numbers)."""
+
+    tip_over_a: float
+    floor_over_h: float
+    near_over_a: float
+    zone_over_a: float
+    grow_over_h: float
+
+    def refine(self, front_mm, h_mm: float, h_fine_mm: float, depth_mm: float) -> Refine:
+        tip = crack_front_size_mm(h_mm, h_fine_mm, depth_mm, tip_over_a=self.tip_over_a,
+                                  floor_over_h=self.floor_over_h)
+        return Refine(size_mm=tip, dist_min_mm=max(self.near_over_a * depth_mm, tip),
+                      dist_max_mm=self.zone_over_a * depth_mm + self.grow_over_h * h_mm, points_mm=front_mm)
 
 # Order of crack compliances (delta lambda, delta u): P2 without quarter-point nodes resolves the r^1/2
 # tip field at O(tip size), so the formal order is 1 and the GCI uses it (Roache's advice when the observed

@@ -21,7 +21,7 @@ from .assembly import Lame
 from .crack_seam import open_crack_for, seam_crack
 from .fields import field_info, write_solid_fields
 from .meshing import Refine
-from .refinement import (CRACK_ORDER_BOUNDS, DEFAULT_RATIO, crack_flexibility_quantities, crack_front_size_mm,
+from .refinement import (CRACK_ORDER_BOUNDS, DEFAULT_RATIO, CrackFrontGrading, crack_flexibility_quantities,
                          refinement_sizes)
 from .result import CrackRecord, Load, StudyResult
 from .skeleton import MeshSolve, Series, SeriesPlan, check_variant, run_variant
@@ -38,8 +38,9 @@ def default_size_mm(params, quick: bool) -> float:
     return params.output_shaft.wall_mm / (1.0 if quick else 1.5)
 
 
-# Crack-front size (refinement.crack_front_size_mm): a/6 at the finest mesh, floor h/32; graded zone
-# 3a + h. Measured on the shaft (seam, h = 8.33 mm, 3 refinements x 2 solves, 2 shared cores, +-1.5x):
+# Crack-front grading (refinement.CrackFrontGrading): a/6 at the finest mesh, floor h/32, uniform within
+# a/2, graded zone 3a + h. Measured on the shaft (seam, h = 8.33 mm, 3 refinements x 2 solves, 2 shared
+# cores, +-1.5x):
 #  a = 3.13 mm: tip a/2 fixed (not refined with h), zone a + 3h: 87k dofs, 18 s, 1.218e-11 +- 0.5 %, but
 #    the GCI missed the tip error: refined tips give 1.34e-11; tip a/2 scaled: 62k dofs, p = 0.3, GCI 69 %;
 #    a/4: 175k dofs, p = 0.05 (equal steps, GCI useless); a/6: 381k dofs, 86 s, 1.344e-11 +- 5.5 %, p = 1.1
@@ -48,23 +49,8 @@ def default_size_mm(params, quick: bool) -> float:
 #  a = 0.1 mm (floor, 0.26 mm): zone a + 3h: 606k dofs, 227 s, 8.08e-15 +- 3.5e-15; zone a + h: 190k dofs,
 #    58 s, 7.97e-15 +- 2.7e-15 (extrapolated 1.01e-14). Floor h/16: 324k dofs, 5.98e-15 +- 1.35e-14.
 # The seam leaves no far-field noise to grade away, so a narrow zone costs nothing in accuracy.
-FRONT_FLOOR_OVER_H = 1.0 / 32.0
-TIP_OVER_A = 1.0 / 6.0
-GROW_OVER_H = 1.0
-ZONE_OVER_A = 3.0
-
-
-def crack_refine(part, h_mm: float, depth_mm: float, *, h_fine_mm: float | None = None,
-                 floor_over_h: float | None = None, grow_over_h: float | None = None) -> Refine:
-    """Crack-front refinement: a/6 at the front on the finest mesh, never below ``floor_over_h`` h (shallow
-    cracks stay affordable; their GCI then says how well they are resolved), scaled with h/h_fine on the
-    coarser meshes (so the GCI sees the front converge too), growing to h within 3a + ``grow_over_h`` h."""
-    floor = FRONT_FLOOR_OVER_H if floor_over_h is None else floor_over_h
-    grow = GROW_OVER_H if grow_over_h is None else grow_over_h
-    tip = crack_front_size_mm(h_mm, h_mm if h_fine_mm is None else h_fine_mm, depth_mm,
-                              tip_over_a=TIP_OVER_A, floor_over_h=floor)
-    return Refine(size_mm=tip, dist_min_mm=max(depth_mm / 2.0, tip), dist_max_mm=ZONE_OVER_A * depth_mm + grow * h_mm,
-                  points_mm=part.crack_front_mm)
+CRACK_FRONT = CrackFrontGrading(tip_over_a=1.0 / 6.0, floor_over_h=1.0 / 32.0, near_over_a=0.5, zone_over_a=3.0,
+                                grow_over_h=1.0)
 
 
 def solve_mesh(md, params, *, progress: Callable[[str], None] = lambda m: None) -> tuple[float, StaticSolution]:
@@ -171,7 +157,7 @@ class ShaftTorsion(TorsionVariant):
             return solve_section_refinement(self.params, self.crack_depth_mm, h_mm,
                                             section_fine_mm(self.params, self.quick), quick=self.quick,
                                             keep_fields=keep_fields, progress=progress)
-        refine = [crack_refine(part, h_mm, self.crack_depth_mm, h_fine_mm=self.h_fine_mm)] if self.seam else []
+        refine = [CRACK_FRONT.refine(part.crack_front_mm, h_mm, self.h_fine_mm, self.crack_depth_mm)] if self.seam else []
         md, t_mesh = mesh_for_study(part, study=STUDY, h_mm=h_mm, order=self.order, refine=refine, progress=progress)
         lam0, sol0 = solve_mesh(md, self.params, progress=progress)
         values, sols = {FLEX: lam0}, [sol0]
