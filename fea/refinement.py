@@ -30,7 +30,6 @@ def crack_front_size_mm(h_mm: float, h_fine_mm: float, depth_mm: float, *, tip_o
     return (h_mm / h_fine_mm) * max(min(h_fine_mm, tip_over_a * depth_mm), floor_over_h * h_fine_mm)
 
 
-
 @dataclass(frozen=True)
 class CrackFrontGrading:
     """How a seam crack's front is meshed, in units of the crack depth a and the global size h: size
@@ -49,6 +48,7 @@ class CrackFrontGrading:
                                   floor_over_h=self.floor_over_h)
         return Refine(size_mm=tip, dist_min_mm=max(self.near_over_a * depth_mm, tip),
                       dist_max_mm=self.zone_over_a * depth_mm + self.grow_over_h * h_mm, points_mm=front_mm)
+
 
 # Order of crack compliances (delta lambda, delta u): P2 without quarter-point nodes resolves the r^1/2
 # tip field at O(tip size), so the formal order is 1 and the GCI uses it (Roache's advice when the observed

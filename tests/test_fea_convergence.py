@@ -59,3 +59,25 @@ def test_crack_order_is_fixed_at_its_formal_value():
     assert fixed.observed_order == 1.0
     assert fixed.gci_fine == pytest.approx(1.25 * 0.01 / (1.4 - 1), rel=1e-12)
     assert fixed.gci_fine > 10 * free.gci_fine
+
+
+def test_crack_front_grading_refines_the_tip_with_the_mesh_and_keeps_its_zones():
+    """The shaft's and the cup's gradings (the values their studies measured): the tip is tip_over_a a on the
+    finest mesh and scales with h / h_fine on the coarser ones (so the GCI sees the tip converge), the floor
+    holds shallow cracks at floor_over_h h_fine, and the graded zone ends at zone a + grow h."""
+    from strainwave.fea import cup_torsion, shaft_torsion
+    from strainwave.fea.refinement import refinement_sizes
+
+    front = ((10.0, 0.0, 5.0), (10.0, 1.0, 5.0))
+    h_fine = 6.72
+    cup = [cup_torsion.CRACK_FRONT.refine(front, h, h_fine, 1.12) for h in refinement_sizes(h_fine)]
+    assert [r.size_mm for r in cup] == pytest.approx([0.28, 0.28 * 1.4, 0.28 * 1.96])
+    assert [r.dist_min_mm for r in cup] == pytest.approx([1.12, 1.12, 1.12])       # uniform within a
+    assert cup[0].dist_max_mm == pytest.approx(2 * 1.12 + 3 * h_fine)
+    assert cup[0].points_mm == front
+    shaft = shaft_torsion.CRACK_FRONT
+    deep, shallow = shaft.refine(front, 8.33, 8.33, 3.13), shaft.refine(front, 8.33, 8.33, 0.1)
+    assert deep.size_mm == pytest.approx(3.13 / 6) and deep.dist_min_mm == pytest.approx(3.13 / 2)
+    assert shallow.size_mm == pytest.approx(8.33 / 32)                             # the floor, not a/6
+    assert shallow.dist_min_mm == pytest.approx(8.33 / 32)                         # never below the tip
+    assert shallow.dist_max_mm == pytest.approx(3 * 0.1 + 8.33)
