@@ -26,6 +26,7 @@ from .isolated import stop_descendants
 from ...io_atomic import remove_stale_temps
 from .plan import make_plan
 from .report_html import write_html
+from strainwave.compare.validate.catalogue_table import catalogue_document
 from .report_md import write_markdown
 from .results import now_utc, plain, versions, write_results
 from .runner import CaseOutcome, run_case
@@ -272,7 +273,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
             "stress_at_rated": {c: s.to_dict() for c, s in stresses.items()},
             "views": {c: v.to_dict() for c, v in made.views.items()},
             "gci_table": [r.to_dict() for r in gci_rows(book, ORDER)],
-            "checks": checks, "audit": audit,
+            "checks": checks, "audit": audit, "catalogue": catalogue_document(),
             "crack_sweeps": {k: r.to_dict() for k, r in check_set.sweeps.items()},
             "images": [i.to_dict() for i in images], "missing_images": [m.to_dict() for m in missing],
             "files": {"step": [_relative(p, out_dir) for s in steps for p in s.files], "fields": fields,

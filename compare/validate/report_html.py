@@ -11,6 +11,8 @@ from pathlib import Path
 
 from ...io_atomic import atomic_write_text
 from . import report_text as rt
+from strainwave.compare.validate.catalogue_table import CATALOGUE_COLUMNS, catalogue_rows, slope_line
+from strainwave.compare.validate.report_md import CATALOGUE_INTRO
 
 CSS = """
 body{font-family:system-ui,-apple-system,"Segoe UI",sans-serif;margin:2em auto;max-width:1200px;color:#222;
@@ -123,6 +125,11 @@ def render_html(doc: dict, views: dict[str, str] | None = None) -> str:
     parts.append('<h2 id="audit">Seed audit</h2><p>Every inconsistency found in the seeds, with the FEA evidence '
                  "where the FEA can settle it.</p>")
     parts.append(_table(rt.AUDIT_COLUMNS, [rt.audit_row(a) for a in doc["audit"]]))
+    if doc.get("catalogue"):
+        cat = doc["catalogue"]
+        parts.append('<h2 id="catalogue">Catalogue drives (Harmonic Drive CHA K3)</h2>')
+        parts.append(f"<p>{escape(CATALOGUE_INTRO)}</p>" + _table(CATALOGUE_COLUMNS, catalogue_rows(cat)))
+        parts.append(f'<p>{escape(slope_line(cat))}</p><p class="notes">{escape(cat["left_out"])}</p>')
     meta = doc["metadata"]
     parts.append('<h2 id="cases">FEA cases and timings</h2>')
     parts.append(_table(rt.CASE_COLUMNS, [rt.case_row(c) for c in meta["cases"]]))

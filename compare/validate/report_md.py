@@ -5,6 +5,11 @@ from pathlib import Path
 
 from ...io_atomic import atomic_write_text
 from . import report_text as rt
+from strainwave.compare.validate.catalogue_table import CATALOGUE_COLUMNS, catalogue_rows, slope_line
+
+CATALOGUE_INTRO = ("Each size is a drive built by one set of design rules (d1 = 2.54 mm x size; wall, length, "
+                   "k_r and K_G0 in proportion to seed 000's example), the unit without its output shaft. A comparison, "
+                   "not a check.")
 
 
 def _table(columns, rows) -> list[str]:
@@ -57,6 +62,10 @@ def render_markdown(doc: dict) -> str:
     lines += ["## Seed audit", "", "Every inconsistency found in the seeds, with the FEA evidence where the FEA can "
               "settle it.", ""]
     lines += _table(rt.AUDIT_COLUMNS, [rt.audit_row(a) for a in doc["audit"]]) + [""]
+    if doc.get("catalogue"):
+        cat = doc["catalogue"]
+        lines += ["## Catalogue drives (Harmonic Drive CHA K3)", "", CATALOGUE_INTRO, ""]
+        lines += _table(CATALOGUE_COLUMNS, catalogue_rows(cat)) + ["", slope_line(cat), "", cat["left_out"], ""]
     meta = doc["metadata"]
     lines += ["## FEA cases and timings", ""]
     lines += _table(rt.CASE_COLUMNS, [rt.case_row(c) for c in meta["cases"]]) + [""]
