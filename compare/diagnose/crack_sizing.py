@@ -1,0 +1,182 @@
+"""A crack sized from its recording: the measured compliance change read off the FEA's delta-lambda(a) curves.
+
+Seed 000 proposes the torsional stiffness as a predictive-maintenance signal. Here the inverse is taken
+per candidate component: the depth at which that component's FEA crack adds the measured compliance.
+The curve is the FEA's own (the shaft's axisymmetric section solved on demand and cached, or the crack
+sweeps of a ``validate`` run's results.json); between its points it is interpolated as a power law (log-log
+linear, the form every crack curve here follows), below its first point the first segment's power law
+runs to zero, and above its last point nothing is asserted: the answer is "not on the curve".
+
+The stated interval is k = 2 standard uncertainties of the measured change, combined in quadrature
+with the curve's own discretization error (its GCI) at that change.
+"""
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from strainwave.errors import InputError
+
+__all__ = ["DeltaCurve", "CrackSize", "size_crack", "curve_from_results", "shaft_curve_fea", "COVERAGE_K"]
+
+COVERAGE_K = 2.0          # the stated interval: about 95 % for a normal error
+
+
+@dataclass(frozen=True)
+class DeltaCurve:
+    """One component's FEA crack curve: added compliance against depth, each point with its GCI."""
+
+    component: str
+    unit: str
+    depths_mm: tuple[float, ...]
+    delta: tuple[float, ...]
+    uncertainty: tuple[float, ...]           # absolute, from each point's GCI
+    wall_mm: float                            # the deepest crack the component can hold
+    source: str
+    front_length_mm: Callable[[float], float] | None = field(default=None, compare=False)
+
+    def __post_init__(self):
+        a, d = np.asarray(self.depths_mm), np.asarray(self.delta)
+        if len(a) < 2 or np.any(np.diff(a) <= 0) or np.any(d <= 0) or np.any(np.diff(d) <= 0):
+            raise ValueError(f"{self.component}: a crack curve needs >= 2 depths, increasing, with a rising "
+                             "positive delta")
+
+    def _segment(self, i: int) -> tuple[float, float]:
+        """(exponent, coefficient) of the power law through points i and i + 1."""
+        a0, a1 = self.depths_mm[i], self.depths_mm[i + 1]
+        d0, d1 = self.delta[i], self.delta[i + 1]
+        p = math.log(d1 / d0) / math.log(a1 / a0)
+        return p, d0 / a0 ** p
+
+    def delta_at(self, depth_mm: float) -> float:
+        """Added compliance at ``depth_mm`` (<= the last point's depth)."""
+        if depth_mm <= 0:
+            return 0.0
+        if depth_mm > self.depths_mm[-1] * (1 + 1e-12):
+            raise ValueError(f"{self.component}: a = {depth_mm} mm is beyond the curve ({self.depths_mm[-1]} mm)")
+        i = min(max(int(np.searchsorted(self.depths_mm, depth_mm)) - 1, 0), len(self.depths_mm) - 2)
+        p, c = self._segment(i)
+        return c * depth_mm ** p
+
+    def slope_at(self, depth_mm: float) -> float:
+        """d(delta)/da of the local power law, for the energy release rate."""
+        i = min(max(int(np.searchsorted(self.depths_mm, depth_mm)) - 1, 0), len(self.depths_mm) - 2)
+        p, c = self._segment(i)
+        return p * c * depth_mm ** (p - 1)
+
+    def depth_for(self, delta: float) -> float | None:
+        """Depth whose added compliance is ``delta``; 0 for delta <= 0, None above the curve's last point."""
+        if delta <= 0:
+            return 0.0
+        if delta > self.delta[-1] * (1 + 1e-12):
+            return None
+        i = min(max(int(np.searchsorted(self.delta, delta)) - 1, 0), len(self.delta) - 2)
+        p, c = self._segment(i)
+        return (delta / c) ** (1.0 / p)
+
+    def relative_uncertainty_at(self, depth_mm: float) -> float:
+        """The curve's GCI, relative, interpolated between its points (the nearest point's beyond them)."""
+        rel = np.asarray(self.uncertainty) / np.asarray(self.delta)
+        return float(np.interp(depth_mm, self.depths_mm, rel))
+
+
+@dataclass(frozen=True)
+class CrackSize:
+    component: str
+    possible: bool
+    depth_mm: float | None
+    low_mm: float | None
+    high_mm: float | None
+    reason: str
+    source: str
+
+    def to_dict(self) -> dict:
+        return dict(self.__dict__)
+
+    def line(self) -> str:
+        if not self.possible:
+            return f"{self.component}: cannot hold such a crack ({self.reason})"
+        return (f"{self.component}: crack depth {self.depth_mm:.3g} mm (k = {COVERAGE_K:g} interval "
+                f"{self.low_mm:.3g}..{self.high_mm:.3g} mm){'; ' + self.reason if self.reason else ''}")
+
+
+def _one(curve: DeltaCurve, delta: float, sigma: float) -> CrackSize:
+    top = curve.delta[-1]
+    if delta - COVERAGE_K * sigma > top:
+        return CrackSize(curve.component, False, None, None, None,
+                         f"the measured change {delta:.3g} {curve.unit} exceeds its FEA curve's largest, "
+                         f"{top:.3g} at a = {curve.depths_mm[-1]:g} mm of a {curve.wall_mm:g} mm wall", curve.source)
+    a = curve.depth_for(min(delta, top))
+    sigma_tot = math.hypot(sigma, curve.relative_uncertainty_at(a or curve.depths_mm[0]) * max(delta, 0.0))
+    lo = curve.depth_for(delta - COVERAGE_K * sigma_tot)
+    hi = curve.depth_for(delta + COVERAGE_K * sigma_tot)
+    notes = []
+    if delta > top:
+        notes.append(f"the change lies above the curve's end (a = {curve.depths_mm[-1]:g} mm)")
+    if lo == 0.0:
+        notes.append("its lower bound is no crack: the change is within its uncertainty of zero")
+    if hi is None:
+        hi = curve.depths_mm[-1]
+        notes.append(f"its upper bound passes the curve's end at {hi:g} mm")
+    return CrackSize(curve.component, True, a if a is not None else curve.depths_mm[-1], lo, hi,
+                     "; ".join(notes), curve.source)
+
+
+def size_crack(delta: float, sigma: float, curves: list[DeltaCurve]) -> tuple[CrackSize, ...]:
+    """The depth in each candidate component whose FEA crack adds ``delta`` (standard uncertainty ``sigma``,
+    same unit as the curves), or why that component cannot hold it."""
+    if not (math.isfinite(delta) and math.isfinite(sigma) and sigma >= 0):
+        raise ValueError(f"compliance change {delta!r} +- {sigma!r} must be finite with sigma >= 0")
+    return tuple(_one(c, delta, sigma) for c in curves)
+
+
+def curve_from_results(path: Path, component: str) -> DeltaCurve:
+    """A component's crack curve from a validate run's results.json (its crack-depth sweep, resolved points)."""
+    try:
+        doc = json.loads(Path(path).read_text(encoding="utf-8"))
+        sweep = doc["crack_sweeps"][component]
+    except (OSError, ValueError, KeyError, TypeError) as exc:
+        raise InputError("--curves", str(path), f"a validate results.json with a '{component}' crack sweep "
+                         f"({type(exc).__name__})") from None
+    rows = sorted((a, v, u) for a, v, u, ok in zip(sweep["depths_mm"], sweep["fea"], sweep["fea_uncertainty"],
+                                                   sweep["resolved"]) if ok)
+    wall = float(doc.get("crack_walls_mm", {}).get(component, rows[-1][0]) if rows else 0.0)
+    return DeltaCurve(component, sweep["unit"], tuple(r[0] for r in rows), tuple(r[1] for r in rows),
+                      tuple(r[2] for r in rows), wall, f"FEA crack sweep in {path}")
+
+
+SHAFT_DEPTH_FRACTIONS = (0.03, 0.1, 0.25, 0.45, 0.7, 0.9)   # of the wall: shallow to nearly through
+
+
+def shaft_curve_fea(params, cache_dir: Path | None = None,
+                    progress: Callable[[str], None] = lambda m: None) -> DeltaCurve:
+    """The output shaft's FEA crack curve (full circumferential crack, the exact axisymmetric section),
+    solved on demand at SHAFT_DEPTH_FRACTIONS of the wall and cached per point under ``cache_dir``."""
+    from strainwave.cache import ResultCache, case_key
+    from strainwave.fea.studies import run_study
+
+    shaft = params.output_shaft
+    wall = 0.5 * (shaft.outer_diameter_mm - shaft.inner_diameter_mm)
+    r_o = 0.5 * shaft.outer_diameter_mm
+    cache = ResultCache(Path(cache_dir)) if cache_dir is not None else None
+    points = []
+    for k, frac in enumerate(SHAFT_DEPTH_FRACTIONS, 1):
+        a = round(frac * wall, 6)
+        key = case_key("shaft-crack-curve", {"params": params.to_dict(), "a_mm": a})
+        rec = cache.get(key) if cache else None
+        if rec is None:
+            progress(f"shaft crack curve: a = {a:g} mm ({k}/{len(SHAFT_DEPTH_FRACTIONS)})")
+            q = run_study("shaft-torsion", params, crack_depth_mm=a, quick=True).quantities[
+                "delta_flexibility_rad_per_Nmm"]
+            rec = {"value": q.value, "uncertainty": q.uncertainty or 0.0}
+            if cache:
+                cache.put(key, rec)
+        points.append((a, rec["value"], rec["uncertainty"]))
+    return DeltaCurve("shaft", "rad/(N*mm)", tuple(p[0] for p in points), tuple(p[1] for p in points),
+                      tuple(p[2] for p in points), wall, "FEA: output shaft, axisymmetric crack section (quick meshes)",
+                      front_length_mm=lambda a: 2.0 * math.pi * (r_o - a))
