@@ -180,3 +180,49 @@ def shaft_curve_fea(params, cache_dir: Path | None = None,
     return DeltaCurve("shaft", "rad/(N*mm)", tuple(p[0] for p in points), tuple(p[1] for p in points),
                       tuple(p[2] for p in points), wall, "FEA: output shaft, axisymmetric crack section (quick meshes)",
                       front_length_mm=lambda a: 2.0 * math.pi * (r_o - a))
+
+
+# The effects whose fitted compliance a crack can explain: crack_closure's open side (the closed side is the
+# same specimen, so the baseline's uncertainty cancels), and a uniform compliance change (where it does not).
+CRACK_EFFECTS = ("crack_closure", "compliance_offset")
+SPECIMEN_COMPONENTS = {"output_shaft": ("shaft",), "flexspline_cup": ("cup",), "gear": ("shaft", "cup")}
+
+
+def measured_change(diagnosis) -> tuple[float, float, str] | None:
+    """(added compliance, its standard uncertainty, the effect it came from) of an explained diagnosis that
+    names a crack-type effect; None otherwise."""
+    if not diagnosis.named or not diagnosis.effects:
+        return None
+    best = diagnosis.effects[0]
+    c0, u_b = diagnosis.baseline.compliance, diagnosis.baseline.uncertainty
+    for effect in CRACK_EFFECTS:
+        if effect not in diagnosis.named:
+            continue
+        key = next((k for k in (f"{effect}.d", "d") if k in best.parameters), None)
+        if key is None:
+            continue
+        d, err = abs(float(best.parameters[key][0])), float(best.errors.get(key) or 0.0)
+        baseline_part = 0.0 if effect == "crack_closure" else u_b
+        return d * c0, math.hypot(err, baseline_part) * c0, effect
+    return None
+
+
+def size_diagnosis(diagnosis, params, *, results: Path | None = None, cache_dir: Path | None = None,
+                   progress: Callable[[str], None] = lambda m: None) -> dict | None:
+    """The sizing record of a diagnosis: per candidate component of its specimen, the depth or why not."""
+    change = measured_change(diagnosis)
+    if change is None:
+        return None
+    delta, sigma, effect = change
+    curves, missing = [], []
+    for component in SPECIMEN_COMPONENTS.get(diagnosis.specimen, ()):
+        if component == "shaft":
+            curves.append(shaft_curve_fea(params, cache_dir, progress))
+        elif results is not None:
+            curves.append(curve_from_results(results, component))
+        else:
+            missing.append(f"{component}: no FEA crack curve (pass a validate results.json with --curves)")
+    sizes = size_crack(delta, sigma, curves)
+    return {"effect": effect, "delta": delta, "sigma": sigma, "unit": curves[0].unit if curves else "",
+            "coverage_k": COVERAGE_K, "sizes": [s.to_dict() for s in sizes], "not_sized": missing,
+            "lines": [s.line() for s in sizes] + missing, "_curves": curves, "_sizes": sizes}
