@@ -182,28 +182,23 @@ def shaft_curve_fea(params, cache_dir: Path | None = None,
                       front_length_mm=lambda a: 2.0 * math.pi * (r_o - a))
 
 
-# The effects whose fitted compliance a crack can explain: crack_closure's open side (the closed side is the
-# same specimen, so the baseline's uncertainty cancels), and a uniform compliance change (where it does not).
-CRACK_EFFECTS = ("crack_closure", "compliance_offset")
 SPECIMEN_COMPONENTS = {"output_shaft": ("shaft",), "flexspline_cup": ("cup",), "gear": ("shaft", "cup")}
 
 
 def measured_change(diagnosis) -> tuple[float, float, str] | None:
     """(added compliance, its standard uncertainty, the effect it came from) of an explained diagnosis that
-    names a crack-type effect; None otherwise."""
+    names a crack-type effect; None otherwise. A compliance change's error already holds the baseline's
+    prior; crack_closure's open-minus-closed difference does not need it (one specimen, both sides)."""
     if not diagnosis.named or not diagnosis.effects:
         return None
-    best = diagnosis.effects[0]
-    c0, u_b = diagnosis.baseline.compliance, diagnosis.baseline.uncertainty
-    for effect in CRACK_EFFECTS:
-        if effect not in diagnosis.named:
-            continue
-        key = next((k for k in (f"{effect}.d", "d") if k in best.parameters), None)
-        if key is None:
-            continue
-        d, err = abs(float(best.parameters[key][0])), float(best.errors.get(key) or 0.0)
-        baseline_part = 0.0 if effect == "crack_closure" else u_b
-        return d * c0, math.hypot(err, baseline_part) * c0, effect
+    p, err = diagnosis.effects[0].parameters, diagnosis.effects[0].errors
+    if "crack_closure" in diagnosis.named and "crack_closure.stiffness_crack_open" in p:
+        k_o, k_c = (float(p[f"crack_closure.stiffness_crack_{s}"][0]) for s in ("open", "closed"))
+        e_o, e_c = (float(err.get(f"crack_closure.stiffness_crack_{s}") or 0.0) for s in ("open", "closed"))
+        return 1.0 / k_o - 1.0 / k_c, math.hypot(e_o / k_o ** 2, e_c / k_c ** 2), "crack_closure"
+    if "compliance_offset" in diagnosis.named and "compliance_offset.extra_compliance" in p:
+        value = float(p["compliance_offset.extra_compliance"][0])
+        return value, float(err.get("compliance_offset.extra_compliance") or 0.0), "compliance_offset"
     return None
 
 
