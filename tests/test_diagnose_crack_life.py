@@ -108,3 +108,24 @@ def test_steeper_paris_exponent_or_deeper_start_shortens_life():
             < remaining_life(shallow, curve, lam0, LoadSpectrum.constant(1e5), **kw).cycles)
     with pytest.raises(ValueError):
         ParisLaw(1e-12, 0.5, "bad")
+
+
+def test_life_record_lines_and_plot_for_a_sized_crack(tmp_path):
+    import warnings
+
+    from strainwave.compare.diagnose.remaining_life import life_lines, life_of_sizing, plot_life
+    from strainwave.params import load_params
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        params = load_params()
+    curve = power_curve()
+    sizes = size_crack(curve.delta_at(1.0), 0.05 * curve.delta_at(1.0), [curve])
+    lives = life_of_sizing({"_sizes": sizes, "_curves": [curve]}, curve.delta_at(4.0) * 9.0, params,
+                           cycles_per_hour=3600.0)
+    (life,) = lives
+    assert life["cycles_low"] < life["cycles"] < life["cycles_high"]
+    assert life["hours"] == pytest.approx(life["cycles"] / 3600.0)
+    assert "remaining life" in life_lines(lives)[0] and "BS 7910" in life_lines(lives)[0]
+    png = plot_life(tmp_path / "life.png", lives)
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -11,6 +11,7 @@ Growth stops where the specimen's stiffness has fallen by the user's limit, or w
 from __future__ import annotations
 
 import math
+from pathlib import Path
 from dataclasses import dataclass
 
 import numpy as np
@@ -18,7 +19,8 @@ from scipy import integrate
 
 from strainwave.compare.diagnose.crack_sizing import CrackSize, DeltaCurve
 
-__all__ = ["ParisLaw", "LoadSpectrum", "LifeEstimate", "remaining_life", "spectrum_from_history", "BS7910_STEEL"]
+__all__ = ["ParisLaw", "LoadSpectrum", "LifeEstimate", "remaining_life", "spectrum_from_history", "BS7910_STEEL",
+           "life_of_sizing", "life_lines", "plot_life"]
 
 
 @dataclass(frozen=True)
@@ -124,3 +126,56 @@ def remaining_life(size: CrackSize, curve: DeltaCurve, baseline_compliance: floa
                baseline_compliance / (baseline_compliance + curve.delta_at(a))) for a in depths]
     hours = None if cycles_per_hour is None else n / cycles_per_hour
     return LifeEstimate(n, n_lo, n_hi, a_stop, why, hours, tuple(points))
+
+
+def life_of_sizing(sizing: dict, baseline_compliance: float, params, *, law: ParisLaw = BS7910_STEEL,
+                   spectrum: LoadSpectrum | None = None, stiffness_loss: float = 0.1,
+                   cycles_per_hour: float | None = None) -> list[dict]:
+    """Remaining life of every sized crack of ``crack_sizing.size_diagnosis``'s record whose curve has a front
+    length. Default spectrum: 0 -> rated output torque, constant amplitude. E' = 2 mu (mode III, torsion)."""
+    mat = params.material
+    modulus = mat.youngs_modulus_MPa / (1.0 + mat.poisson_ratio)
+    spectrum = spectrum or LoadSpectrum.constant(params.gear.rated_output_torque_Nmm)
+    out = []
+    for size, curve in zip(sizing["_sizes"], sizing["_curves"]):
+        if not size.possible or curve.front_length_mm is None:
+            continue
+        est = remaining_life(size, curve, baseline_compliance, spectrum, modulus_MPa=modulus, law=law,
+                             stiffness_loss=stiffness_loss, cycles_per_hour=cycles_per_hour)
+        out.append({"component": size.component, "paris_law": {"C": law.C, "m": law.m, "source": law.source},
+                    "spectrum": spectrum.description, **est.to_dict()})
+    return out
+
+
+def life_lines(lives: list[dict]) -> list[str]:
+    """One line per component: cycles with their band, hours when a rate is given, and where growth stops."""
+    lines = []
+    for life in lives:
+        hours = "" if life["hours"] is None else f", {life['hours']:.3g} h"
+        lines.append(f"{life['component']}: remaining life {life['cycles']:.3g} cycles{hours} (band "
+                     f"{life['cycles_low']:.3g}..{life['cycles_high']:.3g} from the crack's interval); "
+                     f"{life['stop_reason']}; {life['spectrum']}; {life['paris_law']['source']}")
+    return lines
+
+
+def plot_life(path: Path, lives: list[dict]) -> Path:
+    """Stiffness (over the uncracked) against load cycles, one line per component."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    from strainwave.io_atomic import atomic_path
+
+    fig = Figure(figsize=(7.0, 4.0), dpi=110)
+    FigureCanvasAgg(fig)
+    ax = fig.subplots()
+    for life in lives:
+        n, k = zip(*life["curve"])
+        ax.plot(np.maximum(n, 1.0), k, "-", label=f"{life['component']}: to {life['stop_depth_mm']:.3g} mm")
+    ax.set_xscale("log")
+    ax.set_xlabel("load cycles from today")
+    ax.set_ylabel("stiffness / uncracked stiffness")
+    ax.legend(loc="best", fontsize=8)
+    fig.tight_layout()
+    with atomic_path(Path(path)) as tmp:
+        fig.savefig(tmp, format="png")
+    return Path(path)
