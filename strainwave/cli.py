@@ -199,6 +199,21 @@ def _cmd_diagnose(args) -> int:
     return 0
 
 
+def _cmd_size_crack(args) -> int:
+    from .compare.diagnose.crack_life import LifeOptions, size_and_life
+    if not 1.0 <= args.paris_m <= 10.0:
+        raise InputError("--paris-m", args.paris_m, "a Paris exponent within 1..10")
+    options = LifeOptions(paris_C=args.paris_c, paris_m=args.paris_m, stiffness_loss=args.stiffness_loss,
+                          cycles_per_hour=args.cycles_per_hour,
+                          torque_history=Path(args.torque_history) if args.torque_history else None,
+                          curves=Path(args.curves) if args.curves else None,
+                          cache_dir=Path(args.cache) if args.cache else None)
+    report = size_and_life(Path(args.recording), options, params_path=args.params, baseline=args.baseline,
+                           plot_out=Path(args.plot) if args.plot else None, progress=_progress)
+    _emit(args, report.summary(), report.to_dict)
+    return 0
+
+
 def _cmd_benchmark_diagnose(args) -> int:
     from .compare.diagnose.benchmark import run_benchmark
     if args.n < 1:
@@ -228,7 +243,7 @@ def _check_outputs(args) -> None:
     minutes and then find that --vtu points into a file), and never one of the command's inputs."""
     from .io_atomic import check_output_path
 
-    inputs = tuple(getattr(args, name, None) for name in ("params", "recording", "samples"))
+    inputs = tuple(getattr(args, name, None) for name in ("params", "recording", "samples", "curves", "torque_history"))
     files = [("--json", getattr(args, "json", None)), ("--plot", getattr(args, "plot", None)),
              ("--vtu", getattr(args, "vtu", None)), ("--png", getattr(args, "png", None)),
              ("-o", getattr(args, "output", None))]
@@ -374,6 +389,24 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--baseline", choices=("analytic", "fea"), default="analytic",
                    help="model the recording is compared with")
     p.add_argument("--plot", metavar="OUT.png", help="also plot the recording, the baseline and the fit")
+
+    p = add("size-crack", _cmd_size_crack, "size the crack a recording's compliance change implies, and its "
+            "remaining life (Paris' law)")
+    p.add_argument("recording", metavar="RECORDING.csv", help="self-describing recording (docs/recordings.md)")
+    p.add_argument("--baseline", choices=("analytic", "fea"), default="analytic",
+                   help="model the recording is compared with")
+    p.add_argument("--curves", metavar="RESULTS.json", help="a validate results.json: the cup's FEA crack curve")
+    p.add_argument("--cache", metavar="DIR", help="keep the shaft's FEA crack curve here for the next run")
+    p.add_argument("--paris-c", type=_positive_float, default=5.21e-13, metavar="C",
+                   help="Paris law da/dN = C dK^m, mm/cycle and N/mm^1.5 (default: BS 7910 steel in air)")
+    p.add_argument("--paris-m", type=float, default=3.0, metavar="M", help="Paris exponent (default 3)")
+    p.add_argument("--stiffness-loss", type=_positive_float, default=0.1, metavar="FRACTION",
+                   help="stop where the specimen's stiffness has fallen by this fraction (default 0.1)")
+    p.add_argument("--torque-history", metavar="FILE.csv",
+                   help="torque history in N mm, rainflow-counted (default: 0 -> rated torque, constant amplitude)")
+    p.add_argument("--cycles-per-hour", type=_positive_float, default=None, metavar="N",
+                   help="load cycles per hour, to give the life in hours")
+    p.add_argument("--plot", metavar="OUT.png", help="plot stiffness against load cycles")
 
     p = add("benchmark-diagnose", _cmd_benchmark_diagnose, "score diagnose blind on generated recordings")
     p.add_argument("--n", type=int, default=10, metavar="N", help="recordings per class and family (>= 1)")

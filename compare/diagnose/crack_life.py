@@ -1,0 +1,108 @@
+"""`strainwave size-crack`: diagnose a recording, size the crack its compliance change implies in each
+component of the specimen, and integrate its remaining life (seed 000's predictive-maintenance use)."""
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from strainwave.compare.diagnose.crack_sizing import size_diagnosis
+from strainwave.compare.diagnose.remaining_life import (BS7910_STEEL, LoadSpectrum, ParisLaw, life_lines,
+                                                        life_of_sizing, plot_life, spectrum_from_history)
+from strainwave.errors import InputError
+
+__all__ = ["LifeOptions", "CrackLifeReport", "size_and_life", "read_torque_history"]
+
+MAX_HISTORY_ROWS = 1_000_000
+
+
+@dataclass(frozen=True)
+class LifeOptions:
+    paris_C: float = BS7910_STEEL.C
+    paris_m: float = BS7910_STEEL.m
+    stiffness_loss: float = 0.1
+    cycles_per_hour: float | None = None
+    torque_history: Path | None = None
+    curves: Path | None = None           # a validate results.json holding the cup's crack sweep
+    cache_dir: Path | None = None
+
+    def law(self) -> ParisLaw:
+        if (self.paris_C, self.paris_m) == (BS7910_STEEL.C, BS7910_STEEL.m):
+            return BS7910_STEEL
+        return ParisLaw(self.paris_C, self.paris_m, "user-given Paris law (N, mm)")
+
+
+@dataclass(frozen=True)
+class CrackLifeReport:
+    recording: str
+    verdict: str
+    named: tuple[str, ...]
+    sizing: dict | None
+    lives: list
+
+    def summary(self) -> str:
+        head = f"{self.recording}: {self.verdict}" + (f" ({' + '.join(self.named)})" if self.named else "")
+        if self.sizing is None:
+            return head + "\nno crack-type change to size: the diagnosis names neither crack_closure nor a compliance change"
+        s = self.sizing
+        lines = [head, f"measured compliance change {s['delta']:.4g} +/- {s['sigma']:.2g} {s['unit']} "
+                       f"(1 sigma, from {s['effect']})", *s["lines"], *life_lines(self.lives)]
+        return "\n".join(lines)
+
+    def to_dict(self) -> dict:
+        sizing = None if self.sizing is None else {k: v for k, v in self.sizing.items() if not k.startswith("_")}
+        return {"recording": self.recording, "verdict": self.verdict, "named": list(self.named), "sizing": sizing,
+                "remaining_life": self.lives}
+
+
+def read_torque_history(path: Path) -> np.ndarray:
+    """A torque history: one number per line (N mm), or a CSV with a ``torque_Nmm`` column; '#' lines skipped."""
+    values = []
+    with open(path, encoding="utf-8", errors="strict", newline="") as fh:
+        rows = csv.reader(line for line in fh if line.strip() and not line.lstrip().startswith("#"))
+        col = 0
+        for lineno, row in enumerate(rows, 1):
+            if lineno == 1 and "torque_Nmm" in row:
+                col = row.index("torque_Nmm")
+                continue
+            try:
+                value = float(row[col])
+            except (ValueError, IndexError):
+                raise InputError(f"{path}:{lineno}", ",".join(row)[:60], "a torque in N mm per line") from None
+            if not math.isfinite(value):
+                raise InputError(f"{path}:{lineno}", row[col], "a finite torque in N mm")
+            values.append(value)
+            if len(values) > MAX_HISTORY_ROWS:
+                raise InputError("--torque-history", str(path), f"at most {MAX_HISTORY_ROWS} rows")
+    if len(values) < 3:
+        raise InputError("--torque-history", str(path), "at least 3 torque values (one load cycle)")
+    return np.asarray(values)
+
+
+def size_and_life(recording: Path, options: LifeOptions, *, params_path=None, baseline: str = "analytic",
+                  plot_out: Path | None = None, progress=lambda m: None) -> CrackLifeReport:
+    """Diagnose, size, and integrate the life; the plot is written only when there is a life to draw."""
+    from strainwave.compare.diagnose.pipeline import diagnose
+    from strainwave.compare.diagnose.recording import parse_recording
+    from strainwave.params import load_params
+
+    law = options.law()
+    if not 0.0 < options.stiffness_loss < 1.0:
+        raise InputError("--stiffness-loss", options.stiffness_loss, "a fraction in (0, 1)")
+    spectrum = None
+    if options.torque_history is not None:
+        spectrum = spectrum_from_history(read_torque_history(options.torque_history))
+    rec = parse_recording(recording)
+    params = load_params(params_path, overrides=rec.param_overrides or None)
+    diag, _ = diagnose(rec, params, baseline)
+    sizing = size_diagnosis(diag, params, results=options.curves, cache_dir=options.cache_dir, progress=progress)
+    lives = [] if sizing is None else life_of_sizing(
+        sizing, diag.baseline.compliance, params, law=law, spectrum=spectrum or LoadSpectrum.constant(
+            params.gear.rated_output_torque_Nmm), stiffness_loss=options.stiffness_loss,
+        cycles_per_hour=options.cycles_per_hour)
+    if plot_out is not None and lives:
+        plot_life(plot_out, lives)
+    return CrackLifeReport(diag.recording, diag.verdict.value, tuple(diag.named), sizing, lives)
