@@ -15,7 +15,7 @@ k = 3 + effect parameters, ((s - 1)/u)^2 = -2 ln(prior). For white noise a ~ 0 a
 for AR(1) noise with rho -> 1 (a random walk) the innovations are the first differences, so a slow wander
 of the residual costs what a random walk of that size costs, not what N independent samples would.
 A systematic misfit can therefore raise BIC by at most ~N ln(1.5 .. 2) against a model that fits: the
-evidence for a second effect that only mops up a rigid model's misfit stays bounded (issue 12, item 4).
+evidence for a second effect that only mops up a rigid model's misfit stays bounded.
 """
 from __future__ import annotations
 
@@ -103,7 +103,7 @@ def bic_fixed_noise(r: np.ndarray, k: int, prior_chi2: float, noise) -> float:
     Profiled per model (``bic_ar``), the noise filter is free to whiten a model's slow misfit: a loop law that
     misses the loop's shape by 6 noise sigmas outscored one that fits to 2.5 sigma, and even the baseline
     outscored a fitting loop, because the misfit's wander was bought as "noise" (measured on a saturating
-    Preisach loop, issue 12). Held fixed, the filter prices every model's residual alike."""
+    Preisach loop). Held fixed, the filter prices every model's residual alike."""
     e = noise.whiten(r)
     m = len(e)
     return m * math.log(max(float(e @ e), m * NOISE_FLOOR ** 2) / m) + prior_chi2 + (k + AR_ORDER) * math.log(len(r))
@@ -298,7 +298,7 @@ def gls_cov(design: np.ndarray, r: np.ndarray, k: int, noise, uncertainty: float
     """Covariance of (theta, s) under the recording's noise model: the design and the residual both whitened by
     its filter (generalised least squares). The lag-1 inflation of white least squares misses a wandering
     sensor's long-range correlation: a loop width 7.6 of its standard errors from the truth was reported under
-    random-walk noise (issue 12)."""
+    random-walk noise."""
     dw, rw = noise.whiten(design), noise.whiten(r)
     s2 = float(rw @ rw) / max(len(rw) - k, 1)
     return _theta_and_scale(dw.T @ dw / s2, uncertainty)

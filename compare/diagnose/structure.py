@@ -348,7 +348,7 @@ def fine_scale_noise(x: np.ndarray) -> NoiseModel:
     # quadratically over the first lags and then saturates, which no first-order model draws (a random walk
     # rises linearly for ever; an AR(1) plus white rises linearly and saturates): taken as a random walk, its
     # correlated steps read as a drift in time (a clean quantised low-pass recording read "varies in time at
-    # constant load", issue 12). A double pole plus the white part: (1 - phi z)^2 / (1 - theta z), theta < phi
+    # constant load"). A double pole plus the white part: (1 - phi z)^2 / (1 - theta z), theta < phi
     # (theta = phi cancels to an AR(1)); it must beat the first-order shapes by DOUBLE_POLE_CHI2
     first_order = len(candidates)
     candidates += [(np.array([1.0, -2.0 * phi, phi * phi]), np.array([1.0, -th]))
@@ -465,7 +465,7 @@ def _wander(drawn: np.ndarray) -> float:
 class _Scorer:
     """Generalised least squares of residuals on ONE basis under ONE noise filter: the basis is whitened and
     factored once, so each residual costs two products (structure_test scores ~40 residuals of a recording
-    on the same bases; speed, issue 12's 10,000-row target)."""
+    on the same bases, for speed)."""
 
     def __init__(self, basis: np.ndarray, noise: NoiseModel):
         self.basis = basis
