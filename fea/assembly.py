@@ -15,7 +15,8 @@ element and component at once; the Lame combination and the split into symmetric
 (for the orientation of the global pair) are a fixed (dim^2 x dim^2) map folded into that tensor.
 Global dof numbering is scikit-fem's interleaved vector numbering: dof = dim * scalar_dof + component.
 
-The per-element matmul + np.unique + 9 bincounts it replaces was several times slower (docs/decisions/004-assembly-kernels.md).
+The per-element matmul + np.unique + 9 bincounts it replaces was several times slower
+(docs/decisions/004-assembly-kernels.md).
 """
 from __future__ import annotations
 

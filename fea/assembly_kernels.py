@@ -78,7 +78,7 @@ def block_pattern(element_dofs, n):
     for i in range(n):
         lo = indptr[i]
         c = lo + _neighbours(i, ptr, elems, element_dofs, mark, indices, lo)
-        # insertion sort of the short row (~26 blocks at P2): cheaper than a sort call per row (docs/decisions/004-assembly-kernels.md)
+        # insertion sort of the short row: cheaper than a sort call per row (docs/decisions/004-assembly-kernels.md)
         for q in range(lo + 1, c):
             j = indices[q]
             m = q

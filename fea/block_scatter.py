@@ -36,7 +36,8 @@ def split_matrix(dim: int) -> np.ndarray:
 
 def sorted_groups(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Stable sort of non-negative int64 keys (OVERWRITTEN): (order, group starts in sorted order, unique
-    keys). In place where it can: fresh memory costs page faults the sort itself does not (docs/decisions/004-assembly-kernels.md)."""
+    keys). In place where it can: fresh memory costs page faults the sort itself does not
+    (docs/decisions/004-assembly-kernels.md)."""
     m = keys.size
     bits = max(int(m - 1).bit_length(), 1)
     top = int(keys.max()) if m else 0

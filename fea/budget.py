@@ -1,8 +1,9 @@
 """Element-count estimate of a study's finest mesh, made from the parameters before any CAD or meshing.
 
-A 1e6 mm shaft or ``--mesh-size-mm 1e-6`` asked gmsh for billions of elements and crashed it (docs/decisions/008-element-and-teeth-budget.md).
-The estimate is the part's volume over the volume one element fills, with the through-wall
-size capped by the wall (a thin wall is meshed with at least one layer whatever the global size):
+A 1e6 mm shaft or ``--mesh-size-mm 1e-6`` asked gmsh for billions of elements and crashed it
+(docs/decisions/008-element-and-teeth-budget.md). The estimate is the part's volume over the volume one
+element fills, with the through-wall size capped by the wall (a thin wall is meshed with at least one layer
+whatever the global size):
 
     N ~ C * V / (min(h, t) * h^2)
 
@@ -17,10 +18,10 @@ from dataclasses import dataclass
 
 from ..errors import InputError
 
-# Finest-mesh elements one run may ask for: what the solve fits in a shared 2-core machine's memory (docs/decisions/008-element-and-teeth-budget.md).
+# Finest-mesh elements one run may ask for: what fits a shared 2-core machine (docs/decisions/008-element-and-teeth-budget.md).
 MAX_ELEMENTS = 300_000
 
-# Elements per min(h, t) h^2 cell (min(h, t) h: plane ring), from each study's default meshes (docs/decisions/008-element-and-teeth-budget.md).
+# Elements per min(h, t) h^2 cell (plane ring: min(h, t) h), fitted per study (docs/decisions/008-element-and-teeth-budget.md).
 ELEMENTS_PER_CELL = {"shaft-torsion": 4.7, "cup-torsion": 13.3, "bearing-ring": 10.2, "ring-compression": 0.54}
 
 

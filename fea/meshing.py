@@ -99,7 +99,7 @@ def _size_fields(model, size_mm: float, refine: Sequence[Refine], group_tags: Ma
                     near.append(c)
             if near:
                 model.mesh.field.setNumbers(fd, "CurvesList", near)
-                # samples at most half the target size apart: a fixed count refined long fronts in patches (docs/decisions/005-meshing-algorithm.md)
+                # samples at most half the size apart: a fixed count left gaps (docs/decisions/005-meshing-algorithm.md)
                 longest = max(model.occ.getMass(1, c) for c in near)
                 model.mesh.field.setNumber(fd, "Sampling", int(np.clip(np.ceil(2 * longest / r.size_mm), 100, 20000)))
         tags = [t for g in r.groups for t in group_tags[g]]
@@ -136,7 +136,7 @@ def _options(size_mm: float, optimize_threshold: float = OPTIMIZE_THRESHOLD) -> 
     gmsh.option.setNumber("General.NumThreads", 1)
     gmsh.option.setNumber("Mesh.Optimize", 1)
     gmsh.option.setNumber("Mesh.OptimizeThreshold", optimize_threshold)
-    # setOrder's closing check only logs; _straighten_inverted finds inverted elements itself (docs/decisions/005-meshing-algorithm.md)
+    # setOrder's closing check only logs; _straighten_inverted checks itself (docs/decisions/005-meshing-algorithm.md)
     gmsh.option.setNumber("Mesh.HighOrderSkipQualityCheck", 1)
 
 
@@ -158,7 +158,7 @@ def generate(model, dim: int, order: int, *, size_mm: float, refine: Sequence[Re
         raise MeshingFailed(f"gmsh meshing failed: {exc}") from exc
 
 
-# P2 nodes per vertex, the study meshes' lowest: errs towards not loading the kernels near MIN_DOFS (docs/decisions/005-meshing-algorithm.md).
+# P2 nodes per vertex, the lowest seen: errs towards not loading the kernels (docs/decisions/005-meshing-algorithm.md).
 P2_NODES_PER_VERTEX = 6.0
 
 

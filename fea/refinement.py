@@ -50,7 +50,7 @@ class CrackFrontGrading:
                       dist_max_mm=self.zone_over_a * depth_mm + self.grow_over_h * h_mm, points_mm=front_mm)
 
 
-# Crack compliances converge at the formal order 1 (P2, no quarter-point nodes); an observed one misled (docs/decisions/010-shaft-axisymmetric-crack.md).
+# Formal order 1 for crack compliances: observed orders misled the GCI (docs/decisions/010-shaft-axisymmetric-crack.md).
 CRACK_ORDER_BOUNDS = (1.0, 1.0)
 
 

@@ -16,7 +16,7 @@ from .session import gmsh_session
 from .shaft_axisym import Section, mesh_section, open_crack_line, section_fields, solve_section
 from .skeleton import MeshSolve
 
-# Section wall/8, tip a/80 (quick wall/5, a/40): the tip error is first order and pre-asymptotic at a/40 (docs/decisions/010-shaft-axisymmetric-crack.md).
+# Section wall/8, tip a/80 (quick wall/5, a/40): the tip error is first order (docs/decisions/010-shaft-axisymmetric-crack.md).
 WALL_OVER_H = {False: 8.0, True: 5.0}
 A_OVER_TIP = {False: 80.0, True: 40.0}
 

@@ -104,7 +104,7 @@ def find_faces(solid, face_refs: Iterable[FaceRef], tol: float = 1e-6) -> list:
     """The build123d faces of ``solid`` matching FaceRefs (centre within tol * size, same area)."""
     face_refs = list(face_refs)
     if not face_refs:
-        # the preview asks every part for faces most lack; face_infos is costly on the toothed cup (docs/decisions/015-cad-build-speed.md)
+        # most parts lack the faces the preview asks for; face_infos is costly (docs/decisions/015-cad-build-speed.md)
         return []
     infos = face_infos(solid)
     faces = solid.faces()

@@ -20,7 +20,7 @@ def _boolean(op, a, tools, glue: bool = False):
     op.SetRunParallel(False)      # the machine's two cores are shared; OCC threads do not pay here
     op.SetUseOBB(True)            # oriented boxes prune face pairs better on the 1400-face toothed cup
     if glue:
-        # shapes that only touch on coincident faces: "shift" gluing skips the face/face intersection (docs/decisions/015-cad-build-speed.md)
+        # touching shapes: "shift" gluing skips the face/face intersection (docs/decisions/015-cad-build-speed.md)
         from OCP.BOPAlgo import BOPAlgo_GlueEnum
         op.SetGlue(BOPAlgo_GlueEnum.BOPAlgo_GlueShift)
     op.Build()

@@ -67,7 +67,7 @@ MIN_COMPONENT_SIGMAS = 1.5
 # than this many prior sigmas off: closer, the prior costs that form under one BIC unit, about all another
 # reading of the stiffness could win back (speed)
 REREAD_PRIOR_SIGMAS = 1.0
-MAX_FIT_ROWS = 2500        # model selection on an evenly strided subsample beyond this (speed: docs/decisions/019-diagnose-speed.md)
+MAX_FIT_ROWS = 2500        # model selection on a strided subsample beyond this (docs/decisions/019-diagnose-speed.md)
 # Pairs that cannot be told apart: both are a pure linear compliance change.
 _DEGENERATE = {frozenset({"compliance_offset", "thick_ring"})}
 OFFSET = "compliance_offset"
@@ -208,7 +208,7 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
         raise InputError("--baseline", baseline, "must be analytic or fea")
     base = analytic_baseline(rec, params) if baseline == "analytic" else fea_baseline(rec, params)
     from threadpoolctl import threadpool_limits
-    # The fits are thousands of tiny (N x 4) linear-algebra calls: BLAS threads only add overhead (docs/decisions/019-diagnose-speed.md).
+    # Tiny (N x 4) linear-algebra calls: BLAS threads only add overhead (docs/decisions/019-diagnose-speed.md).
     with threadpool_limits(limits=1):
         return _diagnose(rec, base, usable_workers() if workers is None else workers)
 

@@ -30,7 +30,7 @@ from .noise import KEEP, noise_std
 
 THRESHOLD = 10.0
 STIFFNESS_CHI2 = 6.63     # chi-square(1) at 99 %: 2.58 prior sigmas
-# A structure must beat what a random-walk wander of WANDER_SIGMAS puts at its frequencies (docs/decisions/023-diagnose-noise-model.md).
+# A structure must beat a random-walk wander of WANDER_SIGMAS at its frequencies (docs/decisions/023-diagnose-noise-model.md).
 WANDER_SIGMAS = 2.0
 _TWO_SIDED_KNOTS = (0.0, 0.1, 0.3, 0.55, 0.8, 1.0)
 _ONE_SIDED_KNOTS = (0.0, 0.2, 0.4, 0.6, 0.8, 1.0)
@@ -155,7 +155,7 @@ def _groups(ctx: Context, r: np.ndarray) -> dict[str, tuple[np.ndarray, int, str
     return out
 
 
-# Creep (a held load seen through a first-order lag) needs lag columns; taus 4x apart, in record durations (docs/decisions/023-diagnose-noise-model.md).
+# Creep under held loads needs first-order lag columns; taus 4x apart (docs/decisions/023-diagnose-noise-model.md).
 CREEP_TAUS = (0.01, 0.04, 0.16)
 
 
@@ -360,7 +360,7 @@ def fine_scale_noise(x: np.ndarray) -> NoiseModel:
     return NoiseModel(bb, aa, var)
 
 
-# Sensor noise is never short of slow power: its level above the structures' band bounds it within (docs/decisions/023-diagnose-noise-model.md).
+# Noise above the structures' band bounds the noise within it (docs/decisions/023-diagnose-noise-model.md).
 SLOW_BINS = 8
 SPECTRAL_BANDS = (16, 32)
 SLOW_ALPHA = 0.01

@@ -4,7 +4,7 @@ __all__ = ["Outcome", "run_sweep"]
 
 
 def __getattr__(name: str):
-    # Loaded on first use: workers import this package to unpickle tasks and need no pandas (docs/decisions/013-sweep-worker-start-up.md).
+    # Loaded on first use: workers unpickling tasks need no pandas (docs/decisions/013-sweep-worker-start-up.md).
     if name in __all__:
         from . import pipeline
         return getattr(pipeline, name)

@@ -61,7 +61,7 @@ def start(modules: Sequence[str], env: dict[str, str]) -> bool:
 
 
 def _preload(names: Sequence[str]) -> None:
-    # No cyclic collection while importing: it only walks the growing heap; leftovers are frozen (docs/decisions/013-sweep-worker-start-up.md).
+    # No cyclic collection while importing: it only walks the growing heap (docs/decisions/013-sweep-worker-start-up.md).
     gc.disable()
     try:
         for name in names:

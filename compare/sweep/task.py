@@ -81,7 +81,7 @@ def fea_task(study: str, params, quick: bool, *, crack_depth_mm: float | None = 
 # The default task's libraries, which the pipeline imports inside the functions that use them (so that a
 # closed form or a refused point never pays for them): meshing, assembly and solver, the closed forms.
 FEA_MODULES = ("gmsh", "skfem", "pyamg", "strainwave.analytic.summary")
-# CAD a point builds with, unless its study says otherwise (``cad_modules``): build123d dominates a worker's start (docs/decisions/013-sweep-worker-start-up.md).
+# Default CAD imports; a study's ``cad_modules`` may need less (docs/decisions/013-sweep-worker-start-up.md).
 CAD_MODULES = ("build123d", "strainwave.geometry.parts")
 
 

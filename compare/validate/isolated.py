@@ -27,7 +27,7 @@ from typing import Callable
 
 from ...errors import MaterialWarning
 
-# build123d too: every case builds its part, and importing it in each case's child was slow (docs/decisions/014-validate-case-isolation.md).
+# build123d too: importing it in every case's child was slow (docs/decisions/014-validate-case-isolation.md).
 PRELOAD = ["numpy", "scipy.sparse", "skfem", "gmsh", "pyamg", "build123d", "strainwave.fea.studies",
            "strainwave.params"]
 
@@ -92,7 +92,8 @@ def one_mkl_thread() -> None:
     """MKL (PARDISO) in one thread in this case process, unless the user set MKL_NUM_THREADS.
 
     Cases run two at a time on the two cores (and the STEP export beside them), so a second MKL thread
-    finds no free core: it spins in OpenMP's wait loop and takes CPU from the other case (docs/decisions/014-validate-case-isolation.md).
+    finds no free core: it spins in OpenMP's wait loop and takes CPU from the other case
+    (docs/decisions/014-validate-case-isolation.md).
     MKL is loaded only when a case first solves
     directly (pypardiso), after this; the fork server does not preload it."""
     os.environ.setdefault("MKL_NUM_THREADS", "1")

@@ -229,7 +229,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
             audit = audit_with_evidence(summary.get("audit", []), check_set.by_id(),
                                         shaft_exponent=_shaft_exponent(check_set),
                                         crack_headline=summary.get("crack_headline"))
-        # STEP parts awaited after checks and images (which need none): the export's tail shares the cores (docs/decisions/014-validate-case-isolation.md)
+        # STEP awaited last (checks and images need none), so its tail overlaps them (docs/decisions/014-validate-case-isolation.md)
         with _stage("images", timings, progress, 5, total), deferred_interrupt() as checkpoint, \
                 _shader_cache(out_dir / "cache" / "mesa-shaders"):
             made = make_images(out_dir, book, plan, check_set, summary, progress, params=params,
