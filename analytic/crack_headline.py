@@ -1,4 +1,4 @@
-"""What a crack costs a designer (seed 000's headline), from the crack forms the FEA confirmed (issue 13).
+"""What a crack costs a designer (seed 000's headline), from the crack forms the FEA confirmed.
 
 Seed 000 claims a 1.2 % drop of K_HD from a 0.1 mm crack in each component. With the forms that
 `strainwave validate` confirms against FEA:

@@ -1,7 +1,7 @@
 """Vectorised linear-elasticity stiffness and traction loads.
 
-scikit-fem's stock ``asm(linear_elasticity(...))`` evaluates the vector form per component pair and took
-38 s / 3.5 GB at 297k P2 dofs on this machine. Here, with Q_ab = sum_q w g_ia g_jb the 3x3 outer
+scikit-fem's stock ``asm(linear_elasticity(...))`` evaluates the vector form per component pair, too slow
+and too large at 3D P2 sizes (docs/decisions/004-assembly-kernels.md). Here, with Q_ab = sum_q w g_ia g_jb the 3x3 outer
 product of the SCALAR basis gradients of the local pair (i, j), the stiffness block of the pair is the
 isotropic Hooke law
 
@@ -15,8 +15,8 @@ element and component at once; the Lame combination and the split into symmetric
 (for the orientation of the global pair) are a fixed (dim^2 x dim^2) map folded into that tensor.
 Global dof numbering is scikit-fem's interleaved vector numbering: dof = dim * scalar_dof + component.
 
-Measured (fresh process, 2 shared cores, +-1.5x), curved P2 output shaft: K 2.4-2.6 -> 0.67-0.74 s at
-224k dofs, 14.9-15.1 -> 5.2-6.0 s at 957k (the old per-element matmul + np.unique + 9 bincounts).
+The per-element matmul + np.unique + 9 bincounts it replaces was several times slower
+(docs/decisions/004-assembly-kernels.md).
 """
 from __future__ import annotations
 

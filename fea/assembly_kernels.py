@@ -1,20 +1,16 @@
 """numba kernels of the compiled 3D stiffness path (``assembly.stiffness(..., compiled=True)``).
 
 The numpy path forms every element's pair blocks as one (pairs, ...) array, sorts their keys and sums
-equal keys by a sparse product, then mirrors the upper triangle: at 308k dofs 0.76 s for the blocks,
-0.67 s for the sort and sum, 0.28 s for the mirror, and an (m, 9) array of 245 MB. Here the block
-pattern of the full symmetric matrix comes first (node -> element lists, one marker per row, no global
-sort), then each element adds its pair blocks straight into their places in the upper triangle, and
-one pass copies the transposes below (the matrix is exactly symmetric, as the numpy path's; a diagonal
-pair's Q is formed on a <= b and mirrored, so the diagonal blocks are too).
+equal keys by a sparse product, then mirrors the upper triangle. Here the block pattern of the full
+symmetric matrix comes first (node -> element lists, one marker per row, no global sort), then each
+element adds its pair blocks straight into their places in the upper triangle, and one pass copies the
+transposes below (the matrix is exactly symmetric, as the numpy path's; a diagonal pair's Q is formed on
+a <= b and mirrored, so the diagonal blocks are too).
 
-The scatter is bound by cache misses, not arithmetic (308k dofs, one core: the blocks' arithmetic
-0.08 s, finding the places 0.18 s, adding them 0.45 s). Hence: only the upper blocks are added (both
-triangles: 0.45-0.76 s, upper then the copy: 0.32-0.52 + 0.04 s), and the elements are visited by
-their lowest vertex (0.65 -> 0.50 s in both triangles; random order 0.91 s), so that the rows they
-touch are still in cache from the elements before. The element geometry is computed in the kernel from
-the node positions, not read from ``element_geometry``'s arrays (308k dofs, alternating, load 4.9: P2
-stiffness 0.61-1.10 -> 0.57-0.94 s, P1 0.11-0.23 -> 0.09-0.15 s, and no (3, 3, nq, nel) arrays).
+The scatter is bound by cache misses, not arithmetic: so only the upper blocks are added, the elements
+are visited by their lowest vertex (the rows they touch are still in cache), and the element geometry is
+computed in the kernel from the node positions, not read from ``element_geometry``'s arrays
+(docs/decisions/004-assembly-kernels.md).
 
 Compiled once per machine (``cache=True``) and imported only for systems that load numba anyway (the
 fused p-multigrid's, ``fused_sweeps.MIN_DOFS``): the small systems keep the numpy path.
@@ -82,9 +78,7 @@ def block_pattern(element_dofs, n):
     for i in range(n):
         lo = indptr[i]
         c = lo + _neighbours(i, ptr, elems, element_dofs, mark, indices, lo)
-        # insertion sort of the short row (~26 blocks at P2), cheaper than a sort call per row (0.105-0.125 s
-        # against 0.14-0.165 s at 308k dofs). One neighbour walk serves both passes: 0.12 -> 0.145 s (medians
-        # of 11, 166k nodes, load 3.3) against the walk written out twice, 0.2 % of a 1M-dof run
+        # insertion sort of the short row: cheaper than a sort call per row (docs/decisions/004-assembly-kernels.md)
         for q in range(lo + 1, c):
             j = indices[q]
             m = q
@@ -115,7 +109,7 @@ def add_upper_elasticity_blocks(X, geo_dofs, dG, dN, weights, element_dofs, lam,
 
     The geometry is computed here, element by element, as ``element_gradients.element_geometry`` does
     for all at once (J_cr = sum_k x_ck dG_kr, its inverse by cofactors, g_k = J^-T dN_k): its (3, 3, nq,
-    nel) arrays were fresh memory the machine first had to map (957k dofs: 0.67 s in the bench's process).
+    nel) arrays were fresh memory the machine first had to map (docs/decisions/004-assembly-kernels.md).
     X (n, 3) geometry node positions; geo_dofs (nel, ngeo) and dG (ngeo, 3, nq): the map's nodes and
     reference gradients; dN (nloc, 3, nq) the field's; weights (nq,); element_dofs (nel, nloc). Block of
     the local pair (i, j): with Q_ab = sum_q w |det J| g_ia g_jb, K_ij = lam Q + mu Q^T + mu tr(Q) I,
@@ -218,7 +212,7 @@ def mirror_upper(indptr, indices, data):
 def condense_blocks_in_place(indptr, indices, data, keep):
     """K[keep][:, keep] of a BSR matrix's node blocks (``solver.condense_blocks``: the same entries in
     the same order), written over the front of its own ``indices`` and ``data`` (a kept block never
-    moves back: m <= p), so no fresh memory is mapped for the copy (308k dofs: 190 MB). Returns the
+    moves back: m <= p), so no fresh memory is mapped for the copy. Returns the
     condensed indptr and its block count m; indices[:m], data[:m] are the condensed arrays."""
     n = indptr.size - 1
     new = np.full(n, -1, np.int64)

@@ -137,10 +137,7 @@ def mesh_ring(part, params, *, size_mm, order, refine_points, local_mm, contact_
         raise StageError("mesh", STUDY, f"h = {size_mm:g} mm: {exc}") from exc
 
 
-# Crack-front size floor as a fraction of the finest global size (see crack_front_size_mm). None: the
-# semi-elliptical front is short (~ pi (a + c) / 2), so a/3 is affordable at any depth. Measured (seam,
-# h = 3.33 mm, 3 refinements x 2 solves, 2 shared cores): a = 1.04 mm: 79k dofs, 39 s, delta C
-# 1.49e-8 +- 2.7e-9 mm/N (p = 0.6); a = 0.1 mm: 78k dofs, 22 s, 2.24e-11 +- 1.9e-14 mm/N.
+# No floor: the short semi-elliptical front affords a/3 at any depth (docs/decisions/009-bearing-crack-front-grading.md).
 FRONT_FLOOR_OVER_H = 0.0
 
 

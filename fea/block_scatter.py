@@ -5,9 +5,9 @@ Each contribution is one block C of the pair (I, J) of scalar dofs, given by its
 The global matrix is symmetric, so every contribution is oriented to the upper triangle (I <= J;
 a swapped pair contributes C^T, i.e. the antisymmetric part changes sign), summed there and mirrored.
 
-Why not np.unique + bincount: one np.sort of (key << b | index) packed in an int64 is ~5x faster than
-np.argsort on this machine (AVX2 sort: 0.05 vs 0.21 s for 2.5M keys), and the sum over equal keys is one
-sparse 0/1 matrix times the (m, k) contribution array, which scipy does in one C pass.
+Why not np.unique + bincount: one np.sort of (key << b | index) packed in an int64 is several times faster
+than np.argsort here (AVX2 sort), and the sum over equal keys is one sparse 0/1 matrix times the (m, k)
+contribution array, which scipy does in one C pass (docs/decisions/004-assembly-kernels.md).
 """
 from __future__ import annotations
 
@@ -36,8 +36,8 @@ def split_matrix(dim: int) -> np.ndarray:
 
 def sorted_groups(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Stable sort of non-negative int64 keys (OVERWRITTEN): (order, group starts in sorted order, unique
-    keys). In place where it can: a fresh 92 MB array (11.5M keys, 957k dofs) took 35 ms of page faults
-    here, and memory the VM had not touched before ~2.5 s per GB."""
+    keys). In place where it can: fresh memory costs page faults the sort itself does not
+    (docs/decisions/004-assembly-kernels.md)."""
     m = keys.size
     bits = max(int(m - 1).bit_length(), 1)
     top = int(keys.max()) if m else 0
@@ -124,8 +124,7 @@ def symmetric_matrix(rows: np.ndarray, cols: np.ndarray, B: np.ndarray, n: int, 
     drop them before calling ``.tocsr()``, the peak of the memory. Block row r of the full matrix is its lower
     part (the transposed upper blocks of column r: all left of the diagonal) followed by its upper part,
     so the full block matrix is two block scatters, no merge; then scipy's C++ bsr -> csr.
-    Measured (min of 3-6 on the shared machine): 0.22 s at 224k dofs and 1.0 s at 957k, against
-    0.26 / 2.5 s for scipy's U + U^T and 0.40 / 2.6 s for numpy writing the CSR rows directly."""
+    Faster than scipy's U + U^T or numpy writing the CSR rows directly (docs/decisions/004-assembly-kernels.md)."""
     strict = np.flatnonzero(rows < cols)
     n_up = np.bincount(rows, minlength=n)
     n_lo = np.bincount(cols[strict], minlength=n)

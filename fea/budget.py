@@ -1,8 +1,9 @@
 """Element-count estimate of a study's finest mesh, made from the parameters before any CAD or meshing.
 
-A 1e6 mm shaft or ``--mesh-size-mm 1e-6`` asked gmsh for billions of elements: 8 GB in 35 s, then a
-segfault. The estimate is the part's volume over the volume one element fills, with the through-wall
-size capped by the wall (a thin wall is meshed with at least one layer whatever the global size):
+A 1e6 mm shaft or ``--mesh-size-mm 1e-6`` asked gmsh for billions of elements and crashed it
+(docs/decisions/008-element-and-teeth-budget.md). The estimate is the part's volume over the volume one
+element fills, with the through-wall size capped by the wall (a thin wall is meshed with at least one layer
+whatever the global size):
 
     N ~ C * V / (min(h, t) * h^2)
 
@@ -17,22 +18,14 @@ from dataclasses import dataclass
 
 from ..errors import InputError
 
-# Finest-mesh elements one run may ask for. 300,000 P2 tets are ~1.3 M dofs: ~1 min and ~3 GB for the
-# p-multigrid solve on this 2-core machine (bench_fea: 957k dofs 43.5 s), shared by the three meshes'
-# coarser two (1/2.7 and 1/7.5 of it). Above it a machine shared with other jobs runs out of memory.
+# Finest-mesh elements one run may ask for: what fits a shared 2-core machine (docs/decisions/008-element-and-teeth-budget.md).
 MAX_ELEMENTS = 300_000
 
-# Elements per min(h, t) * h^2 cell (per min(h, t) * h for the plane ring section), measured on the default
-# parameters: shaft h = 8 mm: 4,177 elements vs V/(t h^2) = 882 (4.7); quick cup h = 8.96 mm (4 walls):
-# 16,633 vs 1,251 (13.3: one flattened layer through the wall); bearing ring h = 5 mm: 5,910 vs 581 (10.2,
-# the contact patch is refined); toothed ring section h = delta/4: 12,361 vs 22,984 (0.54: the annulus
-# counted here includes the tooth gaps, and the section is graded away from the rim).
+# Elements per min(h, t) h^2 cell (plane ring: min(h, t) h), fitted per study (docs/decisions/008-element-and-teeth-budget.md).
 ELEMENTS_PER_CELL = {"shaft-torsion": 4.7, "cup-torsion": 13.3, "bearing-ring": 10.2, "ring-compression": 0.54}
 
 
-# Teeth one CAD build may cut. OCC's work grows faster than the tooth count (ring STEP, measured on 2 shared
-# cores: 150 teeth 18 s, 300 teeth 50 s, 640 teeth still running at 300 s; a 10,000-tooth cup at 300 s).
-# 400 teeth keep a build near 1.5 min; the closed forms accept up to the schema's 2000.
+# Teeth one CAD build may cut: OCC's work grows faster than the tooth count (docs/decisions/008-element-and-teeth-budget.md).
 MAX_CAD_TEETH = 400
 # The toothed parts and the tooth-count key each is cut from (the cup study meshes a smooth shell).
 TOOTHED_PARTS = {"flexspline-cup": "flexspline_cup.teeth", "ewg-flexspline-ring": "ewg_drive.flexspline_teeth",

@@ -30,39 +30,16 @@ UNIT = "rad/(N*mm)"
 
 
 def default_size_mm(params, quick: bool) -> float:
-    """Finest global size: 3 walls (4 with --quick). One P2 element through the wall carries the membrane
-    shear of torsion; measured GCI 0.24 % at 2 walls (211k dofs, 64 s), ~1 % at 4 walls."""
+    """Finest global size: 3 walls (4 with --quick): one P2 element through the wall carries the membrane
+    shear of torsion (docs/decisions/012-cup-global-mesh-size.md)."""
     return params.flexspline_cup.wall_thickness_mm * (4.0 if quick else 3.0)
 
 
-# Crack-front grading (refinement.CrackFrontGrading): a/4 at the front on the finest mesh, no floor, uniform
-# within a, growing to h at 2a + 3h. The root crack's front is short (a/sin beta + 2c), so a fine tip is
-# cheap, while a floor of h/16 (0.42 mm) left the 0.1 mm crack as two triangles with every node on the front
-# (delta lambda = 0). Measured (seam, h = 6.72 mm, 3 refinements x 2 solves, 2 shared cores, +-1.5x):
-#   a = 1.12 mm: tip a/2: 109k dofs, 43 s, 2.438e-15 +- 1.1e-16 (p = 3.8 from irregular steps; the a/4
-#     value lies outside that band); a/4: 145k dofs, 50 s, 2.585e-15, equal steps (p = 0.05, GCI 195 %);
-#   a = 0.1 mm: tip a/2: 116k dofs, 70 s, 1.65e-18 +- 1.1e-18; a/4: 154k dofs, 51 s, 1.766e-18 +- 2.4 %.
-# delta lambda ~ a^3.0 between the two depths, as for a 3D crack of fixed aspect ratio (c = 2a).
-# Issue 15, tried and not kept: the uniform zone, not the tip, sets the cost of the shallow cracks (the
-# headline a = 0.1 mm: 225 CPU-s, 378k dofs on the finest mesh; PARDISO's fill grows with the tip-sized
-# elements, a tube of radius a around the front). Tip a/5 uniform within a/2 cut validate's cup cases by a
-# third (0.1 mm: 214 -> 131 CPU-s; 0.14 mm 127 -> 79; 0.396 mm 36 -> 26; full validate alone 287 -> 197 s),
-# all 13 verdicts the same on both shipped gears and most delta lambda_f GCIs tighter (6.99 -> 6.02 %,
-# 7.50 -> 6.19 %), but the second gear's headline lambda_f GCI widened 0.100 -> 0.140 % (gear.stiffness's
-# uncertainty +40 %) and its a = 0.7 mm delta 6.08 -> 6.33 %: issue 15 asks every GCI to stay or tighten.
-# How much of such a move is the mesh's realisation: at a = 1.12 mm (h = 8.96) the uniform zone a -> 0.99a
-# -> 0.98a moved delta lambda_f's GCI 5.39 -> 5.98 -> 6.61 % and lambda_f's 0.230 -> 0.224 -> 0.236 %;
-# on the second gear's headline 0.99a gave 0.094 % (0.100 at a), so 0.140 % is more than realisation.
-# Single-precision PARDISO (iparm(28) = 1) fails on these matrices (zero pivot, -4), scaled or not.
+# Tip a/4, no floor, uniform within a: shallow cracks need it (docs/decisions/001-cup-crack-front-grading.md).
 CRACK_FRONT = CrackFrontGrading(tip_over_a=0.25, floor_over_h=0.0, near_over_a=1.0, zone_over_a=2.0, grow_over_h=3.0)
 
 
-# Elements of 7 walls or more are necessarily flat through the wall: gmsh's optimiser (threshold 0.3)
-# cannot lift them and spent 2.6 s of CPU on the --quick coarsest mesh (h = 17.6 mm = 7.8 walls; 0.17 s at
-# 0.1) for the same worst element (min SICN 0.0021). Only that mesh is so coarse (quick: 4, 5.6, 7.8 walls;
-# full: 3, 4.2, 5.9): the finer values are unchanged and the GCIs did not widen (quick, a = 1.12 mm:
-# lambda_f 0.261 -> 0.230 %, delta lambda_f 5.386 % both). At 0.1 on every mesh delta lambda_f's GCI widened
-# (5.392 %), so the finer meshes keep the default.
+# Elements of 7+ walls stay flat: optimising them is wasted time (docs/decisions/012-cup-global-mesh-size.md).
 COARSE_OVER_WALL = 7.0
 COARSE_OPTIMIZE_THRESHOLD = 0.1
 
@@ -77,8 +54,7 @@ def solve_mesh(md, params, *, progress=lambda m: None) -> tuple[float, StaticSol
     mat = params.material
     sol = solve_static(md, Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio), fixed={"fixed": 0.0},
                        tractions={"loaded": uniform_tangential_traction(1.0, 1.0)}, study=STUDY, progress=progress,
-                       # thin walls: the matrix graph is nearly 2D, so Cholesky fill stays small, while
-                       # AMG-CG needed 470-800 iterations (measured at 37k-54k dofs)
+                       # thin walls: nearly 2D graph, cheap to factor (docs/decisions/003-direct-vs-multigrid-solver.md)
                        method="direct")
     torque = moment_arm_mm3(sol, "loaded")     # moment of the unit tangential shear
     return mean_rotation_rad(sol, "loaded") / torque, sol, torque

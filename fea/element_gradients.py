@@ -6,7 +6,7 @@ element's geometry nodes, J_cr = sum_k x_ck dN_k/dxi_r, its 3x3 (2x2) inverse is
 cofactors, and the physical gradients are g_k = J^-T dN_k. Element-last arrays make every step a long
 contiguous vector operation. Local dof order is scikit-fem's: vertices, then the P2 edge nodes
 01 12 02 03 13 23 (tets) / 01 12 02 (triangles).
-Measured: 45.5k curved P2 tets (224k dofs), 4 points: 0.03 s here vs 0.5 s for skfem's CellBasis.
+Much faster than skfem's CellBasis for the same numbers (docs/decisions/004-assembly-kernels.md).
 """
 from __future__ import annotations
 

@@ -1,7 +1,7 @@
 """The p-multigrid's fine level in two passes over the matrix per CG iteration instead of four.
 
 A CG iteration with the V-cycle (forward Gauss-Seidel from zero, residual, coarse correction, backward
-Gauss-Seidel; then the CG product A p) read the 76.6M-entry fine matrix of the 957k-dof shaft four times.
+Gauss-Seidel; then the CG product A p) read the fine matrix four times (docs/decisions/006-fused-sweeps.md).
 Two facts of a symmetric matrix A = L + D + U (U = L^T) remove two of those passes:
 
 - a forward sweep from x = 0 reads only L and solves (D + L) x = b, so the residual b - A x is -U x;
@@ -14,10 +14,9 @@ Two facts of a symmetric matrix A = L + D + U (U = L^T) remove two of those pass
 The sums run in four interleaved partial sums: one chain of dependent additions per row is what bounded
 the plain loop (a row of ~80 entries, ~4 cycles per addition), not memory. The backward sweep walks the
 arrays from the end to the start (rows and entries) so that every stream runs one way, as the hardware
-prefetcher wants: pyamg's backward sweep (rows backwards, entries forwards) took 2.3-2.6x its forward one.
-Per CG iteration on that matrix (one core, medians): forward sweep + residual 0.095 + 0.09 s -> 0.085 s,
-backward sweep + CG product 0.10 + 0.08 s -> 0.10 s. The sums differ from pyamg's and scipy's only in
-their order (round-off), so the V-cycle is the same preconditioner.
+prefetcher wants (pyamg's backward sweep, rows backwards and entries forwards, is much slower than its
+forward one). The sums differ from pyamg's and scipy's only in their order (round-off), so the V-cycle
+is the same preconditioner.
 
 The kernels are ``sweep_kernels`` (numba).
 """
@@ -30,11 +29,7 @@ import scipy.sparse as sp
 
 __all__ = ["FineSweeps", "MIN_DOFS", "warm_up", "warm_up_assembly"]
 
-# Free dofs from which solve_elasticity takes the fused fine level (and solve_static warms the kernels
-# up). The sweeps save ~0.035 s per CG iteration per 100k dofs (~0.8 s per solve at 100k); numba's
-# load costs 0.3 s of CPU in a process that has imported the FEA stack (1.6 s in a bare one, 2.9 s the
-# first time on a machine, when it compiles). The crossover was not measured finer: 100k keeps every
-# validate --quick case and the sweeps' quick points on pyamg's smoothers, without numba.
+# Free dofs from which the fused fine level repays numba's load (docs/decisions/006-fused-sweeps.md).
 MIN_DOFS = 100_000
 
 def _kernels():
@@ -51,15 +46,10 @@ _assembly_thread: threading.Thread | None = None
 def warm_up() -> None:
     """Load numba and the kernels in a background thread, once per process.
 
-    With the kernels cached on disk, a bare process pays ~1.6 s before the first sweep (numba's import
-    0.6 s, its typing and lowering registries on the first call of any jitted function 0.9-1.0 s, partly
-    importing scipy.linalg), one that has imported the FEA stack 0.3 s: all Python, holding the global
-    lock. ``static.solve_static`` starts it once the assembly's own numba kernels are loaded (they run
+    With the kernels cached on disk, numba's import and its first-call registries are all Python, holding the
+    global lock. ``static.solve_static`` starts it once the assembly's own numba kernels are loaded (they run
     without the lock, so the two overlap), the bearing study before its assembly, for systems that will
-    take the fused path. Started instead once gmsh had made the linear mesh (beside setOrder
-    and the optimiser, C++ with the lock released) it was not faster: 308k dofs end to end 5.86 s
-    against 5.65 s beside the assembly (medians of 5 alternating pairs, load 3.0-3.3; the mesh took
-    0.3-0.8 s longer)."""
+    take the fused path; started beside gmsh's setOrder instead it was not faster (docs/decisions/006-fused-sweeps.md)."""
     global _warm_thread
     if _warm_thread is None:
         _warm_thread = threading.Thread(target=_call_each_kernel, name="strainwave-sweep-warm-up", daemon=True)
@@ -70,12 +60,8 @@ def warm_up_assembly() -> None:
     """Load the assembly's kernels (``assembly_kernels.load``) in a background thread, once per process.
 
     The mesher starts it beside gmsh's setOrder (C++, the interpreter lock released) for a tetrahedral mesh
-    that will reach MIN_DOFS, so that the assembly finds them loaded instead of paying their load (0.37-0.83 s
-    of Python) itself; ``static.load_assembly_kernels`` waits for the import if it is still running. 957k
-    dofs on a quiet machine (load about 1), alternating with the code before: 7 pairs of a first form (no
-    preload_kernels switch), end to end 14.87 -> 14.28 s (medians; faster in 5 of 7 pairs), assembly
-    2.54-3.43 -> 2.18-3.26 s; 4 pairs of this form, 14.84 -> 14.47 s, assembly 3.13-3.26 -> 2.83-2.90 s;
-    the mesh unchanged in both (4.2-4.9 s)."""
+    that will reach MIN_DOFS, so that the assembly finds them loaded instead of paying their load itself;
+    ``static.load_assembly_kernels`` waits for the import if it is still running (docs/decisions/006-fused-sweeps.md)."""
     global _assembly_thread
     if _assembly_thread is None:
         _assembly_thread = threading.Thread(target=_load_assembly_kernels, name="strainwave-assembly-warm-up",

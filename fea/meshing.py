@@ -99,8 +99,7 @@ def _size_fields(model, size_mm: float, refine: Sequence[Refine], group_tags: Ma
                     near.append(c)
             if near:
                 model.mesh.field.setNumbers(fd, "CurvesList", near)
-                # samples at most half the target size apart: a fixed 100 left the 219 mm seam front of
-                # the shaft (size 0.26 mm) refined in patches (node gaps up to 2x the size, measured)
+                # samples at most half the size apart: a fixed count left gaps (docs/decisions/005-meshing-algorithm.md)
                 longest = max(model.occ.getMass(1, c) for c in near)
                 model.mesh.field.setNumber(fd, "Sampling", int(np.clip(np.ceil(2 * longest / r.size_mm), 100, 20000)))
         tags = [t for g in r.groups for t in group_tags[g]]
@@ -132,15 +131,12 @@ def _options(size_mm: float, optimize_threshold: float = OPTIMIZE_THRESHOLD) -> 
     gmsh.option.setNumber("Mesh.MeshSizeMin", 0.0)
     gmsh.option.setNumber("Mesh.SecondOrderLinear", 0)     # mid nodes on the true geometry
     gmsh.option.setNumber("Mesh.Algorithm", 6)             # Frontal-Delaunay 2D
-    # HXT in one thread (deterministic): on the 238k-dof shaft 1.4 s against Delaunay's 2.6 s, and a
-    # better worst element (min SICN 0.33 vs 0.23). Two threads gave 1.1 s but thread-dependent meshes.
+    # HXT in one thread: faster than Delaunay, a better worst element, and deterministic (docs/decisions/005-meshing-algorithm.md)
     gmsh.option.setNumber("Mesh.Algorithm3D", 10)
     gmsh.option.setNumber("General.NumThreads", 1)
     gmsh.option.setNumber("Mesh.Optimize", 1)
     gmsh.option.setNumber("Mesh.OptimizeThreshold", optimize_threshold)
-    # setOrder's closing quality check only logs the worst Jacobian (inverted elements are found and fixed
-    # by _straighten_inverted's own minSJ): the same mesh bit for bit, setOrder 2.6-3.2 -> 2.2-2.5 s at
-    # 957k dofs (2 alternating pairs, load 3.9-4.4)
+    # setOrder's closing check only logs; _straighten_inverted checks itself (docs/decisions/005-meshing-algorithm.md)
     gmsh.option.setNumber("Mesh.HighOrderSkipQualityCheck", 1)
 
 
@@ -162,8 +158,7 @@ def generate(model, dim: int, order: int, *, size_mm: float, refine: Sequence[Re
         raise MeshingFailed(f"gmsh meshing failed: {exc}") from exc
 
 
-# P2 nodes per vertex of a tetrahedral mesh, the low end of those measured (thin-walled cup 5.9, output shaft
-# 6.5-6.9): the dof estimate errs towards not loading the kernels near MIN_DOFS, where they save least
+# P2 nodes per vertex, the lowest seen: errs towards not loading the kernels (docs/decisions/005-meshing-algorithm.md).
 P2_NODES_PER_VERTEX = 6.0
 
 
@@ -232,7 +227,7 @@ def extract(model, dim: int, order: int, group_tags: Mapping[str, tuple[int, lis
     k = list(etypes).index(want)
     cell_tags = etags[k]
     cells = tag_to_row[enodes[k]].reshape(cell_tags.size, -1)
-    # the sorted used rows by a mask: np.unique's hash took 0.19 s on 64k P2 tets (308k dofs), this 0.01 s
+    # the sorted used rows by a mask, far cheaper than np.unique's hash (docs/decisions/005-meshing-algorithm.md)
     used = np.flatnonzero(np.bincount(cells.ravel(), minlength=node_tags.size))
     compact = np.full(node_tags.size, -1, dtype=np.int64)
     compact[used] = np.arange(used.size)

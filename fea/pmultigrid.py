@@ -1,11 +1,9 @@
 """p-multigrid for quadratic elements: the P2 system's first coarse level is P1 on the same mesh.
 
 Smoothed aggregation struggles with P2 stiffness matrices: their graph mixes vertex and mid-edge
-couplings of very different strength, and on the 238k-dof shaft it needed 85 CG iterations. Linear
-interpolation from the vertices (P1 -> P2, exact for linear fields) gives a geometric coarse level
-with 1/7 of the unknowns on which the same aggregation works as designed. Measured on that system
-(benchmarks/bench_fea.py, one core): SA alone 17.6 s / 85 its (theta 0), 9.8 s / 32 its (theta
-0.05); P2 -> P1 -> SA 6.1 s / 26 its (theta 0.02), with a setup of 1.5 s.
+couplings of very different strength. Linear interpolation from the vertices (P1 -> P2, exact for linear
+fields) gives a geometric coarse level with 1/7 of the unknowns on which the same aggregation works as
+designed (docs/decisions/018-multigrid-settings.md).
 """
 from __future__ import annotations
 
@@ -31,8 +29,7 @@ def p1_prolongation(element_dofs: np.ndarray) -> tuple[sp.csr_matrix, int]:
     mids = np.concatenate([element_dofs[nvloc + k] for k in range(nloc - nvloc)])
     a = np.concatenate([element_dofs[i] for i, _ in EDGE_VERTICES[nloc]])
     b = np.concatenate([element_dofs[j] for _, j in EDGE_VERTICES[nloc]])
-    # each mid dof's first occurrence, as np.unique(mids, return_index=True) gives it, by one scatter in
-    # reverse (the earliest write lands last) instead of a sort: 0.25 s -> 0.03 s at 1M dofs
+    # each mid dof's first occurrence by one reverse scatter (the earliest write lands last): no sort needed
     first = np.full(n, -1, np.int64)
     first[mids[::-1]] = np.arange(mids.size - 1, -1, -1)
     mids = np.flatnonzero(first >= 0)
@@ -60,8 +57,7 @@ def vector_prolongation(scalar: sp.csr_matrix, dim: int, free: np.ndarray) -> tu
 def v_cycle(levels, coarse_solver):
     """One V-cycle from a zero guess over pyamg ``levels`` (A, P, R, pre/postsmoother): a symmetric
     preconditioner r -> z for ``pcg``. pyamg's own ``solve(maxiter=1)`` also computes the residual norm
-    before and after every cycle: 75 of the 123 fine-level products of a 24-iteration solve (300k-dof
-    shaft), about a quarter of the solve."""
+    before and after every cycle, a large share of the solve (docs/decisions/018-multigrid-settings.md)."""
     last = len(levels) - 1
 
     def cycle(b: np.ndarray, k: int = 0) -> np.ndarray:

@@ -50,12 +50,7 @@ class CrackFrontGrading:
                       dist_max_mm=self.zone_over_a * depth_mm + self.grow_over_h * h_mm, points_mm=front_mm)
 
 
-# Order of crack compliances (delta lambda, delta u): P2 without quarter-point nodes resolves the r^1/2
-# tip field at O(tip size), so the formal order is 1 and the GCI uses it (Roache's advice when the observed
-# order is erratic). Issue 13: the former bounds [0.5, 2] accepted p = 1.6 for the shaft crack and stated
-# GCI 0.24 % at a = 0.781 mm while an independent converged solve lay 0.5 % above. Measured on the
-# axisymmetric shaft at that depth, tip a/40 -> a/80 -> a/160 -> a/320: 8.361, 8.379, 8.390, 8.394e-13
-# (steps shrink by 0.56, 0.42: order ~1); the seam sweeps gave p = 0.05 and 6.2 from irregular steps.
+# Formal order 1 for crack compliances: observed orders misled the GCI (docs/decisions/010-shaft-axisymmetric-crack.md).
 CRACK_ORDER_BOUNDS = (1.0, 1.0)
 
 

@@ -172,8 +172,7 @@ class RingCompression(StudyVariant):
             q[key] = smooth.converged(key, "MPa")
         q["toothed_force_for_W0_N"] = toothed.converged("toothed_force_for_W0_N", "N", toothed.values("force_for_W0_N"))
         q["toothed_ewg_force_N"] = toothed.converged("toothed_ewg_force_N", "N", toothed.values("ewg_force_N"))
-        # 3D solid (fea/ring_solid.py), in --quick too: 1.0 + 1.7 + 2.1 s for 2, 3, 4 layers (measured), and the
-        # same meshes in both runs, so ring.delta_cd_3d reads the same number in both
+        # 3D solid in --quick too: cheap, and the same number in both runs (docs/decisions/011-ring-meshes.md)
         q["delta_cd_3d_mm"] = solid.converged("delta_cd_3d_mm", "mm")
         q["delta_ab_3d_mm"] = solid.converged("delta_ab_3d_mm", "mm")
         return q
@@ -258,10 +257,7 @@ def run(params, *, force_N: float, w0_mm: float, mesh_size_mm=None, order=2, cra
     if crack_depth_mm is not None:
         raise InputError("--crack-depth-mm", crack_depth_mm, f"study {STUDY} meshes a ring without a crack; leave it out")
     geo = ring_geometry(params)
-    # The smooth ring is cheap (2.9 to 4.4 s a mesh at delta/4), and its fibre stresses are sampled on the
-    # boundary, where one or two P2 elements across the rim are 0.6 % off (sigma_B outer 153.31 MPa at
-    # delta/1.5 and 153.29 at delta, non-monotone, against 152.44 at delta/4 and Winkler-Bach 152.4): it is
-    # always solved on the full run's meshes, so --quick and the full run check the same numbers.
+    # Always the full run's meshes: cheap, and coarser ones miss the boundary stresses (docs/decisions/011-ring-meshes.md)
     variant = RingCompression(params, order, float(force_N), float(w0_mm), mesh_sizes_mm(geo, mesh_size_mm, quick),
                               mesh_sizes_mm(geo, mesh_size_mm, False))
     return run_variant(variant, vtu=vtu, progress=progress)

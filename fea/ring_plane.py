@@ -132,8 +132,7 @@ def mesh_ring_section(face, geo: RingGeometry, load: ArcLoad, *, size_mm: float,
     # the predicate sees points sampled along each curve (meshing._match): the contact arcs lie wholly
     # within |x| < arc length, on the outer side of the mid-layer
     contact = lambda pts: bool(np.all(np.abs(pts[:, 0]) < arc_mm) and np.all(np.abs(pts[:, 1]) > geo.r_m_mm))  # noqa: E731
-    # A fixed load-zone size (arc/8) in all three meshes: scaling it with h (tried: h/2) made the smooth
-    # ring's D fibres monotone but the toothed ring's root peaks near D oscillate by 1.4 % (K_sigma GCI 73 %)
+    # A fixed load-zone size (arc/8): scaled with h, the toothed ring's root peaks oscillated (docs/decisions/011-ring-meshes.md)
     refine = Refine(size_mm=min(size_mm, arc_mm / 8), dist_min_mm=arc_mm, dist_max_mm=6 * geo.thickness_mm,
                     points_mm=((0.0, r_o, 0.0), (0.0, -r_o, 0.0)))
     with gmsh_session() as model:

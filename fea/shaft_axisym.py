@@ -10,8 +10,8 @@ measure are those of ``shaft_torsion``: the Saint-Venant end shear tau = T r / J
 fixed, twist = area-weighted mean rotation of the loaded end. Uncracked, psi = T z / (G J) is in the
 P2 space, so the flexibility is exact to round-off.
 
-The point: a 3D seam mesh must resolve the tip along the whole 219 mm front (260k dofs at a = 0.1 mm
-and still no converged delta); here the tip is a point and a/20 costs a few thousand dofs.
+The point: a 3D seam mesh must resolve the tip along the whole front; here the tip is a point, and a/20
+costs a few thousand dofs (docs/decisions/010-shaft-axisymmetric-crack.md).
 """
 from __future__ import annotations
 

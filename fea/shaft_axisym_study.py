@@ -3,10 +3,7 @@
 The skeleton (``fea/skeleton.py``) runs this as the shaft study's second series beside the 3D uncracked
 one (``shaft_torsion.ShaftTorsion``): each refinement meshes the section once with the crack line embedded
 and solves it closed and opened (``shaft_axisym``), refining the global size and the tip size together so
-the GCI sees the tip converge. Sizes and their cost, measured on the default shaft
-(a = 0.1 / 0.78 / 3.13 / 6.25 mm, global h 2 -> 1 mm, tip a/20 -> a/40): delta lambda 1.348 -> 1.360e-14,
-8.228 -> 8.297e-13, 1.379 -> 1.395e-11, 6.266 -> 6.331e-11, at 3-15k nodes and 0.2-0.5 s per mesh (the 3D
-seam: 1.344e-11 +- 5.5 % at a = 3.13 mm, 381k dofs, 86 s; tests/test_fea_shaft_axisym.py checks that band).
+the GCI sees the tip converge, at a small fraction of the 3D seam's cost (docs/decisions/010-shaft-axisymmetric-crack.md).
 """
 from __future__ import annotations
 
@@ -19,11 +16,7 @@ from .session import gmsh_session
 from .shaft_axisym import Section, mesh_section, open_crack_line, section_fields, solve_section
 from .skeleton import MeshSolve
 
-# Finest section size (wall / 8) and tip size (a / 80; --quick a / 40): the tip error of P2 without
-# quarter-point nodes is first order in the tip size and still pre-asymptotic at a / 40, so the tip is graded
-# hard and the GCI uses the formal order 1 (issue 13). Measured at a = 0.781 mm against an independent
-# converged 8.393e-13: tip a/40: 8.353e-13, GCI 0.43 % (0.48 % low); a/80: 8.374e-13, GCI 0.30 % (0.22 % low,
-# Richardson 8.395e-13); a/80 costs 12k nodes and 3 s for three meshes.
+# Section wall/8, tip a/80 (quick wall/5, a/40): the tip error is first order (docs/decisions/010-shaft-axisymmetric-crack.md).
 WALL_OVER_H = {False: 8.0, True: 5.0}
 A_OVER_TIP = {False: 80.0, True: 40.0}
 

@@ -38,17 +38,7 @@ def default_size_mm(params, quick: bool) -> float:
     return params.output_shaft.wall_mm / (1.0 if quick else 1.5)
 
 
-# Crack-front grading (refinement.CrackFrontGrading): a/6 at the finest mesh, floor h/32, uniform within
-# a/2, graded zone 3a + h. Measured on the shaft (seam, h = 8.33 mm, 3 refinements x 2 solves, 2 shared
-# cores, +-1.5x):
-#  a = 3.13 mm: tip a/2 fixed (not refined with h), zone a + 3h: 87k dofs, 18 s, 1.218e-11 +- 0.5 %, but
-#    the GCI missed the tip error: refined tips give 1.34e-11; tip a/2 scaled: 62k dofs, p = 0.3, GCI 69 %;
-#    a/4: 175k dofs, p = 0.05 (equal steps, GCI useless); a/6: 381k dofs, 86 s, 1.344e-11 +- 5.5 %, p = 1.1
-#    (the O(tip) singularity error of P2 without quarter-point elements);
-#  a = 0.78 mm (floor a/3): 267k dofs, 64 s, 7.58e-13 +- 7.6 %, p = 1.6;
-#  a = 0.1 mm (floor, 0.26 mm): zone a + 3h: 606k dofs, 227 s, 8.08e-15 +- 3.5e-15; zone a + h: 190k dofs,
-#    58 s, 7.97e-15 +- 2.7e-15 (extrapolated 1.01e-14). Floor h/16: 324k dofs, 5.98e-15 +- 1.35e-14.
-# The seam leaves no far-field noise to grade away, so a narrow zone costs nothing in accuracy.
+# Tip a/6, floor h/32, narrow zone: coarser tips hide the tip error (docs/decisions/002-shaft-crack-front-grading.md).
 CRACK_FRONT = CrackFrontGrading(tip_over_a=1.0 / 6.0, floor_over_h=1.0 / 32.0, near_over_a=0.5, zone_over_a=3.0,
                                 grow_over_h=1.0)
 
@@ -140,7 +130,7 @@ class ShaftTorsion(TorsionVariant):
     def build(self):
         if self.seam:
             return _build_seam(self.params, self.crack_depth_mm)
-        # a bare OCC solid: an uncracked point imports no build123d (a sweep worker's start, ~2.3 s)
+        # a bare OCC solid: an uncracked point imports no build123d (docs/decisions/013-sweep-worker-start-up.md)
         from strainwave.geometry.output_shaft import build_bare
         return build_bare(self.params)
 

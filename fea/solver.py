@@ -1,9 +1,7 @@
 """Solve K u = f with Dirichlet conditions: sparse direct for small systems, AMG-preconditioned CG above.
 
-Measured on this machine (issue 4): scipy's default sparse direct solve needed 619 s / 19.6 GB at 297k
-P2 dofs, CG with smoothed-aggregation AMG (pyamg) using the rigid-body modes as near-nullspace 25 s,
-and without those modes AMG took 5-10x more iterations. ``DIRECT_MAX_DOFS`` is the crossover measured
-by benchmarks/bench_fea.py (see its output); below it SuperLU is both faster and exact.
+A sparse direct solve does not scale to 3D P2 systems, and AMG needs the rigid-body modes as near-nullspace
+(docs/decisions/003-direct-vs-multigrid-solver.md).
 """
 from __future__ import annotations
 
@@ -19,17 +17,9 @@ import scipy.sparse.linalg as spla
 
 from ..errors import StageError
 
-# Crossover for plain smoothed aggregation (P1, 2D), from benchmarks/bench_fea.py: PARDISO beats it up
-# to about this size. For 3D P2 the p-multigrid wins at every size measured on the shaft (solve s,
-# PARDISO vs p-MG): 6.6k dofs 1.07 vs 0.21, 11.8k 1.12 vs 0.24, 25k 1.33 vs 0.49, 59k 2.83 vs 1.27,
-# so "auto" uses it for all 3D P2 systems. Thin-walled parts (the flexspline cup) pass method="direct":
-# their graph is nearly 2D (94k dofs: PARDISO 4.0 s, p-MG 10.7 s / 118 iterations).
+# Direct below this size for plain SA (P1, 2D); 3D P2 always p-multigrid (docs/decisions/003-direct-vs-multigrid-solver.md).
 DIRECT_MAX_DOFS = 60_000
-# Relative residual for CG. The compliance error is quadratic in the residual: with the p-multigrid
-# on the 224k-dof shaft, against rtol 1e-10 (31 iterations) the compliance f.u moved by 1e-13 at
-# 1e-8 (26), 5e-14 at 1e-7 (23) and 2e-14 at 1e-6 (21) - round-off. The smallest crack effect solved
-# iteratively is the bearing's 0.1 mm crack, delta C / C = 4e-5, 1e8 times larger; 1e-7 keeps a
-# decade of margin on the 1e-6 the measurements allow (stress fields are linear in the error).
+# CG residual: the compliance error is quadratic in it, so 1e-7 is round-off (docs/decisions/017-cg-tolerance.md).
 DEFAULT_RTOL = 1e-7
 
 
@@ -100,7 +90,7 @@ def solve_elasticity(K: sp.spmatrix, f: np.ndarray, *, fixed_dofs: np.ndarray, f
     mask = np.ones(N, bool)
     mask[fixed] = False
     free = np.flatnonzero(mask)
-    # all prescribed values zero (clamps): b = f[free] without the product K u (0.09 s at 1M dofs)
+    # all prescribed values zero (clamps): b = f[free], no product K u (docs/decisions/020-condensation-in-node-blocks.md)
     b = (f - K @ u)[free] if np.any(u[fixed]) else np.asarray(f, float)[free]
     Kff_blocks = None
     node_mask = mask.reshape(-1, dim) if N % dim == 0 else None
@@ -119,9 +109,7 @@ def solve_elasticity(K: sp.spmatrix, f: np.ndarray, *, fixed_dofs: np.ndarray, f
     from .fused_sweeps import MIN_DOFS
     fused = method == "amg" and p2_element_dofs is not None and dim == 3 and free.size >= MIN_DOFS
     if Kff_blocks is not None:
-        # the fused fine level sweeps the blocks as they are (no CSR copy: ~1 s and 0.9 GB at 1M dofs);
-        # the other paths take CSR, and keep the blocks for the Galerkin product unless p1_stiffness
-        # makes the coarse operator
+        # no CSR copy for the fused sweeps; blocks kept for the Galerkin product (docs/decisions/006-fused-sweeps.md)
         Kff = Kff_blocks if fused else Kff_blocks.tocsr()
         if fused or p1_stiffness is not None:
             Kff_blocks = None
@@ -131,8 +119,7 @@ def solve_elasticity(K: sp.spmatrix, f: np.ndarray, *, fixed_dofs: np.ndarray, f
         its = 1
     else:
         from .pmultigrid import pcg, pcg_with_products, v_cycle, v_cycle_fused
-        # handed over in a list so that the hierarchy frees the blocks after its Galerkin product, before
-        # the rest of its set-up (0.7 GB less at the peak, 1M dofs)
+        # in a list, so the hierarchy frees the blocks after its Galerkin product (docs/decisions/020-condensation-in-node-blocks.md)
         blocks = [Kff_blocks]
         del Kff_blocks
         ml = _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs, blocks, p1_stiffness, fused=fused,
@@ -155,11 +142,10 @@ def solve_elasticity(K: sp.spmatrix, f: np.ndarray, *, fixed_dofs: np.ndarray, f
 def condense_blocks(K: sp.bsr_matrix, keep_nodes: np.ndarray, *, in_place: bool = False) -> sp.bsr_matrix:
     """K[keep][:, keep] of a square BSR matrix whose kept dofs come in whole blocks (node blocks).
 
-    The same entries, in the same order, as ``condense`` of K's CSR: one filter of the blocks instead
-    of the scalar entries. 957k-dof shaft (9.6M blocks, one core): K -> CSR 0.2 s + ``condense`` 2.4 s,
-    against this 0.5 s + the condensed BSR -> CSR 0.2 s; the blocks also serve the Galerkin product.
-    ``in_place``: formed over K's own arrays by a numba kernel (K is lost; numba must be wanted anyway):
-    the copy of the blocks was mostly the cost of mapping fresh memory."""
+    The same entries, in the same order, as ``condense`` of K's CSR: one filter of the blocks instead of
+    the scalar entries, and the blocks also serve the Galerkin product (docs/decisions/020-condensation-in-node-blocks.md).
+    ``in_place``: formed over K's own arrays by a numba kernel (K is lost; numba must be wanted anyway),
+    because mapping fresh memory was most of a copy's cost."""
     if in_place:
         from .assembly_kernels import condense_blocks_in_place
         indptr, m = condense_blocks_in_place(K.indptr, K.indices, K.data, np.ascontiguousarray(keep_nodes, bool))
@@ -183,8 +169,8 @@ def condense_blocks(K: sp.bsr_matrix, keep_nodes: np.ndarray, *, in_place: bool 
 def condense(K: sp.csr_matrix, keep: np.ndarray) -> sp.csr_matrix:
     """K[keep][:, keep] of a square CSR matrix by one boolean filter of its entries.
 
-    scipy's fancy indexing does rows and columns in two passes with index copies: 0.87-1.36 s against
-    0.23-0.72 s here for the 300k-dof shaft (23.6M entries, CPU time, 2 shared cores)."""
+    scipy's fancy indexing does rows and columns in two passes with index copies, slower
+    (docs/decisions/020-condensation-in-node-blocks.md)."""
     counts = np.diff(K.indptr)
     entry_kept = np.repeat(keep, counts) & keep[K.indices]
     starts = np.minimum(K.indptr[:-1], max(K.nnz - 1, 0))       # reduceat needs in-range starts
@@ -195,10 +181,7 @@ def condense(K: sp.csr_matrix, keep: np.ndarray) -> sp.csr_matrix:
     return sp.csr_matrix((K.data[entry_kept], new[K.indices[entry_kept]], indptr), shape=(per_row.size,) * 2)
 
 
-# Symmetric-strength threshold of the aggregation. theta = 0 aggregates across every coupling and
-# needed 85 iterations on the 238k-dof P2 shaft; 0.02 drops the weak P2 couplings: 42 (plain SA) and
-# 26 (P2 -> P1 -> SA), at the same operator complexity (1.10). 0.05 saves 3 more iterations but
-# its setup costs more than they save; 0.1 adds a level and doubles the setup.
+# Strength 0.02 drops the weak P2 couplings at the least cost (docs/decisions/018-multigrid-settings.md).
 STRENGTH_THETA = 0.02
 MAX_COARSE = 500          # unknowns of the last level, solved by splu
 
@@ -230,12 +213,9 @@ def _sa_solver(pyamg, A, B):
     return pyamg.smoothed_aggregation_solver(
         A, B=B, symmetry="hermitian", strength=("symmetric", {"theta": STRENGTH_THETA}),
         smooth="jacobi", max_coarse=MAX_COARSE, coarse_solver="splu",
-        # the rigid-body modes are the exact near-nullspace: relaxing them first halved the setup
-        # (9.5 -> 4.7 s, 150k) for 0 iterations
+        # the rigid-body modes are the exact near-nullspace: no need to relax them (docs/decisions/018-multigrid-settings.md)
         improve_candidates=None,
-        # one forward GS sweep before, one backward after: a symmetric V-cycle at 1/3 the cost of
-        # pyamg's default symmetric sweeps (0.10 vs 0.37 s per cycle at 150k dofs; 1.4x the
-        # iterations, 2.5x faster overall)
+        # forward GS before, backward after: a cheaper symmetric V-cycle (docs/decisions/018-multigrid-settings.md)
         presmoother=SMOOTHERS[0], postsmoother=SMOOTHERS[1])
 
 
@@ -268,15 +248,12 @@ def _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs, blocks=None, p1_stif
         if not np.all(fixed_node[rows.indices]):
             p1_stiffness = None
     fine = MultilevelSolver.Level()
-    # The fine level smooths in CSR: pyamg's Gauss-Seidel sweep over the P2 matrix costs 0.025 s in CSR
-    # and 0.060 s in 3x3 blocks (300k-dof shaft, CPU time), with the same 23 CG iterations (the V-cycle
-    # went from 0.36 to 0.23 s). Node blocks stay where they pay: the Galerkin product and below.
+    # The fine level smooths in CSR, cheaper than node blocks there (docs/decisions/018-multigrid-settings.md).
     fine.A = Kff if fused else Kff.tocsr()
     fine.P = P.tobsr(blocksize=(dim, dim))
     fine.R = fine.P.T.tobsr(blocksize=(dim, dim))
     if p1_stiffness is not None:
-        # the P1 assembly: 0.8 s against the Galerkin product's 2.0 s (308k dofs, both at load ~8),
-        # the same matrix to 6e-16 relative with the same blocks
+        # the P1 assembly: cheaper than the Galerkin product, same matrix (docs/decisions/018-multigrid-settings.md)
         K1 = p1_stiffness()
         is_free = np.zeros(K1.shape[0], bool)
         is_free[coarse_free] = True
@@ -284,7 +261,7 @@ def _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs, blocks=None, p1_stif
         del K1
     else:
         A_blocks = blocks.pop() if blocks and blocks[0] is not None else Kff.tobsr(blocksize=(dim, dim))
-        # Galerkin product in node blocks: 0.18 s against 1.14 s in CSR (238k dofs), same matrix to 3e-16
+        # Galerkin product in node blocks: faster than in CSR, same matrix (docs/decisions/018-multigrid-settings.md)
         AP = A_blocks @ fine.P
         del A_blocks
         coarse_A = (fine.R @ AP).tobsr(blocksize=(dim, dim))
@@ -294,10 +271,7 @@ def _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs, blocks=None, p1_stif
     pyamg.relaxation.smoothing.change_smoothers(ml, presmoother=SMOOTHERS[0], postsmoother=SMOOTHERS[1])
     if fused:
         from .fused_sweeps import FineSweeps
-        # the fine level's sweeps, residual and CG product in two passes over its matrix, the P1 level's
-        # sweeps with their residual (fused_sweeps); pyamg's smoothers stay on the levels for ml.solve.
-        # 957k dofs: CG 5.54 -> 4.80 s (medians of 5 alternating pairs, load 2.6-2.8) against pyamg's block
-        # Gauss-Seidel and residual on the P1 level
+        # fused_sweeps on the fine and P1 levels; pyamg's smoothers stay for ml.solve (docs/decisions/006-fused-sweeps.md)
         p1 = ml.levels[1].A
         ml.fused_sweeps = [FineSweeps(fine.A)] + ([FineSweeps(p1)] if p1.format == "bsr" and p1.blocksize == (3, 3)
                                                   and len(ml.levels) > 2 else [])
@@ -306,8 +280,7 @@ def _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs, blocks=None, p1_stif
 
 def _direct(A: sp.csr_matrix, b: np.ndarray, study: str, *, node_blocks: bool = False) -> tuple[np.ndarray, str]:
     """Sparse direct solve: MKL PARDISO (symmetric positive definite, upper triangle) when pypardiso is
-    installed, else SuperLU. Measured on the 54k-dof flexspline cup: PARDISO 3.0 s / 0.4 GB, SuperLU
-    22 s (COLAMD) to 80 s (MMD), AMG-CG 38 s (470 iterations: thin walls are hard for aggregation).
+    installed, else SuperLU, which is far slower (docs/decisions/003-direct-vs-multigrid-solver.md).
     ``node_blocks`` (3D elasticity): PARDISO with ``PARDISO_IPARM``, else with its defaults."""
     try:
         with _mkl_rt_known():
@@ -332,15 +305,7 @@ def _direct(A: sp.csr_matrix, b: np.ndarray, study: str, *, node_blocks: bool = 
     return lu.solve(b), "splu"
 
 
-# PARDISO's settings (1-based iparm numbers) instead of its defaults (iparm(1) = 0): the same METIS ordering
-# and two steps of iterative refinement, plus the matrix read in variable 3 x 3 node blocks (iparm(37) = -80:
-# blocks of rows whose patterns agree to 80 %) and the two-level factorisation (iparm(24) = 1). The quick
-# validation's matrices (18k-90k dofs, one MKL thread), alternating with the defaults at load 3.8-4.2: the
-# cup's 90k 2.94-3.18 -> 2.40-2.42 s (analysis 0.7-0.86 -> 0.27-0.29 s, factorisation 2.09-2.19 -> 1.93 s),
-# the bearing's 39k 0.97-1.11 -> 0.85-0.86 s, the ring's 61k 1.44-1.52 -> 1.13 s; residuals as with the
-# defaults, solutions within 1e-10 of theirs. 3D only: the 2D ring sections (54k dofs) factor in 0.04 s,
-# their analysis would save 0.05 s per solve, and their solution, at a residual of 1.5e-8 either way, moved
-# by 7e-9, and with it the ring's smallest GCIs (1.4e-6) in their third digit.
+# METIS, 3x3 node blocks, two-level factorisation: faster on the 3D matrices (docs/decisions/007-pardiso-settings.md).
 PARDISO_IPARM = {1: 1, 2: 2, 8: 2, 24: 1, 37: -80}
 
 
@@ -359,12 +324,8 @@ def _pardiso_solver(pypardiso, *, tuned: bool = False):
 def _mkl_rt_known():
     """PYPARDISO_MKL_RT set to the environment's mkl_rt while a PyPardisoSolver is made.
 
-    Without it, every PyPardisoSolver() runs ctypes' find_library (ldconfig and gcc subprocesses) and
-    then globs the whole venv recursively for the library: 0.47 s per solve, 2.8 s of a 30 s quick cup
-    case (six solves, cProfile). ``import pypardiso`` makes one at import (its scipy aliases' solver):
-    0.47-0.50 s of every case child that solves directly (cup, ring), 0.0 s with the variable. The library
-    sits in the environment's lib/ (the mkl wheel), so one non-recursive look finds it; the variable is set
-    only for the constructor (a user's own setting is kept)."""
+    Without it, every PyPardisoSolver() runs find_library and globs the whole venv for mkl_rt, at every
+    solve (docs/decisions/007-pardiso-settings.md). Set only for the constructor; a user's own setting is kept."""
     import os
     path = _mkl_rt()
     if path is None or "PYPARDISO_MKL_RT" in os.environ:

@@ -3,12 +3,9 @@
 mesh -> scikit-fem numbering (curved P2) -> element geometry -> vectorised stiffness -> traction loads
 -> Dirichlet solve, with the time of each phase recorded and reported through ``progress``. No
 scikit-fem CellBasis is built on the way (``StaticSolution.basis`` makes one on first use).
-Measured assembly phase (to_skfem + geometry + K + loads; fresh process, 2 shared cores, +-1.5x), curved
-P2 output shaft: 224k dofs 3.4-3.7 -> 0.80-0.88 s, peak RSS 1.1 -> 0.51 GB; 957k dofs 19.9-20.9 ->
-5.5-6.4 s, 2.33 -> 1.77 GB (``benchmarks/bench_fea.py`` measures it per size: ``assembly_s``, ``peak_GB``).
-Systems that take the fused p-multigrid (and so load numba) are assembled and condensed by numba kernels
-(``assembly_kernels``): 308k dofs end to end 5.57-6.44 -> 4.54-5.16 s (assembly 2.3-2.4 -> 1.2-1.26 s,
-peak 1.22 -> 0.98 GB; 3 alternating pairs, load 4.1).
+The assembly phase is timed per size by ``benchmarks/bench_fea.py`` (``assembly_s``, ``peak_GB``); systems that
+take the fused p-multigrid (and so load numba) are assembled and condensed by numba kernels
+(``assembly_kernels``; docs/decisions/004-assembly-kernels.md).
 """
 from __future__ import annotations
 
@@ -96,8 +93,7 @@ def _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions, point_loads,
 def load_assembly_kernels() -> None:
     """numba and the assembly's kernels, loaded in this thread before the sweeps' warm-up thread starts:
     loaded beside it, both held the interpreter lock in turn and numpy's many short calls in to_skfem and
-    the geometry waited for it (308k dofs, in the bench's process: to_skfem 0.09 -> 0.39 s, the geometry
-    0.03 -> 0.43 s)."""
+    the geometry waited for it (docs/decisions/004-assembly-kernels.md)."""
     from . import assembly_kernels
     assembly_kernels.load()
 
@@ -127,8 +123,7 @@ def solve_static(md: MeshData, lame: Lame, *, fixed: Mapping[str, float | np.nda
     is added to the load vector as is."""
     t = {}
     t0 = time.perf_counter()
-    # systems that will load numba for the solve's fused fine level also assemble with its kernels
-    # (assembly_kernels: 308k dofs, K 1.7 -> 0.55 s)
+    # systems that load numba for the fused solve anyway also assemble with its kernels (docs/decisions/004-assembly-kernels.md)
     compiled = md.order == 2 and md.dim == 3 and method != "direct" \
         and md.dim * md.nodes_mm.shape[0] >= fused_sweeps.MIN_DOFS
     try:

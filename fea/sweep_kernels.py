@@ -14,8 +14,7 @@ __all__ = ["diagonal_positions", "forward_from_zero", "backward_with_product",
 
 one = np.uint64(1)
 
-# Indices are read as unsigned: with signed ones numba adds a negative-index wrap-around test to
-# every access, which made the plain product 1.7x slower than scipy's (0.144 vs 0.089 s, 1M dofs).
+# Indices are read as unsigned: signed ones make numba test for wrap-around at every access (docs/decisions/006-fused-sweeps.md).
 
 
 @nb.njit(cache=True, inline="always")
@@ -108,7 +107,7 @@ def backward_with_product(indptr, indices, data, diag, b, x, ax):
 
 
 # The same sweeps over 3x3 node blocks (BSR): one column index per block instead of nine, so 8.4 instead
-# of 12 bytes read per entry, and no CSR copy of the matrix (its conversion alone took ~1 s at 1M dofs).
+# of 12 bytes read per entry, and no CSR copy of the matrix (docs/decisions/006-fused-sweeps.md).
 # The three rows of a node are swept together: one read of each block serves them, nine partial sums
 # (row x column of the block) keep the addition chains short, and the node's own 3x3 diagonal block is
 # swept row by row as pointwise Gauss-Seidel does.

@@ -104,8 +104,7 @@ def find_faces(solid, face_refs: Iterable[FaceRef], tol: float = 1e-6) -> list:
     """The build123d faces of ``solid`` matching FaceRefs (centre within tol * size, same area)."""
     face_refs = list(face_refs)
     if not face_refs:
-        # the preview asks for the crack and contact faces of every part, most of which have neither:
-        # face_infos of the toothed cup (1410 faces) is 0.7 s each time
+        # most parts lack the faces the preview asks for; face_infos is costly (docs/decisions/015-cad-build-speed.md)
         return []
     infos = face_infos(solid)
     faces = solid.faces()

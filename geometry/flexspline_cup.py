@@ -110,7 +110,7 @@ def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True,
         if crack_model == CrackModel.SEAM:
             # the FEA solves the seed's crack: through the wall, 45 deg, in the fully loaded tube between the
             # diaphragm region and the band (where the torque enters as surface shear the section carries
-            # less than T; issue 13 measured the outer-fibre shear halved at z = 0.9 L)
+            # less than T; the FEA showed the outer-fibre shear halved at z = 0.9 L)
             z_c = 0.5 * ((bottom_needed if fc.cup else 0.0) + z_b)
         elif not (z_b + c < z_c < length - c):
             raise InputError("crack_geometry.flexspline_axial_position_ratio", cg.flexspline_axial_position_ratio,

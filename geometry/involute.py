@@ -138,8 +138,8 @@ def gear_wire(spec: ToothSpec, n_flank: int = 9):
     """The closed toothed outline as a build123d Wire.
 
     Per tooth: two spline flanks (exact involute points), a tip arc, two root-fillet arcs and a root
-    arc. Fillets are computed here analytically-numerically because OCC's 2D fillet took 86 s on
-    400 root corners.
+    arc. Fillets are computed here analytically-numerically because OCC's 2D fillet is far too slow on
+    hundreds of root corners (docs/decisions/015-cad-build-speed.md).
     """
     from build123d import Edge, Wire
 

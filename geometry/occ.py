@@ -20,8 +20,7 @@ def _boolean(op, a, tools, glue: bool = False):
     op.SetRunParallel(False)      # the machine's two cores are shared; OCC threads do not pay here
     op.SetUseOBB(True)            # oriented boxes prune face pairs better on the 1400-face toothed cup
     if glue:
-        # shapes that only touch on (partially) coincident faces: "shift" gluing skips the
-        # face/face intersection, halving the toothed cup's fuse (22 s -> 11 s on a loaded machine)
+        # touching shapes: "shift" gluing skips the face/face intersection (docs/decisions/015-cad-build-speed.md)
         from OCP.BOPAlgo import BOPAlgo_GlueEnum
         op.SetGlue(BOPAlgo_GlueEnum.BOPAlgo_GlueShift)
     op.Build()
@@ -56,8 +55,8 @@ def cut(a, *tools):
 
 
 def cut_bare(a, *tools):
-    """``cut`` of bare OCC shapes, without build123d (whose import costs a process ~2.3 s against OCP's
-    ~0.8 s): the same boolean and the same solid, as a ``TopoDS_Solid``."""
+    """``cut`` of bare OCC shapes, without build123d (whose import costs far more than OCP's): the same
+    boolean and the same solid, as a ``TopoDS_Solid`` (docs/decisions/013-sweep-worker-start-up.md)."""
     from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut
     from OCP.TopAbs import TopAbs_SOLID
     from OCP.TopExp import TopExp_Explorer

@@ -97,7 +97,8 @@ def build_bare(params) -> Part:
     """The uncracked shaft as ``build`` makes it, its solid a bare ``TopoDS_Solid``, without build123d.
 
     What the FEA meshes (``fea.meshing`` writes either kind to BREP; the same file): a worker solving
-    uncracked shaft points then never imports build123d, ~2.3 s of its start against OCP's ~0.8 s. CAD
+    uncracked shaft points then never imports build123d, the costliest import of its start
+    (docs/decisions/013-sweep-worker-start-up.md). CAD
     uses (STEP, previews, volumes) keep ``build``. An empty face set (the bore of a solid shaft) is left
     out, as ``build_part`` does.
     """

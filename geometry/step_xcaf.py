@@ -101,8 +101,8 @@ def _faces_read_back(path: Path, wanted=None) -> list[tuple[int, str, tuple[floa
     The number is the face's ``#N``: OCC's writer numbers entities #1, #2, ... in file order.
 
     ``wanted(centres (F, 3), areas (F,)) -> (F,) bool``: only those faces get their entity looked up, the
-    others come back with number 0 and no name. The lookup is a search through the transfer's results:
-    2.4 s for the 1410 faces of the toothed cup, of which ~200 (the tooth tops and gaps) carry no name."""
+    others come back with number 0 and no name. The lookup is a search through the transfer's results,
+    costly on the toothed cup's many faces (docs/decisions/015-cad-build-speed.md)."""
     import numpy as np
 
     from OCP.BRepGProp import BRepGProp
@@ -159,7 +159,7 @@ def _entity_name(entity) -> str:
 
 def _face_matches(ref_centres, ref_areas, centres, areas):
     """(refs, faces) bool: same area, same centre (within the file's size). One array operation,
-    not a Python loop over refs x faces (1205 x 1410 on the toothed cup: 0.8 s)."""
+    not a Python loop over refs x faces, slow on the toothed cup (docs/decisions/015-cad-build-speed.md)."""
     import numpy as np
 
     scale = max(1.0, float(np.linalg.norm(centres, axis=1).max(initial=1.0)))
@@ -175,9 +175,9 @@ def _name_faces_in_model(writer, placed: list[Placed]) -> bool:
     its TShape alone, which is sound only while no two faces of the file share one: the located-copy
     case of ``_name_faces`` (the top of an extruded ring sharing the bottom's TShape) would give both the
     same entity. That case, a face the map does not hold, or a named face not found in the part, returns
-    False with the model untouched, and the names are put on the written file as before (read back). The
-    read-back of the toothed cup's 10 MB file cost 4.2 s of its 12.6 s export (OCC's reader transfer 2.0 s,
-    the entity search 1.1 s); here the faces are matched in memory, by the same centre and area."""
+    False with the model untouched, and the names are put on the written file as before (read back), a
+    read-back that was a large part of the toothed cup's export; here the faces are matched in memory, by
+    the same centre and area (docs/decisions/015-cad-build-speed.md)."""
     import numpy as np
 
     from OCP.BRepGProp import BRepGProp

@@ -272,7 +272,7 @@ def _output_folder(args) -> Path | None:
 def _scratch_under_outputs(args):
     """Every temporary file of the command (ours, gmsh's BREP hand-over, the children's) goes to a scratch
     folder inside the output folder, removed at the end: nothing lands in /tmp, and a run killed with
-    -9 leaves its scratch where the user looks, not in a shared temporary directory (issue 16, item 26).
+    -9 leaves its scratch where the user looks, not in a shared temporary directory.
     Commands without an output folder keep the system's temporary directory."""
     import os
     import shutil
@@ -475,7 +475,7 @@ def _verbosity(argv: list[str]) -> tuple[int, bool]:
 
 
 def _no_stray_writes() -> None:
-    """Environment defaults that keep libraries from writing outside the outputs (issue 16, item 26):
+    """Environment defaults that keep libraries from writing outside the outputs:
     pypardiso looks for MKL with ctypes.util.find_library, which runs ldconfig and gcc on temporary
     files unless told where libmkl_rt is (the MKL wheel installs it under sys.prefix/lib); Mesa keeps a
     shader cache in ~/.cache unless disabled. Only defaults: a user's own setting wins."""

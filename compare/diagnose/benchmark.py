@@ -5,7 +5,7 @@ Family 1: generate_recordings (hifi_torsion / hifi_ring). Family 2: generate_fam
 physics, coloured noise, out-of-catalogue recordings). Both families also carry the CHA table
 (real catalogue stiffness curves, cha.py / generate_family2.cha_recording).
 
-Targets (issue 12), each printed PASS/MISS with its number, per family:
+Targets, each printed PASS/MISS with its number, per family:
 - in-catalogue, signal >= 3x noise: primary effect >= 95 %, exactly the right set >= 90 %;
 - clean recordings: false alarms <= 5 %, white and coloured noise reported separately;
 - physical hysteresis (signal >= 3x noise): named with its loss within 10 % in >= 90 % (the issue gives

@@ -62,10 +62,7 @@ def cha_rows() -> list[ChaRow]:
     return rows
 
 
-# Slip thresholds of the loop's elements up to half the peak torque. With 0.15 (the first version) the stuck
-# chain's compliance drop sum_i w_i was 1.07-2.17 times the gear's own compliance 1/K3 at the peak on every
-# row: right after a reversal the twist kept rising while the torque fell, which no spring-and-slider chain
-# does (tests/test_diagnose_cha.py); with 0.5 it is 0.32-0.65 of 1/K3.
+# Slip thresholds up to half the peak torque: at 0.15 the loop was unphysical (docs/decisions/024-cha-slip-fraction.md).
 CHA_SLIP_FRACTION = 0.5
 
 

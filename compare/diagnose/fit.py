@@ -15,7 +15,7 @@ k = 3 + effect parameters, ((s - 1)/u)^2 = -2 ln(prior). For white noise a ~ 0 a
 for AR(1) noise with rho -> 1 (a random walk) the innovations are the first differences, so a slow wander
 of the residual costs what a random walk of that size costs, not what N independent samples would.
 A systematic misfit can therefore raise BIC by at most ~N ln(1.5 .. 2) against a model that fits: the
-evidence for a second effect that only mops up a rigid model's misfit stays bounded (issue 12, item 4).
+evidence for a second effect that only mops up a rigid model's misfit stays bounded.
 """
 from __future__ import annotations
 
@@ -61,7 +61,7 @@ def noise_filter(r: np.ndarray) -> tuple[float, np.ndarray, np.ndarray]:
     Only white or red noise is allowed (spectral density at zero frequency >= at Nyquist): sensor noise is
     white, low-pass filtered or wandering, never short of slow power. A residual from which structures were
     fitted away IS short of slow power, and a blue filter fitted to it would amplify every slow departure
-    (measured: white noise with 4 time hats removed gave ARMA phi 0.95, theta 0.98 and a false alarm)."""
+    (docs/decisions/023-diagnose-noise-model.md)."""
     from scipy.signal import lfilter
     n = len(r)
     white = (float(r @ r), np.array([1.0]), np.array([1.0]))
@@ -100,10 +100,8 @@ def bic_ar(r: np.ndarray, k: int, prior_chi2: float) -> float:
 def bic_fixed_noise(r: np.ndarray, k: int, prior_chi2: float, noise) -> float:
     """BIC of a residual under the recording's ONE noise model (``noise.whiten``, structure.NoiseModel).
 
-    Profiled per model (``bic_ar``), the noise filter is free to whiten a model's slow misfit: a loop law that
-    misses the loop's shape by 6 noise sigmas outscored one that fits to 2.5 sigma, and even the baseline
-    outscored a fitting loop, because the misfit's wander was bought as "noise" (measured on a saturating
-    Preisach loop, issue 12). Held fixed, the filter prices every model's residual alike."""
+    Profiled per model (``bic_ar``), the noise filter is free to whiten a model's slow misfit and buy it as
+    "noise" (docs/decisions/023-diagnose-noise-model.md). Held fixed, the filter prices every model's residual alike."""
     e = noise.whiten(r)
     m = len(e)
     return m * math.log(max(float(e @ e), m * NOISE_FLOOR ** 2) / m) + prior_chi2 + (k + AR_ORDER) * math.log(len(r))
@@ -296,9 +294,8 @@ def _theta_and_scale(information: np.ndarray, uncertainty: float) -> np.ndarray:
 
 def gls_cov(design: np.ndarray, r: np.ndarray, k: int, noise, uncertainty: float) -> np.ndarray:
     """Covariance of (theta, s) under the recording's noise model: the design and the residual both whitened by
-    its filter (generalised least squares). The lag-1 inflation of white least squares misses a wandering
-    sensor's long-range correlation: a loop width 7.6 of its standard errors from the truth was reported under
-    random-walk noise (issue 12)."""
+    its filter (generalised least squares): the lag-1 inflation of white least squares misses a wandering
+    sensor's long-range correlation (docs/decisions/023-diagnose-noise-model.md)."""
     dw, rw = noise.whiten(design), noise.whiten(r)
     s2 = float(rw @ rw) / max(len(rw) - k, 1)
     return _theta_and_scale(dw.T @ dw / s2, uncertainty)

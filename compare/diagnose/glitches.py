@@ -3,7 +3,7 @@
 Every structure the goodness-of-fit test looks for is smooth (a function of the load, of the branch, of
 time, a ripple); one sample 30 noise sigmas off, or a reading that froze for 20 samples and then caught up,
 changes the residual's variance by a few tens of percent and no smooth structure draws it, so the test
-passed both as "consistent with the noise" (issue 12's most dangerous answer, on a rig's everyday faults).
+passed both as "consistent with the noise" (the most dangerous answer, on a rig's everyday faults).
 
 The check is on the innovations of the final residual: the residual whitened by the recording's ONE noise
 model (structure.NoiseModel), in units of its innovation standard deviation. Gaussian noise of any colour the

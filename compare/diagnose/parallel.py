@@ -2,7 +2,7 @@
 
 A diagnosis fits each catalogue effect in every model form, then pairs of them: dozens of small
 trust-region fits that do not depend on one another. Threads gain nothing (the fits are Python loops
-around tiny BLAS calls: 0.74x measured with two threads, the GIL), so the second core is used by a
+around tiny BLAS calls, serialised by the GIL; docs/decisions/019-diagnose-speed.md), so the second core is used by a
 forked copy of the process. It inherits the recording, the noise model and every memoised basis without
 pickling, takes the next unclaimed fit from a shared counter, and sends its fits back through a pipe
 with their effects left out (the parent already holds them). Each fit is the same computation whichever

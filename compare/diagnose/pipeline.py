@@ -65,16 +65,16 @@ LOSS_CONTRADICTION = 2.58  # standard errors (99 %): the data's width at zero to
 MIN_COMPONENT_SIGMAS = 1.5
 # a form that rereads the stated stiffness (Effect.rereads) is fitted where the other form's stiffness is more
 # than this many prior sigmas off: closer, the prior costs that form under one BIC unit, about all another
-# reading of the stiffness could win back (speed, issue 12)
+# reading of the stiffness could win back (speed)
 REREAD_PRIOR_SIGMAS = 1.0
-MAX_FIT_ROWS = 2500        # model selection on an evenly strided subsample beyond this (speed, issue 12)
+MAX_FIT_ROWS = 2500        # model selection on a strided subsample beyond this (docs/decisions/019-diagnose-speed.md)
 # Pairs that cannot be told apart: both are a pure linear compliance change.
 _DEGENERATE = {frozenset({"compliance_offset", "thick_ring"})}
 OFFSET = "compliance_offset"
 
 
 class Verdict(str, enum.Enum):
-    """The three answers, decided in this order (issue 12)."""
+    """The three answers, decided in this order."""
     AGREES = "agrees"              # residual after the nuisance fit is consistent with the noise
     EXPLAINED = "explained"        # a mismatch, and catalogue effect(s) bring the residual to the noise
     UNEXPLAINED = "unexplained"    # a mismatch no catalogue model brings to the noise
@@ -208,8 +208,7 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
         raise InputError("--baseline", baseline, "must be analytic or fea")
     base = analytic_baseline(rec, params) if baseline == "analytic" else fea_baseline(rec, params)
     from threadpoolctl import threadpool_limits
-    # The fits are thousands of tiny (N x 4) linear-algebra calls: BLAS threads only add overhead
-    # (measured 15x slower with threads on a shared 2-core machine).
+    # Tiny (N x 4) linear-algebra calls: BLAS threads only add overhead (docs/decisions/019-diagnose-speed.md).
     with threadpool_limits(limits=1):
         return _diagnose(rec, base, usable_workers() if workers is None else workers)
 
@@ -340,7 +339,7 @@ def _diagnose(rec: Recording, base: Baseline, workers: int) -> tuple[Diagnosis, 
         # beside the best single effect, each effect enters a pair in its two best forms, the best of each law
         # class first (_pair_forms): the form that best fits the data ALONE need not be the one that fits beside
         # the other effect (a relay loop drawing part of a stiffening's misfit); pairs without the best single
-        # keep one form each (time: issue 12's 10,000-row target)
+        # keep one form each (speed: docs/decisions/019-diagnose-speed.md)
         # (a form that competes only alone, Effect.pairs, is left out of every pair)
         pairable = [f for f in singles if all(e.pairs for e in f.effects)]
         by_id: dict[str, list[Fit]] = {}

@@ -34,7 +34,7 @@ from ...params import load_params, read_limited
 MIN_ROWS = 20
 # Size limits, so a mistaken path (/dev/zero, a day of raw DAQ data) is refused before it takes the
 # machine's memory: diagnose fits on at most 2,500 strided rows, and 200,000 rows are over an hour of
-# a 50 Hz test (100,000 rows take 3.4 s); a data row is a few numbers, well under 150 bytes.
+# a 50 Hz test; a data row is a few numbers, well under 150 bytes (docs/decisions/019-diagnose-speed.md).
 MAX_ROWS = 200_000
 MAX_BYTES = 150 * MAX_ROWS
 # Magnitudes a rig can record, per column. Beyond them the fits' sums of squares overflow to inf and the

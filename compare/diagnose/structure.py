@@ -30,14 +30,7 @@ from .noise import KEEP, noise_std
 
 THRESHOLD = 10.0
 STIFFNESS_CHI2 = 6.63     # chi-square(1) at 99 %: 2.58 prior sigmas
-# A random-walk sensor's wander is invisible sample to sample (its increments are ~0.03 white sigma) yet moves
-# the record by several white sigmas: a wander carrying 80 % of the noise power has twice the white part's
-# std. Measured on 15 random-walk clean recordings of both families (seeds 0 and 7): fitted structures of up
-# to 0.78 sigma RMS, 12 of them with delta BIC 15-170 against the nearly white fine-scale noise. A random walk
-# puts its power at the slowest frequencies (power ~ 1/k^2 at k cycles per record), so a structure is claimed
-# only when it is larger than a wander of WANDER_SIGMAS white sigmas puts at the structure's own frequencies
-# (1.6 sigma for one slow swell over the record, 0.4 sigma for a pattern repeating 4 times). The price: a slow
-# departure of about one white sigma RMS is not claimed (2 of 50 out-of-catalogue recordings of family 2).
+# A structure must beat a random-walk wander of WANDER_SIGMAS at its frequencies (docs/decisions/023-diagnose-noise-model.md).
 WANDER_SIGMAS = 2.0
 _TWO_SIDED_KNOTS = (0.0, 0.1, 0.3, 0.55, 0.8, 1.0)
 _ONE_SIDED_KNOTS = (0.0, 0.2, 0.4, 0.6, 0.8, 1.0)
@@ -162,11 +155,7 @@ def _groups(ctx: Context, r: np.ndarray) -> dict[str, tuple[np.ndarray, int, str
     return out
 
 
-# Creep under a held load (a viscoelastic part, relaxation in the load train) is the load seen through a
-# first-order lag: the response keeps moving while the load stands still, which the rate columns (the lag's
-# limit of a small time constant, proportional to du/dt) cannot draw; measured: a creep of 23 white sigmas under
-# two holds of 90 samples read "agrees" (family 2, 412 rows), its slow part taken for a random-walk sensor.
-# Time constants a factor 4 apart across the record's own time scales (fractions of its duration).
+# Creep under held loads needs first-order lag columns; taus 4x apart (docs/decisions/023-diagnose-noise-model.md).
 CREEP_TAUS = (0.01, 0.04, 0.16)
 
 
@@ -348,7 +337,7 @@ def fine_scale_noise(x: np.ndarray) -> NoiseModel:
     # quadratically over the first lags and then saturates, which no first-order model draws (a random walk
     # rises linearly for ever; an AR(1) plus white rises linearly and saturates): taken as a random walk, its
     # correlated steps read as a drift in time (a clean quantised low-pass recording read "varies in time at
-    # constant load", issue 12). A double pole plus the white part: (1 - phi z)^2 / (1 - theta z), theta < phi
+    # constant load"). A double pole plus the white part: (1 - phi z)^2 / (1 - theta z), theta < phi
     # (theta = phi cancels to an AR(1)); it must beat the first-order shapes by DOUBLE_POLE_CHI2
     first_order = len(candidates)
     candidates += [(np.array([1.0, -2.0 * phi, phi * phi]), np.array([1.0, -th]))
@@ -371,23 +360,7 @@ def fine_scale_noise(x: np.ndarray) -> NoiseModel:
     return NoiseModel(bb, aa, var)
 
 
-# The filters above are fitted to the fine scales (a few samples). A steep low-pass sensor (a Butterworth of
-# order 3 to 6, its passband flat down to zero frequency) is drawn there as an AR(2) whose power at the slow
-# structures' frequencies falls 2 to 7 times short of the sensor's (measured on Butterworth noise of order
-# 2-6 at 0.06-0.3 Nyquist, 1,500-4,000 samples), so every slow structure read as 2 to 7 times more evident
-# than it is: 7 of 20 clean recordings behind such sensors raised an alarm (heldout6's generator, 0 with this
-# bound). Sensor noise is white, low-pass filtered or wandering, never short of slow power (fit.noise_filter);
-# so the noise's power at any frequency above the structures' band is a lower bound on its power within it.
-# The band: above SLOW_BINS cycles per record (the time structures' hats are a fifth of a record apart). The
-# periodogram there is read in bands of SPECTRAL_BANDS bins by their median (robust to the lines of the load
-# cycle's harmonics; exponential bins: mean = median / ln 2), each band's level divided by the upper Bonferroni
-# point of its own scatter (relative sd 1 / (ln 2 sqrt(W)) for the median of W exponential bins, at 1 % over
-# all bands of both widths), so white or correctly modelled noise gives 1. Two widths: 32-bin bands scatter
-# least, but on a short record a low cutoff leaves fewer than 32 passband bins above SLOW_BINS (0.1 Nyquist of
-# 458 rows is bin 23), and a band straddling the cutoff reads the stopband's level; 16-bin bands fit inside
-# (heldout6's Butterworth sensors, seed 200, read on each record's residual from a straight line: the bound
-# rose from 3.9 and 3.2 to 10 and 4.9 on the two records of about 450 rows that still alarmed, where the
-# sensor's slow power was 13 and 9 times the filter's; both alarms are gone).
+# Noise above the structures' band bounds the noise within it (docs/decisions/023-diagnose-noise-model.md).
 SLOW_BINS = 8
 SPECTRAL_BANDS = (16, 32)
 SLOW_ALPHA = 0.01
@@ -465,7 +438,7 @@ def _wander(drawn: np.ndarray) -> float:
 class _Scorer:
     """Generalised least squares of residuals on ONE basis under ONE noise filter: the basis is whitened and
     factored once, so each residual costs two products (structure_test scores ~40 residuals of a recording
-    on the same bases; speed, issue 12's 10,000-row target)."""
+    on the same bases, for speed)."""
 
     def __init__(self, basis: np.ndarray, noise: NoiseModel):
         self.basis = basis

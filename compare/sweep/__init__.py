@@ -4,8 +4,7 @@ __all__ = ["Outcome", "run_sweep"]
 
 
 def __getattr__(name: str):
-    # Loaded on first use: every worker imports this package to unpickle its task (``sweep.task``), and the
-    # driver-side pipeline would cost each of them pandas (~0.3 s of its start-up) that no point needs.
+    # Loaded on first use: workers unpickling tasks need no pandas (docs/decisions/013-sweep-worker-start-up.md).
     if name in __all__:
         from . import pipeline
         return getattr(pipeline, name)

@@ -20,8 +20,7 @@ from ...errors import InputError
 from ...params import REMOVED_KEYS, read_limited, schema_types
 
 VARY_FORMS = "KEY=START:STOP:N (N >= 1 evenly spaced values) or KEY=v1,v2,..."
-# A sweep point is at least one FEA study (0.5..5 s on quick meshes, minutes on full ones): 10,000 points
-# are a day of two cores. Larger grids are refused before they are built (1e8 points took 4 GB).
+# A point is at least one FEA study: 10,000 are a day of two cores (docs/decisions/021-sweep-grid-limit.md).
 MAX_POINTS = 10_000
 MAX_SAMPLES_BYTES = 200 * MAX_POINTS   # a sample row is a few numbers; 2 MB holds 10,000 generous rows
 

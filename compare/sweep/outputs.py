@@ -72,8 +72,8 @@ def _slug(text: str) -> str:
 
 
 def import_plotting() -> None:
-    """Load matplotlib (Agg) and pyplot (~0.45 s): the sweep does it while its workers start, not after its
-    points, where ``plot_sweep`` would pay it."""
+    """Load matplotlib (Agg) and pyplot while the workers start, not after the points, where ``plot_sweep``
+    would pay it (docs/decisions/013-sweep-worker-start-up.md)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot  # noqa: F401

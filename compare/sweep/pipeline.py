@@ -34,8 +34,7 @@ from .task import PointSpec, TaskFn, point_key, run_point, task_name, warm_modul
 POLL_S = 0.1          # how often the driver looks for finished points
 HEARTBEAT_S = 30.0    # longest silence on the terminal while points are running
 WORKER_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
-# The table and plots (``outputs``: pandas, matplotlib) are imported while the workers start (``run_sweep``),
-# not when this module is, so the fork server that starts the workers (``prefork``) starts ~0.5 s sooner.
+# outputs (pandas, matplotlib) loads while the workers start (docs/decisions/013-sweep-worker-start-up.md).
 
 
 @dataclass(frozen=True)
@@ -156,8 +155,8 @@ FORK_SERVER_ENV = {**WORKER_ENV, "MALLOC_TRIM_THRESHOLD_": "65536", "PYTHONHASHS
 def _exit_without_collecting() -> None:
     """At interpreter exit, after the sweep: move every object to the permanent generation, which the
     collection Python runs as it finalizes skips. That collection walks a heap holding pandas, matplotlib
-    and distributed only to free memory the ending process gives back anyway: 0.5 s of the exit of
-    ``strainwave sweep`` measured at load 3 (0.1 s frozen); the workers do the same (``worker.SweepWorker``)."""
+    and distributed only to free memory the ending process gives back anyway
+    (docs/decisions/013-sweep-worker-start-up.md); the workers do the same (``worker.SweepWorker``)."""
     gc.freeze()
 
 
@@ -176,8 +175,8 @@ def _no_cyclic_collection() -> Iterator[None]:
 
 def _import_driver_libraries() -> None:
     """pandas and matplotlib (the table and plots) and distributed, imported while the fork server imports
-    the workers' libraries; without collections their CPU is median 0.71 s instead of 0.89 s (5 alternating
-    pairs)."""
+    the workers' libraries, without cyclic collections, which only slow them down
+    (docs/decisions/013-sweep-worker-start-up.md)."""
     with _no_cyclic_collection():
         import distributed  # noqa: F401
 
@@ -278,9 +277,7 @@ def run_sweep(study: str, *, vary: list[str], params_path: str | Path | None = N
         hit = cache.get(key)
         if hit is not None:
             by_key[key] = {**hit, "cached": True}
-    # Submitted most elements first (longest processing time first): Dask starts the points in the order
-    # they are submitted, and in grid order the largest came last, one worker finishing them while the
-    # other had nothing left (0.15-0.35 s of a 16-point quick sweep on two workers).
+    # Most elements first: no worker idles at the end (docs/decisions/013-sweep-worker-start-up.md).
     order = sorted(range(len(specs)), key=lambda i: -elements[i])
     todo = {keys[i]: specs[i] for i in order if keys[i] not in by_key}
     counts = {"failed": sum(r["status"] != "ok" for r in by_key.values()), "cached": len(by_key)}

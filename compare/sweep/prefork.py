@@ -1,11 +1,11 @@
 """The workers of the sweep's own LocalCluster are forked from one process that imported their libraries once.
 
-Spawned, every worker is a new interpreter that imports distributed (~0.4 s) and the FEA libraries (~1.3 s
-for a shaft point: OCP's single 150 MB extension alone 0.7-1.1 s) by itself, all workers at the same
-time, and only after the driver has imported pandas and distributed and started the scheduler. Here the
-driver starts multiprocessing's fork server as soon as it knows the points' modules (``start``, right after
-the grid is checked): the server imports them once, while the driver goes on with its own imports and the
-scheduler, and each worker is a ``fork`` of it (copy-on-write, ~10 ms) that starts with everything loaded.
+Spawned, every worker is a new interpreter that imports distributed and the FEA libraries by itself, all
+workers at the same time, and only after the driver has imported pandas and distributed and started the
+scheduler. Here the driver starts multiprocessing's fork server as soon as it knows the points' modules
+(``start``, right after the grid is checked): the server imports them once, while the driver goes on with
+its own imports and the scheduler, and each worker is a cheap copy-on-write ``fork`` of it that starts with
+everything loaded (docs/decisions/013-sweep-worker-start-up.md).
 
 This module is imported twice: by the driver (``start``), and by the fork server as its preload, where
 the names in ``PRELOAD_ENV`` are imported (a library that fails to import is left to the points that need
@@ -61,9 +61,7 @@ def start(modules: Sequence[str], env: dict[str, str]) -> bool:
 
 
 def _preload(names: Sequence[str]) -> None:
-    # No cyclic collection while importing: the imports allocate many objects, which triggered
-    # collections over the whole growing heap (CPU of these imports: median 1.94 -> 1.56 s, 5 alternating
-    # pairs for a shaft point's modules); the little garbage an import leaves is frozen with the rest.
+    # No cyclic collection while importing: it only walks the growing heap (docs/decisions/013-sweep-worker-start-up.md).
     gc.disable()
     try:
         for name in names:

@@ -81,8 +81,7 @@ def fea_task(study: str, params, quick: bool, *, crack_depth_mm: float | None = 
 # The default task's libraries, which the pipeline imports inside the functions that use them (so that a
 # closed form or a refused point never pays for them): meshing, assembly and solver, the closed forms.
 FEA_MODULES = ("gmsh", "skfem", "pyamg", "strainwave.analytic.summary")
-# The CAD a point builds its part with, unless its study module says otherwise (``cad_modules(params, cracked)``):
-# build123d costs a worker ~2.3 s of its start, and a study whose part is a bare OCC solid needs only OCP (~0.8 s).
+# Default CAD imports; a study's ``cad_modules`` may need less (docs/decisions/013-sweep-worker-start-up.md).
 CAD_MODULES = ("build123d", "strainwave.geometry.parts")
 
 

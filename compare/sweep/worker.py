@@ -1,9 +1,7 @@
 """What the workers of the sweep's own LocalCluster do as they start and as they stop.
 
-Measured on the 16-point quick shaft sweep (benchmarks/bench_sweep.py, 2 shared cores): a worker's first
-point cost ~2.9 s against ~0.3 s for the next ones, nearly all of it imports (build123d alone 2.4 s: OCP
-1.0 s, scikit-learn 0.7 s), and closing the cluster took 1.0 s (1 worker) to 1.9 s (2 workers), because a
-process exiting with build123d loaded spends 0.75 s collecting its heap.
+A worker's first point is nearly all imports, and a process exiting with build123d loaded spends long
+collecting its heap (docs/decisions/013-sweep-worker-start-up.md).
 """
 from __future__ import annotations
 
@@ -19,7 +17,7 @@ class SweepWorker(WorkerPlugin):
     The imports run before the worker registers, so they are part of starting the cluster, as they are
     on every worker anyway, instead of each worker's first point. ``gc.freeze()`` at teardown moves every
     object to the permanent generation, which the collection at interpreter exit skips: the process is
-    ending, and that collection is what made its exit cost 0.75 s (0.06 s frozen).
+    ending, and that collection was most of its exit's cost.
     """
 
     name = "strainwave-sweep-worker"

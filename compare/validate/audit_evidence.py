@@ -46,7 +46,7 @@ def ellipse_evidence(checks: dict[str, Check]) -> dict | None:
             if thin else f"FEA delta_AB/delta_CD = {ratio:.4f}; an ellipse would give 1"}
 
 
-# Why the FEA cannot decide an item (issue 13: every inconsistency names its FEA evidence or this reason).
+# Why the FEA cannot decide an item (every inconsistency names its FEA evidence or this reason).
 NOT_AN_FEA_QUESTION = {
     4: "arithmetic of seed 003's worked example (roots of eq 14): no field quantity is involved",
     7: "the FEA is linear in F_r by construction (linear elasticity; crack-face contact with zero gap is "

@@ -27,9 +27,7 @@ from typing import Callable
 
 from ...errors import MaterialWarning
 
-# build123d too: every case builds its part, and importing build123d (OCP, and scikit-learn through its
-# STL reader) took 3.2-3.6 s in each case's child. Preloaded once in the fork server: three quick shaft
-# cases in a row 18.9 / 15.3 s -> 6.8 / 10.6 s, each case after the first 4.6-7.1 s -> 1.1-1.9 s (load 6).
+# build123d too: importing it in every case's child was slow (docs/decisions/014-validate-case-isolation.md).
 PRELOAD = ["numpy", "scipy.sparse", "skfem", "gmsh", "pyamg", "build123d", "strainwave.fea.studies",
            "strainwave.params"]
 
@@ -94,9 +92,9 @@ def one_mkl_thread() -> None:
     """MKL (PARDISO) in one thread in this case process, unless the user set MKL_NUM_THREADS.
 
     Cases run two at a time on the two cores (and the STEP export beside them), so a second MKL thread
-    finds no free core: it spins in OpenMP's wait loop and takes CPU from the other case. Measured on
-    validate --quick (CPU time per case, MKL default 2 threads -> 1, load 4-5): bearing 16.0 -> 10.7 s,
-    ring 12.0 -> 9.8 s, cup 14.6 -> 14.4 s, shaft 1.4 s both. MKL is loaded only when a case first solves
+    finds no free core: it spins in OpenMP's wait loop and takes CPU from the other case
+    (docs/decisions/014-validate-case-isolation.md).
+    MKL is loaded only when a case first solves
     directly (pypardiso), after this; the fork server does not preload it."""
     os.environ.setdefault("MKL_NUM_THREADS", "1")
 

@@ -90,11 +90,10 @@ def _shader_cache(folder: Path):
     """Mesa's shader cache in the run's own cache folder while this process renders the images.
 
     The CLI disables the cache (it would write to ~/.cache), so every off-screen plotter compiled its
-    shaders anew: 0.55 s per render against 0.27 s with the cache (llvmpipe). With a cache of its own the
-    images stage of --quick took 6.4-7.0 s against 10.0-10.8 s (alternating reruns, load 1.2-1.4), the
-    PNGs byte-identical. Only this process and only here: a background process that is killed (the STEP
-    export, on an interrupted run) could leave a half-written cache entry. A user's own MESA_SHADER_CACHE_DIR
-    is left as it is."""
+    shaders anew; a cache of its own makes the images stage much faster, the PNGs byte-identical
+    (docs/decisions/014-validate-case-isolation.md). Only this process and only here: a background
+    process that is killed (the STEP export, on an interrupted run) could leave a half-written cache entry.
+    A user's own MESA_SHADER_CACHE_DIR is left as it is."""
     if "MESA_SHADER_CACHE_DIR" in os.environ:
         yield
         return
@@ -230,9 +229,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
             audit = audit_with_evidence(summary.get("audit", []), check_set.by_id(),
                                         shaft_exponent=_shaft_exponent(check_set),
                                         crack_headline=summary.get("crack_headline"))
-        # The STEP parts are awaited only after the checks and images, which need none of them: the export
-        # (toothed cup: tens of seconds of OCC) used to end after the FEA and was waited for with one core
-        # idle, now its tail shares the two cores with the (single-process) images.
+        # STEP awaited last (checks and images need none), so its tail overlaps them (docs/decisions/014-validate-case-isolation.md)
         with _stage("images", timings, progress, 5, total), deferred_interrupt() as checkpoint, \
                 _shader_cache(out_dir / "cache" / "mesa-shaders"):
             made = make_images(out_dir, book, plan, check_set, summary, progress, params=params,
@@ -265,7 +262,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
                            "cached": s.cached, "error": s.error} for s in steps],
                 "timings_s": dict(timings), "total_s": 0.0,
             },
-            # the report's opening lines (issue 13): seed 003's Z_R,min and seed 000's crack headline, both from
+            # the report's opening lines: seed 003's Z_R,min and seed 000's crack headline, both from
             # FEA-confirmed forms
             "designer": ((designer_headline(summary["seed003"]) if "seed003" in summary else [])
                          + (crack_headline_lines(summary["crack_headline"]) if "crack_headline" in summary else [])),

@@ -67,9 +67,7 @@ def sweep_depths_mm(deepest_mm: float, points: int) -> tuple[float, ...]:
     return tuple(float(f"{d:.3g}") for d in depths)
 
 
-# Sweep depths per component in the full run, besides the seed's: with the seam and axisymmetric crack
-# models the seed's depth is resolved too, so three more (a/8 .. a_max) give four points for the a^2 vs a^3
-# fit; a fourth cost ~25 s of the 3-minute budget per component (cup and bearing cases, measured).
+# Full-run sweep depths besides the seed's: four points fit a^2 vs a^3 within budget (docs/decisions/022-validate-run-budget.md).
 FULL_SWEEP_POINTS = 3
 
 
@@ -78,8 +76,8 @@ def sweep_mesh_size_mm(params, component: str) -> float | None:
 
     A sweep case is there for the crack delta, which is solved closed and opened on one mesh (seam,
     or the shaft's axisymmetric section with its own sizes) and so hardly depends on the far-field
-    size; the headline case keeps the fine global mesh for the flexibility checks. Measured on the
-    cup: 154k dofs and 56 s per case at 3 walls (two cases sharing 2 cores)."""
+    size; the headline case keeps the fine global mesh for the flexibility checks
+    (docs/decisions/022-validate-run-budget.md)."""
     from ...fea import cup_torsion, shaft_torsion
     sizes = {"shaft": shaft_torsion.default_size_mm, "cup": cup_torsion.default_size_mm}
     return sizes[component](params, True) if component in sizes else None

@@ -59,16 +59,7 @@ def shaft_flexibility(book: FeaBook, label: str, s000: dict, params) -> Check:
                           {"fea": f"FEA {label}", "analytic": "seed 000 lambda_so0"})
 
 
-# What the series shell model ignores: the wall-diaphragm corner (fillet of radius delta) and the
-# hub-diaphragm junction (a short, wide hub loaded at its top rim does not twist as a uniform annulus;
-# the diaphragm's pure-shear field is disturbed near both edges). Both make the real cup more compliant.
-# Measured: FEA vs model +4.74 % (quick, finest h = 8.96 mm, GCI 0.57 %; Richardson +5.21 %),
-# full +4.86 % (finest h = 6.72 mm, GCI 0.24 %; Richardson +5.06 %).
-# The allowance covers that junction compliance with ~1 % margin. It was set on the default cup after that
-# measurement, so it was then confirmed, unchanged, on two cups it was not set on (issue 13; strainwave solve
-# cup-torsion, default fine meshes): d1 = 120, delta = 1.8, L = 110 mm: FEA 1.0309e-9 vs model 9.7936e-10,
-# +5.26 % (GCI 0.11 %, tolerance 6.34 %); d1 = 200, delta = 3.0, L = 240 mm: FEA 2.6163e-10 vs model
-# 2.5048e-10, +4.45 % (GCI 0.066 %, tolerance 6.20 %). The junction term is a near-constant +4.5..5.3 %.
+# The series shell model ignores the two diaphragm junctions, which add compliance (docs/decisions/016-cup-junction-allowance.md).
 CUP_JUNCTION_ALLOWANCE = 0.06
 
 

@@ -1,4 +1,4 @@
-"""The physics catalogue: one module per effect, stable ids (issue 6, issue 12)."""
+"""The physics catalogue: one module per effect, stable ids."""
 from __future__ import annotations
 
 from . import (compliance_offset, crack_closure, hysteresis, kinematic_error, large_deflection, lost_motion,

@@ -99,8 +99,7 @@ def _take_up(z):
     """Integral of the biweight bump (1 - z^2)^2 from 0 to z, scaled to +/-1 beyond |z| = 1."""
     a = np.clip(z, -1.0, 1.0)
     a2 = a * a
-    # a - 2 a^3 / 3 + a^5 / 5 in Horner form: with float powers this took 10x as long (0.32 s of a 10,000-row
-    # diagnosis, which evaluates the shape form ~3,500 times; issue 12's speed target)
+    # a - 2 a^3 / 3 + a^5 / 5 in Horner form: float powers are far slower (docs/decisions/019-diagnose-speed.md)
     return a * (1.0 - a2 * (2.0 / 3.0 - a2 / 5.0)) * (15.0 / 8.0)
 
 
