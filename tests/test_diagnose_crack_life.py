@@ -129,3 +129,47 @@ def test_life_record_lines_and_plot_for_a_sized_crack(tmp_path):
     assert "remaining life" in life_lines(lives)[0] and "BS 7910" in life_lines(lives)[0]
     png = plot_life(tmp_path / "life.png", lives)
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def _cup_recording(path, delta_rad_per_Nmm, rng):
+    import warnings
+
+    from strainwave.analytic import torsion
+    from strainwave.params import load_params
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        cup = load_params().flexspline_cup
+    c0 = torsion.flexspline_flexibility(cup.pitch_diameter_mm, cup.wall_thickness_mm, cup.length_mm, 80769.23, 1.0,
+                                        0.83)
+    torque = 1e6 * np.sin(np.linspace(0, 6 * np.pi, 300))
+    twist = (c0 + delta_rad_per_Nmm) * torque + rng.normal(0, 2e-7, torque.size)
+    head = ["# [test]", '# kind = "torsion"', '# specimen = "flexspline_cup"', "# baseline_uncertainty = 0.001",
+            f"# baseline_stiffness_Nmm_per_rad = {1 / c0:.9e}", "torque_Nmm,twist_rad"]
+    path.write_text("\n".join(head + [f"{t:.4f},{p:.9e}" for t, p in zip(torque, twist)]) + "\n")
+    return c0
+
+
+def test_size_crack_command_sizes_a_cup_crack_on_a_validate_curve(tmp_path, strainwave_cmd):
+    """A cup 1.5 % softer than its model, read against a validate run's cup crack sweep (a^2 law)."""
+    import json
+    import subprocess
+
+    rng = np.random.default_rng(3)
+    depths = [0.1, 0.3, 0.7, 1.4]
+    c0 = _cup_recording(tmp_path / "cup.csv", 0.0, rng)
+    curve = [0.02 * c0 * (a / 0.7) ** 2 for a in depths]            # delta = 1.5 % of c0 at a = 0.606 mm
+    _cup_recording(tmp_path / "cup.csv", 0.015 * c0, rng)
+    (tmp_path / "results.json").write_text(json.dumps({"crack_sweeps": {"cup": {
+        "unit": "rad/(N*mm)", "depths_mm": depths, "fea": curve, "fea_uncertainty": [0.01 * v for v in curve],
+        "resolved": [True] * 4}}}))
+    run = subprocess.run([*strainwave_cmd, "size-crack", str(tmp_path / "cup.csv"), "--curves",
+                          str(tmp_path / "results.json"), "--json", "-"], capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    out = json.loads(run.stdout)
+    (size,) = out["sizing"]["sizes"]
+    assert size["component"] == "cup" and size["low_mm"] <= 0.7 * (0.015 / 0.02) ** 0.5 <= size["high_mm"]
+    assert out["remaining_life"] == []          # the cup's curve carries no crack-front length: no life claimed
+    bad = subprocess.run([*strainwave_cmd, "size-crack", str(tmp_path / "cup.csv"), "--curves",
+                          str(tmp_path / "cup.csv")], capture_output=True, text=True, timeout=60)
+    assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "--curves" in bad.stderr

@@ -192,13 +192,18 @@ def measured_change(diagnosis) -> tuple[float, float, str] | None:
     if not diagnosis.named or not diagnosis.effects:
         return None
     p, err = diagnosis.effects[0].parameters, diagnosis.effects[0].errors
-    if "crack_closure" in diagnosis.named and "crack_closure.stiffness_crack_open" in p:
-        k_o, k_c = (float(p[f"crack_closure.stiffness_crack_{s}"][0]) for s in ("open", "closed"))
-        e_o, e_c = (float(err.get(f"crack_closure.stiffness_crack_{s}") or 0.0) for s in ("open", "closed"))
+
+    def get(effect: str, name: str) -> tuple[float, float] | None:
+        """A reported parameter, prefixed by its effect when the model is a pair, bare when it is alone."""
+        key = next((k for k in (f"{effect}.{name}", name) if k in p), None)
+        return None if key is None else (float(p[key][0]), float(err.get(key) or 0.0))
+
+    if "crack_closure" in diagnosis.named and get("crack_closure", "stiffness_crack_open"):
+        (k_o, e_o), (k_c, e_c) = (get("crack_closure", f"stiffness_crack_{s}") for s in ("open", "closed"))
         return 1.0 / k_o - 1.0 / k_c, math.hypot(e_o / k_o ** 2, e_c / k_c ** 2), "crack_closure"
-    if "compliance_offset" in diagnosis.named and "compliance_offset.extra_compliance" in p:
-        value = float(p["compliance_offset.extra_compliance"][0])
-        return value, float(err.get("compliance_offset.extra_compliance") or 0.0), "compliance_offset"
+    if "compliance_offset" in diagnosis.named and get("compliance_offset", "extra_compliance"):
+        value, sigma = get("compliance_offset", "extra_compliance")
+        return value, sigma, "compliance_offset"
     return None
 
 
