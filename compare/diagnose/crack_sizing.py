@@ -95,13 +95,18 @@ class CrackSize:
     reason: str
     source: str
 
+    @property
+    def std_mm(self) -> float | None:
+        """The standard uncertainty of the depth: the k-interval's half-width over k."""
+        return None if self.low_mm is None else (self.high_mm - self.low_mm) / (2.0 * COVERAGE_K)
+
     def to_dict(self) -> dict:
-        return dict(self.__dict__)
+        return {**self.__dict__, "std_mm": self.std_mm}
 
     def line(self) -> str:
         if not self.possible:
             return f"{self.component}: cannot hold such a crack ({self.reason})"
-        return (f"{self.component}: crack depth {self.depth_mm:.3g} mm (k = {COVERAGE_K:g} interval "
+        return (f"{self.component}: crack depth {self.depth_mm:.3g} +/- {self.std_mm:.2g} mm (k = {COVERAGE_K:g} interval "
                 f"{self.low_mm:.3g}..{self.high_mm:.3g} mm){'; ' + self.reason if self.reason else ''}")
 
 
@@ -191,6 +196,7 @@ def measured_change(diagnosis) -> tuple[float, float, str] | None:
     prior; crack_closure's open-minus-closed difference does not need it (one specimen, both sides)."""
     if not diagnosis.named or not diagnosis.effects:
         return None
+    c0, u_b = diagnosis.baseline.compliance, diagnosis.baseline.uncertainty
     p, err = diagnosis.effects[0].parameters, diagnosis.effects[0].errors
 
     def get(effect: str, name: str) -> tuple[float, float] | None:
@@ -201,9 +207,11 @@ def measured_change(diagnosis) -> tuple[float, float, str] | None:
     if "crack_closure" in diagnosis.named and get("crack_closure", "stiffness_crack_open"):
         (k_o, e_o), (k_c, e_c) = (get("crack_closure", f"stiffness_crack_{s}") for s in ("open", "closed"))
         return 1.0 / k_o - 1.0 / k_c, math.hypot(e_o / k_o ** 2, e_c / k_c ** 2), "crack_closure"
-    if "compliance_offset" in diagnosis.named and get("compliance_offset", "extra_compliance"):
-        value, sigma = get("compliance_offset", "extra_compliance")
-        return value, sigma, "compliance_offset"
+    if "compliance_offset" in diagnosis.named and get("compliance_offset", "compliance_change_percent"):
+        # measured minus modelled compliance (the stiffness scale included): the crack's share is only known
+        # to the baseline's own uncertainty, which the data cannot reduce
+        change, err_change = get("compliance_offset", "compliance_change_percent")
+        return change / 100.0 * c0, math.hypot(err_change / 100.0, u_b) * c0, "compliance_offset"
     return None
 
 
