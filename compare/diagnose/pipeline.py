@@ -242,6 +242,13 @@ def _full_residual(rec: Recording, base: Baseline, ctx, fit: Fit) -> np.ndarray:
     return full.y - model
 
 
+def _explained_rows(rec: Recording, base: Baseline, ctx, fit: Fit) -> np.ndarray:
+    """``fit``'s response on every row of ``rec`` (physical units)."""
+    if _stride(rec.n) == 1:
+        return fit.model * ctx.Y
+    return rec.response - _full_residual(rec, base, ctx, fit) * ctx.Y
+
+
 def _best_per_set(fits: list[Fit]) -> list[Fit]:
     """The best-scoring model form of every distinct set of effect ids, ranked by BIC."""
     best: dict[frozenset, Fit] = {}
@@ -325,8 +332,14 @@ def _diagnose(rec: Recording, base: Baseline, workers: int) -> tuple[Diagnosis, 
     gof_base = structure_test(ctx, ctx.y - base_fit.model, sigma, base_fit.prior_chi2, noise)
     # a channel stuck at its extreme while the other moves (channels.py) is a mismatch no physics explains
     stride = _stride(rec.n)
-    stuck = stuck_channel(rec.load, rec.response, sigma * ctx.Y, rec.load_name, rec.response_name,
-                          residual=(ctx.y - closest.model) * ctx.Y, stride=stride)
+
+    def stuck_for(f: Fit) -> str:
+        """The load-channel check judged on what ``f`` leaves of the response (channels.stuck_channel)."""
+        return stuck_channel(rec.load, rec.response, sigma * ctx.Y, rec.load_name, rec.response_name,
+                             residual=(ctx.y - f.model) * ctx.Y, stride=stride,
+                             explained=lambda: _explained_rows(rec, base, ctx, f))
+
+    stuck = stuck_for(closest)
     mismatch = bool(gof_base.structured or cat_gain > BIC_THRESHOLD or stuck)
 
     # pairs of the four best distinct singles; a pair is a candidate only if parsimonious (see module doc)
@@ -393,11 +406,9 @@ def _diagnose(rec: Recording, base: Baseline, workers: int) -> tuple[Diagnosis, 
 
     verdict = Verdict.AGREES
     named: tuple[str, ...] = ()
-    note = stuck                             # why a model that fits is still not an explanation
+    note = ""                                # why a model that fits is still not an explanation
     gof_best = gof(best) if mismatch else gof_base
-    if stuck:
-        verdict = Verdict.UNEXPLAINED
-    elif mismatch:
+    if mismatch:
         # explained when some catalogue model (any of its model forms, best BIC first) beats the nuisance fit
         # by BIC (or, where the catalogue-free test found the mismatch, at least beats it), leaves a residual
         # consistent with the noise and has physically plausible parameters
@@ -411,7 +422,8 @@ def _diagnose(rec: Recording, base: Baseline, workers: int) -> tuple[Diagnosis, 
             # a 5 %-uncertain simulation read "unexplained" at a residual on the noise)
             if not (gain > BIC_THRESHOLD or (gof_base.structured and gain > -AMBIGUOUS_BIC)):
                 break
-            if not gof(f).structured and not _implausible(ctx, f) and not _unresolved(ctx, f, sigma):
+            if not gof(f).structured and not _implausible(ctx, f) and not _unresolved(ctx, f, sigma) \
+                    and not (stuck and stuck_for(f)):
                 best, gof_best = f, gof(f)
                 verdict = Verdict.EXPLAINED
                 named = tuple(e.id for e in f.effects)
@@ -421,6 +433,8 @@ def _diagnose(rec: Recording, base: Baseline, workers: int) -> tuple[Diagnosis, 
             verdict = Verdict.UNEXPLAINED
         if verdict is Verdict.AGREES:
             verdict = Verdict.UNEXPLAINED
+        if verdict is Verdict.UNEXPLAINED and stuck:
+            note = stuck
     runner = next((f for f in candidates[1:] if frozenset(e.id for e in f.effects) != frozenset(best.id.split("+"))),
                   None)
     margin = float(runner.bic - best.bic) if runner is not None and mismatch else None
