@@ -22,6 +22,7 @@ clipped twist shows in the residual's structure instead.
 from __future__ import annotations
 
 import math
+from typing import Callable
 
 import numpy as np
 
@@ -65,12 +66,19 @@ def _change_scale(residual: np.ndarray, plateaus: list[tuple[int, int]], lag: in
 
 
 def stuck_channel(load: np.ndarray, response: np.ndarray, sigma_response: float, load_name: str,
-                  response_name: str, residual: np.ndarray | None = None, stride: int = 1) -> str:
+                  response_name: str, residual: np.ndarray | None = None, stride: int = 1,
+                  explained: Callable[[], np.ndarray] | None = None) -> str:
     """A sentence describing a load channel stuck at its extreme while the response moves, or "" when none is.
 
     ``residual``: the response's residual after the best model (physical units, on every ``stride``-th row),
-    from which a coloured noise's change over a plateau's length is read (white noise: sigma_response)."""
+    from which a coloured noise's change over a plateau's length is read (white noise: sigma_response).
+    ``explained``: the fitted model's response on every row (called only where a plateau exists); the response
+    moves on a plateau only by what that model leaves: a wave generator turning under a held torque moves the
+    twist by its kinematic error, which the model draws (a kinematic-error recording fitted at the noise read
+    "a saturated load channel", issue 35)."""
     plateaus = _plateaus(load)
+    if plateaus and explained is not None:
+        response = response - explained()
     for a, b in plateaus:
         moved = float(np.ptp(response[a:b]))
         scale = sigma_response if residual is None else \

@@ -35,16 +35,17 @@ import numpy as np
 
 from ...errors import InputError
 from ...io_atomic import atomic_write_text, json_ready
-from . import exchange, rate_loop
+from . import exchange, loop_stiffness, rate_loop
 from .baseline import Baseline, analytic_baseline, fea_baseline
 from .channels import stuck_channel
 from .context import build_context
 from .effects import effects_for
-from .effects.loop import ARCMIN_PER_RAD, loop_quantities, width_load
+from .effects.loop import ARCMIN_PER_RAD, load_path_model, loop_quantities, width_load
 from .explain import explain
 from .fit import NOISE_FLOOR, Fit, fit_effects, lag1, rescored
 from .glitches import find_glitch
 from .locate import Located, locate, locate_effect
+from .loop_stiffness import with_loop_prior
 from .noise import noise_std
 from .parallel import FitTask, fit_all, usable_workers
 from .recording import Recording, parse_recording
@@ -240,6 +241,13 @@ def _full_residual(rec: Recording, base: Baseline, ctx, fit: Fit) -> np.ndarray:
     return full.y - model
 
 
+def _explained_rows(rec: Recording, base: Baseline, ctx, fit: Fit) -> np.ndarray:
+    """``fit``'s response on every row of ``rec`` (physical units)."""
+    if _stride(rec.n) == 1:
+        return fit.model * ctx.Y
+    return rec.response - _full_residual(rec, base, ctx, fit) * ctx.Y
+
+
 def _best_per_set(fits: list[Fit]) -> list[Fit]:
     """The best-scoring model form of every distinct set of effect ids, ranked by BIC."""
     best: dict[frozenset, Fit] = {}
@@ -293,6 +301,7 @@ def _diagnose(rec: Recording, base: Baseline, workers: int) -> tuple[Diagnosis, 
     reread = {f.effects[0].variant: f for f in singles}
     singles += fit_all(ctx, [FitTask((e,)) for e in forms if e.rereads is not None and e.rereads in reread
                              and reread[e.rereads].prior_chi2 > REREAD_PRIOR_SIGMAS ** 2], sigma, u_rel, workers)
+    singles = [with_loop_prior(ctx, f) for f in singles]
     ranked_singles = _best_per_set(singles)
     best_single = ranked_singles[0] if ranked_singles else None
     # one noise model for the whole recording, every residual is judged against it: read from the residual of
@@ -322,8 +331,14 @@ def _diagnose(rec: Recording, base: Baseline, workers: int) -> tuple[Diagnosis, 
     gof_base = structure_test(ctx, ctx.y - base_fit.model, sigma, base_fit.prior_chi2, noise)
     # a channel stuck at its extreme while the other moves (channels.py) is a mismatch no physics explains
     stride = _stride(rec.n)
-    stuck = stuck_channel(rec.load, rec.response, sigma * ctx.Y, rec.load_name, rec.response_name,
-                          residual=(ctx.y - closest.model) * ctx.Y, stride=stride)
+
+    def stuck_for(f: Fit) -> str:
+        """The load-channel check judged on what ``f`` leaves of the response (channels.stuck_channel)."""
+        return stuck_channel(rec.load, rec.response, sigma * ctx.Y, rec.load_name, rec.response_name,
+                             residual=(ctx.y - f.model) * ctx.Y, stride=stride,
+                             explained=lambda: _explained_rows(rec, base, ctx, f))
+
+    stuck = stuck_for(closest)
     mismatch = bool(gof_base.structured or cat_gain > BIC_THRESHOLD or stuck)
 
     # pairs of the four best distinct singles; a pair is a candidate only if parsimonious (see module doc)
@@ -352,7 +367,7 @@ def _diagnose(rec: Recording, base: Baseline, workers: int) -> tuple[Diagnosis, 
             k = 2 if a0 is best_single else 1
             tasks += [FitTask(a.effects + b.effects, (np.concatenate([a.theta, b.theta]),), noise)
                       for a, b in itertools.product(_pair_forms(by_id[a0.id], k), _pair_forms(by_id[b0.id], k))]
-        pairs = fit_all(ctx, tasks, sigma, u_rel, workers)
+        pairs = [with_loop_prior(ctx, f) for f in fit_all(ctx, tasks, sigma, u_rel, workers)]
         # the best pair in every other combination of model forms: a loop law that loses as a single
         # (its misfit of the stiffening costs more) may be the one that fits beside the other effect
         if pairs:
@@ -360,9 +375,10 @@ def _diagnose(rec: Recording, base: Baseline, workers: int) -> tuple[Diagnosis, 
             forms = {e.id: [f for f in pairable if f.id == e.id] for e in top.effects}
             (ia, fa), (ib, fb) = forms.items()
             done = {tuple(e.label for e in p.effects) for p in pairs}
-            pairs += fit_all(ctx, [FitTask(x.effects + y.effects, (np.concatenate([x.theta, y.theta]),), noise)
-                                   for x, y in itertools.product(fa, fb)
-                                   if (x.effects[0].label, y.effects[0].label) not in done], sigma, u_rel, workers)
+            pairs += [with_loop_prior(ctx, f) for f in fit_all(
+                ctx, [FitTask(x.effects + y.effects, (np.concatenate([x.theta, y.theta]),), noise)
+                      for x, y in itertools.product(fa, fb)
+                      if (x.effects[0].label, y.effects[0].label) not in done], sigma, u_rel, workers)]
     candidates = list(ranked_singles)
     plausible_first = _best_plausible_per_effect(ctx, singles)
     if mismatch and best_single is not None:
@@ -382,15 +398,16 @@ def _diagnose(rec: Recording, base: Baseline, workers: int) -> tuple[Diagnosis, 
             continue
         candidates.append(p)
     candidates.sort(key=lambda f: f.bic)
+    # one model reached twice (a pair and the series compliance beside the best single) is listed once
+    candidates = [f for i, f in enumerate(candidates)
+                  if not any(g.label == f.label and abs(g.bic - f.bic) < 1e-6 for g in candidates[:i])]
     best = candidates[0] if candidates else base_fit
 
     verdict = Verdict.AGREES
     named: tuple[str, ...] = ()
-    note = stuck                             # why a model that fits is still not an explanation
+    note = ""                                # why a model that fits is still not an explanation
     gof_best = gof(best) if mismatch else gof_base
-    if stuck:
-        verdict = Verdict.UNEXPLAINED
-    elif mismatch:
+    if mismatch:
         # explained when some catalogue model (any of its model forms, best BIC first) beats the nuisance fit
         # by BIC (or, where the catalogue-free test found the mismatch, at least beats it), leaves a residual
         # consistent with the noise and has physically plausible parameters
@@ -404,7 +421,8 @@ def _diagnose(rec: Recording, base: Baseline, workers: int) -> tuple[Diagnosis, 
             # a 5 %-uncertain simulation read "unexplained" at a residual on the noise)
             if not (gain > BIC_THRESHOLD or (gof_base.structured and gain > -AMBIGUOUS_BIC)):
                 break
-            if not gof(f).structured and not _implausible(ctx, f) and not _unresolved(ctx, f, sigma):
+            if not gof(f).structured and not _implausible(ctx, f) and not _unresolved(ctx, f, sigma) \
+                    and not (stuck and stuck_for(f)):
                 best, gof_best = f, gof(f)
                 verdict = Verdict.EXPLAINED
                 named = tuple(e.id for e in f.effects)
@@ -414,6 +432,8 @@ def _diagnose(rec: Recording, base: Baseline, workers: int) -> tuple[Diagnosis, 
             verdict = Verdict.UNEXPLAINED
         if verdict is Verdict.AGREES:
             verdict = Verdict.UNEXPLAINED
+        if verdict is Verdict.UNEXPLAINED and stuck:
+            note = stuck
     runner = next((f for f in candidates[1:] if frozenset(e.id for e in f.effects) != frozenset(best.id.split("+"))),
                   None)
     margin = float(runner.bic - best.bic) if runner is not None and mismatch else None
@@ -529,9 +549,9 @@ def _offset_pairs(ctx, best_single: Fit, singles: list[Fit], gof, sigma: float, 
         return []
     out = []
     for a in firsts:
-        p = fit_effects(ctx, a.effects + offset.effects, sigma, u_rel, noise=noise,
-                        starts=[np.concatenate([a.theta, [a.nuisance[2] - 1.0]]),
-                                np.concatenate([a.theta, offset.theta])])
+        p = with_loop_prior(ctx, fit_effects(ctx, a.effects + offset.effects, sigma, u_rel, noise=noise,
+                                             starts=[np.concatenate([a.theta, [a.nuisance[2] - 1.0]]),
+                                                     np.concatenate([a.theta, offset.theta])]))
         if a.bic - p.bic > -AMBIGUOUS_BIC and not gof(p).structured and not _unresolved(ctx, p, sigma):
             out.append(p)
     return out
@@ -604,8 +624,9 @@ def _implausible(ctx, fit: Fit) -> list[str]:
 
 
 def _loop_width(ctx, fit: Fit) -> tuple[float, float]:
-    thetas = fit.split_theta()
-    return loop_quantities(ctx, lambda c: sum(e.contribution(c, th) for e, th in zip(fit.effects, thetas)))
+    # only what the load history draws: a ripple in the input angle is no part of the loop (and the reference
+    # cycle has no angle to run it on)
+    return loop_quantities(ctx, lambda c: load_path_model(c, fit))
 
 
 def _quantities(ctx, fit: Fit, sigma: float, other_forms: list[Fit] = ()) -> dict:
@@ -698,13 +719,37 @@ def _ranked(ctx, fit: Fit, base_fit: Fit, n: int, weight: float, detail: bool = 
     parameters[scale_key] = (fit.scale, "1")
     if detail and fit.cov is not None:
         errors[scale_key] = float(math.sqrt(max(fit.cov[-1, -1], 0.0)))
-    prior_sigmas = abs(fit.scale - 1.0) / ctx.uncertainty
+    if loop_stiffness.applies(fit):
+        parameters.update(_loop_readings(ctx, fit, multi, errors))
+        prior_sigmas = math.sqrt(fit.prior_chi2)
+        stated = "the loop's secant and elastic stiffness are"
+    else:
+        prior_sigmas = abs(fit.scale - 1.0) / ctx.uncertainty
+        stated = f"stiffness scale {fit.scale:.4g} is"
     if prior_sigmas > 3.0:
-        warnings.append(f"stiffness scale {fit.scale:.4g} is {prior_sigmas:.1f} prior sigmas from 1 (implausible "
+        warnings.append(f"{stated} {prior_sigmas:.1f} prior sigmas from 1 (implausible "
                         f"for a baseline uncertain by {100 * ctx.uncertainty:.0f} %)")
     warnings.extend(f"{p} ended at a bound of its plausible range" for p in fit.at_bound)
     return RankedEffect(fit.id, tuple(e.id for e in fit.effects), parameters, float(base_fit.bic - fit.bic),
                         fit.rms(n) * ctx.Y, fit.label, errors, weight, tuple(warnings))
+
+
+def _loop_readings(ctx, fit: Fit, multi: bool, errors: dict) -> dict:
+    """The loop's secant and elastic compliance against the baseline (loop_stiffness.readings), the only
+    stiffnesses of a friction joint the data support; beside a loop, a series compliance reports the change of
+    the secant (the loop's slip tangent at a reversal is no softer specimen)."""
+    secant, elastic = loop_stiffness.readings(ctx, fit)
+    inv = "N*mm/rad" if ctx.response_unit == "rad" else "N/mm"
+    out = {"secant_compliance_change_percent": (100.0 * (secant - 1.0), "%"),
+           "elastic_compliance_change_percent": (100.0 * (elastic - 1.0), "%"),
+           "secant_stiffness": (1.0 / (secant * ctx.c0), inv)}
+    if multi and any(e.id == OFFSET for e in fit.effects):
+        out[f"{OFFSET}.compliance_change_percent"] = out["secant_compliance_change_percent"]
+        out[f"{OFFSET}.measured_stiffness"] = out["secant_stiffness"]
+        # the offset's own parameter error is not the secant's: the secant is the whole loop's reading
+        for k in (f"{OFFSET}.compliance_change_percent", f"{OFFSET}.measured_stiffness"):
+            errors.pop(k, None)
+    return out
 
 
 def _report_errors(ctx, effect, theta, cov, s, rep) -> dict:

@@ -86,6 +86,9 @@ class Effect:
     # stiffness under the prior): fitted only where that form's stiffness is off its prior by more than
     # pipeline.REREAD_PRIOR_SIGMAS (closer, the prior costs it under one BIC unit, which no decision turns on)
     rereads: str | None = None
+    # False for an effect driven by something other than the load history (the wave generator's input angle, the
+    # measured angle): it has no part in a loop drawn against the load, and the reference cycle carries no angle
+    load_path: bool = True
 
     def signature_of(self, ctx: Context, theta: np.ndarray) -> np.ndarray:
         return (self.signature or self.contribution)(ctx, theta)

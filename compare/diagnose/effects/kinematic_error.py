@@ -46,4 +46,5 @@ EFFECT = Effect(
                  "lags and leads the ideal ratio in a ripple at twice (and four times) the wave generator "
                  "frequency: the gear's kinematic (transmission) error"),
     applicable=lambda ctx: ctx.angle is not None,
+    load_path=False,
 )

@@ -57,6 +57,15 @@ def width_load(ctx: Context) -> float:
     return 0.0 if lo < 0.0 < hi else 0.5 * (lo + hi)
 
 
+def load_path_model(ctx: Context, fit) -> np.ndarray:
+    """The contributions of ``fit``'s effects that the load history draws (Effect.load_path) on ``ctx``."""
+    out = np.zeros_like(ctx.u)
+    for e, th in zip(fit.effects, fit.split_theta()):
+        if e.load_path:
+            out = out + e.contribution(ctx, th)
+    return out
+
+
 def loop_quantities(ctx: Context, model: Callable[[Context], np.ndarray]) -> tuple[float, float]:
     """(width at zero load -- or at ``width_load`` -- in the response unit, energy per cycle in load unit x
     response unit)."""
@@ -73,4 +82,4 @@ def loop_quantities(ctx: Context, model: Callable[[Context], np.ndarray]) -> tup
     return width, energy
 
 
-__all__ = ["ARCMIN_PER_RAD", "loop_quantities", "reference_cycle", "width_load"]
+__all__ = ["ARCMIN_PER_RAD", "load_path_model", "loop_quantities", "reference_cycle", "width_load"]
