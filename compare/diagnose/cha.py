@@ -12,11 +12,8 @@ so the stiffness prior does not pin K1 and the fitted K1, K2, K3 come from the d
 """
 from __future__ import annotations
 
-import csv
-import io
 import math
 from dataclasses import dataclass
-from importlib import resources
 
 import numpy as np
 
@@ -52,14 +49,11 @@ class ChaRow:
 
 
 def cha_rows() -> list[ChaRow]:
-    """All rows of the shipped table, converted to N*mm and N*mm/rad."""
-    text = resources.files("strainwave").joinpath("data/cha_torsional_stiffness.csv").read_text(encoding="utf-8")
-    body = "\n".join(line for line in text.splitlines() if line.strip() and not line.startswith("#"))
-    rows = []
-    for r in csv.DictReader(io.StringIO(body)):
-        rows.append(ChaRow(int(r["size"]), r["ratio"].strip(), float(r["T1_Nm"]) * 1e3, float(r["T2_Nm"]) * 1e3,
-                           float(r["K1_e3"]) * 1e6, float(r["K2_e3"]) * 1e6, float(r["K3_e3"]) * 1e6))
-    return rows
+    """All rows of the shipped table (read once, by analytic.catalogue), in N*mm and N*mm/rad."""
+    from strainwave.analytic.catalogue import read_catalogue
+
+    return [ChaRow(r.size, r.ratio_label, r.T1_Nm * 1e3, r.T2_Nm * 1e3, r.K1_Nm_per_rad * 1e3,
+                   r.K2_Nm_per_rad * 1e3, r.K3_Nm_per_rad * 1e3) for r in read_catalogue()]
 
 
 # Slip thresholds up to half the peak torque: at 0.15 the loop was unphysical (docs/decisions/024-cha-slip-fraction.md).
