@@ -58,8 +58,9 @@ def one_draw(rng, params, lam0, lam_crack, cache, tmp: Path, curve_cache: Path):
     twist = dahl_twist(torque, true_uncracked + lam_crack) + rng.normal(0.0, NOISE_RAD, ROWS)
     path = tmp / "rec.csv"
     write_recording(path, torque, twist, 1.0 / lam0)
-    diag, _ = diagnose(parse_recording(path), params, "analytic")
-    return diag, size_diagnosis(diag, params, cache_dir=curve_cache)
+    rec = parse_recording(path)
+    diag, _ = diagnose(rec, params, "analytic")
+    return diag, size_diagnosis(diag, params, rec.load, rec.response, cache_dir=curve_cache)
 
 
 def main() -> int:

@@ -173,3 +173,17 @@ def test_size_crack_command_sizes_a_cup_crack_on_a_validate_curve(tmp_path, stra
     bad = subprocess.run([*strainwave_cmd, "size-crack", str(tmp_path / "cup.csv"), "--curves",
                           str(tmp_path / "cup.csv")], capture_output=True, text=True, timeout=60)
     assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "--curves" in bad.stderr
+
+
+def test_midline_of_a_friction_loop_is_the_elastic_compliance_not_the_secant():
+    """Coulomb friction f in parallel with a spring of compliance c: twist = c (T - f sgn(dT/dt)). The
+    branches sit c f either side of c T; their mean curve is c T exactly."""
+    from strainwave.compare.diagnose.crack_sizing import midline_compliance
+
+    c, f, T_max = 1.3e-9, 3e4, 1e6
+    T = T_max * np.sin(np.linspace(0, 6 * np.pi, 1800))
+    twist = c * (T - f * np.sign(np.gradient(T)))
+    slope, err = midline_compliance(T, twist)
+    assert slope == pytest.approx(c, rel=1e-6) and err < 1e-6 * c
+    straight, _ = midline_compliance(np.linspace(0, T_max, 50), c * np.linspace(0, T_max, 50))
+    assert straight == pytest.approx(c, rel=1e-12)             # no loop: the plain slope

@@ -98,7 +98,7 @@ def size_and_life(recording: Path, options: LifeOptions, *, params_path=None, ba
     rec = parse_recording(recording)
     params = load_params(params_path, overrides=rec.param_overrides or None)
     diag, _ = diagnose(rec, params, baseline)
-    sizing = size_diagnosis(diag, params, results=options.curves, cache_dir=options.cache_dir, progress=progress)
+    sizing = size_diagnosis(diag, params, rec.load, rec.response, results=options.curves, cache_dir=options.cache_dir, progress=progress)
     lives = [] if sizing is None else life_of_sizing(
         sizing, diag.baseline.compliance, params, law=law, spectrum=spectrum or LoadSpectrum.constant(
             params.gear.rated_output_torque_Nmm), stiffness_loss=options.stiffness_loss,

@@ -190,10 +190,52 @@ def shaft_curve_fea(params, cache_dir: Path | None = None,
 SPECIMEN_COMPONENTS = {"output_shaft": ("shaft",), "flexspline_cup": ("cup",), "gear": ("shaft", "cup")}
 
 
-def measured_change(diagnosis) -> tuple[float, float, str] | None:
+MIDLINE_SPAN = 0.7     # of the peak load: past it a reversal's friction transition has not settled
+
+
+def _branches(x: np.ndarray) -> list[tuple[int, int, int]]:
+    """(start, stop, direction) of the monotone runs of the load."""
+    d = np.sign(np.diff(x))
+    d[d == 0] = 1
+    cuts = np.flatnonzero(d[1:] != d[:-1]) + 1
+    edges = [0, *cuts.tolist(), len(d)]
+    return [(a, b + 1, int(d[a])) for a, b in zip(edges, edges[1:]) if b - a >= 5]
+
+
+def midline_compliance(load: np.ndarray, response: np.ndarray) -> tuple[float, float]:
+    """Slope of the loop's mean curve (the average of its loading and unloading branches at one load) over
+    the central +/- MIDLINE_SPAN of the peak load, and its standard error: the elastic compliance of a
+    specimen behind a friction loop, which neither the secant nor the reversal tangent gives."""
+    x, y = np.asarray(load, dtype=float), np.asarray(response, dtype=float)
+    grid = np.linspace(-MIDLINE_SPAN, MIDLINE_SPAN, 41) * float(np.max(np.abs(x)))
+    sides = {1: [], -1: []}
+    for a, b, direction in _branches(x):
+        xs, ys = x[a:b][::direction], y[a:b][::direction]
+        covered = (grid >= xs[0]) & (grid <= xs[-1])
+        sides[direction].append(np.where(covered, np.interp(grid, xs, ys), np.nan))
+    if not sides[1] or not sides[-1]:              # no loop: the plain least-squares slope
+        A = np.column_stack([x, np.ones_like(x)])
+        mid, keep = y, np.ones_like(x, dtype=bool)
+        grid = x
+    else:
+        with np.errstate(all="ignore"):
+            mid = 0.5 * (np.nanmean(sides[1], axis=0) + np.nanmean(sides[-1], axis=0))
+        keep = np.isfinite(mid)
+        A = np.column_stack([grid, np.ones_like(grid)])
+    A, m = A[keep], mid[keep]
+    if len(m) < 5:
+        raise ValueError("too few loop points for a midline")
+    coef, *_ = np.linalg.lstsq(A, m, rcond=None)
+    resid = m - A @ coef
+    cov = np.linalg.inv(A.T @ A) * float(resid @ resid) / max(len(m) - 2, 1)
+    return float(coef[0]), float(math.sqrt(cov[0, 0]))
+
+
+def measured_change(diagnosis, load=None, response=None) -> tuple[float, float, str] | None:
     """(added compliance, its standard uncertainty, the effect it came from) of an explained diagnosis that
-    names a crack-type effect; None otherwise. A compliance change's error already holds the baseline's
-    prior; crack_closure's open-minus-closed difference does not need it (one specimen, both sides)."""
+    names a crack-type effect; None otherwise. crack_closure: the open side's compliance over the closed
+    side's (one specimen, so the baseline's uncertainty cancels). A compliance change: the recording's midline
+    compliance over whole cycles minus the model's, known only to the baseline's own uncertainty."""
     if not diagnosis.named or not diagnosis.effects:
         return None
     c0, u_b = diagnosis.baseline.compliance, diagnosis.baseline.uncertainty
@@ -207,18 +249,17 @@ def measured_change(diagnosis) -> tuple[float, float, str] | None:
     if "crack_closure" in diagnosis.named and get("crack_closure", "stiffness_crack_open"):
         (k_o, e_o), (k_c, e_c) = (get("crack_closure", f"stiffness_crack_{s}") for s in ("open", "closed"))
         return 1.0 / k_o - 1.0 / k_c, math.hypot(e_o / k_o ** 2, e_c / k_c ** 2), "crack_closure"
-    if "compliance_offset" in diagnosis.named and get("compliance_offset", "compliance_change_percent"):
-        # measured minus modelled compliance (the stiffness scale included): the crack's share is only known
-        # to the baseline's own uncertainty, which the data cannot reduce
-        change, err_change = get("compliance_offset", "compliance_change_percent")
-        return change / 100.0 * c0, math.hypot(err_change / 100.0, u_b) * c0, "compliance_offset"
+    if "compliance_offset" in diagnosis.named and load is not None:
+        slope, stderr = midline_compliance(load, response)
+        return slope - c0, math.hypot(stderr, u_b * c0), "compliance_offset"
     return None
 
 
-def size_diagnosis(diagnosis, params, *, results: Path | None = None, cache_dir: Path | None = None,
-                   progress: Callable[[str], None] = lambda m: None) -> dict | None:
-    """The sizing record of a diagnosis: per candidate component of its specimen, the depth or why not."""
-    change = measured_change(diagnosis)
+def size_diagnosis(diagnosis, params, load=None, response=None, *, results: Path | None = None,
+                   cache_dir: Path | None = None, progress: Callable[[str], None] = lambda m: None) -> dict | None:
+    """The sizing record of a diagnosis (and its recording's load and response): per candidate component of
+    its specimen, the depth or why not."""
+    change = measured_change(diagnosis, load, response)
     if change is None:
         return None
     delta, sigma, effect = change
