@@ -65,7 +65,7 @@ def one_draw(rng, params, lam0, lam_crack, cache, tmp: Path, curve_cache: Path):
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--draws", type=int, default=8)
+    ap.add_argument("--draws", type=int, default=16)
     args = ap.parse_args()
     warnings.simplefilter("ignore")
     print(f"load average {' '.join(f'{v:.2f}' for v in os.getloadavg())}", flush=True)
@@ -78,11 +78,12 @@ def main() -> int:
         for a_true in DEPTHS_MM:
             lam_crack = run_study("shaft-torsion", params, quick=True, crack_depth_mm=a_true).quantities[
                 "delta_flexibility_rad_per_Nmm"].value
-            sized = []
+            sized, named = [], []
             for _ in range(args.draws):
                 diag, rec = one_draw(rng, params, lam0, lam_crack, cache, Path(tmp), cache)
                 size = rec["_sizes"][0] if rec and rec["_sizes"] else None
                 total += 1
+                named.append("+".join(diag.named))
                 if size is None or not size.possible:
                     print(f"  a = {a_true} mm: not sized ({diag.verdict.value}, {list(diag.named)})", flush=True)
                     continue
@@ -93,7 +94,8 @@ def main() -> int:
                 std = float(np.median([s.std_mm for s in sized]))
                 ratios.append(std / spread if spread > 0 else float("inf"))
                 print(f"a = {a_true} mm: sized {np.mean([s.depth_mm for s in sized]):.2f} mm, spread {spread:.3f}, "
-                      f"stated uncertainty {std:.3f} mm ({len(sized)}/{args.draws} sized)", flush=True)
+                      f"stated uncertainty {std:.3f} mm ({len(sized)}/{args.draws} sized; named: "
+                      f"{', '.join(f'{k} x{named.count(k)}' for k in sorted(set(named)))})", flush=True)
     rate = hits / total if total else 0.0
     print(f"crack sizing: true depth inside the stated interval in {100 * rate:.0f} % of {total} draws "
           f"(goal >= 90 %): {'PASS' if rate >= 0.9 else 'MISS'}", flush=True)

@@ -3,12 +3,13 @@
 Seed 000 proposes the torsional stiffness as a predictive-maintenance signal. Here the inverse is taken
 per candidate component: the depth at which that component's FEA crack adds the measured compliance.
 The curve is the FEA's own (the shaft's axisymmetric section solved on demand and cached, or the crack
-sweeps of a ``validate`` run's results.json); between its points it is interpolated as a power law (log-log
-linear, the form every crack curve here follows), below its first point the first segment's power law
-runs to zero, and above its last point nothing is asserted: the answer is "not on the curve".
+sweeps of a ``validate`` run's results.json); between its points it is interpolated by a monotone cubic in
+log-log (every crack curve here is close to a power law), below its first point the first segment's power
+law runs to zero, and above its last point nothing is asserted: the answer is "not on the curve".
 
 The stated interval is k = 2 standard uncertainties of the measured change, combined in quadrature
-with the curve's own discretization error (its GCI) at that change.
+with the curve's own discretization error (its GCI) and its interpolation error (the gap between the cubic
+and the chord between its points) at that change.
 """
 from __future__ import annotations
 
@@ -46,12 +47,16 @@ class DeltaCurve:
             raise ValueError(f"{self.component}: a crack curve needs >= 2 depths, increasing, with a rising "
                              "positive delta")
 
-    def _segment(self, i: int) -> tuple[float, float]:
-        """(exponent, coefficient) of the power law through points i and i + 1."""
-        a0, a1 = self.depths_mm[i], self.depths_mm[i + 1]
-        d0, d1 = self.delta[i], self.delta[i + 1]
-        p = math.log(d1 / d0) / math.log(a1 / a0)
-        return p, d0 / a0 ** p
+    def _loglog(self):
+        """Monotone cubic (PCHIP) of log delta against log a: it follows the curve's bend between points, where
+        a straight log-log chord errs to one side; below the first point the first chord's power law."""
+        from scipy.interpolate import PchipInterpolator
+
+        return PchipInterpolator(np.log(self.depths_mm), np.log(self.delta), extrapolate=False)
+
+    def _chord(self, log_a: float) -> float:
+        la, ld = np.log(self.depths_mm), np.log(self.delta)
+        return float(np.interp(log_a, la, ld)) if log_a >= la[0] else float(ld[0] + (ld[1] - ld[0]) / (la[1] - la[0]) * (log_a - la[0]))
 
     def delta_at(self, depth_mm: float) -> float:
         """Added compliance at ``depth_mm`` (<= the last point's depth)."""
@@ -59,15 +64,29 @@ class DeltaCurve:
             return 0.0
         if depth_mm > self.depths_mm[-1] * (1 + 1e-12):
             raise ValueError(f"{self.component}: a = {depth_mm} mm is beyond the curve ({self.depths_mm[-1]} mm)")
-        i = min(max(int(np.searchsorted(self.depths_mm, depth_mm)) - 1, 0), len(self.depths_mm) - 2)
-        p, c = self._segment(i)
-        return c * depth_mm ** p
+        la = math.log(depth_mm)
+        if la < math.log(self.depths_mm[0]) or len(self.depths_mm) < 3:
+            return math.exp(self._chord(la))
+        return float(np.exp(self._loglog()(la)))
+
+    def interpolation_error_at(self, depth_mm: float) -> float:
+        """Relative gap between the cubic and the chord at ``depth_mm``: the error interpolation may leave."""
+        if len(self.depths_mm) < 3 or depth_mm <= self.depths_mm[0]:
+            return 0.0
+        la = math.log(min(depth_mm, self.depths_mm[-1]))
+        return abs(math.expm1(float(self._loglog()(la)) - self._chord(la)))
 
     def slope_at(self, depth_mm: float) -> float:
-        """d(delta)/da of the local power law, for the energy release rate."""
-        i = min(max(int(np.searchsorted(self.depths_mm, depth_mm)) - 1, 0), len(self.depths_mm) - 2)
-        p, c = self._segment(i)
-        return p * c * depth_mm ** (p - 1)
+        """d(delta)/da, for the energy release rate."""
+        if len(self.depths_mm) < 3 or depth_mm <= self.depths_mm[0]:
+            i = 0 if depth_mm <= self.depths_mm[0] else min(int(np.searchsorted(self.depths_mm, depth_mm)) - 1,
+                                                             len(self.depths_mm) - 2)
+            la, ld = np.log(self.depths_mm), np.log(self.delta)
+            p = (ld[i + 1] - ld[i]) / (la[i + 1] - la[i])
+            return p * self.delta_at(depth_mm) / depth_mm
+        f = self._loglog()
+        la = math.log(depth_mm)
+        return float(f.derivative()(la)) * self.delta_at(depth_mm) / depth_mm
 
     def depth_for(self, delta: float) -> float | None:
         """Depth whose added compliance is ``delta``; 0 for delta <= 0, None above the curve's last point."""
@@ -75,9 +94,17 @@ class DeltaCurve:
             return 0.0
         if delta > self.delta[-1] * (1 + 1e-12):
             return None
-        i = min(max(int(np.searchsorted(self.delta, delta)) - 1, 0), len(self.delta) - 2)
-        p, c = self._segment(i)
-        return (delta / c) ** (1.0 / p)
+        if delta <= self.delta[0] or len(self.depths_mm) < 3:
+            la, ld = np.log(self.depths_mm), np.log(self.delta)
+            i = 0 if delta <= self.delta[0] else min(int(np.searchsorted(self.delta, delta)) - 1, len(self.delta) - 2)
+            p = (ld[i + 1] - ld[i]) / (la[i + 1] - la[i])
+            return float(math.exp(la[i] + (math.log(delta) - ld[i]) / p))
+        from scipy.optimize import brentq
+
+        la = np.log(self.depths_mm)
+        f = self._loglog()
+        target = math.log(delta)
+        return float(math.exp(brentq(lambda x: float(f(x)) - target, la[0], la[-1], xtol=1e-13)))
 
     def relative_uncertainty_at(self, depth_mm: float) -> float:
         """The curve's GCI, relative, interpolated between its points (the nearest point's beyond them)."""
@@ -117,7 +144,9 @@ def _one(curve: DeltaCurve, delta: float, sigma: float) -> CrackSize:
                          f"the measured change {delta:.3g} {curve.unit} exceeds its FEA curve's largest, "
                          f"{top:.3g} at a = {curve.depths_mm[-1]:g} mm of a {curve.wall_mm:g} mm wall", curve.source)
     a = curve.depth_for(min(delta, top))
-    sigma_tot = math.hypot(sigma, curve.relative_uncertainty_at(a or curve.depths_mm[0]) * max(delta, 0.0))
+    at = a or curve.depths_mm[0]
+    rel_curve = math.hypot(curve.relative_uncertainty_at(at), curve.interpolation_error_at(at))
+    sigma_tot = math.hypot(sigma, rel_curve * max(delta, 0.0))
     lo = curve.depth_for(delta - COVERAGE_K * sigma_tot)
     hi = curve.depth_for(delta + COVERAGE_K * sigma_tot)
     notes = []
@@ -155,7 +184,7 @@ def curve_from_results(path: Path, component: str) -> DeltaCurve:
                       tuple(r[2] for r in rows), wall, f"FEA crack sweep in {path}")
 
 
-SHAFT_DEPTH_FRACTIONS = (0.03, 0.1, 0.25, 0.45, 0.7, 0.9)   # of the wall: shallow to nearly through
+SHAFT_DEPTH_FRACTIONS = (0.03, 0.08, 0.16, 0.28, 0.42, 0.56, 0.7, 0.82, 0.92)   # of the wall: shallow to nearly through
 
 
 def shaft_curve_fea(params, cache_dir: Path | None = None,
