@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from . import ring, torsion
 
-__all__ = ["bearing_ring_load", "ring_compression_load"]
+__all__ = ["bearing_ring_load", "ring_compression_load", "wg_bearing_load"]
 
 
 def bearing_ring_load(params) -> dict[str, float]:
@@ -26,3 +26,20 @@ def ring_compression_load(params) -> dict[str, float]:
     r_m = ring.mid_layer_radius_mm(e.module_mm, e.flexspline_teeth, e.rim_thickness_mm, e.dedendum_coefficient)
     force = ring.force_for_deformation_N(w0, r_m, E, ring.second_moment_mm4(e.face_width_mm, e.rim_thickness_mm))
     return {"force_N": force, "w0_mm": w0}
+
+
+def wg_bearing_load(params) -> dict:
+    """The wave generator bearing on its cam (study wg-bearing): the rated F_r = 1.15 k_r T_rated / d1 (seed 000),
+    the cam's radial amplitude w0 = gear.radial_deformation_mm, Stribeck's ball loads (zero clearance) over
+    ``wave_generator.ball_count`` balls, each ball's patch half-width b' (Q/F_r)^(1/3) (Hertz, the seed's
+    ellipse taken at F_r) and the Hertz constant K_n of one ball between two races."""
+    from . import wg_bearing
+
+    g, wg, mat = params.gear, params.wave_generator, params.material
+    force = torsion.radial_force_N(g.force_coefficient, g.rated_output_torque_Nmm, params.flexspline_cup.pitch_diameter_mm)
+    psi, q = wg_bearing.stribeck_ball_loads(force, wg.ball_count)
+    b = wg.contact_semi_axes_mm[1] * (q / force) ** (1.0 / 3.0)
+    return {"force_N": force, "w0_mm": g.radial_deformation_mm, "ball_angles_rad": tuple(psi.tolist()),
+            "ball_loads_N": tuple(q.tolist()), "patch_half_widths_mm": tuple(b.tolist()),
+            "hertz_constant": wg_bearing.hertz_ball_constant(force, wg.contact_semi_axes_mm, mat.youngs_modulus_MPa,
+                                                             mat.poisson_ratio)}

@@ -36,8 +36,13 @@ class CrackPairs:
     normal: np.ndarray
 
     def __post_init__(self):
-        if self.minus.shape != self.plus.shape or self.normal.shape != (3,):
-            raise ValueError("CrackPairs: minus and plus must align and the normal must be a 3-vector")
+        if self.minus.shape != self.plus.shape or self.normal.shape not in ((2,), (3,)):
+            raise ValueError("CrackPairs: minus and plus must align and the normal must be a 2- or 3-vector")
+
+    @property
+    def dim(self) -> int:
+        """Displacement components per node: 3 (solid) or 2 (a plane cross-section)."""
+        return self.normal.size
 
     def in_dofs(self, node_to_dof: np.ndarray) -> "CrackPairs":
         """The pairs renumbered from mesh nodes to scalar dofs (scikit-fem's ``node_to_dof``)."""
@@ -63,7 +68,9 @@ def crack_pairs(opened: MeshData, group: str = "crack") -> CrackPairs:
     return CrackPairs(pairs[:, 0], pairs[:, 1], n)
 
 
-def _tangents(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _tangents(n: np.ndarray) -> tuple[np.ndarray, ...]:
+    if n.size == 2:
+        return (np.array([-n[1], n[0]]),)
     a = np.eye(3)[np.argmin(np.abs(n))]
     t1 = np.cross(n, a)
     t1 /= np.linalg.norm(t1)
@@ -72,23 +79,23 @@ def _tangents(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 def _transformation(N: int, pairs: CrackPairs, active: np.ndarray) -> tuple[sp.csr_matrix, np.ndarray]:
     """T (N x M) with u = T v, and the reduced index of every kept original dof (-1 for eliminated ones)."""
-    n = pairs.normal
-    t1, t2 = _tangents(n)
+    n, dim = pairs.normal, pairs.dim
+    tangents = _tangents(n)
     j_act, i_act = pairs.plus[active], pairs.minus[active]
     removed = np.zeros(N, bool)
-    removed[(3 * j_act[:, None] + np.arange(3)).ravel()] = True
+    removed[(dim * j_act[:, None] + np.arange(dim)).ravel()] = True
     kept = np.flatnonzero(~removed)
     col = np.full(N, -1, dtype=np.int64)
     col[kept] = np.arange(kept.size)
-    M = kept.size + 2 * j_act.size
+    M = kept.size + (dim - 1) * j_act.size
     rows, cols, vals = [kept], [col[kept]], [np.ones(kept.size)]
-    tang_col = kept.size + 2 * np.arange(j_act.size)
-    for c in range(3):
-        r = 3 * j_act + c
-        for d in range(3):                       # (n . u_i) n
-            rows.append(r), cols.append(col[3 * i_act + d]), vals.append(np.full(j_act.size, n[c] * n[d]))
-        rows.append(r), cols.append(tang_col), vals.append(np.full(j_act.size, t1[c]))
-        rows.append(r), cols.append(tang_col + 1), vals.append(np.full(j_act.size, t2[c]))
+    tang_col = kept.size + (dim - 1) * np.arange(j_act.size)
+    for c in range(dim):
+        r = dim * j_act + c
+        for d in range(dim):                     # (n . u_i) n
+            rows.append(r), cols.append(col[dim * i_act + d]), vals.append(np.full(j_act.size, n[c] * n[d]))
+        for k, t in enumerate(tangents):
+            rows.append(r), cols.append(tang_col + k), vals.append(np.full(j_act.size, t[c]))
     T = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(N, M))
     T.eliminate_zeros()
     return T, col
@@ -120,7 +127,7 @@ class ContactResult:
 def solve_with_contact(K: sp.spmatrix, f: np.ndarray, fixed_dofs: np.ndarray, pairs: CrackPairs, solve,
                        *, tol_mm: float | None = None) -> ContactResult:
     """Active-set frictionless contact; ``solve(K, f, fixed_dofs) -> u`` is the linear solver. ``pairs`` index
-    scalar dofs (vector dof = 3 x scalar + component, interleaved as in ``assembly``).
+    scalar dofs (vector dof = dim x scalar + component, interleaved as in ``assembly``; dim = pairs.dim).
 
     Starts from the unconstrained solve (the pairs it interpenetrates are the first active set)."""
     K = K.tocsr()
@@ -131,10 +138,10 @@ def solve_with_contact(K: sp.spmatrix, f: np.ndarray, fixed_dofs: np.ndarray, pa
     tol = tol_mm if tol_mm is not None else 1e-9 * float(np.abs(u).max())
     active = np.zeros(pairs.minus.size, bool)
     for it in range(1, MAX_ITERATIONS + 1):
-        gap = (u.reshape(-1, 3)[pairs.plus] - u.reshape(-1, 3)[pairs.minus]) @ n
+        gap = (u.reshape(-1, pairs.dim)[pairs.plus] - u.reshape(-1, pairs.dim)[pairs.minus]) @ n
         force = np.zeros(pairs.minus.size)
         if active.any():
-            r = (K @ u - f).reshape(-1, 3)
+            r = (K @ u - f).reshape(-1, pairs.dim)
             force[active] = r[pairs.plus[active]] @ n
         new = (active & (force >= 0.0)) | (~active & (gap < -tol))
         if np.array_equal(new, active):

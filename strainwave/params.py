@@ -175,6 +175,7 @@ class WaveGenerator:
     beta: float
     uncracked_radial_stiffness_N_per_mm: float
     bearing_crack_depth_mm: float   # depth of the inner ring's race crack (seed 000's a, for the bearing)
+    ball_count: int                 # Z: balls of the wave generator bearing (chosen; the seed gives none)
 
     def __post_init__(self):
         _positive("wave_generator.bearing_inner_ring_thickness_mm", self.bearing_inner_ring_thickness_mm)
@@ -188,6 +189,8 @@ class WaveGenerator:
         _recommend("wave_generator.beta", self.beta, 0.4278, 0.5, "seed 000, from a'/b'")
         _crack_in_wall("wave_generator.bearing_crack_depth_mm", self.bearing_crack_depth_mm,
                        "wave_generator.bearing_inner_ring_thickness_mm", self.bearing_inner_ring_thickness_mm)
+        if not isinstance(self.ball_count, int) or self.ball_count < 3:
+            raise InputError("wave_generator.ball_count", self.ball_count, "must be an integer >= 3")
         check_bounds("wave_generator", self)   # after the checks above, whose messages are more specific
 
 

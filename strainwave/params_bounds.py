@@ -58,6 +58,7 @@ BOUNDS: dict[str, Bound] = {
     "wave_generator.beta": Bound(0.01, 1.0, "a circumferential stress factor (seed 000: 0.4278..0.5)"),
     "wave_generator.uncracked_radial_stiffness_N_per_mm": Bound(1.0, 1e12, "a bearing's radial stiffness"),
     "wave_generator.bearing_crack_depth_mm": Bound(1e-3, 1e3, _FEATURE),
+    "wave_generator.ball_count": Bound(3, 200, "a ball bearing carries a few to ~100 balls; Stribeck needs >= 3"),
     "cracks.surface_crack_shape_factor": Bound(1.0, 10.0, "Q = 1 + 1.464 (a/c)^1.65 is 1..2.5 for a/c <= 1"),
     "cracks.stress_nonuniformity": Bound(0.1, 10.0, _FACTOR),
     "cracks.dynamic_load_factor": Bound(0.1, 10.0, _FACTOR),

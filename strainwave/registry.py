@@ -122,6 +122,18 @@ STUDIES: dict[str, Study] = {s.name: s for s in (
               QuantitySpec("delta_radial_compliance_mm_per_N", "mm/N", "added radial compliance of the race crack",
                            "bearing.crack_compliance"),
           ), load_inputs="strainwave.analytic.study_loads:bearing_ring_load"),
+    # The inner ring on the elliptical cam (issue 34): 2D, its own sweep of race-crack depths in one case.
+    Study("wg-bearing", "strainwave.fea.wg_bearing", "wg-bearing-ring", None, None, (
+        QuantitySpec("race_stress_major_MPa", "MPa", "race hoop stress at the major axis, cam alone",
+                     "bearing.race_stress_major"),
+        QuantitySpec("race_stress_minor_MPa", "MPa", "race hoop stress at the minor axis, cam alone",
+                     "bearing.race_stress_minor"),
+        QuantitySpec("bore_stress_major_MPa", "MPa", "bore hoop stress at the major axis, cam alone"),
+        QuantitySpec("net_race_stress_major_MPa", "MPa", "race hoop stress at the major axis, cam + ball loads"),
+        QuantitySpec("ball_load_ratio", "1", "Z Q_max / F_r with Hertz balls on the FEA ring", "bearing.ball_loads"),
+        QuantitySpec("radial_stiffness_N_per_mm", "N/mm", "K_G: F_r over the outer race's approach (balls + ring)"),
+        QuantitySpec("radial_compliance_mm_per_N", "mm/N", "ring compliance under the ball loads, uncracked"),
+    ), load_inputs="strainwave.analytic.study_loads:wg_bearing_load"),
     # The ring closed forms are given at the thin-ring force for W0; they scale linearly to the FEA's force.
     Study("ring-compression", "strainwave.fea.ring_compression", "ewg-flexspline-ring", None, None, (
         QuantitySpec("delta_cd_mm", "mm", "diameter shortening along the load line CD", "ring.delta_cd"),

@@ -12,7 +12,8 @@ from .fea_book import FeaBook, Sweep
 from .plan import COMPONENT_STUDY, Plan
 from ...analytic import tube_crack
 from .ring_checks import ring_checks
-from .torsion_checks import (FLEX_UNIT, bearing_closed_crack_check, bearing_crack_curve, crack_check,
+from .wg_bearing_checks import wg_bearing_checks
+from .torsion_checks import (FLEX_UNIT, bearing_crack_curve, crack_check,
                              cup_crack_allowances, cup_crack_curve, cup_flexibility, gear_stiffness, mu_gap,
                              shaft_crack_curve, shaft_flexibility)
 
@@ -117,12 +118,12 @@ def build_checks(book: FeaBook, plan: Plan, summary: dict, params) -> CheckSet:
             note += (f"; the bore raises the outer-fibre shear stress by {hollow:.3f} and so a shallow crack's "
                      f"compliance by {hollow ** 2:.3f} over the solid-bar forms; G = E/2(1+nu) as the FEA")
         if component == "bearing":
-            F_r = book.applied_force_N(plan.headline["bearing"].label) or s000.get("F_r_N", 1.0)
-            checks.append(bearing_closed_crack_check(book, case_labels, params, F_r))
+            # the 3D ring on a bonded bore stays in the sweep table; the check is the ring on the cam (wg-bearing)
             continue
         checks.append(crack_check(check_id, quantity, unit, sweep, curves[component], allowances, note,
                                   {"fea": "FEA " + ", ".join(case_labels), "analytic": "seed 000"},
                                   params.crack_depth_mm(STUDIES[COMPONENT_STUDY[component]].crack_key)))
+    checks += wg_bearing_checks(book, plan.wg_bearing.label, params)
     checks += ring_checks(book, plan.ring.label, refs, params)
     checks.append(gear_stiffness(book, labels, s000, params))
     present = {c.id for c in checks}

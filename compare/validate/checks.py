@@ -134,6 +134,7 @@ def not_evaluated(check_id: str, quantity: str, unit: str, why: str, *, analytic
 
 REQUIRED_IDS = (
     "shaft.flexibility", "shaft.crack_compliance", "cup.flexibility", "cup.crack_compliance",
-    "bearing.crack_compliance", "ring.delta_cd", "ring.delta_ab",
+    "bearing.crack_compliance", "bearing.race_stress_major", "bearing.race_stress_minor", "bearing.ball_loads",
+    "ring.delta_cd", "ring.delta_ab",
     "ring.delta_cd_solid", "ring.sigma_max", "ring.sigma_min", "ring.tooth_influence", "ring.stress_concentration", "gear.stiffness",
 )

@@ -19,6 +19,7 @@ from .runner import Case
 # component -> its study, from the registry (the crack-bearing studies)
 COMPONENT_STUDY = {s.component: s.name for s in STUDIES.values() if s.component}
 RING_STUDY = "ring-compression"
+WG_BEARING_STUDY = "wg-bearing"      # the inner ring on the elliptical cam: one 2D case, its own crack sweep
 
 
 @dataclass(frozen=True)
@@ -26,12 +27,13 @@ class Plan:
     headline: dict[str, Case]                      # component -> case at the default crack depth
     sweeps: dict[str, tuple[Case, ...]]            # component -> deeper cracks
     ring: Case
+    wg_bearing: Case = Case("wg-bearing", WG_BEARING_STUDY, None)
 
     def all_cases(self) -> tuple[Case, ...]:
         cases = list(self.headline.values())
         for sweep in self.sweeps.values():
             cases += list(sweep)
-        return tuple(cases) + (self.ring,)
+        return tuple(cases) + (self.ring, self.wg_bearing)
 
 
 def walls_mm(params) -> dict[str, float]:

@@ -1,0 +1,133 @@
+"""Checks of the wave generator bearing's inner ring on the elliptical cam (study wg-bearing, issue 34 item 3).
+
+- ``bearing.race_stress_major`` / ``_minor``: the race hoop stress under the cam against the curved-beam form
+  (asserted, ``corrected``) with the thin-ring 3 E t w0/(2 r_m^2) beside it (``published``: the issue's form).
+- ``bearing.ball_loads``: Z Q_max/F_r with the balls as Hertz springs on the FEA ring against Stribeck's law
+  (zero clearance, rigid rings, the exact sum over the Z balls; ``published``: Stribeck's 4.37).
+- ``bearing.crack_compliance``: the race crack's added radial compliance at the major axis, where the cam's
+  bending holds it open, against the edge-crack weight function integrated by seed 000's eq 4 at the FEA's own
+  uncracked hoop stress on the crack line (``corrected``); ``published``: seed 000's K = 1.95 sigma sqrt(a/Q) at
+  the FEA's stress at the mouth. Never the FEA's own uncracked compliance.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ...analytic import wg_bearing as wgb
+from ...analytic.study_loads import wg_bearing_load
+from .checks import Check, evaluate, fea_tolerance, not_evaluated
+from .fea_book import FeaBook, Sweep
+from .torsion_checks import crack_check
+
+STUDY = "wg-bearing"
+IDS = ("bearing.race_stress_major", "bearing.race_stress_minor", "bearing.ball_loads", "bearing.crack_compliance")
+
+
+def _ring(params):
+    from ...fea.wg_bearing import setup_from
+    return setup_from(params, **wg_bearing_load(params))
+
+
+def race_stress_check(book: FeaBook, label: str, params, axis: str) -> Check:
+    phi = 0.0 if axis == "major" else 0.5 * math.pi
+    check_id, name = f"bearing.race_stress_{axis}", f"race_stress_{axis}_MPa"
+    s = _ring(params)
+    E, t, r_m = s.E_MPa, s.thickness_mm, 0.5 * (s.r_bore_mm + s.r_race_mm)
+    analytic = {"corrected": wgb.curved_beam_race_stress_MPa(E, s.r_bore_mm, s.r_race_mm, s.w0_mm, phi),
+                "published": wgb.thin_ring_race_stress_MPa(E, t, r_m, s.w0_mm, phi)}
+    quantity = f"race hoop stress at the {axis} axis, inner ring forced into w0 cos 2phi by the cam"
+    q, why = book.quantity(label, name)
+    if q is None:
+        return not_evaluated(check_id, quantity, "MPa", why, analytic=analytic)
+    tol = fea_tolerance(q.value, q.uncertainty, allowances=wgb.race_stress_allowances(s.r_bore_mm, s.r_race_mm))
+    note = (f"w0 = {s.w0_mm:g} mm (gear.radial_deformation_mm), ring r = {s.r_bore_mm:g}..{s.r_race_mm:g} mm; "
+            "corrected: curved beam (Winkler neutral radius) with the membrane force N = -M/r_m of a ring under "
+            "radial cam pressure; published: thin ring 3 E t w0/(2 r_m^2), tension at the major axis")
+    return evaluate(Check(check_id, quantity, "MPa", q.value, q.uncertainty, analytic, "corrected", tol, note=note,
+                          sources={"fea": f"FEA {label}", "analytic": "analytic.wg_bearing"}))
+
+
+def ball_load_check(book: FeaBook, label: str, params) -> Check:
+    check_id, unit = "bearing.ball_loads", "1"
+    loads = wg_bearing_load(params)
+    psi, q = wgb.stribeck_ball_loads(loads["force_N"], params.wave_generator.ball_count)
+    Z, F = params.wave_generator.ball_count, loads["force_N"]
+    analytic = {"corrected": Z * float(q.max()) / F, "published": 4.37}
+    quantity = f"Z Q_max / F_r, Z = {Z} balls (Hertz Q = K_n delta^1.5) between the FEA ring and a rigid outer race"
+    fea, why = book.quantity(label, "ball_load_ratio")
+    if fea is None:
+        return not_evaluated(check_id, quantity, unit, why, analytic=analytic)
+    s = _ring(params)
+    g = wgb.ring_local_compliance_mm_per_N(s.E_MPa, s.thickness_mm, s.width_mm, max(s.patch_half_widths_mm))
+    allowance = wgb.stribeck_allowance(float(q.max()), loads["hertz_constant"], g)
+    tol = fea_tolerance(fea.value, fea.uncertainty, allowances={
+        f"the ring's own compliance under a ball ({g:.3g} mm/N, 45 deg spreading, doubled) against the Hertz "
+        "ball's, first order": allowance})
+    note = ("Stribeck's law Q_i = Q_max cos^1.5 psi_i (zero clearance, rigid rings); corrected = the exact sum "
+            f"F_r / sum cos^2.5 psi_i over the Z balls; published = Stribeck's 4.37 (Z -> infinity); F_r = {F:.4g} N")
+    return evaluate(Check(check_id, quantity, unit, fea.value, fea.uncertainty, analytic, "corrected", tol,
+                          note=note, sources={"fea": f"FEA {label} + Hertz balls", "analytic": "Stribeck"}))
+
+
+def crack_sweep(book: FeaBook, label: str) -> Sweep | None:
+    """The race crack's added compliance at each depth the case solved."""
+    from ...fea.wg_bearing import delta_name
+
+    result = book.result(label)
+    if result is None:
+        return None
+    rows = []
+    for depth in result.meta.get("crack_depths_mm", []):
+        q, _ = book.quantity(label, delta_name(depth))
+        if q is not None:
+            rows.append((float(depth), q.value, q.uncertainty or 0.0))
+    if not rows:
+        return None
+    d, v, u = zip(*sorted(rows))
+    return Sweep("bearing", "delta_radial_compliance_mm_per_N", "mm/N", d, v, u)
+
+
+def crack_curve(params, result):
+    """depth -> {corrected: weight function at the FEA's uncracked hoop stress on the crack line,
+    published: seed 000's form at the FEA's hoop stress at the mouth}."""
+    s = _ring(params)
+    cracks = result.meta["cracks"]
+
+    def curve(depth: float) -> dict[str, float]:
+        fact = cracks[f"{depth:g}"]
+        x, sig = np.asarray(fact["profile_x_mm"]), np.asarray(fact["hoop_stress_per_N_MPa"])
+        return {"corrected": wgb.edge_crack_compliance_mm_per_N(lambda xx: np.interp(xx, x, sig), depth, s.E_MPa,
+                                                                 s.width_mm),
+                "published": wgb.seed_form_compliance_mm_per_N(float(sig[0]), depth, s.E_MPa, s.width_mm)}
+    return curve
+
+
+def bearing_crack_check(book: FeaBook, label: str, params, curve=None) -> Check:
+    check_id, unit = "bearing.crack_compliance", "mm/N"
+    quantity = "added radial compliance of the race crack at the major axis (cam + ball loads, face contact)"
+    sweep, result = crack_sweep(book, label), book.result(label)
+    if sweep is None or result is None:
+        return not_evaluated(check_id, quantity, unit, f"case {label} produced no crack compliance")
+    curve = curve or crack_curve(params, result)
+    t = params.wave_generator.bearing_inner_ring_thickness_mm
+    allowances = lambda a: {f"back face (the cam-held bore) between half-plane and free strip, a/t = {a / t:.3g}":  # noqa: E731
+                            wgb.back_face_allowance(a, t)}
+    comp = result.meta.get("compressed_crack", {})
+    net = book.quantity(label, "net_race_stress_major_MPa")[0]
+    note = (f"crack at the major axis on the race, where the net hoop stress is "
+            f"{net.value if net else float('nan'):+.4g} MPa (cam + rated ball loads): open; under the cam reversed "
+            f"(w0 -> -w0) the a = {comp.get('depth_mm', float('nan')):g} mm crack closes "
+            f"({comp.get('closed_pairs', '?')} of {comp.get('pairs', '?')} face pairs in contact, delta C = "
+            f"{comp.get('delta', float('nan')):.2g} mm/N). corrected: Tada's half-plane edge-crack weight function at "
+            "the FEA's uncracked hoop stress on the crack line, seed 000 eq 4 with dA = B da; published: seed 000's "
+            "1.95 sigma sqrt(a/Q), Q = 1 (straight front), sigma = the FEA's stress at the mouth")
+    return crack_check(check_id, quantity, unit, sweep, curve, allowances, note,
+                       {"fea": f"FEA {label}", "analytic": "edge-crack weight function (Tada) at the FEA's stress"},
+                       params.wave_generator.bearing_crack_depth_mm)
+
+
+def wg_bearing_checks(book: FeaBook, label: str, params) -> list[Check]:
+    return [race_stress_check(book, label, params, "major"), race_stress_check(book, label, params, "minor"),
+            ball_load_check(book, label, params), bearing_crack_check(book, label, params)]

@@ -1,0 +1,254 @@
+"""A ring's plane-stress cross-section on a structured polar P2 mesh, with an optional radial edge crack at
+phi = 0 running in from the outer surface (the race).
+
+The mesh is graded in r and phi towards the crack tip and the race; its angular columns run from phi = 0 to
+2 pi, and the last column is merged into the first below the crack tip only, so the crack is two coincident
+faces (the uncracked ring is the same mesh with every node merged). Crack-face node pairs go to
+``fea.crack_contact`` (frictionless, active set). The bore sits on a cam: its radial displacement is
+prescribed, its tangential one is free (a frictionless cam), with one tangential condition on the bore at
+phi = 0 against the rigid rotation (on the symmetry line, so it carries no force).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.linalg import splu
+
+from .crack_contact import CrackPairs, solve_with_contact
+
+__all__ = ["graded_nodes", "RingMesh", "ring_mesh", "RingSystem", "assemble", "solve_ring"]
+
+
+def graded_nodes(x0: float, x1: float, size_fn) -> np.ndarray:
+    """Nodes from x0 to x1 whose spacing follows ``size_fn(x)`` (marched, then stretched to end on x1)."""
+    xs = [x0]
+    while xs[-1] < x1:
+        xs.append(xs[-1] + size_fn(xs[-1]))
+    xs = np.asarray(xs)
+    n = max(len(xs) - 1, 1)
+    if len(xs) > 2 and (xs[-1] - x1) > 0.5 * (xs[-1] - xs[-2]):
+        n -= 1               # the overshooting step is dropped; the others stretch a little
+    xs = x0 + (xs[: n + 1] - x0) * (x1 - x0) / (xs[n] - x0)
+    return xs
+
+
+@dataclass(frozen=True)
+class RingMesh:
+    mesh: object                  # skfem MeshTri
+    r_mm: np.ndarray              # radial node positions (bore first)
+    phi_rad: np.ndarray           # angular columns, 0 .. 2 pi
+    crack_pairs: CrackPairs | None      # scalar node indices (minus: phi = 0+ side, plus: phi = 2pi- side)
+
+
+def _node_index(n_r: int, n_phi: int, merge_below: int):
+    """Index of node (i, j), i radial, j angular 0..n_phi; column n_phi merges into 0 for i <= merge_below."""
+    idx = np.arange(n_r * (n_phi + 1)).reshape(n_r, n_phi + 1)
+    idx[: merge_below + 1, n_phi] = idx[: merge_below + 1, 0]
+    used = np.unique(idx)
+    remap = np.full(idx.max() + 1, -1)
+    remap[used] = np.arange(used.size)
+    return remap[idx]
+
+
+def ring_mesh(r_mm: np.ndarray, phi_rad: np.ndarray, crack_tip_index: int | None):
+    """P1 triangles on the polar grid; ``crack_tip_index``: radial index of the crack tip (None: uncracked).
+    Returns (skfem MeshTri, crack nodes (minus, plus, tip) or None)."""
+    from skfem import MeshTri
+
+    n_r, n_phi = len(r_mm), len(phi_rad) - 1
+    merge = n_r - 1 if crack_tip_index is None else crack_tip_index
+    idx = _node_index(n_r, n_phi, merge)
+    rr, pp = np.meshgrid(r_mm, phi_rad, indexing="ij")
+    pts = np.zeros((2, idx.max() + 1))
+    pts[0, idx.ravel()] = (rr * np.cos(pp)).ravel()
+    pts[1, idx.ravel()] = (rr * np.sin(pp)).ravel()
+    a, b = idx[:-1, :-1], idx[:-1, 1:]
+    c, d = idx[1:, :-1], idx[1:, 1:]
+    # alternate diagonals so the grid has no preferred direction
+    flip = ((np.arange(n_r - 1)[:, None] + np.arange(n_phi)[None, :]) % 2).astype(bool)
+    t1 = np.where(flip[..., None], np.stack([a, b, d], -1), np.stack([a, b, c], -1))
+    t2 = np.where(flip[..., None], np.stack([a, d, c], -1), np.stack([b, d, c], -1))
+    tris = np.concatenate([t1.reshape(-1, 3), t2.reshape(-1, 3)]).T
+    pairs = None
+    if crack_tip_index is not None:
+        rows = np.arange(crack_tip_index + 1, n_r)
+        pairs = (idx[rows, 0], idx[rows, n_phi], int(idx[crack_tip_index, 0]))
+    pts[1, idx[:, 0]] = 0.0                  # phi = 0 exactly (the merged nodes were written at 2 pi last)
+    return MeshTri(pts, tris), pairs
+
+
+@dataclass(frozen=True)
+class RingSystem:
+    """Assembled plane-stress system in nodal (r, phi) coordinates at the bore, global (x, y) elsewhere."""
+
+    K: sp.csr_matrix
+    R: sp.csr_matrix               # u_global = R u_local
+    basis: object                  # vector P2 basis
+    scalar: object                 # scalar P2 basis
+    bore_dofs: np.ndarray          # scalar dofs on the bore
+    pairs: CrackPairs | None       # crack dof pairs (scalar dof numbers)
+    width_mm: float
+
+
+def _edge_dofs(mesh, scalar, a_nodes: np.ndarray, b_nodes: np.ndarray) -> np.ndarray:
+    """Scalar P2 dofs of the mesh edges (a_k, b_k) (their mid-side dofs)."""
+    facets = np.sort(mesh.facets, axis=0)
+    lookup = {(int(p), int(q)): k for k, (p, q) in enumerate(facets.T)}
+    ids = [lookup[tuple(sorted((int(p), int(q))))] for p, q in zip(a_nodes, b_nodes)]
+    return scalar.facet_dofs[0, np.asarray(ids, dtype=np.int64)]
+
+
+def assemble(mesh, pairs_nodes, *, E_MPa: float, nu: float, width_mm: float, r_bore_mm: float) -> RingSystem:
+    """Plane stress (thickness = ring width B) P2 stiffness, rotated to (r, phi) at the bore nodes."""
+    from skfem import Basis, ElementTriP2, ElementVector
+    from skfem.models.elasticity import lame_parameters, linear_elasticity
+
+    basis = Basis(mesh, ElementVector(ElementTriP2()))
+    scalar = Basis(mesh, ElementTriP2())
+    lam, mu = lame_parameters(E_MPa, nu)
+    lam_ps = 2.0 * lam * mu / (lam + 2.0 * mu)          # plane stress
+    K = (width_mm * linear_elasticity(lam_ps, mu).assemble(basis)).tocsr()
+    xy = scalar.doflocs
+    bore = np.flatnonzero(np.hypot(*xy) < r_bore_mm * (1.0 + 1e-9))     # nodes and chord midpoints
+    R = _bore_rotation(2 * scalar.N, bore, np.arctan2(xy[1, bore], xy[0, bore]))
+    pairs = None
+    if pairs_nodes is not None:
+        minus, plus, tip = pairs_nodes
+        m_edges = _edge_dofs(mesh, scalar, np.r_[tip, minus[:-1]], minus)
+        p_edges = _edge_dofs(mesh, scalar, np.r_[tip, plus[:-1]], plus)
+        # sides: minus = phi = 0+ (y > 0 elements), plus = 2pi- (y < 0); n points from minus to plus
+        pairs = CrackPairs(np.concatenate([minus, m_edges]), np.concatenate([plus, p_edges]), np.array([0.0, -1.0]))
+    return RingSystem((R.T @ K @ R).tocsr(), R, basis, scalar, bore, pairs, width_mm)
+
+
+def _bore_rotation(n: int, bore: np.ndarray, phi: np.ndarray) -> sp.csr_matrix:
+    """R with u_global = R u_local: identity, and at the bore dofs (u_x, u_y) = rot(phi) (u_r, u_phi)."""
+    keep = np.setdiff1d(np.arange(n), np.concatenate([2 * bore, 2 * bore + 1]))
+    c, s = np.cos(phi), np.sin(phi)
+    rows = np.concatenate([keep, 2 * bore, 2 * bore, 2 * bore + 1, 2 * bore + 1])
+    cols = np.concatenate([keep, 2 * bore, 2 * bore + 1, 2 * bore, 2 * bore + 1])
+    vals = np.concatenate([np.ones(keep.size), c, -s, s, c])
+    return sp.csr_matrix((vals, (rows, cols)), shape=(n, n))
+
+
+def _direct(K, f, fixed):
+    """Zero Dirichlet ``fixed``; the project's sparse direct solver (PARDISO when installed, else SuperLU)."""
+    from .solver import _direct as direct
+
+    u = np.zeros(f.shape)
+    free = np.setdiff1d(np.arange(K.shape[0]), fixed)
+    u[free] = direct(K[free][:, free].tocsr(), np.ascontiguousarray(f[free]), "wg-bearing")[0].reshape(u[free].shape)
+    return u
+
+
+def _bore_fixed(system: "RingSystem") -> np.ndarray:
+    """The bore's radial dofs and, against the rigid rotation, the tangential dof of the bore at phi = 0."""
+    xy = system.scalar.doflocs[:, system.bore_dofs]
+    anchor = system.bore_dofs[np.argmin(np.hypot(xy[0] - np.hypot(*xy).max(), xy[1]))]
+    return np.concatenate([2 * system.bore_dofs, [2 * anchor + 1]])
+
+
+def _tie(system: "RingSystem") -> sp.csr_matrix:
+    """P (N x M): u = P v with each crack pair's + copy following its - node in every component (the same
+    mesh uncracked, without a second assembly)."""
+    n, pairs = system.K.shape[0], system.pairs
+    plus = (2 * pairs.plus[:, None] + np.arange(2)).ravel()
+    minus = (2 * pairs.minus[:, None] + np.arange(2)).ravel()
+    kept = np.setdiff1d(np.arange(n), plus)
+    col = np.full(n, -1, dtype=np.int64)
+    col[kept] = np.arange(kept.size)
+    col[plus] = col[minus]
+    return sp.csr_matrix((np.ones(n), (np.arange(n), col)), shape=(n, kept.size))
+
+
+def solve_ring(system: RingSystem, f_global: np.ndarray, bore_radial_mm: np.ndarray | None):
+    """Displacements (global x, y interleaved) under the loads ``f_global`` with the bore's radial
+    displacement prescribed (``bore_radial_mm`` per bore dof, None = 0). With a crack the faces may separate
+    but not interpenetrate (frictionless contact). Returns (u, contact result or None)."""
+    up = np.zeros(system.K.shape[0])
+    if bore_radial_mm is not None:
+        up[2 * system.bore_dofs] = bore_radial_mm
+    fixed = _bore_fixed(system)
+    f = system.R.T @ f_global - system.K @ up
+    if system.pairs is None:
+        return system.R @ (up + _direct(system.K, f, fixed)), None
+    res = solve_with_contact(system.K, f, fixed, system.pairs, _direct)
+    return system.R @ (up + res.u), res
+
+
+def race_facets(mesh, r_race_mm: float) -> np.ndarray:
+    """Boundary facets with both ends on the race (outer circle)."""
+    bf = mesh.boundary_facets()
+    r = np.hypot(*mesh.p[:, mesh.facets[:, bf]])
+    return bf[np.all(np.abs(r - r_race_mm) < 1e-7 * r_race_mm, axis=0)]
+
+
+def patch_load_vectors(system: RingSystem, r_race_mm: float, angles_rad, half_widths_mm) -> np.ndarray:
+    """(dofs x balls): ball j's Hertz line patch sqrt(1 - (s/b_j)^2) on the race, pressing radially inward,
+    scaled to a unit radial resultant (the polygonal race and the quadrature of the sqrt edge leave it
+    slightly off otherwise)."""
+    from skfem import FacetBasis, LinearForm
+
+    mesh = system.basis.mesh
+    fb = FacetBasis(mesh, system.basis.elem, facets=race_facets(mesh, r_race_mm), intorder=10)
+    out = np.zeros((system.K.shape[0], len(angles_rad)))
+    for j, (psi, b) in enumerate(zip(angles_rad, half_widths_mm)):
+        @LinearForm
+        def patch(v, w, psi=psi, b=b):
+            x, y = w.x
+            r = np.sqrt(x ** 2 + y ** 2)
+            s = r_race_mm * np.angle(np.exp(1j * (np.arctan2(y, x) - psi)))
+            p = np.sqrt(np.clip(1.0 - (s / b) ** 2, 0.0, None))
+            return -p * (v[0] * x + v[1] * y) / r
+        f = patch.assemble(fb)
+        resultant = -(f[0::2].sum() * np.cos(psi) + f[1::2].sum() * np.sin(psi))
+        out[:, j] = f / resultant
+    return out
+
+
+def solve_many(system: RingSystem, F_global: np.ndarray, *, tied: bool = False) -> np.ndarray:
+    """Columns of displacements under the load columns ``F_global``, the bore held radially; ``tied``: a
+    cracked mesh solved with its crack faces joined (the uncracked ring on the same mesh). Without ``tied``
+    no crack contact is imposed (the uncracked ring, or an open crack)."""
+    fixed = _bore_fixed(system)
+    F = system.R.T @ F_global
+    if not tied or system.pairs is None:
+        return system.R @ _direct(system.K, F, fixed)
+    P = _tie(system)
+    K0 = (P.T @ system.K @ P).tocsr()
+    col = np.asarray(P.argmax(axis=1)).ravel()
+    return system.R @ (P @ _direct(K0, P.T @ F, np.unique(col[fixed])))
+
+
+def nodal_stress(system: RingSystem, u: np.ndarray, E_MPa: float, nu: float) -> np.ndarray:
+    """(3, scalar dofs): plane-stress sigma_xx, sigma_yy, sigma_xy L2-projected onto the P2 space."""
+    from skfem import BilinearForm, LinearForm
+
+    g = system.basis.interpolate(u).grad
+    exx, eyy, exy = g[0, 0], g[1, 1], 0.5 * (g[0, 1] + g[1, 0])
+    c = E_MPa / (1.0 - nu ** 2)
+    comps = (c * (exx + nu * eyy), c * (eyy + nu * exx), E_MPa / (1.0 + nu) * exy)
+    mass = BilinearForm(lambda a, b, w: a * b).assemble(system.scalar).tocsc()
+    lu = splu(mass)
+    rhs = LinearForm(lambda v, w: w["s"] * v)
+    return np.stack([lu.solve(rhs.assemble(system.scalar, s=s)) for s in comps])
+
+
+def hoop_stress_at(system: RingSystem, stress: np.ndarray, points_xy: np.ndarray) -> np.ndarray:
+    """sigma_phiphi at the points (2, n) from the projected nodal stress."""
+    P = system.scalar.probes(points_xy)
+    sxx, syy, sxy = (P @ s for s in stress)
+    phi = np.arctan2(points_xy[1], points_xy[0])
+    c, s = np.cos(phi), np.sin(phi)
+    return sxx * s * s - 2.0 * sxy * s * c + syy * c * c
+
+
+def triangle_quality(mesh) -> tuple[float, float]:
+    """(min, mean) of 4 sqrt(3) area / sum of squared edges: 1 for an equilateral triangle."""
+    p = mesh.p[:, mesh.t]
+    e = [p[:, 1] - p[:, 0], p[:, 2] - p[:, 1], p[:, 0] - p[:, 2]]
+    area = 0.5 * np.abs(e[0][0] * e[1][1] - e[0][1] * e[1][0])
+    q = 4.0 * np.sqrt(3.0) * area / sum((v ** 2).sum(axis=0) for v in e)
+    return float(q.min()), float(q.mean())

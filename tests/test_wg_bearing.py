@@ -1,0 +1,99 @@
+"""The wave generator bearing's inner ring on the elliptical cam (issue 34 item 3): closed forms, the 2D FEA
+on coarse meshes (cheap), and checks that fail on a perturbed reference."""
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+from strainwave.analytic import wg_bearing as wgb
+
+
+def test_edge_crack_weight_function_gives_the_uniform_edge_crack():
+    K = wgb.edge_crack_K(lambda x: np.ones_like(x), 2.0)
+    assert K / math.sqrt(math.pi * 2.0) == pytest.approx(1.1215, rel=2e-3)
+
+
+def test_curved_beam_tends_to_the_thin_ring_and_is_tensile_at_the_major_axis_race():
+    thin = wgb.thin_ring_race_stress_MPa(2.1e5, 0.1, 100.0, 0.5)
+    thick = wgb.curved_beam_race_stress_MPa(2.1e5, 99.95, 100.05, 0.5)
+    assert thick == pytest.approx(thin, rel=1e-3) and thick > 0
+    assert wgb.curved_beam_race_stress_MPa(2.1e5, 52.76, 62.76, 0.8, 0.5 * math.pi) < 0
+
+
+def test_stribeck_sum_is_equilibrium_and_tends_to_4_37():
+    psi, q = wgb.stribeck_ball_loads(1000.0, 24)
+    assert float(q @ np.cos(psi)) == pytest.approx(1000.0)
+    assert 400 * wgb.stribeck_ball_loads(1.0, 400)[1].max() == pytest.approx(4.37, rel=2e-3)
+
+
+def test_back_face_allowance_grows_with_depth():
+    a = [wgb.back_face_allowance(d, 10.0) for d in (0.1, 0.5, 1.0)]
+    assert 0 < a[0] < a[1] < a[2] < 0.1
+
+
+@pytest.fixture(scope="module")
+def ring():
+    from strainwave.analytic.study_loads import wg_bearing_load
+    from strainwave.fea.wg_bearing import setup_from
+    from strainwave.params import load_params
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        params = load_params()
+    return params, setup_from(params, **wg_bearing_load(params))
+
+
+def test_cam_bends_the_race_into_tension_at_the_major_axis(ring):
+    from strainwave.fea.wg_bearing import solve_plain
+    params, s = ring
+    d = solve_plain(s, 5.0, 1.96, 1.0)
+    ref = wgb.curved_beam_race_stress_MPa(s.E_MPa, s.r_bore_mm, s.r_race_mm, s.w0_mm)
+    assert d["race_major_MPa"] == pytest.approx(ref, rel=0.05)
+    assert d["race_minor_MPa"] == pytest.approx(-ref, rel=0.05)
+    assert d["ball_ratio"] == pytest.approx(24 * max(s.ball_loads_N) / s.force_N, rel=0.05)
+
+
+def test_race_crack_opens_under_the_cam_and_shuts_when_the_cam_is_reversed(ring):
+    from strainwave.fea.wg_bearing import solve_crack
+    params, s = ring
+    opened = solve_crack(s, 5.0, 1.96, 1.0)
+    shut = solve_crack(s, 5.0, 1.96, 1.0, w0_mm=-s.w0_mm)
+    assert opened["closed_pairs"] == 0 and opened["mouth_opening_mm"] > 0 and opened["delta"] > 0
+    assert shut["closed_pairs"] == shut["pairs"] and abs(shut["delta"]) < 1e-6 * opened["delta"]
+    x, sig = opened["profile"]
+    ref = wgb.edge_crack_compliance_mm_per_N(lambda xx: np.interp(xx, x, sig), 1.0, s.E_MPa, s.width_mm)
+    assert opened["delta"] == pytest.approx(ref, rel=0.1)
+
+
+def _book(values: dict, meta: dict):
+    from strainwave.compare.validate.fea_book import FeaBook
+    from strainwave.compare.validate.runner import Case, CaseOutcome
+    from strainwave.fea.convergence import Convergence
+    from strainwave.fea.result import Load, MeshQuality, Quantity, StudyResult, Support
+
+    q = {n: Quantity(n, v, "u", Convergence((1.0, 1.4, 1.96), (v, v, v), 1.0, v, 1e-3, True)) for n, v in values.items()}
+    mesh = MeshQuality(1, 1, 2, 2, 1.0, 1.0)
+    res = StudyResult("wg-bearing", q, mesh, Load("F", 1.0, "N", ("race",), "x"), (Support(("bore",), "cam"),),
+                      meta=meta)
+    return FeaBook({"wg-bearing": CaseOutcome(Case("wg-bearing", "wg-bearing"), res, 1.0, False)})
+
+
+def test_checks_pass_on_their_closed_forms_and_fail_on_perturbed_ones(ring):
+    from strainwave.compare.validate import wg_bearing_checks as wc
+    from strainwave.fea.wg_bearing import delta_name
+    params, s = ring
+    x = np.linspace(0.0, 1.0, 65)
+    sig = -0.003 + 0.001 * x
+    meta = {"crack_depths_mm": [1.0], "cracks": {"1": {"profile_x_mm": x.tolist(), "hoop_stress_per_N_MPa": sig.tolist()}}}
+    delta = wgb.edge_crack_compliance_mm_per_N(lambda xx: np.interp(xx, x, sig), 1.0, s.E_MPa, s.width_mm)
+    stress = wgb.curved_beam_race_stress_MPa(s.E_MPa, s.r_bore_mm, s.r_race_mm, s.w0_mm)
+    book = _book({delta_name(1.0): delta, "race_stress_major_MPa": stress, "net_race_stress_major_MPa": stress}, meta)
+    assert wc.bearing_crack_check(book, "wg-bearing", params).passed
+    assert wc.race_stress_check(book, "wg-bearing", params, "major").passed
+    bad = lambda a: {"corrected": 1.3 * delta}      # noqa: E731
+    assert not wc.bearing_crack_check(book, "wg-bearing", params, curve=bad).passed
+    thin = _book({"race_stress_major_MPa": wgb.thin_ring_race_stress_MPa(
+        s.E_MPa, s.thickness_mm, 0.5 * (s.r_bore_mm + s.r_race_mm), s.w0_mm)}, meta)
+    assert not wc.race_stress_check(thin, "wg-bearing", params, "major").passed
