@@ -262,10 +262,16 @@ DELIBERATE_CHANGES: dict[str, str] = {
                             "crack in the fully loaded tube (was a part-through root crack in the load band): "
                             "2.60e-15 -> 1.02e-14 at a = 1.12 mm; corrected = both tips a^2/(2 pi E r_m^4 delta)",
     "cup.flexibility": _CUP_SEAM_MESH,
-    "gear.stiffness": _CUP_SEAM_MESH + " (lambda_f0 from that case)",
+    "gear.stiffness": _CUP_SEAM_MESH + " (lambda_f0 from that case); issue 34 (wg-bearing): lambda_H from the FEA's "
+                      "wave generator radial stiffness K_G (Hertz balls on the cam-held ring, ~14x the seed's "
+                      "back-calculated K_G0), corrected = Stribeck-Hertz K_G with rigid rings",
     "bearing.crack_compliance": _CRACK_GCI + "; cracks (issue 13): crack faces in frictionless contact, the "
                                 "crack at the Hertz centre stays shut: quantity = cracked compliance, asserted "
-                                "= uncracked ring (delta 6.24e-8 -> 5.8e-13 mm/N at a = 2.08 mm)" + _RATIO,
+                                "= uncracked ring (delta 6.24e-8 -> 5.8e-13 mm/N at a = 2.08 mm)" + _RATIO + "; issue 34 "
+                                "(wg-bearing): the crack is the race crack at the major axis of the ring on the "
+                                "elliptical cam, held open by the cam's bending, solved in 2D (study wg-bearing); "
+                                "quantity = its added compliance under the Stribeck ball loads, asserted = Tada's "
+                                "edge-crack weight function at the FEA's uncracked hoop stress (seed 000 eq 4)",
     "ring.delta_cd": _RING_MESH + _RATIO,
     "ring.delta_ab": _RING_MESH + _RATIO,
     "ring.sigma_max": _RING_MESH + _RATIO,

@@ -67,17 +67,21 @@ def test_race_crack_opens_under_the_cam_and_shuts_when_the_cam_is_reversed(ring)
     assert opened["delta"] == pytest.approx(ref, rel=0.1)
 
 
-def _book(values: dict, meta: dict):
-    from strainwave.compare.validate.fea_book import FeaBook
+def _outcome(label: str, values: dict, meta: dict):
     from strainwave.compare.validate.runner import Case, CaseOutcome
     from strainwave.fea.convergence import Convergence
     from strainwave.fea.result import Load, MeshQuality, Quantity, StudyResult, Support
 
     q = {n: Quantity(n, v, "u", Convergence((1.0, 1.4, 1.96), (v, v, v), 1.0, v, 1e-3, True)) for n, v in values.items()}
     mesh = MeshQuality(1, 1, 2, 2, 1.0, 1.0)
-    res = StudyResult("wg-bearing", q, mesh, Load("F", 1.0, "N", ("race",), "x"), (Support(("bore",), "cam"),),
-                      meta=meta)
-    return FeaBook({"wg-bearing": CaseOutcome(Case("wg-bearing", "wg-bearing"), res, 1.0, False)})
+    res = StudyResult(label, q, mesh, Load("F", 1.0, "N", ("race",), "x"), (Support(("bore",), "cam"),), meta=meta)
+    return CaseOutcome(Case(label, label), res, 1.0, False)
+
+
+def _book(values: dict, meta: dict, **more):
+    from strainwave.compare.validate.fea_book import FeaBook
+    return FeaBook({"wg-bearing": _outcome("wg-bearing", values, meta),
+                    **{label: _outcome(label, v, {}) for label, v in more.items()}})
 
 
 def test_checks_pass_on_their_closed_forms_and_fail_on_perturbed_ones(ring):
@@ -97,3 +101,23 @@ def test_checks_pass_on_their_closed_forms_and_fail_on_perturbed_ones(ring):
     thin = _book({"race_stress_major_MPa": wgb.thin_ring_race_stress_MPa(
         s.E_MPa, s.thickness_mm, 0.5 * (s.r_bore_mm + s.r_race_mm), s.w0_mm)}, meta)
     assert not wc.race_stress_check(thin, "wg-bearing", params, "major").passed
+
+
+def test_drive_stiffness_takes_the_wave_generator_from_the_fea_and_fails_on_the_seeds_K_G0(ring):
+    from strainwave.analytic import torsion
+    from strainwave.analytic.seed000 import cup_series_model, seed000_summary
+    from strainwave.analytic.variant import Variant
+    from strainwave.compare.validate import wg_bearing_checks as wc
+    params, s = ring
+    G, sh = params.material.implied_shear_modulus_MPa, params.output_shaft
+    cup = {"flexibility_rad_per_Nmm": cup_series_model(params, G).total}
+    shaft = {"flexibility_rad_per_Nmm": torsion.shaft_flexibility(sh.length_mm, sh.outer_diameter_mm,
+                                                                  sh.inner_diameter_mm, G, Variant.CORRECTED)}
+    labels, s000 = {"cup": "cup", "shaft": "shaft"}, seed000_summary(params)
+    K_G = wc.stribeck_radial_stiffness_N_per_mm(params)
+    good = _book({"radial_stiffness_N_per_mm": K_G}, {}, cup=cup, shaft=shaft)
+    check = wc.gear_stiffness(good, labels, "wg-bearing", s000, params)
+    assert check.passed and check.analytic["today_seed_K_G0"] < check.fea
+    seed = _book({"radial_stiffness_N_per_mm": params.wave_generator.uncracked_radial_stiffness_N_per_mm}, {},
+                 cup=cup, shaft=shaft)
+    assert not wc.gear_stiffness(seed, labels, "wg-bearing", s000, params).passed

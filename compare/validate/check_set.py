@@ -12,9 +12,9 @@ from .fea_book import FeaBook, Sweep
 from .plan import COMPONENT_STUDY, Plan
 from ...analytic import tube_crack
 from .ring_checks import ring_checks
-from .wg_bearing_checks import wg_bearing_checks
+from .wg_bearing_checks import gear_stiffness, wg_bearing_checks
 from .torsion_checks import (FLEX_UNIT, bearing_crack_curve, crack_check,
-                             cup_crack_allowances, cup_crack_curve, cup_flexibility, gear_stiffness, mu_gap,
+                             cup_crack_allowances, cup_crack_curve, cup_flexibility, mu_gap,
                              shaft_crack_curve, shaft_flexibility)
 
 # component -> the quantity that is its crack's added compliance (registry)
@@ -125,7 +125,7 @@ def build_checks(book: FeaBook, plan: Plan, summary: dict, params) -> CheckSet:
                                   params.crack_depth_mm(STUDIES[COMPONENT_STUDY[component]].crack_key)))
     checks += wg_bearing_checks(book, plan.wg_bearing.label, params)
     checks += ring_checks(book, plan.ring.label, refs, params)
-    checks.append(gear_stiffness(book, labels, s000, params))
+    checks.append(gear_stiffness(book, labels, plan.wg_bearing.label, s000, params))
     present = {c.id for c in checks}
     checks += [not_evaluated(cid, cid, "", "no builder produced this check") for cid in REQUIRED_IDS
                if cid not in present]

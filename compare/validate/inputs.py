@@ -22,6 +22,8 @@ ELEMENT = {
     "bearing-ring": "P{order} tetrahedra (curved, isoparametric); crack as a seam with frictionless crack-face contact",
     "ring-compression": "P{order} triangles (curved), 2D plane stress, thickness = face width B; 3D check on curved "
                         "P2 tetrahedra",
+    "wg-bearing": "P2 triangles on a graded polar grid, 2D plane stress, thickness = ring width B; race crack as two "
+                  "coincident faces with frictionless contact",
 }
 
 

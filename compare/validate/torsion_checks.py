@@ -8,8 +8,7 @@ What each check asserts (and why):
 - ``*.crack_compliance``: agreement with the CORRECTED closed form at the sweep depth the FEA resolves
   best (smallest relative GCI; the seed's 0.1 mm crack is usually near the resolution limit, and its
   value is in the sweep table).
-- ``gear.stiffness``: K_HD = 1/(lambda_H + lambda_f + lambda_so) with lambda_f and lambda_so from the
-  FEA and lambda_H analytic (the seed's K_G0 is an input, not a model FEA can replace).
+- ``gear.stiffness``: in ``wg_bearing_checks`` (issue 34: lambda_H from the FEA's K_G, not the seed's K_G0).
 """
 from __future__ import annotations
 
@@ -165,43 +164,3 @@ def crack_check(check_id: str, quantity: str, unit: str, sweep: Sweep | None, cu
     tol = fea_tolerance(value, unc, allowances=allowances)
     return evaluate(Check(check_id, f"{quantity} {where}", unit, value, unc, curve(depth), "corrected", tol,
                           note=note, sources=sources))
-
-
-def gear_stiffness(book: FeaBook, labels: dict[str, str], s000: dict, params) -> Check:
-    """K_HD = 1/(lambda_H0 + lambda_f0 + lambda_so0): FEA for the flexspline and shaft, analytic lambda_H0."""
-    lam_H = s000.get("lambda_H0")
-    analytic = variants(s000.get("K_HD"))
-    qf, why_f = book.quantity(labels["cup"], CUP_FLEX)
-    qs, why_s = book.quantity(labels["shaft"], SHAFT_FLEX)
-    unit = "N*mm/rad"
-    if qf is None or qs is None or lam_H is None:
-        return not_evaluated("gear.stiffness", "drive torsional stiffness K_HD (uncracked)", unit,
-                             "; ".join(w for w in (why_f, why_s) if w) or "no lambda_H0", analytic=analytic)
-    from ...analytic import torsion
-    from ...analytic.seed000 import cup_series_model
-
-    total = lam_H + qf.value + qs.value
-    K = 1.0 / total
-    # K's relative uncertainty: the FEA parts' absolute uncertainties over the total compliance.
-    unc = K * ((qf.uncertainty or 0.0) + (qs.uncertainty or 0.0)) / total
-    # The corrected drive stiffness uses the corrected members the component checks assert: the series shell
-    # cup and the hollow shaft, both with G = E/2(1+nu) like the FEA (so no mu-vs-E/2(1+nu) gap enters).
-    G = params.material.implied_shear_modulus_MPa
-    sh = params.output_shaft
-    cup_model = cup_series_model(params, G).total
-    shaft_model = torsion.shaft_flexibility(sh.length_mm, sh.outer_diameter_mm, sh.inner_diameter_mm, G,
-                                            Variant.CORRECTED)
-    analytic = {**analytic, "corrected": 1.0 / (lam_H + cup_model + shaft_model)}
-    share_cup = qf.value / total
-    allowances = {f"cup junctions the series model omits, on the cup share {100 * share_cup:.0f} % of the "
-                  "compliance": CUP_JUNCTION_ALLOWANCE * share_cup}
-    tol = fea_tolerance(K, unc, allowances=allowances)
-    note = (f"lambda_H0 = {lam_H:.5g} (analytic: seed 000 with K_G0 = {s000.get('K_G0_N_per_mm')} N/mm), "
-            f"lambda_f0 = {qf.value:.5g} (FEA {labels['cup']}), lambda_so0 = {qs.value:.5g} (FEA "
-            f"{labels['shaft']}) {FLEX_UNIT}; published = seed 000's K_HD (its lambda_f0 and solid-shaft "
-            f"lambda_so0, mu); corrected = 1/(lambda_H0 + series shell cup {cup_model:.5g} + hollow shaft "
-            f"{shaft_model:.5g}), G = E/2(1+nu); the seed prints K_HD 10^3 too small (audit 14)")
-    sources = {"lambda_H0": "analytic (seed 000, K_G0 from its table)", "lambda_f0": f"FEA {labels['cup']}",
-               "lambda_so0": f"FEA {labels['shaft']}"}
-    return evaluate(Check("gear.stiffness", "drive torsional stiffness K_HD (uncracked)", unit, K, unc,
-                          analytic, "corrected", tol, note=note, sources=sources))

@@ -131,3 +131,66 @@ def bearing_crack_check(book: FeaBook, label: str, params, curve=None) -> Check:
 def wg_bearing_checks(book: FeaBook, label: str, params) -> list[Check]:
     return [race_stress_check(book, label, params, "major"), race_stress_check(book, label, params, "minor"),
             ball_load_check(book, label, params), bearing_crack_check(book, label, params)]
+
+
+def stribeck_radial_stiffness_N_per_mm(params) -> float:
+    """K_G of the bearing with rigid rings and cam (closed form): F_r over the outer race's approach
+    delta_0 = (Q_max/K_n)^(2/3) under Stribeck's ball loads."""
+    loads = wg_bearing_load(params)
+    q_max = max(loads["ball_loads_N"])
+    return loads["force_N"] / (q_max / loads["hertz_constant"]) ** (2.0 / 3.0)
+
+
+def gear_stiffness(book: FeaBook, labels: dict[str, str], wg_label: str, s000: dict, params) -> Check:
+    """K_HD = 1/(lambda_H + lambda_f0 + lambda_so0), every member from the FEA: lambda_H from the wave generator's
+    radial stiffness K_G of study wg-bearing (Hertz balls on the cam-held ring), not the K_G0 back-calculated
+    from the seed's table. Corrected: the same sum of closed forms (Stribeck-Hertz K_G with rigid rings, the
+    series shell cup, the hollow shaft; G = E/2(1+nu)); published: the seed's K_HD; ``today``: the FEA cup and
+    shaft with the seed's K_G0 (what this check asserted before issue 34)."""
+    from ...analytic import torsion
+    from ...analytic.seed000 import cup_series_model
+    from ...analytic.variant import Variant
+    from ...registry import FLEX_UNIT
+    from .torsion_checks import CUP_FLEX, CUP_JUNCTION_ALLOWANCE, SHAFT_FLEX, variants
+
+    unit, quantity = "N*mm/rad", "drive torsional stiffness K_HD (uncracked), wave generator from the FEA"
+    analytic = variants(s000.get("K_HD"))
+    qf, why_f = book.quantity(labels["cup"], CUP_FLEX)
+    qs, why_s = book.quantity(labels["shaft"], SHAFT_FLEX)
+    qg, why_g = book.quantity(wg_label, "radial_stiffness_N_per_mm")
+    if qf is None or qs is None or qg is None:
+        return not_evaluated("gear.stiffness", quantity, unit, "; ".join(w for w in (why_f, why_s, why_g) if w),
+                             analytic=analytic)
+    g, cup, sh = params.gear, params.flexspline_cup, params.output_shaft
+    lam = lambda K: torsion.wave_generator_flexibility(g.force_coefficient, K, cup.pitch_diameter_mm,  # noqa: E731
+                                                       g.wave_number, g.radial_deformation_mm, g.gear_ratio)
+    lam_H, lam_H0, K_cf = lam(qg.value), s000.get("lambda_H0"), stribeck_radial_stiffness_N_per_mm(params)
+    total = lam_H + qf.value + qs.value
+    K = 1.0 / total
+    unc = K * (lam_H * (qg.uncertainty or 0.0) / qg.value + (qf.uncertainty or 0.0) + (qs.uncertainty or 0.0)) / total
+    G = params.material.implied_shear_modulus_MPa
+    cup_model = cup_series_model(params, G).total
+    shaft_model = torsion.shaft_flexibility(sh.length_mm, sh.outer_diameter_mm, sh.inner_diameter_mm, G,
+                                            Variant.CORRECTED)
+    analytic = {**analytic, "corrected": 1.0 / (lam(K_cf) + cup_model + shaft_model)}
+    if lam_H0 is not None:
+        analytic["today_seed_K_G0"] = 1.0 / (lam_H0 + qf.value + qs.value)
+    s = _ring(params)
+    loads = wg_bearing_load(params)
+    ring_g = wgb.ring_local_compliance_mm_per_N(s.E_MPa, s.thickness_mm, s.width_mm, max(s.patch_half_widths_mm))
+    ring_share = ring_g * max(loads["ball_loads_N"]) / (max(loads["ball_loads_N"]) / loads["hertz_constant"]) ** (2 / 3)
+    allowances = {f"cup junctions the series model omits, on the cup share {100 * qf.value / total:.0f} %":
+                  CUP_JUNCTION_ALLOWANCE * qf.value / total,
+                  f"the inner ring's compliance under the balls (rigid in the closed form), on the wave generator "
+                  f"share {100 * lam_H / total:.0f} %": ring_share * lam_H / total}
+    tol = fea_tolerance(K, unc, allowances=allowances)
+    note = (f"K_G = {qg.value:.4g} N/mm (FEA {wg_label}: Hertz balls between the cam-held ring and a rigid outer "
+            f"race) vs Stribeck-Hertz rigid rings {K_cf:.4g} and the seed's back-calculated K_G0 = "
+            f"{params.wave_generator.uncracked_radial_stiffness_N_per_mm:g} N/mm; lambda_H = {lam_H:.4g}, "
+            f"lambda_f0 = {qf.value:.5g} (FEA {labels['cup']}), lambda_so0 = {qs.value:.5g} (FEA {labels['shaft']}) "
+            f"{FLEX_UNIT}; the cam and the outer ring are rigid in both (their compliance is not in K_G)")
+    return evaluate(Check("gear.stiffness", quantity, unit, K, unc, analytic, "corrected", tol, note=note,
+                          sources={"lambda_H": f"FEA {wg_label} (K_G)", "lambda_f0": f"FEA {labels['cup']}",
+                                   "lambda_so0": f"FEA {labels['shaft']}"}))
+
+
