@@ -76,7 +76,7 @@ def ring_mesh(r_mm: np.ndarray, phi_rad: np.ndarray, crack_tip_index: int | None
         rows = np.arange(crack_tip_index + 1, n_r)
         pairs = (idx[rows, 0], idx[rows, n_phi], int(idx[crack_tip_index, 0]))
     pts[1, idx[:, 0]] = 0.0                  # phi = 0 exactly (the merged nodes were written at 2 pi last)
-    return MeshTri(pts, tris), pairs
+    return MeshTri(np.ascontiguousarray(pts), np.ascontiguousarray(tris)), pairs
 
 
 @dataclass(frozen=True)

@@ -117,7 +117,7 @@ def test_drive_stiffness_takes_the_wave_generator_from_the_fea_and_fails_on_the_
     K_G = wc.stribeck_radial_stiffness_N_per_mm(params)
     good = _book({"radial_stiffness_N_per_mm": K_G}, {}, cup=cup, shaft=shaft)
     check = wc.gear_stiffness(good, labels, "wg-bearing", s000, params)
-    assert check.passed and check.analytic["today_seed_K_G0"] < check.fea
+    assert check.passed and check.analytic["today_seed_k_g0"] < check.fea
     seed = _book({"radial_stiffness_N_per_mm": params.wave_generator.uncracked_radial_stiffness_N_per_mm}, {},
                  cup=cup, shaft=shaft)
     assert not wc.gear_stiffness(seed, labels, "wg-bearing", s000, params).passed

@@ -174,7 +174,7 @@ def gear_stiffness(book: FeaBook, labels: dict[str, str], wg_label: str, s000: d
                                             Variant.CORRECTED)
     analytic = {**analytic, "corrected": 1.0 / (lam(K_cf) + cup_model + shaft_model)}
     if lam_H0 is not None:
-        analytic["today_seed_K_G0"] = 1.0 / (lam_H0 + qf.value + qs.value)
+        analytic["today_seed_k_g0"] = 1.0 / (lam_H0 + qf.value + qs.value)
     s = _ring(params)
     loads = wg_bearing_load(params)
     ring_g = wgb.ring_local_compliance_mm_per_N(s.E_MPa, s.thickness_mm, s.width_mm, max(s.patch_half_widths_mm))
