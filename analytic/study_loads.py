@@ -40,6 +40,6 @@ def wg_bearing_load(params) -> dict:
     psi, q = wg_bearing.stribeck_ball_loads(force, wg.ball_count)
     b = wg.contact_semi_axes_mm[1] * (q / force) ** (1.0 / 3.0)
     return {"force_N": force, "w0_mm": g.radial_deformation_mm, "ball_angles_rad": tuple(psi.tolist()),
-            "ball_loads_N": tuple(q.tolist()), "patch_half_widths_mm": tuple(b.tolist()),
+            "ball_loads_N": tuple(q.tolist()), "patch_half_widths_mm": tuple(b.tolist()), "ball_count": wg.ball_count,
             "hertz_constant": wg_bearing.hertz_ball_constant(force, wg.contact_semi_axes_mm, mat.youngs_modulus_MPa,
                                                              mat.poisson_ratio)}

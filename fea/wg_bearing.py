@@ -44,6 +44,7 @@ class RingSetup:
     ball_loads_N: tuple[float, ...]
     patch_half_widths_mm: tuple[float, ...]
     hertz_constant: float                    # K_n of Q = K_n delta^(3/2), one ball between two races
+    ball_count: int                          # Z (the loaded balls are those with |psi| < 90 deg)
 
     @property
     def thickness_mm(self) -> float:
@@ -51,7 +52,7 @@ class RingSetup:
 
 
 def setup_from(params, *, force_N, w0_mm, ball_angles_rad, ball_loads_N, patch_half_widths_mm,
-               hertz_constant) -> RingSetup:
+               hertz_constant, ball_count) -> RingSetup:
     from ..geometry.bearing_ring import RACE_GAP_OVER_T, WIDTH_OVER_A
 
     wg, fc, mat = params.wave_generator, params.flexspline_cup, params.material
@@ -61,7 +62,7 @@ def setup_from(params, *, force_N, w0_mm, ball_angles_rad, ball_loads_N, patch_h
         raise InputError("wave_generator.bearing_inner_ring_thickness_mm", t, "the ring would close its bore")
     return RingSetup(r_race - t, r_race, WIDTH_OVER_A * wg.contact_semi_axes_mm[0], mat.youngs_modulus_MPa,
                      mat.poisson_ratio, float(w0_mm), float(force_N), tuple(ball_angles_rad), tuple(ball_loads_N),
-                     tuple(patch_half_widths_mm), float(hertz_constant))
+                     tuple(patch_half_widths_mm), float(hertz_constant), int(ball_count))
 
 
 def _sizer(near_mm: float, focus: float, far_mm: float, flat_mm: float = 0.0):
@@ -164,16 +165,14 @@ def solve_plain(s: RingSetup, h_mm: float, scale: float, profile_depth_mm: float
     f = F @ q
     return {"race_major_MPa": float(cam[0]), "race_minor_MPa": float(cam[1]), "bore_major_MPa": float(bore[0]),
             "net_race_major_MPa": float(all_round[0]), "compliance": float(f @ u_f) / s.force_N ** 2,
-            "ball_ratio": float(q_fea.max()) * _ball_count(s) / s.force_N, "radial_stiffness": s.force_N / d0,
+            "ball_ratio": float(q_fea.max()) * s.ball_count / s.force_N, "radial_stiffness": s.force_N / d0,
             "_ball_loads": q_fea, "_net_round": (ring_phi, all_round), "_profile": (x, profile),
             "_dofs": system.K.shape[0], "_elements": system.basis.mesh.t.shape[1],
             "_nodes": system.scalar.N, "_quality": ring2d.triangle_quality(system.basis.mesh)}
 
 
 def _ball_count(s: RingSetup) -> int:
-    """Z from the ball pitch (the loaded balls are every 2 pi/Z)."""
-    psi = np.sort(np.asarray(s.ball_angles_rad))
-    return int(round(2.0 * math.pi / float(np.min(np.diff(psi))))) if len(psi) > 1 else 1
+    return s.ball_count
 
 
 def solve_crack(s: RingSetup, h_mm: float, scale: float, depth_mm: float, w0_mm: float | None = None) -> dict:
@@ -260,7 +259,7 @@ def _crack_quantities(s: RingSetup, h: float, sizes, depths, progress):
 
 
 def run(params, *, force_N: float, w0_mm: float, ball_angles_rad, ball_loads_N, patch_half_widths_mm,
-        hertz_constant: float, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None,
+        hertz_constant: float, ball_count: int, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None,
         progress=lambda m: None, quick=False) -> StudyResult:
     """The ring on the cam under the Stribeck ball loads, uncracked and with the sweep's race cracks, each on
     three meshes. ``crack_depth_mm`` must be None: the study sweeps its own depths (``sweep_depths_mm``)."""
@@ -269,7 +268,7 @@ def run(params, *, force_N: float, w0_mm: float, ball_angles_rad, ball_loads_N, 
     if crack_depth_mm is not None:
         raise InputError("--crack-depth-mm", crack_depth_mm, f"study {STUDY} sweeps its own crack depths; leave it out")
     s = setup_from(params, force_N=force_N, w0_mm=w0_mm, ball_angles_rad=ball_angles_rad, ball_loads_N=ball_loads_N,
-                   patch_half_widths_mm=patch_half_widths_mm, hertz_constant=hertz_constant)
+                   patch_half_widths_mm=patch_half_widths_mm, hertz_constant=hertz_constant, ball_count=ball_count)
     h = mesh_size_mm or default_size_mm(params, quick)
     sizes = [h * DEFAULT_RATIO ** k for k in range(3)]
     depths = sweep_depths_mm(params, quick)
@@ -285,7 +284,7 @@ def run(params, *, force_N: float, w0_mm: float, ball_angles_rad, ball_loads_N, 
     phi, net = finest["_net_round"]
     meta = {"model": "2D plane stress (thickness = ring width B), the ring's mid-plane cross-section, P2",
             "r_bore_mm": s.r_bore_mm, "r_race_mm": s.r_race_mm, "width_mm": s.width_mm, "w0_mm": s.w0_mm,
-            "ball_count": _ball_count(s), "ball_angles_deg": np.degrees(s.ball_angles_rad).tolist(),
+            "ball_count": s.ball_count, "ball_angles_deg": np.degrees(s.ball_angles_rad).tolist(),
             "ball_loads_stribeck_N": list(s.ball_loads_N), "ball_loads_fea_N": finest["_ball_loads"].tolist(),
             "patch_half_widths_mm": list(s.patch_half_widths_mm), "hertz_constant_N_per_mm1_5": s.hertz_constant,
             "crack_depths_mm": list(depths), "cracks": facts, "compressed_crack": {"w0_mm": -s.w0_mm,
@@ -302,7 +301,7 @@ def _load(s: RingSetup) -> Load:
     return Load("wave generator radial force F_r (ball loads) on the cam-forced ring", s.force_N, "N", ("race",),
                 f"Stribeck (zero clearance): Q_i = Q_max cos^1.5 psi_i on {len(s.ball_loads_N)} loaded balls, Hertz "
                 "line patches 2Q/(pi b B) sqrt(1 - (s/b)^2); plus the cam: bore radial displacement w0 cos 2phi",
-                (("w0_mm", s.w0_mm), ("ball_count", float(_ball_count(s))), ("q_max_N", float(max(s.ball_loads_N)))))
+                (("w0_mm", s.w0_mm), ("ball_count", float(s.ball_count)), ("q_max_N", float(max(s.ball_loads_N)))))
 
 
 def _supports() -> tuple[Support, ...]:
