@@ -51,7 +51,9 @@ NOT_AN_FEA_QUESTION = {
     4: "arithmetic of seed 003's worked example (roots of eq 14): no field quantity is involved",
     7: "the FEA is linear in F_r by construction (linear elasticity; crack-face contact with zero gap is "
        "homogeneous of degree 1), so du_H ~ F_r^1 holds for every FEA result and F_r^2 cannot; the coefficient "
-       "0.217 is not testable here because the crack at the Hertz centre is shut (bearing.crack_compliance)",
+       "0.217 assumes a uniform tension beta p0/2 over the depth: the race crack on the cam (bearing.crack_compliance, "
+       "study wg-bearing) sees the Hertz field decay with depth, so the seed's form at the FEA's mouth stress is "
+       "reported beside the weight-function form, not tested as a coefficient",
     11: "M_P is the tension factor; the drive carries no axial force, so no study loads the shaft axially",
     15: "arithmetic of the seed's table (shares of its own numbers)",
     20: "0.376 vs 0.375 changes M_M by 0.27 %, and M_M is a solid-bar factor: the hollow shaft's crack is checked "
