@@ -109,8 +109,23 @@ def estimate(study: str, params, mesh_size_mm: float | None, quick: bool = False
     h = float(mesh_size_mm) if mesh_size_mm else _default_h_mm(study, params, quick)
     volume, wall = _volume_and_wall(study, params)
     # the ring is meshed as a plane section: triangles per min(h, t) * h of its area
-    cells = volume / (min(h, wall) * h) if study in PLANE_STUDIES else volume / (min(h, wall) * h * h)
+    cell = min(h, wall) * h if study in PLANE_STUDIES else min(h, wall) * h * h
+    cells = volume / cell if cell > 0 else math.inf   # h = 5e-324: the cell underflows to 0
+    cells += _feature_cells(study, params, h, wall)
     return MeshEstimate(study, h, wall, volume, int(min(ELEMENTS_PER_CELL[study] * cells, 1e18)))
+
+
+def _feature_cells(study: str, params, h: float, wall: float) -> float:
+    """Cells of the refined zones beyond the global size: the bearing's contact patch (fea/bearing_ring.py
+    ring_refine: size min(h, b'/3) within max(a', b') of the patch centre), which [1e3, 3] made 5.9 GB."""
+    if study != "bearing-ring":
+        return 0.0
+    a_ax, b_circ = params.wave_generator.contact_semi_axes_mm
+    c = min(h, b_circ / 3)
+    reach = max(a_ax, b_circ)
+    zone_mm3 = min(_volume_and_wall(study, params)[0], (2 * reach) ** 2 * wall)
+    cell = min(c, wall) * c * c
+    return zone_mm3 / cell if cell > 0 else math.inf
 
 
 def check_budget(study: str, params, mesh_size_mm: float | None, quick: bool = False,
@@ -126,4 +141,34 @@ def check_budget(study: str, params, mesh_size_mm: float | None, quick: bool = F
                          f"{est.volume_mm3:.3g} mm^3, h = {est.h_mm:.3g} mm, wall {est.wall_mm:.3g} mm); the budget "
                          f"is {MAX_ELEMENTS:,}: " + ("choose a larger --mesh-size-mm or a smaller part" if flag == "--mesh-size-mm"
                                                       else "the part is too large for its wall to mesh"))
+    global _current_elements
+    _current_elements = max(est.elements, 1)
     return est
+
+
+# The meshing guard's limits (fea/session.py, mesh_in_child), from the element budget: a gmsh child may take
+# MESH_BASE_S plus MESH_S_PER_ELEMENT per element of the run's estimate (MAX_ELEMENTS where none was made),
+# and MESH_BASE_BYTES plus MESH_BYTES_PER_ELEMENT per element beyond the address space it inherits. Both are
+# generous (P2 tets mesh at thousands per second and take a few KB each): they stop a hang or a runaway
+# size field, never a mesh the budget accepted.
+MESH_BASE_S = 30.0
+MESH_S_PER_ELEMENT = 2e-3
+MESH_BASE_BYTES = 1 << 30
+MESH_BYTES_PER_ELEMENT = 16 << 10
+
+# The estimate of the run being meshed (check_budget sets it), so the limits follow the run, not the budget.
+_current_elements: int | None = None
+
+
+@dataclass(frozen=True)
+class MeshLimits:
+    wall_s: float
+    extra_bytes: int
+    elements: int
+
+
+def mesh_limits() -> MeshLimits:
+    """Wall time and memory one gmsh call may take: from the estimate check_budget last made in this
+    process, else from MAX_ELEMENTS (a sweep's worker, a library call without a budget check)."""
+    n = min(_current_elements or MAX_ELEMENTS, MAX_ELEMENTS)
+    return MeshLimits(MESH_BASE_S + MESH_S_PER_ELEMENT * n, int(MESH_BASE_BYTES + MESH_BYTES_PER_ELEMENT * n), n)

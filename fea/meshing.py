@@ -25,6 +25,10 @@ class MeshingFailed(RuntimeError):
     """gmsh could not import, match or mesh the geometry; studies turn it into a StageError."""
 
 
+class MeshLimitExceeded(MeshingFailed):
+    """The meshing child (fea/session.py) passed its wall time or memory limit, or died: a retry will not help."""
+
+
 @dataclass(frozen=True)
 class Refine:
     """Local size: ``size_mm`` within ``dist_min_mm`` of the targets, growing to the global size at
@@ -155,7 +159,8 @@ def generate(model, dim: int, order: int, *, size_mm: float, refine: Sequence[Re
     try:
         _generate(model, dim, order, preload_kernels)
     except Exception as exc:  # gmsh raises plain Exception with its log message
-        raise MeshingFailed(f"gmsh meshing failed: {exc}") from exc
+        reason = str(exc).strip() or f"{type(exc).__name__} without a message (gmsh gives none when out of memory)"
+        raise MeshingFailed(f"gmsh meshing failed: {reason}") from exc
 
 
 # P2 nodes per vertex, the lowest seen: errs towards not loading the kernels (docs/decisions/005-meshing-algorithm.md).

@@ -20,7 +20,7 @@ from .meshing import Refine, mesh_section
 from .ring_loads import ArcLoad
 from .ring_sections import (MidLayer, boundary_stress_MPa, hoop_at, mid_layer, peak_near, section_hoop_MPa,
                             signed_principal)
-from .session import gmsh_session
+from .session import mesh_in_child
 from .solver import solve_elasticity
 from .surface import SurfaceQuadrature
 
@@ -135,12 +135,10 @@ def mesh_ring_section(face, geo: RingGeometry, load: ArcLoad, *, size_mm: float,
     # A fixed load-zone size (arc/8): scaled with h, the toothed ring's root peaks oscillated (docs/decisions/011-ring-meshes.md)
     refine = Refine(size_mm=min(size_mm, arc_mm / 8), dist_min_mm=arc_mm, dist_max_mm=6 * geo.thickness_mm,
                     points_mm=((0.0, r_o, 0.0), (0.0, -r_o, 0.0)))
-    with gmsh_session() as model:
-        return mesh_section(model, face, size_mm=size_mm, order=order,
-                            named_edges={"contact": contact},
-                            named_points={"A": [(-r_o, 0.0)], "B": [(r_o, 0.0)], "D": [(0.0, r_o)],
-                                          "C": [(0.0, -r_o)], "arc_ends": ends},
-                            refine=[refine])
+    return mesh_in_child(lambda model: mesh_section(
+        model, face, size_mm=size_mm, order=order, named_edges={"contact": contact},
+        named_points={"A": [(-r_o, 0.0)], "B": [(r_o, 0.0)], "D": [(0.0, r_o)], "C": [(0.0, -r_o)], "arc_ends": ends},
+        refine=[refine]))
 
 
 def solve_ring_section(face, geo: RingGeometry, load: ArcLoad, lame: Lame, *, size_mm: float, order: int,

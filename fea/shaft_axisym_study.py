@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import Callable
 
 from .fields import field_info, write_vtu
-from .session import gmsh_session
+from .session import mesh_in_child
 from .shaft_axisym import Section, mesh_section, open_crack_line, section_fields, solve_section
 from .skeleton import MeshSolve
 
@@ -34,8 +34,7 @@ def solve_section_refinement(params, depth_mm: float, h_mm: float, h_fine_mm: fl
     section = Section.of(params, depth_mm)
     G = params.material.implied_shear_modulus_MPa
     tip = depth_mm / A_OVER_TIP[quick] * h_mm / h_fine_mm
-    with gmsh_session() as model:
-        md = mesh_section(model, section, size_mm=h_mm, tip_size_mm=tip)
+    md = mesh_in_child(lambda model: mesh_section(model, section, size_mm=h_mm, tip_size_mm=tip))
     closed = solve_section(md, section, G)
     opened = solve_section(open_crack_line(md, section), section, G)
     delta = opened.flexibility_rad_per_Nmm - closed.flexibility_rad_per_Nmm

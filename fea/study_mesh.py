@@ -7,7 +7,7 @@ from typing import Callable, Sequence
 from ..errors import StageError
 from .mesh_data import MeshData
 from .meshing import OPTIMIZE_THRESHOLD, MeshingFailed, Refine, mesh_part
-from .session import gmsh_session
+from .session import mesh_in_child
 
 
 def mesh_for_study(part, *, study: str, h_mm: float, order: int, refine: Sequence[Refine] = (),
@@ -17,9 +17,8 @@ def mesh_for_study(part, *, study: str, h_mm: float, order: int, refine: Sequenc
     t0 = time.perf_counter()
     progress(f"{study}: meshing h = {h_mm:.3g} mm")
     try:
-        with gmsh_session() as model:
-            md = mesh_part(model, part, size_mm=h_mm, order=order, refine=list(refine),
-                           optimize_threshold=optimize_threshold)
+        md = mesh_in_child(lambda model: mesh_part(model, part, size_mm=h_mm, order=order, refine=list(refine),
+                                                   optimize_threshold=optimize_threshold, preload_kernels=False))
     except MeshingFailed as exc:
         raise StageError("mesh", study, str(exc)) from exc
     return md, time.perf_counter() - t0

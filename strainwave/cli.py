@@ -21,6 +21,7 @@ import warnings
 from pathlib import Path
 
 from .errors import InputError, MaterialWarning, RangeWarning, StageError, StrainwaveError
+from .input_guard import printable
 from .geometry.part import PartName
 from .registry import STUDY_NAMES as STUDIES
 
@@ -81,16 +82,18 @@ def _emit(args, text: str, data) -> None:
     to stdout instead of the text (``--json`` / ``--json -``), or to a file next to the text."""
     target = getattr(args, "json", None)
     if target is None:
-        print(text)
+        from .output_guard import unstage_text
+        print(unstage_text(text))
         return
     from .io_atomic import json_ready
+    from .output_guard import unstage_text   # staged outputs are named by where they will be
     payload = json.dumps(json_ready(data() if callable(data) else data), indent=2, default=str, allow_nan=False) + "\n"
     if target == "-":
-        sys.stdout.write(payload)
+        sys.stdout.write(unstage_text(payload))
     else:
         from .io_atomic import atomic_write_text
-        atomic_write_text(Path(target), payload)
-        print(text)
+        atomic_write_text(Path(target), unstage_text(payload))
+        print(unstage_text(text))
 
 
 def _plain(value):
@@ -163,7 +166,10 @@ def _cmd_solve(args) -> int:
     with_crack(args.study, params, args.crack_depth_mm)
     check_budget(args.study, params, args.mesh_size_mm)
     # The field is always written (to a scratch folder without --vtu): the rated-load peaks are read from it.
-    with tempfile.TemporaryDirectory(prefix="strainwave-solve-") as scratch:   # under the run's scratch
+    import os
+    from .output_guard import remove_stale
+    remove_stale(tempfile.gettempdir())   # killed solves' folders, when the scratch is the system's
+    with tempfile.TemporaryDirectory(prefix=f"strainwave-solve-{os.getpid()}-") as scratch:   # under the run's scratch
         vtu = Path(args.vtu) if args.vtu else Path(scratch) / f"{args.study}.vtu"
         result = run_study(args.study, params, mesh_size_mm=args.mesh_size_mm, order=args.order,
                            crack_depth_mm=args.crack_depth_mm, vtu=vtu, progress=_progress)
@@ -238,23 +244,39 @@ def _cmd_sweep(args) -> int:
     return 0 if outcome.n_ok else 1
 
 
-def _check_outputs(args) -> None:
-    """Every output path the command will write, checked before any work (a solve must not run for
-    minutes and then find that --vtu points into a file), and never one of the command's inputs."""
-    from .io_atomic import check_output_path
+_FILE_OUTPUTS = (("json", "--json"), ("plot", "--plot"), ("vtu", "--vtu"), ("png", "--png"), ("output", "-o"))
+_INPUTS = (("params", "--params"), ("recording", "recording"), ("samples", "--samples"), ("curves", "--curves"),
+           ("torque_history", "--torque-history"))
 
-    inputs = tuple(getattr(args, name, None) for name in ("params", "recording", "samples", "curves", "torque_history"))
-    files = [("--json", getattr(args, "json", None)), ("--plot", getattr(args, "plot", None)),
-             ("--vtu", getattr(args, "vtu", None)), ("--png", getattr(args, "png", None)),
-             ("-o", getattr(args, "output", None))]
+
+def _planned_outputs(args) -> list:
+    """Every path the command writes: its file flags, the files written beside them, its --out folder."""
+    from .output_guard import Planned
+
+    planned = [Planned(flag, getattr(args, name)) for name, flag in _FILE_OUTPUTS
+               if getattr(args, name, None) not in (None, "-")]
     if getattr(args, "vtu", None):   # solve also writes FILE.boundary.vtu next to it
-        files.append(("--vtu", str(Path(args.vtu).with_suffix("")) + ".boundary.vtu"))
-    for flag, path in files:
-        if path is not None and path != "-":
-            check_output_path(path, flag, inputs=inputs)
-    out = getattr(args, "out", None)
-    if out is not None:
-        check_output_path(out, "--out", directory=True, inputs=inputs)
+        planned.append(Planned("--vtu", str(Path(args.vtu).with_suffix("")) + ".boundary.vtu", derived=True))
+    if getattr(args, "output", None) and getattr(args, "part", None) == "assembly":   # geometry/export.py
+        out = Path(args.output)
+        planned.append(Planned("-o", str(out.with_name(out.stem + "-ewg-drive.step")), derived=True))
+    if getattr(args, "out", None) is not None:
+        planned.append(Planned("--out", args.out, directory=True))
+    return planned
+
+
+def _check_outputs(args) -> None:
+    """Every output path the command will write, checked together before any work (a solve must not run
+    for minutes and then find that --vtu points into a file): strainwave.output_guard's rules, then that
+    each can be written."""
+    from .io_atomic import check_output_path
+    from .output_guard import check_outputs
+
+    inputs = {flag: getattr(args, name, None) for name, flag in _INPUTS}
+    planned = _planned_outputs(args)
+    check_outputs(planned, inputs, force=getattr(args, "force", False))
+    for out in planned:
+        check_output_path(out.path, out.flag, directory=out.directory, inputs=tuple(inputs.values()))
 
 
 def _output_folder(args) -> Path | None:
@@ -284,13 +306,15 @@ def _scratch_under_outputs(args):
         return
     created = [p for p in (folder, *folder.parents) if not p.exists()]   # deepest first
     folder.mkdir(parents=True, exist_ok=True)
+    from .output_guard import remove_stale
+    remove_stale(folder)   # scratch and staged files of runs killed with -9 before this one
     # multiprocessing keeps its AF_UNIX sockets (fork server) in a temporary folder of its own that it removes
     # itself at exit, after this block has ended; its path must fit the kernel's 108 bytes. So it is made
     # now, in the system's short temporary directory, before TMPDIR points into the scratch: inside the
     # scratch it would be removed under multiprocessing's feet (a traceback at exit) or be too long.
     import multiprocessing.util
     multiprocessing.util.get_temp_dir()
-    scratch = tempfile.mkdtemp(prefix=".strainwave-scratch-", dir=folder)
+    scratch = tempfile.mkdtemp(prefix=f".strainwave-scratch-{os.getpid()}-", dir=folder)
     saved_env, saved_dir = os.environ.get("TMPDIR"), tempfile.tempdir
     os.environ["TMPDIR"], tempfile.tempdir = scratch, scratch   # children inherit TMPDIR
     try:
@@ -314,7 +338,7 @@ def _scratch_under_outputs(args):
 def _common(top: bool) -> argparse.ArgumentParser:
     """-q/-v/--debug, accepted before and after the subcommand. On the subcommand they default to
     SUPPRESS, so a flag given before the subcommand is not reset by the subparser."""
-    p = argparse.ArgumentParser(add_help=False)
+    p = argparse.ArgumentParser(add_help=False, allow_abbrev=False)
     unset = {} if top else {"default": argparse.SUPPRESS}
     g = p.add_mutually_exclusive_group()
     g.add_argument("-q", "--quiet", action="store_true", help="errors only: no progress, no warnings",
@@ -333,7 +357,7 @@ _CRACK_HELP = ("crack depth a in mm, from the surface the crack starts at. --par
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="strainwave", parents=[_common(True)], formatter_class=_Help,
+    parser = _Parser(prog="strainwave", parents=[_common(True)], formatter_class=_Help, allow_abbrev=False,
                      description="Strain wave gear CAD, FEA and seed-paper validation.\n"
                                  "Exit status: 0 fine, 1 a check, mesher or solver failed, 2 bad input.")
     parser.add_argument("--version", action="version", version=f"strainwave {_version()}")
@@ -341,11 +365,14 @@ def build_parser() -> argparse.ArgumentParser:
     common = _common(False)
 
     def add(name, func, help_text, *, material=True):
-        p = sub.add_parser(name, help=help_text, description=help_text, parents=[common], formatter_class=_Help)
+        p = sub.add_parser(name, help=help_text, description=help_text, parents=[common], formatter_class=_Help,
+                           allow_abbrev=False)   # --mesh must not be taken as --mesh-size-mm
         p.add_argument("--params", metavar="FILE.toml",
                        help="partial parameter file; keys it leaves out come from the embedded default "
                             "(strainwave params --print-default)")
-        p.add_argument("--json", nargs="?", const="-", default=None, metavar="FILE", help=_JSON_HELP)
+        p.add_argument("--json", nargs="?", const="-", default=None, metavar="FILE.json", help=_JSON_HELP)
+        p.add_argument("--force", action="store_true",
+                       help="replace existing files strainwave did not write (never an input of the run)")
         # material=False: the command never uses the material, so warnings about it would mean nothing
         p.set_defaults(func=func, uses_material=material)
         return p
@@ -435,6 +462,7 @@ class _StderrFormat(logging.Formatter):
 
     def format(self, record: logging.LogRecord) -> str:
         msg = record.getMessage()
+        msg = printable(msg)   # a file's control codes never reach the terminal raw
         return msg if record.levelno < logging.WARNING else f"{record.levelname.lower()}: {msg}"
 
 
@@ -487,8 +515,65 @@ def _no_stray_writes() -> None:
     os.environ.setdefault("MESA_SHADER_CACHE_DISABLE", "true")
 
 
+def _json_takes_no_positional(argv: list[str]) -> list[str]:
+    """``--json WORD`` (no extension, no folder) is ``--json`` (stdout) followed by the positional WORD: an
+    option never takes the study name as its file (``solve --json shaft-torsion``)."""
+    out = []
+    for i, arg in enumerate(argv):
+        if arg == "--" or (i and argv[i - 1] == "--"):
+            return out + argv[i:]
+        nxt = argv[i + 1] if i + 1 < len(argv) else None
+        # a word with no extension or folder (a study name) is a positional; a path is --json's, checked later
+        if arg == "--json" and nxt is not None and not nxt.startswith("-") and not any(c in nxt for c in "./\\"):
+            out.append("--json=-")
+            continue
+        out.append(arg)
+    return out
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised in the main thread so it unwinds (scratch, staged outputs, Dask cluster) as Ctrl-C does."""
+
+
+def _raise_terminated(signum, frame):
+    raise Terminated
+
+
+@contextlib.contextmanager
+def _sigterm_unwinds():
+    import signal
+    import threading
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGTERM, _raise_terminated)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def _run(args) -> int:
+    """The command inside its scratch folder, its --out folder marked as strainwave's, its files staged."""
+    from .output_guard import mark_folder, staged_outputs
+    with _scratch_under_outputs(args):
+        if getattr(args, "out", None) is not None:
+            mark_folder(Path(args.out))
+        with staged_outputs(args, tuple(name for name, _ in _FILE_OUTPUTS)):
+            return args.func(args)
+
+
+def _disk_full(exc: BaseException) -> OSError | None:
+    import errno
+    while exc is not None:
+        if isinstance(exc, OSError) and exc.errno in (errno.ENOSPC, getattr(errno, "EDQUOT", -1)):
+            return exc
+        exc = exc.__cause__ or exc.__context__
+    return None
+
+
 def main(argv: list[str] | None = None) -> int:
-    argv = sys.argv[1:] if argv is None else list(argv)
+    argv = _json_takes_no_positional(sys.argv[1:] if argv is None else list(argv))
     _no_stray_writes()
     level, debug = _verbosity(argv)
     logger = logging.getLogger(LOG)
@@ -499,17 +584,23 @@ def main(argv: list[str] | None = None) -> int:
     logger.setLevel(level)
     logger.propagate = False
     try:
-        with warnings.catch_warnings():
+        shown: set[str] = set()
+
+        def show_once(msg, *rest, **kw):   # one run may load the parameters several times
+            if str(msg) not in shown:
+                shown.add(str(msg))
+                logger.warning(str(msg))
+
+        with warnings.catch_warnings(), _sigterm_unwinds():
             warnings.simplefilter("default", RangeWarning)  # each distinct warning once
-            warnings.showwarning = lambda msg, cat, *a, **k: logger.warning(str(msg))
+            warnings.showwarning = show_once
             try:
                 args = build_parser().parse_args(argv)
                 if not args.uses_material:
                     warnings.simplefilter("ignore", MaterialWarning)
                 logger.debug("strainwave %s: %s", _version(), " ".join(argv))
                 _check_outputs(args)
-                with _scratch_under_outputs(args):
-                    status = args.func(args)
+                status = _run(args)
                 handler.show_held()
                 return status
             except StrainwaveError as exc:
@@ -518,12 +609,15 @@ def main(argv: list[str] | None = None) -> int:
                     handler.drop_held()
                 else:
                     handler.show_held()
-                print(f"error: {exc}", file=sys.stderr)
+                print(f"error: {printable(str(exc))}", file=sys.stderr)
                 if debug:
                     traceback.print_exc()
                 return exc.exit_status
             except SystemExit as exc:   # --help / --version: argparse prints and exits 0
                 return exc.code if isinstance(exc.code, int) else 0
+            except Terminated:
+                print("error: terminated", file=sys.stderr)
+                return 143
             except KeyboardInterrupt:
                 print("error: interrupted", file=sys.stderr)
                 return 130
@@ -532,7 +626,12 @@ def main(argv: list[str] | None = None) -> int:
                 os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
                 return 141
             except Exception as exc:  # noqa: BLE001 - last line of defence: one line, no traceback
-                print(f"error: internal error ({type(exc).__name__}: {exc}); rerun with --debug", file=sys.stderr)
+                full = _disk_full(exc)
+                if full is not None:   # a genuine failure, not bad input: exit 1, naming where
+                    print(f"error: disk full: {printable(str(full.filename or '(output folder)'))}", file=sys.stderr)
+                    return 1
+                print(f"error: internal error ({type(exc).__name__}: {printable(str(exc))}); rerun with --debug",
+                      file=sys.stderr)
                 if debug:
                     traceback.print_exc()
                 return 1

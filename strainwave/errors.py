@@ -32,14 +32,25 @@ ALLOWED_CHARS = 2000
 
 
 def _repr(value: object) -> str:
-    """repr() that cannot fail: Python refuses to print integers of more than 4300 digits."""
+    """repr() that cannot fail: Python refuses to print integers of more than 4300 digits, and a table
+    nested 5,000 levels deep exhausts the recursion limit; containers are shown a few levels deep."""
     if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 1000:
         return f"an integer of about {int(value.bit_length() * 0.30103)} digits"
+    if isinstance(value, (dict, list, tuple, set, frozenset)):
+        import reprlib
+        shown = reprlib.Repr()
+        shown.maxlevel, shown.maxdict, shown.maxlist, shown.maxtuple, shown.maxset = 3, 6, 6, 6, 6
+        shown.maxstring = shown.maxother = ECHO_CHARS
+        try:
+            return shown.repr(value)
+        except (RecursionError, ValueError):
+            return "a value nested too deeply to show"
     return repr(value)
 
 
 def _clip(text: str, limit: int = ECHO_CHARS) -> str:
-    text = text.replace("\n", " ").replace("\r", " ")
+    from .input_guard import printable   # a file's control codes must not reach the terminal raw
+    text = printable(text.replace("\n", " ").replace("\r", " "))
     if len(text) <= limit:
         return text
     return f"{text[:limit]}... ({len(text)} characters)"

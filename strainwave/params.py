@@ -452,16 +452,10 @@ MAX_PARAMS_BYTES = 1 << 20
 
 
 def read_limited(path: Path, limit: int, what: str) -> bytes:
-    """The bytes of ``path``, refused (InputError naming ``what``) if unreadable or above ``limit`` bytes;
-    reads at most ``limit + 1`` bytes, so endless devices and FIFOs fed forever cost nothing."""
-    try:
-        with open(path, "rb") as stream:
-            raw = stream.read(limit + 1)
-    except OSError as exc:
-        raise InputError(what, str(path), f"cannot read file ({exc.strerror or exc})") from None
-    if len(raw) > limit:
-        raise InputError(what, str(path), f"larger than the {limit // 1024} KiB a file of this kind may have")
-    return raw
+    """The bytes of ``path``, refused (InputError naming ``what``) if not a readable regular file or above
+    ``limit`` bytes (strainwave.input_guard: FIFOs and devices are refused without being opened)."""
+    from .input_guard import read_regular
+    return read_regular(path, limit, what)
 
 
 def parse_toml_text(text: str, where: str) -> dict:

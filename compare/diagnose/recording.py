@@ -29,6 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import InputError, RangeWarning
+from ...input_guard import SNIFF_CHARS, sniff_sample
 from ...params import load_params, read_limited
 
 MIN_ROWS = 20
@@ -131,7 +132,10 @@ def parse_text(text: str, name: str = "recording.csv") -> Recording:
     if body_start >= len(lines):
         raise InputError(f"{name}:{len(lines)}", "end of file", f"expected a CSV header row '{load_col},{resp_col}'")
     delimiter = _sniff_delimiter(lines, body_start)
-    columns = _split(lines[body_start], delimiter)
+    try:
+        columns = _split(lines[body_start], delimiter)
+    except csv.Error as exc:   # e.g. a cell beyond csv's field-size limit
+        raise InputError(f"{name}:{body_start + 1}", lines[body_start][:60], f"not a CSV row ({exc})") from None
     hline = body_start + 1
     allowed = (load_col, resp_col) + optional
     for col in columns:
@@ -298,10 +302,10 @@ def _sniff_delimiter(lines: list[str], start: int) -> str:
     """Comma, semicolon or tab, from the column-header row and up to 20 data rows (csv.Sniffer)."""
     sample = [ln for ln in lines[start:start + 40] if ln.strip() and not ln.startswith("#")][:21]
     try:
-        return csv.Sniffer().sniff("\n".join(sample), delimiters=",;\t").delimiter
+        return csv.Sniffer().sniff(sniff_sample(sample), delimiters=",;\t").delimiter
     except csv.Error:
         # one-column or irregular text: the most frequent candidate of the header row, else a comma
-        head = lines[start]
+        head = lines[start][:SNIFF_CHARS]
         counts = {d: head.count(d) for d in (";", "\t", ",")}
         best = max(counts, key=counts.get)
         return best if counts[best] else ","
@@ -316,7 +320,7 @@ def _split(line: str, delimiter: str = ",") -> list[str]:
 
 def _number(cell: str, delimiter: str) -> float:
     """A numeric cell; with a semicolon or tab separator a decimal comma is accepted (1,5e-3)."""
-    if "_" in cell:   # float() reads 1_000 as 1000; no spreadsheet writes that, a typo does
+    if "_" in cell or not cell.isascii():   # float() reads 1_000 and Arabic-Indic digits; no spreadsheet writes those
         raise ValueError(cell)
     if delimiter != "," and "," in cell and "." not in cell:
         cell = cell.replace(",", ".")

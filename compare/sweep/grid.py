@@ -68,9 +68,10 @@ def coerce_value(key: str, text: str, kind: type, where: str) -> object:
             raise InputError(where, text, f"{key} takes a non-empty word")
         return text
     try:
-        number = float(text)
+        # float() also reads 1_00 and non-ASCII digits (Arabic-Indic, full-width): no CSV writer means those
+        number = float(text) if text.isascii() and "_" not in text else float("")
     except ValueError:
-        raise InputError(where, text, f"{key} takes a number") from None
+        raise InputError(where, text, f"{key} takes a number (ASCII digits)") from None
     if not math.isfinite(number):
         raise InputError(where, text, f"{key} takes a finite number")
     if kind is int:
@@ -148,7 +149,10 @@ def read_samples(path: Path, base: dict) -> list[dict]:
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError:
         raise InputError("--samples", str(path), "must be a UTF-8 CSV text file") from None
-    rows = list(csv.reader(line for line in text.splitlines() if line.strip() and not line.startswith("#")))
+    try:
+        rows = list(csv.reader(line for line in text.splitlines() if line.strip() and not line.startswith("#")))
+    except csv.Error as exc:   # e.g. a cell beyond csv's field-size limit
+        raise InputError("--samples", str(path), f"not a CSV file ({exc})") from None
     if len(rows) < 2:
         raise InputError("--samples", str(path), "needs a header of dotted keys and at least one row")
     header = [cell.strip() for cell in rows[0]]
