@@ -141,8 +141,8 @@ def check_budget(study: str, params, mesh_size_mm: float | None, quick: bool = F
                          f"{est.volume_mm3:.3g} mm^3, h = {est.h_mm:.3g} mm, wall {est.wall_mm:.3g} mm); the budget "
                          f"is {MAX_ELEMENTS:,}: " + ("choose a larger --mesh-size-mm or a smaller part" if flag == "--mesh-size-mm"
                                                       else "the part is too large for its wall to mesh"))
-    global _current_elements
-    _current_elements = max(est.elements, 1)
+    global _current_elements   # the largest of the process's runs (validate checks every study first)
+    _current_elements = max(est.elements, _current_elements or 1)
     return est
 
 

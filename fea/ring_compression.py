@@ -257,6 +257,9 @@ def run(params, *, force_N: float, w0_mm: float, mesh_size_mm=None, order=2, cra
     if crack_depth_mm is not None:
         raise InputError("--crack-depth-mm", crack_depth_mm, f"study {STUDY} meshes a ring without a crack; leave it out")
     geo = ring_geometry(params)
+    if mesh_size_mm is not None and mesh_size_mm > geo.thickness_mm / 1.5:   # coarser: no node on the contact arcs
+        raise InputError("--mesh-size-mm", mesh_size_mm, f"must be <= delta/1.5 = {geo.thickness_mm / 1.5:.3g} mm for "
+                                                         f"the ring (the coarsest size the study is checked at)")
     # Always the full run's meshes: cheap, and coarser ones miss the boundary stresses (docs/decisions/011-ring-meshes.md)
     variant = RingCompression(params, order, float(force_N), float(w0_mm), mesh_sizes_mm(geo, mesh_size_mm, quick),
                               mesh_sizes_mm(geo, mesh_size_mm, False))

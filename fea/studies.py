@@ -39,6 +39,9 @@ def run_study(study: str, params, *, mesh_size_mm: float | None = None, order: i
     if order not in (1, 2):
         raise InputError("--order", order, "must be 1 or 2")
     params = with_crack(study, params, crack_depth_mm)
+    # every path that meshes a study (solve, validate, diagnose --baseline fea, a sweep's worker) is budgeted
+    from .budget import check_budget
+    check_budget(study, params, mesh_size_mm, quick, flag="--mesh-size-mm" if mesh_size_mm else "--params")
     module = importlib.import_module(spec.module)
     return module.run(params, mesh_size_mm=mesh_size_mm, order=order, crack_depth_mm=crack_depth_mm,
                       vtu=vtu, progress=progress or (lambda msg: None), quick=quick, **spec.load_for(params))

@@ -13,16 +13,14 @@ from __future__ import annotations
 import math
 
 from . import faces as F
-from .involute import ToothSpec, gear_face
+from .involute import ToothSpec, ewg_tooth_spec, gear_face
 from .part import Part, PartName
 
 CONTACT_HALF_ANGLE_DEG = 2.0
 
 
 def tooth_spec(params) -> ToothSpec:
-    e = params.ewg_drive
-    return ToothSpec(e.flexspline_teeth, e.module_mm, e.pressure_angle_deg, 1.0, e.dedendum_coefficient,
-                     internal=True, root_fillet_coef=e.root_fillet_coefficient)
+    return ewg_tooth_spec(params)
 
 
 def radii_mm(params) -> dict:

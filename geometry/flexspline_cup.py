@@ -25,7 +25,7 @@ from strainwave.params import CupShape
 from . import faces as F
 from .crack_seams import helical_through_seam
 from .cracks import check_crack, inclined_root_slot
-from .involute import ToothSpec, gear_face, tip_thickness_mm
+from .involute import ToothSpec, cup_tooth_spec, gear_face, tip_thickness_mm
 from .occ import cut, fuse
 from .part import CrackModel, Part, PartName
 
@@ -77,10 +77,7 @@ def _profile(fc, z_top: float, split_at: float | None):
 
 
 def tooth_spec(params) -> ToothSpec:
-    fc = params.flexspline_cup
-    r_p = 0.5 * fc.module_mm * fc.teeth
-    shift = (0.5 * fc.pitch_diameter_mm - r_p) / fc.module_mm + 1.35
-    return ToothSpec(fc.teeth, fc.module_mm, 20.0, 1.0, 1.35, internal=False, shift_coef=shift)
+    return cup_tooth_spec(params)
 
 
 def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True,

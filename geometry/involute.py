@@ -227,3 +227,40 @@ def gear_face(spec: ToothSpec, inner_radius_mm: float | None = None, outer_radiu
     if spec.internal:
         return Face(Wire([Edge.make_circle(outer_radius_mm)]), [toothed])
     return Face(toothed, [Wire([Edge.make_circle(inner_radius_mm)])])
+
+
+def root_space_mm(spec: ToothSpec) -> float:
+    """Arc length of the tooth space on the root circle; <= 0 means neighbouring teeth overlap there."""
+    r = spec.root_radius_mm
+    return r * (2 * math.pi / spec.teeth - 2 * float(half_angle_rad(spec, r)))
+
+
+def check_teeth(spec: ToothSpec, key: str, value: object, part: str) -> None:
+    """The one tooth-shape check every command shares (params, analytic, solve, export-step): a tip of at
+    least 0.2 m (not pointed) and a tooth space left on the root circle (teeth do not overlap). Either
+    failure is a drawing no gear can have: its closed forms mean nothing and its CAD cannot be meshed."""
+    tip = tip_thickness_mm(spec)
+    if tip < 0.2 * spec.module_mm:
+        raise InputError(key, value, f"pointed {part} teeth: Z = {spec.teeth}, m = {spec.module_mm:g} mm, "
+                                     f"pressure angle {spec.pressure_angle_deg:g} deg, profile shift "
+                                     f"{spec.shift_coef:.3f} leave a tip of {tip:.3g} mm (< 0.2 m)")
+    space = root_space_mm(spec)
+    if space <= 0:
+        raise InputError(key, value, f"{part} teeth overlap on the root circle: Z = {spec.teeth}, m = "
+                                     f"{spec.module_mm:g} mm, pressure angle {spec.pressure_angle_deg:g} deg, "
+                                     f"dedendum {spec.dedendum_coef:g} m leave a tooth space of {space:.3g} mm")
+
+
+def cup_tooth_spec(params) -> ToothSpec:
+    """The flexspline cup's external teeth: 20 deg, h_f = 1.35 m, shifted so the root circle is d1/2."""
+    fc = params.flexspline_cup
+    r_p = 0.5 * fc.module_mm * fc.teeth
+    shift = (0.5 * fc.pitch_diameter_mm - r_p) / fc.module_mm + 1.35
+    return ToothSpec(fc.teeth, fc.module_mm, 20.0, 1.0, 1.35, internal=False, shift_coef=shift)
+
+
+def ewg_tooth_spec(params) -> ToothSpec:
+    """The EWG flexspline ring's internal teeth (seed 003)."""
+    e = params.ewg_drive
+    return ToothSpec(e.flexspline_teeth, e.module_mm, e.pressure_angle_deg, 1.0, e.dedendum_coefficient,
+                     internal=True, root_fillet_coef=e.root_fillet_coefficient)

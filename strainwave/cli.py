@@ -220,10 +220,16 @@ def _cmd_size_crack(args) -> int:
     return 0
 
 
+# recordings per class: 1,000 is already hours of fits on two cores; 10**9 would run silently for years
+MAX_BENCHMARK_N = 1000
+
+
 def _cmd_benchmark_diagnose(args) -> int:
     from .compare.diagnose.benchmark import run_benchmark
-    if args.n < 1:
-        raise InputError("--n", args.n, "recordings per class must be an integer >= 1")
+    if not 1 <= args.n <= MAX_BENCHMARK_N:
+        raise InputError("--n", args.n, f"recordings per class must be an integer from 1 to {MAX_BENCHMARK_N}")
+    if not 0 <= args.seed < 2 ** 32:   # numpy's seeds
+        raise InputError("--seed", args.seed, "must be an integer from 0 to 2**32 - 1")
     families = (1, 2) if args.family == "both" else (int(args.family),)
     report = run_benchmark(n_per_class=args.n, seed=args.seed, out_dir=Path(args.out) if args.out else None,
                            families=families)
@@ -232,7 +238,8 @@ def _cmd_benchmark_diagnose(args) -> int:
 
 
 def _cmd_sweep(args) -> int:
-    from .compare.sweep.pipeline import run_sweep
+    from .compare.sweep.pipeline import check_workers, run_sweep
+    check_workers(args.workers)
     if args.scheduler:   # a bad address is bad input: refused before the sweep announces any work
         from .compare.sweep.reach import check_scheduler
         check_scheduler(args.scheduler)

@@ -302,6 +302,15 @@ class Params:
         if self.crack_geometry.flexspline_tooth_index >= self.flexspline_cup.teeth:
             raise InputError("crack_geometry.flexspline_tooth_index", self.crack_geometry.flexspline_tooth_index,
                              f"must be < flexspline_cup.teeth = {self.flexspline_cup.teeth}")
+        self._check_teeth()
+
+    def _check_teeth(self) -> None:
+        """Both toothed parts drawable (geometry/involute.py check_teeth): every command refuses the same."""
+        from .geometry.involute import check_teeth, cup_tooth_spec, ewg_tooth_spec   # numpy only: no CAD kernel
+        check_teeth(cup_tooth_spec(self), "flexspline_cup.module_mm", self.flexspline_cup.module_mm,
+                    "flexspline cup")
+        check_teeth(ewg_tooth_spec(self), "ewg_drive.flexspline_teeth", self.ewg_drive.flexspline_teeth,
+                    "EWG flexspline ring")
 
     def crack_depths_mm(self) -> dict[str, float]:
         """{dotted key: depth} of every component's crack."""

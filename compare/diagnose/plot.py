@@ -25,7 +25,7 @@ def plot_diagnosis(path: Path, *, load: np.ndarray, response: np.ndarray, baseli
     top.plot(load, baseline, "-", lw=1.0, color="tab:blue", label="baseline (+ offsets)")
     top.plot(load, augmented, "-", lw=1.2, color="tab:red", label=model_label)
     top.set_ylabel(response_label)
-    top.set_title(title, fontsize=10)
+    top.set_title(title.replace("$", r"\$"), fontsize=10)   # a file name's $...$ is text, not math
     top.legend(loc="best", fontsize=8)
     bottom.plot(load[::step], (response - baseline)[::step], ".", ms=2, color="tab:blue", label="residual, baseline")
     bottom.plot(load[::step], (response - augmented)[::step], ".", ms=2, color="tab:red", label="residual, augmented")

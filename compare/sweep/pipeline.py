@@ -108,8 +108,9 @@ def dask_client(scheduler: str | None, workers: int | None, scratch: Path | None
         with dask.config.set({"distributed.comm.timeouts.connect": timeout}):
             try:
                 client = Client(scheduler, timeout=timeout)
-            except (OSError, TimeoutError, ValueError) as exc:
-                raise InputError("--scheduler", scheduler, f"no Dask scheduler answered ({exc})") from None
+            except Exception as exc:   # noqa: BLE001 - a peer that spoke the handshake then junk, TLS refused, ...
+                raise InputError("--scheduler", scheduler, f"no Dask scheduler answered ({type(exc).__name__}: "
+                                                           f"{exc})") from None
             try:
                 yield client, max(1, len(client.scheduler_info().get("workers", {})))
             finally:
@@ -123,22 +124,46 @@ def dask_client(scheduler: str | None, workers: int | None, scratch: Path | None
         yield from _local(n, scratch, warm)
 
 
+def local_security():
+    """TLS with a key and certificate made for this sweep alone (``Security.temporary``), required both ways:
+    the local scheduler listens on 127.0.0.1, and without it any local user could submit code to the
+    workers (``Client("tcp://127.0.0.1:PORT").submit(f)`` ran ``f`` as the sweeping user)."""
+    from distributed.security import Security
+    try:
+        return Security.temporary()
+    except ImportError as exc:   # the 'cryptography' package makes the credentials
+        raise StageError("start LocalCluster", "sweep", f"no TLS credentials for the local cluster ({exc})") from exc
+
+
+# Each local worker is a process with its own sockets, pipes and ~300 MB; beyond a few per core they only
+# compete (10,000 ran out of file handles with 2,178 tracebacks).
+MAX_WORKERS_PER_CPU = 4
+
+
+def check_workers(workers: int | None) -> None:
+    """Refuse (InputError) a local worker count below 1 or above MAX_WORKERS_PER_CPU per core."""
+    cap = MAX_WORKERS_PER_CPU * (os.cpu_count() or 1)
+    if workers is not None and not 1 <= workers <= cap:
+        raise InputError("--workers", workers, f"must be an integer from 1 to {cap} ({MAX_WORKERS_PER_CPU} per core)")
+
+
 def _local(n: int, scratch: Path | None, warm: tuple[str, ...]) -> Iterator[tuple[object, int]]:
     from distributed import Client, LocalCluster
 
     from ...interrupt import children_ignore_sigint
     from .worker import SweepWorker
 
+    security = local_security()
     try:
         with children_ignore_sigint():   # Ctrl-C stops the sweep here; the workers are closed by it
             cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
-                                   silence_logs=logging.ERROR, env=WORKER_ENV,
-                                   local_directory=str(scratch) if scratch else None,
+                                   silence_logs=logging.ERROR, env=WORKER_ENV, security=security,
+                                   protocol="tls://", local_directory=str(scratch) if scratch else None,
                                    plugins=[SweepWorker(warm)])
     except (OSError, RuntimeError, TimeoutError) as exc:
         raise StageError("start LocalCluster", "sweep", f"{type(exc).__name__}: {exc}") from exc
     try:
-        client = Client(cluster)
+        client = Client(cluster, security=security)
         try:
             yield client, n
         finally:
@@ -256,8 +281,7 @@ def run_sweep(study: str, *, vary: list[str], params_path: str | Path | None = N
     progress = progress or (lambda msg: None)
     atexit.unregister(_exit_without_collecting)   # once per process, however many sweeps it runs
     atexit.register(_exit_without_collecting)
-    if workers is not None and workers < 1:
-        raise InputError("--workers", workers, "must be an integer >= 1")
+    check_workers(workers)
     if not (tolerance > 0 and tolerance < float("inf")):
         raise InputError("--tolerance", tolerance, "must be a finite relative tolerance > 0, e.g. 0.05")
     out_dir = Path(out_dir)

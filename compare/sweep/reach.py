@@ -51,10 +51,13 @@ def _recv_exactly(sock: socket.socket, n: int, deadline: float) -> bytes:
 
 def check_scheduler(address: str, timeout_s: float = CONNECT_TIMEOUT_S) -> None:
     """Raise ``InputError`` (one line naming ``address``) unless a Dask scheduler's handshake arrives there
-    within ``timeout_s`` for the connect and ``timeout_s`` for the handshake. Only ``tcp://`` addresses are
-    probed (other schemes are left to ``distributed``, which refuses unknown ones at once)."""
-    if urlsplit(address).scheme != "tcp":
-        return
+    within ``timeout_s`` for the connect and ``timeout_s`` for the handshake. ``tls://`` addresses are probed
+    up to the connect (their handshake is the TLS one, made by the client with the user's credentials); any
+    other scheme is refused here, before the sweep announces its work."""
+    scheme = urlsplit(address).scheme
+    if scheme not in ("tcp", "tls"):
+        raise InputError("--scheduler", address, "allowed: tcp://HOST:PORT or tls://HOST:PORT (docs/reliability.md "
+                                                 "shows how to secure your own cluster)")
     host, port = _host_port(address)
     try:
         sock = socket.create_connection((host, port), timeout=timeout_s)
@@ -64,6 +67,9 @@ def check_scheduler(address: str, timeout_s: float = CONNECT_TIMEOUT_S) -> None:
     except OSError as exc:
         reason = "nothing listening" if isinstance(exc, ConnectionRefusedError) else (exc.strerror or str(exc))
         raise InputError("--scheduler", address, f"no Dask scheduler answered: {reason}") from None
+    if scheme == "tls":
+        sock.close()
+        return
     with sock:
         deadline = time.monotonic() + timeout_s
         try:
