@@ -92,8 +92,15 @@ def test_a_huge_value_is_echoed_clipped(tmp_path, capsys):
     assert err.count("\n") == 1 and len(err) < 1000 and "1000002 characters" in err
 
 
-def test_parameter_input_size_is_bounded(capsys):
-    """Item 18: /dev/zero is refused after reading just over the limit, not read to exhaustion."""
+def test_parameter_input_size_is_bounded(capsys, tmp_path):
+    """Item 18: an endless device is refused without being read (issue 38: regular files only), and a
+    regular file over the limit by its size."""
     assert main(["analytic", "--params", "/dev/zero"]) == 2
+    err = capsys.readouterr().err
+    assert "not a regular file" in err and err.count("\n") == 1
+    big = tmp_path / "big.toml"
+    with open(big, "wb") as stream:   # sparse: no disk used
+        stream.truncate(MAX_PARAMS_BYTES + 1)
+    assert main(["analytic", "--params", str(big)]) == 2
     err = capsys.readouterr().err
     assert f"{MAX_PARAMS_BYTES // 1024} KiB" in err and err.count("\n") == 1
