@@ -82,11 +82,13 @@ def _limit_memory(extra_bytes: int) -> None:
     resource.setrlimit(resource.RLIMIT_AS, (limit, hard))
 
 
-def _child(write_fd: int, parent_pid: int, extra_bytes: int, build: Callable[[object], T]) -> None:
+def _child(write_fd: int, parent_pid: int, extra_bytes: int, scratch: str, build: Callable[[object], T]) -> None:
     """In the forked child: limits, one gmsh session, the pickled outcome down the pipe, then _exit."""
     outcome: tuple
     try:
         _die_with_parent(parent_pid)
+        import tempfile
+        tempfile.tempdir = scratch   # the BREP hand-over goes where the parent removes it, killed or not
         signal.signal(signal.SIGTERM, signal.SIG_DFL)   # not the CLI's unwinding handler: just die
         _limit_memory(extra_bytes)
         with gmsh_session() as model:
@@ -126,54 +128,58 @@ def _read_until_eof(fd: int, pid: int, wall_s: float) -> bytes | None:
 def _kill(pid: int) -> int:
     try:
         os.kill(pid, signal.SIGKILL)
-    except ProcessLookupError:
-        pass
-    return os.waitpid(pid, 0)[1]
+        return os.waitpid(pid, 0)[1]
+    except (ProcessLookupError, ChildProcessError):   # already reaped
+        return 0
 
 
 def _death(status: int, extra_bytes: int) -> str:
     if os.WIFSIGNALED(status):
         sig = os.WTERMSIG(status)
         name = signal.Signals(sig).name if sig in signal.Signals._value2member_map_ else str(sig)
-        return (f"the gmsh child was killed by {name} (a native abort, or its memory limit of "
-                f"{extra_bytes / 2**30:.2g} GB)")
+        return (f"the gmsh child exited with code {-sig} (killed by {name}: a native abort, or its memory "
+                f"limit of {extra_bytes / 2**30:.2g} GB beyond the process)")
     return f"the gmsh child exited with code {os.WEXITSTATUS(status)} before sending a mesh"
 
 
 def mesh_in_child(build: Callable[[object], T], *, what: str = "gmsh") -> T:
     """``build(model)`` inside a gmsh session in a guarded child (module docstring); returns its result.
 
-    Raises MeshLimitExceeded when the wall time passes or the child dies, MeshingFailed (via the child's
-    message) when gmsh fails. Ctrl-C or SIGTERM in the parent kill the child before they propagate."""
+    Raises MeshLimitExceeded when the wall time passes, MeshingFailed when gmsh fails (its message) or the
+    child dies (how). Ctrl-C or SIGTERM in the parent kill the child before they propagate."""
+    import shutil
+    import tempfile
+
     from .budget import mesh_limits
     from .meshing import MeshingFailed, MeshLimitExceeded
 
     limits = mesh_limits()
-    read_fd, write_fd = os.pipe()
     parent = os.getpid()
+    scratch = tempfile.mkdtemp(prefix=f"strainwave-mesh-{parent}-")
+    read_fd, write_fd = os.pipe()
     pid = os.fork()
     if pid == 0:   # pragma: no cover - the child
         os.close(read_fd)
-        _child(write_fd, parent, limits.extra_bytes, build)
+        _child(write_fd, parent, limits.extra_bytes, scratch, build)
     os.close(write_fd)
     try:
         data = _read_until_eof(read_fd, pid, limits.wall_s)
+        status = _kill(pid) if data is None else os.waitpid(pid, 0)[1]
     except BaseException:
         _kill(pid)
         raise
     finally:
         os.close(read_fd)
+        shutil.rmtree(scratch, ignore_errors=True)
     if data is None:
-        _kill(pid)
         raise MeshLimitExceeded(f"{what} took longer than {limits.wall_s:.0f} s, the limit for "
                                 f"{limits.elements:,} estimated elements; choose a larger mesh size")
-    status = os.waitpid(pid, 0)[1]
-    if not data:
-        raise MeshLimitExceeded(_death(status, limits.extra_bytes))
+    if not data:   # a native abort may pass on retry with other sizes (mesh_isolated): not a limit
+        raise MeshingFailed(_death(status, limits.extra_bytes))
     try:
         kind, payload = pickle.loads(data)   # our own child's bytes
     except Exception:   # noqa: BLE001 - cut short: the child died while sending
-        raise MeshLimitExceeded(_death(status, limits.extra_bytes)) from None
+        raise MeshingFailed(_death(status, limits.extra_bytes)) from None
     if kind != "ok":
         raise MeshingFailed(payload)
     return payload

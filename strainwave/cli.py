@@ -562,10 +562,9 @@ def _sigterm_unwinds():
 
 def _run(args) -> int:
     """The command inside its scratch folder, its --out folder marked as strainwave's, its files staged."""
-    from .output_guard import mark_folder, staged_outputs
-    with _scratch_under_outputs(args):
-        if getattr(args, "out", None) is not None:
-            mark_folder(Path(args.out))
+    from .output_guard import marked_folder, staged_outputs
+    out = getattr(args, "out", None)
+    with _scratch_under_outputs(args), marked_folder(Path(out)) if out is not None else contextlib.nullcontext():
         with staged_outputs(args, tuple(name for name, _ in _FILE_OUTPUTS)):
             return args.func(args)
 
@@ -594,9 +593,10 @@ def main(argv: list[str] | None = None) -> int:
         shown: set[str] = set()
 
         def show_once(msg, *rest, **kw):   # one run may load the parameters several times
-            if str(msg) not in shown:
-                shown.add(str(msg))
-                logger.warning(str(msg))
+            text = " ".join(str(msg).split())   # one line: scipy's IntegrationWarning spans three
+            if text not in shown:
+                shown.add(text)
+                logger.warning(text)
 
         with warnings.catch_warnings(), _sigterm_unwinds():
             warnings.simplefilter("default", RangeWarning)  # each distinct warning once

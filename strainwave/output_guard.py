@@ -31,10 +31,13 @@ from typing import Iterator
 
 from .errors import InputError
 
-__all__ = ["MANIFEST", "Planned", "check_outputs", "mark_folder", "staged_outputs", "unstage_text"]
+__all__ = ["MANIFEST", "Planned", "check_outputs", "marked_folder", "remove_stale", "staged_outputs", "unstage_text"]
 
 MANIFEST = ".strainwave-outputs.json"
 STAGE_PREFIX = ".strainwave-stage-"
+# An --out folder is strainwave's when it holds the manifest, or (written before the manifest existed) the
+# index file its command always writes: validate's results.json, a sweep's points.json, the benchmark's JSON.
+FOLDER_MARKS = (MANIFEST, "results.json", "points.json", "benchmark_diagnose.json")
 # What each flag writes: a file named otherwise would be read by the wrong program (issue 40, item 5).
 SUFFIXES = {"--json": (".json",), "--plot": (".png",), "--png": (".png",), "--vtu": (".vtu",), "-o": (".step", ".stp")}
 
@@ -64,7 +67,7 @@ def resolve(flag: str, path: str) -> Path:
     absolute = os.path.abspath(text)
     if len(os.fsencode(absolute)) >= path_max:
         raise InputError(flag, text, f"the path is longer than the system's {path_max} bytes")
-    for part in Path(absolute).parts:
+    for part in (*Path(text).parts, *Path(absolute).parts):   # "LONG/../a.json" too: the kernel sees LONG
         if len(os.fsencode(part)) > name_max:
             raise InputError(flag, text, f"a name in the path is longer than the system's {name_max} bytes")
     try:
@@ -113,12 +116,20 @@ def record_written(paths: list[Path]) -> None:
         _write_manifest(folder, files)
 
 
-def mark_folder(folder: Path) -> None:
-    """Make ``folder`` (an --out folder) carry the manifest, so a later run knows it as strainwave's."""
+@contextmanager
+def marked_folder(folder: Path) -> Iterator[None]:
+    """``folder`` (an --out folder) carries the manifest while the command runs, so a later run (a resume
+    after a kill) knows it as strainwave's; a command that wrote nothing there takes the mark away again."""
     folder = Path(folder)
-    if not (folder / MANIFEST).exists():
+    made = not (folder / MANIFEST).exists()
+    if made:
         folder.mkdir(parents=True, exist_ok=True)
         _write_manifest(folder, {})
+    try:
+        yield
+    finally:
+        if made and not [p for p in folder.iterdir() if p.name != MANIFEST and not _OWNED.match(p.name)]:
+            (folder / MANIFEST).unlink(missing_ok=True)
 
 
 def _same(a: Path, b: Path) -> bool:
@@ -144,7 +155,8 @@ def _check_folder(out: Planned, target: Path, inputs: dict[str, Path], force: bo
         if target == source or target in source.parents:
             raise InputError(out.flag, out.path, f"holds the input {flag} {source}; the command writes there and "
                                                  f"could replace it: choose another folder")
-    if target.is_dir() and not force and not (target / MANIFEST).exists() and any(target.iterdir()):
+    if target.is_dir() and not force and not any((target / name).exists() for name in FOLDER_MARKS) \
+            and any(target.iterdir()):
         raise InputError(out.flag, out.path, "is a folder with files strainwave did not write; name an empty or "
                                              "new folder, or pass --force to write into it")
 
@@ -216,7 +228,7 @@ def staged_outputs(args, names: tuple[str, ...]) -> Iterator[None]:
 
 # ".strainwave-scratch-PID-*" (the CLI's scratch) and ".strainwave-stage-PID-*" (staged outputs); a run killed
 # with -9 cannot remove its own, so the next run into the same folder removes those whose process is gone.
-_OWNED = re.compile(r"^\.?strainwave-(scratch|stage|solve)-(\d+)-")
+_OWNED = re.compile(r"^\.?strainwave-(scratch|stage|solve|mesh)-(\d+)-")
 
 
 def _alive(pid: int) -> bool:

@@ -56,8 +56,8 @@ def check_scheduler(address: str, timeout_s: float = CONNECT_TIMEOUT_S) -> None:
     other scheme is refused here, before the sweep announces its work."""
     scheme = urlsplit(address).scheme
     if scheme not in ("tcp", "tls"):
-        raise InputError("--scheduler", address, "allowed: tcp://HOST:PORT or tls://HOST:PORT (docs/reliability.md "
-                                                 "shows how to secure your own cluster)")
+        raise InputError("--scheduler", address, "no Dask scheduler answered: only tcp://HOST:PORT and tls://HOST:PORT "
+                                                 "are allowed (docs/reliability.md: securing your own cluster)")
     host, port = _host_port(address)
     try:
         sock = socket.create_connection((host, port), timeout=timeout_s)
