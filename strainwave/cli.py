@@ -601,6 +601,7 @@ def main(argv: list[str] | None = None) -> int:
         with warnings.catch_warnings(), _sigterm_unwinds():
             warnings.simplefilter("default", RangeWarning)  # each distinct warning once
             warnings.showwarning = show_once
+            args = None
             try:
                 args = build_parser().parse_args(argv)
                 if not args.uses_material:
@@ -635,7 +636,9 @@ def main(argv: list[str] | None = None) -> int:
             except Exception as exc:  # noqa: BLE001 - last line of defence: one line, no traceback
                 full = _disk_full(exc)
                 if full is not None:   # a genuine failure, not bad input: exit 1, naming where
-                    print(f"error: disk full: {printable(str(full.filename or '(output folder)'))}", file=sys.stderr)
+                    from .output_guard import unstage_text
+                    where = full.filename or (args is not None and _output_folder(args)) or "the output folder"
+                    print(f"error: disk full: {printable(unstage_text(str(where)))}", file=sys.stderr)
                     return 1
                 print(f"error: internal error ({type(exc).__name__}: {printable(str(exc))}); rerun with --debug",
                       file=sys.stderr)

@@ -192,7 +192,7 @@ _TEMP = re.compile(r"^\..+\.[0-9a-f]{12}(\.[^.]*)?\.tmp$")
 def unstage_text(text: str) -> str:
     """``text`` with each staging folder replaced by the folder its files go to."""
     for stage, final in _STAGED.items():
-        text = text.replace(stage + os.sep, final + os.sep)
+        text = text.replace(stage, final)   # its random name occurs nowhere else
     return text
 
 

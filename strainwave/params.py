@@ -327,6 +327,14 @@ class Params:
         """A copy with one dotted key (``section.key``) replaced, validated like a file value."""
         return params_from_dict(_set_dotted(self.to_dict(), dotted_key, value))
 
+    def with_values(self, values: dict[str, object]) -> "Params":
+        """A copy with several dotted keys replaced at once, validated together: keys checked against each
+        other (a tooth count and its module) may pass only as a pair."""
+        data = self.to_dict()
+        for dotted_key, value in values.items():
+            data = _set_dotted(data, dotted_key, value)
+        return params_from_dict(data)
+
     def to_dict(self) -> dict:
         """Plain TOML-like dict (enums as their strings, tuples as lists)."""
         out = {}

@@ -22,7 +22,7 @@ def params():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         p = load_params()
-        return p.with_value("flexspline_cup.teeth", 40).with_value("flexspline_cup.module_mm", 4.0)
+        return p.with_values({"flexspline_cup.teeth": 40, "flexspline_cup.module_mm": 4.0})
 
 
 # B-spline flanks are covered by the toothed cup; the ring goes smooth to keep the test fast

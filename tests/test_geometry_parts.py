@@ -29,7 +29,7 @@ def small_cup_params(params):
     # 40 teeth of module 4 on d1 = 160: same cup, 5x fewer teeth, so the test stays fast.
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        return params.with_value("flexspline_cup.teeth", 40).with_value("flexspline_cup.module_mm", 4.0)
+        return params.with_values({"flexspline_cup.teeth": 40, "flexspline_cup.module_mm": 4.0})
 
 
 def _centres(part, key):

@@ -312,13 +312,15 @@ def run_sweep(study: str, *, vary: list[str], params_path: str | Path | None = N
         scratch = out_dir / ".dask-scratch"   # the workers' spill/lock space, removed when the sweep ends
         warm = warm_modules(study, task, specs)
         forked = scheduler is None and _start_fork_server(warm)
-        _import_driver_libraries()   # while the fork server imports the workers' libraries
         try:
+            _import_driver_libraries()   # while the fork server imports the workers' libraries
             with dask_client(scheduler, workers, scratch, warm, forked) as (client, n_workers):
                 progress(f"sweep: {n_workers} Dask workers at {client.scheduler.address}")
                 by_key.update(_compute(client, todo, out_dir / "cache", task, n_workers, progress, len(by_key),
                                        len(points), counts))
         except KeyboardInterrupt:
+            from .prefork import stop_now
+            stop_now()   # still importing, it would outlive the sweep by seconds
             # Interrupted, the in-process scheduler has not purged its workspace when the scratch goes below;
             # its exit finalizer would then log an ERROR about a folder that is removed on purpose.
             logging.getLogger("distributed.diskutils").setLevel(logging.CRITICAL)

@@ -78,3 +78,23 @@ def _preload(names: Sequence[str]) -> None:
 
 if PRELOAD_ENV in os.environ:   # in the fork server, as it starts: import the workers' libraries once
     _preload(os.environ.pop(PRELOAD_ENV).split(","))
+
+
+def stop_now() -> None:
+    """Kill this process's fork server at once and reap it: an interrupted sweep (Ctrl-C, SIGTERM) must not
+    leave it importing libraries for seconds after the sweep has gone (it notices its parent only then)."""
+    import signal
+    from multiprocessing import forkserver
+
+    server = getattr(forkserver, "_forkserver", None)
+    pid = getattr(server, "_forkserver_pid", None)
+    if not pid:
+        return
+    try:
+        os.kill(pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass
+    try:
+        server._stop()   # closes its pipe, reaps it, removes its socket (multiprocessing's own teardown)
+    except (AttributeError, OSError):
+        pass
