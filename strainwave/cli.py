@@ -15,6 +15,7 @@ import contextlib
 import dataclasses
 import json
 import logging
+import os
 import sys
 import traceback
 import warnings
@@ -542,8 +543,19 @@ class Terminated(KeyboardInterrupt):
     """SIGTERM, raised in the main thread so it unwinds (scratch, staged outputs, Dask cluster) as Ctrl-C does."""
 
 
+_TERMINATED: list[int] = []   # SIGTERM arrived: an error it caused mid-import ("initialization failed") is it
+
+
 def _raise_terminated(signum, frame):
+    _TERMINATED.append(signum)
     raise Terminated
+
+
+def _stop_children() -> None:
+    """After SIGTERM has unwound: SIGKILL whatever this process started that is still running (a fork server
+    still importing, a worker its cluster never got to close); a terminated run leaves no process behind."""
+    from .compare.validate.isolated import stop_descendants
+    stop_descendants(os.getpid())
 
 
 @contextlib.contextmanager
@@ -553,6 +565,7 @@ def _sigterm_unwinds():
     if threading.current_thread() is not threading.main_thread():
         yield
         return
+    _TERMINATED.clear()
     previous = signal.signal(signal.SIGTERM, _raise_terminated)
     try:
         yield
@@ -612,6 +625,10 @@ def main(argv: list[str] | None = None) -> int:
                 handler.show_held()
                 return status
             except StrainwaveError as exc:
+                if _TERMINATED:   # a stage failure SIGTERM caused (a child it stopped): still a termination
+                    _stop_children()
+                    print("error: terminated", file=sys.stderr)
+                    return 143
                 # a refused input is its one line; a stage failure keeps the warnings that may explain it
                 if isinstance(exc, InputError):
                     handler.drop_held()
@@ -624,6 +641,7 @@ def main(argv: list[str] | None = None) -> int:
             except SystemExit as exc:   # --help / --version: argparse prints and exits 0
                 return exc.code if isinstance(exc.code, int) else 0
             except Terminated:
+                _stop_children()
                 print("error: terminated", file=sys.stderr)
                 return 143
             except KeyboardInterrupt:
@@ -634,6 +652,10 @@ def main(argv: list[str] | None = None) -> int:
                 os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
                 return 141
             except Exception as exc:  # noqa: BLE001 - last line of defence: one line, no traceback
+                if _TERMINATED:   # SIGTERM inside an extension's import or a callback: still a termination
+                    _stop_children()
+                    print("error: terminated", file=sys.stderr)
+                    return 143
                 full = _disk_full(exc)
                 if full is not None:   # a genuine failure, not bad input: exit 1, naming where
                     from .output_guard import unstage_text
