@@ -313,6 +313,45 @@ def path_table(work: Path) -> list[tuple[str, list[str], Path | None]]:
                                                  "--scheduler", "tcp://127.0.0.1:9", "--out", str(work / "sw3")], None),
         ("unknown flag", ["analytic", "--no-such-flag"], None),
         ("--order 3", ["solve", "shaft-torsion", "--order", "3"], None),
+        *issue38_paths(work, rec, params),
+    ]
+
+
+def issue38_paths(work: Path, rec: Path, params: Path) -> list[tuple[str, list[str], Path | None]]:
+    """Issue 38 (items 4, 5, 8-10, 15): outputs onto each other, an input or a foreign file; loops, over-long
+    names and FIFOs; flags without bounds. Each must be refused before any work."""
+    loop, fifo, out = work / "loop", work / "fifo", work / "o38"
+    if not loop.is_symlink():
+        loop.symlink_to(loop)
+    if not fifo.exists():
+        os.mkfifo(fifo)
+    out.mkdir(exist_ok=True)
+    samples = out / "sweep.csv"
+    samples.write_text("output_shaft.length_mm\n100\n150\n")
+    foreign = work / "README.md"
+    foreign.write_text("# a tracked file\n")
+    vary = ["sweep", "shaft-torsion", "--vary", "output_shaft.length_mm=100,150", "--out", str(work / "sw38")]
+    return [
+        ("sweep --out holds its --samples", ["sweep", "shaft-torsion", "--samples", str(samples), "--out", str(out)], samples),
+        ("solve --vtu onto a foreign file", ["solve", "shaft-torsion", "--vtu", str(foreign)], foreign),
+        ("diagnose --json x --plot x", ["diagnose", str(rec), "--json", str(work / "x"), "--plot", str(work / "x")], None),
+        ("solve --json t.boundary.vtu beside --vtu t.vtu", ["solve", "shaft-torsion", "--vtu", str(work / "t.vtu"),
+                                                            "--json", str(work / "t.boundary.vtu")], None),
+        ("--json through a symlink loop", ["analytic", "--json", str(loop)], None),
+        ("--out through a symlink loop", ["benchmark-diagnose", "--n", "1", "--out", str(loop / "o")], None),
+        ("--json 300-character name", ["analytic", "--json", str(work / ("n" * 300 + ".json"))], None),
+        ("--json path over 4096", ["analytic", "--json", str(work) + ("/" + "d" * 200) * 22 + "/a.json"], None),
+        ("--params a FIFO", ["analytic", "--params", str(fifo)], None),
+        ("recording a FIFO", ["diagnose", str(fifo)], None),
+        ("--samples a FIFO", ["sweep", "shaft-torsion", "--samples", str(fifo), "--out", str(work / "sw4")], None),
+        ("--workers 10000", [*vary, "--workers", "10000"], None),
+        ("--scheduler tls, nothing listening", [*vary, "--scheduler", "tls://127.0.0.1:9"], None),
+        ("--scheduler unix://", [*vary, "--scheduler", "unix:///tmp/strainwave-no"], None),
+        ("benchmark-diagnose --seed -1", ["benchmark-diagnose", "--seed", "-1"], None),
+        ("benchmark-diagnose --n 1e9", ["benchmark-diagnose", "--n", "1000000000"], None),
+        ("ring --mesh-size-mm 10", ["solve", "ring-compression", "--mesh-size-mm", "10"], None),
+        ("--mesh-size-mm 5e-324", ["solve", "shaft-torsion", "--mesh-size-mm", "5e-324"], None),
+        ("--mesh abbreviation", ["solve", "shaft-torsion", "--mesh", "3"], None),
     ]
 
 
@@ -337,7 +376,31 @@ def resource_table(work: Path) -> list[tuple[str, list[str]]]:
         ("input size: --params /dev/urandom", ["analytic", "--params", "/dev/urandom"]),
         ("input size: diagnose /dev/zero", ["diagnose", "/dev/zero"]),
         ("input size: --samples /dev/zero", ["sweep", "shaft-torsion", "--samples", "/dev/zero", "--out", str(work / "g3")]),
+        *issue38_resources(work),
     ]
+
+
+def issue38_resources(work: Path) -> list[tuple[str, list[str]]]:
+    """Issue 38 (items 1-3, 14): parameters that meshed for minutes (pointed teeth, a metre-long contact patch,
+    a micrometre wall on diagnose's FEA path) and undrawable teeth, refused by the budget and the tooth check."""
+    files = {"pointed": "[ewg_drive]\npressure_angle_deg = 40.0\ndedendum_coefficient = 0.1\n",
+             "patch": "[wave_generator]\ncontact_semi_axes_mm = [1e3, 3.0]\n",
+             "two_teeth": "[ewg_drive]\nflexspline_teeth = 2\ntooth_difference = 1\n",
+             "cup_teeth": "[flexspline_cup]\nteeth = 400\nmodule_mm = 0.01\n"}
+    for name, body in files.items():
+        (work / f"{name}.toml").write_text(body)
+    rec = work / "thin_wall.csv"
+    lines = _good_recording(random.Random(2)).splitlines()
+    first = next(i for i, ln in enumerate(lines) if not ln.startswith("#"))
+    lines[first:first] = ["# [params.output_shaft]", "# inner_diameter_mm = 69.9979", "# crack_depth_mm = 0.001",
+                          "# [params.crack_geometry]", "# slot_width_mm = 0.0001"]
+    rec.write_text("\n".join(lines) + "\n")
+    return [("pointed EWG teeth (meshed 270 s)", ["solve", "ring-compression", "--params", str(work / "pointed.toml")]),
+            ("bearing contact patch 1 m long", ["solve", "bearing-ring", "--params", str(work / "patch.toml"),
+                                                "--mesh-size-mm", "20"]),
+            ("diagnose --baseline fea, 1 um wall", ["diagnose", str(rec), "--baseline", "fea"]),
+            ("analytic with 2 EWG teeth", ["analytic", "--params", str(work / "two_teeth.toml")]),
+            ("analytic with pointed cup teeth", ["analytic", "--params", str(work / "cup_teeth.toml")])]
 
 
 def refusals(category: str, table) -> Row:
