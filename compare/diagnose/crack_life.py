@@ -60,10 +60,16 @@ class CrackLifeReport:
 
 def read_torque_history(path: Path) -> np.ndarray:
     """A torque history: one number per line (N mm), or a CSV with a ``torque_Nmm`` column; '#' lines skipped."""
+    from strainwave.input_guard import read_regular
     values = []
-    with open(path, encoding="utf-8", errors="strict", newline="") as fh:
-        rows = csv.reader(line for line in fh if line.strip() and not line.lstrip().startswith("#"))
-        col = 0
+    raw = read_regular(path, 64 * MAX_HISTORY_ROWS, "--torque-history")   # a regular file, bounded
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        raise InputError("--torque-history", str(path), "a UTF-8 text file") from None
+    rows = csv.reader(line for line in text.splitlines() if line.strip() and not line.lstrip().startswith("#"))
+    col = 0
+    try:
         for lineno, row in enumerate(rows, 1):
             if lineno == 1 and "torque_Nmm" in row:
                 col = row.index("torque_Nmm")
@@ -77,6 +83,8 @@ def read_torque_history(path: Path) -> np.ndarray:
             values.append(value)
             if len(values) > MAX_HISTORY_ROWS:
                 raise InputError("--torque-history", str(path), f"at most {MAX_HISTORY_ROWS} rows")
+    except csv.Error as exc:   # e.g. a cell beyond csv's field-size limit
+        raise InputError("--torque-history", str(path), f"not a CSV file ({exc})") from None
     if len(values) < 3:
         raise InputError("--torque-history", str(path), "at least 3 torque values (one load cycle)")
     return np.asarray(values)

@@ -171,10 +171,12 @@ def size_crack(delta: float, sigma: float, curves: list[DeltaCurve]) -> tuple[Cr
 
 def curve_from_results(path: Path, component: str) -> DeltaCurve:
     """A component's crack curve from a validate run's results.json (its crack-depth sweep, resolved points)."""
+    from strainwave.input_guard import read_regular
+    raw = read_regular(path, 64 << 20, "--curves")   # a regular file, bounded (a validate results.json is ~1 MB)
     try:
-        doc = json.loads(Path(path).read_text(encoding="utf-8"))
+        doc = json.loads(raw.decode("utf-8"))
         sweep = doc["crack_sweeps"][component]
-    except (OSError, ValueError, KeyError, TypeError) as exc:
+    except (OSError, ValueError, KeyError, TypeError, RecursionError) as exc:
         raise InputError("--curves", str(path), f"a validate results.json with a '{component}' crack sweep "
                          f"({type(exc).__name__})") from None
     rows = sorted((a, v, u) for a, v, u, ok in zip(sweep["depths_mm"], sweep["fea"], sweep["fea_uncertainty"],
