@@ -167,7 +167,6 @@ def _cmd_solve(args) -> int:
     with_crack(args.study, params, args.crack_depth_mm)
     check_budget(args.study, params, args.mesh_size_mm)
     # The field is always written (to a scratch folder without --vtu): the rated-load peaks are read from it.
-    import os
     from .output_guard import remove_stale
     remove_stale(tempfile.gettempdir())   # killed solves' folders, when the scratch is the system's
     with tempfile.TemporaryDirectory(prefix=f"strainwave-solve-{os.getpid()}-") as scratch:   # under the run's scratch
@@ -582,6 +581,29 @@ def _run(args) -> int:
             return args.func(args)
 
 
+def _terminated() -> int:
+    _stop_children()
+    print("error: terminated", file=sys.stderr)
+    return 143
+
+
+def _unexpected(exc: Exception, args, debug: bool) -> int:
+    """One line for an exception no stage named: a termination SIGTERM caused mid-import, a full disk (exit
+    1 naming where), else an internal error."""
+    if _TERMINATED:
+        return _terminated()
+    full = _disk_full(exc)
+    if full is not None:   # a genuine failure, not bad input
+        from .output_guard import unstage_text
+        where = full.filename or (args is not None and _output_folder(args)) or "the output folder"
+        print(f"error: disk full: {printable(unstage_text(str(where)))}", file=sys.stderr)
+        return 1
+    print(f"error: internal error ({type(exc).__name__}: {printable(str(exc))}); rerun with --debug", file=sys.stderr)
+    if debug:
+        traceback.print_exc()
+    return 1
+
+
 def _disk_full(exc: BaseException) -> OSError | None:
     import errno
     while exc is not None:
@@ -626,9 +648,7 @@ def main(argv: list[str] | None = None) -> int:
                 return status
             except StrainwaveError as exc:
                 if _TERMINATED:   # a stage failure SIGTERM caused (a child it stopped): still a termination
-                    _stop_children()
-                    print("error: terminated", file=sys.stderr)
-                    return 143
+                    return _terminated()
                 # a refused input is its one line; a stage failure keeps the warnings that may explain it
                 if isinstance(exc, InputError):
                     handler.drop_held()
@@ -641,9 +661,7 @@ def main(argv: list[str] | None = None) -> int:
             except SystemExit as exc:   # --help / --version: argparse prints and exits 0
                 return exc.code if isinstance(exc.code, int) else 0
             except Terminated:
-                _stop_children()
-                print("error: terminated", file=sys.stderr)
-                return 143
+                return _terminated()
             except KeyboardInterrupt:
                 print("error: interrupted", file=sys.stderr)
                 return 130
@@ -652,21 +670,7 @@ def main(argv: list[str] | None = None) -> int:
                 os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
                 return 141
             except Exception as exc:  # noqa: BLE001 - last line of defence: one line, no traceback
-                if _TERMINATED:   # SIGTERM inside an extension's import or a callback: still a termination
-                    _stop_children()
-                    print("error: terminated", file=sys.stderr)
-                    return 143
-                full = _disk_full(exc)
-                if full is not None:   # a genuine failure, not bad input: exit 1, naming where
-                    from .output_guard import unstage_text
-                    where = full.filename or (args is not None and _output_folder(args)) or "the output folder"
-                    print(f"error: disk full: {printable(unstage_text(str(where)))}", file=sys.stderr)
-                    return 1
-                print(f"error: internal error ({type(exc).__name__}: {printable(str(exc))}); rerun with --debug",
-                      file=sys.stderr)
-                if debug:
-                    traceback.print_exc()
-                return 1
+                return _unexpected(exc, args, debug)
     finally:
         logger.removeHandler(handler)
         logger.setLevel(saved_level)
