@@ -386,7 +386,7 @@ def test_sigterm_unwinds_like_ctrl_c(tmp_path):
     assert proc.stdout.readline() == "working\n"
     assert any(p.name.startswith(".strainwave-") and p.is_dir() for p in tmp_path.iterdir())
     proc.terminate()
-    _, err = proc.communicate(timeout=10)
+    _, err = proc.communicate(timeout=60)   # the unwinding is tested here, not its time on a loaded machine
     assert proc.returncode == 143 and err.strip().splitlines()[-1] == "error: terminated", err
     assert sorted(p.name for p in tmp_path.iterdir()) == []
 
