@@ -166,6 +166,10 @@ def _local(n: int, scratch: Path | None, warm: tuple[str, ...]) -> Iterator[tupl
         client = Client(cluster, security=security)
         try:
             yield client, n
+        except KeyboardInterrupt:   # Ctrl-C or SIGTERM: the workers go at once, so the closing waits on none
+            from .prefork import stop_now
+            stop_now()
+            raise
         finally:
             client.close()
     finally:

@@ -90,6 +90,8 @@ def stop_now() -> None:
     pid = getattr(server, "_forkserver_pid", None)
     if not pid:
         return
+    from ..validate.isolated import stop_descendants
+    stop_descendants(pid)   # the workers forked from it first: once it is gone they belong to init
     try:
         os.kill(pid, signal.SIGKILL)
     except ProcessLookupError:
