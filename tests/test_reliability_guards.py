@@ -302,13 +302,15 @@ def test_a_hanging_mesher_is_stopped_at_its_wall_time(tmp_path, tiny_limits):
     start = time.perf_counter()
     with pytest.raises(MeshLimitExceeded, match="took longer than 1 s"):
         mesh_in_child(hang)
-    assert time.perf_counter() - start < 5
+    assert time.perf_counter() - start < 15   # 1 s, and a fork of a large process on a loaded machine
     assert not _alive(int(marker.read_text()))
 
 
-def test_a_mesher_past_its_memory_limit_fails_with_a_reason(tiny_limits):
+def test_a_mesher_past_its_memory_limit_fails_with_a_reason(tiny_limits, monkeypatch):
+    from strainwave.fea import budget
     from strainwave.fea.meshing import MeshingFailed
     from strainwave.fea.session import mesh_in_child
+    monkeypatch.setattr(budget, "MESH_BASE_S", 60.0)   # the memory limit is tested, not the wall time
     with pytest.raises(MeshingFailed) as failure:
         mesh_in_child(lambda model: bytearray(1 << 30))
     assert "memory" in str(failure.value)
