@@ -216,6 +216,10 @@ def physics(work: Path) -> Row:
     return row
 
 
+def _group(pgid: int) -> list[str]:
+    return subprocess.run(["pgrep", "-g", str(pgid)], capture_output=True, text=True).stdout.split()
+
+
 def sigterm(work: Path) -> Row:
     row = Row("SIGTERM and stale scratch (13)")
     tmp = work / "tmp"
@@ -236,9 +240,11 @@ def sigterm(work: Path) -> Row:
             row.add("hangs", f"{argv[0]}: running 15 s after SIGTERM")
             continue
         took = time.perf_counter() - sent
-        time.sleep(1)
+        deadline = time.perf_counter() + 5.0   # as fuzz_reliability.interrupt: no process of the group after 5 s
+        while time.perf_counter() < deadline and _group(proc.pid):
+            time.sleep(0.2)
+        alive = _group(proc.pid)
         left = [p.name for p in tmp.iterdir()] + _leftovers(work) + [str(p) for p in work.rglob(".dask-scratch")]
-        alive = subprocess.run(["pgrep", "-g", str(proc.pid)], capture_output=True, text=True).stdout.split()
         if left or alive:
             row.add("lost", f"{argv[0]}: left {left[:3]} and processes {alive}")
         elif took > 3.0 or (proc.returncode not in (143, 0)) or "Traceback" in err:

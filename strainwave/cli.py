@@ -553,8 +553,19 @@ def _raise_terminated(signum, frame):
 def _stop_children() -> None:
     """After SIGTERM has unwound: SIGKILL whatever this process started that is still running (a fork server
     still importing, a worker its cluster never got to close); a terminated run leaves no process behind."""
-    from .compare.validate.isolated import stop_descendants
-    stop_descendants(os.getpid())
+    import signal
+    from multiprocessing import resource_tracker
+
+    from .compare.validate.isolated import descendants
+    # multiprocessing's resource tracker leaves by itself once this process has gone; killed, it would be
+    # started again by the exit's own clean-up and print its "leaked" warnings
+    tracker = getattr(resource_tracker._resource_tracker, "_pid", None)
+    for pid in descendants(os.getpid()):
+        if pid != tracker:
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
 
 
 @contextlib.contextmanager
