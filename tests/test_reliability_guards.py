@@ -22,7 +22,7 @@ from strainwave.output_guard import MANIFEST, Planned, check_outputs, remove_sta
 
 _LOAD = np.linspace(0.0, 1000.0, 40)
 _GOOD = format_recording(RecordingKind.TORSION, "output_shaft", _LOAD, _LOAD / 4.0e8 + 1e-10 * np.sin(np.arange(40)))
-_FUZZ = settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+_FUZZ = settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
 
 
 def _one_line_refusal(capsys, status) -> str:
