@@ -140,3 +140,42 @@ def test_the_same_hold_without_the_input_angle_is_unexplained(params):
     u, y, _ = _held_extremes(800)
     diag, _ = _diagnose(params, u, y)
     assert diag.verdict is Verdict.UNEXPLAINED and "periodic in time" in diag.structure
+
+
+def test_a_stiffness_rippling_at_twice_the_input_angle_is_named(params):
+    """The twist of a compliance 1 + 1.2 % cos(2 theta) grows with the torque (residual ~4x the white noise):
+    it read "agrees", the noise model absorbing it (issue 35)."""
+    n = 800
+    u, angle = _path(n), 2 * np.pi * 7 * np.linspace(0, 1, n)
+    diag, _ = _diagnose(params, u, u * (1.0 + 0.012 * np.cos(2 * angle + 0.4)), angle=angle)
+    assert diag.verdict is Verdict.EXPLAINED and diag.named == ("stiffness_ripple",)
+    assert diag.quantity("compliance_ripple_2x_percent") == pytest.approx(1.2, rel=0.1)
+
+
+def test_a_ripple_that_does_not_grow_with_the_torque_is_the_kinematic_error(params):
+    """The check can fail: the same ripple at every load is no stiffness change."""
+    n = 800
+    u, angle = _path(n), 2 * np.pi * 7 * np.linspace(0, 1, n)
+    diag, _ = _diagnose(params, u, u + 0.008 * np.cos(2 * angle + 0.4), angle=angle)
+    assert diag.verdict is Verdict.EXPLAINED and diag.named == ("kinematic_error",)
+
+
+def _encoder_reading(twist: np.ndarray, pitch: float) -> np.ndarray:
+    """An interpolating encoder's reading: quadrature signals sin, cos of the line phase with an offset, unequal
+    gains and a phase error, the phase read back by atan2 and unwrapped over the lines (Heidenhain's error
+    sources of interpolation), so the error repeats every line pitch of the true twist."""
+    phase = 2 * np.pi * twist / pitch
+    a = 1.0 * np.sin(phase) + 0.08
+    b = 1.15 * np.cos(phase + 0.08)
+    read = np.unwrap(np.arctan2(a, b))
+    return read * pitch / (2 * np.pi)
+
+
+def test_an_encoder_interpolation_error_is_named_with_its_pitch(params):
+    """The error repeats every line pitch of the measured angle at any load, ~4x the white noise (it read
+    "agrees", issue 35)."""
+    u = _path(900)
+    pitch = 2.0 / 9.0                        # 9 lines over the recorded twist range (normalised)
+    diag, ctx = _diagnose(params, u, _encoder_reading(u, pitch))
+    assert diag.verdict is Verdict.EXPLAINED and diag.named == ("encoder_error",)
+    assert diag.quantity("period") == pytest.approx(pitch * ctx.Y, rel=0.02)

@@ -10,7 +10,10 @@ The residual r of a model is offered a few generic, catalogue-free structures, e
 - ``time_load``: a compliance that changes during the test (u times hats in time: re-clamping, a second
   specimen, warm-up of the gain);
 - ``periodic_time``: a sinusoid at the residual's strongest spectral line (period reported);
-- ``periodic_angle``: a sinusoid in the wave generator's input angle (when recorded), k per revolution.
+- ``periodic_angle``: a sinusoid in the wave generator's input angle (when recorded), k per revolution;
+- ``angle_load``: harmonics 1-4 of the input angle times the load (a stiffness rippling with the angle);
+- ``periodic_response``: two harmonics of the strongest line against the measured response (an encoder's
+  interpolation error, periodic in the reading itself: issue 35).
 Each is scored under the same coloured-noise likelihood as the catalogue (fit.bic_ar, fit.noise_filter): delta BIC =
 N ln(RSS_e(r) / RSS_e(r - G c)) - rank(G) ln N (and + ln N for a searched frequency). A structure is
 significant when delta BIC > 10 ("very strong"); its unique share is its drop from the joint fit of all
@@ -27,6 +30,7 @@ import numpy as np
 from .effects.base import Context
 from .fit import _PHIS, _THETAS, NOISE_FLOOR, ar_profile, lag1
 from .noise import KEEP, noise_std
+from .periodic import angle_load_columns, response_columns, response_line
 
 THRESHOLD = 10.0
 STIFFNESS_CHI2 = 6.63     # chi-square(1) at 99 %: 2.58 prior sigmas
@@ -152,6 +156,13 @@ def _groups(ctx: Context, r: np.ndarray) -> dict[str, tuple[np.ndarray, int, str
             if best is None or gain > best[0]:
                 best, cols = (gain, order), c
         out["periodic_angle"] = (cols, 1, f"{best[1]}")
+        # a ripple in the input angle that grows with the load: a stiffness that varies with the angle
+        out["angle_load"] = (angle_load_columns(ctx), 0, "")
+    f = response_line(ctx, r)
+    if f > 0:
+        # periodic in the measured response itself (an encoder's line pitch); the frequency searched over the
+        # grid's ~n/8 candidates costs two parameters, as a line of two harmonics at a searched period
+        out["periodic_response"] = (response_columns(ctx, f), 2, f"{f:.6g}")
     return out
 
 
@@ -599,6 +610,15 @@ def describe(test: StructureTest, ctx: Context, located_text: str, dt_s: float |
         alias = (f"; read on every {stride}th row, so a ripple faster than {2 * stride} rows would show at this "
                  f"period (an alias): check it on the full recording") if stride > 1 else ""
         parts.append(f"it is periodic in time with period {period} (not a function of the load){alias}")
+    if "angle_load" in sig and (test.get("angle_load").unique_delta_bic > THRESHOLD or len(sig) == 1):
+        parts.append("it ripples with the input angle, growing with the load (a torsional stiffness that varies "
+                     "with the wave generator's angle: mesh stiffness variation, or a crack opening and closing as "
+                     "the major axis passes it)")
+    if "periodic_response" in sig and (test.get("periodic_response").unique_delta_bic > THRESHOLD or len(sig) == 1):
+        f = float(test.get("periodic_response").detail)
+        parts.append(f"it is periodic in the measured response itself, period {ctx.Y / f:.4g} {ctx.response_unit} "
+                     f"of the reading, at any load and time (an angle encoder's interpolation error repeats every "
+                     f"line pitch)")
     if "periodic_angle" in sig:
         parts.append(f"it is periodic in the input angle, {test.get('periodic_angle').detail} per revolution")
     if not parts:

@@ -1,13 +1,13 @@
 """The physics catalogue: one module per effect, stable ids."""
 from __future__ import annotations
 
-from . import (compliance_offset, crack_closure, hysteresis, kinematic_error, large_deflection, lost_motion,
-               nonlinear_stiffness, plasticity, thick_ring)
+from . import (compliance_offset, crack_closure, encoder_error, hysteresis, kinematic_error, large_deflection,
+               lost_motion, nonlinear_stiffness, plasticity, stiffness_ripple, thick_ring)
 from .base import Context, Effect, Param
 
 CATALOGUE = {m.EFFECT.id: m.EFFECT for m in (compliance_offset, nonlinear_stiffness, hysteresis, lost_motion,
                                              crack_closure, thick_ring, large_deflection, plasticity,
-                                             kinematic_error)}
+                                             kinematic_error, stiffness_ripple, encoder_error)}
 
 # other model forms of the same physics: the named effect must not depend on one law's shape
 VARIANTS = (nonlinear_stiffness.TWO_SLOPE, nonlinear_stiffness.SMOOTH_KNEE, nonlinear_stiffness.MONOTONE,

@@ -1,0 +1,69 @@
+"""Patterns that repeat with the load or with an angle cycle after cycle, which the noise model must not absorb
+(issue 35: a stiffness rippling at twice the input angle read "agrees" at a residual 5.9x the white noise, an
+encoder's interpolation error periodic in the measured angle at 4.7x).
+
+- ``angle_load_columns``: harmonics of the wave generator's input angle times the load, u cos(k theta),
+  u sin(k theta): a torsional stiffness that ripples with the input angle (mesh stiffness variation, a breathing
+  crack passing the major axis twice per input turn), its twist ripple growing with the torque;
+- ``response_line``: the strongest frequency of a residual against the measured response itself (the encoder's
+  reading): an interpolation error repeats every line pitch of the scale, whatever the load or the time.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .effects.base import Context
+
+ANGLE_LOAD_HARMONICS = (1, 2, 3, 4)
+# an interpolation error is read only at 5 or more periods over the recorded range (slower, it is a smooth function
+# of the response, i.e. of the load, which the load structures draw) and at 4 or more samples per period on each
+# pass over the range (the path passes it once per monotonic stretch)
+MIN_CYCLES = 5.0
+SAMPLES_PER_PERIOD = 4.0
+GRID_PER_BIN = 4           # frequency grid: a quarter of the range's Fourier bin
+
+
+def angle_load_columns(ctx: Context, harmonics=ANGLE_LOAD_HARMONICS) -> np.ndarray:
+    """u cos(k theta), u sin(k theta) for k in ``harmonics`` (theta the input angle)."""
+    return np.column_stack([ctx.u * f(k * ctx.angle) for k in harmonics for f in (np.cos, np.sin)])
+
+
+def response_grid(ctx: Context) -> np.ndarray:
+    """Candidate frequencies in cycles per normalised response unit (see MIN_CYCLES, SAMPLES_PER_PERIOD)."""
+    span = float(np.ptp(ctx.y))
+    if not span > 0.0:
+        return np.zeros(0)
+    passes = max(len(ctx.segments), 1)
+    top = len(ctx.y) / (SAMPLES_PER_PERIOD * passes)
+    if top <= MIN_CYCLES:
+        return np.zeros(0)
+    return np.arange(MIN_CYCLES, top, 1.0 / GRID_PER_BIN) / span
+
+
+def response_line(ctx: Context, r: np.ndarray) -> float:
+    """The frequency (cycles per normalised response unit) at which ``r`` has most power against the measured
+    response (a Schuster periodogram over ``response_grid``, then the two harmonics' joint power), 0 if none."""
+    grid = response_grid(ctx)
+    if not len(grid):
+        return 0.0
+    x = r - r.mean()
+    best, f_best = -1.0, 0.0
+    for chunk in np.array_split(grid, max(1, len(grid) * len(x) // 2_000_000 + 1)):
+        phase = np.exp(-2j * np.pi * np.outer(chunk, ctx.y))
+        p1 = np.abs(phase @ x) ** 2
+        p2 = np.abs((phase ** 2) @ x) ** 2
+        power = p1 + p2
+        k = int(np.argmax(power))
+        if power[k] > best:
+            best, f_best = float(power[k]), float(chunk[k])
+    return f_best
+
+
+def response_columns(ctx: Context, f: float, harmonics=(1, 2)) -> np.ndarray:
+    """cos, sin of 2 pi k f y for k in ``harmonics`` (y the measured response, normalised)."""
+    return np.column_stack([g(2.0 * math.pi * k * f * ctx.y) for k in harmonics for g in (np.cos, np.sin)])
+
+
+__all__ = ["ANGLE_LOAD_HARMONICS", "angle_load_columns", "response_columns", "response_grid", "response_line"]
