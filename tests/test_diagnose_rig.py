@@ -179,3 +179,37 @@ def test_an_encoder_interpolation_error_is_named_with_its_pitch(params):
     diag, ctx = _diagnose(params, u, _encoder_reading(u, pitch))
     assert diag.verdict is Verdict.EXPLAINED and diag.named == ("encoder_error",)
     assert diag.quantity("period") == pytest.approx(pitch * ctx.Y, rel=0.02)
+
+
+def _cha_curve_text(given_stiffness: str = "") -> str:
+    """A CHA-25 (ratio 100) catalogue curve, phi odd in T with three slopes (the table's own definition:
+    K1 = 31e3, K2 = 50e3, K3 = 57e3 N*m/rad, T1 = 29, T2 = 108 N*m), cycled to +/- 1.5 T2, on a gear specimen."""
+    T = 1.5 * 108e3 * _path(400)
+    a = np.abs(T)
+    K1, K2, K3, T1, T2 = 31e6, 50e6, 57e6, 29e3, 108e3
+    phi = np.sign(T) * np.where(a <= T1, a / K1, np.where(a <= T2, T1 / K1 + (a - T1) / K2,
+                                                          T1 / K1 + (T2 - T1) / K2 + (a - T2) / K3))
+    phi = phi + 2e-6 * np.random.default_rng(0).standard_normal(len(T))
+    rows = "\n".join(f"{t:.6g},{p:.8g}" for t, p in zip(T, phi))
+    return (f'# [test]\n# kind = "torsion"\n# specimen = "gear"\n# baseline_uncertainty = 0.3\n{given_stiffness}'
+            f"torque_Nmm,twist_rad\n{rows}\n")
+
+
+def test_a_gear_curve_against_another_gears_baseline_names_the_key_to_set(strainwave_cmd, tmp_path):
+    """A CHA curve without its baseline stiffness read "compliance change 6378 %, unexplained" (issue 35): the
+    default gear is another gear. Exit 2, one line naming the header key, nothing written."""
+    import subprocess
+    rec = tmp_path / "cha.csv"
+    rec.write_text(_cha_curve_text())
+    out = subprocess.run([*strainwave_cmd, "diagnose", str(rec), "--json", str(tmp_path / "o.json")],
+                         capture_output=True, text=True, timeout=300)
+    assert out.returncode == 2 and "Traceback" not in out.stderr and out.stderr.count("\n") == 1
+    assert "baseline_stiffness_Nmm_per_rad" in out.stderr and "cha.csv" in out.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["cha.csv"]
+
+
+def test_the_same_curve_with_its_stiffness_given_is_diagnosed(params):
+    """The check can fail: given the table's K1, the curve is within 10x and reads as its stiffening."""
+    rec = parse_text(_cha_curve_text("# baseline_stiffness_Nmm_per_rad = 31e6\n"))
+    diag = diagnose(rec, params, workers=1)[0]
+    assert diag.verdict is Verdict.EXPLAINED and diag.primary == "nonlinear_stiffness"

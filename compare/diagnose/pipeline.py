@@ -68,6 +68,8 @@ MIN_COMPONENT_SIGMAS = 1.5
 # than this many prior sigmas off: closer, the prior costs that form under one BIC unit, about all another
 # reading of the stiffness could win back (speed)
 REREAD_PRIOR_SIGMAS = 1.0
+# a baseline this many times off the recording's secant stiffness (either way) describes another specimen
+BASELINE_OFF = 10.0
 MAX_FIT_ROWS = 2500        # model selection on a strided subsample beyond this (docs/decisions/019-diagnose-speed.md)
 # Pairs that cannot be told apart: both are a pure linear compliance change.
 _DEGENERATE = {frozenset({"compliance_offset", "thick_ring"})}
@@ -208,10 +210,37 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
     if baseline not in ("analytic", "fea"):
         raise InputError("--baseline", baseline, "must be analytic or fea")
     base = analytic_baseline(rec, params) if baseline == "analytic" else fea_baseline(rec, params)
+    check_baseline_scale(rec, base)
     from threadpoolctl import threadpool_limits
     # Tiny (N x 4) linear-algebra calls: BLAS threads only add overhead (docs/decisions/019-diagnose-speed.md).
     with threadpool_limits(limits=1):
         return _diagnose(rec, base, usable_workers() if workers is None else workers)
+
+
+def check_baseline_scale(rec: Recording, base: Baseline) -> None:
+    """Refuse (exit 2) a baseline more than BASELINE_OFF times off the recording's own secant stiffness, naming
+    the key that sets it: no catalogue effect turns one gear into another (a CHA curve diagnosed against the
+    default shaft's simulation read "compliance change 6378 %, unexplained, check the rig", issue 35)."""
+    slope = float(np.polyfit(rec.load, rec.response, 1)[0])
+    ratio = slope / base.compliance
+    if 1.0 / BASELINE_OFF <= ratio <= BASELINE_OFF:
+        return
+    torsion = rec.kind.value == "torsion"
+    key = "baseline_stiffness_Nmm_per_rad" if torsion else "baseline_stiffness_N_per_mm"
+    unit = "N*mm/rad" if torsion else "N/mm"
+    given = rec.baseline_stiffness is not None
+    if ratio <= 0.0:
+        what = (f"the {rec.response_name} falls as the {rec.load_name} rises (secant {1.0 / slope:.4g} {unit}): "
+                f"check the sign of one channel")
+    else:
+        what = (f"the recording's secant stiffness {1.0 / slope:.4g} {unit} is {1.0 / ratio:.3g} x the "
+                f"baseline's {1.0 / base.compliance:.4g} {unit} ({base.source}), which no catalogue effect "
+                f"explains: the specimen is not the one the baseline describes")
+    fix = (f"correct [test] {key} in the header" if given else
+           f"set [test] {key} = <the specimen's linear stiffness, {unit}> in the header, or its dimensions in the "
+           f"[params.*] tables (or --params)")
+    raise InputError(f"{rec.source}: [test] {key}", rec.baseline_stiffness if given else "not set",
+                     f"{what}; {fix}")
 
 
 def _stride(n: int) -> int:
