@@ -71,6 +71,9 @@ REREAD_PRIOR_SIGMAS = 1.0
 # a baseline this many times off the recording's secant stiffness (either way) describes another specimen
 BASELINE_OFF = 10.0
 MAX_FIT_ROWS = 2500        # model selection on a strided subsample beyond this (docs/decisions/019-diagnose-speed.md)
+# A real drive's recording always shows its stiffening and its loop together: for a gear that pair is the normal
+# model, not a second effect that must earn its place by more than BIC_THRESHOLD and by a structure
+NORMAL_PAIRS = {"gear": frozenset({"nonlinear_stiffness", "hysteresis"})}
 # Pairs that cannot be told apart: both are a pure linear compliance change.
 _DEGENERATE = {frozenset({"compliance_offset", "thick_ring"})}
 OFFSET = "compliance_offset"
@@ -417,10 +420,16 @@ def _diagnose(rec: Recording, base: Baseline, workers: int) -> tuple[Diagnosis, 
         candidates += _offset_pairs(ctx, best_single, singles, gof, sigma, u_rel, noise)
     for p in pairs:
         first = plausible_first[p.effects[0].id]
-        if first.bic - p.bic <= BIC_THRESHOLD:
+        if p.at_bound:
+            continue                         # an effect pinned at its bounds draws what its law cannot
+        normal = rec.specimen in NORMAL_PAIRS and frozenset(e.id for e in p.effects) == NORMAL_PAIRS[rec.specimen]
+        if first.bic - p.bic <= (0.0 if normal else BIC_THRESHOLD):
             continue                         # the second effect is not significant given the first
         if _unresolved(ctx, p, sigma):
             continue                         # one effect of the pair stays below the noise everywhere
+        if normal:
+            candidates.append(p)
+            continue
         # it must explain a structure the first one cannot: some generic structure of the first's residual
         # loses more than 10 BIC units of evidence once the second effect is added
         before, after = gof(first), gof(p)
