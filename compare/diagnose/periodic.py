@@ -61,9 +61,23 @@ def response_line(ctx: Context, r: np.ndarray) -> float:
     return f_best
 
 
+CACHE_KEY = "response_line"
+
+
+def recorded_line(ctx: Context) -> tuple[float, float]:
+    """(the recording's strongest line against its measured response, in cycles per normalised response unit, or
+    0; the recorded span of the response), searched once on the residual of a straight line in the load and
+    memoised on the context (a context of the same recording on more rows takes it over)."""
+    if CACHE_KEY not in ctx.cache:
+        A = np.column_stack([np.ones_like(ctx.u), ctx.t, ctx.u])
+        coef, *_ = np.linalg.lstsq(A, ctx.y, rcond=None)
+        ctx.cache[CACHE_KEY] = (response_line(ctx, ctx.y - A @ coef), float(np.ptp(ctx.y)))
+    return ctx.cache[CACHE_KEY]
+
+
 def response_columns(ctx: Context, f: float, harmonics=(1, 2)) -> np.ndarray:
     """cos, sin of 2 pi k f y for k in ``harmonics`` (y the measured response, normalised)."""
     return np.column_stack([g(2.0 * math.pi * k * f * ctx.y) for k in harmonics for g in (np.cos, np.sin)])
 
 
-__all__ = ["ANGLE_LOAD_HARMONICS", "angle_load_columns", "response_columns", "response_grid", "response_line"]
+__all__ = ["ANGLE_LOAD_HARMONICS", "CACHE_KEY", "angle_load_columns", "recorded_line", "response_columns", "response_grid", "response_line"]

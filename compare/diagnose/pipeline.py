@@ -35,11 +35,11 @@ import numpy as np
 
 from ...errors import InputError
 from ...io_atomic import atomic_write_text, json_ready
-from . import exchange, loop_stiffness, rate_loop
+from . import exchange, loop_stiffness, periodic, rate_loop
 from .baseline import Baseline, analytic_baseline, fea_baseline
 from .channels import stuck_channel
 from .context import build_context
-from .effects import effects_for, encoder_error
+from .effects import effects_for
 from .effects.loop import ARCMIN_PER_RAD, load_path_model, loop_quantities, width_load
 from .explain import explain
 from .fit import NOISE_FLOOR, Fit, fit_effects, lag1, rescored
@@ -267,8 +267,8 @@ def _full_residual(rec: Recording, base: Baseline, ctx, fit: Fit) -> np.ndarray:
     fitted = rec.time_s[::stride] if rec.time_s is not None else np.arange(0, rec.n, stride, dtype=float)
     full = build_context(rec, base, X=ctx.X, time_map=(float(fitted[0]), float(fitted[-1] - fitted[0])))
     # a line searched on the fitted rows is the fitted model's (the same normalisation), not searched again
-    if encoder_error.CACHE_KEY in ctx.cache:
-        full.cache[encoder_error.CACHE_KEY] = ctx.cache[encoder_error.CACHE_KEY]
+    if periodic.CACHE_KEY in ctx.cache:
+        full.cache[periodic.CACHE_KEY] = ctx.cache[periodic.CACHE_KEY]
     b0, b1, s = fit.nuisance
     model = b0 + b1 * full.t + s * full.u
     for e, th in zip(fit.effects, fit.split_theta()):

@@ -30,7 +30,7 @@ import numpy as np
 from .effects.base import Context
 from .fit import _PHIS, _THETAS, NOISE_FLOOR, ar_profile, lag1
 from .noise import KEEP, noise_std
-from .periodic import angle_load_columns, response_columns, response_line
+from .periodic import angle_load_columns, recorded_line, response_columns
 
 THRESHOLD = 10.0
 STIFFNESS_CHI2 = 6.63     # chi-square(1) at 99 %: 2.58 prior sigmas
@@ -158,10 +158,11 @@ def _groups(ctx: Context, r: np.ndarray) -> dict[str, tuple[np.ndarray, int, str
         out["periodic_angle"] = (cols, 1, f"{best[1]}")
         # a ripple in the input angle that grows with the load: a stiffness that varies with the angle
         out["angle_load"] = (angle_load_columns(ctx), 0, "")
-    f = response_line(ctx, r)
+    f = recorded_line(ctx)[0]
     if f > 0:
-        # periodic in the measured response itself (an encoder's line pitch); the frequency searched over the
-        # grid's ~n/8 candidates costs two parameters, as a line of two harmonics at a searched period
+        # periodic in the measured response itself (an encoder's line pitch), at the recording's strongest line
+        # (searched once per recording, on the residual of a straight line in the load: what repeats with the
+        # reading is there whatever else the residual holds); the search costs two parameters
         out["periodic_response"] = (response_columns(ctx, f), 2, f"{f:.6g}")
     return out
 

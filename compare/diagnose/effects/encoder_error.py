@@ -12,23 +12,13 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
-from ..periodic import response_columns, response_grid, response_line
+from ..periodic import recorded_line, response_columns, response_grid
 from .base import Context, Effect, Param
 from .kinematic_error import ARCSEC_PER_RAD
 
-CACHE_KEY = "encoder_line"
-
-
 def line(ctx: Context) -> tuple[float, float]:
-    """(line frequency in cycles per normalised response unit, recorded span of the response); memoised on the
-    context (a context of the same recording on more rows takes it over, pipeline._full_residual)."""
-    if CACHE_KEY not in ctx.cache:
-        A = np.column_stack([np.ones_like(ctx.u), ctx.t, ctx.u])
-        coef, *_ = np.linalg.lstsq(A, ctx.y, rcond=None)
-        ctx.cache[CACHE_KEY] = (response_line(ctx, ctx.y - A @ coef), float(np.ptp(ctx.y)))
-    return ctx.cache[CACHE_KEY]
+    """(line frequency in cycles per normalised response unit, recorded span of the response)."""
+    return recorded_line(ctx)
 
 
 def _frequency(ctx: Context, theta) -> float:
