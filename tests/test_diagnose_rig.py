@@ -213,3 +213,32 @@ def test_the_same_curve_with_its_stiffness_given_is_diagnosed(params):
     rec = parse_text(_cha_curve_text("# baseline_stiffness_Nmm_per_rad = 31e6\n"))
     diag = diagnose(rec, params, workers=1)[0]
     assert diag.verdict is Verdict.EXPLAINED and diag.primary == "nonlinear_stiffness"
+
+
+def _unit_rows(n=30):
+    """Rows of torque in N m and twist in arcmin, written by a German-locale spreadsheet (';', decimal comma)."""
+    return "\n".join(f"{12.5 * i:.4f};{0.02 * i:.5f}".replace(".", ",") for i in range(n))
+
+
+def test_a_column_row_in_the_engineers_units_is_converted():
+    """`Torque [Nm];Angle [arcmin]`: 1 N m = 1000 N mm, 1 arcmin = pi / 10800 rad (definitions)."""
+    head = '# [test]\n# kind = "torsion"\n# specimen = "gear"\n'
+    rec = parse_text(head + "Torque [Nm];Angle [arcmin]\n" + _unit_rows() + "\n")
+    i = np.arange(30)
+    assert rec.load_name == "torque_Nmm" and rec.response_name == "twist_rad"
+    assert np.allclose(rec.load, 12.5e3 * i) and np.allclose(rec.response, 0.02 * i * math.pi / 10800, rtol=1e-12)
+    ring = parse_text('# [test]\n# kind = "ring_compression"\n# specimen = "ewg_ring"\n'
+                      "Force [kN];Deflection [um]\n" + _unit_rows() + "\n")
+    assert np.allclose(ring.load, 12.5e3 * i) and np.allclose(ring.response, 0.02e-3 * i, rtol=1e-12)
+
+
+@pytest.mark.parametrize("row, bad", [("Torque [lbf ft];Angle [arcmin]", "lbf ft"),
+                                      ("Torque [Nm];Angle [grad]", "grad"),
+                                      ("Torque [Nm];Strain [1]", "Strain [1]")])
+def test_an_unknown_unit_is_named_with_the_allowed_ones(row, bad):
+    from strainwave.errors import InputError
+    head = '# [test]\n# kind = "torsion"\n# specimen = "gear"\n'
+    with pytest.raises(InputError) as err:
+        parse_text(head + row + "\n" + _unit_rows() + "\n", "rec.csv")
+    text = str(err.value)
+    assert text.startswith("rec.csv:4") and bad in text and ("allowed: " in text or "one of: " in text)

@@ -31,6 +31,7 @@ import numpy as np
 from ...errors import InputError, RangeWarning
 from ...input_guard import SNIFF_CHARS, sniff_sample
 from ...params import load_params, read_limited
+from .units import canonical_column
 
 MIN_ROWS = 20
 # Size limits, so a mistaken path (/dev/zero, a day of raw DAQ data) is refused before it takes the
@@ -133,10 +134,13 @@ def parse_text(text: str, name: str = "recording.csv") -> Recording:
         raise InputError(f"{name}:{len(lines)}", "end of file", f"expected a CSV header row '{load_col},{resp_col}'")
     delimiter = _sniff_delimiter(lines, body_start)
     try:
-        columns = _split(lines[body_start], delimiter)
+        header_cells = _split(lines[body_start], delimiter)
     except csv.Error as exc:   # e.g. a cell beyond csv's field-size limit
         raise InputError(f"{name}:{body_start + 1}", lines[body_start][:60], f"not a CSV row ({exc})") from None
     hline = body_start + 1
+    # a column row in the engineer's units (units.py): the canonical names, the values converted below
+    converted = [canonical_column(c, kind.value, f"{name}:{hline}") for c in header_cells]
+    columns = [c for c, _, _ in converted]
     allowed = (load_col, resp_col) + optional
     for col in columns:
         if col not in allowed:
@@ -146,7 +150,7 @@ def parse_text(text: str, name: str = "recording.csv") -> Recording:
     for col in (load_col, resp_col):
         if col not in columns:
             raise InputError(f"{name}:{hline}", ",".join(columns), f"missing column {col!r} (kind {kind.value!r})")
-    data = _parse_rows(lines, body_start + 1, columns, name, delimiter)
+    data = _parse_rows(lines, body_start + 1, columns, name, delimiter) * np.array([f for _, f, _ in converted])
     if data.shape[0] < MIN_ROWS:
         raise InputError(f"{name}:{len(lines)}", f"{data.shape[0]} data rows", f"need at least {MIN_ROWS} rows")
     col = {c: data[:, j] for j, c in enumerate(columns)}
