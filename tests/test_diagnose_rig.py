@@ -1,4 +1,4 @@
-"""Diagnosis of real test rigs (issue 35): each recording is written here from first principles, never with a
+"""Diagnosis of real test rigs: each recording is written here from first principles, never with a
 catalogue effect's own model.
 
 - friction: a twist-driven Maxwell-slip joint (parallel Jenkins elements: a spring and a Coulomb slider each,
@@ -77,7 +77,7 @@ def test_the_joint_dissipates_and_sticks_after_a_reversal():
 
 def test_kinematic_error_beside_a_friction_loop_is_named_with_its_loss(params):
     """The loop width was read by running the whole model on a reference cycle without an input angle: a
-    TypeError, exit 1 (issue 35). The ripple in the input angle is no part of the loop."""
+    TypeError, exit 1. The ripple in the input angle is no part of the loop."""
     n = 900
     u, y = partial_slip_loop(n, share=0.5, stuck=0.6)
     angle = 2 * np.pi * 6 * np.linspace(0, 1, n)
@@ -103,7 +103,7 @@ def _branch(u, y, direction):
 @pytest.mark.parametrize("stuck", [0.5, 0.7])
 def test_a_loop_not_fully_slipped_is_no_softer_specimen(params, stuck):
     """Secant compliance on its nominal: only the loop is named, and the secant it reports is the recording's
-    (the slip tangent at a reversal read as a +9.6 % and +13.4 % compliance change, issue 35)."""
+    (the slip tangent at a reversal read as a +9.6 % and +13.4 % compliance change)."""
     u, y = partial_slip_loop(700, stuck=stuck)
     diag, _ = _diagnose(params, u, y)
     assert diag.verdict is Verdict.EXPLAINED and diag.named == ("hysteresis",)
@@ -129,7 +129,7 @@ def _held_extremes(n):
 
 def test_a_held_torque_under_a_turning_wave_generator_is_its_kinematic_error(params):
     """The hold check read the twist the kinematic error draws as a load channel stuck at its extreme
-    (unexplained at chi2/n 0.95, issue 35); it is judged on what the fitted model leaves."""
+    (unexplained at chi2/n 0.95); it is judged on what the fitted model leaves."""
     u, y, angle = _held_extremes(800)
     diag, _ = _diagnose(params, u, y, angle=angle)
     assert diag.verdict is Verdict.EXPLAINED and diag.named == ("kinematic_error",)
@@ -144,7 +144,7 @@ def test_the_same_hold_without_the_input_angle_is_unexplained(params):
 
 def test_a_stiffness_rippling_at_twice_the_input_angle_is_named(params):
     """The twist of a compliance 1 + 1.2 % cos(2 theta) grows with the torque (residual ~4x the white noise):
-    it read "agrees", the noise model absorbing it (issue 35)."""
+    it read "agrees", the noise model absorbing it."""
     n = 800
     u, angle = _path(n), 2 * np.pi * 7 * np.linspace(0, 1, n)
     diag, _ = _diagnose(params, u, u * (1.0 + 0.012 * np.cos(2 * angle + 0.4)), angle=angle)
@@ -173,7 +173,7 @@ def _encoder_reading(twist: np.ndarray, pitch: float) -> np.ndarray:
 
 def test_an_encoder_interpolation_error_is_named_with_its_pitch(params):
     """The error repeats every line pitch of the measured angle at any load, ~4x the white noise (it read
-    "agrees", issue 35)."""
+    "agrees")."""
     u = _path(900)
     pitch = 2.0 / 9.0                        # 9 lines over the recorded twist range (normalised)
     diag, ctx = _diagnose(params, u, _encoder_reading(u, pitch))
@@ -196,7 +196,7 @@ def _cha_curve_text(given_stiffness: str = "") -> str:
 
 
 def test_a_gear_curve_against_another_gears_baseline_names_the_key_to_set(strainwave_cmd, tmp_path):
-    """A CHA curve without its baseline stiffness read "compliance change 6378 %, unexplained" (issue 35): the
+    """A CHA curve without its baseline stiffness read "compliance change 6378 %, unexplained": the
     default gear is another gear. Exit 2, one line naming the header key, nothing written."""
     import subprocess
     rec = tmp_path / "cha.csv"

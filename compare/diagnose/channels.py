@@ -75,7 +75,7 @@ def stuck_channel(load: np.ndarray, response: np.ndarray, sigma_response: float,
     ``explained``: the fitted model's response on every row (called only where a plateau exists); the response
     moves on a plateau only by what that model leaves: a wave generator turning under a held torque moves the
     twist by its kinematic error, which the model draws (a kinematic-error recording fitted at the noise read
-    "a saturated load channel", issue 35)."""
+    "a saturated load channel")."""
     plateaus = _plateaus(load)
     if plateaus and explained is not None:
         response = response - explained()

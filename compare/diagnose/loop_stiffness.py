@@ -1,4 +1,4 @@
-"""Which stiffness of a friction loop the simulation's linear stiffness is compared with (issue 35).
+"""Which stiffness of a friction loop the simulation's linear stiffness is compared with.
 
 A joint with friction has no one tangent stiffness: right after a load reversal every slider sticks (the
 ELASTIC stiffness, the stiffest), near the end of a stroke many slip (the SLIP tangent, the softest), and over
@@ -6,7 +6,7 @@ the whole cycle the twist between the two load extremes gives the SECANT stiffne
 A loop law's own stiffness scale s is none of these in general: the play operators read s as the slip tangent
 of a fully slipped joint, so on a loop that never fully slips s comes out softer than the specimen, and the
 prior on s then called for a series compliance (a "compliance change" of +9.6 % and +13.4 % beside a loop whose
-secant was within 1.4 % of nominal, issue 35). The data support only the elastic and the secant readings of
+secant was within 1.4 % of nominal). The data support only the elastic and the secant readings of
 the fitted loop; the simulated stiffness (a linear elastic model) is one of them, which one depends on whether
 the rig's catalogue quotes the stuck or the cycled stiffness, so the prior is judged on the closer one.
 """

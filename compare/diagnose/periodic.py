@@ -1,5 +1,5 @@
 """Patterns that repeat with the load or with an angle cycle after cycle, which the noise model must not absorb
-(issue 35: a stiffness rippling at twice the input angle read "agrees" at a residual 5.9x the white noise, an
+(a stiffness rippling at twice the input angle read "agrees" at a residual 5.9x the white noise, an
 encoder's interpolation error periodic in the measured angle at 4.7x).
 
 - ``angle_load_columns``: harmonics of the wave generator's input angle times the load, u cos(k theta),

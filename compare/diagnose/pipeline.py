@@ -223,7 +223,7 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
 def check_baseline_scale(rec: Recording, base: Baseline) -> None:
     """Refuse (exit 2) a baseline more than BASELINE_OFF times off the recording's own secant stiffness, naming
     the key that sets it: no catalogue effect turns one gear into another (a CHA curve diagnosed against the
-    default shaft's simulation read "compliance change 6378 %, unexplained, check the rig", issue 35)."""
+    default shaft's simulation read "compliance change 6378 %, unexplained, check the rig")."""
     slope = float(np.polyfit(rec.load, rec.response, 1)[0])
     ratio = slope / base.compliance
     if 1.0 / BASELINE_OFF <= ratio <= BASELINE_OFF:

@@ -13,7 +13,7 @@ The residual r of a model is offered a few generic, catalogue-free structures, e
 - ``periodic_angle``: a sinusoid in the wave generator's input angle (when recorded), k per revolution;
 - ``angle_load``: harmonics 1-4 of the input angle times the load (a stiffness rippling with the angle);
 - ``periodic_response``: two harmonics of the strongest line against the measured response (an encoder's
-  interpolation error, periodic in the reading itself: issue 35).
+  interpolation error, periodic in the reading itself).
 Each is scored under the same coloured-noise likelihood as the catalogue (fit.bic_ar, fit.noise_filter): delta BIC =
 N ln(RSS_e(r) / RSS_e(r - G c)) - rank(G) ln N (and + ln N for a searched frequency). A structure is
 significant when delta BIC > 10 ("very strong"); its unique share is its drop from the joint fit of all

@@ -1,4 +1,4 @@
-"""Column rows in the engineer's units: ``Torque [Nm];Angle [arcmin]`` (issue 35).
+"""Column rows in the engineer's units: ``Torque [Nm];Angle [arcmin]``.
 
 A column named ``<quantity> [<unit>]`` is mapped to the recording's canonical column (``torque_Nmm``,
 ``twist_rad``, ...) and its values converted by pint, a maintained units library. The quantity is read from
