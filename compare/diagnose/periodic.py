@@ -23,6 +23,7 @@ ANGLE_LOAD_HARMONICS = (1, 2, 3, 4)
 MIN_CYCLES = 5.0
 SAMPLES_PER_PERIOD = 4.0
 GRID_PER_BIN = 4           # frequency grid: a quarter of the range's Fourier bin
+LINE_CONTRAST = 30.0       # a line's power over its neighbours' median (as structure.LINE_CONTRAST in time)
 
 
 def angle_load_columns(ctx: Context, harmonics=ANGLE_LOAD_HARMONICS) -> np.ndarray:
@@ -44,21 +45,23 @@ def response_grid(ctx: Context) -> np.ndarray:
 
 def response_line(ctx: Context, r: np.ndarray) -> float:
     """The frequency (cycles per normalised response unit) at which ``r`` has most power against the measured
-    response (a Schuster periodogram over ``response_grid``, then the two harmonics' joint power), 0 if none."""
+    response (a Schuster periodogram of the two harmonics over ``response_grid``), 0 unless it is a LINE:
+    LINE_CONTRAST times the median power 3 to 12 Fourier bins away. A local event (a reading frozen for a few
+    samples, a jump) spreads its power over every frequency; the encoder's error repeats and stands out."""
     grid = response_grid(ctx)
     if not len(grid):
         return 0.0
     x = r - r.mean()
-    best, f_best = -1.0, 0.0
-    for chunk in np.array_split(grid, max(1, len(grid) * len(x) // 2_000_000 + 1)):
-        phase = np.exp(-2j * np.pi * np.outer(chunk, ctx.y))
-        p1 = np.abs(phase @ x) ** 2
-        p2 = np.abs((phase ** 2) @ x) ** 2
-        power = p1 + p2
-        k = int(np.argmax(power))
-        if power[k] > best:
-            best, f_best = float(power[k]), float(chunk[k])
-    return f_best
+    power = np.empty(len(grid))
+    for idx in np.array_split(np.arange(len(grid)), max(1, len(grid) * len(x) // 2_000_000 + 1)):
+        phase = np.exp(-2j * np.pi * np.outer(grid[idx], ctx.y))
+        power[idx] = np.abs(phase @ x) ** 2 + np.abs((phase ** 2) @ x) ** 2
+    k = int(np.argmax(power))
+    near, far = 3 * GRID_PER_BIN, 12 * GRID_PER_BIN
+    around = np.concatenate([power[max(k - far, 0):max(k - near, 0)], power[k + near:k + far]])
+    if len(around) < 4 or power[k] < LINE_CONTRAST * float(np.median(around)):
+        return 0.0
+    return float(grid[k])
 
 
 CACHE_KEY = "response_line"
