@@ -9,11 +9,13 @@ d1^3), published with 0.1 and the seed's mu; corrected with pi/32; k_G = 0.83 fo
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
 from typing import ClassVar, Mapping
 
 from ..errors import InputError
 from .assembly import Lame
+from .crack_local import compliance_from_release, interpolate_p2, local_release
 from .crack_seam import open_crack_for, seam_crack
 from .fields import field_info, write_solid_fields
 from .meshing import OPTIMIZE_THRESHOLD
@@ -60,6 +62,11 @@ def solve_mesh(md, params, *, progress=lambda m: None) -> tuple[float, StaticSol
     return mean_rotation_rad(sol, "loaded") / torque, sol, torque
 
 
+def crack_patch(part, half_size_mm):
+    from strainwave.geometry.flexspline_cup import crack_patch as patch
+    return patch(part, half_size_mm)
+
+
 def _build(params, depth_mm, teeth):
     from strainwave.geometry.part import CrackModel
     from strainwave.geometry.parts import build_part
@@ -70,6 +77,18 @@ def _build(params, depth_mm, teeth):
 
 FLEX = "flexibility_rad_per_Nmm"
 CRACKED = "cracked_flexibility_rad_per_Nmm"
+DELTA = "delta_flexibility_rad_per_Nmm"
+# How the crack compliance is solved: "seam" cracks the whole cup's mesh (refined at the front, solved
+# closed and opened); "global-local" solves the cup uncracked and the crack in a patch (crack_local)
+SEAM, GLOBAL_LOCAL = "seam", "global-local"
+CRACK_METHODS = (SEAM, GLOBAL_LOCAL)
+# The local patch: half size L = PATCH_HALF_OVER_A a (fixed grip on its cut faces costs O((a/L)^2) of the
+# released energy) and its own global element size on the finest mesh, 2a or half a wall (never above h):
+# away from the front the patch carries the wall's smooth membrane shear
+PATCH_HALF_OVER_A = 16.0
+LOCAL_SIZE_OVER_A = 2.0
+LOCAL_SIZE_OVER_WALL = 0.5
+LOCAL_FRONT = CRACK_FRONT
 
 
 @dataclass(frozen=True)
@@ -81,8 +100,11 @@ class CupTorsion(TorsionVariant):
     load_distribution: ClassVar[str] = "uniform tangential shear on the toothed band, moment T"
     clamped_face: ClassVar[str] = "hub face"
     teeth: bool
+    crack_method: str = GLOBAL_LOCAL
 
     def __post_init__(self):
+        if self.crack_method not in CRACK_METHODS:
+            raise ValueError(f"{STUDY}: crack_method must be one of {CRACK_METHODS}, got {self.crack_method!r}")
         check_variant(STUDY, order=self.order, sizes_mm=(self.h_fine_mm,), crack_depth_mm=self.crack_depth_mm,
                       ratio=self.ratio)
 
@@ -94,6 +116,8 @@ class CupTorsion(TorsionVariant):
         return (SeriesPlan("solid", refinement_sizes(self.h_fine_mm, self.ratio)),)
 
     def solve(self, part, series, h_mm, k, keep_fields, progress) -> MeshSolve:
+        if self.crack_depth_mm is not None and self.crack_method == GLOBAL_LOCAL:
+            return self._solve_global_local(part, h_mm, keep_fields, progress)
         cracked = self.crack_depth_mm is not None
         refine = (CRACK_FRONT.refine(part.crack_front_mm, h_mm, self.h_fine_mm, self.crack_depth_mm),) if cracked else ()
         md, t_mesh = mesh_for_study(part, study=STUDY, h_mm=h_mm, order=self.order, refine=refine, progress=progress,
@@ -111,10 +135,36 @@ class CupTorsion(TorsionVariant):
         return MeshSolve(h_mm, values, last.md.quality, timings, last.solver.to_dict(),
                          {"solution": last, "unit_shear_torque_Nmm": torque} if keep_fields else {})
 
+    def _solve_global_local(self, part, h_mm, keep_fields, progress) -> MeshSolve:
+        """The uncracked cup on the plain mesh of size h (no crack refinement), then the crack in its local
+        patch (``crack_local``) meshed at the same fraction of its own finest size and driven by that solution."""
+        md, t_mesh = mesh_for_study(part, study=STUDY, h_mm=h_mm, order=self.order, progress=progress,
+                                    optimize_threshold=optimize_threshold(
+                                        h_mm, self.params.flexspline_cup.wall_thickness_mm))
+        flex, sol, torque = solve_mesh(md, self.params, progress=progress)
+        a = self.crack_depth_mm
+        patch = crack_patch(part, PATCH_HALF_OVER_A * a)
+        wall = self.params.flexspline_cup.wall_thickness_mm
+        h_loc_fine = min(self.h_fine_mm, max(LOCAL_SIZE_OVER_A * a, LOCAL_SIZE_OVER_WALL * wall))
+        h_loc = h_loc_fine * h_mm / self.h_fine_mm
+        md_loc, t_loc = mesh_for_study(patch, study=STUDY, h_mm=h_loc, order=self.order, progress=progress,
+                                       refine=(LOCAL_FRONT.refine(patch.crack_front_mm, h_loc, h_loc_fine, a),))
+        global_u = partial(interpolate_p2, sol.sk.doflocs, sol.sk.element_dofs, sol.u)
+        local = local_release(md_loc, sol.lame, global_u, study=STUDY)
+        delta = compliance_from_release(local.released_Nmm, torque)
+        progress(f"{STUDY}: local patch {local.dofs} dofs, released {local.released_Nmm:.4g} N mm")
+        values = {FLEX: flex, CRACKED: flex + delta, DELTA: delta, "local_dofs": float(local.dofs)}
+        timings = {"mesh": t_mesh + t_loc, "assembly": sol.timings_s["assembly"],
+                   "solve": sol.timings_s["solve"] + local.solve_s}
+        return MeshSolve(h_mm, values, md.quality, timings, sol.solver.to_dict(),
+                         {"solution": sol, "unit_shear_torque_Nmm": torque} if keep_fields else {})
+
     def quantities(self, series: Mapping[str, Series]) -> dict:
         s = series["solid"]
-        return crack_flexibility_quantities(s.h_mm, s.values(FLEX),
-                                            s.values(CRACKED) if self.crack_depth_mm is not None else None, UNIT)
+        cracked = self.crack_depth_mm is not None
+        delta = s.values(DELTA) if cracked and self.crack_method == GLOBAL_LOCAL else None
+        return crack_flexibility_quantities(s.h_mm, s.values(FLEX), s.values(CRACKED) if cracked else None, UNIT,
+                                            delta=delta)
 
     def crack(self, part) -> CrackRecord | None:
         if self.crack_depth_mm is None:
@@ -136,10 +186,11 @@ class CupTorsion(TorsionVariant):
 
 
 def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, progress=lambda m: None,
-        quick=False, teeth: bool = False, ratio: float = DEFAULT_RATIO) -> StudyResult:
+        quick=False, teeth: bool = False, ratio: float = DEFAULT_RATIO, crack_method: str = GLOBAL_LOCAL) -> StudyResult:
     """lambda_f on three meshes (GCI); with a crack delta lambda_f = cracked - uncracked on each mesh."""
     fc = params.flexspline_cup
     h = mesh_size_mm or default_size_mm(params, quick)
     if h >= fc.length_mm / 4:
         raise InputError("--mesh-size-mm", h, f"must be < L/4 = {fc.length_mm / 4:g} mm for the cup")
-    return run_variant(CupTorsion(params, order, h, ratio, crack_depth_mm, teeth), vtu=vtu, progress=progress)
+    return run_variant(CupTorsion(params, order, h, ratio, crack_depth_mm, teeth, crack_method), vtu=vtu,
+                       progress=progress)

@@ -76,14 +76,16 @@ def on_three_meshes(solve: Callable[[float, int], T], refinements: Sequence[floa
 
 
 def crack_flexibility_quantities(sizes, uncracked: list[float], cracked: list[float] | None,
-                                 unit: str) -> dict[str, Quantity]:
+                                 unit: str, *, delta: list[float] | None = None) -> dict[str, Quantity]:
     """Flexibility, and with a crack the cracked flexibility and the difference, each on the same three
-    meshes (finest first): the difference carries its own GCI, as the crack checks need."""
+    meshes (finest first): the difference carries its own GCI, as the crack checks need. ``delta``: the
+    difference as solved (a global-local crack), instead of cracked - uncracked."""
     out = {"flexibility_rad_per_Nmm": converged_quantity("flexibility_rad_per_Nmm", unit, sizes, uncracked)}
     if cracked:
         out["cracked_flexibility_rad_per_Nmm"] = converged_quantity(
             "cracked_flexibility_rad_per_Nmm", unit, sizes, cracked)
         out["delta_flexibility_rad_per_Nmm"] = converged_quantity(
-            "delta_flexibility_rad_per_Nmm", unit, sizes, [c - u for c, u in zip(cracked, uncracked)],
+            "delta_flexibility_rad_per_Nmm", unit, sizes,
+            [c - u for c, u in zip(cracked, uncracked)] if delta is None else list(delta),
             order_bounds=CRACK_ORDER_BOUNDS)
     return out

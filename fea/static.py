@@ -90,6 +90,14 @@ def _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions, point_loads,
     return sk, K, f, all_dofs, all_vals
 
 
+def assemble(md: MeshData, lame: Lame, *, fixed: Mapping[str, float | np.ndarray] | None = None,
+             tractions: Mapping[str, Traction] | None = None, study: str = "fea",
+             progress: Callable[[str], None] = lambda m: None):
+    """(skfem mesh, K in node blocks, f, fixed dofs, their values) as ``solve_static`` assembles them, for
+    callers that need K after the solve (a strain energy 1/2 u.K u); K is never consumed here."""
+    return _assemble(md, lame, fixed, None, 0.0, tractions, None, 1.0, study, progress)
+
+
 def load_assembly_kernels() -> None:
     """numba and the assembly's kernels, loaded in this thread before the sweeps' warm-up thread starts:
     loaded beside it, both held the interpreter lock in turn and numpy's many short calls in to_skfem and

@@ -29,6 +29,7 @@ from .report_html import write_html
 from strainwave.compare.validate.catalogue_table import catalogue_document
 from .report_md import write_markdown
 from .results import now_utc, plain, versions, write_results
+from .case_progress import CaseProgress
 from .runner import CaseOutcome, run_case
 
 ORDER = 2   # quadratic elements, the fea/ default (curved P2)
@@ -149,11 +150,17 @@ def _run_cases(cases, params, *, fields_dir: Path, cache, quick: bool, progress)
     workers = max(1, min(2, os.cpu_count() or 1))
     timing_file = durations_file(Path(cache.root), quick)
     durations = load_durations(timing_file)
+    tracker = CaseProgress(cases, params, quick=quick, workers=workers, progress=progress)
+
+    def tracked(case):
+        outcome = run_case(case, params, fields_dir=fields_dir, cache=cache, quick=quick, order=ORDER,
+                           progress=progress)
+        tracker.done(case.label, outcome.seconds, "cached" if outcome.cached else "solved" if outcome.ok else "FAILED")
+        return outcome
+
     pool = ThreadPoolExecutor(max_workers=workers)
     try:
-        futures = {case.label: pool.submit(run_case, case, params, fields_dir=fields_dir, cache=cache, quick=quick,
-                                           order=ORDER, progress=progress)
-                   for case in longest_first(cases, durations)}
+        futures = {case.label: pool.submit(tracked, case) for case in longest_first(cases, durations)}
         outcomes = {case.label: futures[case.label].result() for case in cases}
     except KeyboardInterrupt:
         # Ctrl-C: queued cases must not start, running ones stop now. Their threads only wait on child

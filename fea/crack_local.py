@@ -1,0 +1,138 @@
+"""Global-local crack compliance: the crack in a small local model driven by the uncracked global solution.
+
+The global model is solved once, uncracked (no crack-front refinement, so its mesh does not depend on the
+crack depth). The local model is a patch of the part around the crack, meshed with the crack as a seam
+(``crack_seam``) and refined at its front, its cut faces held at the global displacement (interpolated
+on the global curved P2 mesh), every other face as in the global model (traction free here). Solved
+closed and opened on one mesh, its strain energy falls by dU: the energy the crack releases at fixed
+grip on the cut. To first order in the crack size this is the energy released at fixed load, half the
+compliance change times the load squared, so delta lambda = 2 dU / T^2 for the torque T of the global
+load. The neglected part is the patch's boundary held rigid: O((a / L)^2) for a patch of half size L.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from .element_gradients import SKFEM_EDGES
+from .mesh_data import MeshData, group_dofs
+
+# Newton steps of the inverse P2 map; reference coordinates converge quadratically from the straight tet's
+NEWTON_STEPS = 8
+OUTSIDE_TOL = 0.05      # largest distance outside the nearest element (in its size) still extrapolated
+
+
+def _p2_shape(lam: np.ndarray) -> np.ndarray:
+    """(..., 10) P2 tet shape values at barycentric ``lam`` (..., 4): vertices, then SKFEM_EDGES' edges."""
+    vert = lam * (2.0 * lam - 1.0)
+    edge = np.stack([4.0 * lam[..., a] * lam[..., b] for a, b in SKFEM_EDGES[3]], axis=-1)
+    return np.concatenate([vert, edge], axis=-1)
+
+
+def _p2_shape_grad(lam: np.ndarray) -> np.ndarray:
+    """(..., 10, 3) derivatives of ``_p2_shape`` w.r.t. the reference coordinates (lam1, lam2, lam3)."""
+    dlam = np.array([[-1.0, -1.0, -1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
+    vert = (4.0 * lam - 1.0)[..., None] * dlam
+    edge = np.stack([4.0 * (lam[..., a, None] * dlam[b] + lam[..., b, None] * dlam[a]) for a, b in SKFEM_EDGES[3]],
+                    axis=-2)
+    return np.concatenate([vert, edge], axis=-2)
+
+
+def _reference_coords(x: np.ndarray, elem_x: np.ndarray) -> np.ndarray:
+    """Barycentric coordinates (n, 4) of points ``x`` (n, 3) in curved P2 tets with nodes ``elem_x`` (n, 10, 3)."""
+    v = elem_x[:, :4]
+    J = np.stack([v[:, 1] - v[:, 0], v[:, 2] - v[:, 0], v[:, 3] - v[:, 0]], axis=-1)
+    xi = np.linalg.solve(J, (x - v[:, 0])[..., None])[..., 0]      # straight tet: the start
+    for _ in range(NEWTON_STEPS):
+        lam = np.concatenate([1.0 - xi.sum(axis=1, keepdims=True), xi], axis=1)
+        r = np.einsum("nk,nkd->nd", _p2_shape(lam), elem_x) - x
+        Jc = np.einsum("nkd,nke->nde", elem_x, _p2_shape_grad(lam))
+        xi -= np.linalg.solve(Jc, r[..., None])[..., 0]
+    lam = np.concatenate([1.0 - xi.sum(axis=1, keepdims=True), xi], axis=1)
+    miss = np.linalg.norm(np.einsum("nk,nkd->nd", _p2_shape(lam), elem_x) - x, axis=1)
+    size = np.linalg.norm(v[:, 1:] - v[:, :1], axis=2).max(axis=1)
+    # a Newton run that did not converge (a far candidate's map extrapolated) must not win the choice
+    lam[~(miss <= 1e-8 * size)] = -np.inf
+    return lam
+
+
+def interpolate_p2(doflocs: np.ndarray, element_dofs: np.ndarray, u: np.ndarray, points_mm: np.ndarray) -> np.ndarray:
+    """(n, 3) displacement at ``points_mm`` (n, 3) of the interleaved P2 field ``u`` on a curved tet10 mesh
+    (scikit-fem numbering: ``doflocs`` (3, N), ``element_dofs`` (10, nel)). Each point takes the element
+    that holds it most deeply (largest smallest barycentric coordinate) among those whose bounding box
+    holds it: a point of a curved surface may lie a hair outside every element, and then the nearest one
+    extrapolates its polynomial."""
+    pts = np.asarray(points_mm, float)
+    elem = doflocs[:, element_dofs].transpose(2, 1, 0)                # (nel, 10, 3)
+    centroids = elem[:, :4].mean(axis=1)
+    reach = np.linalg.norm(elem - centroids[:, None], axis=2).max(axis=1)
+    # every element whose node ball can hold the point (flat wall elements: the holder's centroid may be far)
+    near = cKDTree(centroids).query_ball_point(pts, r=float(reach.max()) * (1.0 + OUTSIDE_TOL))
+    pi = np.repeat(np.arange(pts.shape[0]), [len(c) for c in near])
+    el = np.fromiter((e for c in near for e in c), np.int64, count=pi.size)
+    pad = OUTSIDE_TOL * reach[el, None]
+    keep = np.all((pts[pi] >= elem[el].min(axis=1) - pad) & (pts[pi] <= elem[el].max(axis=1) + pad), axis=1)
+    pi, el = pi[keep], el[keep]
+    if np.unique(pi).size < pts.shape[0]:
+        raise ValueError(f"interpolate_p2: {pts.shape[0] - np.unique(pi).size} points lie outside the mesh")
+    lam = _reference_coords(pts[pi], elem[el])
+    order = np.lexsort((-lam.min(axis=1), pi))                        # per point, deepest first
+    first = order[np.r_[True, pi[order][1:] != pi[order][:-1]]]
+    best_lam, best_el = lam[first], el[first]
+    elem_x = doflocs[:, element_dofs[:, best_el]].transpose(2, 1, 0)
+    inside = np.clip(best_lam, 0.0, None)
+    inside /= inside.sum(axis=1, keepdims=True)
+    gap = np.linalg.norm(np.einsum("nk,nkd->nd", _p2_shape(inside), elem_x) - pts, axis=1)
+    size = np.linalg.norm(elem_x[:, 1:4] - elem_x[:, :1], axis=2).max(axis=1)
+    # points of the patch's curved faces may lie a hair outside the global P2 surface: extrapolated
+    far = ~(gap <= OUTSIDE_TOL * size)
+    if far.any():
+        raise ValueError(f"interpolate_p2: {int(far.sum())} points lie outside the mesh (up to "
+                         f"{float(np.nanmax(np.where(far, gap, 0.0))):.3g} mm)")
+    phi = _p2_shape(best_lam)                                          # (n, 10)
+    dofs = element_dofs[:, best_el].T                                  # (n, 10) scalar dofs
+    return np.stack([np.einsum("nk,nk->n", phi, u[3 * dofs + c]) for c in range(3)], axis=1)
+
+
+@dataclass(frozen=True)
+class LocalEnergy:
+    closed_Nmm: float       # strain energy of the uncracked patch under the global displacement
+    opened_Nmm: float       # the same patch and mesh, crack opened
+    dofs: int               # of the opened patch
+    solve_s: float
+
+    @property
+    def released_Nmm(self) -> float:
+        return self.closed_Nmm - self.opened_Nmm
+
+
+def patch_energy(md: MeshData, lame, global_u, *, group: str = "cut", study: str = "fea") -> tuple[float, int, float]:
+    """(strain energy, dofs, solve s) of ``md`` with the nodes of ``group`` held at ``global_u(points)``
+    (n, 3) mm and every other face free."""
+    from .solver import solve_elasticity
+    from .static import assemble
+    sk, K, f, _, _ = assemble(md, lame, study=study)
+    nodes = group_dofs(sk, md, group)
+    g = np.asarray(global_u(sk.doflocs[:, nodes].T), float)
+    dofs = (3 * nodes[:, None] + np.arange(3)).ravel()
+    u, info = solve_elasticity(K, f, fixed_dofs=dofs, fixed_values=g.ravel(), coords=sk.doflocs, dim=3,
+                               study=study, method="direct")
+    return 0.5 * float(u @ (K @ u)), info.dofs, info.time_s
+
+
+def local_release(md: MeshData, lame, global_u, *, study: str) -> LocalEnergy:
+    """The patch solved closed and opened (``crack_seam.open_crack``) on one mesh."""
+    from .crack_seam import open_crack_for
+    closed, _, t0 = patch_energy(md, lame, global_u, study=study)
+    opened, dofs, t1 = patch_energy(open_crack_for(md, study), lame, global_u, study=study)
+    return LocalEnergy(closed, opened, dofs, t0 + t1)
+
+
+def compliance_from_release(released_Nmm: float, load: float) -> float:
+    """delta compliance at fixed load from the energy released at fixed grip: 2 dU / P^2 (first order)."""
+    if not (load != 0.0 and math.isfinite(load)):
+        raise ValueError(f"compliance_from_release: load must be finite and nonzero, got {load}")
+    return 2.0 * released_Nmm / load ** 2
