@@ -13,6 +13,12 @@ def test_longest_first_puts_untimed_cases_first_in_plan_order():
     assert [c.label for c in order] == ["b", "d", "c", "a"]
 
 
+def test_untimed_cases_go_largest_cost_estimate_first():
+    cases = _cases("a", "b", "c", "d")
+    order = longest_first(cases, {"a": 5.0}, {"a": 1e9, "b": 10.0, "c": 300.0, "d": 20.0})
+    assert [c.label for c in order] == ["c", "d", "b", "a"]   # a's measured time outranks its estimate
+
+
 def test_durations_round_trip_and_merge(tmp_path):
     path = durations_file(tmp_path / "cache", quick=False)
     assert load_durations(path) == {}                       # first run: nothing known

@@ -40,6 +40,11 @@ class CaseProgress:
         self._done_s = 0.0
         self._done_elements = 0
 
+    @property
+    def elements(self) -> dict[str, int]:
+        """The cost model's finest-mesh element count by case label."""
+        return dict(self._elements)
+
     def seconds_left(self) -> float:
         """Estimated wall seconds for the cases not yet finished."""
         rate = self._done_s / self._done_elements if self._done_elements else DEFAULT_S_PER_ELEMENT

@@ -29,9 +29,11 @@ def load_durations(path: Path) -> dict[str, float]:
     return {str(k): float(v) for k, v in data.items() if isinstance(v, (int, float))} if isinstance(data, dict) else {}
 
 
-def longest_first(cases: Sequence, durations: Mapping[str, float]) -> list:
-    """Cases sorted by last duration, descending; untimed cases first, in plan order (stable sort)."""
-    return sorted(cases, key=lambda c: -durations.get(c.label, float("inf")))
+def longest_first(cases: Sequence, durations: Mapping[str, float], costs: Mapping[str, float] | None = None) -> list:
+    """Cases sorted by last duration, descending; untimed cases first, in plan order (stable sort), or with
+    ``costs`` (a cost model's estimate by label, e.g. fea.budget's element count) largest estimate first."""
+    costs = costs or {}
+    return sorted(cases, key=lambda c: (c.label in durations, -durations.get(c.label, costs.get(c.label, 0.0))))
 
 
 def save_durations(path: Path, measured: Iterable[tuple[str, float]], previous: Mapping[str, float]) -> None:

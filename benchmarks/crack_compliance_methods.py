@@ -7,8 +7,8 @@ its GCI, and the accuracy rule of issue 36: |new - old| <= RSS of the two GCIs. 
 (the headline flexibility check's value). ``--patch`` instead sweeps the local patch's half size L/a at one
 depth, to show the fixed-grip error O((a/L)^2).
 
-    python benchmarks/bench_crack_compliance.py [--gear default|second] [--method both|seam|global-local]
-    python benchmarks/bench_crack_compliance.py --patch 4 8 12 16 --depth 1.12
+    python benchmarks/crack_compliance_methods.py [--gear default|second] [--method both|seam|global-local]
+    python benchmarks/crack_compliance_methods.py --patch 4 8 12 16 --depth 1.12
 """
 from __future__ import annotations
 
