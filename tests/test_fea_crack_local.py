@@ -119,3 +119,19 @@ def test_fixed_grip_release_of_a_centre_crack_matches_griffith_and_fails_on_a_pe
     assert compliance_from_release(local.released_Nmm, load) == pytest.approx(2 * local.released_Nmm / load ** 2)
     with pytest.raises(ValueError, match="nonzero"):
         compliance_from_release(1.0, 0.0)
+
+
+def test_cup_crack_patch_is_the_wall_sector_around_the_seam_and_refuses_to_leave_the_tube():
+    from strainwave.geometry.flexspline_cup import crack_patch
+    from strainwave.geometry.part import CrackModel
+    from strainwave.geometry.parts import build_part
+    from strainwave.params import load_params
+    part = build_part("flexspline-cup", load_params(), crack_depth_mm=0.5, teeth=False, crack_model=CrackModel.SEAM)
+    m, half = part.meta, 2.0
+    patch = crack_patch(part, half)
+    sector = (m["outer_radius_mm"] ** 2 - m["bore_radius_mm"] ** 2) * (half / m["mid_radius_mm"]) * 2 * half
+    assert patch.solid.volume == pytest.approx(sector, rel=1e-9)
+    assert [len(patch.named_faces[k]) for k in ("cut", "bore", "outer")] == [4, 1, 1]
+    assert patch.crack_surface is part.crack_surface
+    with pytest.raises(ValueError, match="leaves the smooth tube"):
+        crack_patch(part, m["length_mm"])
