@@ -90,9 +90,10 @@ def main() -> int:
     with tempfile.TemporaryDirectory(prefix="bench-validate-") as tmp:
         for k in range(max(1, args.repeat)):
             for mode in modes:
-                rows = [one_run(mode, Path(tmp) / str(k), gear) for gear in GEARS[mode]]
-                for row in rows:
-                    show(row)
+                rows = []
+                for gear in GEARS[mode]:
+                    rows.append(one_run(mode, Path(tmp) / str(k), gear))
+                    show(rows[-1])
                 times[mode].append(sum(r["wall_s"] for r in rows))
                 ok[mode] &= all(r["status"] in (0, 1) for r in rows)
     for mode in modes:
