@@ -82,6 +82,8 @@ DELTA = "delta_flexibility_rad_per_Nmm"
 # closed and opened); "global-local" solves the cup uncracked and the crack in a patch (crack_local)
 SEAM, GLOBAL_LOCAL = "seam", "global-local"
 CRACK_METHODS = (SEAM, GLOBAL_LOCAL)
+# validate keeps the seam until global-local is verified on both gears (docs/decisions/025)
+DEFAULT_CRACK_METHOD = SEAM
 # The local patch: half size L = PATCH_HALF_OVER_A a (fixed grip on its cut faces costs O((a/L)^2) of the
 # released energy) and its own global element size on the finest mesh, 2a or half a wall (never above h):
 # away from the front the patch carries the wall's smooth membrane shear
@@ -100,7 +102,7 @@ class CupTorsion(TorsionVariant):
     load_distribution: ClassVar[str] = "uniform tangential shear on the toothed band, moment T"
     clamped_face: ClassVar[str] = "hub face"
     teeth: bool
-    crack_method: str = GLOBAL_LOCAL
+    crack_method: str = DEFAULT_CRACK_METHOD
 
     def __post_init__(self):
         if self.crack_method not in CRACK_METHODS:
@@ -186,11 +188,13 @@ class CupTorsion(TorsionVariant):
 
 
 def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, progress=lambda m: None,
-        quick=False, teeth: bool = False, ratio: float = DEFAULT_RATIO, crack_method: str = GLOBAL_LOCAL) -> StudyResult:
-    """lambda_f on three meshes (GCI); with a crack delta lambda_f = cracked - uncracked on each mesh."""
+        quick=False, teeth: bool = False, ratio: float = DEFAULT_RATIO,
+        crack_method: str | None = None) -> StudyResult:
+    """lambda_f on three meshes (GCI); with a crack delta lambda_f = cracked - uncracked on each mesh
+    (``crack_method`` "seam", the default) or from the crack's local patch ("global-local", crack_local)."""
     fc = params.flexspline_cup
     h = mesh_size_mm or default_size_mm(params, quick)
     if h >= fc.length_mm / 4:
         raise InputError("--mesh-size-mm", h, f"must be < L/4 = {fc.length_mm / 4:g} mm for the cup")
-    return run_variant(CupTorsion(params, order, h, ratio, crack_depth_mm, teeth, crack_method), vtu=vtu,
-                       progress=progress)
+    variant = CupTorsion(params, order, h, ratio, crack_depth_mm, teeth, crack_method or DEFAULT_CRACK_METHOD)
+    return run_variant(variant, vtu=vtu, progress=progress)
