@@ -78,11 +78,16 @@ class Material:
     shear_modulus_MPa: float
     poisson_ratio: float
     fatigue_limit_MPa: float
+    ultimate_strength_MPa: float    # Goodman's mean-stress line ends at it
 
     def __post_init__(self):
         _positive("material.youngs_modulus_MPa", self.youngs_modulus_MPa)
         _positive("material.shear_modulus_MPa", self.shear_modulus_MPa)
         _positive("material.fatigue_limit_MPa", self.fatigue_limit_MPa)
+        _positive("material.ultimate_strength_MPa", self.ultimate_strength_MPa)
+        if self.ultimate_strength_MPa <= self.fatigue_limit_MPa:
+            raise InputError("material.ultimate_strength_MPa", self.ultimate_strength_MPa,
+                             f"must exceed fatigue_limit_MPa = {self.fatigue_limit_MPa:g} (a steel's sigma_-1 ~ 0.5 R_m)")
         _in_open("material.poisson_ratio", self.poisson_ratio, 0.0, 0.5)
         check_bounds("material", self)   # before the warning: a refused material needs no comparison
         implied = self.implied_shear_modulus_MPa

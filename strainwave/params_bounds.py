@@ -37,6 +37,7 @@ BOUNDS: dict[str, Bound] = {
     "material.shear_modulus_MPa": Bound(40.0, 1e6, "polymers to diamond"),
     "material.poisson_ratio": Bound(0.001, 0.499, "(0, 0.5): 0.5 is incompressible, where the FEA locks"),
     "material.fatigue_limit_MPa": Bound(1.0, 1e4, "polymers to the strongest steels"),
+    "material.ultimate_strength_MPa": Bound(1.0, 1e4, "polymers to the strongest steels"),
     "gear.wave_number": Bound(1, 16, "strain wave gears are single- to triple-wave"),
     "gear.gear_ratio": Bound(2.0, 1e4, "a strain wave gear reduces (ratio >= 2); catalogue stages 30..320"),
     "gear.radial_deformation_mm": Bound(1e-3, 100.0, _FEATURE),

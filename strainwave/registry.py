@@ -147,6 +147,21 @@ STUDIES: dict[str, Study] = {s.name: s for s in (
         QuantitySpec("stress_concentration", "1", "K_sigma: toothed root over smooth rim stress range",
                      "ring.stress_concentration"),
     ), load_inputs="strainwave.analytic.study_loads:ring_compression_load", specimen="ewg_ring"),
+    # The cup on its wave generator (issue 34): prescribed shape and rigid cam, linear and nonlinear; the
+    # hoop bending at the axes is checked against the ring forced into w0 cos 2 phi (analytic/ring_prescribed.py).
+    Study("cup-wave-generator", "strainwave.fea.cup_wave_generator", "flexspline-cup", None, None, (
+        QuantitySpec("prescribed_linear_bending_major_MPa", "MPa",
+                     "hoop bending stress (outer - inner)/2 at the major axis, band mid-width, prescribed shape",
+                     "cup.wg_bending_major"),
+        QuantitySpec("prescribed_linear_bending_minor_MPa", "MPa",
+                     "hoop bending stress (outer - inner)/2 at the minor axis, band mid-width, prescribed shape",
+                     "cup.wg_bending_minor"),
+        QuantitySpec("contact_nonlinear_peak_von_mises_MPa", "MPa", "peak von Mises of the wall on the rigid cam"),
+        QuantitySpec("contact_nonlinear_torsional_stiffness_Nmm_per_rad", "N*mm/rad",
+                     "tangent torsional stiffness of the cup on the cam"),
+        QuantitySpec("cycle_amplitude_MPa", "MPa", "outer-fibre hoop stress amplitude per revolution at rated T"),
+        QuantitySpec("cycle_mean_MPa", "MPa", "outer-fibre hoop mean stress per revolution at rated T"),
+    ), vtu_fields=()),
 )}
 
 STUDY_NAMES = tuple(STUDIES)

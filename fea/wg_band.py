@@ -1,0 +1,340 @@
+"""The flexspline cup's wall on the wave generator: mesh, forms and solves of study ``cup-wave-generator``.
+
+The wall is the cup's cylinder (bore d1/2 - delta to d1/2, ``geometry/flexspline_cup.py``) from the
+diaphragm's mid-plane to the open rim; the diaphragm and hub are replaced by the end held round (u_r = u_theta
+= 0 on the end face, u_z = 0 on its mid-wall circle: a diaphragm is stiff in its plane and free to bend).
+The mesh is a structured lattice in (r, theta, z) of 27-node hexahedra (P2, one through the wall: the
+bending strain is linear through it), mapped exactly onto the cylinder, over one quarter: the wave
+generator's cos 2 phi is symmetric about both axes. Every dof point carries its own cylindrical frame (the
+stiffness is rotated node by node), so the cam's radial constraint, the symmetry planes and the held end are
+plain Dirichlet conditions.
+
+Kinematics: linear, or total Lagrangian with the Green-Lagrange strain and St Venant-Kirchhoff (Newton).
+The torque acts on top of the inserted state: the tangent stiffness at that state, loaded by a uniform
+tangential shear on the band's outer surface; on the quarter the torque increment is antisymmetric about
+both planes (u_r = u_z = 0 there), which is exact for the tangent problem of a symmetric state.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..errors import StageError
+from .assembly import Lame
+
+STUDY = "cup-wave-generator"
+TOL_MM = 1e-7
+
+
+@dataclass(frozen=True)
+class TubeGeometry:
+    r_i_mm: float              # bore
+    r_o_mm: float              # outer radius (the tooth root circle: teeth stand on the wall)
+    z_end_mm: float            # the held-round end (diaphragm mid-plane)
+    length_mm: float           # the open rim
+    band_mm: float             # tooth band width, ending at the rim
+
+    @property
+    def r_m_mm(self) -> float:
+        return 0.5 * (self.r_i_mm + self.r_o_mm)
+
+    @property
+    def wall_mm(self) -> float:
+        return self.r_o_mm - self.r_i_mm
+
+    @property
+    def band_start_mm(self) -> float:
+        return self.length_mm - self.band_mm
+
+
+def tube_geometry(params) -> TubeGeometry:
+    from strainwave.geometry.flexspline_cup import BAND_RATIO, BOSS_HEIGHT_WALLS
+    fc = params.flexspline_cup
+    t = fc.wall_thickness_mm
+    return TubeGeometry(0.5 * fc.pitch_diameter_mm - t, 0.5 * fc.pitch_diameter_mm, (BOSS_HEIGHT_WALLS - 0.5) * t,
+                        fc.length_mm, BAND_RATIO * fc.pitch_diameter_mm)
+
+
+@dataclass
+class Tube:
+    """Mesh, scalar P2 basis and the dof table: dof 3 s + k is component k (x, y, z; in the rotated frame
+    r, theta, z) of scalar dof point s at (r, phi, z); ``comp[k]`` lists them for every point."""
+
+    geo: TubeGeometry
+    param_mesh: object
+    mesh: object
+    basis: object               # scalar ElementHex2 CellBasis (27-point Gauss)
+    comp: np.ndarray
+    r: np.ndarray
+    phi: np.ndarray
+    z: np.ndarray
+    rot: sp.csr_matrix          # u_cartesian = rot @ u_cylindrical
+    h_mm: float
+
+    @property
+    def dofs(self) -> int:
+        return 3 * self.basis.N
+
+    @property
+    def elements(self) -> int:
+        return self.mesh.t.shape[1]
+
+
+def _axial_grid(geo: TubeGeometry, h_mm: float) -> np.ndarray:
+    below = max(2, round((geo.band_start_mm - geo.z_end_mm) / h_mm))
+    band = 2 * max(1, round(geo.band_mm / (2.0 * h_mm)))     # even: the band's mid-width is a node plane
+    return np.concatenate([np.linspace(geo.z_end_mm, geo.band_start_mm, below + 1),
+                           np.linspace(geo.band_start_mm, geo.length_mm, band + 1)[1:]])
+
+
+def tube_mesh(geo: TubeGeometry, n_theta: int) -> Tube:
+    """The quarter wall with ``n_theta`` elements around, square-ish elements along z, one through the wall."""
+    from skfem import CellBasis, ElementHex2, MeshHex, MeshHex2
+
+    h = 0.5 * math.pi * geo.r_m_mm / n_theta
+    pm = MeshHex.init_tensor(np.array([geo.r_i_mm, geo.r_o_mm]), np.linspace(0.0, 0.5 * math.pi, n_theta + 1),
+                             _axial_grid(geo, h))
+    p2 = MeshHex2.from_mesh(pm)
+    r, th, z = p2.doflocs
+    mesh = MeshHex2(np.array([r * np.cos(th), r * np.sin(th), z]), p2.t)
+    basis = CellBasis(mesh, ElementHex2(), intorder=5)
+    x = basis.doflocs
+    rr, pp = np.hypot(x[0], x[1]), np.arctan2(x[1], x[0])
+    comp = 3 * np.arange(basis.N) + np.arange(3)[:, None]
+    c, s = np.cos(pp), np.sin(pp)
+    rows = np.concatenate([comp[0], comp[0], comp[1], comp[1], comp[2]])
+    cols = np.concatenate([comp[0], comp[1], comp[0], comp[1], comp[2]])
+    vals = np.concatenate([c, -s, s, c, np.ones_like(c)])
+    rot = sp.csr_matrix((vals, (rows, cols)), shape=(3 * basis.N, 3 * basis.N))
+    return Tube(geo, pm, mesh, basis, comp, rr, pp, x[2], rot, h)
+
+
+# ---- St Venant-Kirchhoff, total Lagrangian (linear: F = I, S = 0 in the tangent, Hooke's stress) ----
+
+def _gradients(basis) -> np.ndarray:
+    """(element, point, a, J): dN_a/dX_J of the 27 scalar shape functions."""
+    return np.stack([basis.basis[a][0].grad for a in range(len(basis.basis))]).transpose(2, 3, 0, 1)
+
+
+def _element_dofs(basis) -> np.ndarray:
+    """(element, 3 a + k) global dofs."""
+    return (3 * basis.element_dofs.T[:, :, None] + np.arange(3)).reshape(basis.element_dofs.shape[1], -1)
+
+
+def _state(G: np.ndarray, Ue: np.ndarray, lame: Lame, nonlinear: bool):
+    """(F, S) at every point: deformation gradient (I when linear) and 2nd Piola-Kirchhoff (linear: Hooke)."""
+    gu = np.einsum("eak,eqaJ->eqkJ", Ue, G)
+    ident = np.eye(3)
+    F = ident + gu if nonlinear else np.broadcast_to(ident, gu.shape)
+    strain = 0.5 * (np.einsum("eqMi,eqMj->eqij", F, F) - ident) if nonlinear else 0.5 * (gu + gu.swapaxes(2, 3))
+    tr = np.trace(strain, axis1=2, axis2=3)[..., None, None]
+    return F, lame.lam_MPa * tr * ident + 2.0 * lame.mu_MPa * strain
+
+
+def assemble(tube: Tube, u: np.ndarray, lame: Lame, nonlinear: bool) -> tuple[sp.csr_matrix, np.ndarray]:
+    """(tangent stiffness, internal force vector) at ``u`` (Cartesian dofs), vectorised over elements."""
+    G, dx, edofs = _gradients(tube.basis), tube.basis.dx, _element_dofs(tube.basis)
+    ne, nq, na = G.shape[:3]
+    F, S = _state(G, u[edofs].reshape(ne, na, 3), lame, nonlinear)
+    fe = np.einsum("eqiJ,eqJL,eqaL,eq->eai", F, S, G, dx).reshape(ne, -1)
+    Ke = np.zeros((ne, na, 3, na, 3))
+    lam, mu = lame.lam_MPa, lame.mu_MPa
+    eye = np.eye(3)
+    for q in range(nq):
+        g, f, w = G[:, q], F[:, q], dx[:, q][:, None, None, None, None]
+        A = np.einsum("eaJ,eiJ->eai", g, f)                         # (F grad N_a)_i
+        gg = np.einsum("eaJ,ebJ->eab", g, g)
+        ffT = np.einsum("eiM,ekM->eik", f, f)
+        At = A.transpose(0, 2, 1)[:, None, :, :, None]                 # A[e, b, i] at (e, ., i, b, .)
+        block = A[:, :, :, None, None] * (lam * A[:, None, None, :, :]) \
+            + mu * (gg[:, :, None, :, None] * ffT[:, None, :, None, :]) + mu * (A[:, :, None, None, :] * At)
+        if nonlinear:
+            gsg = np.einsum("eaJ,eJL,ebL->eab", g, S[:, q], g)
+            block += gsg[:, :, None, :, None] * np.eye(3)[None, None, :, None, :]
+        Ke += w * block
+    rows = np.repeat(edofs, 3 * na, axis=1).ravel()
+    cols = np.tile(edofs, (1, 3 * na)).ravel()
+    K = sp.csr_matrix((Ke.reshape(ne, -1).ravel(), (rows, cols)), shape=(tube.dofs, tube.dofs))
+    return K, np.bincount(edofs.ravel(), fe.ravel(), minlength=tube.dofs)
+
+
+def band_outer_loads(tube: Tube) -> tuple[np.ndarray, np.ndarray, float, float]:
+    """(load vector of a unit tangential shear, twist functional g (twist = g.u, the area-weighted mean
+    rotation), quarter moment arm int r dA, quarter area) on the band's outer surface."""
+    from skfem import FacetBasis
+
+    geo = tube.geo
+    facets = tube.mesh.facets_satisfying(
+        lambda x: (np.hypot(x[0], x[1]) > geo.r_m_mm) & (x[2] > geo.band_start_mm + 0.01 * tube.h_mm),
+        boundaries_only=True)
+    fb = FacetBasis(tube.mesh, tube.basis.elem, facets=facets, intorder=6)
+    x = fb.global_coordinates().value
+    r2 = x[0] ** 2 + x[1] ** 2
+    e_theta = np.stack([-x[1], x[0]]) / np.sqrt(r2)
+    rot_weight = np.stack([-x[1], x[0]]) / r2
+    dofs = fb.element_dofs                                     # (a, facet) scalar dofs
+    shear, turn = np.zeros(tube.dofs), np.zeros(tube.dofs)
+    for a in range(dofs.shape[0]):
+        N = fb.basis[a][0].value * fb.dx
+        for k in (0, 1):
+            np.add.at(shear, 3 * dofs[a] + k, np.sum(N * e_theta[k], axis=1))
+            np.add.at(turn, 3 * dofs[a] + k, np.sum(N * rot_weight[k], axis=1))
+    arm, area = float(np.sum(np.sqrt(r2) * fb.dx)), float(np.sum(fb.dx))
+    return shear, turn / area, arm, area
+
+
+# ---- constraints in the nodal cylindrical frames ----
+
+def _on(a: np.ndarray, value: float, scale: float) -> np.ndarray:
+    return np.abs(a - value) < 1e-6 * scale
+
+
+def held_dofs(tube: Tube, symmetric: bool) -> np.ndarray:
+    """Rotated-frame dofs held at zero: symmetry planes (theta dof; antisymmetric: r and z dofs) and the end."""
+    geo, c = tube.geo, tube.comp
+    plane = _on(tube.phi, 0.0, 1.0) | _on(tube.phi, 0.5 * math.pi, 1.0)
+    end = _on(tube.z, geo.z_end_mm, geo.length_mm)
+    mid = end & _on(tube.r, geo.r_m_mm, geo.r_m_mm)
+    on_plane = [c[1][plane]] if symmetric else [c[0][plane], c[2][plane]]
+    return np.unique(np.concatenate(on_plane + [c[0][end], c[1][end], c[2][mid]]))
+
+
+def band_bore_points(tube: Tube) -> np.ndarray:
+    """Dof points of the band's bore, where the wave generator acts."""
+    geo = tube.geo
+    return np.flatnonzero(_on(tube.r, geo.r_i_mm, geo.r_i_mm) & (tube.z > geo.band_start_mm - TOL_MM))
+
+
+def solve_constrained(tube: Tube, K: sp.csr_matrix, rhs: np.ndarray, fixed: np.ndarray,
+                      values: np.ndarray) -> np.ndarray:
+    """Solve K x = rhs (Cartesian) with rotated-frame dofs ``fixed`` = ``values``; returns Cartesian x."""
+    from .solver import _direct
+
+    Kc = (tube.rot.T @ K @ tube.rot).tocsr()
+    bc = tube.rot.T @ rhs
+    x = np.zeros(tube.dofs)
+    x[fixed] = values
+    free = np.setdiff1d(np.arange(tube.dofs), fixed)
+    A = Kc[free][:, free]
+    b = bc[free] - Kc[free][:, fixed] @ x[fixed]
+    x[free], _ = _direct(A.tocsr(), b, STUDY, node_blocks=False)
+    return tube.rot @ x
+
+
+# ---- the wave generator's insertion: prescribed shape or rigid cam in frictionless contact ----
+
+MAX_NEWTON = 25
+MAX_ACTIVE_SET = 40
+NEWTON_TOL = 1e-8          # |du|/|u|: Newton converges quadratically, the stresses are then fixed to ~1e-12
+
+
+def cam_radius_mm(phi, r_bore_mm: float, w0_mm: float):
+    """Polar radius of the rigid elliptical cam, semi-axes r_bore + w0 (major, phi = 0) and r_bore - w0."""
+    a, b = r_bore_mm + w0_mm, r_bore_mm - w0_mm
+    return a * b / np.hypot(b * np.cos(phi), a * np.sin(phi))
+
+
+@dataclass
+class Inserted:
+    """The band on the wave generator: displacement, tangent stiffness there, which bore points the cam holds."""
+
+    u: np.ndarray
+    K: sp.csr_matrix
+    active: np.ndarray           # bool over band_bore_points
+    newton_iterations: int
+    active_set_iterations: int
+    nonlinear: bool
+
+
+def _bore_target_mm(tube: Tube, u: np.ndarray, pts: np.ndarray, w0_mm: float, contact: bool,
+                    nonlinear: bool) -> np.ndarray:
+    """Radial displacement the wave generator asks of the bore points: w0 cos 2 phi at the material angle
+    (prescribed), or the cam's radius at the point's angle (contact; nonlinear: its current angle, less the
+    radius the tangential displacement adds, v^2/2r)."""
+    r_i = tube.geo.r_i_mm
+    if not contact:
+        return w0_mm * np.cos(2.0 * tube.phi[pts])
+    if not nonlinear:
+        return cam_radius_mm(tube.phi[pts], r_i, w0_mm) - r_i
+    v = (tube.rot.T @ u)[tube.comp[1][pts]]
+    return cam_radius_mm(tube.phi[pts] + v / r_i, r_i, w0_mm) - r_i - 0.5 * v ** 2 / r_i
+
+
+def _reassess(tube, R, u, bore, active, w0_mm, nonlinear) -> np.ndarray:
+    """The active set at ``u``: a held point stays while the cam pushes it (reaction >= 0); a free point is
+    taken up where it would enter the cam."""
+    reaction = (tube.rot.T @ R)[tube.comp[0][bore]]
+    gap = (tube.rot.T @ u)[tube.comp[0][bore]] - _bore_target_mm(tube, u, bore, w0_mm, True, nonlinear)
+    return np.where(active, reaction >= 0.0, gap < -1e-6 * w0_mm)
+
+
+def insert(tube: Tube, lame: Lame, w0_mm: float, *, contact: bool, nonlinear: bool, K0=None,
+           start: Inserted | None = None) -> Inserted:
+    """The band forced onto the wave generator. Newton and, with contact, the active set of the bore's radial
+    dofs in one loop (a semi-smooth Newton): each step solves with the current set, then the set is
+    reassessed at the new state; done when the set holds and the step is below NEWTON_TOL."""
+    K0 = K0 if K0 is not None else assemble(tube, np.zeros(tube.dofs), lame, False)[0]
+    base = held_dofs(tube, symmetric=True)
+    bore = band_bore_points(tube)
+    # a start (the linear solution) gives the nonlinear solve its active set and first iterate
+    active = np.ones(bore.size, bool) if start is None else start.active.copy()
+    u = np.zeros(tube.dofs) if start is None else start.u.copy()
+    converged, changes = False, 0
+    for it in range(1, MAX_NEWTON + MAX_ACTIVE_SET + 1):
+        K, R = (K0, K0 @ u) if not nonlinear else assemble(tube, u, lame, True)
+        if contact and it > 1:
+            now = _reassess(tube, R, u, bore, active, w0_mm, nonlinear)
+            changed, active = not np.array_equal(now, active), now
+            changes += changed
+            converged = converged and not changed
+        if converged:
+            return Inserted(u, K, active, it - 1, changes + 1, nonlinear)
+        fixed = np.concatenate([base, tube.comp[0][bore[active]]])
+        target = np.concatenate([np.zeros(base.size), _bore_target_mm(tube, u, bore[active], w0_mm, contact,
+                                                                      nonlinear)])
+        du = solve_constrained(tube, K, -R, fixed, target - (tube.rot.T @ u)[fixed])
+        u = u + du
+        converged = not nonlinear or np.linalg.norm(du) <= NEWTON_TOL * np.linalg.norm(u)
+    raise StageError("solve", STUDY, f"insertion did not converge in {it} Newton / active-set steps")
+
+
+def torque_increment(tube: Tube, state: Inserted, shear: np.ndarray) -> np.ndarray:
+    """Displacement increment of the unit tangential shear on the band at the inserted state (tangent problem,
+    antisymmetric about both planes; the cam holds the radial dofs it touches)."""
+    bore = band_bore_points(tube)
+    fixed = np.concatenate([held_dofs(tube, symmetric=False), tube.comp[0][bore[state.active]]])
+    return solve_constrained(tube, state.K, shear, fixed, np.zeros(fixed.size))
+
+
+# ---- stresses at sample points ----
+
+def stresses_at(tube: Tube, u: np.ndarray, lame: Lame, nonlinear: bool, r, phi, z) -> np.ndarray:
+    """Cauchy stress (linear: Hooke's) at points given in (r, phi, z), in the cylindrical frame of each point:
+    (N, 3, 3) with indices r, theta, z."""
+    from skfem import CellBasis
+
+    pts = np.array([r, phi, z], dtype=float)
+    tind = tube.param_mesh.element_finder()(*pts)
+    X = tube.param_mesh.mapping().invF(pts[:, :, None], tind=tind)[:, :, 0]
+    out = np.empty((pts.shape[1], 3, 3))
+    keys = np.round(X, 9)
+    for key in np.unique(keys, axis=1).T:
+        sel = np.flatnonzero(np.all(keys.T == key, axis=1))
+        cb = CellBasis(tube.mesh, tube.basis.elem, elements=tind[sel], quadrature=(X[:, sel[:1]], np.ones(1)))
+        G = _gradients(cb)
+        F, S = _state(G, u[_element_dofs(cb)].reshape(len(sel), -1, 3), lame, nonlinear)
+        F, S = F[:, 0], S[:, 0]
+        sigma = np.einsum("niJ,nJL,nkL->nik", F, S, F) / np.linalg.det(F)[:, None, None] if nonlinear else S
+        c, s = np.cos(phi[sel]), np.sin(phi[sel])
+        Q = np.zeros((len(sel), 3, 3))
+        Q[:, 0, 0], Q[:, 0, 1], Q[:, 1, 0], Q[:, 1, 1], Q[:, 2, 2] = c, s, -s, c, 1.0
+        out[sel] = np.einsum("nij,njk,nlk->nil", Q, sigma, Q)     # Q sigma Q^T
+    return out
+
+
+def von_mises_MPa(sig: np.ndarray) -> np.ndarray:
+    dev = sig - np.trace(sig, axis1=1, axis2=2)[:, None, None] * np.eye(3) / 3.0
+    return np.sqrt(1.5 * np.einsum("nij,nij->n", dev, dev))
