@@ -85,7 +85,9 @@ class Tube:
 
 def _axial_grid(geo: TubeGeometry, h_mm: float) -> np.ndarray:
     below = max(2, round((geo.band_start_mm - geo.z_end_mm) / h_mm))
-    band = 2 * max(1, round(geo.band_mm / (2.0 * h_mm)))     # even: the band's mid-width is a node plane
+    # h/2 along the band, an even count: its mid-width is a node plane and the axial stress gradients of the
+    # band's junction with the coned wall are resolved where the axes' stresses are read
+    band = 2 * max(2, round(geo.band_mm / h_mm))
     return np.concatenate([np.linspace(geo.z_end_mm, geo.band_start_mm, below + 1),
                            np.linspace(geo.band_start_mm, geo.length_mm, band + 1)[1:]])
 
@@ -167,9 +169,10 @@ def band_outer_loads(tube: Tube) -> tuple[np.ndarray, np.ndarray, float, float]:
     from skfem import FacetBasis
 
     geo = tube.geo
-    facets = tube.mesh.facets_satisfying(
-        lambda x: (np.hypot(x[0], x[1]) > geo.r_m_mm) & (x[2] > geo.band_start_mm + 0.01 * tube.h_mm),
-        boundaries_only=True)
+    bf = tube.mesh.boundary_facets()
+    v = tube.mesh.p[:, tube.mesh.facets[:, bf]]                # vertices lie on the cylinder exactly
+    on = np.all(np.hypot(v[0], v[1]) > geo.r_m_mm, axis=0) & np.all(v[2] > geo.band_start_mm - TOL_MM, axis=0)
+    facets = bf[on]
     fb = FacetBasis(tube.mesh, tube.basis.elem, facets=facets, intorder=6)
     x = fb.global_coordinates().value
     r2 = x[0] ** 2 + x[1] ** 2

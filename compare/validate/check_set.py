@@ -16,6 +16,7 @@ from .wg_bearing_checks import gear_stiffness, wg_bearing_checks
 from .torsion_checks import (FLEX_UNIT, bearing_crack_curve, crack_check,
                              cup_crack_allowances, cup_crack_curve, cup_flexibility, mu_gap,
                              shaft_crack_curve, shaft_flexibility)
+from strainwave.compare.validate.wg_cup_checks import wg_checks
 
 # component -> the quantity that is its crack's added compliance (registry)
 DELTA_NAMES = {c: STUDIES[s].crack_delta.name for c, s in COMPONENT_STUDY.items()}
@@ -126,6 +127,9 @@ def build_checks(book: FeaBook, plan: Plan, summary: dict, params) -> CheckSet:
     checks += wg_bearing_checks(book, plan.wg_bearing.label, params)
     checks += ring_checks(book, plan.ring.label, refs, params)
     checks.append(gear_stiffness(book, labels, plan.wg_bearing.label, s000, params))
+    wg_label = plan.drive_label("cup-wave-generator")
+    if wg_label is not None:
+        checks += wg_checks(book, wg_label, params)
     present = {c.id for c in checks}
     checks += [not_evaluated(cid, cid, "", "no builder produced this check") for cid in REQUIRED_IDS
                if cid not in present]

@@ -137,4 +137,5 @@ REQUIRED_IDS = (
     "bearing.crack_compliance", "bearing.race_stress_major", "bearing.race_stress_minor", "bearing.ball_loads",
     "ring.delta_cd", "ring.delta_ab",
     "ring.delta_cd_solid", "ring.sigma_max", "ring.sigma_min", "ring.tooth_influence", "ring.stress_concentration", "gear.stiffness",
+    "cup.wg_bending_major", "cup.wg_bending_minor",
 )

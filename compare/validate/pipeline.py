@@ -31,6 +31,7 @@ from .report_md import write_markdown
 from .results import now_utc, plain, versions, write_results
 from .case_progress import CaseProgress
 from .runner import CaseOutcome, run_case
+from .wg_cup_checks import wg_record
 
 ORDER = 2   # quadratic elements, the fea/ default (curved P2)
 
@@ -275,6 +276,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
                          + (crack_headline_lines(summary["crack_headline"]) if "crack_headline" in summary else [])),
             "inputs": _inputs(plan, book, params),
             "stress_at_rated": {c: s.to_dict() for c, s in stresses.items()},
+            "cup_wave_generator": wg_record(book, plan.drive_label("cup-wave-generator") or "", params),
             "views": {c: v.to_dict() for c, v in made.views.items()},
             "gci_table": [r.to_dict() for r in gci_rows(book, ORDER)],
             "checks": checks, "audit": audit, "catalogue": catalogue_document(),

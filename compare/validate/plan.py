@@ -20,6 +20,8 @@ from .runner import Case
 COMPONENT_STUDY = {s.component: s.name for s in STUDIES.values() if s.component}
 RING_STUDY = "ring-compression"
 WG_BEARING_STUDY = "wg-bearing"      # the inner ring on the elliptical cam: one 2D case, its own crack sweep
+# studies of the drive as it works (issue 34): one uncracked case each, label = study name
+DRIVE_STUDIES = ("cup-wave-generator",)
 
 
 @dataclass(frozen=True)
@@ -28,12 +30,16 @@ class Plan:
     sweeps: dict[str, tuple[Case, ...]]            # component -> deeper cracks
     ring: Case
     wg_bearing: Case = Case("wg-bearing", WG_BEARING_STUDY, None)
+    drive: tuple[Case, ...] = ()
 
     def all_cases(self) -> tuple[Case, ...]:
         cases = list(self.headline.values())
         for sweep in self.sweeps.values():
             cases += list(sweep)
-        return tuple(cases) + (self.ring, self.wg_bearing)
+        return tuple(cases) + (self.ring, self.wg_bearing) + self.drive
+
+    def drive_label(self, study: str) -> str | None:
+        return next((c.label for c in self.drive if c.study == study), None)
 
 
 def walls_mm(params) -> dict[str, float]:
@@ -107,7 +113,8 @@ def make_plan(params, *, quick: bool) -> Plan:
             headline[c] = Case(f"{c}-a{depth:g}", COMPONENT_STUDY[c], depth)
             sweep_h = sweep_mesh_size_mm(params, c)
             sweeps[c] = tuple(Case(f"{c}-a{d:g}", COMPONENT_STUDY[c], d, sweep_h) for d in depths if d > depth)
-    plan = Plan(headline, sweeps, Case("ring", RING_STUDY, None))
+    plan = Plan(headline, sweeps, Case("ring", RING_STUDY, None),
+                drive=tuple(Case(s, s, None) for s in DRIVE_STUDIES))
     for case in plan.all_cases():   # every crack checked against its own wall before any mesh is built
         with_crack(case.study, params, case.crack_depth_mm)
     return plan

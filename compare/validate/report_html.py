@@ -13,6 +13,7 @@ from ...io_atomic import atomic_write_text
 from . import report_text as rt
 from strainwave.compare.validate.catalogue_table import CATALOGUE_COLUMNS, catalogue_rows, slope_line
 from strainwave.compare.validate.report_md import CATALOGUE_INTRO
+from strainwave.compare.validate.wg_cup_checks import wg_lines
 
 CSS = """
 body{font-family:system-ui,-apple-system,"Segoe UI",sans-serif;margin:2em auto;max-width:1200px;color:#222;
@@ -92,6 +93,10 @@ def render_html(doc: dict, views: dict[str, str] | None = None) -> str:
     if rated:
         parts.append('<h2 id="rated">Stress at the rated load</h2>')
         parts.append(_table(rt.RATED_COLUMNS, [rt.rated_row(c, s) for c, s in rated.items()]))
+    wg_rows = wg_lines(doc.get("cup_wave_generator") or {})
+    if wg_rows:
+        parts.append('<h2 id="wave-generator">Flexspline on the wave generator (stress and fatigue safety)</h2>')
+        parts.append(_table(("item", "value"), wg_rows))
     for component, title in rt.COMPONENTS:
         checks = [c for c in doc["checks"] if c["component"] == component]
         parts.append(f'<h2 id="{component}">{escape(title)}</h2>')

@@ -5,6 +5,7 @@ from pathlib import Path
 
 from ...io_atomic import atomic_write_text
 from . import report_text as rt
+from strainwave.compare.validate.wg_cup_checks import wg_lines
 from strainwave.compare.validate.catalogue_table import CATALOGUE_COLUMNS, catalogue_rows, slope_line
 
 CATALOGUE_INTRO = ("Each size is a drive built by one set of design rules (d1 = 2.54 mm x size; wall, length, "
@@ -34,6 +35,10 @@ def render_markdown(doc: dict) -> str:
     if rated:
         lines += ["## Stress at the rated load", ""]
         lines += _table(rt.RATED_COLUMNS, [rt.rated_row(c, s) for c, s in rated.items()]) + [""]
+    wg_rows = wg_lines(doc.get("cup_wave_generator") or {})
+    if wg_rows:
+        lines += ["## Flexspline on the wave generator (stress and fatigue safety)", ""]
+        lines += _table(("item", "value"), wg_rows) + [""]
     for component, title in rt.COMPONENTS:
         checks = [c for c in doc["checks"] if c["component"] == component]
         lines += [f"## {title}", ""]

@@ -1,0 +1,95 @@
+"""The wave generator on the cup's band (fea/wg_band.py) and its check (compare/validate/wg_cup_checks.py),
+on coarse meshes (seconds)."""
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from strainwave.compare.validate import wg_cup_checks
+from strainwave.compare.validate.fea_book import FeaBook
+from strainwave.compare.validate.runner import Case, CaseOutcome
+from strainwave.fea import wg_band as wb
+from strainwave.fea.assembly import Lame
+from strainwave.fea.result import Load, MeshQuality, Quantity, StudyResult, Support
+from strainwave.params import load_params
+
+
+@pytest.fixture(scope="module")
+def setup():
+    p = load_params()
+    geo = wb.tube_geometry(p)
+    return p, geo, wb.tube_mesh(geo, 4), Lame.from_young(2.1e5, 0.3)
+
+
+def test_patch_test_linear_field_gives_its_exact_stress(setup):
+    _, geo, tube, lame = setup
+    A = np.array([[1e-3, 2e-4, 0.0], [0.0, -5e-4, 3e-4], [1e-4, 0.0, 2e-4]])
+    u = np.zeros(tube.dofs)
+    u[tube.comp] = A @ tube.basis.doflocs
+    K, R = wb.assemble(tube, u, lame, False)
+    inside = (tube.r > geo.r_i_mm + 1e-6) & (tube.r < geo.r_o_mm - 1e-6) & (tube.z > geo.z_end_mm + 1e-6) \
+        & (tube.z < geo.length_mm - 1e-6) & (tube.phi > 1e-6) & (tube.phi < 0.5 * math.pi - 1e-6)
+    assert np.abs(R[tube.comp[:, inside]]).max() < 1e-8 * np.abs(R).max()
+    s = wb.stresses_at(tube, u, lame, False, np.array([78.5]), np.array([0.3]), np.array([150.0]))[0]
+    eps = 0.5 * (A + A.T)
+    c, sn = math.cos(0.3), math.sin(0.3)
+    Q = np.array([[c, sn, 0], [-sn, c, 0], [0, 0, 1]])
+    assert s == pytest.approx(Q @ (lame.lam_MPa * np.trace(eps) * np.eye(3) + 2 * lame.mu_MPa * eps) @ Q.T, abs=1e-8)
+
+
+def test_nonlinear_tangent_is_the_derivative_of_the_internal_force(setup):
+    _, _, tube, lame = setup
+    rng = np.random.default_rng(0)
+    u = 1e-2 * rng.standard_normal(tube.dofs)
+    K, R = wb.assemble(tube, u, lame, True)
+    d = 1e-6 * rng.standard_normal(tube.dofs)
+    _, R2 = wb.assemble(tube, u + d, lame, True)
+    assert np.linalg.norm(R2 - R - K @ d) < 1e-4 * np.linalg.norm(K @ d)
+
+
+def test_twist_functional_and_shear_load_of_a_rigid_rotation(setup):
+    _, geo, tube, _ = setup
+    shear, twist, arm, area = wb.band_outer_loads(tube)
+    x = tube.basis.doflocs
+    u = np.zeros(tube.dofs)
+    u[tube.comp[0]], u[tube.comp[1]] = -1e-3 * x[1], 1e-3 * x[0]
+    assert twist @ u == pytest.approx(1e-3, rel=1e-9)
+    assert arm == pytest.approx(0.5 * math.pi * geo.r_o_mm ** 2 * geo.band_mm, rel=2e-3)   # P2 facets on a 22.5 deg arc
+
+
+def _bending_book(p, tube, lame):
+    """A one-case book with the coarse linear prescribed-shape bending at both axes (no GCI)."""
+    state = wb.insert(tube, lame, p.gear.radial_deformation_mm, contact=False, nonlinear=False)
+    z = tube.geo.length_mm - 0.5 * tube.geo.band_mm
+    q = {}
+    for axis, phi in (("major", 0.0), ("minor", 0.5 * math.pi)):
+        s = wb.stresses_at(tube, state.u, lame, False, np.array([tube.geo.r_o_mm, tube.geo.r_i_mm]),
+                           np.full(2, phi), np.full(2, z))[:, 1, 1]
+        name = f"prescribed_linear_bending_{axis}_MPa"
+        q[name] = Quantity(name, 0.5 * float(s[0] - s[1]), "MPa")
+    result = StudyResult("cup-wave-generator", q, MeshQuality(1, 1, 1, 2, 1.0, 1.0),
+                         Load("T", 1.0, "N*mm", ("band",), "test"), (Support(("end",), "held round"),), None, {}, (), {}, {})
+    return FeaBook({"wg": CaseOutcome(Case("wg", "cup-wave-generator"), result, 0.0, False)})
+
+
+def test_bending_check_passes_and_fails_on_a_perturbed_reference(setup, monkeypatch):
+    p, geo, _, lame = setup
+    tube = wb.tube_mesh(geo, 10)        # 12 mm elements: the bending within the allowances, no GCI needed
+    book = _bending_book(p, tube, lame)
+    checks = wg_cup_checks.wg_checks(book, "wg", p)
+    assert [c.passed for c in checks] == [True, True], [c.rel_error for c in checks]
+    assert checks[0].fea > 0 > checks[1].fea           # outer fibre in tension at the major axis
+    true_refs = wg_cup_checks.references
+    monkeypatch.setattr(wg_cup_checks, "references",
+                        lambda params, axis: {k: 1.1 * v for k, v in true_refs(params, axis).items()})
+    assert not any(c.passed for c in wg_cup_checks.wg_checks(book, "wg", p))
+
+
+def test_contact_lifts_the_band_off_near_the_minor_axis(setup):
+    p, geo, _, lame = setup
+    tube = wb.tube_mesh(geo, 6)
+    state = wb.insert(tube, lame, p.gear.radial_deformation_mm, contact=True, nonlinear=False)
+    bore = wb.band_bore_points(tube)
+    held = tube.phi[bore][state.active]
+    assert held.size and held.min() < 1e-9 and held.max() < 0.5 * math.pi - 1e-6
