@@ -136,30 +136,46 @@ def _state(G: np.ndarray, Ue: np.ndarray, lame: Lame, nonlinear: bool):
     return F, lame.lam_MPa * tr * ident + 2.0 * lame.mu_MPa * strain
 
 
+_PAIRS = ((1, 2), (0, 2), (0, 1))          # Voigt order 11, 22, 33, 23, 13, 12 (engineering shear)
+
+
+def _voigt_D(lame: Lame) -> np.ndarray:
+    D = np.zeros((6, 6))
+    D[:3, :3] = lame.lam_MPa
+    D[np.arange(3), np.arange(3)] += 2.0 * lame.mu_MPa
+    D[np.arange(3, 6), np.arange(3, 6)] = lame.mu_MPa
+    return D
+
+
+def _strain_operator(G: np.ndarray, F: np.ndarray) -> np.ndarray:
+    """B (element, point, 6, 3 a + i): the variation of the Green-Lagrange strain (Voigt) by N_a e_i,
+    dE_JL = (F_iJ dN_a/dX_L + F_iL dN_a/dX_J)/2; linear when F = I."""
+    ne, nq, na = G.shape[:3]
+    B = np.empty((ne, nq, 6, na, 3))
+    B[:, :, :3] = np.einsum("eqiJ,eqaJ->eqJai", F, G)
+    for m, (J, L) in enumerate(_PAIRS):
+        B[:, :, 3 + m] = (F[:, :, None, :, J] * G[:, :, :, None, L] + F[:, :, None, :, L] * G[:, :, :, None, J])
+    return B.reshape(ne, nq, 6, 3 * na)
+
+
 def assemble(tube: Tube, u: np.ndarray, lame: Lame, nonlinear: bool) -> tuple[sp.csr_matrix, np.ndarray]:
-    """(tangent stiffness, internal force vector) at ``u`` (Cartesian dofs), vectorised over elements."""
+    """(tangent stiffness, internal force vector) at ``u`` (Cartesian dofs), vectorised over elements:
+    K = sum_q w (B^T D B + G S G^T x I), f = sum_q w B^T S."""
     G, dx, edofs = _gradients(tube.basis), tube.basis.dx, _element_dofs(tube.basis)
     ne, nq, na = G.shape[:3]
     F, S = _state(G, u[edofs].reshape(ne, na, 3), lame, nonlinear)
-    fe = np.einsum("eqiJ,eqJL,eqaL,eq->eai", F, S, G, dx).reshape(ne, -1)
-    Ke = np.zeros((ne, na, 3, na, 3))
-    lam, mu = lame.lam_MPa, lame.mu_MPa
-    eye = np.eye(3)
-    for q in range(nq):
-        g, f, w = G[:, q], F[:, q], dx[:, q][:, None, None, None, None]
-        A = np.einsum("eaJ,eiJ->eai", g, f)                         # (F grad N_a)_i
-        gg = np.einsum("eaJ,ebJ->eab", g, g)
-        ffT = np.einsum("eiM,ekM->eik", f, f)
-        At = A.transpose(0, 2, 1)[:, None, :, :, None]                 # A[e, b, i] at (e, ., i, b, .)
-        block = A[:, :, :, None, None] * (lam * A[:, None, None, :, :]) \
-            + mu * (gg[:, :, None, :, None] * ffT[:, None, :, None, :]) + mu * (A[:, :, None, None, :] * At)
-        if nonlinear:
-            gsg = np.einsum("eaJ,eJL,ebL->eab", g, S[:, q], g)
-            block += gsg[:, :, None, :, None] * np.eye(3)[None, None, :, None, :]
-        Ke += w * block
+    B = _strain_operator(G, F)
+    S_voigt = np.stack([S[..., 0, 0], S[..., 1, 1], S[..., 2, 2], S[..., 1, 2], S[..., 0, 2], S[..., 0, 1]], axis=-1)
+    fe = np.einsum("eqmk,eqm,eq->ek", B, S_voigt, dx)
+    Bw = (B * dx[:, :, None, None]).reshape(ne, nq * 6, -1)
+    DB = np.einsum("mn,eqnk->eqmk", _voigt_D(lame), B).reshape(ne, nq * 6, -1)
+    Ke = np.matmul(Bw.transpose(0, 2, 1), DB)
+    if nonlinear:
+        gsg = np.einsum("eqaJ,eqJL,eqbL,eq->eab", G, S, G, dx)
+        Ke += np.einsum("eab,ik->eaibk", gsg, np.eye(3)).reshape(ne, 3 * na, 3 * na)
     rows = np.repeat(edofs, 3 * na, axis=1).ravel()
     cols = np.tile(edofs, (1, 3 * na)).ravel()
-    K = sp.csr_matrix((Ke.reshape(ne, -1).ravel(), (rows, cols)), shape=(tube.dofs, tube.dofs))
+    K = sp.csr_matrix((Ke.ravel(), (rows, cols)), shape=(tube.dofs, tube.dofs))
     return K, np.bincount(edofs.ravel(), fe.ravel(), minlength=tube.dofs)
 
 
