@@ -41,6 +41,11 @@ MID = STATIONS.index(0.5)
 REFINEMENTS = {True: (14.0, 10.0, 7.0), False: (20.0, 14.0, 10.0)}
 
 
+def default_size_mm(params, quick: bool) -> float:
+    """Finest element length around the band: the quarter circumference over the finest count."""
+    return 0.5 * math.pi * wb.tube_geometry(params).r_m_mm / REFINEMENTS[bool(quick)][0]
+
+
 def case_name(model: str, kinematics: str) -> str:
     return f"{model}_{kinematics}"
 
@@ -109,6 +114,7 @@ def solve_mesh(params, n_theta: int) -> tuple[dict[str, float], object, dict]:
                 values |= {f"end_bending_major_s{k}_MPa": float(bend[k, 0]) for k in range(len(STATIONS))}
             if name == "contact_nonlinear":
                 values |= _cycle_values(tube, state, du, arm, lame, params.gear.rated_output_torque_Nmm)
+                facts["fields_u"] = state.u + params.gear.rated_output_torque_Nmm / (4.0 * arm) * du
     return values, tube, facts
 
 
@@ -131,9 +137,18 @@ class CupWaveGenerator(StudyVariant):
         import time
         t0 = time.process_time()
         values, tube, facts = solve_mesh(self.params, int(refinement))
+        u = facts.pop("fields_u")
         quality = MeshQuality(tube.elements, tube.basis.N, tube.dofs, 2, 1.0, 1.0)
         return MeshSolve(tube.h_mm, values, quality, {"solve": time.process_time() - t0},
-                         {"method": "direct", "cases": facts})
+                         {"method": "direct", "cases": facts}, {"tube": tube, "u": u} if keep_fields else {})
+
+    def write_fields(self, series: Mapping[str, Series], vtu, load: Load) -> tuple:
+        from .fields import field_info
+        f = series["wall"].finest.fields
+        mat = self.params.material
+        lame = Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio)
+        info = field_info(STUDY, "rigid elliptical cam (contact, nonlinear) + " + load.describe(), mat)
+        return (wb.write_fields(vtu, f["tube"], f["u"], lame, True, info),)
 
     def quantities(self, series: Mapping[str, Series]) -> dict:
         s = series["wall"]
@@ -174,4 +189,4 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
         quarter = 0.5 * math.pi * wb.tube_geometry(params).r_m_mm
         n = max(4, round(quarter / mesh_size_mm))
         refinements = (float(n), float(max(3, round(n / 1.4))), float(max(2, round(n / 1.96))))
-    return run_variant(CupWaveGenerator(params, refinements), progress=progress)
+    return run_variant(CupWaveGenerator(params, refinements), vtu=vtu, progress=progress)

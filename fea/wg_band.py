@@ -357,3 +357,26 @@ def stresses_at(tube: Tube, u: np.ndarray, lame: Lame, nonlinear: bool, r, phi, 
 def von_mises_MPa(sig: np.ndarray) -> np.ndarray:
     dev = sig - np.trace(sig, axis1=1, axis2=2)[:, None, None] * np.eye(3) / 3.0
     return np.sqrt(1.5 * np.einsum("nij,nij->n", dev, dev))
+
+
+# skfem's hexahedron vertex order (000, 001, 010, 100, 011, 101, 110, 111) in VTK's (000, 100, 110, 010, ...)
+_VTK_HEX = (0, 3, 6, 2, 1, 5, 7, 4)
+
+
+def write_fields(path, tube: Tube, u: np.ndarray, lame: Lame, nonlinear: bool, info: dict):
+    """The quarter wall as VTU (8-node hexahedra on the P2 vertices): displacement, von Mises, Cauchy stress in
+    the cylindrical frame (rr, tt, zz, tz, rz, rt) at the vertices."""
+    from strainwave.io_atomic import atomic_path
+    from .fields import _field_data, _piece, _vtu_text
+
+    pm = tube.param_mesh
+    sig = stresses_at(tube, u, lame, nonlinear, *pm.p)
+    disp = np.stack([u[3 * np.arange(pm.p.shape[1]) + k] for k in range(3)], axis=1)
+    voigt = np.stack([sig[:, 0, 0], sig[:, 1, 1], sig[:, 2, 2], sig[:, 1, 2], sig[:, 0, 2], sig[:, 0, 1]], axis=1)
+    cells = tube.mesh.t[list(_VTK_HEX)].T
+    piece = _piece(tube.mesh.p[:, :pm.p.shape[1]].T, [cells], np.full(cells.shape[0], 12), {
+        "displacement_mm": disp, "von_mises_MPa": von_mises_MPa(sig), "stress_cylindrical_MPa": voigt},
+        {"physical_group": np.ones(cells.shape[0], np.int64)})
+    with atomic_path(path) as tmp:
+        tmp.write_text(_vtu_text(_field_data(info, ["solid"]), piece), encoding="ascii")
+    return path
