@@ -50,7 +50,8 @@ def rated_load(study: str, params, solved: float, *, ring_force_for_W0_N: float 
 
     ``ring_force_for_W0_N``: for ``ring-compression``, the force the FEA ring needs for delta_CD = 2 W0."""
     g, cup = params.gear, params.flexspline_cup
-    if study in ("shaft-torsion", "cup-torsion"):
+    # cup-wave-generator solves its field at the rated T already (scale 1: its insertion is not linear in T)
+    if study in ("shaft-torsion", "cup-torsion", "cup-wave-generator"):
         return RatedLoad(study, "output torque T", "N*mm", solved, g.rated_output_torque_Nmm, TORQUE_SOURCE)
     if study == "bearing-ring":
         rated = radial_force_N(g.force_coefficient, g.rated_output_torque_Nmm, cup.pitch_diameter_mm)
