@@ -33,7 +33,7 @@ from .fields import field_info, write_solid_fields
 from .mesh_data import group_dofs, to_skfem
 from .mesh_isolated import mesh_part_isolated
 from .meshing import MeshingFailed, Refine
-from .refinement import CRACK_ORDER_BOUNDS, DEFAULT_RATIO, refinement_sizes
+from .refinement import CRACK_FORMAL_ORDER, DEFAULT_RATIO, refinement_sizes
 from .result import CrackRecord, Load, StudyResult, Support
 from .skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, check_variant, run_variant
 from .solver import solve_elasticity
@@ -251,7 +251,7 @@ class BearingRing(StudyVariant):
         if self.crack_depth_mm is not None:
             q[CRACKED] = s.converged(CRACKED, "mm/N")
             q[DELTA] = s.converged(DELTA, "mm/N", [cc - cu for cc, cu in zip(s.values(CRACKED), s.values(COMPLIANCE))],
-                                   order_bounds=CRACK_ORDER_BOUNDS)
+                                   order=CRACK_FORMAL_ORDER)
         return q
 
     def load(self, part) -> Load:

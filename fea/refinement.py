@@ -8,7 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable, Sequence, TypeVar
 
-from .convergence import grid_convergence
+from .convergence import Convergence, GciUndefined, formal_order, grid_convergence
 from .meshing import Refine
 from .result import Quantity
 
@@ -50,15 +50,21 @@ class CrackFrontGrading:
                       dist_max_mm=self.zone_over_a * depth_mm + self.grow_over_h * h_mm, points_mm=front_mm)
 
 
-# Formal order 1 for crack compliances: observed orders misled the GCI (docs/decisions/010-shaft-axisymmetric-crack.md).
-CRACK_ORDER_BOUNDS = (1.0, 1.0)
+# Formal order 1 for crack compliances, used with Fs = 3 unless the observed order (always shown) confirms it
+# (docs/decisions/010-shaft-axisymmetric-crack.md, docs/verification.md).
+CRACK_FORMAL_ORDER = 1.0
 
 
 def converged_quantity(name: str, unit: str, h_mm: Sequence[float], values: Sequence[float], *,
-                       order_bounds: tuple[float, float] | None = None) -> Quantity:
-    """Quantity with the finest value and the GCI of the three (h, value) pairs."""
-    lo, hi = order_bounds or (0.05, 8.0)
-    conv = grid_convergence(tuple(h_mm), tuple(values), min_order=lo, max_order=hi)
+                       order: float | None = None, element_order: int = 2) -> Quantity:
+    """Quantity with the finest value and the GCI of the three (h, value) pairs; ``order``: its formal
+    order (default: ``convergence.formal_order`` of its name and unit on elements of ``element_order``)."""
+    formal = formal_order(name, unit, element_order)[0] if order is None else order
+    try:
+        conv = grid_convergence(tuple(h_mm), tuple(values), formal_order=formal)
+    except GciUndefined as exc:
+        # e.g. a field the element space holds exactly: the record says so instead of a 0 % band
+        conv = Convergence.refusal(h_mm, values, str(exc), formal)
     return Quantity(name, float(conv.values[0]), unit, conv)
 
 
@@ -87,5 +93,5 @@ def crack_flexibility_quantities(sizes, uncracked: list[float], cracked: list[fl
         out["delta_flexibility_rad_per_Nmm"] = converged_quantity(
             "delta_flexibility_rad_per_Nmm", unit, sizes,
             [c - u for c, u in zip(cracked, uncracked)] if delta is None else list(delta),
-            order_bounds=CRACK_ORDER_BOUNDS)
+            order=CRACK_FORMAL_ORDER)
     return out

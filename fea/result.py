@@ -9,7 +9,7 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .convergence import Convergence
+from .convergence import Convergence, GciUndefined, formal_order, grid_convergence
 
 LOAD_UNITS = ("N*mm", "N")      # a torque or a force: every study applies one resultant
 
@@ -38,7 +38,8 @@ class Quantity:
 
     @property
     def uncertainty(self) -> float | None:
-        return None if self.convergence is None else self.convergence.uncertainty
+        # a refused GCI (three identical values) is no uncertainty at all, not a NaN one
+        return None if self.convergence is None or self.convergence.refused else self.convergence.uncertainty
 
     def to_dict(self) -> dict:
         return {"name": self.name, "value": self.value, "unit": self.unit, "uncertainty": self.uncertainty,
@@ -47,10 +48,20 @@ class Quantity:
     @classmethod
     def from_dict(cls, data: dict) -> "Quantity":
         conv = data.get("convergence")
-        convergence = None if conv is None else Convergence(
-            tuple(conv["h_mm"]), tuple(conv["values"]), conv["observed_order"], conv["extrapolated"],
-            conv["gci_fine"], conv["monotone"], tuple(conv["order_bounds"]))
-        return cls(data["name"], data["value"], data["unit"], convergence)
+        return cls(data["name"], data["value"], data["unit"], _convergence_of(data["name"], data["unit"], conv))
+
+
+def _convergence_of(name: str, unit: str, conv: dict | None) -> Convergence | None:
+    """The stored record; one written before the GCI rule of issue 37 (no ``safety_factor``) is recomputed by
+    that rule from its own three values, and one of three identical values has none."""
+    if conv is None:
+        return None
+    if "safety_factor" in conv:
+        return Convergence.from_dict(conv)
+    try:
+        return grid_convergence(conv["h_mm"], conv["values"], formal_order=formal_order(name, unit)[0])
+    except GciUndefined as exc:
+        return Convergence.refusal(conv["h_mm"], conv["values"], str(exc), formal_order(name, unit)[0])
 
 
 @dataclass(frozen=True)
@@ -191,7 +202,8 @@ class StudyResult:
             lines.append(f"  crack: a = {self.crack.depth_mm:g} mm, {self.crack.model}")
         for q in self.quantities.values():
             err = "" if q.convergence is None else (
-                f"  +/- {q.convergence.gci_fine * 100:.3g} % (GCI, p = {q.convergence.observed_order:.2f}, "
+                f"  +/- {q.convergence.gci_fine * 100:.3g} % (GCI, {q.convergence.basis}, "
+                f"observed p = {q.convergence.observed_order:.2f}, "
                 f"extrapolated {q.convergence.extrapolated:.6g})")
             lines.append(f"  {q.name:<40s} {q.value:.6g} {q.unit}{err}")
         if self.timings_s:

@@ -21,7 +21,7 @@ from .assembly import Lame
 from .crack_seam import open_crack_for, seam_crack
 from .fields import field_info, write_solid_fields
 from .meshing import Refine
-from .refinement import (CRACK_ORDER_BOUNDS, DEFAULT_RATIO, CrackFrontGrading, crack_flexibility_quantities,
+from .refinement import (CRACK_FORMAL_ORDER, DEFAULT_RATIO, CrackFrontGrading, crack_flexibility_quantities,
                          refinement_sizes)
 from .result import CrackRecord, Load, StudyResult
 from .skeleton import MeshSolve, Series, SeriesPlan, check_variant, run_variant
@@ -169,7 +169,7 @@ class ShaftTorsion(TorsionVariant):
             deltas = section.values(DELTA)
             # the 3D uncracked flexibility plus the section's delta, refinement k with refinement k
             q = crack_flexibility_quantities(solid.h_mm, lam0, [l0 + d for l0, d in zip(lam0, deltas)], UNIT)
-            q[DELTA] = section.converged(DELTA, UNIT, order_bounds=CRACK_ORDER_BOUNDS)
+            q[DELTA] = section.converged(DELTA, UNIT, order=CRACK_FORMAL_ORDER)
             return q
         return crack_flexibility_quantities(solid.h_mm, lam0, solid.values(CRACKED) if self.seam else None, UNIT)
 

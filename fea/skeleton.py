@@ -72,10 +72,10 @@ class Series:
         return [s.values[name] for s in self.solves]
 
     def converged(self, name: str, unit: str, values: Sequence[float] | None = None, *,
-                  order_bounds: tuple[float, float] | None = None) -> Quantity:
+                  order: float | None = None) -> Quantity:
         """``name`` (or the per-mesh ``values`` derived from this series) with its GCI on this series' sizes."""
         return converged_quantity(name, unit, self.h_mm, self.values(name) if values is None else list(values),
-                                  order_bounds=order_bounds)
+                                  order=order)
 
 
 class StudyVariant(ABC):

@@ -12,7 +12,7 @@ import pytest
 from strainwave.compare.validate.gci_table import asymptotic_flags, formal_order, gci_rows
 from strainwave.compare.validate.report_text import failing_line
 from strainwave.fea.convergence import grid_convergence
-from strainwave.fea.refinement import CRACK_ORDER_BOUNDS
+from strainwave.fea.refinement import CRACK_FORMAL_ORDER
 from strainwave.params import load_params
 
 H = (1.0, 1.4, 1.96)
@@ -23,33 +23,35 @@ def _series(f_exact: float, c: float, p: float):
 
 
 def test_a_clean_second_order_series_is_asymptotic_for_p2_stresses_only():
-    conv = grid_convergence(H, _series(10.0, 0.1, 2.0))
+    conv = grid_convergence(H, _series(10.0, 0.1, 2.0), formal_order=2.0)
     assert conv.observed_order == pytest.approx(2.0, abs=1e-6)
-    assert asymptotic_flags(conv, formal=2.0) == ()
-    # the same p is above what P1 stresses (formal order 1) can reach: error cancellation, flagged
-    assert asymptotic_flags(conv, formal=1.0) == ("p above formal 1",)
+    assert asymptotic_flags(conv) == () and conv.basis == "observed p = 2, Fs = 1.25"
+    # the same p is above what P1 stresses (formal order 1) can reach: error cancellation, flagged, formal p, Fs 3
+    p1 = grid_convergence(H, _series(10.0, 0.1, 2.0), formal_order=1.0)
+    assert asymptotic_flags(p1) == ("p outside formal 1 +-10 %",) and p1.basis == "formal p = 1, Fs = 3"
 
 
 @pytest.mark.parametrize("values, flag", [
     ([1.0, 1.02, 0.99], "non-monotone"),          # the differences change sign
-    (_series(5.0, 0.3, 0.5), "p < 1"),
-    (_series(5.0, 0.3, 6.0), "p above formal 4"),
+    (_series(5.0, 0.3, 0.5), "p outside formal 4 +-10 %"),
+    (_series(5.0, 0.3, 6.0), "p outside formal 4 +-10 %"),
+    ([1.0, 1.03, 1.04], "diverging"),
 ])
 def test_non_asymptotic_series_are_flagged(values, flag):
-    conv = grid_convergence(H, values)
-    assert flag in asymptotic_flags(conv, formal=4.0)
+    conv = grid_convergence(H, values, formal_order=4.0)
+    assert flag in asymptotic_flags(conv)
+    assert conv.safety_factor == 3.0 and conv.order_used == 4.0
 
 
-def test_a_fixed_order_is_flagged_as_set_by_the_study_not_the_data():
-    conv = grid_convergence(H, _series(1.0, 0.05, 1.7), min_order=CRACK_ORDER_BOUNDS[0],
-                            max_order=CRACK_ORDER_BOUNDS[1])
-    assert conv.order_fixed and conv.observed_order == 1.0
-    assert asymptotic_flags(conv, formal=1.0) == ("p fixed at 1",)
+def test_a_crack_delta_shows_its_observed_order_beside_the_formal_one_it_uses():
+    conv = grid_convergence(H, _series(1.0, 0.05, 1.7), formal_order=CRACK_FORMAL_ORDER)
+    assert conv.observed_order == pytest.approx(1.7, rel=1e-6) and conv.order_used == 1.0
+    assert asymptotic_flags(conv) == ("p outside formal 1 +-10 %",)
 
 
 def test_non_monotone_series_keeps_the_fine_value_and_says_so():
     conv = grid_convergence(H, [2.0, 2.1, 1.9])
-    assert set(asymptotic_flags(conv, formal=2.0)) >= {"non-monotone", "f_ext = f1"}
+    assert set(asymptotic_flags(conv)) >= {"non-monotone", "f_ext = f1"}
 
 
 def test_formal_orders_follow_the_quantity_kind():
@@ -64,7 +66,7 @@ def test_gci_rows_read_every_convergence_record_of_the_book():
     from strainwave.compare.validate.runner import Case, CaseOutcome
     from strainwave.fea.result import Load, MeshQuality, Quantity, StudyResult, Support
 
-    q = {"a_mm": Quantity("a_mm", 1.0, "mm", grid_convergence(H, _series(1.0, 0.01, 3.0))),
+    q = {"a_mm": Quantity("a_mm", 1.0, "mm", grid_convergence(H, _series(1.0, 0.01, 3.0), formal_order=3.0)),
          "b_MPa": Quantity("b_MPa", 2.0, "MPa", grid_convergence(H, [2.0, 2.1, 1.9])),
          "none": Quantity("none", 3.0, "1")}
     result = StudyResult("ring-compression", q, MeshQuality(1, 1, 1, 2, 1.0, 1.0),
@@ -188,7 +190,7 @@ def test_convergence_plot_says_when_the_meshes_are_not_asymptotic():
     from strainwave.compare.validate.plots import convergence_figure
 
     conv = grid_convergence(H, [2.0633, 2.0385, 2.0400])          # ring.tooth_influence in --quick: non-monotone
-    flags = asymptotic_flags(conv, formal=2.0)
+    flags = asymptotic_flags(conv)
     fig = convergence_figure(title="t", unit="1", h_mm=H, values=conv.values, extrapolated=conv.extrapolated,
                              gci_fine=conv.gci_fine, observed_order=conv.observed_order, analytic={}, flags=flags)
     assert "not asymptotic: non-monotone" in fig.axes[0].get_title()

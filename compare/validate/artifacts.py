@@ -16,7 +16,7 @@ from .check_set import CheckSet
 from .fea_book import FeaBook
 from .plan import Plan
 from ...rated_stress import StressAtRated, rated_load_of, stress_at_rated, stress_field_of
-from .gci_table import asymptotic_flags, formal_order
+from .gci_table import asymptotic_flags
 from .torsion_checks import CUP_FLEX, SHAFT_FLEX
 
 COMPONENT_TITLES = {"shaft": "output shaft", "cup": "flexspline cup", "bearing": "bearing inner ring",
@@ -194,13 +194,12 @@ def _convergence(target: Path, check, book: FeaBook, label: str) -> str:
     if q is None or q.convergence is None:
         raise ValueError(why or f"{check.id}: the study gave no three-mesh convergence data")
     c = q.convergence
-    order = book.outcomes[label].result.mesh.order
-    flags = asymptotic_flags(c, formal_order(q.name, q.unit, order)[0])
+    flags = asymptotic_flags(c)
     plots.convergence_plot(target, title=f"{check.id}: {q.name}", unit=q.unit, h_mm=c.h_mm, values=c.values,
-                           extrapolated=c.extrapolated, gci_fine=c.gci_fine, observed_order=c.observed_order,
+                           extrapolated=c.extrapolated, gci_fine=c.gci_fine, observed_order=c.order_used,
                            analytic=check.analytic if check.id not in ("gear.stiffness",) else None, flags=flags)
     return (f"{check.id}: {q.name} on three meshes (h = {', '.join(f'{h:.3g}' for h in c.h_mm)} mm), observed "
-            f"order {c.observed_order:.2f}, GCI {100 * c.gci_fine:.3g} %"
+            f"order {c.observed_order:.2f} (formal {c.formal_order:g}), GCI {100 * c.gci_fine:.3g} % ({c.basis})"
             + (f" (not asymptotic: {', '.join(flags)})" if flags else "") + "; right: the fine value against the "
             "closed forms")
 

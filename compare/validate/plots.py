@@ -54,12 +54,13 @@ def convergence_figure(*, title: str, unit: str, h_mm, values, extrapolated: flo
     h = np.asarray(h_mm, dtype=float)
     v = np.asarray(values, dtype=float)
     fine = float(v[np.argmin(h)])
-    band = abs(gci_fine * fine)
+    refused = not np.isfinite(gci_fine)         # three identical values: no band is drawn, none is claimed
+    band = 0.0 if refused else abs(gci_fine * fine)
     ax.plot(h, v, "o-", color="tab:blue", label="FEA (three refinements)")
     if np.isfinite(extrapolated):
         ax.plot([0.0], [extrapolated], "s", color="tab:blue", mfc="white",
                 label=f"Richardson extrapolated (p = {observed_order:.2f})")
-    ax.errorbar([h.min()], [fine], yerr=[band], color="tab:red", capsize=5, label=f"GCI fine = {100 * gci_fine:.3g} %")
+    ax.errorbar([h.min()], [fine], yerr=[band], color="tab:red", capsize=5, label="GCI refused (identical values)" if refused else f"GCI fine = {100 * gci_fine:.3g} %")
     ax.set_xlim(left=-0.05 * h.max())
     ax.set_xlabel("element size h (mm)")
     ax.set_ylabel(unit)
