@@ -23,6 +23,7 @@ from .checks import Check
 from .fea_book import FeaBook
 from .gci_table import gci_rows
 from .isolated import stop_descendants
+from .nafems_appendix import nafems_appendix
 from ...io_atomic import remove_stale_temps
 from .plan import make_plan
 from .report_html import write_html
@@ -232,6 +233,9 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
             outcomes = _run_cases(plan.all_cases(), params, fields_dir=out_dir / "fields", cache=cache,
                                   quick=quick, progress=progress)
         book = FeaBook(outcomes)
+        nafems_start = time.perf_counter()
+        nafems = nafems_appendix(out_dir, progress)
+        timings["nafems"] = time.perf_counter() - nafems_start
         with _stage("checks", timings, progress, 4, total):
             check_set = build_checks(book, plan, summary, params)
             audit = audit_with_evidence(summary.get("audit", []), check_set.by_id(),
@@ -279,6 +283,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
             "cup_wave_generator": wg_record(book, plan.drive_label("cup-wave-generator") or "", params),
             "views": {c: v.to_dict() for c, v in made.views.items()},
             "gci_table": [r.to_dict() for r in gci_rows(book, ORDER)],
+            "nafems": nafems,
             "checks": checks, "audit": audit, "catalogue": catalogue_document(),
             "crack_sweeps": {k: r.to_dict() for k, r in check_set.sweeps.items()},
             "images": [i.to_dict() for i in images], "missing_images": [m.to_dict() for m in missing],

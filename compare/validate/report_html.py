@@ -127,6 +127,13 @@ def render_html(doc: dict, views: dict[str, str] | None = None) -> str:
     parts.append('<h2 id="gci">Discretization error (GCI table)</h2>')
     parts.append(f'<p class="notes">{escape(rt.GCI_INTRO)}</p>')
     parts.append(_table(rt.GCI_COLUMNS, [rt.gci_cells(r) for r in doc.get("gci_table", [])], table_id="gci-table"))
+    nafems = doc.get("nafems")
+    if nafems:
+        parts.append('<h2 id="nafems">Appendix: NAFEMS benchmarks</h2>')
+        parts.append(f'<p class="notes">{escape(rt.NAFEMS_INTRO)}</p>')
+        parts.append(_table(rt.NAFEMS_COLUMNS, [rt.nafems_row(r) for r in nafems["cases"]], result_col=9,
+                            table_id="nafems-table"))
+        parts.append("<ul>" + "".join(f"<li>{escape(n)}</li>" for n in nafems["notes"]) + "</ul>")
     parts.append('<h2 id="audit">Seed audit</h2><p>Every inconsistency found in the seeds, with the FEA evidence '
                  "where the FEA can settle it.</p>")
     parts.append(_table(rt.AUDIT_COLUMNS, [rt.audit_row(a) for a in doc["audit"]]))

@@ -64,6 +64,11 @@ def render_markdown(doc: dict) -> str:
             lines += ["An interactive 3D view of this stress field is in report.html.", ""]
     lines += ["## Discretization error (GCI table)", "", rt.GCI_INTRO, ""]
     lines += _table(rt.GCI_COLUMNS, [rt.gci_cells(r) for r in doc.get("gci_table", [])]) + [""]
+    nafems = doc.get("nafems")
+    if nafems:
+        lines += ["## Appendix: NAFEMS benchmarks", "", rt.NAFEMS_INTRO, ""]
+        lines += _table(rt.NAFEMS_COLUMNS, [rt.nafems_row(r) for r in nafems["cases"]]) + [""]
+        lines += [f"- {note}" for note in nafems["notes"]] + [""]
     lines += ["## Seed audit", "", "Every inconsistency found in the seeds, with the FEA evidence where the FEA can "
               "settle it.", ""]
     lines += _table(rt.AUDIT_COLUMNS, [rt.audit_row(a) for a in doc["audit"]]) + [""]

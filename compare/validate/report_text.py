@@ -179,7 +179,25 @@ def rated_sentence(s: dict) -> str:
 
 
 GCI_INTRO = ("ASME V&V 20 (Roache) three-mesh estimate of every FEA quantity: h1 < h2 < h3, f1..f3 the values on "
-             "them, r the refinement ratios, p the observed order (the element's formal order in brackets), "
-             "f_ext the Richardson value, GCI_fine = 1.25 |f2 - f1| / |f1| / (r21^p - 1). Not in the asymptotic "
-             "range: non-monotone series, p < 1, p above the formal order, p fixed by the study (crack "
-             "compliances at 1) or clipped to its bounds; such a GCI is an estimate, not a proven bound.")
+             "them, r the refinement ratios, p the observed order as found (never clipped; the element's formal "
+             "order in brackets), f_ext the Richardson value, GCI_fine = Fs |f2 - f1| / |f1| / (r21^p - 1). By the "
+             "book (Roache; Oberkampf & Roy sec. 8.7): in the asymptotic range (monotone, observed p within 10 % of "
+             "the formal order) the observed p with Fs = 1.25; otherwise the formal p with Fs = 3, the column "
+             "'GCI basis' says which. Three identical values carry no GCI (refused, never 0 %).")
+
+NAFEMS_INTRO = ("NAFEMS TNSB Rev. 3 (1990) linear-elastic benchmarks through the project's own assembly, solver and "
+                "stress recovery (nodal averaging, fea/fields.nodal_stress), curved P2 meshes by gmsh. Coarse: run "
+                "by this validation, tolerance min(5 % coarse-mesh practice, 3 GCI + target rounding). Fine: "
+                "`make bench` (benchmarks/bench_nafems.py), PASS when |error| + GCI <= 1 %.")
+NAFEMS_COLUMNS = ("case", "quantity", "level", "target (MPa)", "FEA (MPa)", "error", "dofs", "GCI (basis)",
+                  "acceptance", "verdict")
+
+
+def nafems_row(r: dict) -> tuple[str, ...]:
+    """One row of the NAFEMS appendix from a ``fea/nafems.NafemsResult.to_dict`` record."""
+    gci = r["gci_fine"]
+    gci_text = "refused" if gci is None or gci != gci else f"{100 * gci:.3g} %"
+    accept = "|error| + GCI <= 1 %" if r["level"] == "fine" else f"|error| <= {100 * r['tolerance_rel']:.3g} %"
+    return (f"{r['id']} ({r['title']})", r["quantity"], r["level"], f"{r['target_MPa']:g}", f"{r['value_MPa']:.4g}",
+            f"{100 * r['error_rel']:+.3f} %", str(r["dofs"]), f"{gci_text} ({r.get('basis', '-')})", accept,
+            "PASS" if r["passed"] else ("MISS" if r["level"] == "fine" else "FAIL"))
