@@ -29,9 +29,11 @@ the tube's net-section amplification relative to the strip's own,
 raised to a power m: A = 1 for a thin wall at every depth (the strip is exact there) and for a -> 0.
 m = THICK_TUBE_EXPONENT was fitted to the exact axisymmetric FEA (fea/shaft_axisym.py) on two geometries
 only, d_i/d = 0.5 and 0.8 (r_o = 35 mm, a/t = 1/32 .. 3/4, tip a/160 Richardson-extrapolated): m = 0.646,
-largest deviation on those fitted geometries 3.9 % (THICK_TUBE_FIT_SCATTER). It must be confirmed on
-geometries it was not fitted on: the embedded default d_i/d = 0.643 (validate's shaft.crack_compliance) and
-d_i/d = 0.9 and 0.3 (tests/test_analytic_tube_crack.py, FEA).
+largest deviation on those fitted geometries 3.9 % (THICK_TUBE_FIT_SCATTER). Confirmed against the same FEA,
+within 3.9 % + 3 GCI, on geometries it was not fitted on (tests/test_fea_shaft_axisym.py: d_i/d = 0.643 and
+0.9; tests/test_analytic_tube_crack.py: d_i/d = 0.1, 0.3, 0.5 over a/t up to 0.75): CONFIRMED_RANGE. Outside
+it the form misses: d_i/d = 0.3 at a/t = 0.75 by -17 %, d_i/d = 0.1 at every depth (+5.5 % at a/t = 0.125,
+-7.8 % at 0.5, -40 % at 0.75): a use there is flagged (``range_note``).
 """
 from __future__ import annotations
 
@@ -39,7 +41,7 @@ import math
 
 from scipy import integrate
 
-__all__ = ["THICK_TUBE_EXPONENT", "THICK_TUBE_FIT_SCATTER", "THICK_TUBE_FIT_RATIOS", "strip_factor",
+__all__ = ["CONFIRMED_RANGE", "confirmed", "range_note", "THICK_TUBE_EXPONENT", "THICK_TUBE_FIT_SCATTER", "THICK_TUBE_FIT_RATIOS", "strip_factor",
            "tube_outer_stress_per_torque", "hollow_tube_strip_flexibility", "thick_tube_amplification",
            "thick_tube_flexibility"]
 
@@ -48,6 +50,23 @@ __all__ = ["THICK_TUBE_EXPONENT", "THICK_TUBE_FIT_SCATTER", "THICK_TUBE_FIT_RATI
 THICK_TUBE_EXPONENT = 0.646
 THICK_TUBE_FIT_SCATTER = 0.039
 THICK_TUBE_FIT_RATIOS = (0.5, 0.8)
+# Where the FEA confirmed the form (module docstring): (lowest d_i/d, highest d_i/d, largest a/t)
+CONFIRMED_RANGE = ((0.5, 0.9, 0.75), (0.3, 0.9, 0.5))
+
+
+def confirmed(d_ratio: float, a_over_t: float) -> bool:
+    """True where the thick-tube form was confirmed against the axisymmetric FEA (CONFIRMED_RANGE)."""
+    eps = 1e-9
+    return any(lo - eps <= d_ratio <= hi + eps and 0.0 <= a_over_t <= a_max + eps for lo, hi, a_max in CONFIRMED_RANGE)
+
+
+def range_note(d_ratio: float, a_over_t: float) -> str:
+    """"" inside CONFIRMED_RANGE, else the sentence a report prints beside the value."""
+    if confirmed(d_ratio, a_over_t):
+        return ""
+    spans = "; ".join(f"d_i/d {lo:g}-{hi:g} up to a/t {a:g}" for lo, hi, a in CONFIRMED_RANGE)
+    return (f"thick-tube form used outside its confirmed range (d_i/d = {d_ratio:.3g}, a/t = {a_over_t:.3g}; "
+            f"confirmed: {spans})")
 
 
 def _check(r_o_mm: float, r_i_mm: float, a_mm: float) -> None:
