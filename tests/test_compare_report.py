@@ -205,3 +205,29 @@ def test_stress_pictures_are_shown_full_width_so_their_printed_numbers_stay_legi
     wide = _figure({"path": "images/ring_von_mises.png", "caption": "c", "kind": "stress", "component": "ring"})
     half = _figure({"path": "images/x.png", "caption": "c", "kind": "convergence", "component": "ring"})
     assert '<figure class="wide">' in wide and 'class="wide"' not in half
+
+
+def test_shaft_crack_note_says_how_much_the_fit_matters_and_flags_a_depth_outside_the_confirmed_range():
+    import warnings
+
+    from strainwave.compare.validate.torsion_checks import shaft_form_note
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")      # the seed's E/nu/mu 0.96 % warning
+        params = load_params()
+    sh = params.output_shaft
+    t = 0.5 * (sh.outer_diameter_mm - sh.inner_diameter_mm)
+    shallow = shaft_form_note(params, 0.008 * t)
+    assert "about 1: this depth hardly tests the fit" in shallow and "inside the form's confirmed range" in shallow
+    deep = shaft_form_note(params, 0.8 * t)
+    assert "outside its confirmed range" in deep and "about 1" not in deep
+
+
+def test_sweep_rows_say_where_the_corrected_form_is_outside_its_range():
+    from strainwave.compare.validate.report_text import SWEEP_COLUMNS, sweep_rows
+    sweep = {"depths_mm": [1.0, 9.0], "fea": [1e-12, 1e-10], "fea_uncertainty": [1e-14, 1e-12],
+             "resolved": [True, True], "analytic": {"published": [1e-12, 1e-10], "corrected": [1e-12, 1e-10]},
+             "range_notes": ["", "thick-tube form used outside its confirmed range (d_i/d = 0.643, a/t = 0.8)"]}
+    rows = sweep_rows(sweep)
+    assert len(rows[0]) == len(SWEEP_COLUMNS)
+    assert rows[0][-1] == "confirmed" and rows[1][-1].startswith("OUTSIDE: thick-tube form")
+    assert sweep_rows({**sweep, "range_notes": []})[0][-1] == "-"

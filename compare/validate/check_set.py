@@ -15,7 +15,7 @@ from .ring_checks import ring_checks
 from .wg_bearing_checks import gear_stiffness, wg_bearing_checks
 from .torsion_checks import (FLEX_UNIT, bearing_crack_curve, crack_check,
                              cup_crack_allowances, cup_crack_curve, cup_flexibility, mu_gap,
-                             shaft_crack_curve, shaft_flexibility)
+                             shaft_crack_curve, shaft_flexibility, shaft_form_note)
 from strainwave.compare.validate.wg_cup_checks import wg_checks
 
 # component -> the quantity that is its crack's added compliance (registry)
@@ -28,10 +28,12 @@ class SweepReport:
     fit: PowerFit | None                       # over the resolved depths
     analytic: dict[str, list[float]]           # variant -> closed form at each depth
     analytic_fits: dict[str, float] = field(default_factory=dict)   # variant -> exponent over resolved depths
+    range_notes: tuple[str, ...] = ()          # per depth: "" or why the corrected form is used out of range
 
     def to_dict(self) -> dict:
         return {**self.sweep.to_dict(), "fit": None if self.fit is None else self.fit.to_dict(),
-                "analytic": self.analytic, "analytic_exponents": self.analytic_fits}
+                "analytic": self.analytic, "analytic_exponents": self.analytic_fits,
+                "range_notes": list(self.range_notes)}
 
 
 @dataclass(frozen=True)
@@ -51,7 +53,13 @@ def _curves(params, s000: dict, book: FeaBook, plan: Plan):
             "bearing": lambda a: bearing_crack_curve(params, a, F_r)}
 
 
-def _sweep_report(sweep: Sweep, curve) -> SweepReport:
+def _shaft_range_note(params):
+    s = params.output_shaft
+    r_o, r_i = 0.5 * s.outer_diameter_mm, 0.5 * s.inner_diameter_mm
+    return lambda a: tube_crack.range_note(r_i / r_o, a / (r_o - r_i))
+
+
+def _sweep_report(sweep: Sweep, curve, range_note=None) -> SweepReport:
     analytic = {}
     for depth in sweep.depths_mm:
         for variant, value in curve(depth).items():
@@ -65,7 +73,8 @@ def _sweep_report(sweep: Sweep, curve) -> SweepReport:
             f = fit_power_law(depths, np.asarray(values)[ok])
             if f is not None:
                 analytic_fits[variant] = f.exponent
-    return SweepReport(sweep, fit, analytic, analytic_fits)
+    notes = tuple(range_note(d) for d in sweep.depths_mm) if range_note is not None else ()
+    return SweepReport(sweep, fit, analytic, analytic_fits, notes)
 
 
 CRACK_TEXT = {
@@ -103,8 +112,9 @@ def build_checks(book: FeaBook, plan: Plan, summary: dict, params) -> CheckSet:
         case_labels = [plan.headline[component].label] + [c.label for c in plan.sweeps[component]]
         sweep = book.sweep(component, case_labels, DELTA_NAMES[component])
         if sweep is not None:
-            sweeps[component] = _sweep_report(sweep, curves[component])
-        allowances = {}
+            sweeps[component] = _sweep_report(sweep, curves[component],
+                                              _shaft_range_note(params) if component == "shaft" else None)
+        allowances, depth_note = {}, None
         if component == "cup":
             allowances = lambda a: cup_crack_allowances(params, a)   # noqa: E731  (depth chosen in crack_check)
         if component == "shaft":
@@ -118,12 +128,14 @@ def build_checks(book: FeaBook, plan: Plan, summary: dict, params) -> CheckSet:
             hollow = 1.0 / (1.0 - ratio ** 4)
             note += (f"; the bore raises the outer-fibre shear stress by {hollow:.3f} and so a shallow crack's "
                      f"compliance by {hollow ** 2:.3f} over the solid-bar forms; G = E/2(1+nu) as the FEA")
+            depth_note = lambda a: shaft_form_note(params, a)   # noqa: E731
         if component == "bearing":
             # the 3D ring on a bonded bore stays in the sweep table; the check is the ring on the cam (wg-bearing)
             continue
         checks.append(crack_check(check_id, quantity, unit, sweep, curves[component], allowances, note,
                                   {"fea": "FEA " + ", ".join(case_labels), "analytic": "seed 000"},
-                                  params.crack_depth_mm(STUDIES[COMPONENT_STUDY[component]].crack_key)))
+                                  params.crack_depth_mm(STUDIES[COMPONENT_STUDY[component]].crack_key),
+                                  depth_note=depth_note))
     checks += wg_bearing_checks(book, plan.wg_bearing.label, params)
     checks += ring_checks(book, plan.ring.label, refs, params)
     checks.append(gear_stiffness(book, labels, plan.wg_bearing.label, s000, params))

@@ -84,11 +84,13 @@ def sweep_rows(sweep: dict) -> list[tuple[str, ...]]:
         for variant in ("published", "corrected"):
             values = sweep["analytic"].get(variant)
             row.append(num(values[i], 4) if values else "n/a")
+        notes = sweep.get("range_notes") or []
+        row.append("-" if not notes else ("OUTSIDE: " + notes[i]) if notes[i] else "confirmed")
         rows.append(tuple(row))
     return rows
 
 
-SWEEP_COLUMNS = ("a (mm)", "FEA", "U (GCI)", "resolved", "published", "corrected")
+SWEEP_COLUMNS = ("a (mm)", "FEA", "U (GCI)", "resolved", "published", "corrected", "corrected form's range")
 
 
 def sweep_fit_line(sweep: dict) -> str:

@@ -107,6 +107,20 @@ def shaft_crack_curve(params, depth_mm: float) -> dict[str, float]:
             "solid_bar_a2": cracks.shaft_crack_flexibility(d_s, depth_mm, mu, Variant.CORRECTED)}
 
 
+def shaft_form_note(params, depth_mm: float) -> str:
+    """How much the thick-tube fit matters at ``depth_mm`` (its factor A^m), and a flag outside its confirmed
+    range (analytic.tube_crack.range_note)."""
+    sh = params.output_shaft
+    r_o, r_i = 0.5 * sh.outer_diameter_mm, 0.5 * sh.inner_diameter_mm
+    ratio, a_over_t = r_i / r_o, depth_mm / (r_o - r_i)
+    factor = tube_crack.thick_tube_amplification(r_o, r_i, depth_mm) ** tube_crack.THICK_TUBE_EXPONENT
+    text = f"at a/t = {a_over_t:.3g} the fitted factor A^m = {factor:.4f}"
+    if abs(factor - 1.0) < 0.01:
+        text += " (about 1: this depth hardly tests the fit; the sweep's deeper points and tests/test_analytic_tube_crack.py do)"
+    outside = tube_crack.range_note(ratio, a_over_t)
+    return text + (f"; {outside}" if outside else "; inside the form's confirmed range")
+
+
 def cup_crack_curve(params, depth_mm: float) -> dict[str, float]:
     """The seed's flexspline crack as the FEA solves it: through the wall, half-length a, 45 deg, in the fully
     loaded tube (mid-surface radius r_m = d1/2 - delta/2). corrected (asserted): both tips of the through crack,
@@ -141,8 +155,9 @@ def bearing_crack_curve(params, depth_mm: float, radial_force_N: float) -> dict[
 
 
 def crack_check(check_id: str, quantity: str, unit: str, sweep: Sweep | None, curve, allowances: dict,
-                note: str, sources: dict, default_depth_mm: float) -> Check:
-    """Compare at the sweep depth with the smallest relative FEA uncertainty (see the module docstring)."""
+                note: str, sources: dict, default_depth_mm: float, depth_note=None) -> Check:
+    """Compare at the sweep depth with the smallest relative FEA uncertainty (see the module docstring).
+    ``depth_note(depth) -> str``: what the note adds about the closed form at the depth chosen."""
     if sweep is None:
         return not_evaluated(check_id, quantity, unit, "no cracked case produced the crack compliance",
                              analytic=curve(default_depth_mm))
@@ -162,5 +177,7 @@ def crack_check(check_id: str, quantity: str, unit: str, sweep: Sweep | None, cu
              f"at a = {depth:g} mm, the depth the FEA resolves best (GCI {100 * rel[i]:.2g} %); the seed's "
              f"{default_depth_mm:g} mm is in the sweep table")
     tol = fea_tolerance(value, unc, allowances=allowances)
+    if depth_note is not None:
+        note += "; " + depth_note(depth)
     return evaluate(Check(check_id, f"{quantity} {where}", unit, value, unc, curve(depth), "corrected", tol,
                           note=note, sources=sources))
