@@ -9,7 +9,7 @@ import math
 from .audit import audit_as_dicts
 from .crack_headline import crack_headline
 from .checks import reference_values
-from .tooth_number import FEA_AT_MINIMUM
+from .tooth_number import FEA_AT_MINIMUM, supported_minimum
 from .seed000 import seed000_summary
 from .seed003 import seed003_summary
 
@@ -71,15 +71,17 @@ def designer_headline(s3: dict) -> list[str]:
     """The opening lines for a designer: seed 003's minimal tooth number with the FEA-fitted tooth factors."""
     zm, tf = s3["tooth_number_min_with_fea_factors"], s3["tooth_factors"]
     a = zm["assumptions"]
-    out = ["DESIGNER HEADLINE (seed 003, eq 14 with FEA-confirmed tooth factors, analytic/tooth_factors.py)"]
-    for dz in (2, 4):
-        r = zm[f"dZ{dz}"]
-        out.append(f"  dZ = {dz}: Z_R,min = {r['Z_R_min']} (seed's constants K_delta 1.07, K_sigma 1.9: "
-                   f"{r['seed_constant_Z_R_min']}); at Z_R,min: delta/m = {r['delta_over_m']:.3f}, h/delta = "
-                   f"{r['h_over_delta']:.3f}, K_delta = {r['K_delta']:.3f}, K_sigma = {r['K_sigma']:.3f}, "
-                   f"n_sigma = {r['n_sigma']:.4f}")
     seed_design = (a["rim_thickness_ratio"], a["dedendum_coefficient"], a["psi_sigma"], a["permissible_safety"],
                    a["fatigue_limit_MPa"]) == (0.012, 1.35, 0.12, 1.4, 625.0)
+    out = ["DESIGNER HEADLINE (seed 003, eq 14 with the fitted tooth factors, analytic/tooth_factors.py, and the "
+           "toothed-ring FEA where it was solved)"]
+    for dz in (2, 4):
+        r = zm[f"dZ{dz}"]
+        z, basis = supported_minimum(dz, r["Z_R_min"], a["permissible_safety"], seed_design)
+        out.append(f"  dZ = {dz}: Z_R,min = {z} (basis: {basis}; seed's constants K_delta 1.07, K_sigma 1.9: "
+                   f"{r['seed_constant_Z_R_min']}); model at Z_R = {r['Z_R_min']}: delta/m = {r['delta_over_m']:.3f}, "
+                   f"h/delta = {r['h_over_delta']:.3f}, K_delta = {r['K_delta']:.3f}, K_sigma = {r['K_sigma']:.3f}, "
+                   f"n_sigma = {r['n_sigma']:.4f}")
     if seed_design:   # the stored FEA was solved for the seed's design assumptions only
         out.append("  toothed-ring FEA at those rims (analytic/tooth_number.FEA_AT_MINIMUM): " + "; ".join(
         f"Z_R {z}: K_delta {v['tooth_influence']:.3f}, K_sigma {v['stress_concentration']:.3f}, n_sigma "

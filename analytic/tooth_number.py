@@ -23,7 +23,27 @@ FEA_AT_MINIMUM = {(110, 2): {"tooth_influence": 1.5423, "stress_concentration": 
                   (208, 4): {"tooth_influence": 1.1328, "stress_concentration": 2.4595, "n_sigma": 1.4280,
                              "Z_R_min_with_these_factors": 204}}
 
-__all__ = ["FEA_AT_MINIMUM", "ToothNumberResult", "rim_ratios", "safety_with_model", "minimal_teeth_with_model"]
+__all__ = ["FEA_AT_MINIMUM", "supported_minimum", "ToothNumberResult", "rim_ratios", "safety_with_model", "minimal_teeth_with_model"]
+
+
+def supported_minimum(tooth_difference: int, model_Z_R_min: int, permissible_safety: float,
+                      fea_applies: bool) -> tuple[int, str]:
+    """The one Z_R,min a headline states, and the basis of the other number (issue 37).
+
+    Where the toothed-ring FEA at the model's minimum (FEA_AT_MINIMUM, solved for the seed's design only:
+    ``fea_applies``) gives n_sigma < [n], the model is unconservative there and the number is the FEA factors'
+    (held at their values at that rim); where the FEA confirms n_sigma >= [n], the model's number stands."""
+    fea = FEA_AT_MINIMUM.get((model_Z_R_min, tooth_difference)) if fea_applies else None
+    if fea is None:
+        return model_Z_R_min, "the fitted tooth-factor model; no toothed-ring FEA at this rim"
+    n, fea_min = fea["n_sigma"], fea["Z_R_min_with_these_factors"]
+    if n < permissible_safety:
+        return fea_min, (f"toothed-ring FEA at Z_R = {model_Z_R_min}: n_sigma = {n:.3f} < [n] = {permissible_safety:g}, "
+                         f"so the FEA factors (held at their Z_R = {model_Z_R_min} values) need Z_R = {fea_min}; "
+                         f"the fitted model alone gives {model_Z_R_min}")
+    return model_Z_R_min, (f"toothed-ring FEA at Z_R = {model_Z_R_min} confirms n_sigma = {n:.3f} >= [n] = "
+                           f"{permissible_safety:g}; the FEA factors held at those values would allow {fea_min} "
+                           "(not solved there)")
 
 
 @dataclass(frozen=True)

@@ -65,3 +65,29 @@ def test_stored_fea_at_the_minimum_is_consistent_with_eq14():
         assert abs(tf.tooth_influence(hd, md, tf.FITTED) / v["tooth_influence"] - 1) <= res["tooth_influence"]
         assert abs(tf.stress_concentration(hd, md, tf.FITTED) / v["stress_concentration"] - 1) <= \
             res["stress_concentration"]
+
+
+def test_the_headline_states_one_z_r_min_the_one_the_fea_supports_with_the_others_basis():
+    from strainwave.analytic import tooth_number as tn
+    # dZ = 2: the FEA at the model's 110 gives n_sigma 1.368 < 1.4, so the headline number is the FEA's 113
+    z, basis = tn.supported_minimum(2, 110, 1.4, fea_applies=True)
+    assert z == 113 and "n_sigma = 1.368 < [n] = 1.4" in basis and "the fitted model alone gives 110" in basis
+    # dZ = 4: the FEA at 208 confirms n_sigma 1.428 >= 1.4, so the model's 208 stands and 204 is named as unsolved
+    z, basis = tn.supported_minimum(4, 208, 1.4, fea_applies=True)
+    assert z == 208 and "confirms" in basis and "204 (not solved there)" in basis
+    # a stricter [n] than the FEA's n_sigma at 208 turns it over, and a design the FEA was not solved for keeps the model
+    assert tn.supported_minimum(4, 208, 1.43, fea_applies=True)[0] == 204
+    z, basis = tn.supported_minimum(2, 110, 1.4, fea_applies=False)
+    assert z == 110 and "no toothed-ring FEA" in basis
+
+
+def test_designer_headline_prints_113_for_the_seed_design():
+    import warnings
+
+    from strainwave.analytic.summary import analytic_summary, designer_headline
+    from strainwave.params import load_params
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        lines = designer_headline(analytic_summary(load_params())["seed003"])
+    assert lines[1].startswith("  dZ = 2: Z_R,min = 113 (basis: toothed-ring FEA at Z_R = 110")
+    assert lines[2].startswith("  dZ = 4: Z_R,min = 208 (basis: toothed-ring FEA at Z_R = 208 confirms")

@@ -178,3 +178,37 @@ def test_bearing_radial_compliance_is_information_not_a_check():
     info = analytic_summary(load_params())["checks"]["bearing.radial_compliance"]
     # the seed's K_G0 = 6.303e4 N/mm is softer than one ball's two Hertz contacts at its own ellipse
     assert info["implied_ball_pairs"] < 1.0 and info["ball_pair_stiffness_N_per_mm"] > 6.303e4
+
+
+def _shaft_check(fea_value, gci_abs):
+    from types import SimpleNamespace
+
+    from strainwave.analytic.seed000 import seed000_summary
+    from strainwave.compare.validate.fea_book import FeaBook
+    from strainwave.compare.validate.torsion_checks import shaft_flexibility
+
+    params = load_params()
+    q = SimpleNamespace(value=fea_value, uncertainty=gci_abs)
+    outcome = SimpleNamespace(result=SimpleNamespace(quantities={"flexibility_rad_per_Nmm": q}, meta={}),
+                              case=SimpleNamespace(study="shaft-torsion"), error=None)
+    return shaft_flexibility(FeaBook({"shaft": outcome}), "shaft", seed000_summary(params), params), params
+
+
+def test_shaft_check_tests_the_fea_against_the_same_problem_and_reports_the_material_gap_apart():
+    import math
+    # quick shaft-torsion FEA: 1.26678e-9 rad/(N*mm), GCI 0.0164 % (formal p = 4, Fs = 3; observed p 8.05)
+    c, params = _shaft_check(1.2667837e-09, 0.000164 * 1.2667837e-09)
+    sh, m = params.output_shaft, params.material
+    J = math.pi / 32 * (sh.outer_diameter_mm ** 4 - sh.inner_diameter_mm ** 4)
+    assert c.analytic["corrected"] == pytest.approx(sh.length_mm / (m.implied_shear_modulus_MPa * J), rel=1e-12)
+    assert c.analytic["corrected_mu"] == pytest.approx(sh.length_mm / (m.shear_modulus_MPa * J), rel=1e-12)
+    assert c.tolerance.relative == pytest.approx(3 * 0.000164, rel=1e-9)      # 3 x GCI, no allowance
+    assert c.passed and "material gap apart" in c.note and "80000" in c.note
+    # the mu form lies the whole material gap (0.96 %) away: outside this tolerance, as a separate line
+    assert abs(c.rel_error["corrected_mu"]) > 0.009
+
+
+def test_shaft_check_fails_on_a_reference_perturbed_by_the_material_gap():
+    # an FEA that matched the mu = 80000 form (the old check's 0.96 % allowance absorbed this) now fails
+    c, params = _shaft_check(1.2790352e-09, 0.000164 * 1.2790352e-09)
+    assert not c.passed
