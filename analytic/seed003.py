@@ -60,6 +60,7 @@ def tooth_factor_summary(params) -> dict:
             "root_product": tooth_factors.root_product(hd, md, model),
             "fit_residuals": tooth_factors.fit_residuals(tooth_factors.FITTING_SET, model),
             "fitted_on_teeth_and_delta_over_m": fitted_on, "held_out": held_out,
+            "delta_over_m": 1.0 / md, "range": tooth_factors.range_note(1.0 / md),
             "model_root_fillet_coefficient": tooth_factors.MODEL_ROOT_FILLET_COEFFICIENT,
             "root_fillet_coefficient": e.root_fillet_coefficient}
 

@@ -9,6 +9,7 @@ import math
 from .audit import audit_as_dicts
 from .crack_headline import crack_headline
 from .checks import reference_values
+from . import tooth_factors
 from .tooth_number import FEA_AT_MINIMUM, supported_minimum
 from .seed000 import seed000_summary
 from .seed003 import seed003_summary
@@ -92,6 +93,9 @@ def designer_headline(s3: dict) -> list[str]:
                f"(h/delta changes with Z_R)")
     out.append(f"  this ring: K_delta = {tf['tooth_influence']:.3f}, K_sigma = {tf['stress_concentration']:.3f} "
                f"(seed 1.07, 1.9); equivalent rim delta + {tf['c']:.3f} h = {tf['equivalent_rim_mm']:.4g} mm")
+    out.append("  tooth-factor form's range: " + "; ".join(
+        f"Z_R,min rim dZ = {dz}: {tooth_factors.range_note(zm[f'dZ{dz}']['delta_over_m'])}" for dz in (2, 4))
+        + f"; this ring: {tf['range']}")
     return out
 
 

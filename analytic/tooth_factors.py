@@ -35,7 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["ToothFactorModel", "FitRow", "FITTING_SET", "FITTED", "FILLET_SENSITIVITY", "MODEL_ROOT_FILLET_COEFFICIENT", "tooth_height_mm",
+__all__ = ["FITTED_DELTA_OVER_M", "EXTRAPOLATION", "range_note", "ToothFactorModel", "FitRow", "FITTING_SET", "FITTED", "FILLET_SENSITIVITY", "MODEL_ROOT_FILLET_COEFFICIENT", "tooth_height_mm",
            "fit_tooth_factors", "stiffness_ratio", "tooth_influence", "root_product", "stress_concentration",
            "fit_residuals"]
 
@@ -161,3 +161,34 @@ FILLET_SENSITIVITY: dict[float, dict[str, float]] = {
     0.25: {"tooth_influence": 2.0462, "root_product": 3.4528, "stress_concentration": 1.6874},
     0.35: {"tooth_influence": 2.0662, "root_product": 3.3590, "stress_concentration": 1.6257},
 }
+# The delta/m range of FITTING_SET: the model interpolates inside it.
+FITTED_DELTA_OVER_M = (0.75, 3.0)
+# Toothed-ring FEA (quick, Z_R = 100, m = 1 mm, fillet 0.25 m) at rims OUTSIDE that range, against the model
+# (benchmarks/fit_tooth_factors.py --extrapolate): delta/m -> FEA value and its GCI per factor. The model's
+# error there is what an extrapolated use carries.
+EXTRAPOLATION: dict[float, dict[str, tuple[float, float]]] = {
+    0.6: {"tooth_influence": (2.6169, 0.030), "stress_concentration": (1.4942, 0.078)},
+    3.6: {"tooth_influence": (1.0608, 0.033), "stress_concentration": (2.6232, 0.0052)},
+}
+
+
+def extrapolation_errors(delta_over_m: float, model: ToothFactorModel = FITTED) -> dict[str, float]:
+    """model / FEA - 1 of each factor at a measured rim of EXTRAPOLATION (Z_R = 100, h*_f = 1.35)."""
+    fea = EXTRAPOLATION[delta_over_m]
+    hd, md = tooth_height_mm(1.0) / delta_over_m, 1.0 / delta_over_m
+    return {"tooth_influence": tooth_influence(hd, md, model) / fea["tooth_influence"][0] - 1.0,
+            "stress_concentration": stress_concentration(hd, md, model) / fea["stress_concentration"][0] - 1.0}
+
+
+def range_note(delta_over_m: float) -> str:
+    """The range the fitted form holds on, and where ``delta_over_m`` lies: inside, or outside with the error the
+    FEA measured at the nearest extrapolated rim."""
+    lo, hi = FITTED_DELTA_OVER_M
+    if lo <= delta_over_m <= hi:
+        return f"delta/m = {delta_over_m:.3g} inside the fitted range {lo:g}-{hi:g} (interpolation)"
+    nearest = min(EXTRAPOLATION, key=lambda d: abs(d - delta_over_m))
+    err = extrapolation_errors(nearest)
+    return (f"delta/m = {delta_over_m:.3g} OUTSIDE the fitted range {lo:g}-{hi:g} (extrapolation): at delta/m = "
+            f"{nearest:g} the model is off the FEA by {100 * err['tooth_influence']:+.1f} % (K_delta, FEA GCI "
+            f"{100 * EXTRAPOLATION[nearest]['tooth_influence'][1]:.2g} %) and {100 * err['stress_concentration']:+.1f} % "
+            f"(K_sigma, GCI {100 * EXTRAPOLATION[nearest]['stress_concentration'][1]:.2g} %)")

@@ -91,3 +91,20 @@ def test_designer_headline_prints_113_for_the_seed_design():
         lines = designer_headline(analytic_summary(load_params())["seed003"])
     assert lines[1].startswith("  dZ = 2: Z_R,min = 113 (basis: toothed-ring FEA at Z_R = 110")
     assert lines[2].startswith("  dZ = 4: Z_R,min = 208 (basis: toothed-ring FEA at Z_R = 208 confirms")
+
+
+def test_the_model_outside_its_fitted_rim_range_carries_the_error_the_fea_measured_there():
+    from strainwave.analytic import tooth_factors as tf
+    lo, hi = tf.FITTED_DELTA_OVER_M
+    assert (lo, hi) == (min(r.delta_over_m for r in tf.FITTING_SET), max(r.delta_over_m for r in tf.FITTING_SET))
+    assert all(not lo <= d <= hi for d in tf.EXTRAPOLATION)            # both measured rims lie outside
+    thin, thick = tf.extrapolation_errors(0.6), tf.extrapolation_errors(3.6)
+    # thin rim: K_delta is over-predicted by 10 %, beyond 3 x the FEA's GCI (3 %) and the fit's own residuals
+    kd_fea, kd_gci = tf.EXTRAPOLATION[0.6]["tooth_influence"]
+    assert thin["tooth_influence"] == pytest.approx(0.1003, abs=5e-4) and thin["tooth_influence"] > 3 * kd_gci
+    assert abs(thin["tooth_influence"]) > tf.fit_residuals(tf.FITTING_SET, tf.FITTED)["tooth_influence"]
+    # thick rim: the saturating forms extrapolate within 1 %
+    assert abs(thick["tooth_influence"]) < 0.01 and abs(thick["stress_concentration"]) < 0.01
+    note = tf.range_note(0.5)
+    assert "OUTSIDE the fitted range 0.75-3" in note and "+10.0 % (K_delta" in note
+    assert "inside the fitted range" in tf.range_note(1.32)

@@ -254,31 +254,41 @@ _RATIO = ("; arch (issue 11): refinement ratio 1.5 -> 1.4, the one ratio of ever
           "0.123 -> 0.031, bearing crack 8.4e-12 -> 2.5e-12 mm/N)")
 _CUP_SEAM_MESH = ("cracks (issue 13): the uncracked cup is solved on the seam mesh, whose embedded crack moved from "
                   "the tooth band to the tube: 4.85142e-10 -> 4.85126e-10 (-0.003 %), GCI 0.37 -> 0.26 %")
+# issue 37: GCI by the book - the observed order with Fs = 1.25 only where it lies within 10 % of the formal order,
+# else the formal order with Fs = 3 (never a p clipped to 8): every GCI uncertainty and tolerance not confirmed
+# asymptotic moves (shaft flexibility: observed p 8.05 -> formal 4, uncertainty 1.79e-14 -> 2.08e-13; shaft
+# crack delta: observed 1.62 -> formal 1, Fs 3), FEA values do not
+_GCI_BOOK = "issue 37: GCI by the book (observed p with Fs 1.25 within 10 % of the formal order, else formal p with Fs 3)"
+_CUP_CALIBRATED = ("issue 37: the cup's junction bias is a calibrated correction (+4.86 %, fitted on two other cups) "
+                   "with its 0.41 % scatter as the only allowance (was the bare series model + 6 %)")
 DELIBERATE_CHANGES: dict[str, str] = {
+    "shaft.flexibility": "issue 37: corrected = the G = E/2(1+nu) form of the problem the FEA solves, tolerance "
+                         "3 x GCI without the 0.96 % mu allowance (the material gap is reported apart); " + _GCI_BOOK,
     "shaft.crack_compliance": "582f540 (cracks): corrected = hollow-tube strip / thick-tube form (was solid-bar "
                               "K_III); " + _CRACK_GCI + "; cracks (issue 13): tip a/40 in --quick (was a/20): "
-                              "6.332e-11 -> 6.365e-11 at a = 6.25 mm, GCI 1.57 -> 0.56 %",
+                              "6.332e-11 -> 6.365e-11 at a = 6.25 mm, GCI 1.57 -> 0.56 %; " + _GCI_BOOK,
     "cup.crack_compliance": _CRACK_GCI + "; cracks (issue 13): the FEA crack is the seed's through-wall 45 deg "
                             "crack in the fully loaded tube (was a part-through root crack in the load band): "
-                            "2.60e-15 -> 1.02e-14 at a = 1.12 mm; corrected = both tips a^2/(2 pi E r_m^4 delta)",
-    "cup.flexibility": _CUP_SEAM_MESH,
+                            "2.60e-15 -> 1.02e-14 at a = 1.12 mm; corrected = both tips a^2/(2 pi E r_m^4 delta); " + _GCI_BOOK,
+    "cup.flexibility": _CUP_SEAM_MESH + "; " + _CUP_CALIBRATED + "; " + _GCI_BOOK,
     "gear.stiffness": _CUP_SEAM_MESH + " (lambda_f0 from that case); issue 34 (wg-bearing): lambda_H from the FEA's "
                       "wave generator radial stiffness K_G (Hertz balls on the cam-held ring, ~14x the seed's "
-                      "back-calculated K_G0), corrected = Stribeck-Hertz K_G with rigid rings",
+                      "back-calculated K_G0), corrected = Stribeck-Hertz K_G with rigid rings; " + _CUP_CALIBRATED
+                      + "; " + _GCI_BOOK,
     "bearing.crack_compliance": _CRACK_GCI + "; cracks (issue 13): crack faces in frictionless contact, the "
                                 "crack at the Hertz centre stays shut: quantity = cracked compliance, asserted "
                                 "= uncracked ring (delta 6.24e-8 -> 5.8e-13 mm/N at a = 2.08 mm)" + _RATIO + "; issue 34 "
                                 "(wg-bearing): the crack is the race crack at the major axis of the ring on the "
                                 "elliptical cam, held open by the cam's bending, solved in 2D (study wg-bearing); "
                                 "quantity = its added compliance under the Stribeck ball loads, asserted = Tada's "
-                                "edge-crack weight function at the FEA's uncracked hoop stress (seed 000 eq 4)",
-    "ring.delta_cd": _RING_MESH + _RATIO,
-    "ring.delta_ab": _RING_MESH + _RATIO,
-    "ring.sigma_max": _RING_MESH + _RATIO,
-    "ring.sigma_min": _RING_MESH + " (152.44 vs Winkler-Bach 152.42)" + _RATIO,
-    "ring.tooth_influence": _RING_MESH + "; corrected = the FEA-fitted tooth-factor model (was the seed's 1.07)" + _RATIO,
+                                "edge-crack weight function at the FEA's uncracked hoop stress (seed 000 eq 4); " + _GCI_BOOK,
+    "ring.delta_cd": _RING_MESH + _RATIO + "; " + _GCI_BOOK,
+    "ring.delta_ab": _RING_MESH + _RATIO + "; " + _GCI_BOOK,
+    "ring.sigma_max": _RING_MESH + _RATIO + "; " + _GCI_BOOK,
+    "ring.sigma_min": _RING_MESH + " (152.44 vs Winkler-Bach 152.42)" + _RATIO + "; " + _GCI_BOOK,
+    "ring.tooth_influence": _RING_MESH + "; corrected = the FEA-fitted tooth-factor model (was the seed's 1.07)" + _RATIO + "; " + _GCI_BOOK,
     "ring.stress_concentration": "01f8eec (ring): K_sigma compared like with like (root factor / K_delta) "
-                                 "against the tooth-factor model (was the seed's 1.9)" + _RATIO,
+                                 "against the tooth-factor model (was the seed's 1.9)" + _RATIO + "; " + _GCI_BOOK,
 }
 # Checks removed on purpose, with the reason (a removed check is listed, never silently gone).
 DELIBERATE_REMOVALS: dict[str, str] = {
