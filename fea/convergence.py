@@ -116,11 +116,14 @@ def observed_order(r21: float, r32: float, e21: float, e32: float) -> float:
         return math.log((r21 ** p - 1.0) / (r32 ** p - 1.0))
 
     p = math.log(ratio) / math.log(r21)
-    for _ in range(500):
-        p_new = (math.log(ratio) + q(p)) / math.log(r21)
-        if abs(p_new - p) < 1e-12 * max(1.0, abs(p)):
-            return p_new
-        p = p_new
+    try:
+        for _ in range(500):
+            p_new = (math.log(ratio) + q(p)) / math.log(r21)
+            if abs(p_new - p) < 1e-12 * max(1.0, abs(p)):
+                return p_new
+            p = p_new
+    except (OverflowError, ValueError):      # r^p beyond float range: no usable root
+        return math.nan
     return math.nan
 
 
