@@ -131,11 +131,14 @@ def _surface_groups(model) -> dict[str, list[int]]:
     def radius(c, axes):
         return math.hypot(c[0] / axes[0], c[1] / axes[1])
 
+    def curved(c):     # neither a symmetry plane nor a z = const face (top, bottom, the internal z = 0 face)
+        return abs(c[0]) > 1e-6 and abs(c[1]) > 1e-6 and 1e-6 < abs(c[2]) < t - 1e-6
+
+    # the centre of mass of a curved quarter face lies inside its own ellipse: the hole's inside the inner one
     faces = {"x0": lambda c: abs(c[0]) < 1e-6, "y0": lambda c: abs(c[1]) < 1e-6,
              "upper": lambda c: abs(c[2] - t) < 1e-6,
-             # the centre of mass of a curved quarter face lies inside its ellipse
-             "outer": lambda c: radius(c, OUTER_MM) > 0.9 and abs(c[2]) > 1e-6 and abs(c[2]) < t - 1e-6,
-             "AD": lambda c: radius(c, INNER_MM) < 1.0 and abs(c[2]) > 1e-6 and abs(c[2]) < t - 1e-6}
+             "outer": lambda c: curved(c) and radius(c, INNER_MM) > 1.0,
+             "AD": lambda c: curved(c) and radius(c, INNER_MM) < 1.0}
     out = {n: _match(model, 2, pick, 0.0) for n, pick in faces.items()}
     out["EE"] = _match(model, 1, lambda p: _on_ellipse(p, OUTER_MM) and bool(np.all(np.abs(p[:, 2]) < 1e-6)), 0.0)
     return out
@@ -152,7 +155,8 @@ def mesh_le10(model, h_mm: float) -> MeshData:
     model.occ.synchronize()
     groups = _surface_groups(model)
     if any(not tags for tags in groups.values()):
-        raise ValueError(f"LE10: a named face was not found: {groups}")
+        from .meshing import MeshingFailed
+        raise MeshingFailed(f"LE10: a named face was not found: {groups}")
     for name, tags in groups.items():
         model.addPhysicalGroup(1 if name == "EE" else 2, tags, name=name)
     model.addPhysicalGroup(3, [t_ for _, t_ in model.getEntities(3)], name="solid")
