@@ -9,7 +9,9 @@ and GCI_fine = Fs |e_a21| / (r21^p - 1). Which p and Fs (Roache 1998; Oberkampf 
 
 - the observed order is used, with Fs = 1.25, only where the three meshes are in the asymptotic range:
   monotone convergence and p within ``ASYMPTOTIC_BAND`` (10 %) of the formal order;
-- otherwise the formal order of the quantity (``formal_order``) is used with Fs = 3.
+- otherwise Fs = 3 with the formal order of the quantity (``formal_order``), or the observed order where that
+  is lower, never below 0.5 (Oberkampf & Roy: p = min(max(0.5, p_observed), p_formal)): a series converging
+  slower than its element's formal order must not borrow the faster order's smaller band.
 
 The observed order is never clipped: it is stored as found (NaN where the order equation has no root,
 inf where the two finest values agree) so that a table shows it beside the order actually used.
@@ -27,6 +29,8 @@ ASYMPTOTIC_BAND = 0.1
 # Lowest formal order of a smooth quantity on the project's curved P2 elements (stresses): the order
 # assumed when a caller names none, so an unnamed quantity never gets a less conservative band.
 DEFAULT_FORMAL_ORDER = 2.0
+# Outside the asymptotic range an observed order below the formal one is used, but never below this
+MIN_ORDER_OUTSIDE = 0.5
 
 
 class GciUndefined(ValueError):
@@ -81,6 +85,8 @@ class Convergence:
             return "GCI refused: " + self.refused
         if self.asymptotic:
             return f"observed p = {self.order_used:.3g}, Fs = 1.25"
+        if self.order_used < self.formal_order:
+            return f"observed p = {self.order_used:.3g} (< formal {self.formal_order:g}), Fs = 3"
         return f"formal p = {self.order_used:g}, Fs = 3"
 
     @property
@@ -158,11 +164,12 @@ def grid_convergence(h_mm, values, *, formal_order: float = DEFAULT_FORMAL_ORDER
         gci = SAFETY_FACTOR_THREE_GRIDS * e_a21 / (r21 ** p_obs - 1.0)
         return Convergence((h1, h2, h3), (f1, f2, f3), p_obs, extrapolated, gci, True, pf, p_obs,
                            SAFETY_FACTOR_THREE_GRIDS)
-    gci = SAFETY_FACTOR_FORMAL * e_a21 / (r21 ** pf - 1.0)
-    extrapolated = (r21 ** pf * f1 - f2) / (r21 ** pf - 1.0)
+    p = min(max(MIN_ORDER_OUTSIDE, p_obs), pf) if monotone and math.isfinite(p_obs) else pf
+    gci = SAFETY_FACTOR_FORMAL * e_a21 / (r21 ** p - 1.0)
+    extrapolated = (r21 ** p * f1 - f2) / (r21 ** p - 1.0)
     if not monotone:
         # oscillatory: Richardson has no basis; the band also covers the spread of the three values
         spread = (max(f1, f2, f3) - min(f1, f2, f3)) / scale
         gci = max(gci, SAFETY_FACTOR_THREE_GRIDS * spread)
         extrapolated = f1
-    return Convergence((h1, h2, h3), (f1, f2, f3), p_obs, extrapolated, gci, monotone, pf, pf, SAFETY_FACTOR_FORMAL)
+    return Convergence((h1, h2, h3), (f1, f2, f3), p_obs, extrapolated, gci, monotone, pf, p, SAFETY_FACTOR_FORMAL)

@@ -46,7 +46,21 @@ def test_the_asymptotic_band_is_ten_percent_of_the_formal_order(p_obs, asymptoti
     hs = [1.0, 1.4, 1.96]
     conv = grid_convergence(hs, [3.0 + 0.02 * h ** p_obs for h in hs], formal_order=2.0)
     assert conv.asymptotic is asymptotic
-    assert conv.order_used == pytest.approx(p_obs if asymptotic else 2.0, rel=1e-8)
+    # outside the band: Fs = 3 with min(max(0.5, p_observed), p_formal) (Oberkampf & Roy)
+    assert conv.order_used == pytest.approx(p_obs if asymptotic else min(p_obs, 2.0), rel=1e-8)
+    assert conv.safety_factor == (1.25 if asymptotic else 3.0)
+
+
+@pytest.mark.parametrize("p_obs,used", [(0.3, 0.5), (1.2, 1.2), (-1.0, 0.5)])
+def test_a_slow_series_outside_the_range_keeps_its_own_lower_order_never_below_a_half(p_obs, used):
+    hs = [1.0, 1.4, 1.96]
+    values = [3.0 + 0.02 * h ** p_obs for h in hs]
+    conv = grid_convergence(hs, values, formal_order=2.0)
+    assert conv.order_used == pytest.approx(used, rel=1e-8) and conv.safety_factor == 3.0
+    e_a21 = abs(values[1] - values[0]) / values[0]
+    assert conv.gci_fine == pytest.approx(3.0 * e_a21 / (1.4 ** used - 1), rel=1e-8)
+    # never smaller than the formal order's band would be: the slower order widens it
+    assert conv.gci_fine >= 3.0 * e_a21 / (1.4 ** 2 - 1)
 
 
 def test_oscillatory_sequence_reports_the_spread_or_the_formal_band():

@@ -5,7 +5,8 @@ observed order p (as found, never clipped) beside the formal order, the Richards
 the basis of that GCI, all read from the study's own convergence record (``fea/convergence.grid_convergence``:
 no second computation here). By the book (Roache; Oberkampf & Roy sec. 8.7) the GCI uses the observed order
 with Fs = 1.25 only where the three meshes are in the asymptotic range (monotone, p within 10 % of the formal
-order); otherwise the formal order with Fs = 3. The flags say why a row is not in the asymptotic range:
+order); otherwise Fs = 3 with the formal order, or the observed one where lower (never below 0.5). The flags
+say why a row is not in the asymptotic range:
 
 - "non-monotone": f2 - f1 and f3 - f2 change sign; p has no root, the band also covers the spread of the values.
 - "diverging": p < 0, the steps grow on refinement.

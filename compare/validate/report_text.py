@@ -184,8 +184,8 @@ GCI_INTRO = ("ASME V&V 20 (Roache) three-mesh estimate of every FEA quantity: h1
              "them, r the refinement ratios, p the observed order as found (never clipped; the element's formal "
              "order in brackets), f_ext the Richardson value, GCI_fine = Fs |f2 - f1| / |f1| / (r21^p - 1). By the "
              "book (Roache; Oberkampf & Roy sec. 8.7): in the asymptotic range (monotone, observed p within 10 % of "
-             "the formal order) the observed p with Fs = 1.25; otherwise the formal p with Fs = 3, the column "
-             "'GCI basis' says which. Three identical values carry no GCI (refused, never 0 %).")
+             "the formal order) the observed p with Fs = 1.25; otherwise Fs = 3 with the formal p, or the observed "
+             "one where lower (never below 0.5); the column 'GCI basis' says which. Three identical values carry no GCI (refused, never 0 %).")
 
 NAFEMS_INTRO = ("NAFEMS TNSB Rev. 3 (1990) linear-elastic benchmarks through the project's own assembly, solver and "
                 "stress recovery (nodal averaging, fea/fields.nodal_stress), curved P2 meshes by gmsh. Coarse: run "
