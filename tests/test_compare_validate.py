@@ -325,6 +325,13 @@ def test_quick_checks_reproduce_the_reference_or_are_listed_as_deliberate(result
 
 
 FULL_VERDICTS = Path(__file__).parent / "data" / "validate_full_verdicts.json"
+# Verdicts --quick may reach apart from the recorded full run, by check id, with the reason: only where quick
+# still PASSES and only the published side moves. A full `make validate` re-records FULL_VERDICTS and empties this.
+QUICK_VERDICT_EXCEPTIONS: dict[str, str] = {
+    "ring.stress_concentration": "issue 37: quick's toothed-ring series diverges (observed p -6.4), so its GCI by "
+                                 "the book is Fs 3 with p 0.5 (27.6 %); the tolerance then also holds the seed's "
+                                 "1.9 ('both', still passing); the full verdict was recorded under the former rule",
+}
 
 
 def test_quick_verdicts_are_those_of_the_full_run(results):
@@ -333,8 +340,10 @@ def test_quick_verdicts_are_those_of_the_full_run(results):
     full = json.loads(FULL_VERDICTS.read_text(encoding="utf-8"))["verdicts"]
     quick = {c["id"]: {"verdict": c["verdict"], "passed": c["passed"]} for c in results["checks"]}
     assert set(full) <= set(quick), sorted(set(full) - set(quick))
-    differ = {k: (quick[k], v) for k, v in full.items() if quick[k] != v}
+    differ = {k: (quick[k], v) for k, v in full.items() if quick[k] != v and k not in QUICK_VERDICT_EXCEPTIONS}
     assert not differ, f"quick vs full verdicts: {differ}"
+    for k in QUICK_VERDICT_EXCEPTIONS:      # an exception never hides a failure or a lost corrected verdict
+        assert quick[k]["passed"] and quick[k]["verdict"] in (full[k]["verdict"], "both"), (k, quick[k], full[k])
 
 # Injected first into <head>: records every script error and console.error, then, once the page has loaded,
 # counts the drawn (non-white) pixels and distinct colours of every 3D view canvas.
