@@ -23,7 +23,7 @@ import numpy as np
 
 from ..errors import InputError
 from . import ring2d
-from .refinement import CRACK_ORDER_BOUNDS, DEFAULT_RATIO, converged_quantity
+from .refinement import CRACK_FORMAL_ORDER, DEFAULT_RATIO, converged_quantity
 from .result import CrackRecord, Load, MeshQuality, StudyResult, Support
 
 STUDY = "wg-bearing"
@@ -224,8 +224,8 @@ def default_size_mm(params, quick: bool) -> float:
     return params.wave_generator.bearing_inner_ring_thickness_mm / (6.0 if quick else 8.0)
 
 
-def _converge(name, unit, sizes, values, bounds=None):
-    return converged_quantity(name, unit, sizes, values, order_bounds=bounds)
+def _converge(name, unit, sizes, values, order=None):
+    return converged_quantity(name, unit, sizes, values, order=order)
 
 
 def _plain_quantities(s: RingSetup, h: float, sizes, progress, deepest_mm: float):
@@ -251,7 +251,7 @@ def _crack_quantities(s: RingSetup, h: float, sizes, depths, progress):
             runs.append(solve_crack(s, h, DEFAULT_RATIO ** k, depth))
         runs = runs[::-1]
         name = delta_name(depth)
-        q[name] = _converge(name, "mm/N", sizes, [r["delta"] for r in runs], CRACK_ORDER_BOUNDS)
+        q[name] = _converge(name, "mm/N", sizes, [r["delta"] for r in runs], CRACK_FORMAL_ORDER)
         x, profile = runs[0]["profile"]
         facts[f"{depth:g}"] = {"depth_mm": depth, "closed_pairs": runs[0]["closed_pairs"], "pairs": runs[0]["pairs"],
                                "mouth_opening_mm": runs[0]["mouth_opening_mm"], "dofs": runs[0]["dofs"],
