@@ -15,7 +15,7 @@ import numpy as np
 from .analytic.rated_load import RatedLoad, fatigue_safety_factor, rated_load
 from .registry import study as registered
 
-__all__ = ["FieldNames", "field_names", "displacement3", "scaled_to_rated", "FieldPeaks", "field_peaks",
+__all__ = ["FieldNames", "field_names", "displacement3", "applied_scale", "scaled_to_rated", "write_at_rated", "FieldPeaks", "field_peaks",
            "StressAtRated", "stress_field_of", "rated_load_of", "stress_at_rated", "groups_at_node"]
 
 
@@ -41,20 +41,40 @@ def displacement3(mesh, name: str) -> np.ndarray:
     return u
 
 
-# arrays that are linear in the load: displacements and stresses (never ids such as physical_group)
-_LINEAR = ("disp", "mises", "stress")
+def applied_scale(mesh) -> float:
+    """The factor a field file's load-linear arrays already carry over the solved load (1: as solved)."""
+    if "load_scale_applied" in mesh.field_data.keys():
+        return float(np.asarray(mesh.field_data["load_scale_applied"]).ravel()[0])
+    return 1.0
 
 
 def scaled_to_rated(mesh, scale: float):
-    """A copy of ``mesh`` with every displacement and stress array multiplied by ``scale`` (linear problem)."""
+    """A copy of ``mesh`` whose every displacement and stress array is ``scale`` x the solved load's (linear
+    problem), whatever scale the file was written at (``load_scale_applied``, fea/fields.py)."""
+    from .fea.fields import LINEAR_WORDS
+
     if not (np.isfinite(scale) and scale > 0):
         raise ValueError(f"load scale must be finite and > 0, got {scale}")
     out = mesh.copy()
+    factor = scale / applied_scale(mesh)
     for data in (out.point_data, out.cell_data):
         for key in list(data.keys()):
-            if any(word in key.lower() for word in _LINEAR):
-                data[key] = np.asarray(data[key], dtype=float) * scale
+            if any(word in key.lower() for word in LINEAR_WORDS):
+                data[key] = np.asarray(data[key], dtype=float) * factor
+    out.field_data["load_scale_applied"] = np.array([scale])
     return out
+
+
+def write_at_rated(fields, load: RatedLoad) -> None:
+    """Rewrite a study's VTU files (``fields``: its written paths) at the rated ``load``, which their FieldData
+    then states (``fields_at``, ``load_scale_applied``, ``rated_load``, ``solved_load``)."""
+    from .fea.fields import rescale_vtu
+
+    for path in fields:
+        if str(path).endswith(".vtu") and not str(path).endswith(".boundary.vtu") and Path(path).exists():
+            rescale_vtu(Path(path), load.scale, f"the rated load: {load.describe()}; fields x {load.scale:.6g} "
+                        f"of the solved {load.solved:g} {load.unit}",
+                        {"rated_load": load.rated, "solved_load": load.solved})
 
 
 @dataclass(frozen=True)
@@ -86,11 +106,14 @@ def groups_at_node(vtu: Path, node: int) -> tuple[str, ...]:
     """The named groups of ``vtu``'s boundary file (fea/fields.py: it shares the field's points) that hold ``node``."""
     import pyvista as pv
 
+    from .fea.fields import field_text
+
     path = Path(vtu).with_name(f"{Path(vtu).stem}.boundary.vtu")
     if not path.exists() or node < 0:
         return ()
     boundary = pv.read(str(path))
-    names = [str(n) for n in np.asarray(boundary.field_data.get("physical_group_names", []))]
+    names = field_text(boundary, "physical_group_names") if "physical_group_names" in boundary.field_data.keys() \
+        else []
     near = boundary.extract_points([node], adjacent_cells=True, include_cells=True)
     ids = np.unique(np.asarray(near.cell_data["physical_group"])) if near.n_cells else []
     return tuple(names[i - 1] for i in ids if 0 < i <= len(names))   # id k is entry k - 1

@@ -90,11 +90,14 @@ def boundary_groups(vtu: Path, names: tuple[str, ...]):
     """{name: facets} of the named groups of ``vtu``'s boundary file (fea/fields.py), those that exist."""
     import pyvista as pv
 
+    from ...fea.fields import field_text
+
     path = Path(vtu).with_name(f"{Path(vtu).stem}.boundary.vtu")
     if not path.exists():
         return {}
     boundary = pv.read(str(path))
-    known = [str(n) for n in np.asarray(boundary.field_data.get("physical_group_names", []))]
+    known = field_text(boundary, "physical_group_names") if "physical_group_names" in boundary.field_data.keys() \
+        else []
     ids = np.asarray(boundary.cell_data["physical_group"])
     out = {}
     for name in names:
@@ -243,7 +246,7 @@ def render_closeup(vtu: Path, png: Path, *, label: str, center_mm=None, radius_m
     import pyvista as pv
 
     with pv.VtkErrorCatcher(raise_errors=True):
-        mesh = scaled_to_rated(read_field(vtu), load.scale) if load is not None else read_field(vtu)
+        mesh = scaled_to_rated(read_field(vtu), load.scale if load is not None else 1.0)
         names = field_names(mesh)
         if center_mm is None:
             if names.von_mises is None or names.von_mises not in mesh.point_data:
@@ -287,12 +290,13 @@ def render_closeup(vtu: Path, png: Path, *, label: str, center_mm=None, radius_m
 def sample_circle(vtu: Path, radius_mm: float, n: int = 360) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
     """Radial and tangential displacement along a circle of the (plane or mid-plane) ring mesh.
 
-    Returns (theta, u_r, u_t) for the points that lie inside the mesh, or None without a displacement field.
+    Returns (theta, u_r, u_t) at the SOLVED load (the checks' load) for the points that lie inside the mesh, or
+    None without a displacement field.
     """
     import pyvista as pv
 
     with pv.VtkErrorCatcher(raise_errors=True):
-        mesh = read_field(vtu)
+        mesh = scaled_to_rated(read_field(vtu), 1.0)   # at the solved load, as the checks' delta_CD, delta_AB
         names = field_names(mesh)
         if names.displacement is None:
             return None

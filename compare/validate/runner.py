@@ -13,6 +13,7 @@ from typing import Callable
 
 from ...fea.result import StudyResult
 from ...cache import ResultCache, case_key
+from ...rated_stress import rated_load_of, write_at_rated
 
 
 @dataclass(frozen=True)
@@ -80,6 +81,8 @@ def run_case(case: Case, params, *, fields_dir: Path, cache: ResultCache, quick:
         progress(f"  {case.label}: FAILED after {child.seconds:.1f} s ({child.error})")
         return CaseOutcome(case, None, child.seconds, False, child.error)
     result = StudyResult.from_dict(child.result)
+    # the fields a reader opens are at the load the report states (issue 40), and say so in their FieldData
+    write_at_rated(result.fields, rated_load_of(case.study, params, result))
     cache.put(key, {"case": case.label, "seconds": child.seconds, "cpu_s": child.cpu_s, "result": child.result})
     cpu = "" if child.cpu_s is None else f", {child.cpu_s:.1f} s CPU"
     progress(f"  {case.label}: done in {child.seconds:.1f} s ({result.mesh.dofs} dofs{cpu})")
