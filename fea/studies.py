@@ -43,5 +43,19 @@ def run_study(study: str, params, *, mesh_size_mm: float | None = None, order: i
     from .budget import check_budget
     check_budget(study, params, mesh_size_mm, quick, flag="--mesh-size-mm" if mesh_size_mm else "--params")
     module = importlib.import_module(spec.module)
-    return module.run(params, mesh_size_mm=mesh_size_mm, order=order, crack_depth_mm=crack_depth_mm,
-                      vtu=vtu, progress=progress or (lambda msg: None), quick=quick, **spec.load_for(params))
+    result = module.run(params, mesh_size_mm=mesh_size_mm, order=order, crack_depth_mm=crack_depth_mm,
+                        vtu=vtu, progress=progress or (lambda msg: None), quick=quick, **spec.load_for(params))
+    refuse_identical_meshes(study, result, mesh_size_mm)
+    return result
+
+
+def refuse_identical_meshes(study: str, result: StudyResult, mesh_size_mm: float | None) -> None:
+    """Three meshes that came out the same (the part's own features set gmsh's size, not h) give every
+    quantity the same value three times: a GCI of 0 % at p = inf that means nothing. Refused, never reported."""
+    series = [q.convergence.values for q in result.quantities.values() if q.convergence is not None]
+    if series and all(v[0] == v[1] == v[2] for v in series):
+        dofs = result.mesh.dofs
+        raise InputError("--mesh-size-mm", "the study default" if mesh_size_mm is None else mesh_size_mm,
+                         f"{study}: the three meshes came out identical ({dofs} dofs each, every quantity the same "
+                         "three times), so no GCI can be computed; the part's own features cap the element size "
+                         "here: give a smaller size (the finest of the three meshes)")

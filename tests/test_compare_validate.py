@@ -177,14 +177,22 @@ class _Links(HTMLParser):
                 self.links.append(attrs[key])
 
 
-def test_html_references_only_existing_relative_files(quick_run, results):
+def test_html_embeds_every_image_and_links_only_existing_relative_files(quick_run, results):
     out, _ = quick_run
     parser = _Links()
     parser.feed((out / "report.html").read_text(encoding="utf-8"))
+    # self-contained: every picture is inside the page, so report.html alone shows them all
     assert len(parser.images) == len(results["images"])
+    assert all(src.startswith("data:image/png;base64,") for src in parser.images)
     for link in parser.links:
+        if link.startswith(("data:", "#")):
+            continue
         assert "://" not in link and not link.startswith("/"), link  # relative: the folder opens anywhere
         assert (out / link).is_file(), link
+    # the table of contents points at sections that exist
+    html = (out / "report.html").read_text(encoding="utf-8")
+    anchors = [link[1:] for link in parser.links if link.startswith("#")]
+    assert len(anchors) >= 10 and all(f'id="{a}"' in html for a in anchors)
 
 
 def test_rerun_reuses_finished_cases_and_says_so(quick_run):

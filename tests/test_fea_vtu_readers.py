@@ -1,6 +1,6 @@
 """The VTU a user gets from `strainwave solve --vtu` (issue 40): at the rated load the command reports (and
 saying so), stress components named, principal stresses, region ids, zlib through VTK's writer, and read
-by meshio, pyvista and VTK's own XML reader alike. One cheap solve (coarse P1 shaft) for the module."""
+by meshio, pyvista and VTK's own XML reader alike. One cheap solve (coarse P1 shaft, h = 15 mm: the coarsest whose three meshes differ) for the module."""
 from __future__ import annotations
 
 import json
@@ -16,7 +16,7 @@ from strainwave.fea.fields import field_text, principal_stresses, rescale_vtu, v
 @pytest.fixture(scope="module")
 def solved(tmp_path_factory):
     out = tmp_path_factory.mktemp("vtu")
-    proc = subprocess.run([STRAINWAVE, "solve", "shaft-torsion", "--mesh-size-mm", "30", "--order", "1",
+    proc = subprocess.run([STRAINWAVE, "solve", "shaft-torsion", "--mesh-size-mm", "15", "--order", "1",
                            "--vtu", str(out / "shaft.vtu"), "--json", str(out / "solve.json")],
                           capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stderr[-2000:]

@@ -198,8 +198,11 @@ def render_stress(vtu: Path, png: Path, *, label: str, at: StressAtRated, marks:
                  scale_text + (f"; {section}" if section else ""),
                  f"peak {p.peak_von_mises_MPa:.4g} MPa at ({where} mm, peak displacement {p.peak_displacement_mm:.3g} mm,",
                  f"safety factor {at.safety_factor:.3g} vs fatigue limit {at.fatigue_limit_MPa:g} MPa"]
+        if p.tip_peak_von_mises_MPa is not None:   # the singular crack tip: left out of the range, said apart
+            lines[-1] += (f"; crack tip {p.tip_peak_von_mises_MPa:.4g} MPa (singular, within "
+                          f"{p.tip_radius_mm:.3g} mm of the front: white, not in the range or the factor)")
         plotter = off_screen_plotter(RenderSettings(window, shape=shape))
-        peak_index = int(np.argmax(np.asarray(mesh.point_data[names.von_mises])))
+        peak_index = p.peak_node if p.peak_node >= 0 else int(np.argmax(np.asarray(mesh.point_data[names.von_mises])))
         legend: list[str] = []
         for col, z in [(0, None)] + ([(1, zoom)] if zoom is not None else []):
             plotter.subplot(0, col)
@@ -211,7 +214,7 @@ def render_stress(vtu: Path, png: Path, *, label: str, at: StressAtRated, marks:
                     raise ValueError(f"{vtu}: nothing within {r:g} mm of the peak")
             plotter.add_mesh(region, scalars=names.von_mises, cmap="turbo", show_edges=False,
                              scalar_bar_args=_bar("von Mises (MPa)"), show_scalar_bar=col == 0,
-                             clim=(0.0, p.peak_von_mises_MPa))
+                             clim=(0.0, p.peak_von_mises_MPa), above_color="white")
             if z is None:
                 legend = _draw_marks(pv, plotter, shown, groups, marks, names.displacement, at.load.scale,
                                      exaggeration)
