@@ -284,6 +284,12 @@ def _planned_outputs(args) -> list:
     if getattr(args, "output", None) and getattr(args, "part", None) == "assembly":   # geometry/export.py
         out = Path(args.output)
         planned.append(Planned("-o", str(out.with_name(out.stem + "-ewg-drive.step")), derived=True))
+    if getattr(args, "output", None):   # export-step writes each STEP's face index beside it (geometry/face_names)
+        from .geometry.face_names import sidecar_path
+        out = Path(args.output)
+        steps = [out] + ([out.with_name(out.stem + "-ewg-drive.step")] if getattr(args, "part", None) == "assembly"
+                         else [])
+        planned += [Planned("-o", str(sidecar_path(step)), derived=True) for step in steps]
     if getattr(args, "out", None) is not None:
         planned.append(Planned("--out", args.out, directory=True))
     return planned
