@@ -47,3 +47,16 @@ def test_three_identical_meshes_are_refused_not_a_zero_gci(params, tmp_path):
                           capture_output=True, text=True, timeout=300)
     assert proc.returncode == 2 and "Traceback" not in proc.stderr
     assert proc.stderr.strip().splitlines()[-1].startswith("error: --mesh-size-mm = 30.0: shaft-torsion: the three")
+
+
+def test_a_default_size_too_coarse_for_the_part_is_refined_not_reported_as_zero(tmp_path):
+    # issue 40's README case: a 60 mm shaft with --quick; its walls cap gmsh's size, so the default's three
+    # meshes came out the same and the GCI read "0 %, p = inf"
+    short = tmp_path / "short.toml"
+    short.write_text("[output_shaft]\nlength_mm = 60\ninner_diameter_mm = 40\n")
+    said = []
+    result = sw.run_study("shaft-torsion", sw.load_params(short), quick=True, progress=said.append)
+    conv = result["flexibility_rad_per_Nmm"].convergence
+    assert len(set(conv.values)) == 3 and conv.gci_fine > 0
+    assert min(conv.h_mm) == pytest.approx(15.0 / 1.96)           # the quick default (wall = 15 mm) / 1.4^2
+    assert any("came out identical" in line for line in said)
