@@ -24,6 +24,7 @@ class Case:
     study: str
     crack_depth_mm: float | None = None
     mesh_size_mm: float | None = None        # finest global size; None = the study's default
+    fields: bool = True                      # write fields/<label>.vtu (a report picture draws it)
 
     def payload(self, params, quick: bool, order: int) -> dict:
         return {"study": self.study, "crack_depth_mm": self.crack_depth_mm, "quick": quick, "order": order,
@@ -72,7 +73,7 @@ def run_case(case: Case, params, *, fields_dir: Path, cache: ResultCache, quick:
             pass  # an entry from an older layout is recomputed
     progress(f"  {case.label}: solving {_describe(case)} ...")
     kwargs = {"mesh_size_mm": case.mesh_size_mm, "order": order, "crack_depth_mm": case.crack_depth_mm,
-              "vtu": Path(fields_dir) / f"{case.label}.vtu", "quick": quick}
+              "vtu": Path(fields_dir) / f"{case.label}.vtu" if case.fields else None, "quick": quick}
     child = run_isolated(case.study, params, kwargs, timeout_s=timeout_s or CASE_TIMEOUT_S[quick],
                          progress=lambda msg: progress(f"    {msg}"))
     if child.result is None:
