@@ -169,7 +169,8 @@ def make_images(out_dir: Path, book: FeaBook, plan: Plan, check_set: CheckSet, s
                     lambda t, c=check, lb=label: _convergence(t, c, book, lb), f"{check.id.replace('.', '_')}_convergence.png")
     for component, report in check_set.sweeps.items():
         # the bearing's check tests the cracked compliance (a closed crack), not the added one: its plot shows that
-        make = (lambda t, r=report: _bearing_sweep(t, r, book, plan.sweeps.get("bearing", ()))) \
+        make = (lambda t, r=report: _bearing_sweep(t, r, book, (plan.headline["bearing"],)
+                                                   + tuple(plan.sweeps.get("bearing", ())))) \
             if component == "bearing" else (lambda t, r=report, c=component: _sweep(t, r, c))
         col.attempt(f"{component} crack sweep", component, "crack-sweep", make, f"{component}_crack_sweep.png")
     return Artifacts(col.images, col.missing, stresses, views)
@@ -232,7 +233,7 @@ def _bearing_sweep(target: Path, report, book: FeaBook, cases) -> str:
         q0, _ = book.quantity(case.label, "radial_compliance_mm_per_N")
         qd, _ = book.quantity(case.label, "delta_radial_compliance_mm_per_N")
         match = [i for i, d in enumerate(sw.depths_mm) if np.isclose(d, case.crack_depth_mm or -1.0)]
-        if q0 is None or qd is None or not match:
+        if q0 is None or qd is None or not match or case.crack_depth_mm in depths:
             continue
         depths.append(case.crack_depth_mm)
         c0.append(q0.value)

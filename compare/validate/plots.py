@@ -146,7 +146,8 @@ def crack_sweep_figure(*, title: str, unit: str, depths_mm, fea, fea_uncertainty
     styles = {"published": ("--s", "tab:orange"), "corrected": ("-^", "tab:green"), **(styles or {})}
     for name, (xa, ya) in curves.items():
         style, color = styles.get(name, ("-.d", "gray"))
-        ax.plot(xa, ya, style, color=color, label=f"{name}{curve_suffix}", mfc="none")
+        # open markers larger than the FEA's: a curve on top of the FEA point still shows around it
+        ax.plot(xa, ya, style, color=color, label=f"{name}{curve_suffix}", mfc="none", ms=11, mew=1.5)
     ax.set_xscale("log")
     if log_y:
         ax.set_yscale("log")
@@ -154,7 +155,7 @@ def crack_sweep_figure(*, title: str, unit: str, depths_mm, fea, fea_uncertainty
     ax.set_ylabel(unit)
     ax.set_title(title)
     ax.grid(True, which="both", alpha=0.3)
-    legend_of_shown(ax, fontsize=8)
+    legend_of_shown(ax, fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14))   # below: hides no point
     return fig
 
 
