@@ -13,7 +13,7 @@ def _run(strainwave_cmd, *args, timeout=60):
 
 def test_help_everywhere(strainwave_cmd):
     for sub in ([], ["analytic"], ["export-step"], ["solve"], ["validate"], ["diagnose"], ["sweep"],
-                ["benchmark-diagnose"]):
+                ["benchmark-diagnose"], ["compare"]):
         out = _run(strainwave_cmd, *sub, "--help")
         assert out.returncode == 0 and "usage: strainwave" in out.stdout
 
@@ -161,7 +161,7 @@ def test_json_to_stdout_or_file(capsys, tmp_path):
 def test_export_step_json_lists_written_files(capsys, tmp_path):
     out = tmp_path / "s.step"
     assert main(["export-step", "--part", "wg-bearing-ring", "-o", str(out), "--json"]) == 0
-    assert json.loads(capsys.readouterr().out) == {"written": [str(out)]}
+    assert json.loads(capsys.readouterr().out) == {"written": [str(out), str(tmp_path / "s.faces.json")]}
 
 
 @pytest.mark.parametrize("argv, shown", [
