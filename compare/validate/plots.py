@@ -144,8 +144,9 @@ def crack_sweep_figure(*, title: str, unit: str, depths_mm, fea, fea_uncertainty
         ax.text(0.02, 0.02, f"FEA <= 0 (unresolved) at a = {', '.join(f'{d:g}' for d in a[~shown])} mm: not on a "
                 "log axis", transform=ax.transAxes, fontsize=8, color="tab:blue")
     styles = {"published": ("--s", "tab:orange"), "corrected": ("-^", "tab:green"), **(styles or {})}
+    others = iter((("-.d", "gray"), (":v", "tab:purple"), ("--p", "tab:brown"), ("-.h", "tab:olive")) * 4)
     for name, (xa, ya) in curves.items():
-        style, color = styles.get(name, ("-.d", "gray"))
+        style, color = styles[name] if name in styles else next(others)   # every curve its own marker
         # open markers larger than the FEA's: a curve on top of the FEA point still shows around it
         ax.plot(xa, ya, style, color=color, label=f"{name}{curve_suffix}", mfc="none", ms=11, mew=1.5)
     ax.set_xscale("log")
