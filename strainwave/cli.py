@@ -162,7 +162,7 @@ def _cmd_solve(args) -> int:
 
     from .fea.budget import check_budget
     from .fea.studies import run_study, with_crack
-    from .rated_stress import rated_load_of, stress_at_rated, stress_field_of, write_at_rated
+    from .rated_stress import stress_at_rated, stress_field_of, write_at_rated
     params = _params(args)
     # Refusable before any CAD or meshing: a crack through the wall, a mesh beyond the element budget.
     with_crack(args.study, params, args.crack_depth_mm)
@@ -176,8 +176,8 @@ def _cmd_solve(args) -> int:
                            crack_depth_mm=args.crack_depth_mm, vtu=vtu, progress=_progress)
         found = stress_field_of(args.study, result.fields, args.crack_depth_mm)
         rated = None if found is None else stress_at_rated(args.study, params, result, found[0], cracked=found[1])
-        if args.vtu:   # the file a user opens is at the load this command reports, and says so
-            write_at_rated(result.fields, rated_load_of(args.study, params, result))
+        if args.vtu and rated is not None:   # the file a user opens is at the load this command reports
+            write_at_rated(result.fields, rated.load)
     if not args.vtu:
         result = dataclasses.replace(result, fields=())
     text = result.summary() + ("" if rated is None else "\n" + "\n".join(rated.lines()))

@@ -82,8 +82,14 @@ def run_case(case: Case, params, *, fields_dir: Path, cache: ResultCache, quick:
         progress(f"  {case.label}: FAILED after {child.seconds:.1f} s ({child.error})")
         return CaseOutcome(case, None, child.seconds, False, child.error)
     result = StudyResult.from_dict(child.result)
-    # the fields a reader opens are at the load the report states (issue 40), and say so in their FieldData
-    write_at_rated(result.fields, rated_load_of(case.study, params, result))
+    # the fields a reader opens are at the load the report states (issue 40), and say so in their FieldData; a
+    # study with no rated load of its own (wg-bearing: solved at its rated loads) keeps them as solved
+    try:
+        rated = rated_load_of(case.study, params, result)
+    except ValueError:
+        rated = None
+    if rated is not None:
+        write_at_rated(result.fields, rated)
     cache.put(key, {"case": case.label, "seconds": child.seconds, "cpu_s": child.cpu_s, "result": child.result})
     cpu = "" if child.cpu_s is None else f", {child.cpu_s:.1f} s CPU"
     progress(f"  {case.label}: done in {child.seconds:.1f} s ({result.mesh.dofs} dofs{cpu})")
