@@ -2,9 +2,15 @@
 
 Stresses are evaluated from the displacement gradient at every element's own nodes and averaged over the
 elements sharing a node (plain nodal averaging; good enough for pictures and hot-spot reading, not for
-error estimation). VTU is written directly as XML with zlib-compressed base64 binary arrays: no extra
-dependency, and ParaView and pyvista read it (quadratic cells keep their mid nodes, so P2 fields render
-curved).
+error estimation). VTU is written by VTK's own XML writer, zlib-compressed, fields as Float32 with named
+components (``stress_MPa``: xx, yy, zz, xy, yz, xz; ``displacement_mm``: x, y, z), beside von Mises and the
+three principal stresses; ParaView, pyvista and meshio read it (quadratic cells keep their mid nodes, so P2
+fields render curved). Text FieldData is a 0-separated char array (``field_text``), since meshio cannot read
+VTK's String arrays.
+
+The load the fields are at is said in every file: ``fields_at`` (text) and ``load_scale_applied`` (the factor
+from the solved load, 1 as solved). ``rescale_vtu`` turns a study's fields into those of another load (the
+validation and ``solve`` write them at the rated load, the one their reports state).
 
 Next to ``NAME.vtu`` (the cells, with the cell data ``physical_group``) goes ``NAME.boundary.vtu``: the
 facets of every named group (``fixed``, ``loaded``, ``crack_face``, ``crack``, ...) with the same
@@ -14,8 +20,6 @@ its material (``field_info``).
 """
 from __future__ import annotations
 
-import base64
-import zlib
 from pathlib import Path
 from typing import Mapping
 
@@ -102,65 +106,92 @@ VOLUME_GROUP = {3: "solid", 2: "section"}        # the physical group of the cel
 
 def field_info(study: str, load: str, material) -> dict[str, str | float]:
     """FieldData every VTU of a study carries: what was solved, under which load, with which material."""
-    return {"study": study, "load": load,
+    return {"study": study, "load": load, "fields_at": f"the solved load: {load}", "load_scale_applied": 1.0,
             "material": f"E = {material.youngs_modulus_MPa:g} MPa, nu = {material.poisson_ratio:g}",
             "youngs_modulus_MPa": float(material.youngs_modulus_MPa), "poisson_ratio": float(material.poisson_ratio)}
 
 
-def _array(name: str, a: np.ndarray) -> str:
-    """One binary DataArray, zlib-compressed in a single block (VTK's header: 1 block, its raw size,
-    the last block's raw size, its compressed size; UInt64), header and data base64-encoded apart."""
-    a = np.ascontiguousarray(a)
-    vtk_type = {"f": "Float64", "i": "Int64", "u": "UInt8"}[a.dtype.kind]
-    ncomp = 1 if a.ndim == 1 else a.shape[1]
-    raw = a.tobytes()
-    packed = zlib.compress(raw, 6)
-    header = np.array([1, len(raw), len(raw), len(packed)], dtype=np.uint64).tobytes()
-    payload = base64.b64encode(header).decode("ascii") + base64.b64encode(packed).decode("ascii")
-    return (f'<DataArray type="{vtk_type}" Name="{name}" NumberOfComponents="{ncomp}" format="binary">'
-            f"{payload}</DataArray>\n")
+# names of each component, so ParaView, meshio and pyvista users read "xx" rather than "0"
+COMPONENT_NAMES = {"displacement_mm": ("x", "y", "z"), "stress_MPa": ("xx", "yy", "zz", "xy", "yz", "xz")}
 
 
-def _field_data(info: Mapping[str, str | float], names: list[str]) -> str:
-    """FieldData: strings as VTK String arrays (ASCII codes, each string 0-terminated), numbers as Float64."""
-    def strings(name, values):
-        codes = " ".join(" ".join(str(b) for b in v.encode("utf-8")) + " 0" for v in values)
-        return (f'<DataArray type="String" Name="{name}" NumberOfTuples="{len(values)}" format="ascii">'
-                f"{codes}</DataArray>\n")
-    parts = ["<FieldData>\n", strings("physical_group_names", names)]
-    for key, value in info.items():
-        if isinstance(value, str):
-            parts.append(strings(key, [value]))
-        else:
-            parts.append(f'<DataArray type="Float64" Name="{key}" NumberOfTuples="1" format="ascii">'
-                         f"{float(value)!r}</DataArray>\n")
-    parts.append("</FieldData>\n")
-    return "".join(parts)
+def _text_array(name: str, values: list[str]):
+    """Strings as a VTK char array, each 0-terminated: meshio cannot read VTK's String arrays (issue 40)."""
+    from vtkmodules.vtkCommonCore import vtkCharArray
+
+    arr = vtkCharArray()
+    arr.SetName(name)
+    for byte in b"".join(v.encode("utf-8") + b"\0" for v in values):
+        arr.InsertNextValue(chr(byte))
+    return arr
 
 
-def _piece(points: np.ndarray, cells: list[np.ndarray], types: np.ndarray, point_data, cell_data) -> str:
-    ncell = len(types)
+def field_text(mesh, name: str) -> list[str]:
+    """The strings of FieldData ``name`` of a VTU these writers made (0-separated chars; VTK String arrays of
+    older files are read as they are)."""
+    raw = mesh.field_data[name]
+    values = np.asarray(raw)
+    if values.dtype.kind in "iu":
+        return [part.decode("utf-8") for part in bytes(values.astype(np.uint8)).split(b"\0")[:-1]]
+    return [str(v) for v in values]
+
+
+def _data_array(name: str, values: np.ndarray, dtype):
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+
+    a = np.ascontiguousarray(np.asarray(values, dtype=dtype))
+    arr = numpy_to_vtk(a.reshape(a.shape[0], -1) if a.ndim > 1 else a, deep=True)
+    arr.SetName(name)
+    for k, component in enumerate(COMPONENT_NAMES.get(name, ())[:arr.GetNumberOfComponents()]):
+        arr.SetComponentName(k, component)
+    return arr
+
+
+def _grid(points: np.ndarray, cells: list[np.ndarray], types: np.ndarray, point_data, cell_data,
+          info: Mapping[str, str | float], names: list[str]):
+    """A vtkUnstructuredGrid: fields as Float32 (7 digits: pictures and peaks), points as Float64 (P2 mid-nodes)."""
+    from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
+    from vtkmodules.vtkCommonCore import vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkUnstructuredGrid
+
+    grid = vtkUnstructuredGrid()
+    pts = vtkPoints()
+    pts.SetData(numpy_to_vtk(np.ascontiguousarray(points, np.float64), deep=True))
+    grid.SetPoints(pts)
     connectivity = np.concatenate([c.ravel() for c in cells]).astype(np.int64) if cells else np.zeros(0, np.int64)
-    offsets = np.cumsum(np.concatenate([np.full(c.shape[0], c.shape[1], np.int64) for c in cells])) \
-        if cells else np.zeros(0, np.int64)
-    parts = [f'<Piece NumberOfPoints="{points.shape[0]}" NumberOfCells="{ncell}">\n<PointData>\n']
-    parts += [_array(n, np.asarray(v, np.float64)) for n, v in point_data.items()]
-    parts.append("</PointData>\n<CellData>\n")
-    parts += [_array(n, np.asarray(v)) for n, v in cell_data.items()]
-    parts.append("</CellData>\n<Points>\n")
-    parts.append(_array("Points", np.asarray(points, np.float64)))
-    parts.append("</Points>\n<Cells>\n")
-    parts.append(_array("connectivity", connectivity))
-    parts.append(_array("offsets", offsets.astype(np.int64)))
-    parts.append(_array("types", np.asarray(types, np.uint8)))
-    parts.append("</Cells>\n</Piece>\n")
-    return "".join(parts)
+    offsets = np.concatenate([[0], np.cumsum(np.concatenate([np.full(c.shape[0], c.shape[1], np.int64)
+                                                              for c in cells]))]) if cells else np.zeros(1, np.int64)
+    cell_array = vtkCellArray()
+    cell_array.SetData(numpy_to_vtkIdTypeArray(offsets.astype(np.int64), deep=True),
+                       numpy_to_vtkIdTypeArray(connectivity, deep=True))
+    grid.SetCells(numpy_to_vtk(np.ascontiguousarray(types, np.uint8), deep=True), cell_array)
+    for name, values in point_data.items():
+        grid.GetPointData().AddArray(_data_array(name, values, np.float32))
+    for name, values in cell_data.items():
+        kind = np.asarray(values).dtype.kind
+        grid.GetCellData().AddArray(_data_array(name, values, np.int32 if kind in "iu" else np.float32))
+    fd = grid.GetFieldData()
+    fd.AddArray(_text_array("physical_group_names", names))
+    for key, value in info.items():
+        fd.AddArray(_text_array(key, [value]) if isinstance(value, str)
+                    else _data_array(key, np.array([float(value)]), np.float64))
+    return grid
 
 
-def _vtu_text(field_data: str, piece: str) -> str:
-    return ('<?xml version="1.0"?>\n<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" '
-            'header_type="UInt64" compressor="vtkZLibDataCompressor">\n<UnstructuredGrid>\n'
-            + field_data + piece + "</UnstructuredGrid>\n</VTKFile>\n")
+def _write_grid(path: Path, grid) -> None:
+    """VTK's own XML writer: appended raw binary, zlib level 9 (meshio reads zlib and LZMA, not LZ4)."""
+    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
+
+    writer = vtkXMLUnstructuredGridWriter()
+    writer.SetFileName(str(path))
+    writer.SetInputData(grid)
+    writer.SetDataModeToAppended()
+    writer.EncodeAppendedDataOff()
+    writer.SetHeaderTypeToUInt64()
+    writer.SetCompressorTypeToZLib()
+    writer.SetCompressionLevel(9)
+    if writer.Write() != 1:
+        raise OSError(f"VTK could not write {path}")
 
 
 def boundary_path(path: Path) -> Path:
@@ -169,22 +200,23 @@ def boundary_path(path: Path) -> Path:
     return path.with_name(f"{path.stem}.boundary.vtu")
 
 
+BOUNDARY_FIELDS = ("displacement_mm", "von_mises_MPa")   # point data the boundary file repeats
+
+
 def write_vtu(path: Path, md: MeshData, point_data: Mapping[str, np.ndarray],
               cell_data: Mapping[str, np.ndarray] | None = None, *,
               info: Mapping[str, str | float] | None = None) -> Path:
     """Write the mesh and fields as a VTU file, and its named boundary facets as NAME.boundary.vtu
-    (both atomically). Arrays are (N,) or (N, k) per node / cell; ``info`` becomes FieldData
-    (``field_info``). Returns the path of the cells' file.
+    (both atomically, through VTK's XML writer, zlib-compressed). Arrays are (N,) or (N, k) per node / cell;
+    ``info`` becomes FieldData (``field_info``). Returns the path of the cells' file.
 
     Typical point data: ``displacement_mm`` (N, 3), ``von_mises_MPa`` (N,), ``stress_MPa`` (N, 6)."""
     vtk_type, perm = _VTK[(md.dim, md.order)]
     cells = md.cells if perm is None else md.cells[:, perm]
     names = [VOLUME_GROUP[md.dim], *sorted(md.groups)]
-    fields = _field_data(info or {}, names)
-    volume_cells = {"physical_group": np.ones(cells.shape[0], np.int64),
-                    **{n: np.asarray(v, np.float64) for n, v in (cell_data or {}).items()}}
-    volume = _vtu_text(fields, _piece(md.nodes_mm, [cells], np.full(cells.shape[0], vtk_type), point_data,
-                                      volume_cells))
+    info = {**(info or {}), "load_scale_applied": float((info or {}).get("load_scale_applied", 1.0))}
+    volume_cells = {"physical_group": np.ones(cells.shape[0], np.int64), **dict(cell_data or {})}
+    volume = _grid(md.nodes_mm, [cells], np.full(cells.shape[0], vtk_type), point_data, volume_cells, info, names)
     facets, types, ids = [], [], []
     for gid, name in enumerate(names[1:], start=2):
         rows = np.asarray(md.groups[name])
@@ -193,22 +225,84 @@ def write_vtu(path: Path, md: MeshData, point_data: Mapping[str, np.ndarray],
         facets.append(rows)
         types.append(np.full(rows.shape[0], facet_type))
         ids.append(np.full(rows.shape[0], gid, np.int64))
-    # the boundary file shares the volume's points, so point data (displacement, stress) shows on the faces
-    boundary = _vtu_text(fields, _piece(md.nodes_mm, facets, np.concatenate(types) if types else np.zeros(0),
-                                        point_data, {"physical_group": np.concatenate(ids) if ids
-                                                     else np.zeros(0, np.int64)}))
+    # the boundary file shares the volume's points (node ids match), so the faces show displacement and von
+    # Mises; the full tensor stays in the volume's file alone (half of the bytes otherwise written twice)
+    shown = {k: v for k, v in point_data.items() if k in BOUNDARY_FIELDS} or dict(point_data)
+    boundary = _grid(md.nodes_mm, facets, np.concatenate(types) if types else np.zeros(0), shown,
+                     {"physical_group": np.concatenate(ids) if ids else np.zeros(0, np.int64)}, info, names)
     path = Path(path)
     with atomic_path(boundary_path(path)) as tmp:
-        tmp.write_text(boundary, encoding="ascii")
+        _write_grid(tmp, boundary)
     with atomic_path(path) as tmp:
-        tmp.write_text(volume, encoding="ascii")
+        _write_grid(tmp, volume)
     return path
+
+
+def principal_stresses(stress: np.ndarray) -> np.ndarray:
+    """(..., 3) principal stresses, largest first, of (..., 6) stresses (xx, yy, zz, xy, yz, xz)."""
+    sxx, syy, szz, sxy, syz, sxz = np.moveaxis(stress, -1, 0)
+    tensor = np.stack([np.stack([sxx, sxy, sxz], -1), np.stack([sxy, syy, syz], -1),
+                       np.stack([sxz, syz, szz], -1)], -2)
+    return np.linalg.eigvalsh(tensor)[..., ::-1]
+
+
+def stress_fields(stress: np.ndarray) -> dict[str, np.ndarray]:
+    """Named nodal stress arrays: the tensor (components xx ... xz), von Mises and the three principal stresses."""
+    principal = principal_stresses(stress)
+    return {"stress_MPa": stress, "von_mises_MPa": von_mises(stress),
+            **{f"principal_stress_{k + 1}_MPa": principal[:, k] for k in range(3)}}
 
 
 def write_solid_fields(path: Path, md: MeshData, sk: SkfemMesh, u: np.ndarray, lame: Lame,
                        info: Mapping[str, str | float] | None = None) -> Path:
-    """The fields every elasticity study writes (the registry's ``vtu_fields``): displacement, von Mises
-    and the stress tensor at the mesh nodes, as VTU (``info``: FieldData, see ``field_info``)."""
+    """The fields every elasticity study writes (the registry's ``vtu_fields``): displacement, the stress
+    tensor, von Mises and the principal stresses at the mesh nodes, as VTU (``info``: FieldData, see
+    ``field_info``)."""
     s = nodal_stress(md, sk, u, lame)
-    return write_vtu(path, md, {"displacement_mm": nodal_displacement(md, sk, u), "von_mises_MPa": von_mises(s),
-                                "stress_MPa": s}, info=info)
+    return write_vtu(path, md, {"displacement_mm": nodal_displacement(md, sk, u), **stress_fields(s)}, info=info)
+
+
+# arrays linear in the load: displacements, rotations and stresses (never ids such as physical_group)
+LINEAR_WORDS = ("disp", "rotation", "mises", "stress")
+
+
+def _read_grid(path: Path):
+    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+
+    reader = vtkXMLUnstructuredGridReader()
+    reader.SetFileName(str(path))
+    reader.Update()
+    return reader.GetOutput()
+
+
+def rescale_vtu(path: Path, scale: float, fields_at: str, extra: Mapping[str, float] | None = None) -> Path:
+    """Rewrite ``path`` and its boundary file so that every load-linear array is ``scale`` x the SOLVED load's
+    (whatever scale the file carried before: idempotent), saying so in ``fields_at`` and ``load_scale_applied``;
+    ``extra`` adds numeric FieldData (e.g. the rated load)."""
+    from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+
+    if not (np.isfinite(scale) and scale > 0):
+        raise ValueError(f"load scale must be finite and > 0, got {scale}")
+    for target in (boundary_path(path), Path(path)):
+        if not target.exists():
+            continue
+        grid = _read_grid(target)
+        fd = grid.GetFieldData()
+        before = fd.GetArray("load_scale_applied")
+        factor = scale / (float(before.GetValue(0)) if before is not None else 1.0)
+        for data in (grid.GetPointData(), grid.GetCellData()):
+            for k in range(data.GetNumberOfArrays()):
+                arr = data.GetArray(k)
+                if any(word in arr.GetName().lower() for word in LINEAR_WORDS):
+                    scaled = numpy_to_vtk(vtk_to_numpy(arr) * np.float32(factor), deep=True)
+                    scaled.SetName(arr.GetName())
+                    for c in range(arr.GetNumberOfComponents()):
+                        if arr.GetComponentName(c):
+                            scaled.SetComponentName(c, arr.GetComponentName(c))
+                    data.AddArray(scaled)   # replaces the array of the same name
+        for name, value in {"load_scale_applied": scale, **(extra or {})}.items():
+            fd.AddArray(_data_array(name, np.array([float(value)]), np.float64))
+        fd.AddArray(_text_array("fields_at", [fields_at]))
+        with atomic_path(target) as tmp:
+            _write_grid(tmp, grid)
+    return Path(path)

@@ -43,5 +43,35 @@ def run_study(study: str, params, *, mesh_size_mm: float | None = None, order: i
     from .budget import check_budget
     check_budget(study, params, mesh_size_mm, quick, flag="--mesh-size-mm" if mesh_size_mm else "--params")
     module = importlib.import_module(spec.module)
-    return module.run(params, mesh_size_mm=mesh_size_mm, order=order, crack_depth_mm=crack_depth_mm,
-                      vtu=vtu, progress=progress or (lambda msg: None), quick=quick, **spec.load_for(params))
+    say = progress or (lambda msg: None)
+    size = mesh_size_mm
+    for _ in range(DEFAULT_RETRIES + 1):
+        result = module.run(params, mesh_size_mm=size, order=order, crack_depth_mm=crack_depth_mm,
+                            vtu=vtu, progress=say, quick=quick, **spec.load_for(params))
+        finest = identical_meshes(result)
+        if finest is None:
+            return result
+        if mesh_size_mm is not None:   # the user's own size: refused, never a 0 % GCI
+            raise InputError("--mesh-size-mm", mesh_size_mm,
+                             f"{study}: the three meshes came out identical ({result.mesh.dofs} dofs each, every "
+                             "quantity the same three times), so no GCI can be computed; the part's own features "
+                             "cap the element size here: give a smaller size (the finest of the three meshes)")
+        size = finest / COARSEST_OVER_FINEST   # the default was too coarse for this part: the coarsest mesh at it
+        say(f"{study}: the three meshes at the default size came out identical (the part's features cap it); "
+            f"solving again with the finest at {size:.3g} mm")
+    raise InputError("--mesh-size-mm", "the study default",
+                     f"{study}: the three meshes stay identical down to {size:.3g} mm; give a size")
+
+
+# A default size whose three meshes come out identical is refined this often (by the whole ladder each time).
+DEFAULT_RETRIES = 2
+COARSEST_OVER_FINEST = 1.96      # 1.4^2: the refinement ladder of every study
+
+
+def identical_meshes(result: StudyResult) -> float | None:
+    """The finest size when every quantity has the same value on all three meshes (they came out the same:
+    the part's own features set gmsh's size, not h), else None. Such a GCI, 0 % at p = inf, means nothing."""
+    series = [q.convergence for q in result.quantities.values() if q.convergence is not None]
+    if series and all(c.values[0] == c.values[1] == c.values[2] for c in series):
+        return min(min(c.h_mm) for c in series)
+    return None

@@ -14,6 +14,7 @@ from strainwave.io_atomic import atomic_path
 
 from .parts import build_part, part_name
 from .part import Part, PartName
+from .face_names import write_face_index
 from .step_xcaf import Placed, write_named_step
 
 ASSEMBLY = "assembly"
@@ -80,7 +81,8 @@ def ewg_drive_assembly(params, *, teeth: bool = True) -> list[Placed]:
 
 def export_part(name: str, params, out_path: Path, *, crack_depth_mm: float | None = None, teeth: bool = True,
                 png: Path | None = None) -> list[Path]:
-    """Build ``name`` (a part name or ``assembly``), write STEP (and a PNG preview); return the written paths.
+    """Build ``name`` (a part name or ``assembly``), write STEP with its face index ``NAME.faces.json`` (the
+    face names gmsh cannot read from STEP, see ``face_names``) and a PNG preview; return the written paths.
 
     ``assembly`` writes the cup-type gear to ``out_path`` and the EWG drive to ``<stem>-ewg-drive.step``;
     its preview draws both, every part in its colour."""
@@ -89,15 +91,17 @@ def export_part(name: str, params, out_path: Path, *, crack_depth_mm: float | No
     if name == ASSEMBLY:
         drives = {CUP_GEAR: cup_gear_assembly(params, crack_depth_mm=crack_depth_mm, teeth=teeth),
                   EWG_DRIVE: ewg_drive_assembly(params, teeth=teeth)}
-        written.append(write_assembly_step(CUP_GEAR, drives[CUP_GEAR], out_path))
-        written.append(write_assembly_step(EWG_DRIVE, drives[EWG_DRIVE],
-                                           out_path.with_name(out_path.stem + "-ewg-drive.step")))
+        for step in (write_assembly_step(CUP_GEAR, drives[CUP_GEAR], out_path),
+                     write_assembly_step(EWG_DRIVE, drives[EWG_DRIVE],
+                                         out_path.with_name(out_path.stem + "-ewg-drive.step"))):
+            written += [step, write_face_index(step)]   # gmsh reads no STEP face names: the sidecar gives them
         if png is not None:
             from .preview import render_assembly_preview
             written.append(render_assembly_preview(drives, Path(png)))
         return written
     part = build_part(part_name(name), params, crack_depth_mm=crack_depth_mm, teeth=teeth)
-    written.append(write_step(part, out_path))
+    step = write_step(part, out_path)
+    written += [step, write_face_index(step)]
     if png is not None:
         from .preview import render_preview
         written.append(render_preview(part, Path(png)))

@@ -1,6 +1,7 @@
 """The one command-line interface: parse flags, call one library function, print, map errors to exit codes.
 
-Exit codes: 0 fine; 1 a check, mesher or solver failed; 2 bad input. Library imports are
+Exit codes: 0 fine; 1 a check, mesher or solver failed; 2 bad input; 3 the design fails [n] (validate
+--require-design only). Library imports are
 lazy so ``strainwave --help`` stays instant and no stage does work at import time.
 
 Conventions shared by every subcommand: ``-q`` / ``-v`` / ``--debug`` go before or after the
@@ -161,7 +162,7 @@ def _cmd_solve(args) -> int:
 
     from .fea.budget import check_budget
     from .fea.studies import run_study, with_crack
-    from .rated_stress import stress_at_rated, stress_field_of
+    from .rated_stress import stress_at_rated, stress_field_of, write_at_rated
     params = _params(args)
     # Refusable before any CAD or meshing: a crack through the wall, a mesh beyond the element budget.
     with_crack(args.study, params, args.crack_depth_mm)
@@ -175,6 +176,8 @@ def _cmd_solve(args) -> int:
                            crack_depth_mm=args.crack_depth_mm, vtu=vtu, progress=_progress)
         found = stress_field_of(args.study, result.fields, args.crack_depth_mm)
         rated = None if found is None else stress_at_rated(args.study, params, result, found[0], cracked=found[1])
+        if args.vtu and rated is not None:   # the file a user opens is at the load this command reports
+            write_at_rated(result.fields, rated.load)
     if not args.vtu:
         result = dataclasses.replace(result, fields=())
     text = result.summary() + ("" if rated is None else "\n" + "\n".join(rated.lines()))
@@ -191,10 +194,24 @@ def _cmd_validate(args) -> int:
     check_cad_teeth(params, list(TOOTHED_PARTS))   # validate exports every part as designed, teeth on
     outcome = run_validate(params, Path(args.out), quick=args.quick, progress=_progress)
     _emit(args, outcome.summary(), lambda: {
-        "passed": outcome.passed, "out_dir": str(outcome.out_dir), "timings_s": outcome.timings_s,
+        "passed": outcome.passed, "design": None if outcome.design is None else outcome.design.to_dict(),
+        "out_dir": str(outcome.out_dir), "timings_s": outcome.timings_s,
         "checks": [c.to_dict() for c in outcome.checks],
         "results": str(Path(outcome.out_dir) / "results.json")})
-    return 0 if outcome.passed else 1
+    if not outcome.passed:
+        return 1
+    # the exit status is the validation's; a CI pipeline of a user's own drive also asks for the design's
+    return 3 if args.require_design and not outcome.design_passed else 0
+
+
+def _cmd_compare(args) -> int:
+    from .compare.validate.run_diff import diff_runs, load_run
+    if not (args.rtol >= 0 and args.rtol == args.rtol):
+        raise InputError("--rtol", args.rtol, "a relative tolerance >= 0")
+    diff = diff_runs(load_run(Path(args.run_a), "RUN_A"), load_run(Path(args.run_b), "RUN_B"),
+                     names=(args.run_a, args.run_b), rtol=args.rtol)
+    _emit(args, diff.summary(), diff.to_dict)
+    return 0
 
 
 def _cmd_diagnose(args) -> int:
@@ -267,6 +284,12 @@ def _planned_outputs(args) -> list:
     if getattr(args, "output", None) and getattr(args, "part", None) == "assembly":   # geometry/export.py
         out = Path(args.output)
         planned.append(Planned("-o", str(out.with_name(out.stem + "-ewg-drive.step")), derived=True))
+    if getattr(args, "output", None):   # export-step writes each STEP's face index beside it (geometry/face_names)
+        from .geometry.face_names import sidecar_path
+        out = Path(args.output)
+        steps = [out] + ([out.with_name(out.stem + "-ewg-drive.step")] if getattr(args, "part", None) == "assembly"
+                         else [])
+        planned += [Planned("-o", str(sidecar_path(step)), derived=True) for step in steps]
     if getattr(args, "out", None) is not None:
         planned.append(Planned("--out", args.out, directory=True))
     return planned
@@ -366,7 +389,8 @@ _CRACK_HELP = ("crack depth a in mm, from the surface the crack starts at. --par
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="strainwave", parents=[_common(True)], formatter_class=_Help, allow_abbrev=False,
                      description="Strain wave gear CAD, FEA and seed-paper validation.\n"
-                                 "Exit status: 0 fine, 1 a check, mesher or solver failed, 2 bad input.")
+                                 "Exit status: 0 fine, 1 a check, mesher or solver failed, 2 bad input, 3 the "
+                                 "design fails [n] (validate --require-design only).")
     parser.add_argument("--version", action="version", version=f"strainwave {_version()}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser, metavar="COMMAND")
     common = _common(False)
@@ -417,6 +441,16 @@ def build_parser() -> argparse.ArgumentParser:
     p = add("validate", _cmd_validate, "all studies vs the closed forms: report, images, STEP, VTU")
     p.add_argument("--out", default="reports/validate", metavar="DIR", help="output directory")
     p.add_argument("--quick", action="store_true", help="coarse meshes, one crack depth per component")
+    p.add_argument("--require-design", action="store_true",
+                   help="exit 3 when the validation passes but the design does not meet [n] at the rated load "
+                        "(ewg_drive.permissible_safety); without it the exit status is the validation's alone")
+
+    p = add("compare", _cmd_compare, "the checks whose value, verdict or tolerance changed between two validation "
+            "runs, side by side", material=False)
+    p.add_argument("run_a", metavar="RUN_A", help="validation output folder (or its results.json)")
+    p.add_argument("run_b", metavar="RUN_B", help="validation output folder (or its results.json)")
+    p.add_argument("--rtol", type=float, default=1e-9, metavar="REL",
+                   help="relative difference below which two values count as the same")
 
     p = add("diagnose", _cmd_diagnose, "locate, name and model the mismatch between a recording and the model")
     p.add_argument("recording", metavar="RECORDING.csv", help="self-describing recording (docs/recordings.md)")

@@ -15,7 +15,7 @@ import numpy as np
 from .analytic.rated_load import RatedLoad, fatigue_safety_factor, rated_load
 from .registry import study as registered
 
-__all__ = ["FieldNames", "field_names", "displacement3", "scaled_to_rated", "FieldPeaks", "field_peaks",
+__all__ = ["FieldNames", "field_names", "displacement3", "applied_scale", "scaled_to_rated", "write_at_rated", "FieldPeaks", "field_peaks",
            "StressAtRated", "stress_field_of", "rated_load_of", "stress_at_rated", "groups_at_node"]
 
 
@@ -41,20 +41,40 @@ def displacement3(mesh, name: str) -> np.ndarray:
     return u
 
 
-# arrays that are linear in the load: displacements and stresses (never ids such as physical_group)
-_LINEAR = ("disp", "mises", "stress")
+def applied_scale(mesh) -> float:
+    """The factor a field file's load-linear arrays already carry over the solved load (1: as solved)."""
+    if "load_scale_applied" in mesh.field_data.keys():
+        return float(np.asarray(mesh.field_data["load_scale_applied"]).ravel()[0])
+    return 1.0
 
 
 def scaled_to_rated(mesh, scale: float):
-    """A copy of ``mesh`` with every displacement and stress array multiplied by ``scale`` (linear problem)."""
+    """A copy of ``mesh`` whose every displacement and stress array is ``scale`` x the solved load's (linear
+    problem), whatever scale the file was written at (``load_scale_applied``, fea/fields.py)."""
+    from .fea.fields import LINEAR_WORDS
+
     if not (np.isfinite(scale) and scale > 0):
         raise ValueError(f"load scale must be finite and > 0, got {scale}")
     out = mesh.copy()
+    factor = scale / applied_scale(mesh)
     for data in (out.point_data, out.cell_data):
         for key in list(data.keys()):
-            if any(word in key.lower() for word in _LINEAR):
-                data[key] = np.asarray(data[key], dtype=float) * scale
+            if any(word in key.lower() for word in LINEAR_WORDS):
+                data[key] = np.asarray(data[key], dtype=float) * factor
+    out.field_data["load_scale_applied"] = np.array([scale])
     return out
+
+
+def write_at_rated(fields, load: RatedLoad) -> None:
+    """Rewrite a study's VTU files (``fields``: its written paths) at the rated ``load``, which their FieldData
+    then states (``fields_at``, ``load_scale_applied``, ``rated_load``, ``solved_load``)."""
+    from .fea.fields import rescale_vtu
+
+    for path in fields:
+        if str(path).endswith(".vtu") and not str(path).endswith(".boundary.vtu") and Path(path).exists():
+            rescale_vtu(Path(path), load.scale, f"the rated load: {load.describe()}; fields x {load.scale:.6g} "
+                        f"of the solved {load.solved:g} {load.unit}",
+                        {"rated_load": load.rated, "solved_load": load.solved})
 
 
 @dataclass(frozen=True)
@@ -64,33 +84,89 @@ class FieldPeaks:
     peak_displacement_mm: float
     peak_node: int = -1                  # the node of the peak in the field file
     peak_on: tuple[str, ...] = ()        # the named faces (or points) that node lies on, e.g. ("fixed",)
+    # the crack's singular zone, left out of the peak: its radius, and the peak inside it (shown apart)
+    tip_radius_mm: float | None = None
+    tip_peak_von_mises_MPa: float | None = None
+    tip_peak_location_mm: tuple[float, float, float] | None = None
 
     def __post_init__(self):
         if not (np.isfinite(self.peak_von_mises_MPa) and self.peak_von_mises_MPa >= 0):
             raise ValueError(f"peak von Mises must be finite and >= 0, got {self.peak_von_mises_MPa}")
 
 
-def field_peaks(mesh) -> FieldPeaks:
-    """Peak nodal von Mises with its location, and the peak |u|, of a (scaled) field."""
+# Nodes within this fraction of the crack depth of the crack front are the crack's singular field: their
+# stress grows with refinement and is set by the mesh, so no safety factor or colour range is drawn from it.
+TIP_RADIUS_OVER_A = 0.25
+
+
+def field_peaks(mesh, tip_zone: np.ndarray | None = None, tip_radius_mm: float | None = None) -> FieldPeaks:
+    """Peak nodal von Mises with its location, and the peak |u|, of a (scaled) field; nodes where ``tip_zone``
+    (bool per node) is set are left out of the peak, whose own maximum is recorded apart."""
     names = field_names(mesh)
     if names.von_mises is None or names.von_mises not in mesh.point_data:
         raise ValueError("the field has no nodal von Mises array")
     vm = np.asarray(mesh.point_data[names.von_mises], dtype=float)
-    k = int(np.argmax(vm))
+    zone = np.zeros(vm.size, bool) if tip_zone is None else np.asarray(tip_zone, bool)
+    k = int(np.argmax(np.where(zone, -np.inf, vm)))
     u = displacement3(mesh, names.displacement) if names.displacement else np.zeros((mesh.n_points, 3))
+    tip = {}
+    if zone.any():
+        t = int(np.argmax(np.where(zone, vm, -np.inf)))
+        tip = {"tip_radius_mm": tip_radius_mm, "tip_peak_von_mises_MPa": float(vm[t]),
+               "tip_peak_location_mm": tuple(float(x) for x in mesh.points[t])}
     return FieldPeaks(float(vm[k]), tuple(float(x) for x in mesh.points[k]), float(np.linalg.norm(u, axis=1).max()),
-                      k)
+                      k, **tip)
+
+
+def crack_front_nodes(vtu: Path) -> np.ndarray:
+    """Nodes of ``vtu`` on its crack front: those on both opened crack faces (fea/crack_seam keeps the front's
+    nodes shared), read from the boundary file. Empty without a crack."""
+    import pyvista as pv
+
+    from .fea.fields import field_text
+
+    path = Path(vtu).with_name(f"{Path(vtu).stem}.boundary.vtu")
+    if not path.exists():
+        return np.zeros(0, int)
+    boundary = pv.read(str(path))
+    names = field_text(boundary, "physical_group_names") if "physical_group_names" in boundary.field_data.keys() \
+        else []
+    if "crack_minus" not in names or "crack_plus" not in names:
+        return np.zeros(0, int)
+    ids = np.asarray(boundary.cell_data["physical_group"])
+    sides = []
+    for name in ("crack_minus", "crack_plus"):
+        cells = boundary.extract_cells(np.flatnonzero(ids == names.index(name) + 1))
+        sides.append(np.asarray(cells.point_data["vtkOriginalPointIds"]))
+    return np.intersect1d(sides[0], sides[1])
+
+
+def tip_zone_of(mesh, vtu: Path, crack_depth_mm: float | None) -> tuple[np.ndarray | None, float | None]:
+    """(bool per node, radius) of the crack's singular zone: within TIP_RADIUS_OVER_A x a of the front."""
+    if not crack_depth_mm:
+        return None, None
+    front = crack_front_nodes(vtu)
+    if front.size == 0:
+        return None, None
+    from scipy.spatial import cKDTree
+
+    radius = TIP_RADIUS_OVER_A * crack_depth_mm
+    distance, _ = cKDTree(np.asarray(mesh.points)[front]).query(np.asarray(mesh.points))
+    return distance <= radius, radius
 
 
 def groups_at_node(vtu: Path, node: int) -> tuple[str, ...]:
     """The named groups of ``vtu``'s boundary file (fea/fields.py: it shares the field's points) that hold ``node``."""
     import pyvista as pv
 
+    from .fea.fields import field_text
+
     path = Path(vtu).with_name(f"{Path(vtu).stem}.boundary.vtu")
     if not path.exists() or node < 0:
         return ()
     boundary = pv.read(str(path))
-    names = [str(n) for n in np.asarray(boundary.field_data.get("physical_group_names", []))]
+    names = field_text(boundary, "physical_group_names") if "physical_group_names" in boundary.field_data.keys() \
+        else []
     near = boundary.extract_points([node], adjacent_cells=True, include_cells=True)
     ids = np.unique(np.asarray(near.cell_data["physical_group"])) if near.n_cells else []
     return tuple(names[i - 1] for i in ids if 0 < i <= len(names))   # id k is entry k - 1
@@ -144,7 +220,12 @@ class StressAtRated:
     def note(self) -> str:
         text = ("material-only factor sigma_-1 / sigma_vM,peak (peak taken as a fully reversed amplitude, "
                 "no notch, size or mean-stress factor)")
-        if self.cracked:
+        p = self.peaks
+        if p.tip_peak_von_mises_MPa is not None:
+            text += (f"; the field carries the crack: nodes within {p.tip_radius_mm:.3g} mm ({TIP_RADIUS_OVER_A:g} a) "
+                     f"of its front are left out (singular: the tip stress grows with refinement), their peak "
+                     f"{p.tip_peak_von_mises_MPa:.4g} MPa is shown apart")
+        elif self.cracked:
             text += ("; the field carries the crack, whose tip stress is singular (it grows with refinement): a peak "
                      "at the tip is not a design stress")
         return text
@@ -164,7 +245,11 @@ class StressAtRated:
                 "load_text": self.load.describe(), "peak_von_mises_MPa": self.peaks.peak_von_mises_MPa,
                 "peak_location_mm": list(self.peaks.peak_location_mm), "peak_on": list(self.peaks.peak_on),
                 "peak_displacement_mm": self.peaks.peak_displacement_mm, "fatigue_limit_MPa": self.fatigue_limit_MPa,
-                "safety_factor": self.safety_factor, "cracked": self.cracked, "note": self.note}
+                "safety_factor": self.safety_factor, "cracked": self.cracked, "note": self.note,
+                "tip_radius_mm": self.peaks.tip_radius_mm,
+                "tip_peak_von_mises_MPa": self.peaks.tip_peak_von_mises_MPa,
+                "tip_peak_location_mm": None if self.peaks.tip_peak_location_mm is None
+                else list(self.peaks.tip_peak_location_mm)}
 
 
 def stress_at_rated(study: str, params, result, vtu: Path, *, cracked: bool) -> StressAtRated:
@@ -173,6 +258,7 @@ def stress_at_rated(study: str, params, result, vtu: Path, *, cracked: bool) -> 
 
     load = rated_load_of(study, params, result)
     mesh = scaled_to_rated(pv.read(str(vtu)), load.scale)
-    peaks = field_peaks(mesh)
+    zone, radius = tip_zone_of(mesh, vtu, result.crack_depth_mm if cracked else None)
+    peaks = field_peaks(mesh, zone, radius)
     peaks = dataclasses.replace(peaks, peak_on=groups_at_node(vtu, peaks.peak_node))
     return StressAtRated(study, Path(vtu).name, load, peaks, params.material.fatigue_limit_MPa, cracked)

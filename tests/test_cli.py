@@ -13,7 +13,7 @@ def _run(strainwave_cmd, *args, timeout=60):
 
 def test_help_everywhere(strainwave_cmd):
     for sub in ([], ["analytic"], ["export-step"], ["solve"], ["validate"], ["diagnose"], ["sweep"],
-                ["benchmark-diagnose"]):
+                ["benchmark-diagnose"], ["compare"]):
         out = _run(strainwave_cmd, *sub, "--help")
         assert out.returncode == 0 and "usage: strainwave" in out.stdout
 
@@ -119,7 +119,8 @@ def test_common_flags_before_or_after_the_subcommand(sub, flags, after):
     if "-q" in flags and "-v" in flags:
         flags = [f for f in flags if f != "-v"]
     required = {"export-step": ["--part", "ewg", "-o", "x.step"], "solve": ["shaft-torsion"],
-                "diagnose": ["r.csv"], "size-crack": ["r.csv"], "sweep": ["shaft-torsion"]}.get(sub, [])
+                "diagnose": ["r.csv"], "size-crack": ["r.csv"], "sweep": ["shaft-torsion"],
+                "compare": ["run-a", "run-b"]}.get(sub, [])
     before = [f for f, a in zip(flags, after) if not a]
     behind = [f for f, a in zip(flags, after) if a]
     args = build_parser().parse_args([*before, sub, *required, *behind])
@@ -161,7 +162,7 @@ def test_json_to_stdout_or_file(capsys, tmp_path):
 def test_export_step_json_lists_written_files(capsys, tmp_path):
     out = tmp_path / "s.step"
     assert main(["export-step", "--part", "wg-bearing-ring", "-o", str(out), "--json"]) == 0
-    assert json.loads(capsys.readouterr().out) == {"written": [str(out)]}
+    assert json.loads(capsys.readouterr().out) == {"written": [str(out), str(tmp_path / "s.faces.json")]}
 
 
 @pytest.mark.parametrize("argv, shown", [

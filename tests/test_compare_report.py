@@ -140,7 +140,7 @@ def test_plotters_leave_pyvista_and_the_environment_as_they_were():
 
 def test_solve_prints_the_peak_stress_and_safety_factor_at_the_rated_load():
     env = {**os.environ, "OMP_NUM_THREADS": "1"}
-    proc = subprocess.run([sys.executable, "-m", "strainwave", "solve", "shaft-torsion", "--mesh-size-mm", "25"],
+    proc = subprocess.run([sys.executable, "-m", "strainwave", "solve", "shaft-torsion", "--mesh-size-mm", "15"],
                           capture_output=True, text=True, env=env, timeout=300)
     assert proc.returncode == 0, proc.stderr[-2000:]
     out = proc.stdout

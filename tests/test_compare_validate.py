@@ -177,14 +177,22 @@ class _Links(HTMLParser):
                 self.links.append(attrs[key])
 
 
-def test_html_references_only_existing_relative_files(quick_run, results):
+def test_html_embeds_every_image_and_links_only_existing_relative_files(quick_run, results):
     out, _ = quick_run
     parser = _Links()
     parser.feed((out / "report.html").read_text(encoding="utf-8"))
+    # self-contained: every picture is inside the page, so report.html alone shows them all
     assert len(parser.images) == len(results["images"])
+    assert all(src.startswith("data:image/png;base64,") for src in parser.images)
     for link in parser.links:
+        if link.startswith(("data:", "#")):
+            continue
         assert "://" not in link and not link.startswith("/"), link  # relative: the folder opens anywhere
         assert (out / link).is_file(), link
+    # the table of contents points at sections that exist
+    html = (out / "report.html").read_text(encoding="utf-8")
+    anchors = [link[1:] for link in parser.links if link.startswith("#")]
+    assert len(anchors) >= 10 and all(f'id="{a}"' in html for a in anchors)
 
 
 def test_rerun_reuses_finished_cases_and_says_so(quick_run):
@@ -390,3 +398,69 @@ def test_report_3d_views_render_in_headless_chromium_without_errors(quick_run, r
         assert drawn > 3000 and colours > 8, (name, value)
     # the inputs section and the GCI table are on the rendered page
     assert 'id="inputs-shaft"' in dom.stdout and 'id="gci-table"' in dom.stdout
+
+
+# ---- issue 40: two verdicts, a portable report (PDF, CSV), fields at the rated load ------------------------------
+
+def test_both_verdicts_open_the_report_and_a_failing_design_is_red(quick_run, results):
+    out, proc = quick_run
+    design = results["design"]
+    html = (out / "report.html").read_text(encoding="utf-8")
+    box = html.split('id="design-verdict"')[0].rsplit("<div", 1)[1]
+    assert ("verdict pass" in box) == design["passed"] and ("verdict fail" in box) == (not design["passed"])
+    assert html.index('id="verdict"') < html.index('id="design-verdict"') < html.index('id="contents"')
+    # one factor per component, each with its definition, and the verdict is exactly theirs against [n]
+    assert {f["component"] for f in design["factors"]} == {"shaft", "cup", "bearing", "ring"}
+    for f in design["factors"]:
+        assert f["definition"] and f["required"] == design["required_safety_factor"]
+        assert f["passed"] == (f["safety_factor"] is not None and f["safety_factor"] >= f["required"])
+        if f["safety_factor"] is not None:
+            assert f["safety_factor"] == pytest.approx(results["stress_at_rated"][f["component"]]["safety_factor"])
+    assert design["passed"] == all(f["passed"] for f in design["factors"])
+    assert ("design (does the drive meet [n] at the rated load?): " + design["headline"]) in proc.stdout
+
+
+def test_pdf_is_printed_with_every_image(quick_run, results):
+    from pypdf import PdfReader
+
+    out, _ = quick_run
+    assert results["files"]["report_pdf"] == "report.pdf"
+    reader = PdfReader(out / "report.pdf")
+    # about 17 A4 pages for --quick; far fewer means a truncated print, far more a runaway layout
+    assert 8 <= len(reader.pages) <= 60
+    assert sum(len(page.images) for page in reader.pages) >= len(results["images"])
+    assert "strainwave validation report" in reader.pages[0].extract_text()
+
+
+def test_csv_tables_sit_beside_the_report_with_the_json_numbers(quick_run, results):
+    import csv
+
+    out, _ = quick_run
+    checks = list(csv.DictReader((out / "checks.csv").open(encoding="utf-8")))
+    assert [r["id"] for r in checks] == [c["id"] for c in results["checks"]]
+    for row, check in zip(checks, results["checks"]):
+        if check["fea"] is not None:
+            assert float(row["fea"]) == check["fea"]
+    assert len(list(csv.DictReader((out / "gci.csv").open(encoding="utf-8")))) == len(results["gci_table"])
+    stress = {r["component"]: r for r in csv.DictReader((out / "stress.csv").open(encoding="utf-8"))}
+    assert set(stress) == set(results["stress_at_rated"])
+    for component, s in results["stress_at_rated"].items():
+        assert float(stress[component]["peak_von_mises_MPa"]) == s["peak_von_mises_MPa"]
+
+
+def test_every_field_file_is_at_the_rated_load_and_says_so(quick_run, results):
+    import pyvista as pv
+
+    from strainwave.fea.fields import field_text
+
+    out, _ = quick_run
+    for component, s in results["stress_at_rated"].items():
+        grid = pv.read(out / "fields" / s["field_file"])
+        assert field_text(grid, "fields_at")[0].startswith("the rated load: "), component
+        assert grid.field_data["load_scale_applied"][0] == pytest.approx(s["load"]["scale"])
+        vm = np.asarray(grid.point_data["von_mises_MPa"], float)
+        # the file's own peak is the reported one, or the crack tip's, reported apart (float32: 1e-5)
+        top = max(s["peak_von_mises_MPa"], s["tip_peak_von_mises_MPa"] or 0.0)
+        assert vm.max() == pytest.approx(top, rel=1e-5), component
+    sizes = sum((out / p).stat().st_size for p in results["files"]["fields"])
+    assert sizes < 30e6     # issue 40: <= 30 MB of fields per gear

@@ -169,7 +169,10 @@ def test_assembly_exports_both_drives_with_part_names(params, tmp_path):
     from build123d import import_step
 
     written = export_part("assembly", params, tmp_path / "gear.step", teeth=False)
-    assert [p.name for p in written] == ["gear.step", "gear-ewg-drive.step"]
+    # each STEP file with its face index (gmsh reads no STEP face names: geometry/face_names.py)
+    assert [p.name for p in written] == ["gear.step", "gear.faces.json", "gear-ewg-drive.step",
+                                         "gear-ewg-drive.faces.json"]
+    written = [p for p in written if p.suffix == ".step"]
     cup_gear, ewg_drive = (import_step(p) for p in written)
     assert len(cup_gear.solids()) == 3 and len(ewg_drive.solids()) == 3   # cup, ring, shaft | ring, 2 rollers
     text = written[0].read_text(errors="ignore")
@@ -247,8 +250,9 @@ def test_assembly_png_draws_every_part_of_both_drives(params, tmp_path):
     import numpy as np
 
     written = export_part("assembly", params, tmp_path / "gear.step", teeth=False, png=tmp_path / "gear.png")
-    assert [p.name for p in written] == ["gear.step", "gear-ewg-drive.step", "gear.png"]
-    img = mpimg.imread(written[2])[..., :3]
+    assert [p.name for p in written] == ["gear.step", "gear.faces.json", "gear-ewg-drive.step",
+                                         "gear-ewg-drive.faces.json", "gear.png"]
+    img = mpimg.imread(written[-1])[..., :3]
     r, g, b = img[..., 0], img[..., 1], img[..., 2]
     w = img.shape[1]
     orange = (r - b > 0.25) & (r > g)                 # wg-bearing-ring (0.85, 0.62, 0.30), shaded

@@ -168,8 +168,11 @@ def make_images(out_dir: Path, book: FeaBook, plan: Plan, check_set: CheckSet, s
         col.attempt(f"{check.id} convergence", check.component, "convergence",
                     lambda t, c=check, lb=label: _convergence(t, c, book, lb), f"{check.id.replace('.', '_')}_convergence.png")
     for component, report in check_set.sweeps.items():
-        col.attempt(f"{component} crack sweep", component, "crack-sweep",
-                    lambda t, r=report, c=component: _sweep(t, r, c), f"{component}_crack_sweep.png")
+        # bearing.crack_compliance tests the race crack of the ring on the cam (wg-bearing), not this bonded-bore
+        # sweep (a table only): its plot shows the quantity the check tests
+        make = (lambda t: _bearing_sweep(t, book, plan.wg_bearing.label, params)) \
+            if component == "bearing" else (lambda t, r=report, c=component: _sweep(t, r, c))
+        col.attempt(f"{component} crack sweep", component, "crack-sweep", make, f"{component}_crack_sweep.png")
     return Artifacts(col.images, col.missing, stresses, views)
 
 
@@ -217,6 +220,27 @@ def _sweep(target: Path, report, component: str) -> str:
     exps = ", ".join(f"{k} a^{v:.2f}" for k, v in report.analytic_fits.items())
     return (f"{COMPONENT_TITLES[component]}: {sw.quantity} against crack depth, FEA (with GCI bars) and both closed "
             f"forms" + (f"; FEA {label}, closed forms {exps}" if label else ""))
+
+
+def _bearing_sweep(target: Path, book: FeaBook, label: str, params) -> str:
+    """What bearing.crack_compliance tests: the race crack's added radial compliance of the ring on the cam
+    (wg-bearing case) at each depth, against the edge-crack weight function at the FEA's stress (corrected)
+    and seed 000's form (published), the curves the check itself evaluates."""
+    from .wg_bearing_checks import crack_curve, crack_sweep
+
+    sweep, result = crack_sweep(book, label), book.result(label)
+    if sweep is None or result is None:
+        raise ValueError(f"case {label} produced no crack compliance")
+    curve = crack_curve(params, result)
+    depths = np.asarray(sweep.depths_mm, float)
+    values = [curve(float(d)) for d in depths]
+    curves = {v: (depths, np.array([row[v] for row in values])) for v in ("published", "corrected")}
+    plots.crack_sweep_plot(target, title=f"{COMPONENT_TITLES['bearing']} on the cam: race crack compliance vs depth",
+                           unit=sweep.unit, depths_mm=depths, fea=sweep.values, fea_uncertainty=sweep.uncertainties,
+                           curves=curves)
+    return (f"{COMPONENT_TITLES['bearing']}: the quantity bearing.crack_compliance tests, the race crack's added "
+            f"radial compliance (FEA {label}, GCI bars) against the edge-crack weight function at the FEA's stress "
+            "(corrected) and seed 000's form (published)")
 
 
 def _ring_shape(target: Path, book: FeaBook, plan: Plan, check_set: CheckSet, summary: dict) -> str:

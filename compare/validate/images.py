@@ -90,11 +90,14 @@ def boundary_groups(vtu: Path, names: tuple[str, ...]):
     """{name: facets} of the named groups of ``vtu``'s boundary file (fea/fields.py), those that exist."""
     import pyvista as pv
 
+    from ...fea.fields import field_text
+
     path = Path(vtu).with_name(f"{Path(vtu).stem}.boundary.vtu")
     if not path.exists():
         return {}
     boundary = pv.read(str(path))
-    known = [str(n) for n in np.asarray(boundary.field_data.get("physical_group_names", []))]
+    known = field_text(boundary, "physical_group_names") if "physical_group_names" in boundary.field_data.keys() \
+        else []
     ids = np.asarray(boundary.cell_data["physical_group"])
     out = {}
     for name in names:
@@ -171,6 +174,17 @@ def _load_arrows(loaded, disp: str | None, model_center: np.ndarray) -> list[tup
     return arrows
 
 
+SPIKE_PERCENTILE = 99.5    # a peak above SPIKE_RATIO x this percentile of the nodes is a local spike
+SPIKE_RATIO = 1.5
+
+
+def colour_top(von_mises: np.ndarray, peak: float) -> float:
+    """Top of a stress picture's colour range: the peak, unless the peak is a local spike (a support corner, a
+    crack's tip) far above the rest, then the SPIKE_PERCENTILE-th percentile of the nodes."""
+    top = float(np.percentile(von_mises, SPIKE_PERCENTILE))
+    return top if 0.0 < top and peak > SPIKE_RATIO * top else float(peak)
+
+
 def render_stress(vtu: Path, png: Path, *, label: str, at: StressAtRated, marks: Marks, section: str = "",
                   zoom: Zoom | None = None, exaggeration: float | None = None) -> Rendered:
     """von Mises at the rated load (fields x the load's scale) on the deformed shape: supports and loads
@@ -195,8 +209,15 @@ def render_stress(vtu: Path, png: Path, *, label: str, at: StressAtRated, marks:
                  scale_text + (f"; {section}" if section else ""),
                  f"peak {p.peak_von_mises_MPa:.4g} MPa at ({where} mm, peak displacement {p.peak_displacement_mm:.3g} mm,",
                  f"safety factor {at.safety_factor:.3g} vs fatigue limit {at.fatigue_limit_MPa:g} MPa"]
+        if p.tip_peak_von_mises_MPa is not None:   # the singular crack tip: left out of the range, said apart
+            lines.append(f"crack tip {p.tip_peak_von_mises_MPa:.4g} MPa: singular, within {p.tip_radius_mm:.3g} mm "
+                         "of the front, left out of the factor")
+        top = colour_top(np.asarray(mesh.point_data[names.von_mises], float), p.peak_von_mises_MPa)
+        if top < p.peak_von_mises_MPa:
+            lines.append(f"colours to {top:.4g} MPa, the {SPIKE_PERCENTILE:g}th percentile (white above): a local "
+                         "peak would leave the body one colour")
         plotter = off_screen_plotter(RenderSettings(window, shape=shape))
-        peak_index = int(np.argmax(np.asarray(mesh.point_data[names.von_mises])))
+        peak_index = p.peak_node if p.peak_node >= 0 else int(np.argmax(np.asarray(mesh.point_data[names.von_mises])))
         legend: list[str] = []
         for col, z in [(0, None)] + ([(1, zoom)] if zoom is not None else []):
             plotter.subplot(0, col)
@@ -208,7 +229,7 @@ def render_stress(vtu: Path, png: Path, *, label: str, at: StressAtRated, marks:
                     raise ValueError(f"{vtu}: nothing within {r:g} mm of the peak")
             plotter.add_mesh(region, scalars=names.von_mises, cmap="turbo", show_edges=False,
                              scalar_bar_args=_bar("von Mises (MPa)"), show_scalar_bar=col == 0,
-                             clim=(0.0, p.peak_von_mises_MPa))
+                             clim=(0.0, top), above_color="white")
             if z is None:
                 legend = _draw_marks(pv, plotter, shown, groups, marks, names.displacement, at.load.scale,
                                      exaggeration)
@@ -218,7 +239,7 @@ def render_stress(vtu: Path, png: Path, *, label: str, at: StressAtRated, marks:
             _view(plotter, plane)
             plotter.reset_camera()
             if z is None:
-                plotter.camera.zoom(0.85)   # room for the four title lines above the model
+                plotter.camera.zoom(0.85 if len(lines) <= 4 else 0.72)   # room for the title lines above the model
             if z is not None:
                 plotter.add_text(f"{z.title} ({2 * z.radius_mm:.3g} mm box)" + (f"\n{section}" if section else ""),
                                  font_size=TITLE_PT, color="black")
@@ -243,7 +264,7 @@ def render_closeup(vtu: Path, png: Path, *, label: str, center_mm=None, radius_m
     import pyvista as pv
 
     with pv.VtkErrorCatcher(raise_errors=True):
-        mesh = scaled_to_rated(read_field(vtu), load.scale) if load is not None else read_field(vtu)
+        mesh = scaled_to_rated(read_field(vtu), load.scale if load is not None else 1.0)
         names = field_names(mesh)
         if center_mm is None:
             if names.von_mises is None or names.von_mises not in mesh.point_data:
@@ -287,12 +308,13 @@ def render_closeup(vtu: Path, png: Path, *, label: str, center_mm=None, radius_m
 def sample_circle(vtu: Path, radius_mm: float, n: int = 360) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
     """Radial and tangential displacement along a circle of the (plane or mid-plane) ring mesh.
 
-    Returns (theta, u_r, u_t) for the points that lie inside the mesh, or None without a displacement field.
+    Returns (theta, u_r, u_t) at the SOLVED load (the checks' load) for the points that lie inside the mesh, or
+    None without a displacement field.
     """
     import pyvista as pv
 
     with pv.VtkErrorCatcher(raise_errors=True):
-        mesh = read_field(vtu)
+        mesh = scaled_to_rated(read_field(vtu), 1.0)   # at the solved load, as the checks' delta_CD, delta_AB
         names = field_names(mesh)
         if names.displacement is None:
             return None

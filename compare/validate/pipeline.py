@@ -20,6 +20,7 @@ from .audit_evidence import audit_with_evidence, exponent_evidence
 from ...cache import ResultCache
 from .check_set import CheckSet, build_checks
 from .checks import Check
+from .design import DesignVerdict, design_verdict, stress_factors
 from .fea_book import FeaBook
 from .gci_table import gci_rows
 from .isolated import stop_descendants
@@ -28,6 +29,8 @@ from ...io_atomic import remove_stale_temps
 from .plan import make_plan
 from .report_html import write_html
 from strainwave.compare.validate.catalogue_table import catalogue_document
+from .report_pdf import chromium, print_pdf
+from .tables_csv import CSV_FILES, write_tables
 from .report_md import write_markdown
 from .results import now_utc, plain, versions, write_results
 from .case_progress import CaseProgress
@@ -43,10 +46,16 @@ class Outcome:
     checks: tuple[Check, ...]
     timings_s: dict[str, float]
     cases: tuple[CaseOutcome, ...]
+    design: DesignVerdict | None = None     # does the drive meet [n] at the rated load (not the exit status)
 
     @property
     def passed(self) -> bool:
+        """The validation verdict: every closed form the checks assert holds."""
         return bool(self.checks) and all(c.passed for c in self.checks)
+
+    @property
+    def design_passed(self) -> bool:
+        return self.design is not None and self.design.passed
 
     def summary(self) -> str:
         width = max(len(c.id) for c in self.checks)
@@ -75,7 +84,11 @@ class Outcome:
         lines.append(f"{sum(c.passed for c in self.checks)}/{len(self.checks)} checks pass; "
                      f"{len(self.cases)} FEA cases ({cached} reused from cache); time per stage: "
                      + ", ".join(f"{k} {v:.1f} s" for k, v in self.timings_s.items()))
-        lines.append(f"report: {self.out_dir / 'report.html'}  ({'PASS' if self.passed else 'FAIL'})")
+        lines.append(f"validation (do the closed forms hold?): {'PASS' if self.passed else 'FAIL'}")
+        if self.design is not None:
+            lines.append(f"design (does the drive meet [n] at the rated load?): {self.design.headline()}")
+        beside = [n for n in ("report.pdf", "checks.csv", "gci.csv", "stress.csv") if (self.out_dir / n).exists()]
+        lines.append(f"report: {self.out_dir / 'report.html'}" + (f" (beside it: {', '.join(beside)})" if beside else ""))
         return "\n".join(lines)
 
 
@@ -208,11 +221,29 @@ def _inputs(plan, book: FeaBook, params) -> dict:
     return out
 
 
+def _write_reports(out_dir: Path, doc: dict, views: dict[str, str], progress) -> None:
+    """report.md, report.html (self-contained), the CSV tables, and report.pdf printed from the page. A PDF
+    that cannot be printed is said on the terminal and in the reports (which then link none)."""
+    write_markdown(out_dir / "report.md", doc)
+    write_html(out_dir / "report.html", doc, views=views)
+    write_tables(out_dir, doc)
+    if doc["files"]["report_pdf"] is None:
+        progress("  report.pdf: not printed (no Chromium found; Debian: apt-get install chromium)")
+        return
+    try:
+        print_pdf(out_dir / "report.html", out_dir / "report.pdf")
+    except RuntimeError as exc:
+        progress(f"  report.pdf: not printed ({exc})")
+        doc["files"]["report_pdf"] = None
+        write_markdown(out_dir / "report.md", doc)
+        write_html(out_dir / "report.html", doc, views=views)
+
+
 def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str], None]) -> Outcome:
     """Run the whole validation into ``out_dir``; returns the checks and timings (see module docstring)."""
     from ...analytic.summary import analytic_summary, crack_headline_lines, designer_headline
     from ...interrupt import deferred_interrupt
-    from .artifacts import make_images
+    from .artifacts import COMPONENT_TITLES, make_images
     from .step_export import StepJob
 
     start = time.perf_counter()
@@ -254,6 +285,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
     progress(f"[2/{total}] step done: {sum(len(s.files) for s in steps)} STEP file(s), {timings['step']:.1f} s "
              f"wall (waited {timings['step_wait_after_images']:.1f} s after the images)")
     images, missing, stresses = _previews(steps, out_dir) + made.images, made.missing, made.stresses
+    design = design_verdict(params, stress_factors(stresses, COMPONENT_TITLES, tuple(plan.headline) + ("ring",)))
     with _stage("reports", timings, progress, 6, total):
         checks = [c.to_dict() for c in check_set.checks]
         failed = [c["id"] for c in checks if not c["passed"]]
@@ -278,6 +310,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
             # FEA-confirmed forms
             "designer": ((designer_headline(summary["seed003"]) if "seed003" in summary else [])
                          + (crack_headline_lines(summary["crack_headline"]) if "crack_headline" in summary else [])),
+            "design": design.to_dict(),
             "inputs": _inputs(plan, book, params),
             "stress_at_rated": {c: s.to_dict() for c, s in stresses.items()},
             "cup_wave_generator": wg_record(book, plan.drive_label("cup-wave-generator") or "", params),
@@ -288,13 +321,13 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
             "crack_sweeps": {k: r.to_dict() for k, r in check_set.sweeps.items()},
             "images": [i.to_dict() for i in images], "missing_images": [m.to_dict() for m in missing],
             "files": {"step": [_relative(p, out_dir) for s in steps for p in s.files], "fields": fields,
-                      "report_html": "report.html", "report_md": "report.md"},
+                      "report_html": "report.html", "report_md": "report.md", "tables": list(CSV_FILES),
+                      "report_pdf": "report.pdf" if chromium() else None},
         }
         doc["metadata"]["total_s"] = time.perf_counter() - start
         doc = plain(doc)
         # The reports are written before results.json so that results.json appearing marks a complete run.
-        write_markdown(out_dir / "report.md", doc)
-        write_html(out_dir / "report.html", doc, views={c: v.payload for c, v in made.views.items()})
+        _write_reports(out_dir, doc, {c: v.payload for c, v in made.views.items()}, progress)
         write_results(out_dir / "results.json", doc)
     timings["total"] = time.perf_counter() - start
-    return Outcome(out_dir, check_set.checks, timings, tuple(outcomes.values()))
+    return Outcome(out_dir, check_set.checks, timings, tuple(outcomes.values()), design)

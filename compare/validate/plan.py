@@ -112,7 +112,10 @@ def make_plan(params, *, quick: bool) -> Plan:
         else:
             headline[c] = Case(f"{c}-a{depth:g}", COMPONENT_STUDY[c], depth)
             sweep_h = sweep_mesh_size_mm(params, c)
-            sweeps[c] = tuple(Case(f"{c}-a{d:g}", COMPONENT_STUDY[c], d, sweep_h) for d in depths if d > depth)
+            deeper = [d for d in depths if d > depth]
+            # only the deepest sweep case's field is drawn (the crack-tip close-up): the others write none
+            sweeps[c] = tuple(Case(f"{c}-a{d:g}", COMPONENT_STUDY[c], d, sweep_h, fields=d == deeper[-1])
+                              for d in deeper)
     plan = Plan(headline, sweeps, Case("ring", RING_STUDY, None),
                 drive=tuple(Case(s, s, None) for s in DRIVE_STUDIES))
     for case in plan.all_cases():   # every crack checked against its own wall before any mesh is built

@@ -67,7 +67,7 @@ def convergence_figure(*, title: str, unit: str, h_mm, values, extrapolated: flo
     ax.set_title("FEA on three meshes (own scale)" + ("\nnot asymptotic: " + ", ".join(flags) if flags else ""),
                  fontsize=10, color="firebrick" if flags else "black")
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
+    legend_of_shown(ax, fontsize=8)
     ax.ticklabel_format(axis="y", style="sci", scilimits=(-3, 4), useOffset=False)
     styles = {"published": "tab:orange", "corrected": "tab:green"}
     names, numbers, colors = ["FEA (fine)"], [fine], ["tab:blue"]
@@ -91,32 +91,74 @@ def convergence_figure(*, title: str, unit: str, h_mm, values, extrapolated: flo
     return fig
 
 
-def crack_sweep_plot(png: Path, *, title: str, unit: str, depths_mm, fea, fea_uncertainty,
-                     curves: dict[str, tuple[np.ndarray, np.ndarray]], fit_label: str = "") -> Path:
-    """delta_lambda(a) on log-log axes: FEA points with error bars against each closed form's curve."""
+def _line_shown(line, log_y: bool) -> bool:
+    x, y = np.asarray(line.get_xdata(), float), np.asarray(line.get_ydata(), float)
+    ok = np.isfinite(x) & np.isfinite(y) & ((y > 0) if log_y else True)
+    drawn_line = line.get_linestyle() not in ("None", "", " ") and ok.sum() >= 2
+    return bool(drawn_line or line.get_marker() not in ("None", "", " ", None) and ok.any())
+
+
+def _shown(artist, log_y: bool) -> bool:
+    """Whether a legend entry's artist draws anything: a line of two finite points or a marker on one (positive on
+    a log axis); error bars by their data line or a finite bar. Anything else (bars, patches) is kept."""
+    if hasattr(artist, "lines"):        # ErrorbarContainer: (data line, caplines, barlinecols)
+        data, _, bar_cols = artist.lines
+        bars = [seg for col in bar_cols for seg in col.get_segments()]
+        finite_bar = any(np.isfinite(seg).all() and (not log_y or (seg[:, 1] > 0).all()) for seg in bars)
+        return (data is not None and _line_shown(data, log_y)) or finite_bar
+    if hasattr(artist, "get_ydata"):
+        return _line_shown(artist, log_y)
+    return True
+
+
+def legend_of_shown(ax, **kwargs):
+    """A legend of only the entries that draw something on ``ax`` (issue 40: an entry never shown is dropped)."""
+    handles, labels = ax.get_legend_handles_labels()
+    log_y = ax.get_yscale() == "log"
+    kept = [(h, lb) for h, lb in zip(handles, labels) if _shown(h, log_y)]
+    if kept:
+        ax.legend(*zip(*kept), **kwargs)
+    return [lb for _, lb in kept]
+
+
+def crack_sweep_plot(png: Path, **kwargs) -> Path:
+    """``crack_sweep_figure`` written to ``png``."""
+    return _save(crack_sweep_figure(**kwargs), png)
+
+
+def crack_sweep_figure(*, title: str, unit: str, depths_mm, fea, fea_uncertainty,
+                       curves: dict[str, tuple[np.ndarray, np.ndarray]], fit_label: str = "", log_y: bool = True,
+                       styles: dict[str, tuple[str, str]] | None = None, curve_suffix: str = " closed form"):
+    """The swept quantity against crack depth (log-log, or a linear y with ``log_y`` False): FEA points with
+    error bars against each closed form's curve (marked at every depth, so a one-depth sweep shows them too).
+    FEA values a log axis cannot show (<= 0) are said in a note, never as an empty legend entry."""
     fig = _figure()
     ax = fig.add_subplot(1, 1, 1)
     a = np.asarray(depths_mm, dtype=float)
     y = np.asarray(fea, dtype=float)
     err = np.nan_to_num(np.asarray(fea_uncertainty, dtype=float))
-    positive = y > 0
-    ax.errorbar(a[positive], y[positive], yerr=np.minimum(err[positive], 0.999 * y[positive]), fmt="o",
-                color="tab:blue", capsize=3, label="FEA" + (f" ({fit_label})" if fit_label else ""))
-    if np.any(~positive):
-        ax.plot(a[~positive], np.full((~positive).sum(), np.nan), "x", color="tab:blue",
-                label=f"FEA <= 0 at {np.count_nonzero(~positive)} depth(s) (unresolved)")
-    styles = {"published": ("--", "tab:orange"), "corrected": ("-", "tab:green")}
+    shown = y > 0 if log_y else np.isfinite(y)
+    bars = np.minimum(err[shown], 0.999 * y[shown]) if log_y else err[shown]
+    ax.errorbar(a[shown], y[shown], yerr=bars, fmt="o", color="tab:blue", capsize=3, zorder=3,
+                label="FEA (GCI bars)" + (f", {fit_label}" if fit_label else ""))
+    if np.any(~shown):
+        ax.text(0.02, 0.02, f"FEA <= 0 (unresolved) at a = {', '.join(f'{d:g}' for d in a[~shown])} mm: not on a "
+                "log axis", transform=ax.transAxes, fontsize=8, color="tab:blue")
+    styles = {"published": ("--s", "tab:orange"), "corrected": ("-^", "tab:green"), **(styles or {})}
+    others = iter((("-.d", "gray"), (":v", "tab:purple"), ("--p", "tab:brown"), ("-.h", "tab:olive")) * 4)
     for name, (xa, ya) in curves.items():
-        style, color = styles.get(name, ("-.", "gray"))
-        ax.plot(xa, ya, style, color=color, label=f"{name} closed form")
+        style, color = styles[name] if name in styles else next(others)   # every curve its own marker
+        # open markers larger than the FEA's: a curve on top of the FEA point still shows around it
+        ax.plot(xa, ya, style, color=color, label=f"{name}{curve_suffix}", mfc="none", ms=11, mew=1.5)
     ax.set_xscale("log")
-    ax.set_yscale("log")
+    if log_y:
+        ax.set_yscale("log")
     ax.set_xlabel("crack depth a (mm)")
     ax.set_ylabel(unit)
     ax.set_title(title)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
-    return _save(fig, png)
+    legend_of_shown(ax, fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14))   # below: hides no point
+    return fig
 
 
 def ring_midlayer_plot(png: Path, *, r_m_mm: float, theta, u_r_fea, delta_cd_fea: float, delta_ab_fea: float,
@@ -150,5 +192,5 @@ def ring_midlayer_plot(png: Path, *, r_m_mm: float, theta, u_r_fea, delta_cd_fea
     ax.set_title(f"ring mid-layer r_m = {r_m_mm:.4g} mm, radial displacement x {scale:g}")
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("y (mm)")
-    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.1))
+    legend_of_shown(ax, fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.1))
     return _save(fig, png)

@@ -23,9 +23,18 @@ def _table(columns, rows) -> list[str]:
 
 
 def render_markdown(doc: dict) -> str:
-    lines = ["# strainwave validation report", "", f"**{rt.headline(doc)}**", "", rt.run_line(doc), ""]
+    lines = ["# strainwave validation report", "", f"**{rt.VALIDATION_QUESTION}** {rt.headline(doc)}", "",
+             f"**{rt.DESIGN_QUESTION}** {rt.design_headline(doc)}", "", rt.run_line(doc), ""]
     if doc.get("designer"):
         lines += ["```", *doc["designer"], "```", ""]
+    design = doc.get("design")
+    if design:
+        lines += ["## Design verdict: safety factors at the rated load", "",
+                  f"Each component's factor against [n] = {design['required_safety_factor']:g} "
+                  f"({design['required_source']}).", ""]
+        lines += _table(rt.DESIGN_COLUMNS, [rt.design_row(f) for f in design["factors"]]) + [""]
+        lines += [f"- {t}" for t in (rt.tip_line(c, s) for c, s in doc.get("stress_at_rated", {}).items()) if t]
+        lines += [""]
     failing = [c for c in doc["checks"] if not c["passed"]]
     if failing:
         lines += ["## Failing checks", ""]
@@ -86,7 +95,9 @@ def render_markdown(doc: dict) -> str:
     lines += ["## Files", ""]
     lines += [f"- STEP: [{Path(p).name}]({p})" for p in doc["files"]["step"]]
     lines += [f"- VTU: [{Path(p).name}]({p})" for p in doc["files"]["fields"]]
-    lines += ["- [results.json](results.json)", ""]
+    lines += ["- [results.json](results.json)"] + [f"- [{n}]({n})" for n in doc["files"].get("tables", ())]
+    lines += [f"- [{doc['files']['report_pdf']}]({doc['files']['report_pdf']})"] if doc["files"].get("report_pdf") else []
+    lines += [""]
     lines += ["## Versions", ""] + [f"- {k}: {v}" for k, v in meta["versions"].items()] + [""]
     return "\n".join(lines)
 

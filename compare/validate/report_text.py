@@ -41,6 +41,39 @@ def headline(doc: dict) -> str:
     return text
 
 
+VALIDATION_QUESTION = "Validation: do the closed forms hold?"
+DESIGN_QUESTION = "Design: does this drive meet [n] at the rated load?"
+
+
+def design_headline(doc: dict) -> str:
+    design = doc.get("design")
+    return design["headline"] if design else "not evaluated (no stress field at the rated load)"
+
+
+def design_passed(doc: dict) -> bool:
+    return bool(doc.get("design") and doc["design"]["passed"])
+
+
+DESIGN_COLUMNS = ("component", "safety factor n", "[n]", "stress (MPa)", "limit (MPa)", "result", "load",
+                  "definition")
+
+
+def design_row(f: dict) -> tuple[str, ...]:
+    result = "PASS" if f["passed"] else ("NOT EVALUATED" if f["safety_factor"] is None else "FAIL")
+    return (f["title"], num(f["safety_factor"], 3), num(f["required"], 3), num(f["stress_MPa"], 4),
+            num(f["limit_MPa"], 4), result, f["load"] or "-", f["definition"] + (f"; {f['reason']}" if f["reason"]
+                                                                                  else ""))
+
+
+def tip_line(component: str, s: dict) -> str | None:
+    """The crack tip's singular peak, shown apart from the design stress (None without one)."""
+    if s.get("tip_peak_von_mises_MPa") is None:
+        return None
+    return (f"{component}: crack-tip peak {s['tip_peak_von_mises_MPa']:.4g} MPa at {point(s['tip_peak_location_mm'])} "
+            f"mm, within {s['tip_radius_mm']:.3g} mm of the crack front: singular (it grows with refinement), left "
+            "out of the safety factor and the colour range")
+
+
 def run_line(doc: dict) -> str:
     m = doc["metadata"]
     mode = "--quick (coarse meshes, fewer sweep points)" if m["settings"]["quick"] else "full"

@@ -13,6 +13,7 @@ from typing import Callable
 
 from ...fea.result import StudyResult
 from ...cache import ResultCache, case_key
+from ...rated_stress import rated_load_of, write_at_rated
 
 
 @dataclass(frozen=True)
@@ -23,6 +24,7 @@ class Case:
     study: str
     crack_depth_mm: float | None = None
     mesh_size_mm: float | None = None        # finest global size; None = the study's default
+    fields: bool = True                      # write fields/<label>.vtu (a report picture draws it)
 
     def payload(self, params, quick: bool, order: int) -> dict:
         return {"study": self.study, "crack_depth_mm": self.crack_depth_mm, "quick": quick, "order": order,
@@ -71,7 +73,7 @@ def run_case(case: Case, params, *, fields_dir: Path, cache: ResultCache, quick:
             pass  # an entry from an older layout is recomputed
     progress(f"  {case.label}: solving {_describe(case)} ...")
     kwargs = {"mesh_size_mm": case.mesh_size_mm, "order": order, "crack_depth_mm": case.crack_depth_mm,
-              "vtu": Path(fields_dir) / f"{case.label}.vtu", "quick": quick}
+              "vtu": Path(fields_dir) / f"{case.label}.vtu" if case.fields else None, "quick": quick}
     child = run_isolated(case.study, params, kwargs, timeout_s=timeout_s or CASE_TIMEOUT_S[quick],
                          progress=lambda msg: progress(f"    {msg}"))
     if child.result is None:
@@ -80,6 +82,14 @@ def run_case(case: Case, params, *, fields_dir: Path, cache: ResultCache, quick:
         progress(f"  {case.label}: FAILED after {child.seconds:.1f} s ({child.error})")
         return CaseOutcome(case, None, child.seconds, False, child.error)
     result = StudyResult.from_dict(child.result)
+    # the fields a reader opens are at the load the report states (issue 40), and say so in their FieldData; a
+    # study with no rated load of its own (wg-bearing: solved at its rated loads) keeps them as solved
+    try:
+        rated = rated_load_of(case.study, params, result)
+    except ValueError:
+        rated = None
+    if rated is not None:
+        write_at_rated(result.fields, rated)
     cache.put(key, {"case": case.label, "seconds": child.seconds, "cpu_s": child.cpu_s, "result": child.result})
     cpu = "" if child.cpu_s is None else f", {child.cpu_s:.1f} s CPU"
     progress(f"  {case.label}: done in {child.seconds:.1f} s ({result.mesh.dofs} dofs{cpu})")

@@ -56,7 +56,12 @@
       S[i] = sca[k];
     }
     var gl = canvas.getContext("webgl", {preserveDrawingBuffer: true, antialias: true});
-    if (!gl) throw new Error("WebGL is not available in this browser");
+    if (!gl) {  /* no WebGL: say so in place of a blank canvas (the PNG above shows the same field) */
+      var note = canvas.parentNode.querySelector(".nowebgl");
+      if (note) note.style.display = "block";
+      canvas.style.display = "none";
+      return;
+    }
     var prog = gl.createProgram();
     gl.attachShader(prog, shader(gl, gl.VERTEX_SHADER, VS));
     gl.attachShader(prog, shader(gl, gl.FRAGMENT_SHADER, FS));

@@ -62,7 +62,9 @@ def make_view(component: str, vtu: Path, at: StressAtRated, *, exaggeration: flo
     if not planar:
         points = np.column_stack([points[:, 0], points[:, 2], -points[:, 1]])   # model z up on the screen
     scalars = np.asarray(surface.point_data[names.von_mises], dtype=np.float32)
-    peak = at.peaks.peak_von_mises_MPa
+    from .images import colour_top
+
+    peak = colour_top(np.asarray(mesh.point_data[names.von_mises], float), at.peaks.peak_von_mises_MPa)
     payload = json.dumps({"positions": _b64(points.astype(np.float32)), "scalars": _b64(scalars),
                           "indices": _b64(faces.ravel()), "range": [0.0, peak],
                           "home": [0.0, 0.0] if planar else [0.5, -0.7]})

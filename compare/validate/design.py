@@ -1,0 +1,92 @@
+"""The design verdict: does this drive meet the permissible safety factor [n] at its rated load?
+
+The validation verdict asks whether the closed forms hold (the FEA against the seeds); this one asks whether
+the drive as designed is strong enough. Each component carries one ``ComponentFactor``: its safety factor,
+the stress and limit it is the ratio of, and the factor's definition. A component factor another study adds
+(a fatigue factor of the wave generator's cup, say) is one more entry of ``factors``: the verdict and both
+reports read the list, nothing else. The exit status of ``strainwave validate`` stays the validation's;
+``--require-design`` makes a failing design exit 3.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+__all__ = ["ComponentFactor", "DesignVerdict", "design_verdict", "stress_factors", "REQUIRED_SOURCE"]
+
+REQUIRED_SOURCE = "ewg_drive.permissible_safety, seed 003 eq 12 (the seed's [n], 1.3..1.5)"
+
+
+@dataclass(frozen=True)
+class ComponentFactor:
+    """One component's safety factor at the rated load (None: not evaluated, with ``reason``)."""
+    component: str            # key, e.g. "ring"
+    title: str                # e.g. "EWG flexspline ring"
+    safety_factor: float | None
+    definition: str           # what the factor is the ratio of, in words and symbols
+    stress_MPa: float | None  # the stress the factor is taken on
+    limit_MPa: float | None   # the limit it is compared with
+    load: str                 # the load it is at
+    reason: str = ""          # why it is not evaluated
+
+    def passed(self, required: float) -> bool:
+        return self.safety_factor is not None and math.isfinite(self.safety_factor) and self.safety_factor >= required
+
+    def to_dict(self, required: float) -> dict:
+        return {"component": self.component, "title": self.title, "safety_factor": self.safety_factor,
+                "required": required, "passed": self.passed(required), "definition": self.definition,
+                "stress_MPa": self.stress_MPa, "limit_MPa": self.limit_MPa, "load": self.load,
+                "reason": self.reason}
+
+
+@dataclass(frozen=True)
+class DesignVerdict:
+    required: float
+    factors: tuple[ComponentFactor, ...]
+
+    @property
+    def passed(self) -> bool:
+        return bool(self.factors) and all(f.passed(self.required) for f in self.factors)
+
+    @property
+    def failing(self) -> list[ComponentFactor]:
+        return [f for f in self.factors if not f.passed(self.required)]
+
+    def headline(self) -> str:
+        n = len(self.factors)
+        text = (f"{'PASS' if self.passed else 'FAIL'}: {n - len(self.failing)} of {n} components meet [n] = "
+                f"{self.required:g} at the rated load")
+        below = [f for f in self.failing if f.safety_factor is not None]
+        unknown = [f for f in self.failing if f.safety_factor is None]
+        if below:
+            text += "; below [n]: " + ", ".join(f"{f.title} n = {f.safety_factor:.3g}" for f in below)
+        if unknown:
+            text += "; not evaluated (counted as failing): " + ", ".join(f.title for f in unknown)
+        return text
+
+    def to_dict(self) -> dict:
+        return {"passed": self.passed, "headline": self.headline(), "required_safety_factor": self.required,
+                "required_source": REQUIRED_SOURCE, "factors": [f.to_dict(self.required) for f in self.factors],
+                "failing": [f.component for f in self.failing]}
+
+
+def stress_factors(stresses: dict, titles: dict[str, str], components: tuple[str, ...]) -> list[ComponentFactor]:
+    """The material fatigue factor of every component's stress field at the rated load (rated_stress); a
+    component without a field is listed as not evaluated."""
+    out = []
+    for component in components:
+        at = stresses.get(component)
+        if at is None:
+            out.append(ComponentFactor(component, titles[component], None, "material-only factor sigma_-1 / "
+                                       "sigma_vM,peak", None, None,
+                                       "", "its FEA case or stress field failed (see the cases table)"))
+            continue
+        out.append(ComponentFactor(component, titles[component], at.safety_factor,
+                                   at.note, at.peaks.peak_von_mises_MPa,
+                                   at.fatigue_limit_MPa, at.load.describe()))
+    return out
+
+
+def design_verdict(params, factors: list[ComponentFactor]) -> DesignVerdict:
+    """The verdict of ``factors`` against the parameters' [n]."""
+    return DesignVerdict(float(params.ewg_drive.permissible_safety), tuple(factors))
