@@ -9,10 +9,10 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass
 
-from . import bearing_stiffness, crack_series, torsion
-from .seed000 import seed000_summary
-from .seed003 import seed003_summary
-from .variant import Variant
+from strainwave.analytic import bearing_stiffness, crack_series, torsion
+from strainwave.analytic.seed000 import seed000_summary
+from strainwave.analytic.seed003 import seed003_summary
+from strainwave.analytic.variant import Variant
 
 
 @dataclass(frozen=True)

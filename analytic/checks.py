@@ -6,9 +6,9 @@ re-deriving formulas.
 """
 from __future__ import annotations
 
-from . import bearing_stiffness
-from .seed000 import seed000_summary
-from .seed003 import seed003_summary
+from strainwave.analytic import bearing_stiffness
+from strainwave.analytic.seed000 import seed000_summary
+from strainwave.analytic.seed003 import seed003_summary
 
 CHECK_FUNCTIONS = {
     "shaft.flexibility": ("torsion.shaft_flexibility", "torsion.shaft_flexibility_table_reconstruction"),

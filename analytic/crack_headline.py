@@ -19,8 +19,8 @@ from dataclasses import dataclass
 
 from scipy import optimize
 
-from . import cracks, torsion, tube_crack
-from .variant import Variant
+from strainwave.analytic import cracks, torsion, tube_crack
+from strainwave.analytic.variant import Variant
 
 __all__ = ["ComponentCrackCost", "CrackHeadline", "crack_headline", "TARGET_DROP", "SEED_CLAIM_PERCENT"]
 
@@ -74,7 +74,7 @@ def _depth_for(fn, lambda_sum: float, a_max: float) -> float | None:
 
 def crack_headline(params) -> CrackHeadline:
     """Seed 000's headline recomputed from confirmed forms (module docstring)."""
-    from .seed000 import cup_series_model
+    from strainwave.analytic.seed000 import cup_series_model
 
     mat, sh, cup, g, wg = params.material, params.output_shaft, params.flexspline_cup, params.gear, params.wave_generator
     G, E = mat.implied_shear_modulus_MPa, mat.youngs_modulus_MPa

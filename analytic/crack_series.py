@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 
-from .variant import Variant
+from strainwave.analytic.variant import Variant
 
 # Coefficients of x^(1/2), x^(3/2), ... as printed in seed 000.
 M_P_PUBLISHED = (0.5, 0.25, 0.188, 0.182, 0.166)

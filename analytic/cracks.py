@@ -15,8 +15,8 @@ from typing import Callable
 
 from scipy import integrate
 
-from .crack_series import hertz_mode_i_constant, m_m, m_p
-from .variant import Variant
+from strainwave.analytic.crack_series import hertz_mode_i_constant, m_m, m_p
+from strainwave.analytic.variant import Variant
 
 KPerLoad = Callable[[float], tuple[float, float, float]]   # a -> (K_I/P, K_II/P, K_III/P)
 AreaElement = Callable[[float], float]                      # a -> dA/da

@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .fatigue import normal_safety_factor
+from strainwave.analytic.fatigue import normal_safety_factor
 
 
 @dataclass(frozen=True)

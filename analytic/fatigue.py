@@ -11,8 +11,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .ring import sigma_max_coefficient, sigma_min_coefficient
-from .variant import Variant
+from strainwave.analytic.ring import sigma_max_coefficient, sigma_min_coefficient
+from strainwave.analytic.variant import Variant
 
 # The paper's printed roots of eq 14 (seed 003, worked example, [n] = 1.4,
 # sigma_-1 = 625 MPa, E = 2.1e5 MPa). Kept as data: they are not reproduced exactly.

@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .torsion import radial_force_N
+from strainwave.analytic.torsion import radial_force_N
 
 __all__ = ["RatedLoad", "rated_load", "fatigue_safety_factor", "TORQUE_SOURCE"]
 

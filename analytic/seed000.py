@@ -11,8 +11,8 @@ The pitch radius d1/2 is reported next to it.
 """
 from __future__ import annotations
 
-from . import cracks, torsion
-from .variant import Variant
+from strainwave.analytic import cracks, torsion
+from strainwave.analytic.variant import Variant
 
 P, C = Variant.PUBLISHED, Variant.CORRECTED
 

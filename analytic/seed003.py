@@ -9,9 +9,9 @@ import math
 
 import numpy as np
 
-from ..errors import InputError
-from . import fatigue, ring, thick_ring, tooth_factors, tooth_number
-from .variant import Variant
+from strainwave.errors import InputError
+from strainwave.analytic import fatigue, ring, thick_ring, tooth_factors, tooth_number
+from strainwave.analytic.variant import Variant
 
 P, C = Variant.PUBLISHED, Variant.CORRECTED
 

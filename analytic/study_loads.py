@@ -6,7 +6,7 @@ study's ``run``. A study whose load is a parameter (the torsion studies' T) need
 """
 from __future__ import annotations
 
-from . import ring, torsion
+from strainwave.analytic import ring, torsion
 
 __all__ = ["bearing_ring_load", "ring_compression_load", "wg_bearing_load"]
 
@@ -33,7 +33,7 @@ def wg_bearing_load(params) -> dict:
     the cam's radial amplitude w0 = gear.radial_deformation_mm, Stribeck's ball loads (zero clearance) over
     ``wave_generator.ball_count`` balls, each ball's patch half-width b' (Q/F_r)^(1/3) (Hertz, the seed's
     ellipse taken at F_r) and the Hertz constant K_n of one ball between two races."""
-    from . import wg_bearing
+    from strainwave.analytic import wg_bearing
 
     g, wg, mat = params.gear, params.wave_generator, params.material
     force = torsion.radial_force_N(g.force_coefficient, g.rated_output_torque_Nmm, params.flexspline_cup.pitch_diameter_mm)

@@ -6,13 +6,13 @@ from __future__ import annotations
 
 import math
 
-from .audit import audit_as_dicts
-from .crack_headline import crack_headline
-from .checks import reference_values
-from . import tooth_factors
-from .tooth_number import FEA_AT_MINIMUM, supported_minimum
-from .seed000 import seed000_summary
-from .seed003 import seed003_summary
+from strainwave.analytic.audit import audit_as_dicts
+from strainwave.analytic.crack_headline import crack_headline
+from strainwave.analytic.checks import reference_values
+from strainwave.analytic import tooth_factors
+from strainwave.analytic.tooth_number import FEA_AT_MINIMUM, supported_minimum
+from strainwave.analytic.seed000 import seed000_summary
+from strainwave.analytic.seed003 import seed003_summary
 
 
 def analytic_summary(params) -> dict:

@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
-from . import fatigue, tooth_factors
+from strainwave.analytic import fatigue, tooth_factors
 
 # Toothed-ring FEA at the model's Z_R,min rims (quick meshes, fillet 0.25 m; fea/ring_compression.run):
 # (Z_R, dZ) -> FEA K_delta, K_sigma and eq 14's n_sigma with them. The model is within its fitting residual

@@ -8,7 +8,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .variant import Variant
+from strainwave.analytic.variant import Variant
 
 # Seed 000's printed numerical example (units 1e-10 rad/(N*mm) and N*mm/rad), kept as data.
 SEED000_TABLE = {

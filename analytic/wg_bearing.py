@@ -93,7 +93,7 @@ def stribeck_ball_loads(force_N: float, ball_count: int) -> tuple[np.ndarray, np
 def hertz_ball_constant(force_N: float, semi_axes_mm: tuple[float, float], E_MPa: float, nu: float) -> float:
     """K_n of Q = K_n delta^(3/2) for one ball between two races (two equal contacts in series), from the
     seed's contact ellipse taken at ``force_N``: delta_contact = 3 F/(2 k), k = pi a E*/K(e) (Johnson)."""
-    from .bearing_stiffness import hertz_contact_stiffness_N_per_mm
+    from strainwave.analytic.bearing_stiffness import hertz_contact_stiffness_N_per_mm
 
     k = hertz_contact_stiffness_N_per_mm(*semi_axes_mm, E_MPa, nu)
     delta_pair = 2.0 * 1.5 * force_N / k

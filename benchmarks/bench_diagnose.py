@@ -22,7 +22,7 @@ SPEED_TARGETS_S = {10_000: 5.0, 100_000: 30.0}
 
 def speed(params, rows: int, repeats: int) -> tuple[float, str]:
     """Median time to parse and diagnose a CHA gear recording (three slopes + friction loop) of ``rows`` rows."""
-    from strainwave.compare.diagnose.cha import cha_recording, cha_rows
+    from strainwave.compare.diagnose.generators.cha import cha_recording, cha_rows
     from strainwave.compare.diagnose.pipeline import diagnose
     from strainwave.compare.diagnose.recording import parse_text
     text = cha_recording(cha_rows()[10], hysteresis=True, n=rows)
@@ -47,7 +47,7 @@ def main() -> int:
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--out", default="reports/bench_diagnose")
     args = ap.parse_args()
-    from strainwave.compare.diagnose.benchmark import run_benchmark
+    from strainwave.compare.diagnose.generators.benchmark import run_benchmark
     from strainwave.errors import RangeWarning
     from strainwave.io_atomic import atomic_write_text
     from strainwave.params import load_params

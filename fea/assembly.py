@@ -25,8 +25,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from .block_scatter import component_pairs, orient, pair_keys, split_matrix, symmetric_matrix, upper_blocks
-from .element_gradients import (ElementGeometry, default_intorder, geometry_of_basis, reference_gradients,
+from strainwave.fea.block_scatter import component_pairs, orient, pair_keys, split_matrix, symmetric_matrix, upper_blocks
+from strainwave.fea.element_gradients import (ElementGeometry, default_intorder, geometry_of_basis, reference_gradients,
                                 simplex_quadrature)
 
 
@@ -109,7 +109,7 @@ def compiled_stiffness(nodes: np.ndarray, element_dofs: np.ndarray, order: int, 
     order, ``geometry=(geo_dofs, geo_order)`` for a non-isoparametric map). The same matrix as
     ``stiffness(element_geometry(...))`` to round-off (summation order), with the same sorted pattern and
     exact symmetry. Raises ValueError on a degenerate element (det J = 0)."""
-    from . import assembly_kernels as k
+    from strainwave.fea import assembly_kernels as k
     if nodes.shape[0] != 3:
         raise ValueError(f"compiled_stiffness: 3D only, got dim {nodes.shape[0]}")
     points, weights = simplex_quadrature(3, default_intorder(order) if intorder is None else intorder)

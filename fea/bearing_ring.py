@@ -24,20 +24,20 @@ from typing import ClassVar, Mapping
 
 import numpy as np
 
-from ..errors import StageError
-from . import fused_sweeps
-from .assembly import Lame, elasticity_stiffness, scalar_basis
-from .crack_contact import crack_pairs, solve_with_contact
-from .crack_seam import open_crack_for, seam_crack
-from .fields import field_info, write_solid_fields
-from .mesh_data import group_dofs, to_skfem
-from .mesh_isolated import mesh_part_isolated
-from .meshing import MeshingFailed, Refine
-from .refinement import CRACK_FORMAL_ORDER, DEFAULT_RATIO, refinement_sizes
-from .result import CrackRecord, Load, StudyResult, Support
-from .skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, check_variant, run_variant
-from .solver import solve_elasticity
-from .surface import SurfaceQuadrature
+from strainwave.errors import StageError
+from strainwave.fea import fused_sweeps
+from strainwave.fea.assembly import Lame, elasticity_stiffness, scalar_basis
+from strainwave.fea.crack_contact import crack_pairs, solve_with_contact
+from strainwave.fea.crack_seam import open_crack_for, seam_crack
+from strainwave.fea.fields import field_info, write_solid_fields
+from strainwave.fea.mesh_data import group_dofs, to_skfem
+from strainwave.fea.mesh_isolated import mesh_part_isolated
+from strainwave.fea.meshing import MeshingFailed, Refine
+from strainwave.fea.refinement import CRACK_FORMAL_ORDER, DEFAULT_RATIO, refinement_sizes
+from strainwave.fea.result import CrackRecord, Load, StudyResult, Support
+from strainwave.fea.skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, check_variant, run_variant
+from strainwave.fea.solver import solve_elasticity
+from strainwave.fea.surface import SurfaceQuadrature
 
 STUDY = "bearing-ring"
 PART = "wg-bearing-ring"
@@ -148,14 +148,14 @@ def crack_front_size_mm(a_mm: float, fine_mm: float, floor_over_h: float = FRONT
 
 def build_seam_part(params, crack_depth_mm: float):
     """The wave-generator bearing inner ring with its crack as an embedded seam (tests substitute a stand-in)."""
-    from ..geometry.part import CrackModel
-    from ..geometry.parts import build_part
+    from strainwave.geometry.part import CrackModel
+    from strainwave.geometry.parts import build_part
     return build_part(PART, params, crack_depth_mm=crack_depth_mm, crack_model=CrackModel.SEAM)
 
 
 def build_plain_part(params):
     """The uncracked wave-generator bearing inner ring (tests substitute a stand-in)."""
-    from ..geometry.parts import build_part
+    from strainwave.geometry.parts import build_part
     return build_part(PART, params)
 
 

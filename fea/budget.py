@@ -16,7 +16,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..errors import InputError
+from strainwave.errors import InputError
 
 # Finest-mesh elements one run may ask for: what fits a shared 2-core machine (docs/decisions/008-element-and-teeth-budget.md).
 MAX_ELEMENTS = 300_000
@@ -70,17 +70,17 @@ class MeshEstimate:
 def _default_h_mm(study: str, params, quick: bool) -> float:
     """The study's own default finest size (read from the study module, not restated here)."""
     if study == "shaft-torsion":
-        from .shaft_torsion import default_size_mm
+        from strainwave.fea.shaft_torsion import default_size_mm
     elif study == "cup-torsion":
-        from .cup_torsion import default_size_mm
+        from strainwave.fea.cup_torsion import default_size_mm
     elif study == "bearing-ring":
-        from .bearing_ring import default_size_mm
+        from strainwave.fea.bearing_ring import default_size_mm
     elif study == "wg-bearing":
-        from .wg_bearing import default_size_mm
+        from strainwave.fea.wg_bearing import default_size_mm
     elif study == "cup-wave-generator":
-        from .cup_wave_generator import default_size_mm
+        from strainwave.fea.cup_wave_generator import default_size_mm
     else:
-        from .ring_compression import mesh_sizes_mm, ring_geometry
+        from strainwave.fea.ring_compression import mesh_sizes_mm, ring_geometry
         return mesh_sizes_mm(ring_geometry(params), None, quick)[0]
     return default_size_mm(params, quick)
 
@@ -95,7 +95,7 @@ def _volume_and_wall(study: str, params) -> tuple[float, float]:
         diaphragm = math.pi / 4 * c.pitch_diameter_mm ** 2 * c.wall_thickness_mm
         return tube + diaphragm, c.wall_thickness_mm
     if study == "cup-wave-generator":
-        from .wg_band import tube_geometry
+        from strainwave.fea.wg_band import tube_geometry
         g = tube_geometry(params)     # the quarter wall the study meshes
         return 0.5 * math.pi * g.r_m_mm * g.wall_mm * (g.length_mm - g.z_end_mm), g.wall_mm
     if study in ("bearing-ring", "wg-bearing"):     # wg-bearing: the plane section, per mm of width

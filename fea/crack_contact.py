@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from .mesh_data import MeshData
+from strainwave.fea.mesh_data import MeshData
 
 __all__ = ["CrackPairs", "crack_pairs", "ContactResult", "solve_with_contact"]
 
@@ -52,7 +52,7 @@ class CrackPairs:
 def crack_pairs(opened: MeshData, group: str = "crack") -> CrackPairs:
     """Pairs from the opened mesh's ``<group>_minus`` / ``<group>_plus`` facets (front nodes are shared,
     so they are no pair); the normal is the + side's (``crack_seam``'s orientation of a planar crack)."""
-    from .crack_seam import _oriented_normals
+    from strainwave.fea.crack_seam import _oriented_normals
 
     minus_f, plus_f = opened.groups[f"{group}_minus"], opened.groups[f"{group}_plus"]
     m, p = minus_f.ravel(), plus_f.ravel()

@@ -17,8 +17,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
-from .element_gradients import SKFEM_EDGES
-from .mesh_data import MeshData, group_dofs
+from strainwave.fea.element_gradients import SKFEM_EDGES
+from strainwave.fea.mesh_data import MeshData, group_dofs
 
 # Newton steps of the inverse P2 map; reference coordinates converge quadratically from the straight tet's
 NEWTON_STEPS = 8
@@ -112,8 +112,8 @@ class LocalEnergy:
 def patch_energy(md: MeshData, lame, global_u, *, group: str = "cut", study: str = "fea") -> tuple[float, int, float]:
     """(strain energy, dofs, solve s) of ``md`` with the nodes of ``group`` held at ``global_u(points)``
     (n, 3) mm and every other face free."""
-    from .solver import solve_elasticity
-    from .static import assemble
+    from strainwave.fea.solver import solve_elasticity
+    from strainwave.fea.static import assemble
     sk, K, f, _, _ = assemble(md, lame, study=study)
     nodes = group_dofs(sk, md, group)
     g = np.asarray(global_u(sk.doflocs[:, nodes].T), float)
@@ -125,7 +125,7 @@ def patch_energy(md: MeshData, lame, global_u, *, group: str = "cut", study: str
 
 def local_release(md: MeshData, lame, global_u, *, study: str) -> LocalEnergy:
     """The patch solved closed and opened (``crack_seam.open_crack``) on one mesh."""
-    from .crack_seam import open_crack_for
+    from strainwave.fea.crack_seam import open_crack_for
     closed, _, t0 = patch_energy(md, lame, global_u, study=study)
     opened, dofs, t1 = patch_energy(open_crack_for(md, study), lame, global_u, study=study)
     return LocalEnergy(closed, opened, dofs, t0 + t1)

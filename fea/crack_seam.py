@@ -15,9 +15,9 @@ import dataclasses
 import numpy as np
 from scipy.spatial import cKDTree
 
-from ..errors import StageError
-from .mesh_data import MeshData
-from .result import CrackRecord
+from strainwave.errors import StageError
+from strainwave.fea.mesh_data import MeshData
+from strainwave.fea.result import CrackRecord
 
 _TET_FACES = ((0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3))
 _TRI_EDGES = ((0, 1, 3), (1, 2, 4), (2, 0, 5))       # vertex a, vertex b, mid-node column (triangle6)

@@ -13,18 +13,18 @@ from functools import partial
 from pathlib import Path
 from typing import ClassVar, Mapping
 
-from ..errors import InputError
-from .assembly import Lame
-from .crack_local import compliance_from_release, interpolate_p2, local_release
-from .crack_seam import open_crack_for, seam_crack
-from .fields import field_info, write_solid_fields
-from .meshing import OPTIMIZE_THRESHOLD
-from .refinement import DEFAULT_RATIO, CrackFrontGrading, crack_flexibility_quantities, refinement_sizes
-from .result import CrackRecord, Load, StudyResult
-from .skeleton import MeshSolve, Series, SeriesPlan, check_variant, run_variant
-from .static import StaticSolution, solve_static
-from .study_mesh import mesh_for_study
-from .torsion_load import (TorsionVariant, mean_rotation_rad, moment_arm_mm3, torsion_meta,
+from strainwave.errors import InputError
+from strainwave.fea.assembly import Lame
+from strainwave.fea.crack_local import compliance_from_release, interpolate_p2, local_release
+from strainwave.fea.crack_seam import open_crack_for, seam_crack
+from strainwave.fea.fields import field_info, write_solid_fields
+from strainwave.fea.meshing import OPTIMIZE_THRESHOLD
+from strainwave.fea.refinement import DEFAULT_RATIO, CrackFrontGrading, crack_flexibility_quantities, refinement_sizes
+from strainwave.fea.result import CrackRecord, Load, StudyResult
+from strainwave.fea.skeleton import MeshSolve, Series, SeriesPlan, check_variant, run_variant
+from strainwave.fea.static import StaticSolution, solve_static
+from strainwave.fea.study_mesh import mesh_for_study
+from strainwave.fea.torsion_load import (TorsionVariant, mean_rotation_rad, moment_arm_mm3, torsion_meta,
                            uniform_tangential_traction)
 
 STUDY = "cup-torsion"

@@ -23,12 +23,12 @@ from typing import ClassVar, Mapping
 
 import numpy as np
 
-from ..errors import InputError
-from .assembly import Lame
-from .refinement import converged_quantity
-from .result import Load, MeshQuality, StudyResult, Support
-from .skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, check_variant, run_variant
-from . import wg_band as wb
+from strainwave.errors import InputError
+from strainwave.fea.assembly import Lame
+from strainwave.fea.refinement import converged_quantity
+from strainwave.fea.result import Load, MeshQuality, StudyResult, Support
+from strainwave.fea.skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, check_variant, run_variant
+from strainwave.fea import wg_band as wb
 
 STUDY = wb.STUDY
 MODELS = ("prescribed", "contact")
@@ -143,7 +143,7 @@ class CupWaveGenerator(StudyVariant):
                          {"method": "direct", "cases": facts}, {"tube": tube, "u": u} if keep_fields else {})
 
     def write_fields(self, series: Mapping[str, Series], vtu, load: Load) -> tuple:
-        from .fields import field_info
+        from strainwave.fea.fields import field_info
         f = series["wall"].finest.fields
         mat = self.params.material
         lame = Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio)

@@ -25,9 +25,9 @@ from typing import Mapping
 
 import numpy as np
 
-from ..io_atomic import atomic_path
-from .assembly import Lame
-from .mesh_data import MeshData, SkfemMesh
+from strainwave.io_atomic import atomic_path
+from strainwave.fea.assembly import Lame
+from strainwave.fea.mesh_data import MeshData, SkfemMesh
 
 # VTK cell types and the gmsh -> VTK node permutation (VTK tet10 mid-edge order 01 12 20 03 13 23)
 _VTK = {(3, 1): (10, None), (3, 2): (24, [0, 1, 2, 3, 4, 5, 6, 7, 9, 8]), (2, 1): (5, None), (2, 2): (22, None)}

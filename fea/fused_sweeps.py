@@ -35,7 +35,7 @@ MIN_DOFS = 100_000
 def _kernels():
     """The compiled kernels, imported on first use."""
     _join_warm_up()
-    from . import sweep_kernels
+    from strainwave.fea import sweep_kernels
     return sweep_kernels
 
 
@@ -71,7 +71,7 @@ def warm_up_assembly() -> None:
 
 def _load_assembly_kernels() -> None:
     try:
-        from . import assembly_kernels
+        from strainwave.fea import assembly_kernels
         assembly_kernels.load()
     except Exception:     # noqa: BLE001 - a failure here shows again, with its traceback, in the assembly
         pass
@@ -85,7 +85,7 @@ def _join_warm_up() -> None:
 
 def _call_each_kernel() -> None:
     try:
-        from . import sweep_kernels as k
+        from strainwave.fea import sweep_kernels as k
         A = sp.csr_matrix(np.array([[2.0, -1.0], [-1.0, 2.0]]))
         b = np.ones(2)
         x, ux, ax = np.zeros(2), np.zeros(2), np.zeros(2)

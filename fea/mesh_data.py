@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .result import MeshQuality
+from strainwave.fea.result import MeshQuality
 
 # gmsh local vertex pairs of the mid-edge nodes, in gmsh's node order after the vertices
 GMSH_EDGES = {
@@ -100,7 +100,7 @@ def to_skfem(md: MeshData) -> SkfemMesh:
     """
     import skfem
 
-    from .element_gradients import SKFEM_EDGES
+    from strainwave.fea.element_gradients import SKFEM_EDGES
 
     nv = md.n_vertices_per_cell
     vert_nodes = np.flatnonzero(np.bincount(md.cells[:, :nv].ravel(), minlength=md.nodes_mm.shape[0]))  # = np.unique
@@ -136,7 +136,7 @@ def to_skfem(md: MeshData) -> SkfemMesh:
 
 def _gmsh_to_skfem(dim: int) -> list[int]:
     """For each scikit-fem P2 edge slot, the gmsh mid-node slot of the same vertex pair."""
-    from .element_gradients import SKFEM_EDGES
+    from strainwave.fea.element_gradients import SKFEM_EDGES
     gmsh_slot = {tuple(sorted(e)): j for j, e in enumerate(GMSH_EDGES[dim])}
     return [gmsh_slot[p] for p in SKFEM_EDGES[dim]]
 

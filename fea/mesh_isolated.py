@@ -13,9 +13,9 @@ from __future__ import annotations
 import dataclasses
 from typing import Sequence
 
-from .mesh_data import MeshData
-from .meshing import MeshingFailed, MeshLimitExceeded, Refine, mesh_part
-from .session import mesh_in_child
+from strainwave.fea.mesh_data import MeshData
+from strainwave.fea.meshing import MeshingFailed, MeshLimitExceeded, Refine, mesh_part
+from strainwave.fea.session import mesh_in_child
 
 # +3 %, -2 %, +5 %: small enough that two neighbouring refinements retried in opposite directions keep the
 # GCI's ratio above Roache's 1.3 minimum at the one ratio 1.4 (worst 1.4 x 0.98/1.05 = 1.307; the former

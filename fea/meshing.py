@@ -14,8 +14,8 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
-from .mesh_data import MeshData
-from .result import MeshQuality
+from strainwave.fea.mesh_data import MeshData
+from strainwave.fea.result import MeshQuality
 
 # gmsh element type ids
 _CELL_TYPES = {(3, 1): 4, (3, 2): 11, (2, 1): 2, (2, 2): 9}
@@ -176,7 +176,7 @@ def _generate(model, dim: int, order: int, preload_kernels: bool = True) -> None
     model.mesh.generate(dim)
     if order == 2:
         if preload_kernels and dim == 3:
-            from . import fused_sweeps
+            from strainwave.fea import fused_sweeps
             # the assembly of a system this large runs numba kernels: they load beside setOrder, which runs
             # in C++ with the interpreter lock released
             if expected_p2_dofs(len(model.mesh.getNodes()[0])) >= fused_sweeps.MIN_DOFS:

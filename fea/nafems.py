@@ -26,9 +26,9 @@ from typing import Callable
 
 import numpy as np
 
-from .assembly import Lame
-from .convergence import Convergence, grid_convergence
-from .mesh_data import MeshData, group_dofs, to_skfem
+from strainwave.fea.assembly import Lame
+from strainwave.fea.convergence import Convergence, grid_convergence
+from strainwave.fea.mesh_data import MeshData, group_dofs, to_skfem
 
 YOUNGS_MODULUS_MPa = 210_000.0
 POISSON_RATIO = 0.3
@@ -95,14 +95,14 @@ def _on_ellipse(points: np.ndarray, semi_axes: tuple[float, float]) -> bool:
 
 
 def _refine(h_mm: float):
-    from .meshing import Refine
+    from strainwave.fea.meshing import Refine
     # the inner edge AD: a curve group in 2D, a surface group in 3D (``Refine.groups``)
     return [Refine(h_mm / LOCAL_OVER_H, *LOCAL_DIST_MM, groups=("AD",))]
 
 
 def _curve_groups(model) -> dict[str, list[int]]:
     """The LE1 edges by sampled points: AB (x = 0), CD (y = 0), BC (outer arc), AD (inner arc)."""
-    from .meshing import _match
+    from strainwave.fea.meshing import _match
     return {"AB": _match(model, 1, lambda p: bool(np.all(np.abs(p[:, 0]) < 1e-6)), 0.0),
             "CD": _match(model, 1, lambda p: bool(np.all(np.abs(p[:, 1]) < 1e-6)), 0.0),
             "BC": _match(model, 1, lambda p: _on_ellipse(p, OUTER_MM), 0.0),
@@ -111,7 +111,7 @@ def _curve_groups(model) -> dict[str, list[int]]:
 
 def mesh_le1(model, h_mm: float) -> MeshData:
     """Curved P2 triangles of the LE1 quarter (groups AB, CD, BC, AD)."""
-    from .meshing import extract, generate
+    from strainwave.fea.meshing import extract, generate
     face = _section(model)
     model.occ.synchronize()
     groups = _curve_groups(model)
@@ -125,7 +125,7 @@ def mesh_le1(model, h_mm: float) -> MeshData:
 def _surface_groups(model) -> dict[str, list[int]]:
     """The LE10 faces by centre of mass: x0 (ABA'B'), y0 (DCD'C'), outer (BCB'C', two halves), AD (the hole),
     upper (z = +300); and the mid-plane line EE' of the outer face (curve group "EE")."""
-    from .meshing import _match
+    from strainwave.fea.meshing import _match
     t = LE10_HALF_THICKNESS_MM
 
     def radius(c, axes):
@@ -146,7 +146,7 @@ def _surface_groups(model) -> dict[str, list[int]]:
 
 def mesh_le10(model, h_mm: float) -> MeshData:
     """Curved P2 tetrahedra of the LE10 quarter plate, split at z = 0 so that EE' is a mesh line."""
-    from .meshing import extract, generate
+    from strainwave.fea.meshing import extract, generate
     t = LE10_HALF_THICKNESS_MM
     lower = model.occ.extrude([(2, _section(model, -t))], 0.0, 0.0, t)
     upper = model.occ.extrude([(2, _section(model, 0.0))], 0.0, 0.0, t)
@@ -155,7 +155,7 @@ def mesh_le10(model, h_mm: float) -> MeshData:
     model.occ.synchronize()
     groups = _surface_groups(model)
     if any(not tags for tags in groups.values()):
-        from .meshing import MeshingFailed
+        from strainwave.fea.meshing import MeshingFailed
         raise MeshingFailed(f"LE10: a named face was not found: {groups}")
     for name, tags in groups.items():
         model.addPhysicalGroup(1 if name == "EE" else 2, tags, name=name)
@@ -200,8 +200,8 @@ class PointStress:
 
 def solve_case(bench: Benchmark, md: MeshData) -> PointStress:
     """Solve ``bench`` on ``md`` and read its stress component at its point by nodal averaging."""
-    from .fields import nodal_stress
-    from .static import solve_static
+    from strainwave.fea.fields import nodal_stress
+    from strainwave.fea.static import solve_static
     if bench.dim == 2:
         lame = Lame.from_young(YOUNGS_MODULUS_MPa, POISSON_RATIO, plane_stress=True)
         fixed = _component_dofs(md, {"AB": (0,), "CD": (1,)})
@@ -221,7 +221,7 @@ def solve_case(bench: Benchmark, md: MeshData) -> PointStress:
 
 def mesh_case(bench: Benchmark, h_mm: float) -> MeshData:
     """The benchmark's mesh of global size ``h_mm`` in its own gmsh session."""
-    from .session import gmsh_session
+    from strainwave.fea.session import gmsh_session
     with gmsh_session() as model:
         return (mesh_le1 if bench.dim == 2 else mesh_le10)(model, h_mm)
 

@@ -8,9 +8,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable, Sequence, TypeVar
 
-from .convergence import Convergence, GciUndefined, formal_order, grid_convergence
-from .meshing import Refine
-from .result import Quantity
+from strainwave.fea.convergence import Convergence, GciUndefined, formal_order, grid_convergence
+from strainwave.fea.meshing import Refine
+from strainwave.fea.result import Quantity
 
 DEFAULT_RATIO = 1.4
 T = TypeVar("T")

@@ -9,7 +9,7 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .convergence import Convergence, GciUndefined, formal_order, grid_convergence
+from strainwave.fea.convergence import Convergence, GciUndefined, formal_order, grid_convergence
 
 LOAD_UNITS = ("N*mm", "N")      # a torque or a force: every study applies one resultant
 

@@ -16,7 +16,7 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import splu
 
-from .crack_contact import CrackPairs, solve_with_contact
+from strainwave.fea.crack_contact import CrackPairs, solve_with_contact
 
 __all__ = ["graded_nodes", "RingMesh", "ring_mesh", "RingSystem", "assemble", "solve_ring"]
 
@@ -135,7 +135,7 @@ def _bore_rotation(n: int, bore: np.ndarray, phi: np.ndarray) -> sp.csr_matrix:
 
 def _direct(K, f, fixed):
     """Zero Dirichlet ``fixed``; the project's sparse direct solver (PARDISO when installed, else SuperLU)."""
-    from .solver import _direct as direct
+    from strainwave.fea.solver import _direct as direct
 
     u = np.zeros(f.shape)
     free = np.setdiff1d(np.arange(K.shape[0]), fixed)

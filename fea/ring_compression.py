@@ -32,15 +32,15 @@ from typing import ClassVar, Mapping
 
 import numpy as np
 
-from ..errors import InputError, StageError
-from .assembly import Lame
-from .fields import field_info, write_solid_fields
-from .meshing import MeshingFailed
-from .refinement import DEFAULT_RATIO, refinement_sizes
-from .result import Load, StudyResult, Support
-from .ring_loads import ArcLoad
-from .ring_plane import RingGeometry, solve_ring_section
-from .skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, check_variant, run_variant
+from strainwave.errors import InputError, StageError
+from strainwave.fea.assembly import Lame
+from strainwave.fea.fields import field_info, write_solid_fields
+from strainwave.fea.meshing import MeshingFailed
+from strainwave.fea.refinement import DEFAULT_RATIO, refinement_sizes
+from strainwave.fea.result import Load, StudyResult, Support
+from strainwave.fea.ring_loads import ArcLoad
+from strainwave.fea.ring_plane import RingGeometry, solve_ring_section
+from strainwave.fea.skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, check_variant, run_variant
 
 STUDY = "ring-compression"
 SOLID_LAYERS = (4, 3, 2)    # 3D: P2 tets through the thickness, fine first (ratios 1.33, 1.5 > 1.3)
@@ -66,7 +66,7 @@ def contact_load(geo: RingGeometry, force_N: float) -> ArcLoad:
 
 def section_face(params, *, teeth: bool):
     """The ring's 2D cross-section from geometry/ (``Part.section``)."""
-    from ..geometry.parts import build_part
+    from strainwave.geometry.parts import build_part
     return build_part("ewg-flexspline-ring", params, teeth=teeth).section
 
 
@@ -123,7 +123,7 @@ class RingCompression(StudyVariant):
         mat = self.params.material
         t0 = time.perf_counter()
         if series == "solid_3d":
-            from .ring_solid import solve_ring_solid
+            from strainwave.fea.ring_solid import solve_ring_solid
             progress(f"{STUDY}: smooth ring, 3D solid, {refinement:g} P2 tets through the thickness")
             s = solve_ring_solid(self.geometry, self.arc_load, Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio),
                                  n_radial=int(refinement))

@@ -14,15 +14,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .assembly import Lame, elasticity_stiffness, facet_vector_basis, scalar_basis, vector_basis_of
-from .mesh_data import MeshData, SkfemMesh, to_skfem
-from .meshing import Refine, mesh_section
-from .ring_loads import ArcLoad
-from .ring_sections import (MidLayer, boundary_stress_MPa, hoop_at, mid_layer, peak_near, section_hoop_MPa,
+from strainwave.fea.assembly import Lame, elasticity_stiffness, facet_vector_basis, scalar_basis, vector_basis_of
+from strainwave.fea.mesh_data import MeshData, SkfemMesh, to_skfem
+from strainwave.fea.meshing import Refine, mesh_section
+from strainwave.fea.ring_loads import ArcLoad
+from strainwave.fea.ring_sections import (MidLayer, boundary_stress_MPa, hoop_at, mid_layer, peak_near, section_hoop_MPa,
                             signed_principal)
-from .session import mesh_in_child
-from .solver import solve_elasticity
-from .surface import SurfaceQuadrature
+from strainwave.fea.session import mesh_in_child
+from strainwave.fea.solver import solve_elasticity
+from strainwave.fea.surface import SurfaceQuadrature
 
 
 @dataclass(frozen=True)

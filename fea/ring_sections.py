@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .assembly import Lame
+from strainwave.fea.assembly import Lame
 
 # Sampling a fibre exactly on the boundary could land on an element edge from outside the mesh;
 # a relative inset of 1e-7 of the wall thickness is far below any stress gradient that matters.

@@ -21,13 +21,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .assembly import Lame, elasticity_stiffness, scalar_basis
-from .mesh_data import GMSH_EDGES, MeshData, to_skfem
-from .result import MeshQuality
-from .ring_loads import ArcLoad
-from .ring_plane import RingGeometry
-from .solver import solve_elasticity
-from .surface import SurfaceQuadrature
+from strainwave.fea.assembly import Lame, elasticity_stiffness, scalar_basis
+from strainwave.fea.mesh_data import GMSH_EDGES, MeshData, to_skfem
+from strainwave.fea.result import MeshQuality
+from strainwave.fea.ring_loads import ArcLoad
+from strainwave.fea.ring_plane import RingGeometry
+from strainwave.fea.solver import solve_elasticity
+from strainwave.fea.surface import SurfaceQuadrature
 
 ARC_ELEMENTS = 4          # elements over the contact half-arc
 ASPECT = 4.0              # in-plane (theta, z) element size over the through-thickness size

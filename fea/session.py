@@ -150,8 +150,8 @@ def mesh_in_child(build: Callable[[object], T], *, what: str = "gmsh") -> T:
     import shutil
     import tempfile
 
-    from .budget import mesh_limits
-    from .meshing import MeshingFailed, MeshLimitExceeded
+    from strainwave.fea.budget import mesh_limits
+    from strainwave.fea.meshing import MeshingFailed, MeshLimitExceeded
 
     limits = mesh_limits()
     parent = os.getpid()

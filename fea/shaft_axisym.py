@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .mesh_data import MeshData
+from strainwave.fea.mesh_data import MeshData
 
 
 @dataclass(frozen=True)
@@ -51,7 +51,7 @@ class Section:
 def mesh_section(model, section: Section, *, size_mm: float, tip_size_mm: float, order: int = 2) -> MeshData:
     """Triangles of the (r, z) rectangle (x = r, y = z) with the crack line embedded (group "crack"),
     ends "fixed" (z = 0) and "loaded" (z = L); refined to ``tip_size_mm`` around the crack tip."""
-    from .meshing import Refine, extract, generate
+    from strainwave.fea.meshing import Refine, extract, generate
 
     s = section
     rect = model.occ.addRectangle(s.r_inner_mm, 0.0, 0.0, s.r_outer_mm - s.r_inner_mm, s.length_mm)
@@ -117,8 +117,8 @@ def solve_section(md: MeshData, section: Section, shear_modulus_MPa: float,
     from skfem import BilinearForm, FacetBasis, Functional, LinearForm, solve, condense
     from skfem.helpers import dot, grad
 
-    from .assembly import scalar_basis
-    from .mesh_data import facet_indices, group_dofs, to_skfem
+    from strainwave.fea.assembly import scalar_basis
+    from strainwave.fea.mesh_data import facet_indices, group_dofs, to_skfem
 
     sk = to_skfem(md)
     basis = scalar_basis(sk.mesh, sk.element, intorder=6)    # r^3 weight: quadrature exact for P2 on lines

@@ -11,10 +11,10 @@ import time
 from pathlib import Path
 from typing import Callable
 
-from .fields import field_info, write_vtu
-from .session import mesh_in_child
-from .shaft_axisym import Section, mesh_section, open_crack_line, section_fields, solve_section
-from .skeleton import MeshSolve
+from strainwave.fea.fields import field_info, write_vtu
+from strainwave.fea.session import mesh_in_child
+from strainwave.fea.shaft_axisym import Section, mesh_section, open_crack_line, section_fields, solve_section
+from strainwave.fea.skeleton import MeshSolve
 
 # Section wall/8, tip a/80 (quick wall/5, a/40): the tip error is first order (docs/decisions/010-shaft-axisymmetric-crack.md).
 WALL_OVER_H = {False: 8.0, True: 5.0}

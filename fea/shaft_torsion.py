@@ -16,18 +16,18 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, ClassVar, Mapping, Sequence
 
-from ..errors import InputError
-from .assembly import Lame
-from .crack_seam import open_crack_for, seam_crack
-from .fields import field_info, write_solid_fields
-from .meshing import Refine
-from .refinement import (CRACK_FORMAL_ORDER, DEFAULT_RATIO, CrackFrontGrading, crack_flexibility_quantities,
+from strainwave.errors import InputError
+from strainwave.fea.assembly import Lame
+from strainwave.fea.crack_seam import open_crack_for, seam_crack
+from strainwave.fea.fields import field_info, write_solid_fields
+from strainwave.fea.meshing import Refine
+from strainwave.fea.refinement import (CRACK_FORMAL_ORDER, DEFAULT_RATIO, CrackFrontGrading, crack_flexibility_quantities,
                          refinement_sizes)
-from .result import CrackRecord, Load, StudyResult
-from .skeleton import MeshSolve, Series, SeriesPlan, check_variant, run_variant
-from .static import StaticSolution, solve_static
-from .study_mesh import mesh_for_study
-from .torsion_load import TorsionVariant, mean_rotation_rad, saint_venant_traction, torsion_meta
+from strainwave.fea.result import CrackRecord, Load, StudyResult
+from strainwave.fea.skeleton import MeshSolve, Series, SeriesPlan, check_variant, run_variant
+from strainwave.fea.static import StaticSolution, solve_static
+from strainwave.fea.study_mesh import mesh_for_study
+from strainwave.fea.torsion_load import TorsionVariant, mean_rotation_rad, saint_venant_traction, torsion_meta
 
 STUDY = "shaft-torsion"
 UNIT = "rad/(N*mm)"
@@ -137,13 +137,13 @@ class ShaftTorsion(TorsionVariant):
     def series(self) -> tuple[SeriesPlan, ...]:
         plans = (SeriesPlan("solid", refinement_sizes(self.h_fine_mm, self.ratio)),)
         if self.crack_model == "axisymmetric":
-            from .shaft_axisym_study import section_fine_mm
+            from strainwave.fea.shaft_axisym_study import section_fine_mm
             plans += (SeriesPlan("section", refinement_sizes(section_fine_mm(self.params, self.quick), self.ratio)),)
         return plans
 
     def solve(self, part, series, h_mm, k, keep_fields, progress) -> MeshSolve:
         if series == "section":
-            from .shaft_axisym_study import section_fine_mm, solve_section_refinement
+            from strainwave.fea.shaft_axisym_study import section_fine_mm, solve_section_refinement
             return solve_section_refinement(self.params, self.crack_depth_mm, h_mm,
                                             section_fine_mm(self.params, self.quick), quick=self.quick,
                                             keep_fields=keep_fields, progress=progress)
@@ -187,7 +187,7 @@ class ShaftTorsion(TorsionVariant):
         info = field_info(STUDY, load.describe(), self.params.material)
         paths = (write_solid_fields(vtu, sol.md, sol.sk, sol.u, sol.lame, info=info),)
         if "section" in series:
-            from .shaft_axisym_study import write_section_fields
+            from strainwave.fea.shaft_axisym_study import write_section_fields
             paths += (write_section_fields(self.params, series["section"].finest,
                                            vtu.with_name(vtu.stem + "_cracked.vtu")),)
         return paths

@@ -18,8 +18,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Mapping, Sequence
 
-from .refinement import converged_quantity, on_three_meshes
-from .result import CrackRecord, Load, MeshQuality, Quantity, StudyResult, Support
+from strainwave.fea.refinement import converged_quantity, on_three_meshes
+from strainwave.fea.result import CrackRecord, Load, MeshQuality, Quantity, StudyResult, Support
 
 Progress = Callable[[str], None]
 

@@ -15,7 +15,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from ..errors import StageError
+from strainwave.errors import StageError
 
 # Direct below this size for plain SA (P1, 2D); 3D P2 always p-multigrid (docs/decisions/003-direct-vs-multigrid-solver.md).
 DIRECT_MAX_DOFS = 60_000
@@ -106,7 +106,7 @@ def solve_elasticity(K: sp.spmatrix, f: np.ndarray, *, fixed_dofs: np.ndarray, f
     if method == "auto":
         pmg = p2_element_dofs is not None and dim == 3
         method = "amg" if pmg or free.size > DIRECT_MAX_DOFS else "direct"
-    from .fused_sweeps import MIN_DOFS
+    from strainwave.fea.fused_sweeps import MIN_DOFS
     fused = method == "amg" and p2_element_dofs is not None and dim == 3 and free.size >= MIN_DOFS
     if Kff_blocks is not None:
         # no CSR copy for the fused sweeps; blocks kept for the Galerkin product (docs/decisions/006-fused-sweeps.md)
@@ -118,7 +118,7 @@ def solve_elasticity(K: sp.spmatrix, f: np.ndarray, *, fixed_dofs: np.ndarray, f
         x, name = _direct(Kff, b, study, node_blocks=dim == 3)
         its = 1
     else:
-        from .pmultigrid import pcg, pcg_with_products, v_cycle, v_cycle_fused
+        from strainwave.fea.pmultigrid import pcg, pcg_with_products, v_cycle, v_cycle_fused
         # in a list, so the hierarchy frees the blocks after its Galerkin product (docs/decisions/020-condensation-in-node-blocks.md)
         blocks = [Kff_blocks]
         del Kff_blocks
@@ -147,7 +147,7 @@ def condense_blocks(K: sp.bsr_matrix, keep_nodes: np.ndarray, *, in_place: bool 
     ``in_place``: formed over K's own arrays by a numba kernel (K is lost; numba must be wanted anyway),
     because mapping fresh memory was most of a copy's cost."""
     if in_place:
-        from .assembly_kernels import condense_blocks_in_place
+        from strainwave.fea.assembly_kernels import condense_blocks_in_place
         indptr, m = condense_blocks_in_place(K.indptr, K.indices, K.data, np.ascontiguousarray(keep_nodes, bool))
         n = (indptr.size - 1) * K.blocksize[0]
         out = sp.bsr_matrix((K.data[:m], K.indices[:m], indptr.astype(K.indptr.dtype)), shape=(n, n))
@@ -236,7 +236,7 @@ def _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs, blocks=None, p1_stif
     B = rigid_body_modes(coords, dim)
     if p2_element_dofs is None or not node_complete:
         return _aggregation(Kff.tobsr(blocksize=(dim, dim)) if node_complete else Kff, B[free])
-    from .pmultigrid import p1_prolongation, vector_prolongation
+    from strainwave.fea.pmultigrid import p1_prolongation, vector_prolongation
     scalar_P = p1_prolongation(p2_element_dofs)[0]
     P, coarse_free = vector_prolongation(scalar_P, dim, free)
     if p1_stiffness is not None:
@@ -270,7 +270,7 @@ def _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs, blocks=None, p1_stif
     ml = MultilevelSolver([fine] + coarse.levels, coarse_solver="splu")
     pyamg.relaxation.smoothing.change_smoothers(ml, presmoother=SMOOTHERS[0], postsmoother=SMOOTHERS[1])
     if fused:
-        from .fused_sweeps import FineSweeps
+        from strainwave.fea.fused_sweeps import FineSweeps
         # fused_sweeps on the fine and P1 levels; pyamg's smoothers stay for ml.solve (docs/decisions/006-fused-sweeps.md)
         p1 = ml.levels[1].A
         ml.fused_sweeps = [FineSweeps(fine.A)] + ([FineSweeps(p1)] if p1.format == "bsr" and p1.blocksize == (3, 3)

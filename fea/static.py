@@ -16,13 +16,13 @@ from typing import Callable, Mapping
 
 import numpy as np
 
-from . import fused_sweeps
-from .assembly import Lame, compiled_stiffness, facet_vector_basis, scalar_basis, stiffness
-from .element_gradients import default_intorder, element_geometry
-from .mesh_data import MeshData, SkfemMesh, facet_indices, group_dofs, to_skfem
-from ..errors import StageError
-from .solver import SolverInfo, solve_elasticity
-from .surface import SurfaceQuadrature
+from strainwave.fea import fused_sweeps
+from strainwave.fea.assembly import Lame, compiled_stiffness, facet_vector_basis, scalar_basis, stiffness
+from strainwave.fea.element_gradients import default_intorder, element_geometry
+from strainwave.fea.mesh_data import MeshData, SkfemMesh, facet_indices, group_dofs, to_skfem
+from strainwave.errors import StageError
+from strainwave.fea.solver import SolverInfo, solve_elasticity
+from strainwave.fea.surface import SurfaceQuadrature
 
 Traction = Callable[[np.ndarray], np.ndarray]     # x (dim, nf, nq) mm -> t (dim, nf, nq) MPa
 
@@ -102,7 +102,7 @@ def load_assembly_kernels() -> None:
     """numba and the assembly's kernels, loaded in this thread before the sweeps' warm-up thread starts:
     loaded beside it, both held the interpreter lock in turn and numpy's many short calls in to_skfem and
     the geometry waited for it (docs/decisions/004-assembly-kernels.md)."""
-    from . import assembly_kernels
+    from strainwave.fea import assembly_kernels
     assembly_kernels.load()
 
 

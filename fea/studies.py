@@ -16,9 +16,9 @@ import importlib
 from pathlib import Path
 from typing import Callable
 
-from ..errors import InputError
-from ..registry import study as registered
-from .result import StudyResult
+from strainwave.errors import InputError
+from strainwave.registry import study as registered
+from strainwave.fea.result import StudyResult
 
 
 def with_crack(study: str, params, crack_depth_mm: float | None):
@@ -40,7 +40,7 @@ def run_study(study: str, params, *, mesh_size_mm: float | None = None, order: i
         raise InputError("--order", order, "must be 1 or 2")
     params = with_crack(study, params, crack_depth_mm)
     # every path that meshes a study (solve, validate, diagnose --baseline fea, a sweep's worker) is budgeted
-    from .budget import check_budget
+    from strainwave.fea.budget import check_budget
     check_budget(study, params, mesh_size_mm, quick, flag="--mesh-size-mm" if mesh_size_mm else "--params")
     module = importlib.import_module(spec.module)
     say = progress or (lambda msg: None)

@@ -4,10 +4,10 @@ from __future__ import annotations
 import time
 from typing import Callable, Sequence
 
-from ..errors import StageError
-from .mesh_data import MeshData
-from .meshing import OPTIMIZE_THRESHOLD, MeshingFailed, Refine, mesh_part
-from .session import mesh_in_child
+from strainwave.errors import StageError
+from strainwave.fea.mesh_data import MeshData
+from strainwave.fea.meshing import OPTIMIZE_THRESHOLD, MeshingFailed, Refine, mesh_part
+from strainwave.fea.session import mesh_in_child
 
 
 def mesh_for_study(part, *, study: str, h_mm: float, order: int, refine: Sequence[Refine] = (),

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .mesh_data import MeshData
+from strainwave.fea.mesh_data import MeshData
 
 
 def _shape(kind: str, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -7,9 +7,9 @@ from typing import ClassVar
 
 import numpy as np
 
-from .result import Load, Support
-from .skeleton import StudyVariant
-from .static import StaticSolution
+from strainwave.fea.result import Load, Support
+from strainwave.fea.skeleton import StudyVariant
+from strainwave.fea.static import StaticSolution
 
 
 def saint_venant_traction(torque_Nmm: float, J_mm4: float):

@@ -22,8 +22,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from ..errors import StageError
-from .assembly import Lame
+from strainwave.errors import StageError
+from strainwave.fea.assembly import Lame
 
 STUDY = "cup-wave-generator"
 TOL_MM = 1e-7
@@ -230,7 +230,7 @@ def band_bore_points(tube: Tube) -> np.ndarray:
 def solve_constrained(tube: Tube, K: sp.csr_matrix, rhs: np.ndarray, fixed: np.ndarray,
                       values: np.ndarray) -> np.ndarray:
     """Solve K x = rhs (Cartesian) with rotated-frame dofs ``fixed`` = ``values``; returns Cartesian x."""
-    from .solver import _direct
+    from strainwave.fea.solver import _direct
 
     Kc = (tube.rot.T @ K @ tube.rot).tocsr()
     bc = tube.rot.T @ rhs
@@ -367,7 +367,7 @@ def write_fields(path, tube: Tube, u: np.ndarray, lame: Lame, nonlinear: bool, i
     """The quarter wall as VTU (8-node hexahedra on the P2 vertices): displacement, von Mises, Cauchy stress in
     the cylindrical frame (rr, tt, zz, tz, rz, rt) at the vertices."""
     from strainwave.io_atomic import atomic_path
-    from .fields import _field_data, _piece, _vtu_text
+    from strainwave.fea.fields import _field_data, _piece, _vtu_text
 
     pm = tube.param_mesh
     sig = stresses_at(tube, u, lame, nonlinear, *pm.p)

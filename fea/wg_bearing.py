@@ -21,10 +21,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..errors import InputError
-from . import ring2d
-from .refinement import CRACK_FORMAL_ORDER, DEFAULT_RATIO, converged_quantity
-from .result import CrackRecord, Load, MeshQuality, StudyResult, Support
+from strainwave.errors import InputError
+from strainwave.fea import ring2d
+from strainwave.fea.refinement import CRACK_FORMAL_ORDER, DEFAULT_RATIO, converged_quantity
+from strainwave.fea.result import CrackRecord, Load, MeshQuality, StudyResult, Support
 
 STUDY = "wg-bearing"
 GROWTH = 0.4            # element growth per unit distance away from the crack tip and the race
@@ -54,7 +54,7 @@ class RingSetup:
 
 def setup_from(params, *, force_N, w0_mm, ball_angles_rad, ball_loads_N, patch_half_widths_mm,
                hertz_constant, ball_count) -> RingSetup:
-    from ..geometry.bearing_ring import RACE_GAP_OVER_T, WIDTH_OVER_A
+    from strainwave.geometry.bearing_ring import RACE_GAP_OVER_T, WIDTH_OVER_A
 
     wg, fc, mat = params.wave_generator, params.flexspline_cup, params.material
     t = wg.bearing_inner_ring_thickness_mm

@@ -17,11 +17,11 @@ import math
 
 from strainwave.errors import InputError
 
-from . import faces as F
-from .crack_seams import semi_elliptical_seam
-from .cracks import check_crack, half_length_from_q, semi_elliptical_slot
-from .occ import cut, imprint
-from .part import CrackModel, Part, PartName
+from strainwave.geometry import faces as F
+from strainwave.geometry.crack_seams import semi_elliptical_seam
+from strainwave.geometry.cracks import check_crack, half_length_from_q, semi_elliptical_slot
+from strainwave.geometry.occ import cut, imprint
+from strainwave.geometry.part import CrackModel, Part, PartName
 
 WIDTH_OVER_A = 4.0
 RACE_GAP_OVER_T = 1.5

@@ -16,9 +16,9 @@ import math
 
 from strainwave.params import EwgGenerator
 
-from . import faces as F
-from .ewg_ring import radii_mm
-from .part import Part, PartName
+from strainwave.geometry import faces as F
+from strainwave.geometry.ewg_ring import radii_mm
+from strainwave.geometry.part import Part, PartName
 
 ROLLER_RATIO = 0.3
 K_AB_OVER_CD = (2 / math.pi - 0.5) / ((math.pi ** 2 - 8) / (4 * math.pi))

@@ -12,9 +12,9 @@ from __future__ import annotations
 
 import math
 
-from . import faces as F
-from .involute import ToothSpec, ewg_tooth_spec, gear_face
-from .part import Part, PartName
+from strainwave.geometry import faces as F
+from strainwave.geometry.involute import ToothSpec, ewg_tooth_spec, gear_face
+from strainwave.geometry.part import Part, PartName
 
 CONTACT_HALF_ANGLE_DEG = 2.0
 

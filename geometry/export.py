@@ -12,10 +12,10 @@ from pathlib import Path
 
 from strainwave.io_atomic import atomic_path
 
-from .parts import build_part, part_name
-from .part import Part, PartName
-from .face_names import write_face_index
-from .step_xcaf import Placed, write_named_step
+from strainwave.geometry.parts import build_part, part_name
+from strainwave.geometry.part import Part, PartName
+from strainwave.geometry.face_names import write_face_index
+from strainwave.geometry.step_xcaf import Placed, write_named_step
 
 ASSEMBLY = "assembly"
 CUP_GEAR = "cup-type-gear"     # STEP assembly names of the two drives ``assembly`` writes
@@ -96,13 +96,13 @@ def export_part(name: str, params, out_path: Path, *, crack_depth_mm: float | No
                                          out_path.with_name(out_path.stem + "-ewg-drive.step"))):
             written += [step, write_face_index(step)]   # gmsh reads no STEP face names: the sidecar gives them
         if png is not None:
-            from .preview import render_assembly_preview
+            from strainwave.geometry.preview import render_assembly_preview
             written.append(render_assembly_preview(drives, Path(png)))
         return written
     part = build_part(part_name(name), params, crack_depth_mm=crack_depth_mm, teeth=teeth)
     step = write_step(part, out_path)
     written += [step, write_face_index(step)]
     if png is not None:
-        from .preview import render_preview
+        from strainwave.geometry.preview import render_preview
         written.append(render_preview(part, Path(png)))
     return written

@@ -51,7 +51,7 @@ def face_index(step: Path) -> dict:
     area (so a reader can check the file still matches), and the number of unnamed surfaces."""
     from scipy.spatial import cKDTree
 
-    from .step_xcaf import read_step_face_names
+    from strainwave.geometry.step_xcaf import read_step_face_names
 
     named = read_step_face_names(step)
     gmsh, started = _gmsh_open()
@@ -82,7 +82,7 @@ def face_index(step: Path) -> dict:
 
 def write_face_index(step: Path) -> Path:
     """Write ``step``'s face index beside it (atomically); returns the sidecar's path."""
-    from ..io_atomic import atomic_write_text
+    from strainwave.io_atomic import atomic_write_text
 
     return atomic_write_text(sidecar_path(step), json.dumps(face_index(step), indent=1) + "\n")
 

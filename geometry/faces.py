@@ -10,7 +10,7 @@ import math
 from dataclasses import dataclass
 from typing import Callable, Iterable
 
-from .part import FaceRef
+from strainwave.geometry.part import FaceRef
 
 
 @dataclass(frozen=True)

@@ -22,12 +22,12 @@ import math
 from strainwave.errors import InputError
 from strainwave.params import CupShape
 
-from . import faces as F
-from .crack_seams import helical_through_seam
-from .cracks import check_crack, inclined_root_slot
-from .involute import ToothSpec, cup_tooth_spec, gear_face, tip_thickness_mm
-from .occ import cut, fuse
-from .part import CrackModel, Part, PartName
+from strainwave.geometry import faces as F
+from strainwave.geometry.crack_seams import helical_through_seam
+from strainwave.geometry.cracks import check_crack, inclined_root_slot
+from strainwave.geometry.involute import ToothSpec, cup_tooth_spec, gear_face, tip_thickness_mm
+from strainwave.geometry.occ import cut, fuse
+from strainwave.geometry.part import CrackModel, Part, PartName
 
 BAND_RATIO = 0.2          # tooth face width / d1
 HUB_RATIO, HUB_BORE_RATIO = 0.25, 0.10

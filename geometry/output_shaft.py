@@ -11,11 +11,11 @@ import math
 
 from strainwave.errors import InputError
 
-from . import faces as F
-from .crack_seams import circumferential_seam
-from .cracks import check_crack, circumferential_slot
-from .occ import cut, cut_bare
-from .part import CrackModel, FaceRef, Part, PartName
+from strainwave.geometry import faces as F
+from strainwave.geometry.crack_seams import circumferential_seam
+from strainwave.geometry.cracks import check_crack, circumferential_slot
+from strainwave.geometry.occ import cut, cut_bare
+from strainwave.geometry.part import CrackModel, FaceRef, Part, PartName
 
 
 def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True,

@@ -5,8 +5,8 @@ import dataclasses
 
 from strainwave.errors import InputError
 
-from . import bearing_ring, ewg, ewg_ring, flexspline_cup, output_shaft
-from .part import CrackModel, Part, PartName
+from strainwave.geometry import bearing_ring, ewg, ewg_ring, flexspline_cup, output_shaft
+from strainwave.geometry.part import CrackModel, Part, PartName
 
 _BUILDERS = {
     PartName.FLEXSPLINE_CUP: flexspline_cup.build,

@@ -12,8 +12,8 @@ import numpy as np
 from strainwave.io_atomic import atomic_path
 from strainwave.render import RenderSettings, off_screen_plotter
 
-from .faces import find_faces
-from .part import Part
+from strainwave.geometry.faces import find_faces
+from strainwave.geometry.part import Part
 
 
 def _polydata(shapes, tol_mm: float):
@@ -98,7 +98,7 @@ def render_preview(part: Part, png_path: Path | str, size: tuple[int, int] = (14
 def render_assembly_preview(drives: dict, png_path: Path | str, size: tuple[int, int] = (1400, 700)) -> Path:
     """Render every part of every drive (name -> list of ``step_xcaf.Placed``), one panel per drive,
     each part in its STEP colour and placed where the STEP file has it; crack faces in red."""
-    from .step_xcaf import PART_COLOURS_RGB
+    from strainwave.geometry.step_xcaf import PART_COLOURS_RGB
 
     plotter = off_screen_plotter(RenderSettings(size, shape=(1, len(drives))))
     for col, (drive, placed) in enumerate(drives.items()):

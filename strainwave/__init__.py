@@ -31,7 +31,7 @@ def __getattr__(name: str):
     if name == "__version__":
         value = _version()
     elif name in _API:
-        from . import api
+        from strainwave import api
         value = getattr(api, name)
     else:
         raise AttributeError(f"module 'strainwave' has no attribute {name!r}")

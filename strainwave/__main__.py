@@ -1,7 +1,7 @@
 """``python -m strainwave``: the same command line as the ``strainwave`` script."""
 import sys
 
-from .cli import main
+from strainwave.cli import main
 
 if __name__ == "__main__":
     sys.exit(main())

@@ -14,7 +14,7 @@ __all__ = ["load_params", "build_part", "export_part", "run_study", "validate", 
 
 
 def _params(params):
-    from .params import Params, load_params as _load
+    from strainwave.params import Params, load_params as _load
     return params if isinstance(params, Params) else _load(params)
 
 
@@ -24,14 +24,14 @@ def load_params(path: str | Path | None = None, overrides: dict | None = None):
 
     >>> sw.load_params().gear.rated_output_torque_Nmm
     """
-    from .params import load_params as _load
+    from strainwave.params import load_params as _load
     return _load(path, overrides=overrides)
 
 
 def build_part(name: str, params=None, *, crack_depth_mm: float | None = None, teeth: bool = True):
     """Build one part (``output-shaft``, ``flexspline-cup``, ``wg-bearing-ring``, ``ewg-flexspline-ring``, ...)
     in mm with named faces; returns a ``strainwave.geometry.part.Part`` (its ``.shape`` is a build123d solid)."""
-    from .geometry.parts import build_part as _build
+    from strainwave.geometry.parts import build_part as _build
     return _build(name, _params(params), crack_depth_mm=crack_depth_mm, teeth=teeth)
 
 
@@ -39,7 +39,7 @@ def export_part(name: str, out_path: str | Path, params=None, *, crack_depth_mm:
                 teeth: bool = True, png: str | Path | None = None) -> list[Path]:
     """Build ``name`` (or ``assembly``) and write it as STEP (mm, named faces) to ``out_path``, with a face-name
     sidecar ``<file>.faces.json``; ``png`` adds an off-screen preview. Returns the written paths."""
-    from .geometry.export import export_part as _export
+    from strainwave.geometry.export import export_part as _export
     return _export(name, _params(params), Path(out_path), crack_depth_mm=crack_depth_mm, teeth=teeth,
                    png=None if png is None else Path(png))
 
@@ -51,7 +51,7 @@ def run_study(study: str, params=None, *, mesh_size_mm: float | None = None, ord
     on three meshes; returns a ``StudyResult`` (``result["flexibility_rad_per_Nmm"].value``, its ``.convergence``
     with the GCI). ``vtu`` writes the finest mesh's fields (at the solved load; ``strainwave solve --vtu`` writes
     them at the rated load). Three meshes that come out identical are refused (InputError), never a 0 % GCI."""
-    from .fea.studies import run_study as _run
+    from strainwave.fea.studies import run_study as _run
     return _run(study, _params(params), mesh_size_mm=mesh_size_mm, order=order, crack_depth_mm=crack_depth_mm,
                 vtu=None if vtu is None else Path(vtu), quick=quick, progress=progress)
 
@@ -60,7 +60,7 @@ def validate(out_dir: str | Path = "reports/validate", params=None, *, quick: bo
              progress: Callable[[str], None] | None = None):
     """Every study against both seeds' closed forms, into ``out_dir`` (report.html/.pdf, results.json, CSVs,
     STEP, VTU). Returns the outcome: ``.passed`` is the validation verdict, ``.design`` the design verdict."""
-    from .compare.validate.pipeline import run_validate
+    from strainwave.compare.validate.pipeline import run_validate
     return run_validate(_params(params), Path(out_dir), quick=quick, progress=progress or (lambda msg: None))
 
 
@@ -69,7 +69,7 @@ def diagnose(recording: str | Path, *, params: str | Path | None = None, baselin
     """Locate, name and model the mismatch between a recording (docs/recordings.md) and the model; returns a
     ``Diagnosis`` (``.summary()``, ``.to_dict()``). ``params``: a partial TOML file (the recording's own header
     overrides apply on top)."""
-    from .compare.diagnose.pipeline import diagnose_file
+    from strainwave.compare.diagnose.pipeline import diagnose_file
     return diagnose_file(Path(recording), params_path=params, baseline=baseline,
                          plot_out=None if plot is None else Path(plot))
 
@@ -79,6 +79,6 @@ def sweep(study: str, vary: list[str], *, out_dir: str | Path = "reports/sweep",
           scheduler: str | None = None, tolerance: float = 0.05, progress: Callable[[str], None] | None = None):
     """Solve ``study`` at every point of a grid (``vary``: ``["KEY=START:STOP:N", "KEY=v1,v2"]``) or of a sample
     file, on Dask (a local cluster unless ``scheduler``); returns the sweep outcome with one row per point."""
-    from .compare.sweep.pipeline import run_sweep
+    from strainwave.compare.sweep.pipeline import run_sweep
     return run_sweep(study, vary=list(vary), params_path=params, sample_file=samples, scheduler=scheduler,
                      workers=workers, out_dir=Path(out_dir), quick=quick, tolerance=tolerance, progress=progress)

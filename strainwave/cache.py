@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
-from .io_atomic import atomic_write_text
+from strainwave.io_atomic import atomic_write_text
 
 
 @lru_cache(maxsize=1)

@@ -22,10 +22,10 @@ import traceback
 import warnings
 from pathlib import Path
 
-from .errors import InputError, MaterialWarning, RangeWarning, StageError, StrainwaveError
-from .input_guard import printable
-from .geometry.part import PartName
-from .registry import STUDY_NAMES as STUDIES
+from strainwave.errors import InputError, MaterialWarning, RangeWarning, StageError, StrainwaveError
+from strainwave.input_guard import printable
+from strainwave.geometry.part import PartName
+from strainwave.registry import STUDY_NAMES as STUDIES
 
 PARTS = tuple(p.value for p in PartName) + ("assembly",)
 
@@ -71,7 +71,7 @@ def _version() -> str:
 
 
 def _params(args):
-    from .params import load_params
+    from strainwave.params import load_params
     return load_params(args.params)
 
 
@@ -84,16 +84,16 @@ def _emit(args, text: str, data) -> None:
     to stdout instead of the text (``--json`` / ``--json -``), or to a file next to the text."""
     target = getattr(args, "json", None)
     if target is None:
-        from .output_guard import unstage_text
+        from strainwave.output_guard import unstage_text
         print(unstage_text(text))
         return
-    from .io_atomic import json_ready
-    from .output_guard import unstage_text   # staged outputs are named by where they will be
+    from strainwave.io_atomic import json_ready
+    from strainwave.output_guard import unstage_text   # staged outputs are named by where they will be
     payload = json.dumps(json_ready(data() if callable(data) else data), indent=2, default=str, allow_nan=False) + "\n"
     if target == "-":
         sys.stdout.write(unstage_text(payload))
     else:
-        from .io_atomic import atomic_write_text
+        from strainwave.io_atomic import atomic_write_text
         atomic_write_text(Path(target), unstage_text(payload))
         print(unstage_text(text))
 
@@ -121,7 +121,7 @@ def _plain(value):
 
 def _cmd_analytic(args) -> int:
     params = _params(args)
-    from .analytic.summary import analytic_summary, format_summary
+    from strainwave.analytic.summary import analytic_summary, format_summary
     summary = analytic_summary(params)
     _emit(args, format_summary(summary), summary)
     return 0
@@ -140,8 +140,8 @@ def _cmd_params(args) -> int:
 
 
 def _cmd_export_step(args) -> int:
-    from .fea.budget import TOOTHED_PARTS, check_cad_teeth
-    from .geometry.export import export_part
+    from strainwave.fea.budget import TOOTHED_PARTS, check_cad_teeth
+    from strainwave.geometry.export import export_part
     params = _params(args)
     if not args.no_teeth:
         check_cad_teeth(params, list(TOOTHED_PARTS) if args.part == "assembly" else [args.part])
@@ -160,15 +160,15 @@ def _cmd_export_step(args) -> int:
 def _cmd_solve(args) -> int:
     import tempfile
 
-    from .fea.budget import check_budget
-    from .fea.studies import run_study, with_crack
-    from .rated_stress import stress_at_rated, stress_field_of, write_at_rated
+    from strainwave.fea.budget import check_budget
+    from strainwave.fea.studies import run_study, with_crack
+    from strainwave.rated_stress import stress_at_rated, stress_field_of, write_at_rated
     params = _params(args)
     # Refusable before any CAD or meshing: a crack through the wall, a mesh beyond the element budget.
     with_crack(args.study, params, args.crack_depth_mm)
     check_budget(args.study, params, args.mesh_size_mm)
     # The field is always written (to a scratch folder without --vtu): the rated-load peaks are read from it.
-    from .output_guard import remove_stale
+    from strainwave.output_guard import remove_stale
     remove_stale(tempfile.gettempdir())   # killed solves' folders, when the scratch is the system's
     with tempfile.TemporaryDirectory(prefix=f"strainwave-solve-{os.getpid()}-") as scratch:   # under the run's scratch
         vtu = Path(args.vtu) if args.vtu else Path(scratch) / f"{args.study}.vtu"
@@ -186,8 +186,8 @@ def _cmd_solve(args) -> int:
 
 
 def _cmd_validate(args) -> int:
-    from .compare.validate.pipeline import run_validate
-    from .fea.budget import TOOTHED_PARTS, check_budget, check_cad_teeth
+    from strainwave.compare.validate.pipeline import run_validate
+    from strainwave.fea.budget import TOOTHED_PARTS, check_budget, check_cad_teeth
     params = _params(args)
     for study in STUDIES:   # every study runs at its default size: the parameters alone may blow the budget
         check_budget(study, params, None, args.quick, flag="--params")
@@ -205,7 +205,7 @@ def _cmd_validate(args) -> int:
 
 
 def _cmd_compare(args) -> int:
-    from .compare.validate.run_diff import diff_runs, load_run
+    from strainwave.compare.validate.run_diff import diff_runs, load_run
     if not (args.rtol >= 0 and args.rtol == args.rtol):
         raise InputError("--rtol", args.rtol, "a relative tolerance >= 0")
     diff = diff_runs(load_run(Path(args.run_a), "RUN_A"), load_run(Path(args.run_b), "RUN_B"),
@@ -215,7 +215,7 @@ def _cmd_compare(args) -> int:
 
 
 def _cmd_diagnose(args) -> int:
-    from .compare.diagnose.pipeline import diagnose_file
+    from strainwave.compare.diagnose.pipeline import diagnose_file
     diagnosis = diagnose_file(Path(args.recording), params_path=args.params, baseline=args.baseline,
                               plot_out=Path(args.plot) if args.plot else None)
     _emit(args, diagnosis.summary(), diagnosis.to_dict)
@@ -223,7 +223,7 @@ def _cmd_diagnose(args) -> int:
 
 
 def _cmd_size_crack(args) -> int:
-    from .compare.diagnose.crack_life import LifeOptions, size_and_life
+    from strainwave.compare.diagnose.crack_life import LifeOptions, size_and_life
     if not 1.0 <= args.paris_m <= 10.0:
         raise InputError("--paris-m", args.paris_m, "a Paris exponent within 1..10")
     options = LifeOptions(paris_C=args.paris_c, paris_m=args.paris_m, stiffness_loss=args.stiffness_loss,
@@ -242,7 +242,7 @@ MAX_BENCHMARK_N = 1000
 
 
 def _cmd_benchmark_diagnose(args) -> int:
-    from .compare.diagnose.benchmark import run_benchmark
+    from strainwave.compare.diagnose.generators.benchmark import run_benchmark
     if not 1 <= args.n <= MAX_BENCHMARK_N:
         raise InputError("--n", args.n, f"recordings per class must be an integer from 1 to {MAX_BENCHMARK_N}")
     if not 0 <= args.seed < 2 ** 32:   # numpy's seeds
@@ -255,10 +255,10 @@ def _cmd_benchmark_diagnose(args) -> int:
 
 
 def _cmd_sweep(args) -> int:
-    from .compare.sweep.pipeline import check_workers, run_sweep
+    from strainwave.compare.sweep.pipeline import check_workers, run_sweep
     check_workers(args.workers)
     if args.scheduler:   # a bad address is bad input: refused before the sweep announces any work
-        from .compare.sweep.reach import check_scheduler
+        from strainwave.compare.sweep.reach import check_scheduler
         check_scheduler(args.scheduler)
     outcome = run_sweep(args.study, vary=args.vary, params_path=args.params, sample_file=args.samples,
                         scheduler=args.scheduler, workers=args.workers, out_dir=Path(args.out),
@@ -275,7 +275,7 @@ _INPUTS = (("params", "--params"), ("recording", "recording"), ("samples", "--sa
 
 def _planned_outputs(args) -> list:
     """Every path the command writes: its file flags, the files written beside them, its --out folder."""
-    from .output_guard import Planned
+    from strainwave.output_guard import Planned
 
     planned = [Planned(flag, getattr(args, name)) for name, flag in _FILE_OUTPUTS
                if getattr(args, name, None) not in (None, "-")]
@@ -285,7 +285,7 @@ def _planned_outputs(args) -> list:
         out = Path(args.output)
         planned.append(Planned("-o", str(out.with_name(out.stem + "-ewg-drive.step")), derived=True))
     if getattr(args, "output", None):   # export-step writes each STEP's face index beside it (geometry/face_names)
-        from .geometry.face_names import sidecar_path
+        from strainwave.geometry.face_names import sidecar_path
         out = Path(args.output)
         steps = [out] + ([out.with_name(out.stem + "-ewg-drive.step")] if getattr(args, "part", None) == "assembly"
                          else [])
@@ -299,8 +299,8 @@ def _check_outputs(args) -> None:
     """Every output path the command will write, checked together before any work (a solve must not run
     for minutes and then find that --vtu points into a file): strainwave.output_guard's rules, then that
     each can be written."""
-    from .io_atomic import check_output_path
-    from .output_guard import check_outputs
+    from strainwave.io_atomic import check_output_path
+    from strainwave.output_guard import check_outputs
 
     inputs = {flag: getattr(args, name, None) for name, flag in _INPUTS}
     planned = _planned_outputs(args)
@@ -336,7 +336,7 @@ def _scratch_under_outputs(args):
         return
     created = [p for p in (folder, *folder.parents) if not p.exists()]   # deepest first
     folder.mkdir(parents=True, exist_ok=True)
-    from .output_guard import remove_stale
+    from strainwave.output_guard import remove_stale
     remove_stale(folder)   # scratch and staged files of runs killed with -9 before this one
     # multiprocessing keeps its AF_UNIX sockets (fork server) in a temporary folder of its own that it removes
     # itself at exit, after this block has ended; its path must fit the kernel's 108 bytes. So it is made
@@ -590,7 +590,7 @@ def _stop_children() -> None:
     import signal
     from multiprocessing import resource_tracker
 
-    from .compare.validate.isolated import descendants
+    from strainwave.compare.validate.isolated import descendants
     # multiprocessing's resource tracker leaves by itself once this process has gone; killed, it would be
     # started again by the exit's own clean-up and print its "leaked" warnings
     tracker = getattr(resource_tracker._resource_tracker, "_pid", None)
@@ -619,7 +619,7 @@ def _sigterm_unwinds():
 
 def _run(args) -> int:
     """The command inside its scratch folder, its --out folder marked as strainwave's, its files staged."""
-    from .output_guard import marked_folder, staged_outputs
+    from strainwave.output_guard import marked_folder, staged_outputs
     out = getattr(args, "out", None)
     with _scratch_under_outputs(args), marked_folder(Path(out)) if out is not None else contextlib.nullcontext():
         with staged_outputs(args, tuple(name for name, _ in _FILE_OUTPUTS)):
@@ -639,7 +639,7 @@ def _unexpected(exc: Exception, args, debug: bool) -> int:
         return _terminated()
     full = _disk_full(exc)
     if full is not None:   # a genuine failure, not bad input
-        from .output_guard import unstage_text
+        from strainwave.output_guard import unstage_text
         where = full.filename or (args is not None and _output_folder(args)) or "the output folder"
         print(f"error: disk full: {printable(unstage_text(str(where)))}", file=sys.stderr)
         return 1

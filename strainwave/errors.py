@@ -49,7 +49,7 @@ def _repr(value: object) -> str:
 
 
 def _clip(text: str, limit: int = ECHO_CHARS) -> str:
-    from .input_guard import printable   # a file's control codes must not reach the terminal raw
+    from strainwave.input_guard import printable   # a file's control codes must not reach the terminal raw
     text = printable(text.replace("\n", " ").replace("\r", " "))
     if len(text) <= limit:
         return text

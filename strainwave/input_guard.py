@@ -12,7 +12,7 @@ import os
 import stat
 from pathlib import Path
 
-from .errors import InputError
+from strainwave.errors import InputError
 
 __all__ = ["printable", "read_regular", "sniff_sample", "SNIFF_CHARS"]
 

@@ -15,7 +15,7 @@ import stat
 from contextlib import contextmanager
 from pathlib import Path
 
-from .errors import InputError
+from strainwave.errors import InputError
 
 __all__ = ["atomic_path", "atomic_write_text", "atomic_write_bytes", "check_output_path", "json_ready",
            "remove_stale_temps"]

@@ -29,7 +29,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Iterator
 
-from .errors import InputError
+from strainwave.errors import InputError
 
 __all__ = ["MANIFEST", "Planned", "check_outputs", "marked_folder", "remove_stale", "staged_outputs", "unstage_text"]
 
@@ -101,7 +101,7 @@ def is_ours(path: Path) -> bool:
 
 
 def _write_manifest(folder: Path, files: dict) -> None:
-    from .io_atomic import atomic_write_text
+    from strainwave.io_atomic import atomic_write_text
     atomic_write_text(folder / MANIFEST, json.dumps({"written_by": "strainwave", "files": files}, indent=1) + "\n")
 
 

@@ -17,8 +17,8 @@ from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
-from .errors import InputError, MaterialWarning, RangeWarning
-from .params_bounds import check_bounds
+from strainwave.errors import InputError, MaterialWarning, RangeWarning
+from strainwave.params_bounds import check_bounds
 
 
 class CupShape(enum.Enum):
@@ -311,7 +311,7 @@ class Params:
 
     def _check_teeth(self) -> None:
         """Both toothed parts drawable (geometry/involute.py check_teeth): every command refuses the same."""
-        from .geometry.involute import check_teeth, cup_tooth_spec, ewg_tooth_spec   # numpy only: no CAD kernel
+        from strainwave.geometry.involute import check_teeth, cup_tooth_spec, ewg_tooth_spec   # numpy only: no CAD kernel
         check_teeth(cup_tooth_spec(self), "flexspline_cup.module_mm", self.flexspline_cup.module_mm,
                     "flexspline cup")
         check_teeth(ewg_tooth_spec(self), "ewg_drive.flexspline_teeth", self.ewg_drive.flexspline_teeth,
@@ -476,7 +476,7 @@ MAX_PARAMS_BYTES = 1 << 20
 def read_limited(path: Path, limit: int, what: str) -> bytes:
     """The bytes of ``path``, refused (InputError naming ``what``) if not a readable regular file or above
     ``limit`` bytes (strainwave.input_guard: FIFOs and devices are refused without being opened)."""
-    from .input_guard import read_regular
+    from strainwave.input_guard import read_regular
     return read_regular(path, limit, what)
 
 

@@ -12,8 +12,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .analytic.rated_load import RatedLoad, fatigue_safety_factor, rated_load
-from .registry import study as registered
+from strainwave.analytic.rated_load import RatedLoad, fatigue_safety_factor, rated_load
+from strainwave.registry import study as registered
 
 __all__ = ["FieldNames", "field_names", "displacement3", "applied_scale", "scaled_to_rated", "write_at_rated", "FieldPeaks", "field_peaks",
            "StressAtRated", "stress_field_of", "rated_load_of", "stress_at_rated", "groups_at_node"]
@@ -51,7 +51,7 @@ def applied_scale(mesh) -> float:
 def scaled_to_rated(mesh, scale: float):
     """A copy of ``mesh`` whose every displacement and stress array is ``scale`` x the solved load's (linear
     problem), whatever scale the file was written at (``load_scale_applied``, fea/fields.py)."""
-    from .fea.fields import LINEAR_WORDS
+    from strainwave.fea.fields import LINEAR_WORDS
 
     if not (np.isfinite(scale) and scale > 0):
         raise ValueError(f"load scale must be finite and > 0, got {scale}")
@@ -68,7 +68,7 @@ def scaled_to_rated(mesh, scale: float):
 def write_at_rated(fields, load: RatedLoad) -> None:
     """Rewrite a study's VTU files (``fields``: its written paths) at the rated ``load``, which their FieldData
     then states (``fields_at``, ``load_scale_applied``, ``rated_load``, ``solved_load``)."""
-    from .fea.fields import rescale_vtu
+    from strainwave.fea.fields import rescale_vtu
 
     for path in fields:
         if str(path).endswith(".vtu") and not str(path).endswith(".boundary.vtu") and Path(path).exists():
@@ -123,7 +123,7 @@ def crack_front_nodes(vtu: Path) -> np.ndarray:
     nodes shared), read from the boundary file. Empty without a crack."""
     import pyvista as pv
 
-    from .fea.fields import field_text
+    from strainwave.fea.fields import field_text
 
     path = Path(vtu).with_name(f"{Path(vtu).stem}.boundary.vtu")
     if not path.exists():
@@ -159,7 +159,7 @@ def groups_at_node(vtu: Path, node: int) -> tuple[str, ...]:
     """The named groups of ``vtu``'s boundary file (fea/fields.py: it shares the field's points) that hold ``node``."""
     import pyvista as pv
 
-    from .fea.fields import field_text
+    from strainwave.fea.fields import field_text
 
     path = Path(vtu).with_name(f"{Path(vtu).stem}.boundary.vtu")
     if not path.exists() or node < 0:

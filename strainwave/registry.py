@@ -17,7 +17,7 @@ from __future__ import annotations
 import importlib
 from dataclasses import dataclass
 
-from .errors import InputError
+from strainwave.errors import InputError
 
 __all__ = ["QuantitySpec", "Study", "STUDIES", "STUDY_NAMES", "CRACK_KEYS", "FLEX_UNIT", "study",
            "study_of_component", "crack_key_of"]

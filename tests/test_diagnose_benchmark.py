@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 
 from strainwave.cli import main
-from strainwave.compare.diagnose import hifi_ring as hr
-from strainwave.compare.diagnose import hifi_torsion as ht
-from strainwave.compare.diagnose.benchmark import Outcome, family_targets, run_benchmark
-from strainwave.compare.diagnose.loop_metrics import measure_loop, set_after_unloading
+from strainwave.compare.diagnose.generators import hifi_ring as hr
+from strainwave.compare.diagnose.generators import hifi_torsion as ht
+from strainwave.compare.diagnose.generators.benchmark import Outcome, family_targets, run_benchmark
+from strainwave.compare.diagnose.generators.loop_metrics import measure_loop, set_after_unloading
 
 A = 1e5
 CYCLE = A * np.interp(np.linspace(0, 4, 4001), [0, 1, 2, 3, 4], [0, 1, -1, 1, 0])
@@ -32,7 +32,7 @@ def test_maxwell_slip_dissipates_and_has_its_loss(fraction):
 def test_family1_friction_on_the_stiffest_gear_is_passive(loss_over_cT):
     """The widest loop family 1 draws, with its narrowest slip range, on its stiffest contact spread: the
     twist still moves with the torque along every monotonic stretch (a spring-and-slider chain is passive)."""
-    from strainwave.compare.diagnose.generate_recordings import STIFFEST, passive_slip_fraction
+    from strainwave.compare.diagnose.generators.generate_recordings import STIFFEST, passive_slip_fraction
     c = 1e-8
     loss = loss_over_cT * c * A
     frac = passive_slip_fraction(0.05, loss, A, c)

@@ -5,9 +5,9 @@ import math
 import numpy as np
 import pytest
 
-from strainwave.compare.diagnose.cha import ARCMIN, CHA_SLIP_FRACTION, ENCODER_STEP_RAD, cha_recording, cha_rows
-from strainwave.compare.diagnose.hifi_torsion import maxwell_slip_twist
-from strainwave.compare.diagnose.loop_metrics import measure_loop
+from strainwave.compare.diagnose.generators.cha import ARCMIN, CHA_SLIP_FRACTION, ENCODER_STEP_RAD, cha_recording, cha_rows
+from strainwave.compare.diagnose.generators.hifi_torsion import maxwell_slip_twist
+from strainwave.compare.diagnose.generators.loop_metrics import measure_loop
 from strainwave.compare.diagnose.recording import parse_text
 
 ROWS = cha_rows()

@@ -127,7 +127,7 @@ def test_elastica_constant_is_the_exact_elasticas_first_correction():
     # the plausibility band of large_deflection is centred on this constant: it must be the exact elastica's
     # (hifi_ring, shooting on the redundant moment), not a guess; at P = F R^2/EI = 0.02 the next terms are ~0.05 %
     from strainwave.compare.diagnose.effects.large_deflection import GAMMA_ELASTICA
-    from strainwave.compare.diagnose.hifi_ring import THIN_DV, elastica_point
+    from strainwave.compare.diagnose.generators.hifi_ring import THIN_DV, elastica_point
     P = 0.02
     linear = THIN_DV * P
     assert (elastica_point(P) / linear - 1.0) / linear == pytest.approx(GAMMA_ELASTICA, rel=5e-3)
@@ -216,7 +216,7 @@ def test_elastica_second_coefficient_is_the_exact_elasticas():
     # the second-order variant's plausibility band is centred on this constant: fitted to the shooting solution
     # at small loads (x = delta_lin/r <= 0.015, where the third term is below 1e-3 of the second)
     from strainwave.compare.diagnose.effects.large_deflection import GAMMA2_ELASTICA
-    from strainwave.compare.diagnose.hifi_ring import THIN_DV, elastica_point
+    from strainwave.compare.diagnose.generators.hifi_ring import THIN_DV, elastica_point
     P = np.array([0.01, 0.02, 0.04, 0.06, 0.08, 0.1])
     x = THIN_DV * P
     rel = np.array([elastica_point(p) for p in P]) / x - 1.0
@@ -230,7 +230,7 @@ def test_exact_elastica_at_high_signal_is_large_deflection_to_second_order(param
     'unexplained'); large_deflection is named and its gamma, gamma2 lie within 3 reported standard errors of
     the curve's own two coefficients (least squares on the noise-free curve)."""
     from scipy.interpolate import CubicSpline
-    from strainwave.compare.diagnose.hifi_ring import THIN_DV, elastica_curve
+    from strainwave.compare.diagnose.generators.hifi_ring import THIN_DV, elastica_curve
     kind, n = RecordingKind.RING_COMPRESSION, 800
     u = _path(kind, n)
     probe = parse_text(format_recording(kind, "ewg_ring", u * 50.0, u))

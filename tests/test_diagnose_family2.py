@@ -8,13 +8,13 @@ import warnings
 import numpy as np
 import pytest
 
-from strainwave.compare.diagnose import family2_elastic as fe
-from strainwave.compare.diagnose import family2_hysteresis as fh
-from strainwave.compare.diagnose import family2_outside as fo
-from strainwave.compare.diagnose import family2_sensors as fs
-from strainwave.compare.diagnose import generate_family2 as g2
-from strainwave.compare.diagnose.cha import ARCMIN, cha_rows
-from strainwave.compare.diagnose.loop_metrics import measure_loop, set_after_unloading
+from strainwave.compare.diagnose.generators import family2_elastic as fe
+from strainwave.compare.diagnose.generators import family2_hysteresis as fh
+from strainwave.compare.diagnose.generators import family2_outside as fo
+from strainwave.compare.diagnose.generators import family2_sensors as fs
+from strainwave.compare.diagnose.generators import generate_family2 as g2
+from strainwave.compare.diagnose.generators.cha import ARCMIN, cha_rows
+from strainwave.compare.diagnose.generators.loop_metrics import measure_loop, set_after_unloading
 from strainwave.compare.diagnose.recording import parse_text
 
 A = 1e5

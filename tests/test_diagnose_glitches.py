@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from strainwave.compare.diagnose import family2_sensors as fs
+from strainwave.compare.diagnose.generators import family2_sensors as fs
 from strainwave.compare.diagnose.baseline import analytic_baseline
 from strainwave.compare.diagnose import glitches
 from strainwave.compare.diagnose.glitches import ALPHA, GROSS_SIGMAS, GlitchKind, find_glitch

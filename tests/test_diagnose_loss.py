@@ -6,10 +6,10 @@ import math
 import numpy as np
 import pytest
 
-from strainwave.compare.diagnose import family2_hysteresis as fh
+from strainwave.compare.diagnose.generators import family2_hysteresis as fh
 from strainwave.compare.diagnose.baseline import analytic_baseline
 from strainwave.compare.diagnose.context import build_context
-from strainwave.compare.diagnose.loop_metrics import measure_loop, recorded_loss
+from strainwave.compare.diagnose.generators.loop_metrics import measure_loop, recorded_loss
 from strainwave.compare.diagnose.pipeline import diagnose
 from strainwave.compare.diagnose.recording import RecordingKind, format_recording, parse_text
 from strainwave.compare.diagnose.zero_load_width import zero_load_width

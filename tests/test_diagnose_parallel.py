@@ -5,7 +5,7 @@ import os
 import numpy as np
 
 from strainwave.compare.diagnose.baseline import analytic_baseline
-from strainwave.compare.diagnose.cha import cha_recording, cha_rows
+from strainwave.compare.diagnose.generators.cha import cha_recording, cha_rows
 from strainwave.compare.diagnose.context import build_context
 from strainwave.compare.diagnose.effects import effects_for
 from strainwave.compare.diagnose.parallel import FitTask, fit_all

@@ -18,9 +18,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ...errors import InputError
-from ...registry import STUDIES
-from .recording import Recording, RecordingKind
+from strainwave.errors import InputError
+from strainwave.registry import STUDIES
+from strainwave.compare.diagnose.recording import Recording, RecordingKind
 
 # recording specimen -> the study that models it (registry)
 FEA_STUDY = {s.specimen: s.name for s in STUDIES.values() if s.specimen}
@@ -58,9 +58,9 @@ def analytic_baseline(rec: Recording, params) -> Baseline:
 
 def torsion_compliance(specimen: str, params) -> tuple[float, str]:
     """Corrected seed-000 flexibility of the torsion specimen, rad/(N*mm)."""
-    from ...analytic import torsion as tor
-    from ...analytic.seed000 import cup_series_model
-    from ...analytic.variant import Variant
+    from strainwave.analytic import torsion as tor
+    from strainwave.analytic.seed000 import cup_series_model
+    from strainwave.analytic.variant import Variant
     G = params.material.implied_shear_modulus_MPa
     sh, cup, gear, wg = params.output_shaft, params.flexspline_cup, params.gear, params.wave_generator
     shaft = tor.shaft_flexibility(sh.length_mm, sh.outer_diameter_mm, sh.inner_diameter_mm, G, Variant.CORRECTED)
@@ -77,7 +77,7 @@ def torsion_compliance(specimen: str, params) -> tuple[float, str]:
 
 def ring_geometry(params) -> dict:
     """Thin-ring compliance (seed 003 eqs 1, 3) and Roark's thick-ring factor for the EWG rim."""
-    from ...analytic import ring, thick_ring
+    from strainwave.analytic import ring, thick_ring
     d = params.ewg_drive
     E, nu = params.material.youngs_modulus_MPa, params.material.poisson_ratio
     delta = d.rim_thickness_mm
@@ -100,7 +100,7 @@ def fea_baseline(rec: Recording, params) -> Baseline:
         raise InputError("--baseline", "fea", f"no FEA study models specimen {rec.specimen!r}; "
                          f"use --baseline analytic or give baseline_stiffness in the header")
     try:
-        from ...fea.studies import run_study
+        from strainwave.fea.studies import run_study
         result = run_study(study, params, quick=True)
     except ModuleNotFoundError as exc:
         raise InputError("--baseline", "fea", f"the FEA study {study!r} is not available in this build ({exc})") from None

@@ -26,7 +26,7 @@ from typing import Callable
 
 import numpy as np
 
-from .noise import noise_std
+from strainwave.compare.diagnose.noise import noise_std
 
 MIN_RUN = 5
 PLATEAU_SIGMAS = 3.0

@@ -6,9 +6,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .baseline import Baseline
-from .effects.base import Context
-from .recording import Recording
+from strainwave.compare.diagnose.baseline import Baseline
+from strainwave.compare.diagnose.effects.base import Context
+from strainwave.compare.diagnose.recording import Recording
 
 
 def build_context(rec: Recording, baseline: Baseline, *, X: float | None = None,

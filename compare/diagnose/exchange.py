@@ -19,7 +19,7 @@ import dataclasses
 
 import numpy as np
 
-from .effects.base import Context, Effect, Param
+from strainwave.compare.diagnose.effects.base import Context, Effect, Param
 
 LABEL = "a specimen exchanged or re-clamped mid-test (its compliance and zero changed once, while unloaded)"
 # a change in the first or last tenth of the record is an end effect (run-in, unloading), not an exchange

@@ -1,7 +1,7 @@
 """The paragraph a gear engineer reads: the verdict, what differs, where, which physics, how much, how sure."""
 from __future__ import annotations
 
-from .effects import CATALOGUE
+from strainwave.compare.diagnose.effects import CATALOGUE
 
 
 def loss_sentence(quantities: dict) -> str:

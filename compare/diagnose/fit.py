@@ -28,7 +28,7 @@ import numpy as np
 from scipy.optimize import least_squares
 from scipy.optimize._numdiff import approx_derivative   # least_squares' own differences, for a part of theta
 
-from .effects.base import Context, Effect
+from strainwave.compare.diagnose.effects.base import Context, Effect
 
 # 10 ppm of the full-scale response: no strain gauge or encoder test resolves less; used as the least
 # noise level, so synthetic noise-free files do not turn a stiffness error inside the prior into "evidence"

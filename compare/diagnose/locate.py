@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .effects.base import Context
+from strainwave.compare.diagnose.effects.base import Context
 
 N_BINS = 20
 

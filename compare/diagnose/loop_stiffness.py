@@ -16,9 +16,9 @@ import dataclasses
 
 import numpy as np
 
-from .effects.base import Context
-from .effects.loop import load_path_model, reference_cycle
-from .fit import Fit
+from strainwave.compare.diagnose.effects.base import Context
+from strainwave.compare.diagnose.effects.loop import load_path_model, reference_cycle
+from strainwave.compare.diagnose.fit import Fit
 
 LOOP = "hysteresis"
 # effects a loop may share the load path with and keep a stiffness the two readings define (a stiffening

@@ -24,8 +24,8 @@ from typing import Sequence
 
 import numpy as np
 
-from .effects.base import Context, Effect
-from .fit import Fit, fit_effects
+from strainwave.compare.diagnose.effects.base import Context, Effect
+from strainwave.compare.diagnose.fit import Fit, fit_effects
 
 __all__ = ["FitTask", "fit_all", "usable_workers"]
 

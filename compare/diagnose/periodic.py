@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from .effects.base import Context
+from strainwave.compare.diagnose.effects.base import Context
 
 ANGLE_LOAD_HARMONICS = (1, 2, 3, 4)
 # an interpolation error is read only at 5 or more periods over the recorded range (slower, it is a smooth function

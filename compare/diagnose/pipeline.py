@@ -33,24 +33,24 @@ from pathlib import Path
 
 import numpy as np
 
-from ...errors import InputError
-from ...io_atomic import atomic_write_text, json_ready
-from . import exchange, loop_stiffness, periodic, rate_loop
-from .baseline import Baseline, analytic_baseline, fea_baseline
-from .channels import stuck_channel
-from .context import build_context
-from .effects import effects_for
-from .effects.loop import ARCMIN_PER_RAD, load_path_model, loop_quantities, width_load
-from .explain import explain
-from .fit import NOISE_FLOOR, Fit, fit_effects, lag1, rescored
-from .glitches import find_glitch
-from .locate import Located, locate, locate_effect
-from .loop_stiffness import with_loop_prior
-from .noise import noise_std
-from .parallel import FitTask, fit_all, usable_workers
-from .recording import Recording, parse_recording
-from .structure import StructureTest, describe, fine_scale_noise, reference_noise, structure_test
-from .zero_load_width import full_scale_cycles, zero_load_width
+from strainwave.errors import InputError
+from strainwave.io_atomic import atomic_write_text, json_ready
+from strainwave.compare.diagnose import exchange, loop_stiffness, periodic, rate_loop
+from strainwave.compare.diagnose.baseline import Baseline, analytic_baseline, fea_baseline
+from strainwave.compare.diagnose.channels import stuck_channel
+from strainwave.compare.diagnose.context import build_context
+from strainwave.compare.diagnose.effects import effects_for
+from strainwave.compare.diagnose.effects.loop import ARCMIN_PER_RAD, load_path_model, loop_quantities, width_load
+from strainwave.compare.diagnose.explain import explain
+from strainwave.compare.diagnose.fit import NOISE_FLOOR, Fit, fit_effects, lag1, rescored
+from strainwave.compare.diagnose.glitches import find_glitch
+from strainwave.compare.diagnose.locate import Located, locate, locate_effect
+from strainwave.compare.diagnose.loop_stiffness import with_loop_prior
+from strainwave.compare.diagnose.noise import noise_std
+from strainwave.compare.diagnose.parallel import FitTask, fit_all, usable_workers
+from strainwave.compare.diagnose.recording import Recording, parse_recording
+from strainwave.compare.diagnose.structure import StructureTest, describe, fine_scale_noise, reference_noise, structure_test
+from strainwave.compare.diagnose.zero_load_width import full_scale_cycles, zero_load_width
 
 BIC_THRESHOLD = 10.0       # "very strong" on the Kass-Raftery scale
 AMBIGUOUS_BIC = 6.0        # "strong": closer than this, the data cannot tell the two apart
@@ -813,14 +813,14 @@ def _report_errors(ctx, effect, theta, cov, s, rep) -> dict:
 def diagnose_file(path: Path, *, params_path=None, baseline: str = "analytic", json_out: Path | None = None,
                   plot_out: Path | None = None) -> Diagnosis:
     """CLI entry: parse, apply [params] overrides from the header, diagnose, write JSON/plot atomically."""
-    from ...params import load_params
+    from strainwave.params import load_params
     rec = parse_recording(path)
     params = load_params(params_path, overrides=rec.param_overrides or None)
     diag, arrays = diagnose(rec, params, baseline)
     if json_out is not None:
         atomic_write_text(Path(json_out), json.dumps(json_ready(diag.to_dict()), indent=2, allow_nan=False) + "\n")
     if plot_out is not None:
-        from .plot import plot_diagnosis
+        from strainwave.compare.diagnose.plot import plot_diagnosis
         title = f"{diag.recording}: {diag.verdict.value}" + (f" - {' + '.join(diag.named)}" if diag.named else "")
         plot_diagnosis(Path(plot_out), load=arrays["load"], response=arrays["response"],
                        baseline=arrays["baseline"], augmented=arrays["augmented"],

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...io_atomic import atomic_path
+from strainwave.io_atomic import atomic_path
 
 
 def plot_diagnosis(path: Path, *, load: np.ndarray, response: np.ndarray, baseline: np.ndarray,

@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.signal import lfilter
 
-from .effects.base import Context, Effect, Param
+from strainwave.compare.diagnose.effects.base import Context, Effect, Param
 
 LABEL = "a rate-dependent loop (viscoelastic creep, or a channel lagging in time)"
 

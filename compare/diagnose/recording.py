@@ -28,10 +28,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ...errors import InputError, RangeWarning
-from ...input_guard import SNIFF_CHARS, sniff_sample
-from ...params import load_params, read_limited
-from .units import canonical_column
+from strainwave.errors import InputError, RangeWarning
+from strainwave.input_guard import SNIFF_CHARS, sniff_sample
+from strainwave.params import load_params, read_limited
+from strainwave.compare.diagnose.units import canonical_column
 
 MIN_ROWS = 20
 # Size limits, so a mistaken path (/dev/zero, a day of raw DAQ data) is refused before it takes the

@@ -27,10 +27,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .effects.base import Context
-from .fit import _PHIS, _THETAS, NOISE_FLOOR, ar_profile, lag1
-from .noise import KEEP, noise_std
-from .periodic import angle_load_columns, recorded_line, response_columns
+from strainwave.compare.diagnose.effects.base import Context
+from strainwave.compare.diagnose.fit import _PHIS, _THETAS, NOISE_FLOOR, ar_profile, lag1
+from strainwave.compare.diagnose.noise import KEEP, noise_std
+from strainwave.compare.diagnose.periodic import angle_load_columns, recorded_line, response_columns
 
 THRESHOLD = 10.0
 STIFFNESS_CHI2 = 6.63     # chi-square(1) at 99 %: 2.58 prior sigmas

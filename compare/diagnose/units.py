@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import re
 
-from ...errors import InputError
+from strainwave.errors import InputError
 
 _BRACKETED = re.compile(r"^\s*(?P<name>[^\[\]]*?)\s*\[\s*(?P<unit>[^\[\]]+?)\s*\]\s*$")
 # allowed spellings -> pint expression, per canonical unit

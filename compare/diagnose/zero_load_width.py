@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .effects.base import Context
+from strainwave.compare.diagnose.effects.base import Context
 
 WINDOWS = (0.25, 0.125)   # half-widths of the window around T = 0 (fraction of full scale), widest first
 LACK_OF_FIT_CHI2 = 18.47  # chi-square with 4 degrees of freedom, 0.1 % tail

@@ -16,8 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ...errors import InputError
-from ...params import REMOVED_KEYS, read_limited, schema_types
+from strainwave.errors import InputError
+from strainwave.params import REMOVED_KEYS, read_limited, schema_types
 
 VARY_FORMS = "KEY=START:STOP:N (N >= 1 evenly spaced values) or KEY=v1,v2,..."
 # A point is at least one FEA study: 10,000 are a day of two cores (docs/decisions/021-sweep-grid-limit.md).

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from ...io_atomic import atomic_path, atomic_write_text
+from strainwave.io_atomic import atomic_path, atomic_write_text
 
 VARIANTS = ("published", "corrected")
 MAX_LINES = 8        # lines per plot: more values of the second input would not be readable

@@ -22,14 +22,14 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Iterator
 
-from ...errors import InputError, RangeWarning, StageError
-from ...fea.budget import check_budget
-from ...params import default_dict, load_params, params_from_dict
-from ...cache import ResultCache
-from ...registry import study as registered
-from .grid import build_points
-from .reach import CONNECT_TIMEOUT_S, check_scheduler
-from .task import PointSpec, TaskFn, point_key, run_point, task_name, warm_modules
+from strainwave.errors import InputError, RangeWarning, StageError
+from strainwave.fea.budget import check_budget
+from strainwave.params import default_dict, load_params, params_from_dict
+from strainwave.cache import ResultCache
+from strainwave.registry import study as registered
+from strainwave.compare.sweep.grid import build_points
+from strainwave.compare.sweep.reach import CONNECT_TIMEOUT_S, check_scheduler
+from strainwave.compare.sweep.task import PointSpec, TaskFn, point_key, run_point, task_name, warm_modules
 
 POLL_S = 0.1          # how often the driver looks for finished points
 HEARTBEAT_S = 30.0    # longest silence on the terminal while points are running
@@ -150,8 +150,8 @@ def check_workers(workers: int | None) -> None:
 def _local(n: int, scratch: Path | None, warm: tuple[str, ...]) -> Iterator[tuple[object, int]]:
     from distributed import Client, LocalCluster
 
-    from ...interrupt import children_ignore_sigint
-    from .worker import SweepWorker
+    from strainwave.interrupt import children_ignore_sigint
+    from strainwave.compare.sweep.worker import SweepWorker
 
     security = local_security()
     try:
@@ -167,7 +167,7 @@ def _local(n: int, scratch: Path | None, warm: tuple[str, ...]) -> Iterator[tupl
         try:
             yield client, n
         except KeyboardInterrupt:   # Ctrl-C or SIGTERM: the workers go at once, so the closing waits on none
-            from .prefork import stop_now
+            from strainwave.compare.sweep.prefork import stop_now
             stop_now()
             raise
         finally:
@@ -209,7 +209,7 @@ def _import_driver_libraries() -> None:
     with _no_cyclic_collection():
         import distributed  # noqa: F401
 
-        from . import outputs
+        from strainwave.compare.sweep import outputs
         outputs.import_plotting()
 
 
@@ -217,8 +217,8 @@ def _start_fork_server(warm: tuple[str, ...]) -> bool:
     """Start the fork server the own LocalCluster's workers are forked from (``prefork``): it imports their
     libraries ``warm`` once, now, while this process imports its own and starts the scheduler. False where
     there is none (Windows): the workers are spawned then, and import ``warm`` themselves."""
-    from ...interrupt import children_ignore_sigint
-    from . import prefork
+    from strainwave.interrupt import children_ignore_sigint
+    from strainwave.compare.sweep import prefork
 
     with children_ignore_sigint():   # the server and the workers forked from it leave Ctrl-C to the sweep
         return prefork.start(warm, FORK_SERVER_ENV)
@@ -323,7 +323,7 @@ def run_sweep(study: str, *, vary: list[str], params_path: str | Path | None = N
                 by_key.update(_compute(client, todo, out_dir / "cache", task, n_workers, progress, len(by_key),
                                        len(points), counts))
         except KeyboardInterrupt:
-            from .prefork import stop_now
+            from strainwave.compare.sweep.prefork import stop_now
             stop_now()   # still importing, it would outlive the sweep by seconds
             # Interrupted, the in-process scheduler has not purged its workspace when the scratch goes below;
             # its exit finalizer would then log an ERROR about a folder that is removed on purpose.
@@ -332,7 +332,7 @@ def run_sweep(study: str, *, vary: list[str], params_path: str | Path | None = N
         finally:
             shutil.rmtree(scratch, ignore_errors=True)
 
-    from .outputs import departures, plot_sweep, records_frame, write_markdown, write_records, write_table
+    from strainwave.compare.sweep.outputs import departures, plot_sweep, records_frame, write_markdown, write_records, write_table
 
     records = [{**by_key[key], "index": index, "inputs": spec.inputs}
                for index, (key, spec) in enumerate(zip(keys, specs))]

@@ -90,7 +90,7 @@ def stop_now() -> None:
     pid = getattr(server, "_forkserver_pid", None)
     if not pid:
         return
-    from ..validate.isolated import stop_descendants
+    from strainwave.compare.validate.isolated import stop_descendants
     stop_descendants(pid)   # the workers forked from it first: once it is gone they belong to init
     try:
         os.kill(pid, signal.SIGKILL)

@@ -15,7 +15,7 @@ import struct
 import time
 from urllib.parse import urlsplit
 
-from ...errors import InputError
+from strainwave.errors import InputError
 
 __all__ = ["CONNECT_TIMEOUT_S", "check_scheduler"]
 

@@ -20,10 +20,10 @@ from datetime import datetime, timezone
 from pathlib import Path
 from typing import Callable, Sequence
 
-from ...cache import ResultCache, case_key
-from ...errors import StrainwaveError
-from ...fea.result import Load
-from ...registry import STUDIES
+from strainwave.cache import ResultCache, case_key
+from strainwave.errors import StrainwaveError
+from strainwave.fea.result import Load
+from strainwave.registry import STUDIES
 
 # A task computes the quantities of one point: (study, params, quick) -> a ``StudyResult.to_dict()``-shaped
 # dict (``{"quantities": {name: {"value", "unit", "uncertainty"}}, "mesh": {"dofs": ...} | None}``).
@@ -74,7 +74,7 @@ def point_key(spec: PointSpec, task: TaskFn | None) -> str:
 
 def fea_task(study: str, params, quick: bool, *, crack_depth_mm: float | None = None) -> dict:
     """The default task: the FEA study of ``fea/studies.py`` on this point's parameters."""
-    from ...fea.studies import run_study
+    from strainwave.fea.studies import run_study
     return run_study(study, params, quick=quick, crack_depth_mm=crack_depth_mm).to_dict()
 
 
@@ -91,7 +91,7 @@ def warm_modules(study: str, task: TaskFn | None, specs: Sequence[PointSpec] = (
     comes with the first task it unpickles, and it may need none of the FEA's libraries)."""
     if task is not None:
         return ()
-    from ...params import params_from_dict
+    from strainwave.params import params_from_dict
 
     # the driver has imported the study module already, to estimate each point's elements (fea/budget.py)
     cad_of = getattr(importlib.import_module(STUDIES[study].module), "cad_modules", None)
@@ -129,7 +129,7 @@ def analytic_beside(study: str, params, names, force_N: float | None = None) -> 
     wanted = [name for name in names if name in table]
     if not wanted:
         return {}
-    from ...analytic.summary import analytic_summary
+    from strainwave.analytic.summary import analytic_summary
     for dotted, value in spec.analytic_overrides:
         params = params.with_value(dotted, value)
     checks = analytic_summary(params).get("checks", {})
@@ -145,7 +145,7 @@ def analytic_beside(study: str, params, names, force_N: float | None = None) -> 
 
 
 def _compute(spec: PointSpec, task: TaskFn | None) -> dict:
-    from ...params import params_from_dict
+    from strainwave.params import params_from_dict
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         params = params_from_dict(spec.merged())      # InputError here: the point is impossible

@@ -11,13 +11,13 @@ from typing import Callable
 
 import numpy as np
 
-from . import plots
-from .check_set import CheckSet
-from .fea_book import FeaBook
-from .plan import Plan
-from ...rated_stress import StressAtRated, rated_load_of, stress_at_rated, stress_field_of
-from .gci_table import asymptotic_flags
-from .torsion_checks import CUP_FLEX, SHAFT_FLEX
+from strainwave.compare.validate import plots
+from strainwave.compare.validate.check_set import CheckSet
+from strainwave.compare.validate.fea_book import FeaBook
+from strainwave.compare.validate.plan import Plan
+from strainwave.rated_stress import StressAtRated, rated_load_of, stress_at_rated, stress_field_of
+from strainwave.compare.validate.gci_table import asymptotic_flags
+from strainwave.compare.validate.torsion_checks import CUP_FLEX, SHAFT_FLEX
 
 COMPONENT_TITLES = {"shaft": "output shaft", "cup": "flexspline cup", "bearing": "bearing inner ring",
                     "ring": "EWG flexspline ring"}
@@ -111,7 +111,7 @@ def _stress_picture(images, target: Path, book: FeaBook, component: str, case, p
                                     marks=_marks(images, case.study),
                                     section=SECTION_OF_PLANE.get(component, "2D section") if planar else "",
                                     zoom=zoom)
-    from .view3d import make_view
+    from strainwave.compare.validate.view3d import make_view
     try:
         views[component] = make_view(component, vtu, at, exaggeration=rendered.exaggeration or 1.0,
                                      label=COMPONENT_TITLES[component])
@@ -134,7 +134,7 @@ def make_images(out_dir: Path, book: FeaBook, plan: Plan, check_set: CheckSet, s
     """Every picture; also the stress at the rated load per component (the numbers the pictures print) and
     the interactive 3D view of each stress field. ``checkpoint`` is called before each picture (see
     ``strainwave.interrupt``)."""
-    from . import images  # pyvista only here
+    from strainwave.compare.validate import images  # pyvista only here
 
     col = _Collector(out_dir, progress, checkpoint)
     stresses: dict[str, StressAtRated] = {}
@@ -226,7 +226,7 @@ def _bearing_sweep(target: Path, book: FeaBook, label: str, params) -> str:
     """What bearing.crack_compliance tests: the race crack's added radial compliance of the ring on the cam
     (wg-bearing case) at each depth, against the edge-crack weight function at the FEA's stress (corrected)
     and seed 000's form (published), the curves the check itself evaluates."""
-    from .wg_bearing_checks import crack_curve, crack_sweep
+    from strainwave.compare.validate.wg_bearing_checks import crack_curve, crack_sweep
 
     sweep, result = crack_sweep(book, label), book.result(label)
     if sweep is None or result is None:
@@ -244,7 +244,7 @@ def _bearing_sweep(target: Path, book: FeaBook, label: str, params) -> str:
 
 
 def _ring_shape(target: Path, book: FeaBook, plan: Plan, check_set: CheckSet, summary: dict) -> str:
-    from .images import sample_circle
+    from strainwave.compare.validate.images import sample_circle
 
     vtu = _require(_vtu(book, plan.ring.label, "_smooth"))
     checks = check_set.by_id()

@@ -8,8 +8,8 @@ shape of the deformed ring (delta_AB/delta_CD: 0.918 for the thin ring, 1 for an
 """
 from __future__ import annotations
 
-from .checks import Check
-from .crack_scaling import PowerFit, closer_exponent
+from strainwave.compare.validate.checks import Check
+from strainwave.compare.validate.crack_scaling import PowerFit, closer_exponent
 
 SETTLES = {"corrected": "FEA supports the corrected form", "published": "FEA supports the published form",
            "both": "FEA cannot tell the variants apart at its tolerance",

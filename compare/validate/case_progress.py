@@ -19,7 +19,7 @@ DEFAULT_S_PER_ELEMENT = 2e-4
 
 def case_elements(case, params, quick: bool) -> int:
     """The cost model's element count of a case's finest mesh (at least 1)."""
-    from ...fea.budget import estimate
+    from strainwave.fea.budget import estimate
     try:
         return max(1, estimate(case.study, params, case.mesh_size_mm, quick).elements)
     except ValueError:   # a study the cost model does not know: counted as one element

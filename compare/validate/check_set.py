@@ -5,15 +5,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ...registry import STUDIES
-from .checks import REQUIRED_IDS, Check, not_evaluated
-from .crack_scaling import PowerFit, fit_power_law
-from .fea_book import FeaBook, Sweep
-from .plan import COMPONENT_STUDY, Plan
-from ...analytic import tube_crack
-from .ring_checks import ring_checks
-from .wg_bearing_checks import gear_stiffness, wg_bearing_checks
-from .torsion_checks import (FLEX_UNIT, bearing_crack_curve, crack_check,
+from strainwave.registry import STUDIES
+from strainwave.compare.validate.checks import REQUIRED_IDS, Check, not_evaluated
+from strainwave.compare.validate.crack_scaling import PowerFit, fit_power_law
+from strainwave.compare.validate.fea_book import FeaBook, Sweep
+from strainwave.compare.validate.plan import COMPONENT_STUDY, Plan
+from strainwave.analytic import tube_crack
+from strainwave.compare.validate.ring_checks import ring_checks
+from strainwave.compare.validate.wg_bearing_checks import gear_stiffness, wg_bearing_checks
+from strainwave.compare.validate.torsion_checks import (FLEX_UNIT, bearing_crack_curve, crack_check,
                              cup_crack_allowances, cup_crack_curve, cup_flexibility, mu_gap,
                              shaft_crack_curve, shaft_flexibility, shaft_form_note)
 from strainwave.compare.validate.wg_cup_checks import wg_checks

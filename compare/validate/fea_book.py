@@ -9,8 +9,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...fea.result import Quantity, StudyResult
-from .runner import CaseOutcome
+from strainwave.fea.result import Quantity, StudyResult
+from strainwave.compare.validate.runner import CaseOutcome
 
 
 @dataclass(frozen=True)

@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ...fea.convergence import ASYMPTOTIC_BAND, Convergence, formal_order
+from strainwave.fea.convergence import ASYMPTOTIC_BAND, Convergence, formal_order
 
 __all__ = ["GciRow", "formal_order", "asymptotic_flags", "gci_rows", "GCI_COLUMNS", "gci_cells"]
 

@@ -15,10 +15,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ...io_atomic import atomic_write_bytes
-from ...analytic.rated_load import RatedLoad
-from ...rated_stress import StressAtRated, displacement3, field_names, scaled_to_rated
-from ...render import RenderSettings, off_screen_plotter
+from strainwave.io_atomic import atomic_write_bytes
+from strainwave.analytic.rated_load import RatedLoad
+from strainwave.rated_stress import StressAtRated, displacement3, field_names, scaled_to_rated
+from strainwave.render import RenderSettings, off_screen_plotter
 
 WINDOW = (1200, 900)
 TITLE_PT = 18        # report.html shows stress pictures full width (about 1150 px): ~12 px text
@@ -90,7 +90,7 @@ def boundary_groups(vtu: Path, names: tuple[str, ...]):
     """{name: facets} of the named groups of ``vtu``'s boundary file (fea/fields.py), those that exist."""
     import pyvista as pv
 
-    from ...fea.fields import field_text
+    from strainwave.fea.fields import field_text
 
     path = Path(vtu).with_name(f"{Path(vtu).stem}.boundary.vtu")
     if not path.exists():

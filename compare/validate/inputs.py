@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ...registry import study as registered
+from strainwave.registry import study as registered
 
 __all__ = ["ComponentInputs", "ELEMENT", "component_inputs"]
 

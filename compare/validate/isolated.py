@@ -25,7 +25,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-from ...errors import MaterialWarning
+from strainwave.errors import MaterialWarning
 
 # build123d too: importing it in every case's child was slow (docs/decisions/014-validate-case-isolation.md).
 PRELOAD = ["numpy", "scipy.sparse", "skfem", "gmsh", "pyamg", "build123d", "strainwave.fea.studies",
@@ -73,7 +73,7 @@ def _child(conn, study: str, params, kwargs: dict) -> None:
     warnings.simplefilter("ignore", MaterialWarning)
     one_mkl_thread()
     try:
-        from ...fea.studies import run_study
+        from strainwave.fea.studies import run_study
 
         def progress(msg: str) -> None:
             send_or_exit(conn, ("progress", msg))

@@ -6,9 +6,9 @@ import json
 from pathlib import Path
 from typing import Callable
 
-from ...errors import StrainwaveError
-from ...fea import nafems
-from ...fea.meshing import MeshingFailed
+from strainwave.errors import StrainwaveError
+from strainwave.fea import nafems
+from strainwave.fea.meshing import MeshingFailed
 
 # where ``make bench`` writes its record, relative to validate's --out folder (reports/validate -> reports/bench)
 BENCH_RECORD = Path("..") / "bench" / "nafems.json"

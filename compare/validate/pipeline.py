@@ -16,26 +16,26 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-from .audit_evidence import audit_with_evidence, exponent_evidence
-from ...cache import ResultCache
-from .check_set import CheckSet, build_checks
-from .checks import Check
-from .design import DesignVerdict, design_verdict, stress_factors
-from .fea_book import FeaBook
-from .gci_table import gci_rows
-from .isolated import stop_descendants
-from .nafems_appendix import nafems_appendix
-from ...io_atomic import remove_stale_temps
-from .plan import make_plan
-from .report_html import write_html
+from strainwave.compare.validate.audit_evidence import audit_with_evidence, exponent_evidence
+from strainwave.cache import ResultCache
+from strainwave.compare.validate.check_set import CheckSet, build_checks
+from strainwave.compare.validate.checks import Check
+from strainwave.compare.validate.design import DesignVerdict, design_verdict, stress_factors
+from strainwave.compare.validate.fea_book import FeaBook
+from strainwave.compare.validate.gci_table import gci_rows
+from strainwave.compare.validate.isolated import stop_descendants
+from strainwave.compare.validate.nafems_appendix import nafems_appendix
+from strainwave.io_atomic import remove_stale_temps
+from strainwave.compare.validate.plan import make_plan
+from strainwave.compare.validate.report_html import write_html
 from strainwave.compare.validate.catalogue_table import catalogue_document
-from .report_pdf import chromium, print_pdf
-from .tables_csv import CSV_FILES, write_tables
-from .report_md import write_markdown
-from .results import now_utc, plain, versions, write_results
-from .case_progress import CaseProgress
-from .runner import CaseOutcome, run_case
-from .wg_cup_checks import wg_record
+from strainwave.compare.validate.report_pdf import chromium, print_pdf
+from strainwave.compare.validate.tables_csv import CSV_FILES, write_tables
+from strainwave.compare.validate.report_md import write_markdown
+from strainwave.compare.validate.results import now_utc, plain, versions, write_results
+from strainwave.compare.validate.case_progress import CaseProgress
+from strainwave.compare.validate.runner import CaseOutcome, run_case
+from strainwave.compare.validate.wg_cup_checks import wg_record
 
 ORDER = 2   # quadratic elements, the fea/ default (curved P2)
 
@@ -160,7 +160,7 @@ def _output_folders(out_dir: Path) -> tuple[Path, ...]:
 def _run_cases(cases, params, *, fields_dir: Path, cache, quick: bool, progress) -> dict[str, CaseOutcome]:
     """Solve the cases two at a time, longest first: each runs in its own child process (the threads only
     wait on them), and the machine this targets has two cores. Results keep the plan's order."""
-    from .schedule import durations_file, load_durations, longest_first, save_durations
+    from strainwave.compare.validate.schedule import durations_file, load_durations, longest_first, save_durations
 
     workers = max(1, min(2, os.cpu_count() or 1))
     timing_file = durations_file(Path(cache.root), quick)
@@ -199,7 +199,7 @@ PREVIEW_OF = {"output-shaft": "shaft", "flexspline-cup": "cup", "wg-bearing-ring
 
 
 def _previews(steps, out_dir: Path) -> list:
-    from .artifacts import Image
+    from strainwave.compare.validate.artifacts import Image
 
     return [Image(Path(_relative(s.preview, out_dir)), f"{s.part}: the part as designed (uncracked), contact/load "
                   "faces in blue; right: close-up", PREVIEW_OF[s.part], "preview")
@@ -208,8 +208,8 @@ def _previews(steps, out_dir: Path) -> list:
 
 def _inputs(plan, book: FeaBook, params) -> dict:
     """The inputs-and-model record of every component that solved."""
-    from ...rated_stress import rated_load_of
-    from .inputs import component_inputs
+    from strainwave.rated_stress import rated_load_of
+    from strainwave.compare.validate.inputs import component_inputs
 
     out = {}
     for component, case in list(plan.headline.items()) + [("ring", plan.ring)]:
@@ -241,10 +241,10 @@ def _write_reports(out_dir: Path, doc: dict, views: dict[str, str], progress) ->
 
 def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str], None]) -> Outcome:
     """Run the whole validation into ``out_dir``; returns the checks and timings (see module docstring)."""
-    from ...analytic.summary import analytic_summary, crack_headline_lines, designer_headline
-    from ...interrupt import deferred_interrupt
-    from .artifacts import COMPONENT_TITLES, make_images
-    from .step_export import StepJob
+    from strainwave.analytic.summary import analytic_summary, crack_headline_lines, designer_headline
+    from strainwave.interrupt import deferred_interrupt
+    from strainwave.compare.validate.artifacts import COMPONENT_TITLES, make_images
+    from strainwave.compare.validate.step_export import StepJob
 
     start = time.perf_counter()
     out_dir = Path(out_dir)

@@ -13,8 +13,8 @@ import math
 
 import numpy as np
 
-from ...registry import STUDIES
-from .runner import Case
+from strainwave.registry import STUDIES
+from strainwave.compare.validate.runner import Case
 
 # component -> its study, from the registry (the crack-bearing studies)
 COMPONENT_STUDY = {s.component: s.name for s in STUDIES.values() if s.component}
@@ -54,7 +54,7 @@ def bearing_depth_limit_mm(params) -> float:
     geometry/bearing_ring.py refuses c >= 0.5 sqrt(pi) a' (the patch half-length across the race), with
     c from Q = 1 + 1.464 (a/c)^1.65 (seed 000); c/a is fixed by Q, so the depth is bounded.
     """
-    from ...geometry.cracks import half_length_from_q
+    from strainwave.geometry.cracks import half_length_from_q
 
     patch_half_mm = 0.5 * math.sqrt(math.pi) * params.wave_generator.contact_semi_axes_mm[0]
     c_per_a = half_length_from_q(1.0, params.cracks.surface_crack_shape_factor)
@@ -86,7 +86,7 @@ def sweep_mesh_size_mm(params, component: str) -> float | None:
     or the shaft's axisymmetric section with its own sizes) and so hardly depends on the far-field
     size; the headline case keeps the fine global mesh for the flexibility checks
     (docs/decisions/022-validate-run-budget.md)."""
-    from ...fea import cup_torsion, shaft_torsion
+    from strainwave.fea import cup_torsion, shaft_torsion
     sizes = {"shaft": shaft_torsion.default_size_mm, "cup": cup_torsion.default_size_mm}
     return sizes[component](params, True) if component in sizes else None
 
@@ -98,7 +98,7 @@ def make_plan(params, *, quick: bool) -> Plan:
     --quick leaves it out: its headline case is the shallower of its two depths (the uncracked
     flexibility is solved in every case), and the crack checks use the sweep anyway.
     """
-    from ...fea.studies import with_crack
+    from strainwave.fea.studies import with_crack
     headline, sweeps = {}, {}
     for c, deepest in sweep_limits_mm(params).items():
         depth = params.crack_depth_mm(STUDIES[COMPONENT_STUDY[c]].crack_key)

@@ -9,8 +9,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ...io_atomic import atomic_write_bytes
-from .ring_shape import radial_displacement_mm
+from strainwave.io_atomic import atomic_write_bytes
+from strainwave.compare.validate.ring_shape import radial_displacement_mm
 
 
 def nice_scale(raw: float) -> float:

@@ -13,8 +13,8 @@ import base64
 from html import escape
 from pathlib import Path
 
-from ...io_atomic import atomic_write_text
-from . import report_text as rt
+from strainwave.io_atomic import atomic_write_text
+from strainwave.compare.validate import report_text as rt
 from strainwave.compare.validate.catalogue_table import CATALOGUE_COLUMNS, catalogue_rows, slope_line
 from strainwave.compare.validate.report_md import CATALOGUE_INTRO
 from strainwave.compare.validate.wg_cup_checks import wg_lines
@@ -189,7 +189,7 @@ def render_html(doc: dict, views: dict[str, str] | None = None, root: Path | Non
     views = {c: p for c, p in (views or {}).items() if c in doc.get("views", {})}
     ramp = ""
     if views:
-        from .view3d import colorbar_css
+        from strainwave.compare.validate.view3d import colorbar_css
         ramp = colorbar_css()
     toc = [("design", "Design verdict: safety factors")] if doc.get("design") else []
     failing = [c for c in doc["checks"] if not c["passed"]]
@@ -223,7 +223,7 @@ def render_html(doc: dict, views: dict[str, str] | None = None, root: Path | Non
         parts += _component_section(doc, component, title, root, views, ramp)
     parts += _appendix(doc)
     if views:
-        from .view3d import viewer_script
+        from strainwave.compare.validate.view3d import viewer_script
         parts.append(f"<script>{viewer_script()}</script>")
     parts.append("</body></html>")
     return "\n".join(parts)

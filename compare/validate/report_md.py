@@ -3,8 +3,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ...io_atomic import atomic_write_text
-from . import report_text as rt
+from strainwave.io_atomic import atomic_write_text
+from strainwave.compare.validate import report_text as rt
 from strainwave.compare.validate.wg_cup_checks import wg_lines
 from strainwave.compare.validate.catalogue_table import CATALOGUE_COLUMNS, catalogue_rows, slope_line
 

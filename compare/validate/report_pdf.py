@@ -12,7 +12,7 @@ import subprocess
 import tempfile
 from pathlib import Path
 
-from ...io_atomic import atomic_path
+from strainwave.io_atomic import atomic_path
 
 __all__ = ["CHROMIUM_FLAGS", "chromium", "print_pdf", "PDF_TIMEOUT_S"]
 

@@ -5,7 +5,7 @@ never show a number the JSON does not have.
 """
 from __future__ import annotations
 
-from .gci_table import GCI_COLUMNS, gci_cells  # noqa: F401 - the GCI table's layout, for both writers
+from strainwave.compare.validate.gci_table import GCI_COLUMNS, gci_cells  # noqa: F401 - the GCI table's layout, for both writers
 
 COMPONENTS = (("shaft", "Output shaft (seed 000)"), ("cup", "Flexspline cup (seed 000)"),
               ("bearing", "Wave-generator bearing inner ring (seed 000)"),

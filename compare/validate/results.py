@@ -9,8 +9,8 @@ from datetime import datetime, timezone
 from importlib import metadata
 from pathlib import Path
 
-from ...io_atomic import atomic_write_text
-from ...cache import code_version
+from strainwave.io_atomic import atomic_write_text
+from strainwave.cache import code_version
 
 SCHEMA_PATH = Path(__file__).with_name("results_schema.json")
 LIBRARIES = ("numpy", "scipy", "scikit-fem", "gmsh", "pyamg", "pyvista", "vtk", "build123d", "matplotlib")

@@ -17,10 +17,10 @@ from __future__ import annotations
 
 import math
 
-from ...analytic import ring
-from ...analytic.ring_arc_load import thin_ring_deflections_mm, thin_ring_moment_Nmm
-from .checks import Check, evaluate, fea_tolerance, not_evaluated
-from .fea_book import FeaBook
+from strainwave.analytic import ring
+from strainwave.analytic.ring_arc_load import thin_ring_deflections_mm, thin_ring_moment_Nmm
+from strainwave.compare.validate.checks import Check, evaluate, fea_tolerance, not_evaluated
+from strainwave.compare.validate.fea_book import FeaBook
 
 def _scaled(ref: dict, factor: float) -> dict[str, float]:
     return {k: float(ref[k]) * factor for k in ("published", "corrected") if isinstance(ref.get(k), (int, float))}

@@ -11,7 +11,7 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-from ...errors import InputError
+from strainwave.errors import InputError
 
 __all__ = ["CheckChange", "RunDiff", "load_run", "diff_runs"]
 

@@ -11,9 +11,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-from ...fea.result import StudyResult
-from ...cache import ResultCache, case_key
-from ...rated_stress import rated_load_of, write_at_rated
+from strainwave.fea.result import StudyResult
+from strainwave.cache import ResultCache, case_key
+from strainwave.rated_stress import rated_load_of, write_at_rated
 
 
 @dataclass(frozen=True)
@@ -58,7 +58,7 @@ CASE_TIMEOUT_S = {True: 150.0, False: 900.0}
 def run_case(case: Case, params, *, fields_dir: Path, cache: ResultCache, quick: bool, order: int = 2,
              progress: Callable[[str], None], timeout_s: float | None = None) -> CaseOutcome:
     """Solve one case in an isolated child process, or reuse it from the cache (and say so)."""
-    from .isolated import run_isolated
+    from strainwave.compare.validate.isolated import run_isolated
 
     key = case_key("validate-case", case.payload(params, quick, order))
     hit = cache.get(key)

@@ -12,7 +12,7 @@ import json
 from pathlib import Path
 from typing import Iterable, Mapping, Sequence
 
-from ...io_atomic import atomic_write_text
+from strainwave.io_atomic import atomic_write_text
 
 
 def durations_file(folder: Path, quick: bool) -> Path:

@@ -12,9 +12,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-from ...geometry.part import PartName
-from ...cache import ResultCache, case_key
-from ...io_atomic import remove_stale_temps
+from strainwave.geometry.part import PartName
+from strainwave.cache import ResultCache, case_key
+from strainwave.io_atomic import remove_stale_temps
 
 
 @dataclass(frozen=True)
@@ -42,7 +42,7 @@ def export_one(part: str, params, target: Path, png: Path | None = None) -> tupl
     """Build and write one part and its preview (runs in the worker process); errors come back as text."""
     start = time.perf_counter()
     try:
-        from ...geometry.export import export_part
+        from strainwave.geometry.export import export_part
 
         files = [str(p) for p in export_part(part, params, Path(target), crack_depth_mm=None, teeth=True, png=png)]
         return files, time.perf_counter() - start, ""
@@ -53,7 +53,7 @@ def export_one(part: str, params, target: Path, png: Path | None = None) -> tupl
 def _worker(conn, jobs: list[tuple[str, Path, Path | None]], params) -> None:
     """Background process: export each part in turn and send (part, files, seconds, error) back.
     It dies with the run and leaves Ctrl-C to it (the run cancels it): no KeyboardInterrupt traceback."""
-    from .isolated import bind_to_parent, send_or_exit
+    from strainwave.compare.validate.isolated import bind_to_parent, send_or_exit
 
     bind_to_parent()
     for part, target, png in jobs:

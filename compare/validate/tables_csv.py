@@ -9,7 +9,7 @@ import csv
 import io
 from pathlib import Path
 
-from ...io_atomic import atomic_write_text
+from strainwave.io_atomic import atomic_write_text
 
 __all__ = ["CSV_FILES", "write_tables", "check_rows", "gci_rows", "stress_rows"]
 

@@ -14,11 +14,11 @@ from __future__ import annotations
 
 import math
 
-from ...analytic import cracks, tube_crack
-from ...analytic.variant import Variant
-from ...registry import FLEX_UNIT, study_of_component
-from .checks import Check, evaluate, fea_tolerance, not_evaluated
-from .fea_book import FeaBook, Sweep
+from strainwave.analytic import cracks, tube_crack
+from strainwave.analytic.variant import Variant
+from strainwave.registry import FLEX_UNIT, study_of_component
+from strainwave.compare.validate.checks import Check, evaluate, fea_tolerance, not_evaluated
+from strainwave.compare.validate.fea_book import FeaBook, Sweep
 
 # the uncracked flexibility each torsion study reports (registry)
 SHAFT_FLEX, CUP_FLEX = (study_of_component(c).flexibility.name for c in ("shaft", "cup"))
@@ -90,7 +90,7 @@ def cup_flexibility(book: FeaBook, label: str, s000: dict, params) -> Check:
     torsional compliance is as large as the tube's; the corrected value is strainwave's series shell
     model (tube + diaphragm + hub, ``analytic.torsion.cup_series_flexibility``) with G = E/2(1+nu) as the FEA.
     """
-    from ...analytic.seed000 import cup_series_model
+    from strainwave.analytic.seed000 import cup_series_model
 
     lf = s000.get("lambda_f0_variants", {})
     series = cup_series_model(params, params.material.implied_shear_modulus_MPa)

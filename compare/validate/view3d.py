@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...rated_stress import StressAtRated, displacement3, field_names, scaled_to_rated
+from strainwave.rated_stress import StressAtRated, displacement3, field_names, scaled_to_rated
 
 __all__ = ["View", "make_view", "viewer_script", "colorbar_css", "MAX_TRIANGLES"]
 
@@ -62,7 +62,7 @@ def make_view(component: str, vtu: Path, at: StressAtRated, *, exaggeration: flo
     if not planar:
         points = np.column_stack([points[:, 0], points[:, 2], -points[:, 1]])   # model z up on the screen
     scalars = np.asarray(surface.point_data[names.von_mises], dtype=np.float32)
-    from .images import colour_top
+    from strainwave.compare.validate.images import colour_top
 
     peak = colour_top(np.asarray(mesh.point_data[names.von_mises], float), at.peaks.peak_von_mises_MPa)
     payload = json.dumps({"positions": _b64(points.astype(np.float32)), "scalars": _b64(scalars),

@@ -15,18 +15,18 @@ import math
 
 import numpy as np
 
-from ...analytic import wg_bearing as wgb
-from ...analytic.study_loads import wg_bearing_load
-from .checks import Check, evaluate, fea_tolerance, not_evaluated
-from .fea_book import FeaBook, Sweep
-from .torsion_checks import crack_check
+from strainwave.analytic import wg_bearing as wgb
+from strainwave.analytic.study_loads import wg_bearing_load
+from strainwave.compare.validate.checks import Check, evaluate, fea_tolerance, not_evaluated
+from strainwave.compare.validate.fea_book import FeaBook, Sweep
+from strainwave.compare.validate.torsion_checks import crack_check
 
 STUDY = "wg-bearing"
 IDS = ("bearing.race_stress_major", "bearing.race_stress_minor", "bearing.ball_loads", "bearing.crack_compliance")
 
 
 def _ring(params):
-    from ...fea.wg_bearing import setup_from
+    from strainwave.fea.wg_bearing import setup_from
     return setup_from(params, **wg_bearing_load(params))
 
 
@@ -73,7 +73,7 @@ def ball_load_check(book: FeaBook, label: str, params) -> Check:
 
 def crack_sweep(book: FeaBook, label: str) -> Sweep | None:
     """The race crack's added compliance at each depth the case solved."""
-    from ...fea.wg_bearing import delta_name
+    from strainwave.fea.wg_bearing import delta_name
 
     result = book.result(label)
     if result is None:
@@ -155,11 +155,11 @@ def gear_stiffness(book: FeaBook, labels: dict[str, str], wg_label: str, s000: d
     from the seed's table. Corrected: the same sum of closed forms (Stribeck-Hertz K_G with rigid rings, the
     series shell cup, the hollow shaft; G = E/2(1+nu)); published: the seed's K_HD; ``today``: the FEA cup and
     shaft with the seed's K_G0 (what this check asserted before issue 34)."""
-    from ...analytic import torsion
-    from ...analytic.seed000 import cup_series_model
-    from ...analytic.variant import Variant
-    from ...registry import FLEX_UNIT
-    from .torsion_checks import CUP_FLEX, CUP_JUNCTION_CORRECTION, CUP_JUNCTION_SCATTER, SHAFT_FLEX, variants
+    from strainwave.analytic import torsion
+    from strainwave.analytic.seed000 import cup_series_model
+    from strainwave.analytic.variant import Variant
+    from strainwave.registry import FLEX_UNIT
+    from strainwave.compare.validate.torsion_checks import CUP_FLEX, CUP_JUNCTION_CORRECTION, CUP_JUNCTION_SCATTER, SHAFT_FLEX, variants
 
     unit, quantity = "N*mm/rad", "drive torsional stiffness K_HD (uncracked), wave generator from the FEA"
     analytic = {k: v for k, v in variants(s000.get("K_HD")).items() if k == "published"}

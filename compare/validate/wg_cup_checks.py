@@ -15,10 +15,10 @@ from __future__ import annotations
 
 import math
 
-from ...analytic import ring, ring_prescribed
-from ...analytic.cup_fatigue import cup_fatigue_of
-from .checks import Check, evaluate, fea_tolerance, not_evaluated
-from .fea_book import FeaBook
+from strainwave.analytic import ring, ring_prescribed
+from strainwave.analytic.cup_fatigue import cup_fatigue_of
+from strainwave.compare.validate.checks import Check, evaluate, fea_tolerance, not_evaluated
+from strainwave.compare.validate.fea_book import FeaBook
 
 STUDY = "cup-wave-generator"
 CHECKS = (("cup.wg_bending_major", "major", "prescribed_linear_bending_major_MPa"),
@@ -27,7 +27,7 @@ CHECKS = (("cup.wg_bending_major", "major", "prescribed_linear_bending_major_MPa
 
 def _geometry(params) -> tuple[float, float, float]:
     """(t, r_m, band width) of the cup's wall (geometry/flexspline_cup.py: bore d1/2 - t, outer d1/2)."""
-    from ...geometry.flexspline_cup import BAND_RATIO
+    from strainwave.geometry.flexspline_cup import BAND_RATIO
     fc = params.flexspline_cup
     return fc.wall_thickness_mm, 0.5 * (fc.pitch_diameter_mm - fc.wall_thickness_mm), BAND_RATIO * fc.pitch_diameter_mm
 

@@ -1,9 +1,9 @@
 """The physics catalogue: one module per effect, stable ids."""
 from __future__ import annotations
 
-from . import (compliance_offset, crack_closure, encoder_error, hysteresis, kinematic_error, large_deflection,
+from strainwave.compare.diagnose.effects import (compliance_offset, crack_closure, encoder_error, hysteresis, kinematic_error, large_deflection,
                lost_motion, nonlinear_stiffness, plasticity, stiffness_ripple, thick_ring)
-from .base import Context, Effect, Param
+from strainwave.compare.diagnose.effects.base import Context, Effect, Param
 
 CATALOGUE = {m.EFFECT.id: m.EFFECT for m in (compliance_offset, nonlinear_stiffness, hysteresis, lost_motion,
                                              crack_closure, thick_ring, large_deflection, plasticity,

@@ -5,7 +5,7 @@ Model: y += d u, i.e. measured compliance (s + d) c0. The stiffness scale s carr
 """
 from __future__ import annotations
 
-from .base import Context, Effect, Param
+from strainwave.compare.diagnose.effects.base import Context, Effect, Param
 
 
 def _contribution(ctx: Context, theta):

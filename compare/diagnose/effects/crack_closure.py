@@ -27,7 +27,7 @@ import math
 
 import numpy as np
 
-from .base import Context, Effect, Param
+from strainwave.compare.diagnose.effects.base import Context, Effect, Param
 
 
 def _contribution(ctx: Context, theta):

@@ -12,9 +12,9 @@ from __future__ import annotations
 
 import math
 
-from ..periodic import recorded_line, response_columns, response_grid
-from .base import Context, Effect, Param
-from .kinematic_error import ARCSEC_PER_RAD
+from strainwave.compare.diagnose.periodic import recorded_line, response_columns, response_grid
+from strainwave.compare.diagnose.effects.base import Context, Effect, Param
+from strainwave.compare.diagnose.effects.kinematic_error import ARCSEC_PER_RAD
 
 def line(ctx: Context) -> tuple[float, float]:
     """(line frequency in cycles per normalised response unit, recorded span of the response)."""

@@ -51,8 +51,8 @@ from typing import Callable
 
 import numpy as np
 
-from .base import Context, Effect, Param
-from .loop import ARCMIN_PER_RAD, loop_quantities
+from strainwave.compare.diagnose.effects.base import Context, Effect, Param
+from strainwave.compare.diagnose.effects.loop import ARCMIN_PER_RAD, loop_quantities
 
 # play half-widths (fraction of full-scale load): a fine grid carrying the density, from a slip within one
 # sample step to beyond full scale; the density's nodes, hats between them (finest where a tight slip

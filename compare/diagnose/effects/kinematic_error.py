@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from .base import Context, Effect, Param
+from strainwave.compare.diagnose.effects.base import Context, Effect, Param
 
 ARCSEC_PER_RAD = 3600.0 * 180.0 / math.pi
 HARMONICS = (2, 4)

@@ -24,7 +24,7 @@ import dataclasses
 
 import numpy as np
 
-from .base import Context, Effect, Param
+from strainwave.compare.diagnose.effects.base import Context, Effect, Param
 
 
 def _contribution(ctx: Context, theta):

@@ -18,7 +18,7 @@ from typing import Callable
 
 import numpy as np
 
-from .base import Context
+from strainwave.compare.diagnose.effects.base import Context
 
 ARCMIN_PER_RAD = 60.0 * 180.0 / math.pi
 N_LEG = 400

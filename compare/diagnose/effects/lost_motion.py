@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-from .base import Context, Effect, Param
+from strainwave.compare.diagnose.effects.base import Context, Effect, Param
 
 ARCMIN_PER_RAD = 60.0 * 180.0 / math.pi
 

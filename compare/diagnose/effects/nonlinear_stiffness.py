@@ -26,7 +26,7 @@ import dataclasses
 
 import numpy as np
 
-from .base import Context, Effect, Param
+from strainwave.compare.diagnose.effects.base import Context, Effect, Param
 
 
 def _breaks(theta):

@@ -11,9 +11,9 @@ from __future__ import annotations
 
 import math
 
-from ..periodic import angle_load_columns
-from .base import Context, Effect, Param
-from .kinematic_error import ARCSEC_PER_RAD
+from strainwave.compare.diagnose.periodic import angle_load_columns
+from strainwave.compare.diagnose.effects.base import Context, Effect, Param
+from strainwave.compare.diagnose.effects.kinematic_error import ARCSEC_PER_RAD
 
 HARMONICS = (2, 4)
 

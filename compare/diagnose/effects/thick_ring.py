@@ -9,7 +9,7 @@ adequate by definition and a free zero-parameter shift would be picked up for no
 """
 from __future__ import annotations
 
-from .base import Context, Effect
+from strainwave.compare.diagnose.effects.base import Context, Effect
 
 
 def _rho(ctx: Context) -> float:

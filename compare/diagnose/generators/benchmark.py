@@ -27,15 +27,15 @@ from pathlib import Path
 
 import numpy as np
 
-from ...errors import RangeWarning
-from ...io_atomic import atomic_write_text, json_ready
-from . import generate_family2 as gen2
-from . import generate_recordings as gen1
-from .cha import cha_recording as cha_recording_f1
-from .cha import cha_rows
-from .concealed import Concealed
-from .explain import LOSS_PRECISION
-from .recording import parse_text
+from strainwave.errors import RangeWarning
+from strainwave.io_atomic import atomic_write_text, json_ready
+from strainwave.compare.diagnose.generators import generate_family2 as gen2
+from strainwave.compare.diagnose.generators import generate_recordings as gen1
+from strainwave.compare.diagnose.generators.cha import cha_recording as cha_recording_f1
+from strainwave.compare.diagnose.generators.cha import cha_rows
+from strainwave.compare.diagnose.generators.concealed import Concealed
+from strainwave.compare.diagnose.explain import LOSS_PRECISION
+from strainwave.compare.diagnose.recording import parse_text
 
 FAMILIES = (1, 2)
 SNR_SCORED = 3.0
@@ -307,8 +307,8 @@ def _quantity(diag, effect, name: str) -> float | None:
 
 def diagnose_concealed(c: Concealed, name: str, default_params) -> Outcome:
     """Diagnose one concealed recording from its file text only, and score it against its truth."""
-    from ...params import load_params
-    from .pipeline import diagnose
+    from strainwave.params import load_params
+    from strainwave.compare.diagnose.pipeline import diagnose
     rec = parse_text(c.text, f"{name}.csv")
     params = load_params(overrides=rec.param_overrides) if rec.param_overrides else default_params
     t = time.perf_counter()
@@ -341,7 +341,7 @@ def concealed_recordings(family: int, n_per_class: int, seed: int, params, *, ro
         for i in range(n_per_class):
             if family == 1:
                 if table is None and cls in ("large_deflection", "clean_ring", "clean_ring_coloured"):
-                    from .hifi_ring import elastica_curve
+                    from strainwave.compare.diagnose.generators.hifi_ring import elastica_curve
                     table = elastica_curve(max_delta_over_R=0.3, n=25)
                 c = gen1.generate(cls, rng, params, rows=rows or (200, 2000), elastica_table=table)
             else:
@@ -375,7 +375,7 @@ def run_benchmark(n_per_class: int = 10, seed: int = 0, out_dir: Path | None = N
         raise ValueError("n_per_class must be >= 1")
     if not families or any(f not in FAMILIES for f in families):
         raise ValueError(f"families must be a non-empty subset of {FAMILIES}")
-    from ...params import load_params
+    from strainwave.params import load_params
     t0 = time.perf_counter()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RangeWarning)   # thick rims are outside seed 003's range on purpose

@@ -17,13 +17,13 @@ import math
 
 import numpy as np
 
-from . import family2_sensors as fs
-from . import hifi_ring as hr
-from . import hifi_torsion as ht
-from .baseline import ring_geometry, torsion_compliance
-from .concealed import Concealed, projected_peak, weakest_peak
-from .loop_metrics import measure_loop
-from .recording import RecordingKind, format_recording
+from strainwave.compare.diagnose.generators import family2_sensors as fs
+from strainwave.compare.diagnose.generators import hifi_ring as hr
+from strainwave.compare.diagnose.generators import hifi_torsion as ht
+from strainwave.compare.diagnose.baseline import ring_geometry, torsion_compliance
+from strainwave.compare.diagnose.generators.concealed import Concealed, projected_peak, weakest_peak
+from strainwave.compare.diagnose.generators.loop_metrics import measure_loop
+from strainwave.compare.diagnose.recording import RecordingKind, format_recording
 
 UNCERTAINTY = 0.02
 ARCMIN = math.pi / (180.0 * 60.0)

@@ -105,7 +105,7 @@ def fibre_ring_deflection(F_path: np.ndarray, R_mm: float, h_mm: float, b_mm: fl
 
 def curved_beam_factor(R_mm: float, h_mm: float, b_mm: float, poisson_ratio: float) -> float:
     """delta_CD of the curved-beam Castigliano solution with Cowper's shear coefficient / thin-ring delta_CD."""
-    from ...analytic.thick_ring import RingSection, castigliano_deflections
+    from strainwave.analytic.thick_ring import RingSection, castigliano_deflections
     section = RingSection(R_mm, h_mm, b_mm)
     cowper = (12.0 + 11.0 * poisson_ratio) / (10.0 * (1.0 + poisson_ratio))   # 1/kappa for a rectangle
     E = 1.0

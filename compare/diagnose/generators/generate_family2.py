@@ -15,15 +15,15 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-from . import family2_elastic as fe
-from . import family2_hysteresis as fh
-from . import family2_outside as fo
-from . import family2_sensors as fs
-from .baseline import ring_geometry, torsion_compliance
-from .cha import ARCMIN, ChaRow
-from .concealed import Concealed, projected_peak, weakest_peak
-from .loop_metrics import measure_loop, recorded_loss
-from .recording import RecordingKind, format_recording
+from strainwave.compare.diagnose.generators import family2_elastic as fe
+from strainwave.compare.diagnose.generators import family2_hysteresis as fh
+from strainwave.compare.diagnose.generators import family2_outside as fo
+from strainwave.compare.diagnose.generators import family2_sensors as fs
+from strainwave.compare.diagnose.baseline import ring_geometry, torsion_compliance
+from strainwave.compare.diagnose.generators.cha import ARCMIN, ChaRow
+from strainwave.compare.diagnose.generators.concealed import Concealed, projected_peak, weakest_peak
+from strainwave.compare.diagnose.generators.loop_metrics import measure_loop, recorded_loss
+from strainwave.compare.diagnose.recording import RecordingKind, format_recording
 
 UNCERTAINTY = 0.02
 COLOURED = ("ar1", "lowpass", "random_walk")

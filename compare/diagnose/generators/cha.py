@@ -17,8 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .hifi_torsion import maxwell_slip_twist
-from .recording import RecordingKind, format_recording
+from strainwave.compare.diagnose.generators.hifi_torsion import maxwell_slip_twist
+from strainwave.compare.diagnose.recording import RecordingKind, format_recording
 
 ARCMIN = math.pi / (180.0 * 60.0)
 ENCODER_STEP_RAD = 2.0 * math.pi / 2 ** 20     # a 20-bit output encoder
