@@ -1,7 +1,7 @@
 """Issue 38's reproducers, each run as the issue ran it (the installed CLI, from a shell in an empty folder),
 and the table the issue asks for: category, tried, clean, internal errors, hangs, files lost.
 
-    .venv/bin/python benchmarks/reproduce_issue38.py          # ~2-4 min on 2 shared cores
+    .venv/bin/python benchmarks/reproduce_reliability.py          # ~2-4 min on 2 shared cores
 
 clean: exit 2 with one line (or exit 1 'disk full: PATH' for a full disk, or a run that should go through and
 did, with one line per warning); internal: any other exit, a traceback or more lines; hang: past the limit
