@@ -35,7 +35,7 @@ from strainwave.compare.validate.report_md import write_markdown
 from strainwave.compare.validate.results import now_utc, plain, versions, write_results
 from strainwave.compare.validate.case_progress import CaseProgress
 from strainwave.compare.validate.runner import CaseOutcome, run_case
-from strainwave.compare.validate.wg_cup_checks import wg_record
+from strainwave.compare.validate.wg_cup_checks import fatigue_factor, wg_record
 
 ORDER = 2   # quadratic elements, the fea/ default (curved P2)
 
@@ -285,7 +285,11 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
     progress(f"[2/{total}] step done: {sum(len(s.files) for s in steps)} STEP file(s), {timings['step']:.1f} s "
              f"wall (waited {timings['step_wait_after_images']:.1f} s after the images)")
     images, missing, stresses = _previews(steps, out_dir) + made.images, made.missing, made.stresses
-    design = design_verdict(params, stress_factors(stresses, COMPONENT_TITLES, tuple(plan.headline) + ("ring",)))
+    wg_cup = wg_record(book, plan.drive_label("cup-wave-generator") or "", params)
+    factors = stress_factors(stresses, COMPONENT_TITLES, tuple(plan.headline) + ("ring",))
+    if plan.drive_label("cup-wave-generator"):
+        factors.append(fatigue_factor(wg_cup))
+    design = design_verdict(params, factors)
     with _stage("reports", timings, progress, 6, total):
         checks = [c.to_dict() for c in check_set.checks]
         failed = [c["id"] for c in checks if not c["passed"]]
@@ -313,7 +317,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
             "design": design.to_dict(),
             "inputs": _inputs(plan, book, params),
             "stress_at_rated": {c: s.to_dict() for c, s in stresses.items()},
-            "cup_wave_generator": wg_record(book, plan.drive_label("cup-wave-generator") or "", params),
+            "cup_wave_generator": wg_cup,
             "views": {c: v.to_dict() for c, v in made.views.items()},
             "gci_table": [r.to_dict() for r in gci_rows(book, ORDER)],
             "nafems": nafems,
