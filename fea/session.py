@@ -18,6 +18,7 @@ import os
 import pickle
 import select
 import signal
+import threading
 import time
 from contextlib import contextmanager
 from typing import Callable, TypeVar
@@ -41,7 +42,9 @@ def gmsh_session(*, verbosity: int = 0, threads: int = 1, interruptible: bool = 
     if gmsh.isInitialized():
         # a nested session would finalize the outer one's state on exit
         raise RuntimeError("gmsh_session: a gmsh session is already open")
-    gmsh.initialize(readConfigFiles=False, interruptible=interruptible)
+    main_thread = threading.current_thread() is threading.main_thread()
+    previous = signal.getsignal(signal.SIGINT) if main_thread else None
+    gmsh.initialize(readConfigFiles=False, interruptible=interruptible and main_thread)
     try:
         gmsh.option.setNumber("General.Terminal", 1 if verbosity > 0 else 0)
         gmsh.option.setNumber("General.Verbosity", verbosity)
@@ -50,6 +53,8 @@ def gmsh_session(*, verbosity: int = 0, threads: int = 1, interruptible: bool = 
         yield gmsh.model
     finally:
         gmsh.finalize()
+        if main_thread and previous is not None:   # gmsh.finalize leaves SIGINT at its default action
+            signal.signal(signal.SIGINT, previous)
 
 
 _PR_SET_PDEATHSIG = 1
