@@ -367,16 +367,16 @@ def write_fields(path, tube: Tube, u: np.ndarray, lame: Lame, nonlinear: bool, i
     """The quarter wall as VTU (8-node hexahedra on the P2 vertices): displacement, von Mises, Cauchy stress in
     the cylindrical frame (rr, tt, zz, tz, rz, rt) at the vertices."""
     from strainwave.io_atomic import atomic_path
-    from strainwave.fea.fields import _field_data, _piece, _vtu_text
+    from strainwave.fea.fields import _grid, _write_grid
 
     pm = tube.param_mesh
     sig = stresses_at(tube, u, lame, nonlinear, *pm.p)
     disp = np.stack([u[3 * np.arange(pm.p.shape[1]) + k] for k in range(3)], axis=1)
     voigt = np.stack([sig[:, 0, 0], sig[:, 1, 1], sig[:, 2, 2], sig[:, 1, 2], sig[:, 0, 2], sig[:, 0, 1]], axis=1)
     cells = tube.mesh.t[list(_VTK_HEX)].T
-    piece = _piece(tube.mesh.p[:, :pm.p.shape[1]].T, [cells], np.full(cells.shape[0], 12), {
+    grid = _grid(tube.mesh.p[:, :pm.p.shape[1]].T, [cells], np.full(cells.shape[0], 12), {
         "displacement_mm": disp, "von_mises_MPa": von_mises_MPa(sig), "stress_cylindrical_MPa": voigt},
-        {"physical_group": np.ones(cells.shape[0], np.int64)})
+        {"physical_group": np.ones(cells.shape[0], np.int64)}, info, ["solid"])
     with atomic_path(path) as tmp:
-        tmp.write_text(_vtu_text(_field_data(info, ["solid"]), piece), encoding="ascii")
+        _write_grid(tmp, grid)
     return path

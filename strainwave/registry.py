@@ -133,7 +133,7 @@ STUDIES: dict[str, Study] = {s.name: s for s in (
         QuantitySpec("ball_load_ratio", "1", "Z Q_max / F_r with Hertz balls on the FEA ring", "bearing.ball_loads"),
         QuantitySpec("radial_stiffness_N_per_mm", "N/mm", "K_G: F_r over the outer race's approach (balls + ring)"),
         QuantitySpec("radial_compliance_mm_per_N", "mm/N", "ring compliance under the ball loads, uncracked"),
-    ), load_inputs="strainwave.analytic.study_loads:wg_bearing_load"),
+    ), load_inputs="strainwave.analytic.study_loads:wg_bearing_load", vtu_fields=()),
     # The ring closed forms are given at the thin-ring force for W0; they scale linearly to the FEA's force.
     Study("ring-compression", "strainwave.fea.ring_compression", "ewg-flexspline-ring", None, None, (
         QuantitySpec("delta_cd_mm", "mm", "diameter shortening along the load line CD", "ring.delta_cd"),
