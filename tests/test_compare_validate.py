@@ -411,7 +411,7 @@ def test_both_verdicts_open_the_report_and_a_failing_design_is_red(quick_run, re
     assert ("verdict pass" in box) == design["passed"] and ("verdict fail" in box) == (not design["passed"])
     assert html.index('id="verdict"') < html.index('id="design-verdict"') < html.index('id="contents"')
     # one factor per component, each with its definition, and the verdict is exactly theirs against [n]
-    assert {f["component"] for f in design["factors"]} == {"shaft", "cup", "bearing", "ring"}
+    assert {f["component"] for f in design["factors"]} == {"shaft", "cup", "bearing", "ring", "cup_wave_generator"}
     for f in design["factors"]:
         assert f["definition"] and f["required"] == design["required_safety_factor"]
         assert f["passed"] == (f["safety_factor"] is not None and f["safety_factor"] >= f["required"])

@@ -20,7 +20,7 @@ def num(value, digits: int = 5) -> str:
         return "n/a"
     if isinstance(value, bool):
         return "yes" if value else "no"
-    if isinstance(value, int):
+    if isinstance(value, (int, str)):   # a count, or a cached record's text as it was written
         return str(value)
     return f"{value:.{digits}g}"
 
