@@ -231,7 +231,11 @@ def _write_reports(out_dir: Path, doc: dict, views: dict[str, str], progress) ->
         progress("  report.pdf: not printed (no Chromium found; Debian: apt-get install chromium)")
         return
     try:
-        print_pdf(out_dir / "report.html", out_dir / "report.pdf")
+        try:
+            print_pdf(out_dir / "report.html", out_dir / "report.pdf")
+        except RuntimeError as first:   # Chromium's zygote sometimes dies at start in a container: one retry
+            progress(f"  report.pdf: first print failed ({first}); retrying once")
+            print_pdf(out_dir / "report.html", out_dir / "report.pdf")
     except RuntimeError as exc:
         progress(f"  report.pdf: not printed ({exc})")
         doc["files"]["report_pdf"] = None
