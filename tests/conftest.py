@@ -54,3 +54,14 @@ def benchmark_module(name: str):
         yield module
     finally:
         sys.modules.pop(spec.name, None)
+
+
+@pytest.fixture(autouse=True)
+def _python_signal_dispositions():
+    """Every test starts and ends with Python's own SIGINT and SIGPIPE dispositions: a native library (gmsh
+    resets SIGINT to its default action) or a test that changes one must not let a later signal kill the run."""
+    yield
+    if signal.getsignal(signal.SIGINT) in (signal.SIG_DFL, None):
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+    if signal.getsignal(signal.SIGPIPE) != signal.SIG_IGN:
+        signal.signal(signal.SIGPIPE, signal.SIG_IGN)
