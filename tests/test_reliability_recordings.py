@@ -57,7 +57,11 @@ def test_accepted_odd_recordings_give_finite_json(twist):
     rec = parse_text(format_recording(RecordingKind.TORSION, "output_shaft", _LOAD, twist), "odd.csv")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        diagnosis, _ = diagnose(rec, load_params())
+        try:
+            diagnosis, _ = diagnose(rec, load_params())
+        except InputError as exc:     # a twist that does not follow the load: refused naming the header key
+            assert str(exc.key).startswith("odd.csv: [test] baseline_stiffness") and str(exc).count("\n") == 0
+            return
     json.dumps(diagnosis.to_dict(), allow_nan=False, default=str)
 
 

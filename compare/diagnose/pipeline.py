@@ -232,7 +232,10 @@ def check_baseline_scale(rec: Recording, base: Baseline) -> None:
     key = "baseline_stiffness_Nmm_per_rad" if torsion else "baseline_stiffness_N_per_mm"
     unit = "N*mm/rad" if torsion else "N/mm"
     given = rec.baseline_stiffness is not None
-    if ratio <= 0.0:
+    if slope == 0.0:
+        what = (f"the {rec.response_name} does not move with the {rec.load_name} (a stuck or disconnected "
+                f"channel)")
+    elif ratio < 0.0:
         what = (f"the {rec.response_name} falls as the {rec.load_name} rises (secant {1.0 / slope:.4g} {unit}): "
                 f"check the sign of one channel")
     else:
