@@ -123,7 +123,7 @@ def crack_front_nodes(vtu: Path) -> np.ndarray:
     nodes shared), read from the boundary file. Empty without a crack."""
     import pyvista as pv
 
-    from strainwave.fea.fields import field_text
+    from strainwave.fea.fields import VOLUME_POINT_ID, field_text
 
     path = Path(vtu).with_name(f"{Path(vtu).stem}.boundary.vtu")
     if not path.exists():
@@ -137,7 +137,7 @@ def crack_front_nodes(vtu: Path) -> np.ndarray:
     sides = []
     for name in ("crack_minus", "crack_plus"):
         cells = boundary.extract_cells(np.flatnonzero(ids == names.index(name) + 1))
-        sides.append(np.asarray(cells.point_data["vtkOriginalPointIds"]))
+        sides.append(np.asarray(cells.point_data[VOLUME_POINT_ID]))
     return np.intersect1d(sides[0], sides[1])
 
 
@@ -156,10 +156,11 @@ def tip_zone_of(mesh, vtu: Path, crack_depth_mm: float | None) -> tuple[np.ndarr
 
 
 def groups_at_node(vtu: Path, node: int) -> tuple[str, ...]:
-    """The named groups of ``vtu``'s boundary file (fea/fields.py: it shares the field's points) that hold ``node``."""
+    """The named groups of ``vtu``'s boundary file (fea/fields.py: its points carry their node ids in the field's
+    file) that hold the field's node ``node``."""
     import pyvista as pv
 
-    from strainwave.fea.fields import field_text
+    from strainwave.fea.fields import VOLUME_POINT_ID, field_text
 
     path = Path(vtu).with_name(f"{Path(vtu).stem}.boundary.vtu")
     if not path.exists() or node < 0:
@@ -167,7 +168,10 @@ def groups_at_node(vtu: Path, node: int) -> tuple[str, ...]:
     boundary = pv.read(str(path))
     names = field_text(boundary, "physical_group_names") if "physical_group_names" in boundary.field_data.keys() \
         else []
-    near = boundary.extract_points([node], adjacent_cells=True, include_cells=True)
+    local = np.flatnonzero(np.asarray(boundary.point_data[VOLUME_POINT_ID]) == node)
+    if local.size == 0:
+        return ()
+    near = boundary.extract_points(local, adjacent_cells=True, include_cells=True)
     ids = np.unique(np.asarray(near.cell_data["physical_group"])) if near.n_cells else []
     return tuple(names[i - 1] for i in ids if 0 < i <= len(names))   # id k is entry k - 1
 

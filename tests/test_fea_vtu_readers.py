@@ -29,7 +29,7 @@ def test_meshio_reads_both_files_with_named_fields(solved):
     path, _ = solved
     fields = {"shaft.vtu": {"displacement_mm", "stress_MPa", "von_mises_MPa", "principal_stress_1_MPa",
                             "principal_stress_2_MPa", "principal_stress_3_MPa"},
-              "shaft.boundary.vtu": {"displacement_mm", "von_mises_MPa"}}   # the faces repeat these two only
+              "shaft.boundary.vtu": {"displacement_mm", "von_mises_MPa", "volume_point_id"}}   # faces repeat two
     for name, expected in fields.items():
         mesh = meshio.read(path.with_name(name))
         assert mesh.points.shape[1] == 3 and sum(len(c.data) for c in mesh.cells) > 0
