@@ -174,7 +174,13 @@ def _named(solid, meta, slot, teeth: bool, is_cup: bool) -> dict:
     if slot is not None:
         named["crack_face"] = F.refs(crack_face)
         named["crack_front"] = F.refs(crack_front)
-    return named
+    # every other face has a name too, so a STEP reader shows none blank: the teeth's ends where the band
+    # begins, and the closed end (diaphragm, hub and their fillets)
+    rest = F.without(lambda fi: True, fixed, rim, bore, loaded, cracked,
+                     F.select(infos, F.is_cylinder(r_o, z_range=(0.0, z_b))))
+    more = {"tooth_end": F.select(infos, F.both(rest, F.is_zplane(z_b))),
+            "closed_end": F.select(infos, F.both(rest, lambda fi: fi.bbox_max[2] < z_b - tol))}
+    return {**named, **{name: F.refs(faces) for name, faces in more.items() if faces}}
 
 
 def crack_patch(part: Part, half_size_mm: float) -> Part:

@@ -408,13 +408,23 @@ def build_parser() -> argparse.ArgumentParser:
         p.set_defaults(func=func, uses_material=material)
         return p
 
+    for add_command in _COMMANDS:
+        add_command(add)
+    return parser
+
+
+def _add_analytic(add) -> None:
     add("analytic", _cmd_analytic, "every closed form of both seeds, published and corrected")
 
+
+def _add_params(add) -> None:
     p = add("params", _cmd_params, "print the effective parameters (default + --params), or the default file "
             "to start a parameter file from")
     p.add_argument("--print-default", action="store_true",
                    help="print the embedded default parameter file (TOML, with units and sources) and exit")
 
+
+def _add_export_step(add) -> None:
     p = add("export-step", _cmd_export_step,
             "build a part and write it as STEP (mm, named faces, coloured parts). --part assembly writes "
             "two files: the cup-type gear (flexspline cup, wave generator bearing ring, output shaft) to "
@@ -426,6 +436,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--png", metavar="FILE.png", help="also render an off-screen preview of what was written")
     p.add_argument("-o", "--output", required=True, metavar="FILE.step", help="STEP file to write")
 
+
+def _add_solve(add) -> None:
     p = add("solve", _cmd_solve, "mesh and solve one FEA study on three meshes (GCI)")
     p.add_argument("study", choices=STUDIES, help="study to run")
     p.add_argument("--mesh-size-mm", type=_positive_float, default=None, metavar="H_MM",
@@ -438,6 +450,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--vtu", metavar="FILE.vtu",
                    help="write the finest mesh's fields (and FILE.boundary.vtu with the named faces)")
 
+
+def _add_validate(add) -> None:
     p = add("validate", _cmd_validate, "all studies vs the closed forms: report, images, STEP, VTU")
     p.add_argument("--out", default="reports/validate", metavar="DIR", help="output directory")
     p.add_argument("--quick", action="store_true", help="coarse meshes, one crack depth per component")
@@ -445,6 +459,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="exit 3 when the validation passes but the design does not meet [n] at the rated load "
                         "(ewg_drive.permissible_safety); without it the exit status is the validation's alone")
 
+
+def _add_compare(add) -> None:
     p = add("compare", _cmd_compare, "the checks whose value, verdict or tolerance changed between two validation "
             "runs, side by side", material=False)
     p.add_argument("run_a", metavar="RUN_A", help="validation output folder (or its results.json)")
@@ -452,12 +468,16 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--rtol", type=float, default=1e-9, metavar="REL",
                    help="relative difference below which two values count as the same")
 
+
+def _add_diagnose(add) -> None:
     p = add("diagnose", _cmd_diagnose, "locate, name and model the mismatch between a recording and the model")
     p.add_argument("recording", metavar="RECORDING.csv", help="self-describing recording (docs/recordings.md)")
     p.add_argument("--baseline", choices=("analytic", "fea"), default="analytic",
                    help="model the recording is compared with")
     p.add_argument("--plot", metavar="OUT.png", help="also plot the recording, the baseline and the fit")
 
+
+def _add_size_crack(add) -> None:
     p = add("size-crack", _cmd_size_crack, "size the crack a recording's compliance change implies, and its "
             "remaining life (Paris' law)")
     p.add_argument("recording", metavar="RECORDING.csv", help="self-describing recording (docs/recordings.md)")
@@ -476,6 +496,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="load cycles per hour, to give the life in hours")
     p.add_argument("--plot", metavar="OUT.png", help="plot stiffness against load cycles")
 
+
+def _add_benchmark_diagnose(add) -> None:
     p = add("benchmark-diagnose", _cmd_benchmark_diagnose, "score diagnose blind on generated recordings")
     p.add_argument("--n", type=int, default=10, metavar="N", help="recordings per class and family (>= 1)")
     p.add_argument("--family", choices=("1", "2", "both"), default="both",
@@ -483,6 +505,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--seed", type=int, default=0, metavar="S", help="random seed of the generated recordings")
     p.add_argument("--out", metavar="DIR", help="also write benchmark_diagnose.json/.txt here")
 
+
+def _add_sweep(add) -> None:
     p = add("sweep", _cmd_sweep, "parameter sweep of one study on Dask")
     p.add_argument("study", choices=STUDIES, help="study solved at every point")
     p.add_argument("--vary", action="append", default=[], metavar="KEY=START:STOP:N|v1,v2",
@@ -495,7 +519,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--quick", action="store_true", help="coarse meshes")
     p.add_argument("--tolerance", type=float, default=0.05, metavar="REL",
                    help="relative departure from the closed form (dimensionless, 0.05 = 5 %%) named in the summary")
-    return parser
+
+
+# the subcommands in the order --help lists them; each adds its parser through ``add`` (build_parser)
+_COMMANDS = (_add_analytic, _add_params, _add_export_step, _add_solve, _add_validate, _add_compare, _add_diagnose,
+             _add_size_crack, _add_benchmark_diagnose, _add_sweep)
 
 
 class _StderrFormat(logging.Formatter):

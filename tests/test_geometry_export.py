@@ -123,6 +123,7 @@ def test_toothed_cup_faces_are_named_in_the_writers_model(params, tmp_path, monk
     path = write_step(part, tmp_path / "cup.step")
     assert calls == []
     back = read_step_face_names(path)
+    assert len(back) == len(part.solid.faces())   # no face left without a name (tooth ends, closed end)
     assert Counter(group for name, _, _ in back for group in name.split("+")) == \
         Counter({group: len(refs) for group, refs in part.named_faces.items()})
     # each name sits on the face it was given to: centre and area as recorded by the part
