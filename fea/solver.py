@@ -118,18 +118,10 @@ def solve_elasticity(K: sp.spmatrix, f: np.ndarray, *, fixed_dofs: np.ndarray, f
         x, name = _direct(Kff, b, study, node_blocks=dim == 3)
         its = 1
     else:
-        from strainwave.fea.pmultigrid import pcg, pcg_with_products, v_cycle, v_cycle_fused
-        # in a list, so the hierarchy frees the blocks after its Galerkin product (docs/decisions/020-condensation-in-node-blocks.md)
-        blocks = [Kff_blocks]
+        blocks = [Kff_blocks]   # the list alone holds them, so the hierarchy can free them
         del Kff_blocks
-        ml = _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs, blocks, p1_stiffness, fused=fused,
-                            in_place=consume_K)
-        sweeps = getattr(ml, "fused_sweeps", None)
-        if sweeps:
-            x, its = pcg_with_products(b, v_cycle_fused(sweeps, ml.levels, ml.coarse_solver), rtol=rtol,
-                                       maxiter=maxiter)
-        else:
-            x, its = pcg(ml.levels[0].A, b, v_cycle(ml.levels, ml.coarse_solver), rtol=rtol, maxiter=maxiter)
+        x, its = _iterative(Kff, b, free, coords, dim, p2_element_dofs, blocks, p1_stiffness, fused=fused,
+                            in_place=consume_K, rtol=rtol, maxiter=maxiter)
         name = "amg-cg"
     residual = float(np.linalg.norm(b - Kff @ x) / nb)
     if not np.isfinite(residual) or residual > max(rtol * 100, 1e-6):
@@ -137,6 +129,19 @@ def solve_elasticity(K: sp.spmatrix, f: np.ndarray, *, fixed_dofs: np.ndarray, f
                                          f"after {its} iterations ({free.size} dofs)")
     u[free] = x
     return u, SolverInfo(name, int(free.size), int(its), residual, time.perf_counter() - t0)
+
+
+def _iterative(Kff, b, free, coords, dim, p2_element_dofs, blocks, p1_stiffness, *, fused, in_place, rtol,
+               maxiter) -> tuple[np.ndarray, int]:
+    """CG preconditioned by one V-cycle of the (p-)multigrid hierarchy; ``blocks``: a list holding the node
+    blocks, so the hierarchy frees them after its Galerkin product (docs/decisions/020-condensation-in-node-blocks.md)."""
+    from strainwave.fea.pmultigrid import pcg, pcg_with_products, v_cycle, v_cycle_fused
+
+    ml = _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs, blocks, p1_stiffness, fused=fused, in_place=in_place)
+    sweeps = getattr(ml, "fused_sweeps", None)
+    if sweeps:
+        return pcg_with_products(b, v_cycle_fused(sweeps, ml.levels, ml.coarse_solver), rtol=rtol, maxiter=maxiter)
+    return pcg(ml.levels[0].A, b, v_cycle(ml.levels, ml.coarse_solver), rtol=rtol, maxiter=maxiter)
 
 
 def condense_blocks(K: sp.bsr_matrix, keep_nodes: np.ndarray, *, in_place: bool = False) -> sp.bsr_matrix:
