@@ -48,13 +48,22 @@ def _from_quantity(check_id: str, quantity: str, unit: str, book: FeaBook, label
                           note=note, sources=sources))
 
 
+def shaft_flexibility_reference(params, s000: dict | None = None) -> dict[str, float]:
+    """published L/(0.1 mu d^4); corrected 32 L/(pi G (d^4 - d_i^4)), G = E/2(1+nu); corrected_mu with the seed's mu."""
+    if s000 is None:
+        from strainwave.analytic.seed000 import seed000_summary
+        s000 = seed000_summary(params)
+    lso = s000.get("lambda_so0", {})
+    return {k: v for k, v in (("published", lso.get("published")), ("corrected", lso.get("corrected_E_nu")),
+                              ("corrected_mu", lso.get("corrected"))) if isinstance(v, (int, float))}
+
+
 def shaft_flexibility(book: FeaBook, label: str, s000: dict, params) -> Check:
     """The FEA against the closed form of the SAME problem, 32 L/(pi G (d^4 - d_i^4)) with G = E/2(1+nu), within
     3 x GCI and no allowance (issue 37); the seed's mu (audit 18) is a material gap reported apart, not absorbed."""
     reason, gap = mu_gap(params)
     lso = s000.get("lambda_so0", {})
-    analytic = {k: v for k, v in (("published", lso.get("published")), ("corrected", lso.get("corrected_E_nu")),
-                                  ("corrected_mu", lso.get("corrected"))) if isinstance(v, (int, float))}
+    analytic = shaft_flexibility_reference(params, s000)
     note = (f"published = L/(0.1 mu d^4), the bore ignored; asserted (corrected) = 32 L/(pi G (d^4 - d_i^4)) with "
             f"G = E/2(1+nu), the problem the FEA solves; material gap apart: {reason}, "
             f"{100 * gap:.2f} %: 32 L/(pi mu (d^4 - d_i^4)) = {lso.get('corrected', float('nan')):.5g} {FLEX_UNIT}")
@@ -83,6 +92,18 @@ def cup_calibration(cups=None) -> tuple[float, float]:
 CUP_JUNCTION_CORRECTION, CUP_JUNCTION_SCATTER = cup_calibration()
 
 
+def cup_flexibility_reference(params, s000: dict | None = None) -> dict[str, float]:
+    """corrected: the series shell model x (1 + the junction calibration); published: seed 000's lambda_f0."""
+    from strainwave.analytic.seed000 import cup_series_model, seed000_summary
+
+    lf = (seed000_summary(params) if s000 is None else s000).get("lambda_f0_variants", {})
+    series = cup_series_model(params, params.material.implied_shear_modulus_MPa)
+    analytic = {"corrected": series.total * (1.0 + CUP_JUNCTION_CORRECTION), "series_model": series.total}
+    if isinstance(lf.get("published"), (int, float)):
+        analytic["published"] = float(lf["published"])
+    return analytic
+
+
 def cup_flexibility(book: FeaBook, label: str, s000: dict, params) -> Check:
     """Cup flexibility: published = seed 000's lambda_f0 (0.1, k_f k_G), corrected = the series shell model.
 
@@ -94,9 +115,7 @@ def cup_flexibility(book: FeaBook, label: str, s000: dict, params) -> Check:
 
     lf = s000.get("lambda_f0_variants", {})
     series = cup_series_model(params, params.material.implied_shear_modulus_MPa)
-    analytic = {"corrected": series.total * (1.0 + CUP_JUNCTION_CORRECTION), "series_model": series.total}
-    if isinstance(lf.get("published"), (int, float)):
-        analytic["published"] = float(lf["published"])
+    analytic = cup_flexibility_reference(params, s000)
     note = (f"published = seed 000's lambda_f0 = k_f k_G c_L/(0.1 mu [1-(1-2c_delta)^4] d1^3) with "
             f"k_f = {s000.get('k_f')}, k_G = {s000.get('k_G')}; corrected = strainwave's series shell model "
             f"(tube + diaphragm + hub, G = E/2(1+nu)): tube {series.tube:.4g} + diaphragm {series.diaphragm:.4g} "
