@@ -16,7 +16,8 @@ from strainwave.compare.validate import ring_checks, torsion_checks, wg_bearing_
 from strainwave.compare.validate.checks import Check
 from strainwave.compare.validate.crack_checks import cup_crack, shaft_crack, shaft_range_note
 
-__all__ = ["At", "CheckContext", "CheckSpec", "CHECKS", "REQUIRED_IDS", "check_spec", "summary_reference"]
+__all__ = ["At", "CheckContext", "CheckSpec", "CHECKS", "REQUIRED_IDS", "SECTIONS", "beside", "check_spec", "current",
+           "sections", "summary_reference"]
 
 
 @dataclass(frozen=True)
@@ -175,12 +176,29 @@ CHECKS: tuple[CheckSpec, ...] = (
 
 REQUIRED_IDS = tuple(spec.id for spec in CHECKS)
 
+# The report's section title of each component, in the report's order (a component without one is titled by its name).
+SECTIONS = {"shaft": "Output shaft (seed 000)", "cup": "Flexspline cup (seed 000)",
+            "bearing": "Wave-generator bearing inner ring (seed 000)", "ring": "EWG flexspline ring (seed 003)",
+            "gear": "Drive stiffness (seed 000)"}
 
-def check_spec(check_id: str, checks: tuple[CheckSpec, ...] = CHECKS) -> CheckSpec:
-    return next(s for s in checks if s.id == check_id)
+
+def current() -> tuple[CheckSpec, ...]:
+    """The check list as it stands now (read at call time, so a registered addition counts everywhere)."""
+    import sys
+    return sys.modules[__name__].CHECKS
 
 
-def beside(study: str, checks: tuple[CheckSpec, ...] = CHECKS) -> dict[str, CheckSpec]:
+def sections(checks: tuple[CheckSpec, ...] | None = None) -> tuple[tuple[str, str], ...]:
+    """(component, title) of the report's sections: every component of the check list, in its order."""
+    components = dict.fromkeys(s.component for s in (checks or current()))
+    return tuple((c, SECTIONS.get(c, c)) for c in components)
+
+
+def check_spec(check_id: str, checks: tuple[CheckSpec, ...] | None = None) -> CheckSpec:
+    return next(s for s in (checks or current()) if s.id == check_id)
+
+
+def beside(study: str, checks: tuple[CheckSpec, ...] | None = None) -> dict[str, CheckSpec]:
     """{FEA quantity of ``study``: the CheckSpec whose closed form stands beside it}."""
-    return {q: spec for spec in checks for s, q in spec.beside if s == study}
+    return {q: spec for spec in (checks or current()) for s, q in spec.beside if s == study}
 

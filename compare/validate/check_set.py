@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from strainwave.registry import STUDIES
-from strainwave.compare.validate.check_list import CHECKS, At, CheckContext, CheckSpec, beside
+from strainwave.compare.validate.check_list import At, CheckContext, CheckSpec, beside, current
 from strainwave.compare.validate.checks import Check, not_evaluated
 from strainwave.compare.validate.crack_scaling import PowerFit, fit_power_law
 from strainwave.compare.validate.fea_book import FeaBook, Sweep
@@ -71,8 +71,10 @@ def _sweeps(ctx: CheckContext, checks: tuple[CheckSpec, ...]) -> dict[str, Sweep
 
 
 def build_checks(book: FeaBook, plan: Plan, summary: dict, params,
-                 checks: tuple[CheckSpec, ...] = CHECKS) -> CheckSet:
-    """Every check of ``checks``, in their order; one whose builder made none is listed as not evaluated."""
+                 checks: tuple[CheckSpec, ...] | None = None) -> CheckSet:
+    """Every check of ``checks`` (the check list), in their order; one whose builder made none is listed as not
+    evaluated."""
+    checks = checks or current()
     ctx = CheckContext(book, plan, summary, params)
     built = []
     for spec in checks:
