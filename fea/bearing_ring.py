@@ -185,6 +185,16 @@ def race_section_mm2(params) -> tuple[float, float]:
     return math.pi * (r_race ** 2 - max(r_race - t, 0.0) ** 2), t
 
 
+def patch_depth_limit_mm(params) -> float:
+    """Deepest crack whose surface half-length c still fits the contact patch: geometry/bearing_ring.py refuses
+    c >= 0.5 sqrt(pi) a' (the patch half-length across the race), with c from Q = 1 + 1.464 (a/c)^1.65
+    (seed 000); c/a is fixed by Q, so the depth is bounded."""
+    from strainwave.geometry.cracks import half_length_from_q
+
+    patch_half_mm = 0.5 * math.sqrt(math.pi) * params.wave_generator.contact_semi_axes_mm[0]
+    return patch_half_mm / half_length_from_q(1.0, params.cracks.surface_crack_shape_factor)
+
+
 @dataclass(frozen=True)
 class BearingRing(StudyVariant):
     """The skeleton's hooks for the bearing ring: one 3D series. Every length of the size field scales with
@@ -225,6 +235,11 @@ class BearingRing(StudyVariant):
         zone_mm3 = min(cls.volume_and_wall(params)[0], (2 * reach) ** 2 * wall_mm)
         cell = min(c, wall_mm) * c * c
         return zone_mm3 / cell if cell > 0 else math.inf
+
+    @classmethod
+    def deepest_crack_mm(cls, params) -> float:
+        """Half the ring, and 90 % of the contact-patch limit."""
+        return min(0.5 * params.wave_generator.bearing_inner_ring_thickness_mm, 0.9 * patch_depth_limit_mm(params))
 
     @classmethod
     def dimensions(cls, params) -> tuple[tuple[str, str], ...]:

@@ -124,6 +124,10 @@ class CupTorsion(TorsionVariant):
         return tube + diaphragm, c.wall_thickness_mm
 
     @classmethod
+    def deepest_crack_mm(cls, params) -> float:
+        return 0.5 * params.flexspline_cup.wall_thickness_mm
+
+    @classmethod
     def dimensions(cls, params) -> tuple[tuple[str, str], ...]:
         c = params.flexspline_cup
         return (("pitch diameter d1", f"{c.pitch_diameter_mm:g} mm"), ("wall delta", f"{c.wall_thickness_mm:g} mm"),

@@ -124,6 +124,10 @@ class ShaftTorsion(TorsionVariant):
         return math.pi / 4 * (s.outer_diameter_mm ** 2 - s.inner_diameter_mm ** 2) * s.length_mm, s.wall_mm
 
     @classmethod
+    def deepest_crack_mm(cls, params) -> float:
+        return 0.5 * params.output_shaft.wall_mm
+
+    @classmethod
     def cad_modules(cls, params, cracked: bool) -> tuple[str, ...]:
         """build123d for the seam of a part-through crack, OCP alone for the bare uncracked solid (``build``),
         which is also the 3D part beside the axisymmetric section of a full circumferential crack."""

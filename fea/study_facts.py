@@ -52,6 +52,11 @@ class StudyFacts:
         return 0.0
 
     @classmethod
+    def deepest_crack_mm(cls, params) -> float:
+        """Deepest crack of validate's sweep: half the wall its crack cuts (the wall params.py bounds it by)."""
+        raise NotImplementedError(f"{cls.study}: carries no crack")
+
+    @classmethod
     def cad_modules(cls, params, cracked: bool) -> tuple[str, ...]:
         """What a sweep worker imports to build this point's part."""
         return DEFAULT_CAD_MODULES

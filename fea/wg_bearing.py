@@ -235,7 +235,6 @@ class WgBearing(StudyFacts):
     rated_load = None        # solved at its rated loads already: its fields are kept as solved
     element_text = ("P2 triangles on a graded polar grid, 2D plane stress, thickness = ring width B; race crack as "
                     "two coincident faces with frictionless contact")
-    validate_label = "wg-bearing"
 
     @classmethod
     def default_size_mm(cls, params, quick: bool) -> float:

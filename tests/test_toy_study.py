@@ -8,7 +8,6 @@ converges on three meshes and is compared with Timoshenko's beam, P L^3/(3 E I) 
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import ClassVar
 

@@ -22,6 +22,7 @@ from typing import Callable, Sequence
 from strainwave.cache import ResultCache, case_key
 from strainwave.errors import StrainwaveError
 from strainwave.fea.result import Load
+from strainwave.fea.study_facts import DEFAULT_CAD_MODULES
 from strainwave.registry import STUDIES
 
 # A task computes the quantities of one point: (study, params, quick) -> a ``StudyResult.to_dict()``-shaped
@@ -92,7 +93,7 @@ def warm_modules(study: str, task: TaskFn | None, specs: Sequence[PointSpec] = (
 
     # the driver has imported the study module already, to estimate each point's elements (fea/budget.py)
     facts = STUDIES[study].facts()
-    cad: dict[str, None] = {}
+    cad: dict[str, None] = {} if specs else dict.fromkeys(DEFAULT_CAD_MODULES)   # no point known: the general CAD
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")   # a point's RangeWarnings are its worker's to record
         for spec in specs:

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import math
 
 import numpy as np
 
@@ -52,30 +51,9 @@ def single_cases() -> tuple[Case, ...]:
     return tuple(Case(s.facts().validate_label or s.name, s.name, None) for s in STUDIES.values() if not s.component)
 
 
-def walls_mm(params) -> dict[str, float]:
-    """The wall each component's crack cuts (the same walls params.py bounds the depth by)."""
-    return {"shaft": params.output_shaft.wall_mm, "cup": params.flexspline_cup.wall_thickness_mm,
-            "bearing": params.wave_generator.bearing_inner_ring_thickness_mm}
-
-
-def bearing_depth_limit_mm(params) -> float:
-    """Deepest bearing crack whose surface half-length c still fits the contact patch.
-
-    geometry/bearing_ring.py refuses c >= 0.5 sqrt(pi) a' (the patch half-length across the race), with
-    c from Q = 1 + 1.464 (a/c)^1.65 (seed 000); c/a is fixed by Q, so the depth is bounded.
-    """
-    from strainwave.geometry.cracks import half_length_from_q
-
-    patch_half_mm = 0.5 * math.sqrt(math.pi) * params.wave_generator.contact_semi_axes_mm[0]
-    c_per_a = half_length_from_q(1.0, params.cracks.surface_crack_shape_factor)
-    return patch_half_mm / c_per_a
-
-
 def sweep_limits_mm(params) -> dict[str, float]:
-    """Deepest crack per component: half the wall, and for the bearing 90 % of the contact-patch limit."""
-    limits = {k: 0.5 * w for k, w in walls_mm(params).items()}
-    limits["bearing"] = min(limits["bearing"], 0.9 * bearing_depth_limit_mm(params))
-    return limits
+    """Deepest crack per component, as its study's variant states (``StudyFacts.deepest_crack_mm``)."""
+    return {c: STUDIES[s].facts().deepest_crack_mm(params) for c, s in COMPONENT_STUDY.items()}
 
 
 def sweep_depths_mm(deepest_mm: float, points: int) -> tuple[float, ...]:
