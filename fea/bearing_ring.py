@@ -204,6 +204,7 @@ class BearingRing(StudyVariant):
 
     study: ClassVar[str] = STUDY
     elements_per_cell: ClassVar[float] = 10.2
+    default_size_mm = staticmethod(default_size_mm)
     rated_load: ClassVar[str] = "strainwave.analytic.rated_load:rated_radial_force"
     stress_field_suffix: ClassVar[str] = "_uncracked"   # a crack tip's peak is singular
     report_component: ClassVar[str] = "bearing"
@@ -216,10 +217,6 @@ class BearingRing(StudyVariant):
     h_fine_mm: float
     force_N: float
     crack_depth_mm: float | None
-
-    @classmethod
-    def default_size_mm(cls, params, quick: bool) -> float:
-        return default_size_mm(params, quick)
 
     @classmethod
     def volume_and_wall(cls, params) -> tuple[float, float]:

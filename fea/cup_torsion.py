@@ -105,16 +105,12 @@ class CupTorsion(TorsionVariant):
     clamped_face: ClassVar[str] = "hub face"
     sweep_at_quick_size: ClassVar[bool] = True   # the crack delta, closed and opened on one mesh
     elements_per_cell: ClassVar[float] = 13.3
+    default_size_mm = staticmethod(default_size_mm)
     report_component: ClassVar[str] = "cup"
     title: ClassVar[str] = "flexspline cup"
     element_text: ClassVar[str] = "P{order} tetrahedra (curved, isoparametric); crack as a seam, closed and opened"
-    image_marks: ClassVar[tuple] = (("fixed",), "loaded", "T")
     teeth: bool
     crack_method: str = DEFAULT_CRACK_METHOD
-
-    @classmethod
-    def default_size_mm(cls, params, quick: bool) -> float:
-        return default_size_mm(params, quick)
 
     @classmethod
     def volume_and_wall(cls, params) -> tuple[float, float]:

@@ -123,11 +123,8 @@ class CupWaveGenerator(StudyVariant):
     study: ClassVar[str] = STUDY
     # quarter wall of 27-node hexahedra, one through the wall, h/2 along the band: quick n = 14: 294 vs 239 cells
     elements_per_cell: ClassVar[float] = 1.23
+    default_size_mm = staticmethod(default_size_mm)
     # TORQUE_RATED: its field is solved at the rated T already (scale 1: its insertion is not linear in T)
-
-    @classmethod
-    def default_size_mm(cls, params, quick: bool) -> float:
-        return default_size_mm(params, quick)
 
     @classmethod
     def volume_and_wall(cls, params) -> tuple[float, float]:

@@ -106,17 +106,13 @@ class ShaftTorsion(TorsionVariant):
     clamped_face: ClassVar[str] = "end face z = 0"
     sweep_at_quick_size: ClassVar[bool] = True   # the crack delta, closed and opened on one mesh
     elements_per_cell: ClassVar[float] = 4.7
+    default_size_mm = staticmethod(default_size_mm)
     report_component: ClassVar[str] = "shaft"
     title: ClassVar[str] = "output shaft"
     element_text: ClassVar[str] = ("P{order} tetrahedra (curved, isoparametric); the crack on an axisymmetric (r, z) "
                                    "section of P2 triangles")
-    image_marks: ClassVar[tuple] = (("fixed",), "loaded", "T")
     crack_model: str | None          # None (uncracked), "seam" or "axisymmetric"
     quick: bool
-
-    @classmethod
-    def default_size_mm(cls, params, quick: bool) -> float:
-        return default_size_mm(params, quick)
 
     @classmethod
     def volume_and_wall(cls, params) -> tuple[float, float]:

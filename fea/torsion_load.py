@@ -51,6 +51,7 @@ class TorsionVariant(StudyVariant):
 
     load_distribution: ClassVar[str]
     clamped_face: ClassVar[str]
+    image_marks: ClassVar[tuple] = (("fixed",), "loaded", "T")
     params: object
     order: int
     h_fine_mm: float

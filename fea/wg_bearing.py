@@ -231,14 +231,11 @@ class WgBearing(StudyFacts):
     study = STUDY
     # graded to the race patches and the crack tip: the cracked quick mesh at a = 1 mm, h = 1.67 mm (12)
     elements_per_cell = 12.0
+    default_size_mm = staticmethod(default_size_mm)
     plane = True
     rated_load = None        # solved at its rated loads already: its fields are kept as solved
     element_text = ("P2 triangles on a graded polar grid, 2D plane stress, thickness = ring width B; race crack as "
                     "two coincident faces with frictionless contact")
-
-    @classmethod
-    def default_size_mm(cls, params, quick: bool) -> float:
-        return default_size_mm(params, quick)
 
     @classmethod
     def volume_and_wall(cls, params) -> tuple[float, float]:
