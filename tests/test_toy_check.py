@@ -14,6 +14,7 @@ from dataclasses import replace
 import jsonschema
 import pytest
 
+from strainwave.analytic.reference import Reference
 from strainwave.compare.validate import check_list
 from strainwave.compare.validate.check_list import At, CheckSpec
 from strainwave.compare.validate.checks import Check, evaluate, fea_tolerance, not_evaluated
@@ -22,8 +23,11 @@ from test_toy_study import FORCE_N, TIP, TOY, strip, timoshenko_tip_mm, toy_stud
 TOY_CHECK = "toy.tip_deflection"
 
 
-def toy_reference(params, at: At) -> dict:
-    return {} if at.force_N is None else timoshenko_tip_mm(params, at.force_N)
+def toy_reference(params, at: At) -> Reference | None:
+    if at.force_N is None:
+        return None
+    tip = timoshenko_tip_mm(params, at.force_N)
+    return Reference(tip["published"], tip["corrected"], "mm", "Timoshenko beam, kappa = 5/6")
 
 
 def toy_tip_check(ctx) -> Check:
@@ -35,8 +39,8 @@ def toy_tip_check(ctx) -> Check:
         return not_evaluated(TOY_CHECK, quantity, "mm", why)
     L, t = strip(ctx.params)
     tol = fea_tolerance(q.value, q.uncertainty, allowances={f"clamped root, O(t/L) = {t / L:.3g}": t / L})
-    return evaluate(Check(TOY_CHECK, quantity, "mm", q.value, q.uncertainty,
-                          toy_reference(ctx.params, At(force_N=ctx.book.applied_force_N(label))), "corrected", tol,
+    reference = toy_reference(ctx.params, At(force_N=ctx.book.applied_force_N(label)))
+    return evaluate(Check(TOY_CHECK, quantity, "mm", q.value, q.uncertainty, reference.variants(), "corrected", tol,
                           note="published: Euler-Bernoulli; corrected: + the shear term", sources={"fea": f"FEA {label}"}))
 
 
@@ -133,10 +137,10 @@ def test_the_sweep_shaft_crack_reference_is_validates(params, bore_mm):
     point = params.with_value("output_shaft.inner_diameter_mm", bore_mm).with_value("output_shaft.crack_depth_mm", a)
     sweep = analytic_beside("shaft-torsion", point, [name], crack_depth_mm=a)[name]
     validate = check_spec("shaft.crack_compliance").reference(point, At(crack_depth_mm=a))
-    assert sweep["key"] == "checks.shaft.crack_compliance"
-    assert sweep["corrected"] == validate["corrected"] and sweep["published"] == validate["published"]
+    assert sweep["key"] == "checks.shaft.crack_compliance" and sweep["unit"] == validate.unit
+    assert sweep["corrected"] == validate.corrected and sweep["published"] == validate.published
     s, m = point.output_shaft, point.material
-    assert validate["corrected"] == pytest.approx(tube_crack.thick_tube_flexibility(
+    assert validate.corrected == pytest.approx(tube_crack.thick_tube_flexibility(
         s.outer_diameter_mm / 2, bore_mm / 2, a, m.youngs_modulus_MPa / (2 * (1 + m.poisson_ratio))), rel=1e-12)
     solid = analytic_summary(point)["checks"]["shaft.crack_compliance"]["corrected"]
     assert not math.isclose(sweep["corrected"], solid, rel_tol=0.05)     # the entry the sweep no longer uses

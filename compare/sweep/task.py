@@ -129,13 +129,12 @@ def analytic_beside(study: str, params, names, force_N: float | None = None,
     for dotted, value in STUDIES[study].analytic_overrides:
         params = params.with_value(dotted, value)
     at = At(crack_depth_mm, force_N)
-    units = {q.name: q.unit for q in STUDIES[study].quantities}    # the unit the check's closed form is in
     out = {}
     for name, spec in specs.items():
-        values = spec.reference(params, at)
-        out[name] = {"key": f"checks.{spec.id}", "unit": units.get(name), **{
-            variant: float(values[variant]) if isinstance(values.get(variant), (int, float)) else None
-            for variant in ("published", "corrected")}}
+        ref = spec.reference(params, at)      # None: no closed form at this point (uncracked, no force)
+        out[name] = {"key": f"checks.{spec.id}", "unit": None if ref is None else ref.unit,
+                     "published": None if ref is None else ref.published,
+                     "corrected": None if ref is None else ref.corrected}
     return out
 
 

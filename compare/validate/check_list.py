@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Callable
 
+from strainwave.analytic.reference import Reference
 from strainwave.compare.validate import ring_checks, torsion_checks, wg_bearing_checks, wg_cup_checks
 from strainwave.compare.validate.checks import Check
 from strainwave.compare.validate.crack_checks import cup_crack, shaft_crack, shaft_range_note
@@ -28,7 +29,7 @@ class At:
     force_N: float | None = None
 
 
-Reference = Callable[[object, At], dict]      # (params, At) -> {variant: value}
+ReferenceAt = Callable[[object, At], "Reference | None"]    # (params, At) -> the closed form there (None: none)
 
 
 @dataclass
@@ -69,7 +70,7 @@ class CheckSpec:
     id: str                                        # "component.quantity"
     component: str                                 # the report section it is listed under
     builder: Callable[[CheckContext], Check]
-    reference: Reference | None                    # the closed form at a point; None: not a function of one point
+    reference: ReferenceAt | None                  # the closed form at a point; None: not a function of one point
     tolerance: str                                 # the rule the builder's tolerance follows
     beside: tuple[tuple[str, str], ...] = ()       # (registry study, FEA quantity) the reference stands beside
     plot: tuple[str, str] | None = None            # (study, quantity) whose convergence history is drawn
@@ -80,18 +81,22 @@ class CheckSpec:
             raise ValueError(f"check {self.id}: its id must start with its component {self.component!r}")
 
 
-def summary_reference(check_id: str) -> Reference:
-    """The analytic summary's entry (``analytic/checks.py``), a force-given entry scaled to the FEA's force."""
-    def reference(params, at: At) -> dict:
+def summary_reference(check_id: str) -> ReferenceAt:
+    """The analytic summary's entry (``analytic/checks.py``); an entry given at a force (its ``force_N``) is
+    scaled to the force the FEA applied, and has no value at a point that states none."""
+    def reference(params, at: At) -> Reference | None:
         from strainwave.analytic.summary import analytic_summary
         entry = analytic_summary(params)["checks"][check_id]
-        scale = at.force_N / entry["force_N"] if at.force_N and entry.get("force_N") else 1.0
-        return {v: float(entry[v]) * scale for v in ("published", "corrected") if isinstance(entry.get(v), (int, float))}
+        at_force = "force_N" in entry
+        if at_force and at.force_N is None:
+            return None
+        ref = Reference(entry["published"], entry["corrected"], entry["unit"], f"analytic_summary checks.{check_id}")
+        return ref.scaled(at.force_N / entry["force_N"]) if at_force else ref
     return reference
 
 
-def _crack_at(curve) -> Reference:
-    return lambda params, at: {} if at.crack_depth_mm is None else curve(params, at.crack_depth_mm)
+def _crack_at(curve) -> ReferenceAt:
+    return lambda params, at: None if at.crack_depth_mm is None else curve(params, at.crack_depth_mm)
 
 
 def _pick(group, check_id: str):
@@ -133,7 +138,7 @@ CHECKS: tuple[CheckSpec, ...] = (
               ((CUP, "delta_flexibility_rad_per_Nmm"),)),
     # checked on the ring on the cam (wg-bearing); beside the 3D bonded-bore ring's sweep: seed 000's du_H / F_r
     CheckSpec("bearing.crack_compliance", "bearing", _pick(_wg_bearing, "bearing.crack_compliance"),
-              lambda params, at: ({} if at.crack_depth_mm is None or not at.force_N else
+              lambda params, at: (None if at.crack_depth_mm is None or at.force_N is None else
                                   torsion_checks.bearing_crack_curve(params, at.crack_depth_mm, at.force_N)),
               f"{GCI} + back face + Tada's weight function", ((BEARING, "delta_radial_compliance_mm_per_N"),)),
     CheckSpec("bearing.race_stress_major", "bearing", _pick(_wg_bearing, "bearing.race_stress_major"),

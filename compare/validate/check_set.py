@@ -53,6 +53,10 @@ def _sweep_report(sweep: Sweep, curve, range_note=None) -> SweepReport:
     return SweepReport(sweep, fit, analytic, analytic_fits, notes)
 
 
+def _variants(reference) -> dict[str, float]:
+    return {} if reference is None else reference.variants()
+
+
 def _sweeps(ctx: CheckContext, checks: tuple[CheckSpec, ...]) -> dict[str, SweepReport]:
     """Per crack component, its FEA sweep beside the closed form of the check that stands beside its crack
     delta (``CheckSpec.reference``, at each depth and the FEA's force)."""
@@ -66,7 +70,8 @@ def _sweeps(ctx: CheckContext, checks: tuple[CheckSpec, ...]) -> dict[str, Sweep
             continue
         force = ctx.book.applied_force_N(labels[0])
         note = None if spec.range_note is None else (lambda a, f=spec.range_note: f(ctx.params, a))
-        out[component] = _sweep_report(sweep, lambda a, r=spec.reference: r(ctx.params, At(a, force)), note)
+        out[component] = _sweep_report(sweep, lambda a, r=spec.reference: _variants(r(ctx.params, At(a, force))),
+                                       note)
     return out
 
 

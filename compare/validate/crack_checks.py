@@ -33,7 +33,7 @@ def crack_sweep_of(ctx, spec):
 
 def _curve(ctx, spec):
     from strainwave.compare.validate.check_list import At
-    return lambda a: spec.reference(ctx.params, At(crack_depth_mm=a))
+    return lambda a: spec.reference(ctx.params, At(crack_depth_mm=a)).variants()
 
 
 def shaft_range_note(params, depth_mm: float) -> str:
