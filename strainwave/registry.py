@@ -1,16 +1,17 @@
 """The one registry of FEA studies: each study is declared here once, and every stage reads it.
 
-A ``Study`` names its CLI name, the module whose ``run`` solves it, the part it meshes, the component
-whose crack it can seed (the dotted parameter key of that crack, or none), its quantities (name, unit,
-meaning, and the ``analytic_summary(params)["checks"]`` entry each is compared with, published and
-corrected), the ``analytic`` function that gives it its load when the load follows from a seed formula
-(``load_inputs``: fea/ receives numbers, never a closed form), the parameter overrides under which its
-closed forms are evaluated (the FEA's load conditions) and the VTU fields it writes. A study's result
-states the load it applied as a typed ``Load``; a force-loaded study's closed forms scale with its force. Readers: the CLI (``STUDY_NAMES``), ``fea/studies.run_study``, validate's plan and
-checks, diagnose's FEA baseline and the sweep. Adding a study is its module plus one entry here.
+A ``Study`` names its CLI name, its variant ("module:Class": the module's ``run`` solves it, the class holds
+its facts, ``fea/study_facts.StudyFacts``: element estimate, default size, CAD, rated load, report words), the
+part it meshes, the component whose crack it can seed (the dotted parameter key of that crack, or none), its
+quantities (name, unit, meaning, the role diagnose reads it in), the ``analytic`` function that gives it its
+load when the load follows from a seed formula (``load_inputs``: fea/ receives numbers, never a closed form),
+the parameter overrides under which its closed forms are evaluated (the FEA's load conditions) and the VTU
+fields it writes. The closed form beside each quantity is a validate check's (``check_list.CHECKS``).
+Readers: the CLI (``STUDY_NAMES``), ``fea/studies.run_study``, validate's plan and checks, diagnose's FEA
+baseline and the sweep. Adding a study is its module plus one entry here.
 
-Pure declarations: importing this module does no work and imports nothing heavy (``load_for`` imports
-its analytic function when called).
+Pure declarations: importing this module does no work and imports nothing heavy (``load_for``, ``facts``
+and ``checked`` import what they name when called).
 """
 from __future__ import annotations
 
