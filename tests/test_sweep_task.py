@@ -51,11 +51,11 @@ def test_ring_closed_forms_scaled_to_the_fea_force(params):
     assert analytic_beside("ring-compression", params, names)["delta_cd_mm"]["published"] is None
     # the ring states its force as its typed load; the point passes that force
     doubled = analytic_beside("ring-compression", params, names, 2 * 33.75948626096924)
-    # linear elasticity: twice the force, twice the deflection and the stress (1e-6: the force is typed rounded)
+    # linear elasticity: twice the force, twice the deflection (1e-6: the force is typed rounded); the stresses,
+    # which the study reports at the prescribed W0 as validate compares them, do not move with the force
     assert at_reference["delta_cd_mm"]["published"] == pytest.approx(2.0, rel=1e-12)   # W0 = 1 mm -> 2 W0
     assert doubled["delta_cd_mm"]["published"] == pytest.approx(4.0, rel=1e-6)
-    assert doubled["sigma_D_outer_MPa"]["corrected"] == pytest.approx(
-        2 * at_reference["sigma_D_outer_MPa"]["corrected"], rel=1e-6)
+    assert doubled["sigma_D_outer_MPa"]["corrected"] == at_reference["sigma_D_outer_MPa"]["corrected"]
 
 
 def test_point_is_cached_and_refusals_are_recorded(tmp_path):

@@ -81,17 +81,17 @@ class CheckSpec:
             raise ValueError(f"check {self.id}: its id must start with its component {self.component!r}")
 
 
-def summary_reference(check_id: str) -> ReferenceAt:
-    """The analytic summary's entry (``analytic/checks.py``); an entry given at a force (its ``force_N``) is
-    scaled to the force the FEA applied, and has no value at a point that states none."""
+def summary_reference(check_id: str, *, with_force: bool = True) -> ReferenceAt:
+    """The analytic summary's entry (``analytic/checks.py``). ``with_force``: the FEA quantity is at the force it
+    applied, so an entry given at a force (its ``force_N``) is scaled to it, and has no value at a point that
+    states none; otherwise both sides are at the same prescribed deformation (the ring's stresses at W0)."""
     def reference(params, at: At) -> Reference | None:
         from strainwave.analytic.summary import analytic_summary
         entry = analytic_summary(params)["checks"][check_id]
-        at_force = "force_N" in entry
-        if at_force and at.force_N is None:
-            return None
         ref = Reference(entry["published"], entry["corrected"], entry["unit"], f"analytic_summary checks.{check_id}")
-        return ref.scaled(at.force_N / entry["force_N"]) if at_force else ref
+        if not (with_force and "force_N" in entry):
+            return ref
+        return None if at.force_N is None else ref.scaled(at.force_N / entry["force_N"])
     return reference
 
 
@@ -156,9 +156,9 @@ CHECKS: tuple[CheckSpec, ...] = (
               ((RING, "delta_ab_mm"),), (RING, "delta_ab_mm")),
     CheckSpec("ring.delta_cd_solid", "ring", _pick(_ring, "ring.delta_cd_solid"), None,
               f"{ARC} + the width effect", (), (RING, "delta_cd_3d_mm")),
-    CheckSpec("ring.sigma_max", "ring", _pick(_ring, "ring.sigma_max"), summary_reference("ring.sigma_max"), ARC,
+    CheckSpec("ring.sigma_max", "ring", _pick(_ring, "ring.sigma_max"), summary_reference("ring.sigma_max", with_force=False), ARC,
               ((RING, "sigma_D_outer_MPa"),), (RING, "sigma_D_outer_MPa")),
-    CheckSpec("ring.sigma_min", "ring", _pick(_ring, "ring.sigma_min"), summary_reference("ring.sigma_min"), ARC,
+    CheckSpec("ring.sigma_min", "ring", _pick(_ring, "ring.sigma_min"), summary_reference("ring.sigma_min", with_force=False), ARC,
               ((RING, "sigma_B_outer_MPa"),), (RING, "sigma_B_outer_MPa")),
     CheckSpec("ring.tooth_influence", "ring", _pick(_ring, "ring.tooth_influence"),
               summary_reference("ring.tooth_influence"), f"{GCI} + the tooth-factor fit",
