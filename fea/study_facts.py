@@ -25,8 +25,9 @@ class StudyFacts:
     elements_per_cell: ClassVar[float]
     plane: ClassVar[bool] = False                          # meshed as a plane section
     teeth_key: ClassVar[str | None] = None                 # dotted tooth count its CAD cuts (budgeted), if any
-    # "module:function" in analytic/: (study, params, solved, quantities {name: value}) -> RatedLoad
-    rated_load: ClassVar[str | None] = TORQUE_RATED         # None: no rated load (fields kept as solved)
+    # "module:function" in analytic/: (study, params, solved, quantities {name: value}) -> RatedLoad; None: the
+    # study has none (its fields are kept as solved)
+    rated_load: ClassVar[str | None] = None
     stress_field_suffix: ClassVar[str | None] = None       # which of its VTU files the stress picture shows
     # report: the component it is shown under (None: not in the inputs/stress sections), its title, element words
     report_component: ClassVar[str | None] = None

@@ -233,7 +233,6 @@ class WgBearing(StudyFacts):
     elements_per_cell = 12.0
     default_size_mm = staticmethod(default_size_mm)
     plane = True
-    rated_load = None        # solved at its rated loads already: its fields are kept as solved
     element_text = ("P2 triangles on a graded polar grid, 2D plane stress, thickness = ring width B; race crack as "
                     "two coincident faces with frictionless contact")
 

@@ -21,8 +21,12 @@ from strainwave.compare.validate.wg_bearing_checks import STUDY as WG_BEARING
 
 def _component_titles() -> dict[str, str]:
     from strainwave.registry import STUDIES
-    facts = [s.facts() for s in STUDIES.values()]
-    return {f.report_component: f.title for f in facts if f.report_component}
+    titles = {}
+    for s in STUDIES.values():
+        facts = s.facts()
+        if facts.report_component or s.component:
+            titles[facts.report_component or s.component] = facts.title
+    return titles
 
 
 # component -> its title on pictures, as each study's variant states it
