@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 from strainwave.analytic.torsion import radial_force_N
 
-__all__ = ["RatedLoad", "rated_load", "fatigue_safety_factor", "TORQUE_SOURCE"]
+__all__ = ["RatedLoad", "rated_torque", "rated_radial_force", "rated_ewg_force", "fatigue_safety_factor", "TORQUE_SOURCE"]
 
 TORQUE_SOURCE = "gear.rated_output_torque_Nmm; chosen, the seeds give no rated torque"
 
@@ -45,27 +45,29 @@ class RatedLoad:
                 "rated": self.rated, "scale": self.scale, "source": self.source}
 
 
-def rated_load(study: str, params, solved: float, *, ring_force_for_W0_N: float | None = None) -> RatedLoad:
-    """The rated load of ``study`` (kebab-case name) against the load ``solved`` its fields were computed at.
+def rated_torque(study: str, params, solved: float, quantities=None) -> RatedLoad:
+    """A torque-loaded study: the chosen rated output torque."""
+    return RatedLoad(study, "output torque T", "N*mm", solved, params.gear.rated_output_torque_Nmm, TORQUE_SOURCE)
 
-    ``ring_force_for_W0_N``: for ``ring-compression``, the force the FEA ring needs for delta_CD = 2 W0."""
+
+def rated_radial_force(study: str, params, solved: float, quantities=None) -> RatedLoad:
+    """The wave generator's radial force: seed 000's F_r = 1.15 k_r T / d1 at the rated torque."""
     g, cup = params.gear, params.flexspline_cup
-    # cup-wave-generator solves its field at the rated T already (scale 1: its insertion is not linear in T)
-    if study in ("shaft-torsion", "cup-torsion", "cup-wave-generator"):
-        return RatedLoad(study, "output torque T", "N*mm", solved, g.rated_output_torque_Nmm, TORQUE_SOURCE)
-    if study == "bearing-ring":
-        rated = radial_force_N(g.force_coefficient, g.rated_output_torque_Nmm, cup.pitch_diameter_mm)
-        return RatedLoad(study, "wave generator radial force F_r", "N", solved, rated,
-                         f"seed 000: F_r = 1.15 k_r T / d1 at the rated T = {g.rated_output_torque_Nmm:g} N*mm "
-                         f"({TORQUE_SOURCE})")
-    if study == "ring-compression":
-        if ring_force_for_W0_N is None:
-            raise ValueError("ring-compression: its rated load is the force for W0; pass ring_force_for_W0_N")
-        e = params.ewg_drive
-        w0 = 0.5 * e.module_mm * e.tooth_difference
-        return RatedLoad(study, f"EWG force for W0 = {w0:g} mm", "N", solved, ring_force_for_W0_N,
-                         "seed 003 eq 7: W0 = 0.5 m dZ, the operating deformation; force from the toothed-ring FEA")
-    raise ValueError(f"no rated load for study {study!r}")
+    rated = radial_force_N(g.force_coefficient, g.rated_output_torque_Nmm, cup.pitch_diameter_mm)
+    return RatedLoad(study, "wave generator radial force F_r", "N", solved, rated,
+                     f"seed 000: F_r = 1.15 k_r T / d1 at the rated T = {g.rated_output_torque_Nmm:g} N*mm "
+                     f"({TORQUE_SOURCE})")
+
+
+def rated_ewg_force(study: str, params, solved: float, quantities=None) -> RatedLoad:
+    """The EWG ring: the force the toothed FEA ring needs for W0 = 0.5 m dZ (``quantities``' value of
+    ``toothed_force_for_W0_N``), the operating deformation."""
+    if not quantities or "toothed_force_for_W0_N" not in quantities:
+        raise ValueError(f"{study}: its rated load is the force for W0; pass the study's toothed_force_for_W0_N")
+    e = params.ewg_drive
+    w0 = 0.5 * e.module_mm * e.tooth_difference
+    return RatedLoad(study, f"EWG force for W0 = {w0:g} mm", "N", solved, quantities["toothed_force_for_W0_N"],
+                     "seed 003 eq 7: W0 = 0.5 m dZ, the operating deformation; force from the toothed-ring FEA")
 
 
 def fatigue_safety_factor(fatigue_limit_MPa: float, peak_von_mises_MPa: float) -> float:

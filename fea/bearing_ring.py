@@ -17,6 +17,7 @@ cancels in the difference.
 """
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -175,6 +176,25 @@ def default_size_mm(params, quick: bool) -> float:
     return params.wave_generator.bearing_inner_ring_thickness_mm / (2.0 if quick else 3.0)
 
 
+def race_section_mm2(params) -> tuple[float, float]:
+    """The inner ring's cross-section area in the plane (the element estimate's volume per mm of width) and
+    its thickness t_i: geometry/bearing_ring.py's race radius d1/2 - delta - 1.5 t_i, bore 1 t_i inside."""
+    wg, c = params.wave_generator, params.flexspline_cup
+    t = wg.bearing_inner_ring_thickness_mm
+    r_race = max(c.pitch_diameter_mm / 2 - c.wall_thickness_mm - 1.5 * t, t)
+    return math.pi * (r_race ** 2 - max(r_race - t, 0.0) ** 2), t
+
+
+def patch_depth_limit_mm(params) -> float:
+    """Deepest crack whose surface half-length c still fits the contact patch: geometry/bearing_ring.py refuses
+    c >= 0.5 sqrt(pi) a' (the patch half-length across the race), with c from Q = 1 + 1.464 (a/c)^1.65
+    (seed 000); c/a is fixed by Q, so the depth is bounded."""
+    from strainwave.geometry.cracks import half_length_from_q
+
+    patch_half_mm = 0.5 * math.sqrt(math.pi) * params.wave_generator.contact_semi_axes_mm[0]
+    return patch_half_mm / half_length_from_q(1.0, params.cracks.surface_crack_shape_factor)
+
+
 @dataclass(frozen=True)
 class BearingRing(StudyVariant):
     """The skeleton's hooks for the bearing ring: one 3D series. Every length of the size field scales with
@@ -183,11 +203,48 @@ class BearingRing(StudyVariant):
     closed and opened (faces in frictionless contact)."""
 
     study: ClassVar[str] = STUDY
+    elements_per_cell: ClassVar[float] = 10.2
+    default_size_mm = staticmethod(default_size_mm)
+    rated_load: ClassVar[str] = "strainwave.analytic.rated_load:rated_radial_force"
+    stress_field_suffix: ClassVar[str] = "_uncracked"   # a crack tip's peak is singular
+    report_component: ClassVar[str] = "bearing"
+    title: ClassVar[str] = "bearing inner ring"
+    element_text: ClassVar[str] = ("P{order} tetrahedra (curved, isoparametric); crack as a seam with frictionless "
+                                   "crack-face contact")
+    image_marks: ClassVar[tuple] = (("bore",), "contact", "F_r")
     params: object
     order: int
     h_fine_mm: float
     force_N: float
     crack_depth_mm: float | None
+
+    @classmethod
+    def volume_and_wall(cls, params) -> tuple[float, float]:
+        area, t = race_section_mm2(params)     # width 4 a' (geometry/bearing_ring.py)
+        return area * 4 * params.wave_generator.contact_semi_axes_mm[0], t
+
+    @classmethod
+    def feature_cells(cls, params, h_mm: float, wall_mm: float) -> float:
+        """The contact patch (``ring_refine``: size min(h, b'/3) within max(a', b') of the patch centre)."""
+        a_ax, b_circ = params.wave_generator.contact_semi_axes_mm
+        c = min(h_mm, b_circ / 3)
+        reach = max(a_ax, b_circ)
+        zone_mm3 = min(cls.volume_and_wall(params)[0], (2 * reach) ** 2 * wall_mm)
+        cell = min(c, wall_mm) * c * c
+        return zone_mm3 / cell if cell > 0 else math.inf
+
+    @classmethod
+    def deepest_crack_mm(cls, params) -> float:
+        """Half the ring, and 90 % of the contact-patch limit."""
+        return min(0.5 * params.wave_generator.bearing_inner_ring_thickness_mm, 0.9 * patch_depth_limit_mm(params))
+
+    @classmethod
+    def dimensions(cls, params) -> tuple[tuple[str, str], ...]:
+        w = params.wave_generator
+        a, b = w.contact_semi_axes_mm
+        return (("inner ring thickness t_i", f"{w.bearing_inner_ring_thickness_mm:g} mm"),
+                ("contact ellipse a' x b'", f"{a:g} x {b:g} mm"), ("wave generator", w.kind.value),
+                ("flexspline pitch diameter d1", f"{params.flexspline_cup.pitch_diameter_mm:g} mm"))
 
     def __post_init__(self):
         check_variant(STUDY, order=self.order, sizes_mm=(self.h_fine_mm,), crack_depth_mm=self.crack_depth_mm,

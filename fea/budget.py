@@ -21,15 +21,8 @@ from strainwave.errors import InputError
 # Finest-mesh elements one run may ask for: what fits a shared 2-core machine (docs/decisions/008-element-and-teeth-budget.md).
 MAX_ELEMENTS = 300_000
 
-# Elements per min(h, t) h^2 cell (plane ring: min(h, t) h), fitted per study (docs/decisions/008-element-and-teeth-budget.md).
-# wg-bearing (2D, graded to the race patches and the crack tip): the cracked quick mesh at a = 1 mm, h = 1.67 mm,
-# ~15,700 triangles vs 1,306 cells (12).
-ELEMENTS_PER_CELL = {"shaft-torsion": 4.7, "cup-torsion": 13.3, "bearing-ring": 10.2, "ring-compression": 0.54,
-                     "wg-bearing": 12.0,
-                     # cup-wave-generator: quarter wall of 27-node hexahedra, one through the wall, h/2 along the
-                     # band: quick n = 14: 294 elements vs 239 cells (1.23)
-                     "cup-wave-generator": 1.23}
-PLANE_STUDIES = ("ring-compression", "wg-bearing")     # meshed as a plane section: cells of min(h, t) * h
+# Elements per min(h, t) h^2 cell (plane: min(h, t) h) are each study's ``elements_per_cell``, fitted on its own
+# meshes (docs/decisions/008-element-and-teeth-budget.md).
 
 
 # Teeth one CAD build may cut: OCC's work grows faster than the tooth count (docs/decisions/008-element-and-teeth-budget.md).
@@ -37,7 +30,6 @@ MAX_CAD_TEETH = 400
 # The toothed parts and the tooth-count key each is cut from (the cup study meshes a smooth shell).
 TOOTHED_PARTS = {"flexspline-cup": "flexspline_cup.teeth", "ewg-flexspline-ring": "ewg_drive.flexspline_teeth",
                  "ewg": "ewg_drive.flexspline_teeth"}
-_STUDY_TEETH = {"ring-compression": "ewg_drive.flexspline_teeth"}
 
 
 def check_cad_teeth(params, parts, flag: str = "--params") -> None:
@@ -67,82 +59,31 @@ class MeshEstimate:
             raise ValueError(f"MeshEstimate: sizes must be > 0, got {self}")
 
 
-def _default_h_mm(study: str, params, quick: bool) -> float:
-    """The study's own default finest size (read from the study module, not restated here)."""
-    if study == "shaft-torsion":
-        from strainwave.fea.shaft_torsion import default_size_mm
-    elif study == "cup-torsion":
-        from strainwave.fea.cup_torsion import default_size_mm
-    elif study == "bearing-ring":
-        from strainwave.fea.bearing_ring import default_size_mm
-    elif study == "wg-bearing":
-        from strainwave.fea.wg_bearing import default_size_mm
-    elif study == "cup-wave-generator":
-        from strainwave.fea.cup_wave_generator import default_size_mm
-    else:
-        from strainwave.fea.ring_compression import mesh_sizes_mm, ring_geometry
-        return mesh_sizes_mm(ring_geometry(params), None, quick)[0]
-    return default_size_mm(params, quick)
-
-
-def _volume_and_wall(study: str, params) -> tuple[float, float]:
-    if study == "shaft-torsion":
-        s = params.output_shaft
-        return math.pi / 4 * (s.outer_diameter_mm ** 2 - s.inner_diameter_mm ** 2) * s.length_mm, s.wall_mm
-    if study == "cup-torsion":
-        c = params.flexspline_cup
-        tube = math.pi * c.pitch_diameter_mm * c.wall_thickness_mm * c.length_mm
-        diaphragm = math.pi / 4 * c.pitch_diameter_mm ** 2 * c.wall_thickness_mm
-        return tube + diaphragm, c.wall_thickness_mm
-    if study == "cup-wave-generator":
-        from strainwave.fea.wg_band import tube_geometry
-        g = tube_geometry(params)     # the quarter wall the study meshes
-        return 0.5 * math.pi * g.r_m_mm * g.wall_mm * (g.length_mm - g.z_end_mm), g.wall_mm
-    if study in ("bearing-ring", "wg-bearing"):     # wg-bearing: the plane section, per mm of width
-        wg, c = params.wave_generator, params.flexspline_cup
-        t = wg.bearing_inner_ring_thickness_mm
-        # geometry/bearing_ring.py: race radius d1/2 - delta - 1.5 t_i, bore 1 t_i inside, width 4 a'
-        r_race = max(c.pitch_diameter_mm / 2 - c.wall_thickness_mm - 1.5 * t, t)
-        volume = math.pi * (r_race ** 2 - max(r_race - t, 0.0) ** 2)
-        return (volume if study == "wg-bearing" else volume * 4 * wg.contact_semi_axes_mm[0]), t
-    e = params.ewg_drive   # ring-compression: the plane section (toothed rim), per mm of depth
-    r_in = 0.5 * e.module_mm * e.flexspline_teeth
-    r_out = r_in + e.dedendum_coefficient * e.module_mm + e.rim_thickness_mm + 2.25 * e.module_mm
-    return math.pi * (r_out ** 2 - r_in ** 2), e.rim_thickness_mm
+def _facts(study: str):
+    from strainwave.registry import study as registered
+    return registered(study).facts()
 
 
 def estimate(study: str, params, mesh_size_mm: float | None, quick: bool = False) -> MeshEstimate:
-    """Elements of ``study``'s finest mesh at ``mesh_size_mm`` (None: the study's default)."""
-    if study not in ELEMENTS_PER_CELL:
-        raise ValueError(f"no element estimate for study {study!r}")   # a registry/budget mismatch, not input
-    h = float(mesh_size_mm) if mesh_size_mm else _default_h_mm(study, params, quick)
-    volume, wall = _volume_and_wall(study, params)
-    # the ring is meshed as a plane section: triangles per min(h, t) * h of its area
-    cell = min(h, wall) * h if study in PLANE_STUDIES else min(h, wall) * h * h
+    """Elements of ``study``'s finest mesh at ``mesh_size_mm`` (None: the study's default), from the facts
+    its variant class states (``fea.study_facts.StudyFacts``)."""
+    facts = _facts(study)
+    h = float(mesh_size_mm) if mesh_size_mm else facts.default_size_mm(params, quick)
+    volume, wall = facts.volume_and_wall(params)
+    # a plane study is meshed as a section: triangles per min(h, t) * h of its area
+    cell = min(h, wall) * h if facts.plane else min(h, wall) * h * h
     cells = volume / cell if cell > 0 else math.inf   # h = 5e-324: the cell underflows to 0
-    cells += _feature_cells(study, params, h, wall)
-    return MeshEstimate(study, h, wall, volume, int(min(ELEMENTS_PER_CELL[study] * cells, 1e18)))
-
-
-def _feature_cells(study: str, params, h: float, wall: float) -> float:
-    """Cells of the refined zones beyond the global size: the bearing's contact patch (fea/bearing_ring.py
-    ring_refine: size min(h, b'/3) within max(a', b') of the patch centre), which [1e3, 3] made 5.9 GB."""
-    if study != "bearing-ring":
-        return 0.0
-    a_ax, b_circ = params.wave_generator.contact_semi_axes_mm
-    c = min(h, b_circ / 3)
-    reach = max(a_ax, b_circ)
-    zone_mm3 = min(_volume_and_wall(study, params)[0], (2 * reach) ** 2 * wall)
-    cell = min(c, wall) * c * c
-    return zone_mm3 / cell if cell > 0 else math.inf
+    cells += facts.feature_cells(params, h, wall)
+    return MeshEstimate(study, h, wall, volume, int(min(facts.elements_per_cell * cells, 1e18)))
 
 
 def check_budget(study: str, params, mesh_size_mm: float | None, quick: bool = False,
                  flag: str = "--mesh-size-mm") -> MeshEstimate:
     """Refuse (InputError naming ``flag``, the estimate and the budget) a run whose finest mesh would
     exceed ``MAX_ELEMENTS``; returns the estimate when it fits."""
-    if study in _STUDY_TEETH:
-        check_cad_teeth(params, [p for p, k in TOOTHED_PARTS.items() if k == _STUDY_TEETH[study]][:1], flag)
+    teeth = _facts(study).teeth_key
+    if teeth is not None:
+        check_cad_teeth(params, [p for p, k in TOOTHED_PARTS.items() if k == teeth][:1], flag)
     est = estimate(study, params, mesh_size_mm, quick)
     if est.elements > MAX_ELEMENTS:
         raise InputError(flag, mesh_size_mm if mesh_size_mm else f"default h = {est.h_mm:.3g} mm",

@@ -8,6 +8,8 @@ d1^3), published with 0.1 and the seed's mu; corrected with pi/32; k_G = 0.83 fo
 """
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass
 from functools import partial
 from pathlib import Path
@@ -101,8 +103,32 @@ class CupTorsion(TorsionVariant):
     study: ClassVar[str] = STUDY
     load_distribution: ClassVar[str] = "uniform tangential shear on the toothed band, moment T"
     clamped_face: ClassVar[str] = "hub face"
+    sweep_at_quick_size: ClassVar[bool] = True   # the crack delta, closed and opened on one mesh
+    elements_per_cell: ClassVar[float] = 13.3
+    default_size_mm = staticmethod(default_size_mm)
+    report_component: ClassVar[str] = "cup"
+    title: ClassVar[str] = "flexspline cup"
+    element_text: ClassVar[str] = "P{order} tetrahedra (curved, isoparametric); crack as a seam, closed and opened"
     teeth: bool
     crack_method: str = DEFAULT_CRACK_METHOD
+
+    @classmethod
+    def volume_and_wall(cls, params) -> tuple[float, float]:
+        c = params.flexspline_cup
+        tube = math.pi * c.pitch_diameter_mm * c.wall_thickness_mm * c.length_mm
+        diaphragm = math.pi / 4 * c.pitch_diameter_mm ** 2 * c.wall_thickness_mm
+        return tube + diaphragm, c.wall_thickness_mm
+
+    @classmethod
+    def deepest_crack_mm(cls, params) -> float:
+        return 0.5 * params.flexspline_cup.wall_thickness_mm
+
+    @classmethod
+    def dimensions(cls, params) -> tuple[tuple[str, str], ...]:
+        c = params.flexspline_cup
+        return (("pitch diameter d1", f"{c.pitch_diameter_mm:g} mm"), ("wall delta", f"{c.wall_thickness_mm:g} mm"),
+                ("length L", f"{c.length_mm:g} mm"), ("shape", f"{c.shape}{', cup' if c.cup else ''}"),
+                ("teeth x module", f"{c.teeth} x {c.module_mm:g} mm"))
 
     def __post_init__(self):
         if self.crack_method not in CRACK_METHODS:

@@ -25,6 +25,7 @@ linear problem, so each force solution is scaled to delta_CD = 2 W0):
 """
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -93,6 +94,18 @@ class RingCompression(StudyVariant):
     cases on each mesh) and the smooth 3D solid (layers through the thickness)."""
 
     study: ClassVar[str] = STUDY
+    elements_per_cell: ClassVar[float] = 0.54
+    plane: ClassVar[bool] = True
+    teeth_key: ClassVar[str] = "ewg_drive.flexspline_teeth"
+    rated_load: ClassVar[str] = "strainwave.analytic.rated_load:rated_ewg_force"
+    stress_field_suffix: ClassVar[str] = "_toothed"     # the root stress a designer wants
+    report_component: ClassVar[str] = "ring"
+    title: ClassVar[str] = "EWG flexspline ring"
+    element_text: ClassVar[str] = ("P{order} triangles (curved), 2D plane stress, thickness = face width B; 3D check "
+                                   "on curved P2 tetrahedra")
+    # u_y = 0 at A and B, u_x = 0 at D; the EWG's two strips
+    image_marks: ClassVar[tuple] = (("A", "B", "D"), "contact", "W0")
+    validate_label: ClassVar[str] = "ring"
     params: object
     order: int
     force_N: float           # the diametral force F of the force case
@@ -103,6 +116,29 @@ class RingCompression(StudyVariant):
     def __post_init__(self):
         check_variant(STUDY, order=self.order, sizes_mm=self.sizes_mm + self.smooth_sizes_mm, force_N=self.force_N,
                       w0_mm=self.w0_mm)
+
+    @classmethod
+    def default_size_mm(cls, params, quick: bool) -> float:
+        return mesh_sizes_mm(ring_geometry(params), None, quick)[0]
+
+    @classmethod
+    def volume_and_wall(cls, params) -> tuple[float, float]:
+        e = params.ewg_drive   # the plane section (toothed rim), per mm of depth
+        r_in = 0.5 * e.module_mm * e.flexspline_teeth
+        r_out = r_in + e.dedendum_coefficient * e.module_mm + e.rim_thickness_mm + 2.25 * e.module_mm
+        return math.pi * (r_out ** 2 - r_in ** 2), e.rim_thickness_mm
+
+    @classmethod
+    def dimensions(cls, params) -> tuple[tuple[str, str], ...]:
+        e = params.ewg_drive
+        return (("teeth Z_R, tooth difference dZ", f"{e.flexspline_teeth}, {e.tooth_difference}"),
+                ("module m", f"{e.module_mm:g} mm"), ("reference diameter d_R", f"{e.reference_diameter_mm:g} mm"),
+                ("rim thickness delta", f"{e.rim_thickness_mm:.4g} mm"), ("face width B", f"{e.face_width_mm:g} mm"),
+                ("root fillet rho_f", f"{e.root_fillet_coefficient:g} m"))
+
+    @classmethod
+    def image_zoom_mm(cls, params) -> float:
+        return 2.0 * params.ewg_drive.module_mm     # the whole ring hides its thin rim: 4 modules wide
 
     @property
     def geometry(self) -> RingGeometry:

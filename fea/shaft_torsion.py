@@ -86,15 +86,6 @@ def crack_model_for(params, crack_model: str) -> str:
     return crack_model if crack_model != "auto" else ("axisymmetric" if full else "seam")
 
 
-def cad_modules(params, cracked: bool) -> tuple[str, ...]:
-    """What a point imports to build its part (``sweep.task.warm_modules``): build123d for the seam of a
-    part-through crack, OCP alone for the bare uncracked solid (``ShaftTorsion.build``), which is also the
-    3D part beside the axisymmetric section of a full circumferential crack."""
-    if cracked and crack_model_for(params, "auto") == "seam":
-        return ("build123d", "strainwave.geometry.parts")
-    return ("OCP.BRepAlgoAPI", "OCP.BRepPrimAPI", "strainwave.geometry.output_shaft")
-
-
 FLEX = "flexibility_rad_per_Nmm"
 CRACKED = "cracked_flexibility_rad_per_Nmm"
 DELTA = "delta_flexibility_rad_per_Nmm"
@@ -113,8 +104,38 @@ class ShaftTorsion(TorsionVariant):
     study: ClassVar[str] = STUDY
     load_distribution: ClassVar[str] = "Saint-Venant shear traction tau = T r / J (tangential)"
     clamped_face: ClassVar[str] = "end face z = 0"
+    sweep_at_quick_size: ClassVar[bool] = True   # the crack delta, closed and opened on one mesh
+    elements_per_cell: ClassVar[float] = 4.7
+    default_size_mm = staticmethod(default_size_mm)
+    report_component: ClassVar[str] = "shaft"
+    title: ClassVar[str] = "output shaft"
+    element_text: ClassVar[str] = ("P{order} tetrahedra (curved, isoparametric); the crack on an axisymmetric (r, z) "
+                                   "section of P2 triangles")
     crack_model: str | None          # None (uncracked), "seam" or "axisymmetric"
     quick: bool
+
+    @classmethod
+    def volume_and_wall(cls, params) -> tuple[float, float]:
+        s = params.output_shaft
+        return math.pi / 4 * (s.outer_diameter_mm ** 2 - s.inner_diameter_mm ** 2) * s.length_mm, s.wall_mm
+
+    @classmethod
+    def deepest_crack_mm(cls, params) -> float:
+        return 0.5 * params.output_shaft.wall_mm
+
+    @classmethod
+    def cad_modules(cls, params, cracked: bool) -> tuple[str, ...]:
+        """build123d for the seam of a part-through crack, OCP alone for the bare uncracked solid (``build``),
+        which is also the 3D part beside the axisymmetric section of a full circumferential crack."""
+        if cracked and crack_model_for(params, "auto") == "seam":
+            return ("build123d", "strainwave.geometry.parts")
+        return ("OCP.BRepAlgoAPI", "OCP.BRepPrimAPI", "strainwave.geometry.output_shaft")
+
+    @classmethod
+    def dimensions(cls, params) -> tuple[tuple[str, str], ...]:
+        s = params.output_shaft
+        return (("outer diameter d_s", f"{s.outer_diameter_mm:g} mm"), ("inner diameter d_s2", f"{s.inner_diameter_mm:g} mm"),
+                ("length L_s", f"{s.length_mm:g} mm"), ("wall", f"{s.wall_mm:g} mm"))
 
     def __post_init__(self):
         check_variant(STUDY, order=self.order, sizes_mm=(self.h_fine_mm,), crack_depth_mm=self.crack_depth_mm,

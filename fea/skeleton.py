@@ -20,6 +20,7 @@ from typing import Callable, Mapping, Sequence
 
 from strainwave.fea.refinement import converged_quantity, on_three_meshes
 from strainwave.fea.result import CrackRecord, Load, MeshQuality, Quantity, StudyResult, Support
+from strainwave.fea.study_facts import StudyFacts
 
 Progress = Callable[[str], None]
 
@@ -78,10 +79,9 @@ class Series:
                                   order=order)
 
 
-class StudyVariant(ABC):
-    """The hooks a study overrides; ``run_variant`` is the skeleton that calls them."""
-
-    study: str                                   # registry name; each variant sets it
+class StudyVariant(StudyFacts, ABC):
+    """The hooks a study overrides; ``run_variant`` is the skeleton that calls them. Its class-level facts
+    (element estimate, default size, CAD, rated load, report) are ``StudyFacts``'."""
 
     @abstractmethod
     def build(self):

@@ -8,6 +8,7 @@ from typing import ClassVar
 import numpy as np
 
 from strainwave.fea.result import Load, Support
+from strainwave.fea.study_facts import TORQUE_RATED
 from strainwave.fea.skeleton import StudyVariant
 from strainwave.fea.static import StaticSolution
 
@@ -51,6 +52,8 @@ class TorsionVariant(StudyVariant):
 
     load_distribution: ClassVar[str]
     clamped_face: ClassVar[str]
+    image_marks: ClassVar[tuple] = (("fixed",), "loaded", "T")
+    rated_load: ClassVar[str] = TORQUE_RATED
     params: object
     order: int
     h_fine_mm: float

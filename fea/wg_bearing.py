@@ -25,6 +25,7 @@ from strainwave.errors import InputError
 from strainwave.fea import ring2d
 from strainwave.fea.refinement import CRACK_FORMAL_ORDER, DEFAULT_RATIO, converged_quantity
 from strainwave.fea.result import CrackRecord, Load, MeshQuality, StudyResult, Support
+from strainwave.fea.study_facts import StudyFacts
 
 STUDY = "wg-bearing"
 GROWTH = 0.4            # element growth per unit distance away from the crack tip and the race
@@ -222,6 +223,23 @@ def delta_name(depth_mm: float) -> str:
 def default_size_mm(params, quick: bool) -> float:
     """Finest global size: t/8 (t/6 with --quick)."""
     return params.wave_generator.bearing_inner_ring_thickness_mm / (6.0 if quick else 8.0)
+
+
+class WgBearing(StudyFacts):
+    """The ring on the cam's facts (its solve is ``run``, not the skeleton: it sweeps its own crack depths)."""
+
+    study = STUDY
+    # graded to the race patches and the crack tip: the cracked quick mesh at a = 1 mm, h = 1.67 mm (12)
+    elements_per_cell = 12.0
+    default_size_mm = staticmethod(default_size_mm)
+    plane = True
+    element_text = ("P2 triangles on a graded polar grid, 2D plane stress, thickness = ring width B; race crack as "
+                    "two coincident faces with frictionless contact")
+
+    @classmethod
+    def volume_and_wall(cls, params) -> tuple[float, float]:
+        from strainwave.fea.bearing_ring import race_section_mm2
+        return race_section_mm2(params)     # the plane section, per mm of width
 
 
 def _converge(name, unit, sizes, values, order=None):

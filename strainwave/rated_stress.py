@@ -12,11 +12,11 @@ from pathlib import Path
 
 import numpy as np
 
-from strainwave.analytic.rated_load import RatedLoad, fatigue_safety_factor, rated_load
+from strainwave.analytic.rated_load import RatedLoad, fatigue_safety_factor
 from strainwave.registry import study as registered
 
 __all__ = ["FieldNames", "field_names", "displacement3", "applied_scale", "scaled_to_rated", "write_at_rated", "FieldPeaks", "field_peaks",
-           "StressAtRated", "stress_field_of", "rated_load_of", "stress_at_rated", "groups_at_node"]
+           "StressAtRated", "stress_field_of", "rated_load", "rated_load_of", "stress_at_rated", "groups_at_node"]
 
 
 @dataclass(frozen=True)
@@ -176,17 +176,12 @@ def groups_at_node(vtu: Path, node: int) -> tuple[str, ...]:
     return tuple(names[i - 1] for i in ids if 0 < i <= len(names))   # id k is entry k - 1
 
 
-# Which of a study's field files the stress picture shows: the toothed EWG ring (the root stress a designer
-# wants), otherwise the uncracked part (a crack tip's peak is singular and grows with refinement).
-_PREFERRED_SUFFIX = {"ring-compression": "_toothed", "bearing-ring": "_uncracked"}
-
-
 def stress_field_of(study: str, fields, crack_depth_mm: float | None) -> tuple[Path, bool] | None:
     """(VTU, cracked) of ``fields`` (a study's written files) that its rated-load stress picture shows; cracked
     says whether that field carries the crack (a solve with a crack whose fields hold no separate
     ``_cracked``/``_uncracked`` pair wrote the cracked field)."""
     files = [Path(p) for p in fields if str(p).endswith(".vtu") and not str(p).endswith(".boundary.vtu")]
-    suffix = _PREFERRED_SUFFIX.get(study)
+    suffix = registered(study).facts().stress_field_suffix   # the study's own choice, else the uncracked part
     chosen = [p for p in files if suffix and p.stem.endswith(suffix)] or \
              [p for p in files if not p.stem.endswith(("_cracked", "_smooth"))] or files
     if not chosen:
@@ -196,14 +191,23 @@ def stress_field_of(study: str, fields, crack_depth_mm: float | None) -> tuple[P
     return path, crack_depth_mm is not None and not paired
 
 
+def rated_load(study: str, params, solved: float, quantities=None) -> RatedLoad:
+    """The rated load of ``study`` against the load ``solved`` its fields were computed at, by the function its
+    variant names (``StudyFacts.rated_load``); ``quantities``: {name: value} of its result, where the rated
+    load follows from the FEA (the EWG ring's force for W0)."""
+    import importlib
+
+    name = registered(study).facts().rated_load
+    if name is None:
+        raise ValueError(f"no rated load for study {study!r}")
+    module, _, function = name.partition(":")
+    return getattr(importlib.import_module(module), function)(study, params, solved, quantities)
+
+
 def rated_load_of(study: str, params, result) -> RatedLoad:
     """The rated load of a solved study (a ``StudyResult``) against the load it solved (its typed ``Load``)."""
     registered(study)      # an unknown study is an InputError (exit 2), before any field is read
-    if study == "ring-compression":
-        # the toothed field is solved at the reference force; the force for W0 is the toothed ring's own
-        return rated_load(study, params, result.load.magnitude,
-                          ring_force_for_W0_N=result.quantities["toothed_force_for_W0_N"].value)
-    return rated_load(study, params, result.load.magnitude)
+    return rated_load(study, params, result.load.magnitude, {k: q.value for k, q in result.quantities.items()})
 
 
 @dataclass(frozen=True)

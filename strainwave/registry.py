@@ -1,16 +1,17 @@
 """The one registry of FEA studies: each study is declared here once, and every stage reads it.
 
-A ``Study`` names its CLI name, the module whose ``run`` solves it, the part it meshes, the component
-whose crack it can seed (the dotted parameter key of that crack, or none), its quantities (name, unit,
-meaning, and the ``analytic_summary(params)["checks"]`` entry each is compared with, published and
-corrected), the ``analytic`` function that gives it its load when the load follows from a seed formula
-(``load_inputs``: fea/ receives numbers, never a closed form), the parameter overrides under which its
-closed forms are evaluated (the FEA's load conditions) and the VTU fields it writes. A study's result
-states the load it applied as a typed ``Load``; a force-loaded study's closed forms scale with its force. Readers: the CLI (``STUDY_NAMES``), ``fea/studies.run_study``, validate's plan and
-checks, diagnose's FEA baseline and the sweep. Adding a study is its module plus one entry here.
+A ``Study`` names its CLI name, its variant ("module:Class": the module's ``run`` solves it, the class holds
+its facts, ``fea/study_facts.StudyFacts``: element estimate, default size, CAD, rated load, report words), the
+part it meshes, the component whose crack it can seed (the dotted parameter key of that crack, or none), its
+quantities (name, unit, meaning, the role diagnose reads it in), the ``analytic`` function that gives it its
+load when the load follows from a seed formula (``load_inputs``: fea/ receives numbers, never a closed form),
+the parameter overrides under which its closed forms are evaluated (the FEA's load conditions) and the VTU
+fields it writes. The closed form beside each quantity is a validate check's (``check_list.CHECKS``).
+Readers: the CLI (``STUDY_NAMES``), ``fea/studies.run_study``, validate's plan and checks, diagnose's FEA
+baseline and the sweep. Adding a study is its module plus one entry here.
 
-Pure declarations: importing this module does no work and imports nothing heavy (``load_for`` imports
-its analytic function when called).
+Pure declarations: importing this module does no work and imports nothing heavy (``load_for``, ``facts``
+and ``checked`` import what they name when called).
 """
 from __future__ import annotations
 
@@ -29,12 +30,13 @@ SOLID_FIELDS = ("displacement_mm", "von_mises_MPa", "stress_MPa")
 
 @dataclass(frozen=True)
 class QuantitySpec:
-    """One number a study reports; ``check`` is the analytic summary's check id it stands beside."""
+    """One number a study reports. The closed form it stands beside is a validate check's
+    (``compare/validate/check_list.py``: ``Study.checked``); ``role`` says what diagnose reads it as."""
 
     name: str                      # units in the name
     unit: str
     meaning: str
-    check: str | None = None       # key of analytic_summary(params)["checks"], or None (no closed form)
+    role: str | None = None        # "flexibility" (uncracked linear compliance), "crack_delta", or None
 
     def __post_init__(self):
         if not self.name or not self.unit:
@@ -44,7 +46,8 @@ class QuantitySpec:
 @dataclass(frozen=True)
 class Study:
     name: str                                  # kebab-case CLI name
-    module: str                                # module whose run(params, ...) solves it
+    variant: str                               # "module:Class": the module's run(params, ...) solves it, the
+                                               # class (fea.study_facts.StudyFacts) holds its facts
     part: str                                  # geometry PartName value it meshes
     component: str | None                      # validate's component name ("shaft", ...); None: no crack
     crack_key: str | None                      # dotted params key of the crack it seeds; None: refuses a crack
@@ -60,6 +63,15 @@ class Study:
         names = [q.name for q in self.quantities]
         if len(set(names)) != len(names):
             raise ValueError(f"study {self.name}: duplicate quantity names")
+
+    @property
+    def module(self) -> str:
+        return self.variant.partition(":")[0]
+
+    def facts(self):
+        """The study's variant class (``fea.study_facts.StudyFacts``): imported here, when first asked."""
+        module, _, name = self.variant.partition(":")
+        return getattr(importlib.import_module(module), name)
 
     def quantity(self, name: str) -> QuantitySpec:
         for q in self.quantities:
@@ -77,85 +89,72 @@ class Study:
 
     @property
     def checked(self) -> dict[str, str]:
-        """{FEA quantity name: analytic check id} for the quantities that have a closed form."""
-        return {q.name: q.check for q in self.quantities if q.check}
+        """{FEA quantity name: validate check id} for the quantities a check's closed form stands beside."""
+        from strainwave.compare.validate.check_list import beside
+        return {name: spec.id for name, spec in beside(self.name).items()}
 
     @property
     def flexibility(self) -> QuantitySpec | None:
         """The study's uncracked linear compliance (what diagnose's FEA baseline reads), if it has one."""
-        for q in self.quantities:
-            if q.check in ("shaft.flexibility", "cup.flexibility", "bearing.radial_compliance", "ring.delta_cd"):
-                return q
-        return None
+        return next((q for q in self.quantities if q.role == "flexibility"), None)
 
     @property
     def crack_delta(self) -> QuantitySpec | None:
         """The quantity that is the crack's added compliance (cracked - uncracked), if the study has a crack."""
-        for q in self.quantities:
-            if q.check and q.check.endswith(".crack_compliance"):
-                return q
-        return None
+        return next((q for q in self.quantities if q.role == "crack_delta"), None)
 
 
-def _flex(prefix: str, what: str) -> tuple[QuantitySpec, ...]:
+def _flex(what: str) -> tuple[QuantitySpec, ...]:
     return (
         QuantitySpec("flexibility_rad_per_Nmm", FLEX_UNIT, f"torsional flexibility of the uncracked {what}",
-                     f"{prefix}.flexibility"),
+                     "flexibility"),
         QuantitySpec("cracked_flexibility_rad_per_Nmm", FLEX_UNIT, f"torsional flexibility of the cracked {what}"),
         QuantitySpec("delta_flexibility_rad_per_Nmm", FLEX_UNIT, f"added flexibility of the {what}'s crack",
-                     f"{prefix}.crack_compliance"),
+                     "crack_delta"),
     )
 
 
 STUDIES: dict[str, Study] = {s.name: s for s in (
-    Study("shaft-torsion", "strainwave.fea.shaft_torsion", "output-shaft", "shaft", "output_shaft.crack_depth_mm",
-          _flex("shaft", "output shaft"), specimen="output_shaft"),
+    Study("shaft-torsion", "strainwave.fea.shaft_torsion:ShaftTorsion", "output-shaft", "shaft", "output_shaft.crack_depth_mm",
+          _flex("output shaft"), specimen="output_shaft"),
     # The cup FEA load is static and uniform, so seed 000's load factors K_u, K_d (audit 17) are 1 for it.
-    Study("cup-torsion", "strainwave.fea.cup_torsion", "flexspline-cup", "cup", "flexspline_cup.root_crack_depth_mm",
-          _flex("cup", "flexspline cup"), specimen="flexspline_cup",
+    Study("cup-torsion", "strainwave.fea.cup_torsion:CupTorsion", "flexspline-cup", "cup", "flexspline_cup.root_crack_depth_mm",
+          _flex("flexspline cup"), specimen="flexspline_cup",
           analytic_overrides=(("cracks.stress_nonuniformity", 1.0), ("cracks.dynamic_load_factor", 1.0))),
-    Study("bearing-ring", "strainwave.fea.bearing_ring", "wg-bearing-ring", "bearing",
+    Study("bearing-ring", "strainwave.fea.bearing_ring:BearingRing", "wg-bearing-ring", "bearing",
           "wave_generator.bearing_crack_depth_mm", (
               QuantitySpec("radial_compliance_mm_per_N", "mm/N", "radial compliance of the uncracked inner ring",
-                           "bearing.radial_compliance"),
+                           "flexibility"),
               QuantitySpec("cracked_radial_compliance_mm_per_N", "mm/N", "radial compliance of the cracked ring"),
               QuantitySpec("delta_radial_compliance_mm_per_N", "mm/N", "added radial compliance of the race crack",
-                           "bearing.crack_compliance"),
+                           "crack_delta"),
           ), load_inputs="strainwave.analytic.study_loads:bearing_ring_load"),
+    # The ring closed forms are given at the thin-ring force for W0; they scale linearly to the FEA's force.
+    Study("ring-compression", "strainwave.fea.ring_compression:RingCompression", "ewg-flexspline-ring", None, None, (
+        QuantitySpec("delta_cd_mm", "mm", "diameter shortening along the load line CD", "flexibility"),
+        QuantitySpec("delta_ab_mm", "mm", "diameter growth across the load line AB"),
+        QuantitySpec("sigma_D_outer_MPa", "MPa", "hoop stress at the outer fibre under the load (D)"),
+        QuantitySpec("sigma_B_outer_MPa", "MPa", "hoop stress at the outer fibre at the free point (B)"),
+        QuantitySpec("tooth_influence", "1", "K_delta: toothed over smooth rim outer-fibre stress range"),
+        QuantitySpec("stress_concentration", "1", "K_sigma: toothed root over smooth rim stress range"),
+    ), load_inputs="strainwave.analytic.study_loads:ring_compression_load", specimen="ewg_ring"),
     # The inner ring on the elliptical cam (issue 34): 2D, its own sweep of race-crack depths in one case.
-    Study("wg-bearing", "strainwave.fea.wg_bearing", "wg-bearing-ring", None, None, (
-        QuantitySpec("race_stress_major_MPa", "MPa", "race hoop stress at the major axis, cam alone",
-                     "bearing.race_stress_major"),
-        QuantitySpec("race_stress_minor_MPa", "MPa", "race hoop stress at the minor axis, cam alone",
-                     "bearing.race_stress_minor"),
+    Study("wg-bearing", "strainwave.fea.wg_bearing:WgBearing", "wg-bearing-ring", None, None, (
+        QuantitySpec("race_stress_major_MPa", "MPa", "race hoop stress at the major axis, cam alone"),
+        QuantitySpec("race_stress_minor_MPa", "MPa", "race hoop stress at the minor axis, cam alone"),
         QuantitySpec("bore_stress_major_MPa", "MPa", "bore hoop stress at the major axis, cam alone"),
         QuantitySpec("net_race_stress_major_MPa", "MPa", "race hoop stress at the major axis, cam + ball loads"),
-        QuantitySpec("ball_load_ratio", "1", "Z Q_max / F_r with Hertz balls on the FEA ring", "bearing.ball_loads"),
+        QuantitySpec("ball_load_ratio", "1", "Z Q_max / F_r with Hertz balls on the FEA ring"),
         QuantitySpec("radial_stiffness_N_per_mm", "N/mm", "K_G: F_r over the outer race's approach (balls + ring)"),
         QuantitySpec("radial_compliance_mm_per_N", "mm/N", "ring compliance under the ball loads, uncracked"),
     ), load_inputs="strainwave.analytic.study_loads:wg_bearing_load", vtu_fields=()),
-    # The ring closed forms are given at the thin-ring force for W0; they scale linearly to the FEA's force.
-    Study("ring-compression", "strainwave.fea.ring_compression", "ewg-flexspline-ring", None, None, (
-        QuantitySpec("delta_cd_mm", "mm", "diameter shortening along the load line CD", "ring.delta_cd"),
-        QuantitySpec("delta_ab_mm", "mm", "diameter growth across the load line AB", "ring.delta_ab"),
-        QuantitySpec("sigma_D_outer_MPa", "MPa", "hoop stress at the outer fibre under the load (D)",
-                     "ring.sigma_max"),
-        QuantitySpec("sigma_B_outer_MPa", "MPa", "hoop stress at the outer fibre at the free point (B)",
-                     "ring.sigma_min"),
-        QuantitySpec("tooth_influence", "1", "K_delta: toothed over smooth rim outer-fibre stress range",
-                     "ring.tooth_influence"),
-        QuantitySpec("stress_concentration", "1", "K_sigma: toothed root over smooth rim stress range",
-                     "ring.stress_concentration"),
-    ), load_inputs="strainwave.analytic.study_loads:ring_compression_load", specimen="ewg_ring"),
     # The cup on its wave generator (issue 34): prescribed shape and rigid cam, linear and nonlinear; the
     # hoop bending at the axes is checked against the ring forced into w0 cos 2 phi (analytic/ring_prescribed.py).
-    Study("cup-wave-generator", "strainwave.fea.cup_wave_generator", "flexspline-cup", None, None, (
+    Study("cup-wave-generator", "strainwave.fea.cup_wave_generator:CupWaveGenerator", "flexspline-cup", None, None, (
         QuantitySpec("prescribed_linear_bending_major_MPa", "MPa",
-                     "hoop bending stress (outer - inner)/2 at the major axis, band mid-width, prescribed shape",
-                     "cup.wg_bending_major"),
+                     "hoop bending stress (outer - inner)/2 at the major axis, band mid-width, prescribed shape"),
         QuantitySpec("prescribed_linear_bending_minor_MPa", "MPa",
-                     "hoop bending stress (outer - inner)/2 at the minor axis, band mid-width, prescribed shape",
-                     "cup.wg_bending_minor"),
+                     "hoop bending stress (outer - inner)/2 at the minor axis, band mid-width, prescribed shape"),
         QuantitySpec("contact_nonlinear_peak_von_mises_MPa", "MPa", "peak von Mises of the wall on the rigid cam"),
         QuantitySpec("contact_nonlinear_torsional_stiffness_Nmm_per_rad", "N*mm/rad",
                      "tangent torsional stiffness of the cup on the cam"),

@@ -92,7 +92,7 @@ def wired(tmp_path_factory):
     f_ref = refs["ring.delta_cd"]["force_N"]
     ring_q["toothed_force_for_W0_N"] = Quantity("toothed_force_for_W0_N", 2 * f_ref, "N")
     ring_load = Load("diametral force F", f_ref, "N", ("contact",), "stand-in: arcs", (("half_angle_rad", 0.01),))
-    outcomes[plan.ring.label] = _outcome(plan.ring, ring_q, (ring_vtu,), ring_load)
+    outcomes[plan.label_of("ring-compression")] = _outcome(plan.case_of("ring-compression"), ring_q, (ring_vtu,), ring_load)
     book = FeaBook(outcomes)
     check_set = build_checks(book, plan, summary, params)
     made = make_images(out, book, plan, check_set, summary, progress=lambda m: None, params=params)

@@ -11,7 +11,8 @@ import pytest
 from strainwave.compare.validate.audit_evidence import exponent_evidence
 from strainwave.compare.validate.checks import Check, Tolerance, evaluate, fea_tolerance, not_evaluated, verdict_of
 from strainwave.compare.validate.crack_scaling import fit_power_law
-from strainwave.compare.validate.plan import bearing_depth_limit_mm, make_plan, sweep_depths_mm
+from strainwave.compare.validate.plan import make_plan, sweep_depths_mm
+from strainwave.fea.bearing_ring import patch_depth_limit_mm as bearing_depth_limit_mm
 from strainwave.compare.validate.results import plain, validate_results
 from strainwave.compare.validate.ring_shape import thin_ring_shape
 from strainwave.params import load_params

@@ -80,7 +80,7 @@ def test_gci_rows_read_every_convergence_record_of_the_book():
 
 
 def test_rated_loads_follow_seed_000_from_the_rated_torque():
-    from strainwave.analytic.rated_load import rated_load
+    from strainwave.rated_stress import rated_load
 
     params = load_params()
     g, d1 = params.gear, params.flexspline_cup.pitch_diameter_mm

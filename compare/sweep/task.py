@@ -9,7 +9,6 @@ results; anything unexpected (a crashed library, memory) is recorded but *not* c
 """
 from __future__ import annotations
 
-import importlib
 import math
 import os
 import socket
@@ -23,6 +22,7 @@ from typing import Callable, Sequence
 from strainwave.cache import ResultCache, case_key
 from strainwave.errors import StrainwaveError
 from strainwave.fea.result import Load
+from strainwave.fea.study_facts import DEFAULT_CAD_MODULES
 from strainwave.registry import STUDIES
 
 # A task computes the quantities of one point: (study, params, quick) -> a ``StudyResult.to_dict()``-shaped
@@ -31,9 +31,8 @@ from strainwave.registry import STUDIES
 # exercise the Dask machinery without meshing). It must be a module-level function, so workers can import it.
 TaskFn = Callable[[str, object, bool], dict]
 
-# Which closed form stands beside each FEA quantity, the parameters under which it is evaluated and the
-# force it scales with are the registry's (``strainwave/registry.py``), the same pairing validate reads.
-# A quantity without a closed form there gets no analytic column.
+# Which closed form stands beside each FEA quantity is validate's check list (``check_list.CHECKS``), evaluated
+# under the registry study's load conditions; a quantity without a check beside it gets no analytic column.
 
 @dataclass(frozen=True)
 class PointSpec:
@@ -81,27 +80,24 @@ def fea_task(study: str, params, quick: bool, *, crack_depth_mm: float | None = 
 # The default task's libraries, which the pipeline imports inside the functions that use them (so that a
 # closed form or a refused point never pays for them): meshing, assembly and solver, the closed forms.
 FEA_MODULES = ("gmsh", "skfem", "pyamg", "strainwave.analytic.summary")
-# Default CAD imports; a study's ``cad_modules`` may need less (docs/decisions/013-sweep-worker-start-up.md).
-CAD_MODULES = ("build123d", "strainwave.geometry.parts")
 
 
 def warm_modules(study: str, task: TaskFn | None, specs: Sequence[PointSpec] = ()) -> tuple[str, ...]:
     """What a worker of the sweep's own cluster imports before it registers (``worker.SweepWorker``): the FEA
-    pipeline of ``study`` and the CAD its points ``specs`` build with; nothing for another task (its module
-    comes with the first task it unpickles, and it may need none of the FEA's libraries)."""
+    pipeline of ``study`` and the CAD its points ``specs`` build with (the variant's ``cad_modules``,
+    docs/decisions/013-sweep-worker-start-up.md); nothing for another task (its module comes with the first
+    task it unpickles, and it may need none of the FEA's libraries)."""
     if task is not None:
         return ()
     from strainwave.params import params_from_dict
 
     # the driver has imported the study module already, to estimate each point's elements (fea/budget.py)
-    cad_of = getattr(importlib.import_module(STUDIES[study].module), "cad_modules", None)
-    if cad_of is None:
-        return (__name__, STUDIES[study].module, *FEA_MODULES, *CAD_MODULES)
-    cad: dict[str, None] = {}
+    facts = STUDIES[study].facts()
+    cad: dict[str, None] = {} if specs else dict.fromkeys(DEFAULT_CAD_MODULES)   # no point known: the general CAD
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")   # a point's RangeWarnings are its worker's to record
         for spec in specs:
-            cad.update(dict.fromkeys(cad_of(params_from_dict(spec.merged()), spec.seed_crack)))
+            cad.update(dict.fromkeys(facts.cad_modules(params_from_dict(spec.merged()), spec.seed_crack)))
     return (__name__, STUDIES[study].module, *FEA_MODULES, *cad)
 
 
@@ -121,26 +117,24 @@ def closed_form_probe(study: str, params, quick: bool, *, delay_s: float = 0.0) 
         "value": compliance, "unit": "rad/(N mm)", "uncertainty": 0.0}}, "mesh": None}
 
 
-def analytic_beside(study: str, params, names, force_N: float | None = None) -> dict:
-    """{quantity: {key, published, corrected}} from ``analytic_summary`` for the FEA quantities ``names``;
-    a closed form given at a force (its ``force_N``) is scaled to the force the FEA applied, ``force_N``."""
-    spec = STUDIES[study]
-    table = spec.checked
-    wanted = [name for name in names if name in table]
-    if not wanted:
+def analytic_beside(study: str, params, names, force_N: float | None = None,
+                    crack_depth_mm: float | None = None) -> dict:
+    """{quantity: {key, published, corrected}} for the FEA quantities ``names``: the closed form of the validate
+    check that stands beside each (``check_list.CHECKS``: the same function validate asserts), at this point's
+    parameters under the study's load conditions, its crack depth and the force the FEA applied."""
+    from strainwave.compare.validate.check_list import At, beside
+    specs = {name: spec for name, spec in beside(study).items() if name in names and spec.reference is not None}
+    if not specs:
         return {}
-    from strainwave.analytic.summary import analytic_summary
-    for dotted, value in spec.analytic_overrides:
+    for dotted, value in STUDIES[study].analytic_overrides:
         params = params.with_value(dotted, value)
-    checks = analytic_summary(params).get("checks", {})
-    force = force_N
+    at = At(crack_depth_mm, force_N)
     out = {}
-    for name in wanted:
-        entry = checks.get(table[name]) or {}
-        scale = force / entry["force_N"] if force and entry.get("force_N") else 1.0
-        out[name] = {"key": f"checks.{table[name]}", "unit": entry.get("unit"), **{
-            variant: None if not isinstance(entry.get(variant), (int, float)) else float(entry[variant]) * scale
-            for variant in ("published", "corrected")}}
+    for name, spec in specs.items():
+        ref = spec.reference(params, at)      # None: no closed form at this point (uncracked, no force)
+        out[name] = {"key": f"checks.{spec.id}", "unit": None if ref is None else ref.unit,
+                     "published": None if ref is None else ref.published,
+                     "corrected": None if ref is None else ref.corrected}
     return out
 
 
@@ -149,15 +143,16 @@ def _compute(spec: PointSpec, task: TaskFn | None) -> dict:
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         params = params_from_dict(spec.merged())      # InputError here: the point is impossible
+        crack = params.crack_depth_mm(STUDIES[spec.study].crack_key) if spec.seed_crack else None
         if task is None:
-            crack = params.crack_depth_mm(STUDIES[spec.study].crack_key) if spec.seed_crack else None
             result = fea_task(spec.study, params, spec.quick, crack_depth_mm=crack)
         else:
             result = task(spec.study, params, spec.quick)
         fea = {name: {"value": q["value"], "unit": q["unit"], "uncertainty": q.get("uncertainty")}
                for name, q in result["quantities"].items()}
         load = result.get("load")
-        analytic = analytic_beside(spec.study, params, fea, None if load is None else Load.from_dict(load).force_N)
+        analytic = analytic_beside(spec.study, params, fea, None if load is None else Load.from_dict(load).force_N,
+                                   crack)
     notes = {str(w.message) for w in caught}
     for name, entry in analytic.items():
         if entry.get("unit") and _unit(entry["unit"]) != _unit(fea[name]["unit"]):

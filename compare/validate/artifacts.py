@@ -17,10 +17,20 @@ from strainwave.compare.validate.fea_book import FeaBook
 from strainwave.compare.validate.plan import Plan
 from strainwave.rated_stress import StressAtRated, rated_load_of, stress_at_rated, stress_field_of
 from strainwave.compare.validate.gci_table import asymptotic_flags
-from strainwave.compare.validate.torsion_checks import CUP_FLEX, SHAFT_FLEX
+from strainwave.compare.validate.wg_bearing_checks import STUDY as WG_BEARING
 
-COMPONENT_TITLES = {"shaft": "output shaft", "cup": "flexspline cup", "bearing": "bearing inner ring",
-                    "ring": "EWG flexspline ring"}
+def _component_titles() -> dict[str, str]:
+    from strainwave.registry import STUDIES
+    titles = {}
+    for s in STUDIES.values():
+        facts = s.facts()
+        if facts.report_component or s.component:
+            titles[facts.report_component or s.component] = facts.title
+    return titles
+
+
+# component -> its title on pictures, as each study's variant states it
+COMPONENT_TITLES = _component_titles()
 
 
 @dataclass(frozen=True)
@@ -83,13 +93,13 @@ def _require(path):
 # What a planar field of a component is, said on its picture
 SECTION_OF_PLANE = {"shaft": "axisymmetric (r, z) section: x = r, y = z",
                     "ring": "2D plane stress section (x, y), thickness = face width B"}
-# Supports and loads as each study applies them (fea/: the 'bc'/'support' and 'load' of its meta)
 def _marks(images, study: str):
-    return {"shaft-torsion": images.Marks(("fixed",), "loaded", "T"),
-            "cup-torsion": images.Marks(("fixed",), "loaded", "T"),
-            "bearing-ring": images.Marks(("bore",), "contact", "F_r"),
-            # the 2D ring: u_y = 0 at A and B, u_x = 0 at D (fea/ring_compression); the EWG's two strips
-            "ring-compression": images.Marks(("A", "B", "D"), "contact", "W0")}[study]
+    """Supports and loads as the study applies them (its variant's ``image_marks``)."""
+    from strainwave.registry import study as registered
+    marks = registered(study).facts().image_marks
+    if marks is None:
+        raise ValueError(f"study {study} states no image marks")
+    return images.Marks(*marks)
 
 
 def _stress_picture(images, target: Path, book: FeaBook, component: str, case, params,
@@ -104,9 +114,9 @@ def _stress_picture(images, target: Path, book: FeaBook, component: str, case, p
     at = stress_at_rated(case.study, params, outcome.result, vtu, cracked=cracked)
     records[component] = at
     planar = bool(np.ptp(images.read_field(vtu).points[:, 2]) == 0.0)
-    # The whole EWG ring hides its thin rim: a second panel zooms on the root stress peak (4 modules wide).
-    zoom = images.Zoom(radius_mm=2.0 * params.ewg_drive.module_mm, title="tooth root at the peak") \
-        if case.study == "ring-compression" else None
+    from strainwave.registry import study as registered
+    radius = registered(case.study).facts().image_zoom_mm(params)   # a second panel on the peak, if the study has one
+    zoom = None if radius is None else images.Zoom(radius_mm=radius, title="tooth root at the peak")
     rendered = images.render_stress(vtu, target, label=COMPONENT_TITLES[component], at=at,
                                     marks=_marks(images, case.study),
                                     section=SECTION_OF_PLANE.get(component, "2D section") if planar else "",
@@ -139,7 +149,7 @@ def make_images(out_dir: Path, book: FeaBook, plan: Plan, check_set: CheckSet, s
     col = _Collector(out_dir, progress, checkpoint)
     stresses: dict[str, StressAtRated] = {}
     views: dict = {}
-    for component, case in list(plan.headline.items()) + [("ring", plan.ring)]:
+    for component, case in plan.reported():
         col.attempt(f"{COMPONENT_TITLES[component]} stress", component, "stress",
                     lambda t, c=component, cs=case: _stress_picture(images, t, book, c, cs, params, stresses,
                                                                     views, col),
@@ -170,30 +180,26 @@ def make_images(out_dir: Path, book: FeaBook, plan: Plan, check_set: CheckSet, s
     for component, report in check_set.sweeps.items():
         # bearing.crack_compliance tests the race crack of the ring on the cam (wg-bearing), not this bonded-bore
         # sweep (a table only): its plot shows the quantity the check tests
-        make = (lambda t: _bearing_sweep(t, book, plan.wg_bearing.label, params)) \
+        make = (lambda t: _bearing_sweep(t, book, plan.label_of(WG_BEARING) or "", params)) \
             if component == "bearing" else (lambda t, r=report, c=component: _sweep(t, r, c))
         col.attempt(f"{component} crack sweep", component, "crack-sweep", make, f"{component}_crack_sweep.png")
     return Artifacts(col.images, col.missing, stresses, views)
 
 
-# quantity name per check whose convergence history is plotted
-CONVERGENCE_OF = {"shaft.flexibility": ("shaft", SHAFT_FLEX), "cup.flexibility": ("cup", CUP_FLEX),
-                  "ring.delta_cd": ("ring", "delta_cd_mm"), "ring.delta_ab": ("ring", "delta_ab_mm"),
-                  "ring.delta_cd_solid": ("ring", "delta_cd_3d_mm"),
-                  "ring.sigma_max": ("ring", "sigma_D_outer_MPa"), "ring.sigma_min": ("ring", "sigma_B_outer_MPa"),
-                  "ring.tooth_influence": ("ring", "tooth_influence"),
-                  "ring.stress_concentration": ("ring", "stress_concentration")}
-
-
 def _case_of(check, plan: Plan) -> str | None:
-    spec = CONVERGENCE_OF.get(check.id)
-    if spec is None or check.fea is None:
+    """The case whose convergence history the check's plot draws (``CheckSpec.plot``), if it has one."""
+    from strainwave.compare.validate.check_list import CHECKS
+    spec = next((s for s in CHECKS if s.id == check.id), None)
+    if spec is None or spec.plot is None or check.fea is None:
         return None
-    return plan.ring.label if spec[0] == "ring" else plan.headline[spec[0]].label
+    from strainwave.registry import STUDIES
+    component = STUDIES[spec.plot[0]].component
+    return plan.headline[component].label if component in plan.headline else plan.label_of(spec.plot[0])
 
 
 def _convergence(target: Path, check, book: FeaBook, label: str) -> str:
-    q, why = book.quantity(label, CONVERGENCE_OF[check.id][1])
+    from strainwave.compare.validate.check_list import check_spec
+    q, why = book.quantity(label, check_spec(check.id).plot[1])
     if q is None or q.convergence is None:
         raise ValueError(why or f"{check.id}: the study gave no three-mesh convergence data")
     c = q.convergence
@@ -246,7 +252,8 @@ def _bearing_sweep(target: Path, book: FeaBook, label: str, params) -> str:
 def _ring_shape(target: Path, book: FeaBook, plan: Plan, check_set: CheckSet, summary: dict) -> str:
     from strainwave.compare.validate.images import sample_circle
 
-    vtu = _require(_vtu(book, plan.ring.label, "_smooth"))
+    from strainwave.compare.validate.check_list import RING
+    vtu = _require(_vtu(book, plan.label_of(RING) or "", "_smooth"))
     checks = check_set.by_id()
     cd, ab = checks["ring.delta_cd"], checks["ring.delta_ab"]
     if cd.fea is None or ab.fea is None or "published" not in cd.analytic:

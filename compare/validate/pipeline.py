@@ -35,7 +35,7 @@ from strainwave.compare.validate.report_md import write_markdown
 from strainwave.compare.validate.results import now_utc, plain, versions, write_results
 from strainwave.compare.validate.case_progress import CaseProgress
 from strainwave.compare.validate.runner import CaseOutcome, run_case
-from strainwave.compare.validate.wg_cup_checks import fatigue_factor, wg_record
+from strainwave.compare.validate.wg_cup_checks import STUDY as WG_CUP_STUDY, fatigue_factor, wg_record
 
 ORDER = 2   # quadratic elements, the fea/ default (curved P2)
 
@@ -193,17 +193,24 @@ def _run_cases(cases, params, *, fields_dir: Path, cache, quick: bool, progress)
     return outcomes
 
 
-# the part each component's study meshes, whose preview opens the component's inputs section
-PREVIEW_OF = {"output-shaft": "shaft", "flexspline-cup": "cup", "wg-bearing-ring": "bearing",
-              "ewg-flexspline-ring": "ring"}
+def _preview_of() -> dict[str, str]:
+    """The part each reported study meshes -> the component whose inputs section its preview opens."""
+    from strainwave.registry import STUDIES
+    out = {}
+    for s in STUDIES.values():
+        component = s.facts().report_component
+        if component:
+            out.setdefault(s.part, component)
+    return out
 
 
 def _previews(steps, out_dir: Path) -> list:
     from strainwave.compare.validate.artifacts import Image
 
+    preview_of = _preview_of()
     return [Image(Path(_relative(s.preview, out_dir)), f"{s.part}: the part as designed (uncracked), contact/load "
-                  "faces in blue; right: close-up", PREVIEW_OF[s.part], "preview")
-            for s in steps if s.preview is not None and s.part in PREVIEW_OF and Path(s.preview).exists()]
+                  "faces in blue; right: close-up", preview_of[s.part], "preview")
+            for s in steps if s.preview is not None and s.part in preview_of and Path(s.preview).exists()]
 
 
 def _inputs(plan, book: FeaBook, params) -> dict:
@@ -212,7 +219,7 @@ def _inputs(plan, book: FeaBook, params) -> dict:
     from strainwave.compare.validate.inputs import component_inputs
 
     out = {}
-    for component, case in list(plan.headline.items()) + [("ring", plan.ring)]:
+    for component, case in plan.reported():
         outcome = book.outcomes.get(case.label)
         if outcome is None or outcome.result is None:
             continue
@@ -289,9 +296,9 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
     progress(f"[2/{total}] step done: {sum(len(s.files) for s in steps)} STEP file(s), {timings['step']:.1f} s "
              f"wall (waited {timings['step_wait_after_images']:.1f} s after the images)")
     images, missing, stresses = _previews(steps, out_dir) + made.images, made.missing, made.stresses
-    wg_cup = wg_record(book, plan.drive_label("cup-wave-generator") or "", params)
-    factors = stress_factors(stresses, COMPONENT_TITLES, tuple(plan.headline) + ("ring",))
-    if plan.drive_label("cup-wave-generator"):
+    wg_cup = wg_record(book, plan.label_of(WG_CUP_STUDY) or "", params)
+    factors = stress_factors(stresses, COMPONENT_TITLES, tuple(c for c, _ in plan.reported()))
+    if plan.label_of(WG_CUP_STUDY):
         factors.append(fatigue_factor(wg_cup))
     design = design_verdict(params, factors)
     with _stage("reports", timings, progress, 6, total):

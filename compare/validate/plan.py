@@ -9,7 +9,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import math
 
 import numpy as np
 
@@ -18,54 +17,43 @@ from strainwave.compare.validate.runner import Case
 
 # component -> its study, from the registry (the crack-bearing studies)
 COMPONENT_STUDY = {s.component: s.name for s in STUDIES.values() if s.component}
-RING_STUDY = "ring-compression"
-WG_BEARING_STUDY = "wg-bearing"      # the inner ring on the elliptical cam: one 2D case, its own crack sweep
-# studies of the drive as it works (issue 34): one uncracked case each, label = study name
-DRIVE_STUDIES = ("cup-wave-generator",)
 
 
 @dataclass(frozen=True)
 class Plan:
     headline: dict[str, Case]                      # component -> case at the default crack depth
     sweeps: dict[str, tuple[Case, ...]]            # component -> deeper cracks
-    ring: Case
-    wg_bearing: Case = Case("wg-bearing", WG_BEARING_STUDY, None)
-    drive: tuple[Case, ...] = ()
+    singles: tuple[Case, ...] = ()                 # one uncracked case per study without a crack, registry order
 
     def all_cases(self) -> tuple[Case, ...]:
         cases = list(self.headline.values())
         for sweep in self.sweeps.values():
             cases += list(sweep)
-        return tuple(cases) + (self.ring, self.wg_bearing) + self.drive
+        return tuple(cases) + self.singles
 
-    def drive_label(self, study: str) -> str | None:
-        return next((c.label for c in self.drive if c.study == study), None)
+    def case_of(self, study: str) -> Case | None:
+        """The one case of a study without a crack (None: not in this plan)."""
+        return next((c for c in self.singles if c.study == study), None)
+
+    def label_of(self, study: str) -> str | None:
+        case = self.case_of(study)
+        return None if case is None else case.label
+
+    def reported(self) -> list[tuple[str, Case]]:
+        """(component, case) of the report's inputs and stress sections: each crack component's headline
+        case, then each single study its variant shows under a component (``StudyFacts.report_component``)."""
+        singles = [(STUDIES[c.study].facts().report_component, c) for c in self.singles]
+        return list(self.headline.items()) + [(name, c) for name, c in singles if name]
 
 
-def walls_mm(params) -> dict[str, float]:
-    """The wall each component's crack cuts (the same walls params.py bounds the depth by)."""
-    return {"shaft": params.output_shaft.wall_mm, "cup": params.flexspline_cup.wall_thickness_mm,
-            "bearing": params.wave_generator.bearing_inner_ring_thickness_mm}
-
-
-def bearing_depth_limit_mm(params) -> float:
-    """Deepest bearing crack whose surface half-length c still fits the contact patch.
-
-    geometry/bearing_ring.py refuses c >= 0.5 sqrt(pi) a' (the patch half-length across the race), with
-    c from Q = 1 + 1.464 (a/c)^1.65 (seed 000); c/a is fixed by Q, so the depth is bounded.
-    """
-    from strainwave.geometry.cracks import half_length_from_q
-
-    patch_half_mm = 0.5 * math.sqrt(math.pi) * params.wave_generator.contact_semi_axes_mm[0]
-    c_per_a = half_length_from_q(1.0, params.cracks.surface_crack_shape_factor)
-    return patch_half_mm / c_per_a
+def single_cases() -> tuple[Case, ...]:
+    """One uncracked case per registry study without a crack component, labelled as its variant says."""
+    return tuple(Case(s.facts().validate_label or s.name, s.name, None) for s in STUDIES.values() if not s.component)
 
 
 def sweep_limits_mm(params) -> dict[str, float]:
-    """Deepest crack per component: half the wall, and for the bearing 90 % of the contact-patch limit."""
-    limits = {k: 0.5 * w for k, w in walls_mm(params).items()}
-    limits["bearing"] = min(limits["bearing"], 0.9 * bearing_depth_limit_mm(params))
-    return limits
+    """Deepest crack per component, as its study's variant states (``StudyFacts.deepest_crack_mm``)."""
+    return {c: STUDIES[s].facts().deepest_crack_mm(params) for c, s in COMPONENT_STUDY.items()}
 
 
 def sweep_depths_mm(deepest_mm: float, points: int) -> tuple[float, ...]:
@@ -86,9 +74,8 @@ def sweep_mesh_size_mm(params, component: str) -> float | None:
     or the shaft's axisymmetric section with its own sizes) and so hardly depends on the far-field
     size; the headline case keeps the fine global mesh for the flexibility checks
     (docs/decisions/022-validate-run-budget.md)."""
-    from strainwave.fea import cup_torsion, shaft_torsion
-    sizes = {"shaft": shaft_torsion.default_size_mm, "cup": cup_torsion.default_size_mm}
-    return sizes[component](params, True) if component in sizes else None
+    facts = STUDIES[COMPONENT_STUDY[component]].facts()
+    return facts.default_size_mm(params, True) if facts.sweep_at_quick_size else None
 
 
 def make_plan(params, *, quick: bool) -> Plan:
@@ -116,8 +103,7 @@ def make_plan(params, *, quick: bool) -> Plan:
             # only the deepest sweep case's field is drawn (the crack-tip close-up): the others write none
             sweeps[c] = tuple(Case(f"{c}-a{d:g}", COMPONENT_STUDY[c], d, sweep_h, fields=d == deeper[-1])
                               for d in deeper)
-    plan = Plan(headline, sweeps, Case("ring", RING_STUDY, None),
-                drive=tuple(Case(s, s, None) for s in DRIVE_STUDIES))
+    plan = Plan(headline, sweeps, single_cases())
     for case in plan.all_cases():   # every crack checked against its own wall before any mesh is built
         with_crack(case.study, params, case.crack_depth_mm)
     return plan

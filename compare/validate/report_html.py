@@ -195,7 +195,7 @@ def render_html(doc: dict, views: dict[str, str] | None = None, root: Path | Non
     failing = [c for c in doc["checks"] if not c["passed"]]
     toc += [("failing", "Failing checks")] if failing else []
     toc += [("rated", "Stress at the rated load")] if doc.get("stress_at_rated") else []
-    toc += list(rt.COMPONENTS) + [("gci", "Discretization error (GCI table)"), ("audit", "Seed audit")]
+    toc += list(rt.components()) + [("gci", "Discretization error (GCI table)"), ("audit", "Seed audit")]
     toc += [("nafems", "Appendix: NAFEMS benchmarks")] if doc.get("nafems") else []
     toc += [("catalogue", "Catalogue drives (Harmonic Drive CHA K3)")] if doc.get("catalogue") else []
     toc += [("cases", "FEA cases and timings"), ("files", "Files"), ("versions", "Versions")]
@@ -219,7 +219,7 @@ def render_html(doc: dict, views: dict[str, str] | None = None, root: Path | Non
     if wg_rows:
         parts.append('<h2 id="wave-generator">Flexspline on the wave generator (stress and fatigue safety)</h2>')
         parts.append(_table(("item", "value"), wg_rows))
-    for component, title in rt.COMPONENTS:
+    for component, title in rt.components():
         parts += _component_section(doc, component, title, root, views, ramp)
     parts += _appendix(doc)
     if views:

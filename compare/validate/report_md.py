@@ -48,7 +48,7 @@ def render_markdown(doc: dict) -> str:
     if wg_rows:
         lines += ["## Flexspline on the wave generator (stress and fatigue safety)", ""]
         lines += _table(("item", "value"), wg_rows) + [""]
-    for component, title in rt.COMPONENTS:
+    for component, title in rt.components():
         checks = [c for c in doc["checks"] if c["component"] == component]
         lines += [f"## {title}", ""]
         inputs = doc.get("inputs", {}).get(component)

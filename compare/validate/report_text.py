@@ -7,9 +7,12 @@ from __future__ import annotations
 
 from strainwave.compare.validate.gci_table import GCI_COLUMNS, gci_cells  # noqa: F401 - the GCI table's layout, for both writers
 
-COMPONENTS = (("shaft", "Output shaft (seed 000)"), ("cup", "Flexspline cup (seed 000)"),
-              ("bearing", "Wave-generator bearing inner ring (seed 000)"),
-              ("ring", "EWG flexspline ring (seed 003)"), ("gear", "Drive stiffness (seed 000)"))
+
+
+def components() -> tuple[tuple[str, str], ...]:
+    """(component, title) of the report's sections, from the check list (``check_list.sections``)."""
+    from strainwave.compare.validate.check_list import sections
+    return sections()
 
 CHECK_COLUMNS = ("check", "quantity", "FEA +/- U", "published (err)", "corrected (err)", "tolerance", "verdict",
                  "result")

@@ -50,7 +50,11 @@ def plain(value):
 
 
 def load_schema() -> dict:
-    return json.loads(SCHEMA_PATH.read_text(encoding="utf-8"))
+    """The results schema; a check's component is one of the check list's (``check_list.CHECKS``)."""
+    from strainwave.compare.validate.check_list import current
+    schema = json.loads(SCHEMA_PATH.read_text(encoding="utf-8"))
+    schema["$defs"]["check"]["properties"]["component"]["enum"] = sorted({s.component for s in current()})
+    return schema
 
 
 def validate_results(document: dict) -> None:

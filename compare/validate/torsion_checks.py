@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 
 from strainwave.analytic import cracks, tube_crack
+from strainwave.analytic.reference import Reference
 from strainwave.analytic.variant import Variant
 from strainwave.registry import FLEX_UNIT, study_of_component
 from strainwave.compare.validate.checks import Check, evaluate, fea_tolerance, not_evaluated
@@ -48,13 +49,22 @@ def _from_quantity(check_id: str, quantity: str, unit: str, book: FeaBook, label
                           note=note, sources=sources))
 
 
+def shaft_flexibility_reference(params, s000: dict | None = None) -> Reference:
+    """published L/(0.1 mu d^4); corrected 32 L/(pi G (d^4 - d_i^4)), G = E/2(1+nu); corrected_mu with the seed's mu."""
+    if s000 is None:
+        from strainwave.analytic.seed000 import seed000_summary
+        s000 = seed000_summary(params)
+    lso = s000["lambda_so0"]
+    return Reference(lso["published"], lso["corrected_E_nu"], FLEX_UNIT, "seed 000 lambda_so0 (corrected: G = E/2(1+nu))",
+                     (("corrected_mu", lso["corrected"]),))
+
+
 def shaft_flexibility(book: FeaBook, label: str, s000: dict, params) -> Check:
     """The FEA against the closed form of the SAME problem, 32 L/(pi G (d^4 - d_i^4)) with G = E/2(1+nu), within
     3 x GCI and no allowance (issue 37); the seed's mu (audit 18) is a material gap reported apart, not absorbed."""
     reason, gap = mu_gap(params)
     lso = s000.get("lambda_so0", {})
-    analytic = {k: v for k, v in (("published", lso.get("published")), ("corrected", lso.get("corrected_E_nu")),
-                                  ("corrected_mu", lso.get("corrected"))) if isinstance(v, (int, float))}
+    analytic = shaft_flexibility_reference(params, s000).variants()
     note = (f"published = L/(0.1 mu d^4), the bore ignored; asserted (corrected) = 32 L/(pi G (d^4 - d_i^4)) with "
             f"G = E/2(1+nu), the problem the FEA solves; material gap apart: {reason}, "
             f"{100 * gap:.2f} %: 32 L/(pi mu (d^4 - d_i^4)) = {lso.get('corrected', float('nan')):.5g} {FLEX_UNIT}")
@@ -83,6 +93,17 @@ def cup_calibration(cups=None) -> tuple[float, float]:
 CUP_JUNCTION_CORRECTION, CUP_JUNCTION_SCATTER = cup_calibration()
 
 
+def cup_flexibility_reference(params, s000: dict | None = None) -> Reference:
+    """corrected: the series shell model x (1 + the junction calibration); published: seed 000's lambda_f0."""
+    from strainwave.analytic.seed000 import cup_series_model, seed000_summary
+
+    lf = (seed000_summary(params) if s000 is None else s000)["lambda_f0_variants"]
+    series = cup_series_model(params, params.material.implied_shear_modulus_MPa)
+    return Reference(lf["published"], series.total * (1.0 + CUP_JUNCTION_CORRECTION), FLEX_UNIT,
+                     "published: seed 000 lambda_f0 (k_f, k_G); corrected: strainwave series shell model",
+                     (("series_model", series.total),))
+
+
 def cup_flexibility(book: FeaBook, label: str, s000: dict, params) -> Check:
     """Cup flexibility: published = seed 000's lambda_f0 (0.1, k_f k_G), corrected = the series shell model.
 
@@ -94,9 +115,7 @@ def cup_flexibility(book: FeaBook, label: str, s000: dict, params) -> Check:
 
     lf = s000.get("lambda_f0_variants", {})
     series = cup_series_model(params, params.material.implied_shear_modulus_MPa)
-    analytic = {"corrected": series.total * (1.0 + CUP_JUNCTION_CORRECTION), "series_model": series.total}
-    if isinstance(lf.get("published"), (int, float)):
-        analytic["published"] = float(lf["published"])
+    analytic = cup_flexibility_reference(params, s000).variants()
     note = (f"published = seed 000's lambda_f0 = k_f k_G c_L/(0.1 mu [1-(1-2c_delta)^4] d1^3) with "
             f"k_f = {s000.get('k_f')}, k_G = {s000.get('k_G')}; corrected = strainwave's series shell model "
             f"(tube + diaphragm + hub, G = E/2(1+nu)): tube {series.tube:.4g} + diaphragm {series.diaphragm:.4g} "
@@ -116,16 +135,17 @@ def cup_flexibility(book: FeaBook, label: str, s000: dict, params) -> Check:
 
 # ---- crack compliances: evaluated at the shallowest resolved depth of the sweep ----
 
-def shaft_crack_curve(params, depth_mm: float) -> dict[str, float]:
+def shaft_crack_curve(params, depth_mm: float) -> Reference:
     """published: seed 000's 512 M_M^2 a^3/(3 mu d_e^6); corrected: the thick-tube form (analytic.tube_crack,
     G = E/2(1+nu) as the FEA); beside them the hollow-tube strip form and the solid-bar a^2 form (mu)."""
     sh, mat = params.output_shaft, params.material
     d_s, mu, G = sh.outer_diameter_mm, mat.shear_modulus_MPa, mat.implied_shear_modulus_MPa
     r_o, r_i = 0.5 * d_s, 0.5 * sh.inner_diameter_mm
-    return {"published": cracks.shaft_crack_flexibility(d_s, depth_mm, mu, Variant.PUBLISHED),
-            "corrected": tube_crack.thick_tube_flexibility(r_o, r_i, depth_mm, G),
-            "hollow_tube_strip": tube_crack.hollow_tube_strip_flexibility(r_o, r_i, depth_mm, G),
-            "solid_bar_a2": cracks.shaft_crack_flexibility(d_s, depth_mm, mu, Variant.CORRECTED)}
+    return Reference(cracks.shaft_crack_flexibility(d_s, depth_mm, mu, Variant.PUBLISHED),
+                     tube_crack.thick_tube_flexibility(r_o, r_i, depth_mm, G), FLEX_UNIT,
+                     "published: seed 000 (solid-bar K_III); corrected: thick-tube form (analytic/tube_crack.py)",
+                     (("hollow_tube_strip", tube_crack.hollow_tube_strip_flexibility(r_o, r_i, depth_mm, G)),
+                      ("solid_bar_a2", cracks.shaft_crack_flexibility(d_s, depth_mm, mu, Variant.CORRECTED))))
 
 
 def shaft_form_note(params, depth_mm: float) -> str:
@@ -142,7 +162,7 @@ def shaft_form_note(params, depth_mm: float) -> str:
     return text + (f"; {outside}" if outside else "; inside the form's confirmed range")
 
 
-def cup_crack_curve(params, depth_mm: float) -> dict[str, float]:
+def cup_crack_curve(params, depth_mm: float) -> Reference:
     """The seed's flexspline crack as the FEA solves it: through the wall, half-length a, 45 deg, in the fully
     loaded tube (mid-surface radius r_m = d1/2 - delta/2). corrected (asserted): both tips of the through crack,
     a^2/(2 pi E r_m^4 delta); published: seed 000's K_u K_d a^2/(2 pi E r_m^4 delta); audit_one_tip: the
@@ -150,9 +170,11 @@ def cup_crack_curve(params, depth_mm: float) -> dict[str, float]:
     static and uniform (the seed's 1.2 x 1.1 are load factors, audit 17)."""
     cup, E = params.flexspline_cup, params.material.youngs_modulus_MPa
     r_m, wall = 0.5 * (cup.pitch_diameter_mm - cup.wall_thickness_mm), cup.wall_thickness_mm
-    return {"published": cracks.flexspline_crack_flexibility(r_m, wall, 1.0, 1.0, depth_mm, E, Variant.PUBLISHED),
-            "corrected": cracks.flexspline_through_crack_flexibility(r_m, wall, depth_mm, E, tips=2),
-            "audit_one_tip": cracks.flexspline_crack_flexibility(r_m, wall, 1.0, 1.0, depth_mm, E, Variant.CORRECTED)}
+    return Reference(cracks.flexspline_crack_flexibility(r_m, wall, 1.0, 1.0, depth_mm, E, Variant.PUBLISHED),
+                     cracks.flexspline_through_crack_flexibility(r_m, wall, depth_mm, E, tips=2), FLEX_UNIT,
+                     "published: seed 000 at K_u = K_d = 1; corrected: both tips of the through crack",
+                     (("audit_one_tip",
+                       cracks.flexspline_crack_flexibility(r_m, wall, 1.0, 1.0, depth_mm, E, Variant.CORRECTED)),))
 
 
 def cup_crack_allowances(params, depth_mm: float) -> dict[str, float]:
@@ -166,13 +188,13 @@ def cup_crack_allowances(params, depth_mm: float) -> dict[str, float]:
             f"shell curvature lambda^2 = a^2/(r_m delta) = {lam2:.2g}": lam2}
 
 
-def bearing_crack_curve(params, depth_mm: float, radial_force_N: float) -> dict[str, float]:
+def bearing_crack_curve(params, depth_mm: float, radial_force_N: float) -> Reference:
     """delta u_H / F_r in mm/N: the added radial compliance of the cracked ring (seed 000)."""
     wg, cr, E = params.wave_generator, params.cracks, params.material.youngs_modulus_MPa
-    return {v.value: cracks.bearing_displacement_mm(radial_force_N, wg.bearing_inner_ring_thickness_mm, wg.beta,
-                                                    wg.contact_semi_axes_mm, depth_mm, E,
-                                                    cr.surface_crack_shape_factor, v) / radial_force_N
-            for v in Variant}
+    du = {v: cracks.bearing_displacement_mm(radial_force_N, wg.bearing_inner_ring_thickness_mm, wg.beta,
+                                            wg.contact_semi_axes_mm, depth_mm, E, cr.surface_crack_shape_factor, v)
+          / radial_force_N for v in Variant}
+    return Reference(du[Variant.PUBLISHED], du[Variant.CORRECTED], "mm/N", "seed 000 du_H / F_r")
 
 
 def crack_check(check_id: str, quantity: str, unit: str, sweep: Sweep | None, curve, allowances: dict,

@@ -16,6 +16,7 @@ import math
 import numpy as np
 
 from strainwave.analytic import wg_bearing as wgb
+from strainwave.analytic.reference import Reference
 from strainwave.analytic.study_loads import wg_bearing_load
 from strainwave.compare.validate.checks import Check, evaluate, fea_tolerance, not_evaluated
 from strainwave.compare.validate.fea_book import FeaBook, Sweep
@@ -30,13 +31,20 @@ def _ring(params):
     return setup_from(params, **wg_bearing_load(params))
 
 
-def race_stress_check(book: FeaBook, label: str, params, axis: str) -> Check:
+def race_stress_reference(params, axis: str, s=None) -> Reference:
+    """corrected: curved beam with the membrane force; published: thin ring 3 E t w0/(2 r_m^2)."""
+    s = s or _ring(params)
     phi = 0.0 if axis == "major" else 0.5 * math.pi
+    E, t, r_m = s.E_MPa, s.thickness_mm, 0.5 * (s.r_bore_mm + s.r_race_mm)
+    return Reference(wgb.thin_ring_race_stress_MPa(E, t, r_m, s.w0_mm, phi),
+                     wgb.curved_beam_race_stress_MPa(E, s.r_bore_mm, s.r_race_mm, s.w0_mm, phi), "MPa",
+                     "analytic.wg_bearing: thin ring (published), curved beam + membrane force (corrected)")
+
+
+def race_stress_check(book: FeaBook, label: str, params, axis: str) -> Check:
     check_id, name = f"bearing.race_stress_{axis}", f"race_stress_{axis}_MPa"
     s = _ring(params)
-    E, t, r_m = s.E_MPa, s.thickness_mm, 0.5 * (s.r_bore_mm + s.r_race_mm)
-    analytic = {"corrected": wgb.curved_beam_race_stress_MPa(E, s.r_bore_mm, s.r_race_mm, s.w0_mm, phi),
-                "published": wgb.thin_ring_race_stress_MPa(E, t, r_m, s.w0_mm, phi)}
+    analytic = race_stress_reference(params, axis, s).variants()
     quantity = f"race hoop stress at the {axis} axis, inner ring forced into w0 cos 2phi by the cam"
     q, why = book.quantity(label, name)
     if q is None:
@@ -49,12 +57,19 @@ def race_stress_check(book: FeaBook, label: str, params, axis: str) -> Check:
                           sources={"fea": f"FEA {label}", "analytic": "analytic.wg_bearing"}))
 
 
+def ball_load_reference(params) -> Reference:
+    """corrected: Z Q_max / F_r, the exact Stribeck sum over the Z balls; published: Stribeck's 4.37."""
+    loads = wg_bearing_load(params)
+    _, q = wgb.stribeck_ball_loads(loads["force_N"], params.wave_generator.ball_count)
+    return Reference(4.37, params.wave_generator.ball_count * float(q.max()) / loads["force_N"], "1", "Stribeck")
+
+
 def ball_load_check(book: FeaBook, label: str, params) -> Check:
     check_id, unit = "bearing.ball_loads", "1"
     loads = wg_bearing_load(params)
     psi, q = wgb.stribeck_ball_loads(loads["force_N"], params.wave_generator.ball_count)
     Z, F = params.wave_generator.ball_count, loads["force_N"]
-    analytic = {"corrected": Z * float(q.max()) / F, "published": 4.37}
+    analytic = ball_load_reference(params).variants()
     quantity = f"Z Q_max / F_r, Z = {Z} balls (Hertz Q = K_n delta^1.5) between the FEA ring and a rigid outer race"
     fea, why = book.quantity(label, "ball_load_ratio")
     if fea is None:

@@ -17,6 +17,7 @@ import math
 
 from strainwave.analytic import ring, ring_prescribed
 from strainwave.analytic.cup_fatigue import cup_fatigue_of
+from strainwave.analytic.reference import Reference
 from strainwave.compare.validate.checks import Check, evaluate, fea_tolerance, not_evaluated
 from strainwave.compare.validate.fea_book import FeaBook
 
@@ -43,7 +44,7 @@ def allowances(params) -> dict[str, float]:
             f"{0.5 * band:g} mm": edge}
 
 
-def references(params, axis: str) -> dict[str, float]:
+def references(params, axis: str) -> Reference:
     t, r_m, _ = _geometry(params)
     m, w0 = params.material, params.gear.radial_deformation_mm
     phi = 0.0 if axis == "major" else 0.5 * math.pi / (params.gear.wave_number / 2.0)
@@ -51,14 +52,15 @@ def references(params, axis: str) -> dict[str, float]:
                                                                wave_number=params.gear.wave_number))
     # seed 003: outer fibre at the free point B (major axis, eq 9) and under the load D (minor axis, eq 8)
     seed = ring.sigma_min_MPa if axis == "major" else ring.sigma_max_MPa
-    return {"published": seed(w0, m.youngs_modulus_MPa, t, 2.0 * r_m), "corrected": corrected}
+    return Reference(seed(w0, m.youngs_modulus_MPa, t, 2.0 * r_m), corrected, "MPa",
+                     "published: seed 003 eqs 8/9; corrected: ring forced into w0 cos 2 phi (analytic/ring_prescribed.py)")
 
 
 def wg_checks(book: FeaBook, label: str, params) -> list[Check]:
     out = []
     for check_id, axis, name in CHECKS:
         quantity = f"hoop bending stress (outer - inner)/2 at the {axis} axis, band mid-width, on the wave generator"
-        analytic = references(params, axis)
+        analytic = references(params, axis).variants()
         q, why = book.quantity(label, name)
         if q is None:
             out.append(not_evaluated(check_id, quantity, "MPa", why, analytic=analytic))
@@ -89,7 +91,7 @@ def wg_record(book: FeaBook, label: str, params) -> dict:
         record["fatigue"] = cup_fatigue_of(params, a.value, m.value).to_dict() | {
             "where": "band outer fibre (tooth root circle, smooth band) at mid-width, rigid cam, nonlinear, rated T",
             "notch": "K_sigma = ewg_drive.stress_concentration on the amplitude (the tooth root's notch)"}
-    record["closed_form_axis_stresses_MPa"] = {axis: references(params, axis) for axis in ("major", "minor")}
+    record["closed_form_axis_stresses_MPa"] = {axis: references(params, axis).variants() for axis in ("major", "minor")}
     return record
 
 
