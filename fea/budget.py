@@ -28,7 +28,10 @@ ELEMENTS_PER_CELL = {"shaft-torsion": 4.7, "cup-torsion": 13.3, "bearing-ring": 
                      "wg-bearing": 12.0,
                      # cup-wave-generator: quarter wall of 27-node hexahedra, one through the wall, h/2 along the
                      # band: quick n = 14: 294 elements vs 239 cells (1.23)
-                     "cup-wave-generator": 1.23}
+                     "cup-wave-generator": 1.23,
+                     # cup-surface-crack: quarter block graded to the front (a/12): quick a = 0.2 t, h = t/3:
+                     # 11,805 tets vs 129 cells (92)
+                     "cup-surface-crack": 100.0}
 PLANE_STUDIES = ("ring-compression", "wg-bearing")     # meshed as a plane section: cells of min(h, t) * h
 
 
@@ -79,6 +82,8 @@ def _default_h_mm(study: str, params, quick: bool) -> float:
         from strainwave.fea.wg_bearing import default_size_mm
     elif study == "cup-wave-generator":
         from strainwave.fea.cup_wave_generator import default_size_mm
+    elif study == "cup-surface-crack":
+        from strainwave.fea.surface_crack import default_size_mm
     else:
         from strainwave.fea.ring_compression import mesh_sizes_mm, ring_geometry
         return mesh_sizes_mm(ring_geometry(params), None, quick)[0]
@@ -98,6 +103,9 @@ def _volume_and_wall(study: str, params) -> tuple[float, float]:
         from strainwave.fea.wg_band import tube_geometry
         g = tube_geometry(params)     # the quarter wall the study meshes
         return 0.5 * math.pi * g.r_m_mm * g.wall_mm * (g.length_mm - g.z_end_mm), g.wall_mm
+    if study == "cup-surface-crack":     # the deepest crack's quarter block (fea/surface_crack.py)
+        from strainwave.fea.surface_crack import deepest_block_volume_mm3
+        return deepest_block_volume_mm3(params), params.flexspline_cup.wall_thickness_mm
     if study in ("bearing-ring", "wg-bearing"):     # wg-bearing: the plane section, per mm of width
         wg, c = params.wave_generator, params.flexspline_cup
         t = wg.bearing_inner_ring_thickness_mm

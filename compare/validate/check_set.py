@@ -17,6 +17,7 @@ from strainwave.compare.validate.torsion_checks import (FLEX_UNIT, bearing_crack
                              cup_crack_allowances, cup_crack_curve, cup_flexibility, mu_gap,
                              shaft_crack_curve, shaft_flexibility, shaft_form_note)
 from strainwave.compare.validate.wg_cup_checks import wg_checks
+from strainwave.compare.validate.surface_crack_checks import surface_crack_checks
 
 # component -> the quantity that is its crack's added compliance (registry)
 DELTA_NAMES = {c: STUDIES[s].crack_delta.name for c, s in COMPONENT_STUDY.items()}
@@ -142,6 +143,7 @@ def build_checks(book: FeaBook, plan: Plan, summary: dict, params) -> CheckSet:
     wg_label = plan.drive_label("cup-wave-generator")
     if wg_label is not None:
         checks += wg_checks(book, wg_label, params)
+    checks += surface_crack_checks(book, plan.drive_label("cup-surface-crack"), params)
     present = {c.id for c in checks}
     checks += [not_evaluated(cid, cid, "", "no builder produced this check") for cid in REQUIRED_IDS
                if cid not in present]

@@ -24,6 +24,8 @@ ELEMENT = {
                         "P2 tetrahedra",
     "wg-bearing": "P2 triangles on a graded polar grid, 2D plane stress, thickness = ring width B; race crack as two "
                   "coincident faces with frictionless contact",
+    "cup-surface-crack": "P2 tetrahedra graded to the crack front, quarter block of the band wall; the crack face in "
+                         "frictionless contact with its mirror (symmetry plane)",
 }
 
 

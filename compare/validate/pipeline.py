@@ -36,6 +36,7 @@ from strainwave.compare.validate.results import now_utc, plain, versions, write_
 from strainwave.compare.validate.case_progress import CaseProgress
 from strainwave.compare.validate.runner import CaseOutcome, run_case
 from strainwave.compare.validate.wg_cup_checks import fatigue_factor, wg_record
+from strainwave.compare.validate.surface_crack_checks import surface_crack_record
 
 ORDER = 2   # quadratic elements, the fea/ default (curved P2)
 
@@ -322,6 +323,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
             "inputs": _inputs(plan, book, params),
             "stress_at_rated": {c: s.to_dict() for c, s in stresses.items()},
             "cup_wave_generator": wg_cup,
+            "cup_surface_crack": surface_crack_record(book, plan.drive_label("cup-surface-crack"), params),
             "views": {c: v.to_dict() for c, v in made.views.items()},
             "gci_table": [r.to_dict() for r in gci_rows(book, ORDER)],
             "nafems": nafems,

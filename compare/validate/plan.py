@@ -21,7 +21,7 @@ COMPONENT_STUDY = {s.component: s.name for s in STUDIES.values() if s.component}
 RING_STUDY = "ring-compression"
 WG_BEARING_STUDY = "wg-bearing"      # the inner ring on the elliptical cam: one 2D case, its own crack sweep
 # studies of the drive as it works (issue 34): one uncracked case each, label = study name
-DRIVE_STUDIES = ("cup-wave-generator",)
+DRIVE_STUDIES = ("cup-wave-generator", "cup-surface-crack")
 
 
 @dataclass(frozen=True)
