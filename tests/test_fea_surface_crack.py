@@ -1,0 +1,86 @@
+"""Study cup-surface-crack on a coarse mesh (the converged one runs in make validate): the open crack against
+Newman-Raju, the shut crack adds nothing, and the checks fail on a perturbed closed form."""
+from __future__ import annotations
+
+import math
+import warnings
+
+import pytest
+
+from strainwave.analytic import surface_crack as sc
+
+
+@pytest.fixture(scope="module")
+def params():
+    from strainwave.params import load_params
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return load_params()
+
+
+def _block(params, states=("major", "minor")):
+    from strainwave.fea.surface_crack import block_for
+    loads = sc.study_loads(params)
+    m, t = params.material, params.flexspline_cup.wall_thickness_mm
+    return block_for(t, 0.2 * t, sc.ASPECT, m.youngs_modulus_MPa, m.poisson_ratio, loads["per_torque_MPa_per_Nmm"],
+                     [s for s in loads["states"] if s[0] in states])
+
+
+def test_open_crack_matches_newman_raju_and_the_shut_crack_adds_nothing(params):
+    from strainwave.fea.surface_crack import solve_block
+    block = _block(params)
+    # coarse: global h = t/2, front a/3 (the study's finest is t/4 and a/12)
+    r = solve_block(block, 0.5 * block.t_mm, 0.125 * block.t_mm)
+    major, minor = r.states["major"], r.states["minor"]
+    ref = sc.delta_flexibility(block.a_mm, sc.ASPECT, block.t_mm, sc.tooth_root_loads(params, 0.0),
+                               block.E_MPa / (1 - block.nu ** 2), half_width_mm=block.half_width_mm)
+    assert major.shut_fraction == 0.0
+    assert major.delta_flexibility == pytest.approx(ref, rel=0.2)
+    assert minor.shut_fraction > 0.5 and abs(minor.delta_flexibility) < 1e-6 * major.delta_flexibility
+
+
+def test_block_refuses_a_crack_outside_its_range(params):
+    from strainwave.errors import InputError
+    from strainwave.fea.surface_crack import block_for
+    with pytest.raises(InputError, match="a/c"):
+        block_for(2.0, 0.5, 1.5, 2e5, 0.3, 1e-5, ())
+    with pytest.raises(InputError, match="depth"):
+        block_for(2.0, 1.7, 0.5, 2e5, 0.3, 1e-5, ())
+
+
+def _book(values: dict):
+    from strainwave.compare.validate.fea_book import FeaBook
+    from strainwave.compare.validate.runner import Case, CaseOutcome
+    from strainwave.fea.convergence import Convergence
+    from strainwave.fea.result import Load, MeshQuality, Quantity, StudyResult, Support
+    q = {n: Quantity(n, v, "rad/(N*mm)", Convergence((1.0, 1.4, 1.96), (v, v * 0.99, v * 0.98), 1.0, v, 0.02, True))
+         for n, v in values.items()}
+    res = StudyResult("cup-surface-crack", q, MeshQuality(1, 1, 3, 2, 1.0, 1.0), Load("T", 1.0, "N*mm", ("far",), "x"),
+                      (Support(("sym_x",), "symmetry"),), meta={"cracks": {}})
+    return FeaBook({"cup-surface-crack": CaseOutcome(Case("cup-surface-crack", "cup-surface-crack"), res, 1.0, False)})
+
+
+def test_checks_pass_on_their_closed_forms_and_fail_on_perturbed_ones(params):
+    from strainwave.compare.validate import surface_crack_checks as scc
+    from strainwave.fea.surface_crack import delta_name
+    a = scc.headline_depth_mm(params)
+    values = {delta_name(s, a): scc.references(params, a, s)["corrected"] for s in ("major", "between")}
+    values[delta_name("minor", a)] = 1e-9 * values[delta_name("major", a)]
+    book = _book(values)
+    good = scc.surface_crack_checks(book, "cup-surface-crack", params)
+    assert [c.id for c in good] == [cid for cid, _ in scc.CHECKS] and all(c.passed for c in good)
+    # the seed's through-wall crack as the reference, or Newman-Raju 1.5 x, fails the open checks
+    seed = scc.surface_crack_checks(book, "cup-surface-crack", params,
+                                    reference=lambda p, d, s: {"corrected": scc.references(p, d, s)["published"]})
+    assert not seed[0].passed and not seed[1].passed
+
+    def scaled(p, d, s):
+        r = scc.references(p, d, s)
+        return {"corrected": 1.5 * r["corrected"]}
+    assert not any(c.passed for c in scc.surface_crack_checks(book, "cup-surface-crack", params, reference=scaled)[:2])
+    # a crack that stays half open at the minor axis fails the contact check
+    half = dict(values)
+    half[delta_name("minor", a)] = 0.5 * values[delta_name("major", a)]
+    assert not scc.surface_crack_checks(_book(half), "cup-surface-crack", params)[2].passed
+    missing = scc.surface_crack_checks(book, None, params)
+    assert all(c.verdict == "not evaluated" and not c.passed for c in missing)
