@@ -143,7 +143,8 @@ def build_checks(book: FeaBook, plan: Plan, summary: dict, params) -> CheckSet:
     wg_label = plan.drive_label("cup-wave-generator")
     if wg_label is not None:
         checks += wg_checks(book, wg_label, params)
-    checks += surface_crack_checks(book, plan.drive_label("cup-surface-crack"), params)
+    if plan.drive_label("cup-surface-crack") is not None:
+        checks += surface_crack_checks(book, plan.drive_label("cup-surface-crack"), params)
     present = {c.id for c in checks}
     checks += [not_evaluated(cid, cid, "", "no builder produced this check") for cid in REQUIRED_IDS
                if cid not in present]
