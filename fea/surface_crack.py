@@ -165,9 +165,10 @@ def contact_state(K, f, base, face_z, sk, start: np.ndarray) -> tuple[np.ndarray
     active = np.asarray(start, bool).copy()
     for it in range(1, MAX_ACTIVE_SET_ITERATIONS + 1):
         u = _solve(K, f, np.concatenate([base, face_z[active]]), sk)
-        tol = 1e-9 * float(np.abs(u).max())
+        # round-off bands: a point at zero gap and zero force stays as it is (no flip-flop between sweeps)
+        tol, tol_f = 1e-9 * float(np.abs(u).max()), 1e-9 * float(np.abs(f).max())
         force = (K @ u - f)[face_z]
-        new = (active & (force >= 0.0)) | (~active & (u[face_z] < -tol))
+        new = (active & (force >= -tol_f)) | (~active & (u[face_z] < -tol))
         if np.array_equal(new, active):
             return active, it
         active = new
