@@ -29,7 +29,7 @@ ELEMENTS_PER_CELL = {"shaft-torsion": 4.7, "cup-torsion": 13.3, "bearing-ring": 
                      # cup-wave-generator: quarter wall of 27-node hexahedra, one through the wall, h/2 along the
                      # band: quick n = 14: 294 elements vs 239 cells (1.23)
                      "cup-wave-generator": 1.23,
-                     # cup-surface-crack: quarter block graded to the front (a/12): quick a = 0.2 t, h = t/3:
+                     # cup-surface-crack: quarter block graded to the front (a/12): a = 0.2 t, h = t/3:
                      # 11,805 tets vs 129 cells (92)
                      "cup-surface-crack": 100.0}
 PLANE_STUDIES = ("ring-compression", "wg-bearing")     # meshed as a plane section: cells of min(h, t) * h
