@@ -84,3 +84,18 @@ def test_checks_pass_on_their_closed_forms_and_fail_on_perturbed_ones(params):
     assert not scc.surface_crack_checks(_book(half), "cup-surface-crack", params)[2].passed
     missing = scc.surface_crack_checks(book, None, params)
     assert all(c.verdict == "not evaluated" and not c.passed for c in missing)
+
+
+def test_record_gives_the_breathing_ripple_in_percent_of_K_HD(params):
+    from strainwave.analytic.seed000 import seed000_summary
+    from strainwave.compare.validate import surface_crack_checks as scc
+    from strainwave.fea.surface_crack import delta_name
+    a = scc.headline_depth_mm(params)
+    book = _book({delta_name("major", a): 4e-16, delta_name("minor", a): 0.0})
+    book.outcomes["cup-surface-crack"].result.meta["cracks"] = {f"{a:g}": {}}
+    row = scc.surface_crack_record(book, "cup-surface-crack", params)["depths"][0]
+    lam = 1.0 / seed000_summary(params)["K_HD"]["corrected"]
+    assert row["ripple_percent_of_K_HD"] == pytest.approx(100.0 * 4e-16 / lam, rel=1e-5)
+    assert row["ripple_percent_of_K_HD_per_mm"] == pytest.approx(row["ripple_percent_of_K_HD"] / a)
+    by_phi = dict((d, v) for d, v in row["newman_raju_by_phi"])
+    assert by_phi[0] > 0.0 and by_phi[90] == 0.0 and by_phi[45] == pytest.approx(by_phi[0])

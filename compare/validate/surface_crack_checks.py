@@ -53,10 +53,11 @@ def allowances(block: Block) -> dict[str, float]:
             f"c = {block.c_mm:.3g} mm": (block.c_mm / block.length_mm) ** 3}
 
 
-def references(params, depth_mm: float, state: str) -> dict[str, float]:
-    """Newman-Raju integrated (corrected) and the seed's through-wall crack (published) at one state."""
+def references(params, depth_mm: float, state: str | None, deg: float | None = None) -> dict[str, float]:
+    """Newman-Raju integrated (corrected) and the seed's through-wall crack (published) at one state (or at the
+    wave-generator angle ``deg`` when ``state`` is None)."""
     block = _block(params, depth_mm)
-    deg = dict(sc.STATES_DEG)[state]
+    deg = dict(sc.STATES_DEG)[state] if state is not None else deg
     loads = sc.tooth_root_loads(params, math.radians(deg))
     E_prime = block.E_MPa / (1.0 - block.nu ** 2)
     nr = sc.delta_flexibility(depth_mm, sc.ASPECT, block.t_mm, loads, E_prime, half_width_mm=block.half_width_mm)
@@ -125,6 +126,8 @@ def surface_crack_record(book: FeaBook, label: str | None, params) -> dict:
             row["states"][state] = {"phi_deg": deg, "fea": None if q is None else q.value,
                                     "gci": None if q is None else q.convergence.gci_fine,
                                     **references(params, a, state)}
+        # Newman-Raju's breathing over a quarter revolution of the wave generator (0: major axis)
+        row["newman_raju_by_phi"] = [[deg, references(params, a, None, deg)["corrected"]] for deg in range(0, 91, 5)]
         if fea["major"] is not None and fea["minor"] is not None:
             ripple = sc.ripple_percent(fea["major"].value, fea["minor"].value, lam_total)
             row["ripple_percent_of_K_HD"] = ripple
