@@ -82,11 +82,11 @@ def _front_points(s: Block, n: int = 24) -> tuple[tuple[float, float, float], ..
     return tuple((float(s.c_mm * math.cos(p)), float(s.a_mm * math.sin(p)), 0.0) for p in phi)
 
 
-def _build(model, s: Block, h_mm: float, h_fine_mm: float):
+def _build(model, s: Block, h_mm: float, h_fine_mm: float, mirrored: bool):
     from strainwave.fea.meshing import extract, generate
     occ = model.occ
     b, t, L = s.half_width_mm, s.t_mm, s.length_mm
-    box = occ.addBox(0.0, 0.0, 0.0, b, t, L)
+    box = occ.addBox(0.0, 0.0, -L if mirrored else 0.0, b, t, 2.0 * L if mirrored else L)
     disk = occ.addDisk(0.0, 0.0, 0.0, s.c_mm, s.a_mm)
     rect = occ.addRectangle(0.0, 0.0, 0.0, b, t)
     quarter, _ = occ.intersect([(2, disk)], [(2, rect)])
@@ -96,25 +96,27 @@ def _build(model, s: Block, h_mm: float, h_fine_mm: float):
     groups = {"crack": [], "ligament": [], "sym_x": [], "far": []}
     for _, tag in model.getEntities(2):
         x0, y0, z0, x1, y1, z1 = model.getBoundingBox(2, tag)
-        if z1 < tol:
+        if abs(z0) < tol and abs(z1) < tol:
             cx, cy, _ = occ.getCenterOfMass(2, tag)
             inside = (cx / s.c_mm) ** 2 + (cy / s.a_mm) ** 2 < 1.0
             groups["crack" if inside else "ligament"].append(tag)
         elif x1 < tol:
             groups["sym_x"].append(tag)
-        elif z0 > L - tol:
+        elif z0 > L - tol or z1 < -L + tol:
             groups["far"].append(tag)
     refine = [GRADING.refine(_front_points(s), h_mm, h_fine_mm, s.a_mm)]
     generate(model, 3, 2, size_mm=h_mm, refine=refine)
-    tags = {name: (2, v) for name, v in groups.items()}
+    tags = {name: (2, v) for name, v in groups.items() if v}
     tags["volume"] = (3, [v for _, v in model.getEntities(3)])
     return extract(model, 3, 2, tags, h_mm)
 
 
-def block_mesh(s: Block, h_mm: float, h_fine_mm: float):
-    """MeshData of the quarter block (P2 tets), groups crack / ligament / sym_x / far."""
+def block_mesh(s: Block, h_mm: float, h_fine_mm: float, *, mirrored: bool = False):
+    """MeshData of the quarter block (P2 tets), groups crack / ligament / sym_x / far. ``mirrored``: the half
+    block -L <= z <= L with the crack as an internal surface (a seam for ``crack_seam.open_crack``), the same
+    grading: the cross-check of the symmetry-plane model."""
     from strainwave.fea.session import mesh_in_child
-    return mesh_in_child(lambda model: _build(model, s, h_mm, h_fine_mm), what=f"{STUDY} block")
+    return mesh_in_child(lambda model: _build(model, s, h_mm, h_fine_mm, mirrored), what=f"{STUDY} block")
 
 
 @dataclass(frozen=True)

@@ -99,3 +99,43 @@ def test_record_gives_the_breathing_ripple_in_percent_of_K_HD(params):
     assert row["ripple_percent_of_K_HD_per_mm"] == pytest.approx(row["ripple_percent_of_K_HD"] / a)
     by_phi = dict((d, v) for d, v in row["newman_raju_by_phi"])
     assert by_phi[0] > 0.0 and by_phi[90] == 0.0 and by_phi[45] == pytest.approx(by_phi[0])
+
+
+def test_symmetry_plane_model_equals_the_seam_with_face_contact(params):
+    # the same block mirrored about the crack plane, the crack as a seam (crack_seam.open_crack) and the faces in
+    # contact by crack_contact: the quarter model's symmetry plane and active set are the same problem
+    import numpy as np
+    from strainwave.fea import surface_crack as fs
+    from strainwave.fea.assembly import Lame
+    from strainwave.fea.crack_contact import crack_pairs, solve_with_contact
+    from strainwave.fea.crack_seam import open_crack
+    from strainwave.fea.mesh_data import group_dofs
+    from strainwave.fea.static import assemble
+    from strainwave.fea.surface import SurfaceQuadrature
+    block = _block(params)
+    h, h_fine = 0.6, 0.15
+    quarter = fs.solve_block(block, h, h_fine)
+    seam = fs.block_mesh(block, h, h_fine, mirrored=True)
+
+    def system(md):
+        sk, K, _, _, _ = assemble(md, Lame.from_young(block.E_MPa, block.nu))
+        quad = SurfaceQuadrature.of(md, "far")
+
+        def f(membrane, bending):   # the far faces z = +-L pulled apart by sigma_n(y)
+            return quad.load_vector(lambda x: np.stack([0 * x[0], 0 * x[0], np.sign(x[2]) * (
+                membrane + bending * (1 - 2 * x[1] / block.t_mm))]), sk.node_to_dof, 3, K.shape[0])
+        near = [int(np.argmin(np.linalg.norm(sk.doflocs.T - q, axis=1))) for q in
+                ([0, block.t_mm, 0], [block.half_width_mm, 0, 0], [block.half_width_mm, block.t_mm, 0])]
+        fixed = np.unique(np.r_[3 * group_dofs(sk, md, "sym_x"), 3 * near[0] + 1, 3 * near[1] + 2, 3 * near[2] + 2])
+        return sk, K, f, lambda K_, f_, fx: fs._solve(K_, f_, fx, sk), fixed
+
+    _, K0, f0, solve0, fixed0 = system(seam)
+    opened = open_crack(seam)
+    sk1, K1, f1, solve1, fixed1 = system(opened)
+    unit0, unit1 = f0(1.0, 0.0), f1(1.0, 0.0)
+    delta = 2.0 * (unit1 @ solve1(K1, unit1, fixed1) - unit0 @ solve0(K0, unit0, fixed0)) * block.per_torque_MPa_per_Nmm ** 2
+    assert delta == pytest.approx(quarter.states["major"].delta_flexibility, rel=0.02)
+    pairs = crack_pairs(opened).in_dofs(sk1.node_to_dof)
+    for name, membrane, bending in block.states:
+        r = solve_with_contact(K1, f1(membrane, bending), fixed1, pairs, solve1)
+        assert r.active.mean() == pytest.approx(quarter.states[name].shut_fraction, abs=0.05)
