@@ -38,7 +38,7 @@ __all__ = ["STUDY", "Block", "block_for", "block_mesh", "solve_block", "converge
 
 STUDY = "cup-surface-crack"
 MAX_ACTIVE_SET_ITERATIONS = 30
-# front size a/12 on the finest mesh (observed order ~1 from a/4 to a/16 at a/t = 0.2), graded to h over 2a + h/2
+# front size a/12 on the finest mesh, graded to h over 2a + h/2 (docs/decisions/027-surface-crack-block.md)
 GRADING = CrackFrontGrading(tip_over_a=1.0 / 12.0, floor_over_h=0.02, near_over_a=0.25, zone_over_a=2.0,
                             grow_over_h=0.5)
 HALF_WIDTH_OVER_C = 4.0     # block half-width b = max(4 c, t): f_w of Newman-Raju <= 1.0007 at a/t <= 0.8
@@ -202,8 +202,8 @@ def solve_block(s: Block, h_mm: float, h_fine_mm: float) -> BlockSolution:
 
 
 def default_size_mm(params, quick: bool) -> float:
-    """Finest global size t/4, --quick too (it runs one depth): coarser, the front's error left the quick GCI
-    wide enough to pass the seed's through-wall crack as well, another verdict than the full run's."""
+    """Finest global size t/4, --quick too (it runs one depth on the full run's meshes, so it reaches the
+    full run's verdicts)."""
     return params.flexspline_cup.wall_thickness_mm / 4.0
 
 
