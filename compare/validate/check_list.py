@@ -13,7 +13,8 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 from strainwave.analytic.reference import Reference
-from strainwave.compare.validate import ring_checks, torsion_checks, wg_bearing_checks, wg_cup_checks
+from strainwave.compare.validate import (ring_checks, surface_crack_checks, torsion_checks, wg_bearing_checks,
+                                        wg_cup_checks)
 from strainwave.compare.validate.checks import Check
 from strainwave.compare.validate.crack_checks import cup_crack, shaft_crack, shaft_range_note
 
@@ -75,6 +76,7 @@ class CheckSpec:
     beside: tuple[tuple[str, str], ...] = ()       # (registry study, FEA quantity) the reference stands beside
     plot: tuple[str, str] | None = None            # (study, quantity) whose convergence history is drawn
     range_note: Callable[[object, float], str] | None = None   # per crack depth: why a form is used out of range
+    record: Callable[[CheckContext], dict] | None = None       # a table beside the check: results.json records[id]
 
     def __post_init__(self):
         if self.id.split(".", 1)[0] != self.component:
@@ -116,9 +118,18 @@ def _wg_cup(ctx):
     return [] if label is None else wg_cup_checks.wg_checks(ctx.book, label, ctx.params)
 
 
+def _surface_crack(ctx):
+    return surface_crack_checks.surface_crack_checks(ctx.book, ctx.label(surface_crack_checks.STUDY), ctx.params)
+
+
+def _surface_crack_record(ctx) -> dict:
+    return surface_crack_checks.surface_crack_record(ctx.book, ctx.label(surface_crack_checks.STUDY), ctx.params)
+
+
 SHAFT, CUP, BEARING, RING = "shaft-torsion", "cup-torsion", "bearing-ring", "ring-compression"
 GCI = "3 x GCI"
 ARC = f"{GCI} + the ring's arc-load and (delta/r_m)^2 allowances"
+NEWMAN_RAJU = f"{GCI} + Newman-Raju's K^2 (10 %) + the block's far face (c/L)^3"
 
 CHECKS: tuple[CheckSpec, ...] = (
     CheckSpec("shaft.flexibility", "shaft",
@@ -177,6 +188,12 @@ CHECKS: tuple[CheckSpec, ...] = (
     CheckSpec("cup.wg_bending_minor", "cup", _pick(_wg_cup, "cup.wg_bending_minor"),
               lambda params, at: wg_cup_checks.references(params, "minor"), f"{GCI} + curved beam + edge zones",
               ((wg_cup_checks.STUDY, "prescribed_linear_bending_minor_MPa"),)),
+    CheckSpec("cup.surface_crack_major", "cup", _pick(_surface_crack, "cup.surface_crack_major"),
+              surface_crack_checks.reference_at("major"), NEWMAN_RAJU, record=_surface_crack_record),
+    CheckSpec("cup.surface_crack_between", "cup", _pick(_surface_crack, "cup.surface_crack_between"),
+              surface_crack_checks.reference_at("between"), NEWMAN_RAJU),
+    CheckSpec("cup.surface_crack_minor", "cup", _pick(_surface_crack, "cup.surface_crack_minor"),
+              surface_crack_checks.reference_at("minor"), NEWMAN_RAJU),
 )
 
 REQUIRED_IDS = tuple(spec.id for spec in CHECKS)

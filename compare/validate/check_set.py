@@ -30,6 +30,7 @@ class SweepReport:
 class CheckSet:
     checks: tuple[Check, ...]
     sweeps: dict[str, SweepReport]
+    records: dict[str, dict] = field(default_factory=dict)     # check id -> its CheckSpec.record (non-empty)
 
     def by_id(self) -> dict[str, Check]:
         return {c.id: c for c in self.checks}
@@ -85,4 +86,5 @@ def build_checks(book: FeaBook, plan: Plan, summary: dict, params,
     for spec in checks:
         check = spec.builder(ctx)
         built.append(check if check is not None else not_evaluated(spec.id, spec.id, "", "no builder produced this check"))
-    return CheckSet(tuple(built), _sweeps(ctx, checks))
+    records = {spec.id: spec.record(ctx) for spec in checks if spec.record is not None}
+    return CheckSet(tuple(built), _sweeps(ctx, checks), {k: r for k, r in records.items() if r})

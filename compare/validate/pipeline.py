@@ -329,6 +329,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
             "inputs": _inputs(plan, book, params),
             "stress_at_rated": {c: s.to_dict() for c, s in stresses.items()},
             "cup_wave_generator": wg_cup,
+            "records": check_set.records,
             "views": {c: v.to_dict() for c, v in made.views.items()},
             "gci_table": [r.to_dict() for r in gci_rows(book, ORDER)],
             "nafems": nafems,

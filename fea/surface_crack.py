@@ -1,0 +1,302 @@
+"""Study ``cup-surface-crack``: the flexspline's tooth-root crack as a semi-elliptical surface crack, in a
+local block of the band wall.
+
+The crack is mm-sized in a cup of 160 mm, so the model is a block of the wall around one tooth root, in the
+crack's frame: x along the crack's surface length, y through the wall (0 at the tooth root, the outer
+fibre; t at the bore), z normal to the crack. The crack a x c is the quarter ellipse x^2/c^2 + y^2/a^2 <= 1
+of the plane z = 0. Two symmetry planes keep a quarter of the block (0 <= x <= b, 0 <= z <= L): the crack
+plane z = 0 (the crack's normal stress is symmetric about it) and x = 0. The crack is the seam's lower half:
+on z = 0 the ligament is held (u_z = 0) and the crack face is free to lift off (u_z >= 0) and held where it
+would pass through its mirror image: frictionless face contact by an active set on the face's normal
+gap 2 u_z (a face point is shut where it would interpenetrate, released where its contact force pulls).
+
+Loads, all inputs (fea/ holds no closed form): the stress normal to the crack face on the far face z = L,
+sigma_n(y) = membrane + bending (1 - 2y/t) (the wave generator's hoop stress, rotated onto the crack's
+plane) plus the torque's membrane per N*mm times the torque (analytic.surface_crack.tooth_root_loads says
+how each maps). Supports: u_x = 0 on x = 0, u_z = 0 on the ligament, u_y = 0 at the ligament's corner
+(x, y, z) = (0, t, 0) (the loads are self-equilibrated in y).
+
+Quantity: the tangent torsional compliance of the crack at the state (wave generator + rated torque),
+delta lambda_f = 4 (f1.u1 - f1.u1_0) s^2: f1 the far-face load of a unit normal stress, u1 its solution
+with the converged contact set held, u1_0 the same with the whole face held (the uncracked block, same
+mesh), 4 the two symmetry planes, s the torque's crack-face stress per N*mm. P2 tetrahedra graded to the
+front (``refinement.CrackFrontGrading``), three meshes, GCI of formal order 1 (a crack compliance).
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from strainwave.errors import InputError
+from strainwave.fea.refinement import CRACK_FORMAL_ORDER, DEFAULT_RATIO, CrackFrontGrading, converged_quantity
+from strainwave.fea.result import CrackRecord, Load, MeshQuality, StudyResult, Support
+from strainwave.fea.study_facts import TORQUE_RATED, StudyFacts
+
+__all__ = ["STUDY", "ASPECT", "DEPTHS_OVER_T", "SurfaceCrack", "Block", "block_for", "block_mesh", "solve_block",
+           "converge_depth", "delta_name", "sweep_depths_mm", "run"]
+
+STUDY = "cup-surface-crack"
+# the crack's shape: a/c = 0.5, a fatigue crack's usual aspect at a notch root (its depth grows slower)
+ASPECT = 0.5
+# crack depths of the sweep over the wall t; --quick runs the middle one (the checked depth)
+DEPTHS_OVER_T = (0.1, 0.2, 0.4)
+MAX_ACTIVE_SET_ITERATIONS = 30
+# front size a/12 on the finest mesh, graded to h over 2a + h/2 (docs/decisions/029-surface-crack-block.md)
+GRADING = CrackFrontGrading(tip_over_a=1.0 / 12.0, floor_over_h=0.02, near_over_a=0.25, zone_over_a=2.0,
+                            grow_over_h=0.5)
+HALF_WIDTH_OVER_C = 4.0     # block half-width b = max(4 c, t): f_w of Newman-Raju <= 1.0007 at a/t <= 0.8
+LENGTH_OVER_T = 3.0         # far face at L = max(3 t, 4 c) from the crack plane (Saint-Venant decay ~ t)
+
+
+@dataclass(frozen=True)
+class Block:
+    """The quarter block of one crack and the crack-face loads of the states it is solved in."""
+
+    t_mm: float
+    a_mm: float
+    c_mm: float
+    E_MPa: float
+    nu: float
+    per_torque_MPa_per_Nmm: float                # torque's membrane normal to the crack face, per N*mm
+    states: tuple[tuple[str, float, float], ...]  # (name, membrane, outer-fibre bending) at WG + rated torque, MPa
+
+    @property
+    def half_width_mm(self) -> float:
+        return max(HALF_WIDTH_OVER_C * self.c_mm, self.t_mm)
+
+    @property
+    def length_mm(self) -> float:
+        return max(LENGTH_OVER_T * self.t_mm, 4.0 * self.c_mm)
+
+
+def block_for(t_mm: float, a_mm: float, a_over_c: float, E_MPa: float, nu: float, per_torque_MPa_per_Nmm: float,
+              states) -> Block:
+    """The block of a crack of depth a and aspect a/c <= 1 (c along the surface)."""
+    if not 0.0 < a_over_c <= 1.0:
+        raise InputError("aspect a/c", a_over_c, "the FEA block takes 0 < a/c <= 1 (c along the surface)")
+    if not 0.0 < a_mm <= 0.8 * t_mm:
+        raise InputError("crack depth a_mm", a_mm, f"must lie in (0, 0.8 t] = (0, {0.8 * t_mm:g}] mm")
+    return Block(t_mm, a_mm, a_mm / a_over_c, E_MPa, nu, per_torque_MPa_per_Nmm,
+                 tuple((str(n), float(m), float(b)) for n, m, b in states))
+
+
+def _front_points(s: Block, n: int = 24) -> tuple[tuple[float, float, float], ...]:
+    phi = np.linspace(0.0, 0.5 * math.pi, n)
+    return tuple((float(s.c_mm * math.cos(p)), float(s.a_mm * math.sin(p)), 0.0) for p in phi)
+
+
+def _build(model, s: Block, h_mm: float, h_fine_mm: float, mirrored: bool):
+    from strainwave.fea.meshing import extract, generate
+    occ = model.occ
+    b, t, L = s.half_width_mm, s.t_mm, s.length_mm
+    box = occ.addBox(0.0, 0.0, -L if mirrored else 0.0, b, t, 2.0 * L if mirrored else L)
+    disk = occ.addDisk(0.0, 0.0, 0.0, s.c_mm, s.a_mm)
+    rect = occ.addRectangle(0.0, 0.0, 0.0, b, t)
+    quarter, _ = occ.intersect([(2, disk)], [(2, rect)])
+    occ.fragment([(3, box)], quarter)
+    occ.synchronize()
+    tol = 1e-6 * L
+    groups = {"crack": [], "ligament": [], "sym_x": [], "far": []}
+    for _, tag in model.getEntities(2):
+        x0, y0, z0, x1, y1, z1 = model.getBoundingBox(2, tag)
+        if abs(z0) < tol and abs(z1) < tol:
+            cx, cy, _ = occ.getCenterOfMass(2, tag)
+            inside = (cx / s.c_mm) ** 2 + (cy / s.a_mm) ** 2 < 1.0
+            groups["crack" if inside else "ligament"].append(tag)
+        elif x1 < tol:
+            groups["sym_x"].append(tag)
+        elif z0 > L - tol or z1 < -L + tol:
+            groups["far"].append(tag)
+    refine = [GRADING.refine(_front_points(s), h_mm, h_fine_mm, s.a_mm)]
+    generate(model, 3, 2, size_mm=h_mm, refine=refine)
+    tags = {name: (2, v) for name, v in groups.items() if v}
+    tags["volume"] = (3, [v for _, v in model.getEntities(3)])
+    return extract(model, 3, 2, tags, h_mm)
+
+
+def block_mesh(s: Block, h_mm: float, h_fine_mm: float, *, mirrored: bool = False):
+    """MeshData of the quarter block (P2 tets), groups crack / ligament / sym_x / far. ``mirrored``: the half
+    block -L <= z <= L with the crack as an internal surface (a seam for ``crack_seam.open_crack``), the same
+    grading: the cross-check of the symmetry-plane model."""
+    from strainwave.fea.session import mesh_in_child
+    return mesh_in_child(lambda model: _build(model, s, h_mm, h_fine_mm, mirrored), what=f"{STUDY} block")
+
+
+@dataclass(frozen=True)
+class StateSolution:
+    delta_flexibility: float    # rad/(N*mm)
+    shut_fraction: float        # of the crack face's normal dofs held in contact
+    active_set_iterations: int
+
+
+@dataclass(frozen=True)
+class BlockSolution:
+    states: dict                # state name -> StateSolution
+    dofs: int
+    elements: int
+    nodes: int
+    quality: tuple[float, float]
+    solve_s: float
+
+
+def _system(md, s: Block):
+    """K, the far-face loads of a unit membrane and a unit outer-fibre bending stress, the held dofs and the
+    crack face's normal dofs (off the front: the front's nodes are the ligament's)."""
+    from strainwave.fea.assembly import Lame
+    from strainwave.fea.mesh_data import group_dofs
+    from strainwave.fea.static import assemble
+    from strainwave.fea.surface import SurfaceQuadrature
+    t = s.t_mm
+    sk, K, f_membrane, _, _ = assemble(md, Lame.from_young(s.E_MPa, s.nu), study=STUDY,
+                                       tractions={"far": lambda x: np.stack([0 * x[0], 0 * x[0], 1.0 + 0 * x[0]])})
+    f_bending = SurfaceQuadrature.of(md, "far").load_vector(
+        lambda x: np.stack([0 * x[0], 0 * x[0], 1.0 - 2.0 * x[1] / t]), sk.node_to_dof, 3, K.shape[0])
+    lig, crack = group_dofs(sk, md, "ligament"), group_dofs(sk, md, "crack")
+    face = np.setdiff1d(crack, lig)
+    corner = int(np.argmin(np.linalg.norm(sk.doflocs.T - np.array([0.0, t, 0.0]), axis=1)))
+    base = np.unique(np.concatenate([3 * lig + 2, 3 * group_dofs(sk, md, "sym_x"), [3 * corner + 1]]))
+    return sk, K, f_membrane, f_bending, base, 3 * face + 2
+
+
+def _solve(K, f, fixed, sk):
+    from strainwave.fea.solver import solve_elasticity
+    return solve_elasticity(K, f, fixed_dofs=fixed, fixed_values=0.0, coords=sk.doflocs, dim=3, study=STUDY,
+                            method="direct")[0]
+
+
+def contact_state(K, f, base, face_z, sk, start: np.ndarray) -> tuple[np.ndarray, int]:
+    """Active set of the crack face's normal dofs (True = shut) at load ``f``, from ``start``: held where
+    u_z < 0 would interpenetrate the mirror face, released where the holding force pulls (K u - f)_z < 0."""
+    active = np.asarray(start, bool).copy()
+    for it in range(1, MAX_ACTIVE_SET_ITERATIONS + 1):
+        u = _solve(K, f, np.concatenate([base, face_z[active]]), sk)
+        # round-off bands: a point at zero gap and zero force stays as it is (no flip-flop between sweeps)
+        tol, tol_f = 1e-9 * float(np.abs(u).max()), 1e-9 * float(np.abs(f).max())
+        force = (K @ u - f)[face_z]
+        new = (active & (force >= -tol_f)) | (~active & (u[face_z] < -tol))
+        if np.array_equal(new, active):
+            return active, it
+        active = new
+    raise RuntimeError(f"{STUDY}: crack-face active set did not settle in {MAX_ACTIVE_SET_ITERATIONS} iterations")
+
+
+def solve_block(s: Block, h_mm: float, h_fine_mm: float) -> BlockSolution:
+    """One mesh: per state the contact set at (wave generator + rated torque), then the tangent compliance
+    under the torque's unit membrane with that set held, minus the whole face held (uncracked)."""
+    t0 = time.perf_counter()
+    md = block_mesh(s, h_mm, h_fine_mm)
+    sk, K, f_m, f_b, base, face_z = _system(md, s)
+    uncracked = float(f_m @ _solve(K, f_m, np.concatenate([base, face_z]), sk))
+    by_active: dict[bytes, float] = {}
+    out = {}
+    for name, membrane, bending in s.states:
+        # start from the face points the uncracked stress presses shut: fewer factorizations than from none
+        y = sk.doflocs[1, face_z // 3]
+        start = membrane + bending * (1.0 - 2.0 * y / s.t_mm) < 0.0
+        active, iterations = contact_state(K, membrane * f_m + bending * f_b, base, face_z, sk, start)
+        key = np.packbits(active).tobytes()
+        if key not in by_active:      # the open crack's compliance does not depend on the state's magnitudes
+            by_active[key] = float(f_m @ _solve(K, f_m, np.concatenate([base, face_z[active]]), sk)) - uncracked
+        delta = 4.0 * by_active[key] * s.per_torque_MPa_per_Nmm ** 2
+        out[name] = StateSolution(delta, float(active.mean()) if active.size else 0.0, iterations)
+    q = md.quality
+    return BlockSolution(out, K.shape[0], q.elements, q.nodes, (q.min_quality, q.mean_quality),
+                         time.perf_counter() - t0)
+
+
+def default_size_mm(params, quick: bool) -> float:
+    """Finest global size t/4, --quick too (it runs one depth on the full run's meshes, so it reaches the
+    full run's verdicts)."""
+    return params.flexspline_cup.wall_thickness_mm / 4.0
+
+
+def sweep_depths_mm(params, quick: bool) -> tuple[float, ...]:
+    """The crack depths (DEPTHS_OVER_T of the wall, 3 significant digits); --quick: a = 0.2 t."""
+    t = params.flexspline_cup.wall_thickness_mm
+    return tuple(float(f"{f * t:.3g}") for f in ((DEPTHS_OVER_T[1],) if quick else DEPTHS_OVER_T))
+
+
+class SurfaceCrack(StudyFacts):
+    """The surface crack's facts (its solve is ``run``, not the skeleton: it sweeps its own crack depths)."""
+
+    study = STUDY
+    # quarter block graded to the front (a/12): a = 0.2 t, h = t/3: 11,805 tets vs 129 cells (92)
+    elements_per_cell = 100.0
+    default_size_mm = staticmethod(default_size_mm)
+    rated_load = TORQUE_RATED      # solved at the rated T on top of the wave generator (not linear in T: contact)
+    title = "flexspline tooth-root surface crack"
+    element_text = ("P{order} tetrahedra graded to the crack front, quarter block of the band wall; the crack face "
+                    "in frictionless contact with its mirror (symmetry plane)")
+
+    @classmethod
+    def deepest_crack_mm(cls, params) -> float:
+        return max(sweep_depths_mm(params, False))
+
+    @classmethod
+    def volume_and_wall(cls, params) -> tuple[float, float]:
+        """The deepest crack's quarter block, capped by the cup's wall."""
+        t = params.flexspline_cup.wall_thickness_mm
+        b = block_for(t, cls.deepest_crack_mm(params), ASPECT, 1.0, 0.3, 0.0, ())
+        return b.t_mm * b.half_width_mm * b.length_mm, t
+
+
+def delta_name(state: str, depth_mm: float) -> str:
+    return f"delta_flexibility_{state}_a{depth_mm:g}_rad_per_Nmm"
+
+
+def converge_depth(s: Block, h_fine_mm: float, progress=lambda m: None):
+    """({quantity name: Quantity with GCI}, finest BlockSolution, the three solutions) of one crack depth,
+    every state on the same three meshes h, h r, h r^2."""
+    sizes = [h_fine_mm * DEFAULT_RATIO ** k for k in range(3)]
+    runs = []
+    for k in (2, 1, 0):
+        progress(f"{STUDY}: a = {s.a_mm:g} mm, refinement {3 - k}/3 (h = {sizes[k]:.3g} mm)")
+        runs.append(solve_block(s, sizes[k], h_fine_mm))
+    runs = runs[::-1]
+    q = {}
+    for name, _, _ in s.states:
+        qn = delta_name(name, s.a_mm)
+        q[qn] = converged_quantity(qn, "rad/(N*mm)", sizes, [r.states[name].delta_flexibility for r in runs],
+                                   order=CRACK_FORMAL_ORDER)
+    return q, runs
+
+
+def run(params, *, per_torque_MPa_per_Nmm: float, states, mesh_size_mm=None, order=2, crack_depth_mm=None,
+        vtu=None, progress=lambda m: None, quick=False, aspect: float | None = None) -> StudyResult:
+    """Every crack depth of the sweep (``sweep_depths_mm``) in every state, each on three meshes.
+    ``crack_depth_mm`` must be None: the study sweeps its own depths."""
+    if order != 2:
+        raise InputError("--order", order, f"study {STUDY} is P2 only")
+    if crack_depth_mm is not None:
+        raise InputError("--crack-depth-mm", crack_depth_mm, f"study {STUDY} sweeps its own crack depths; leave it out")
+    t, m = params.flexspline_cup.wall_thickness_mm, params.material
+    h = mesh_size_mm or default_size_mm(params, quick)
+    ratio = ASPECT if aspect is None else aspect
+    q, facts, t0, finest = {}, {}, time.perf_counter(), None
+    for depth in sweep_depths_mm(params, quick):
+        block = block_for(t, depth, ratio, m.youngs_modulus_MPa, m.poisson_ratio, per_torque_MPa_per_Nmm, states)
+        qd, runs = converge_depth(block, h, progress)
+        q |= qd
+        finest = runs[0] if finest is None or runs[0].dofs > finest.dofs else finest
+        facts[f"{depth:g}"] = {"depth_mm": depth, "half_length_mm": block.c_mm, "half_width_mm": block.half_width_mm,
+                               "length_mm": block.length_mm, "dofs": [r.dofs for r in runs],
+                               "solve_s": [r.solve_s for r in runs],
+                               "shut_fraction": {n: r.shut_fraction for n, r in runs[0].states.items()},
+                               "active_set_iterations": {n: r.active_set_iterations for n, r in runs[0].states.items()}}
+    mesh = MeshQuality(finest.elements, finest.nodes, finest.dofs, 2, *finest.quality)
+    meta = {"model": "quarter block of the band wall in the crack's frame, P2 tetrahedra graded to the front, "
+                     "crack face in frictionless contact with its mirror (symmetry plane z = 0)",
+            "aspect_a_over_c": ratio, "wall_mm": t, "states": [list(s) for s in states],
+            "per_torque_MPa_per_Nmm": per_torque_MPa_per_Nmm, "cracks": facts}
+    load = Load("output torque T at the tooth root's crack face", params.gear.rated_output_torque_Nmm, "N*mm", ("far",),
+                f"crack-face normal stress {per_torque_MPa_per_Nmm:.4g} MPa per N*mm (membrane), on top of the wave "
+                "generator's membrane + bending at each state's angle", (("aspect_a_over_c", ratio),))
+    supports = (Support(("sym_x", "ligament"), "symmetry: u_x = 0 on x = 0, u_z = 0 on the ligament of the crack "
+                        "plane, the crack face u_z >= 0 (contact); u_y = 0 at the ligament's bore corner"),)
+    return StudyResult(STUDY, q, mesh, load, supports,
+                       CrackRecord(max(sweep_depths_mm(params, quick)), f"semi-elliptical surface crack, a/c = {ratio:g}, "
+                                   "crack face in frictionless contact, sweep of depths (each on three meshes)"),
+                       {"cracks": time.perf_counter() - t0}, (), {}, meta, (mesh,) * 3)
