@@ -47,6 +47,7 @@ MAX_ACTIVE_SET_ITERATIONS = 30
 # front size a/12 on the finest mesh, graded to h over 2a + h/2 (docs/decisions/029-surface-crack-block.md)
 GRADING = CrackFrontGrading(tip_over_a=1.0 / 12.0, floor_over_h=0.02, near_over_a=0.25, zone_over_a=2.0,
                             grow_over_h=0.5)
+FIELDS_STATE = "major"      # the fields drawn: the crack wide open at the major axis, at the checked depth
 HALF_WIDTH_OVER_C = 4.0     # block half-width b = max(4 c, t): f_w of Newman-Raju <= 1.0007 at a/t <= 0.8
 LENGTH_OVER_T = 3.0         # far face at L = max(3 t, 4 c) from the crack plane (Saint-Venant decay ~ t)
 
@@ -113,7 +114,6 @@ def _build(model, s: Block, h_mm: float, h_fine_mm: float, mirrored: bool):
     refine = [GRADING.refine(_front_points(s), h_mm, h_fine_mm, s.a_mm)]
     generate(model, 3, 2, size_mm=h_mm, refine=refine)
     tags = {name: (2, v) for name, v in groups.items() if v}
-    tags["volume"] = (3, [v for _, v in model.getEntities(3)])
     return extract(model, 3, 2, tags, h_mm)
 
 
@@ -140,6 +140,7 @@ class BlockSolution:
     nodes: int
     quality: tuple[float, float]
     solve_s: float
+    fields: tuple = ()          # (MeshData, skfem mesh, u) of the state asked for (``solve_block(fields_of=)``)
 
 
 def _system(md, s: Block):
@@ -167,9 +168,10 @@ def _solve(K, f, fixed, sk):
                             method="direct")[0]
 
 
-def contact_state(K, f, base, face_z, sk, start: np.ndarray) -> tuple[np.ndarray, int]:
-    """Active set of the crack face's normal dofs (True = shut) at load ``f``, from ``start``: held where
-    u_z < 0 would interpenetrate the mirror face, released where the holding force pulls (K u - f)_z < 0."""
+def contact_state(K, f, base, face_z, sk, start: np.ndarray) -> tuple[np.ndarray, int, np.ndarray]:
+    """Active set of the crack face's normal dofs (True = shut) at load ``f``, from ``start``, its iterations and
+    the solution with it held: held where u_z < 0 would interpenetrate the mirror face, released where the
+    holding force pulls (K u - f)_z < 0."""
     active = np.asarray(start, bool).copy()
     for it in range(1, MAX_ACTIVE_SET_ITERATIONS + 1):
         u = _solve(K, f, np.concatenate([base, face_z[active]]), sk)
@@ -178,25 +180,27 @@ def contact_state(K, f, base, face_z, sk, start: np.ndarray) -> tuple[np.ndarray
         force = (K @ u - f)[face_z]
         new = (active & (force >= -tol_f)) | (~active & (u[face_z] < -tol))
         if np.array_equal(new, active):
-            return active, it
+            return active, it, u
         active = new
     raise RuntimeError(f"{STUDY}: crack-face active set did not settle in {MAX_ACTIVE_SET_ITERATIONS} iterations")
 
 
-def solve_block(s: Block, h_mm: float, h_fine_mm: float) -> BlockSolution:
+def solve_block(s: Block, h_mm: float, h_fine_mm: float, fields_of: str | None = None) -> BlockSolution:
     """One mesh: per state the contact set at (wave generator + rated torque), then the tangent compliance
-    under the torque's unit membrane with that set held, minus the whole face held (uncracked)."""
+    under the torque's unit membrane with that set held, minus the whole face held (uncracked). ``fields_of``:
+    keep that state's mesh and displacement for its fields."""
     t0 = time.perf_counter()
     md = block_mesh(s, h_mm, h_fine_mm)
     sk, K, f_m, f_b, base, face_z = _system(md, s)
     uncracked = float(f_m @ _solve(K, f_m, np.concatenate([base, face_z]), sk))
     by_active: dict[bytes, float] = {}
-    out = {}
+    out, fields = {}, ()
     for name, membrane, bending in s.states:
         # start from the face points the uncracked stress presses shut: fewer factorizations than from none
         y = sk.doflocs[1, face_z // 3]
         start = membrane + bending * (1.0 - 2.0 * y / s.t_mm) < 0.0
-        active, iterations = contact_state(K, membrane * f_m + bending * f_b, base, face_z, sk, start)
+        active, iterations, u = contact_state(K, membrane * f_m + bending * f_b, base, face_z, sk, start)
+        fields = (md, sk, u) if name == fields_of else fields
         key = np.packbits(active).tobytes()
         if key not in by_active:      # the open crack's compliance does not depend on the state's magnitudes
             by_active[key] = float(f_m @ _solve(K, f_m, np.concatenate([base, face_z[active]]), sk)) - uncracked
@@ -204,7 +208,7 @@ def solve_block(s: Block, h_mm: float, h_fine_mm: float) -> BlockSolution:
         out[name] = StateSolution(delta, float(active.mean()) if active.size else 0.0, iterations)
     q = md.quality
     return BlockSolution(out, K.shape[0], q.elements, q.nodes, (q.min_quality, q.mean_quality),
-                         time.perf_counter() - t0)
+                         time.perf_counter() - t0, fields)
 
 
 def default_size_mm(params, quick: bool) -> float:
@@ -247,14 +251,14 @@ def delta_name(state: str, depth_mm: float) -> str:
     return f"delta_flexibility_{state}_a{depth_mm:g}_rad_per_Nmm"
 
 
-def converge_depth(s: Block, h_fine_mm: float, progress=lambda m: None):
-    """({quantity name: Quantity with GCI}, finest BlockSolution, the three solutions) of one crack depth,
-    every state on the same three meshes h, h r, h r^2."""
+def converge_depth(s: Block, h_fine_mm: float, progress=lambda m: None, fields_of: str | None = None):
+    """({quantity name: Quantity with GCI}, the three solutions, finest first) of one crack depth, every state on
+    the same three meshes h, h r, h r^2; ``fields_of``: the finest keeps that state's fields."""
     sizes = [h_fine_mm * DEFAULT_RATIO ** k for k in range(3)]
     runs = []
     for k in (2, 1, 0):
         progress(f"{STUDY}: a = {s.a_mm:g} mm, refinement {3 - k}/3 (h = {sizes[k]:.3g} mm)")
-        runs.append(solve_block(s, sizes[k], h_fine_mm))
+        runs.append(solve_block(s, sizes[k], h_fine_mm, fields_of if k == 0 else None))
     runs = runs[::-1]
     q = {}
     for name, _, _ in s.states:
@@ -275,11 +279,13 @@ def run(params, *, per_torque_MPa_per_Nmm: float, states, mesh_size_mm=None, ord
     t, m = params.flexspline_cup.wall_thickness_mm, params.material
     h = mesh_size_mm or default_size_mm(params, quick)
     ratio = ASPECT if aspect is None else aspect
-    q, facts, t0, finest = {}, {}, time.perf_counter(), None
+    q, facts, t0, finest, fields = {}, {}, time.perf_counter(), None, ()
     for depth in sweep_depths_mm(params, quick):
         block = block_for(t, depth, ratio, m.youngs_modulus_MPa, m.poisson_ratio, per_torque_MPa_per_Nmm, states)
-        qd, runs = converge_depth(block, h, progress)
+        drawn = vtu is not None and depth == sweep_depths_mm(params, True)[0]     # the checked depth
+        qd, runs = converge_depth(block, h, progress, FIELDS_STATE if drawn else None)
         q |= qd
+        fields = (_write_fields(vtu, block, runs[0], m),) if drawn else fields
         finest = runs[0] if finest is None or runs[0].dofs > finest.dofs else finest
         facts[f"{depth:g}"] = {"depth_mm": depth, "half_length_mm": block.c_mm, "half_width_mm": block.half_width_mm,
                                "length_mm": block.length_mm, "dofs": [r.dofs for r in runs],
@@ -297,6 +303,20 @@ def run(params, *, per_torque_MPa_per_Nmm: float, states, mesh_size_mm=None, ord
     supports = (Support(("sym_x", "ligament"), "symmetry: u_x = 0 on x = 0, u_z = 0 on the ligament of the crack "
                         "plane, the crack face u_z >= 0 (contact); u_y = 0 at the ligament's bore corner"),)
     return StudyResult(STUDY, q, mesh, load, supports,
-                       CrackRecord(max(sweep_depths_mm(params, quick)), f"semi-elliptical surface crack, a/c = {ratio:g}, "
-                                   "crack face in frictionless contact, sweep of depths (each on three meshes)"),
-                       {"cracks": time.perf_counter() - t0}, (), {}, meta, (mesh,) * 3)
+                       CrackRecord(sweep_depths_mm(params, True)[0], f"semi-elliptical surface crack, a/c = {ratio:g}, "
+                                   "crack face in frictionless contact; the checked depth (its fields), every depth "
+                                   "of the sweep in meta.cracks (each on three meshes)"),
+                       {"cracks": time.perf_counter() - t0}, fields, {}, meta, (mesh,) * 3)
+
+
+def _write_fields(vtu, block: Block, finest: BlockSolution, material):
+    """The finest mesh's fields of the open crack at the major axis (wave generator + rated torque)."""
+    from pathlib import Path
+    from strainwave.fea.assembly import Lame
+    from strainwave.fea.fields import field_info, write_solid_fields
+    md, sk, u = finest.fields
+    _, membrane, bending = next(st for st in block.states if st[0] == FIELDS_STATE)
+    load = (f"{FIELDS_STATE} state, wave generator + rated torque: crack-face normal stress {membrane:.4g} MPa membrane "
+            f"+ {bending:.4g} MPa outer-fibre bending on the far face (quarter block, a = {block.a_mm:g} mm)")
+    info = field_info(STUDY, load, material)
+    return write_solid_fields(Path(vtu), md, sk, u, Lame.from_young(block.E_MPa, block.nu), info)

@@ -174,7 +174,7 @@ def _cmd_solve(args) -> int:
         vtu = Path(args.vtu) if args.vtu else Path(scratch) / f"{args.study}.vtu"
         result = run_study(args.study, params, mesh_size_mm=args.mesh_size_mm, order=args.order,
                            crack_depth_mm=args.crack_depth_mm, vtu=vtu, progress=_progress)
-        found = stress_field_of(args.study, result.fields, args.crack_depth_mm)
+        found = stress_field_of(args.study, result.fields, result.crack_depth_mm)   # a study may seed its own crack
         rated = None if found is None else stress_at_rated(args.study, params, result, found[0], cracked=found[1])
         if args.vtu and rated is not None:   # the file a user opens is at the load this command reports
             write_at_rated(result.fields, rated.load)

@@ -120,7 +120,8 @@ def field_peaks(mesh, tip_zone: np.ndarray | None = None, tip_radius_mm: float |
 
 def crack_front_nodes(vtu: Path) -> np.ndarray:
     """Nodes of ``vtu`` on its crack front: those on both opened crack faces (fea/crack_seam keeps the front's
-    nodes shared), read from the boundary file. Empty without a crack."""
+    nodes shared), or, for a crack on a symmetry plane, those its face shares with the ligament; read from the
+    boundary file. Empty without a crack."""
     import pyvista as pv
 
     from strainwave.fea.fields import VOLUME_POINT_ID, field_text
@@ -131,11 +132,12 @@ def crack_front_nodes(vtu: Path) -> np.ndarray:
     boundary = pv.read(str(path))
     names = field_text(boundary, "physical_group_names") if "physical_group_names" in boundary.field_data.keys() \
         else []
-    if "crack_minus" not in names or "crack_plus" not in names:
+    pair = next((p for p in (("crack_minus", "crack_plus"), ("crack", "ligament")) if set(p) <= set(names)), None)
+    if pair is None:
         return np.zeros(0, int)
     ids = np.asarray(boundary.cell_data["physical_group"])
     sides = []
-    for name in ("crack_minus", "crack_plus"):
+    for name in pair:
         cells = boundary.extract_cells(np.flatnonzero(ids == names.index(name) + 1))
         sides.append(np.asarray(cells.point_data[VOLUME_POINT_ID]))
     return np.intersect1d(sides[0], sides[1])

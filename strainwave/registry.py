@@ -164,7 +164,7 @@ STUDIES: dict[str, Study] = {s.name: s for s in (
     # The tooth-root crack as a semi-elliptical surface crack in a block of the band wall, its own sweep of depths;
     # its quantities are named per state and depth (fea.surface_crack.delta_name).
     Study("cup-surface-crack", "strainwave.fea.surface_crack:SurfaceCrack", "flexspline-cup", None, None, (),
-          load_inputs="strainwave.analytic.surface_crack:study_loads", vtu_fields=()),
+          load_inputs="strainwave.analytic.surface_crack:study_loads"),
 )}
 
 STUDY_NAMES = tuple(STUDIES)
