@@ -227,8 +227,8 @@ class SurfaceCrack(StudyFacts):
     """The surface crack's facts (its solve is ``run``, not the skeleton: it sweeps its own crack depths)."""
 
     study = STUDY
-    # quarter block graded to the front (a/12): a = 0.2 t, h = t/3: 11,805 tets vs 129 cells (92)
-    elements_per_cell = 100.0
+    # the deepest crack's block (the estimate's volume) at the default h = t/4: 17,884 tets vs 655 cells (27.3)
+    elements_per_cell = 27.3
     default_size_mm = staticmethod(default_size_mm)
     rated_load = TORQUE_RATED      # solved at the rated T on top of the wave generator (not linear in T: contact)
     title = "flexspline tooth-root surface crack"

@@ -192,3 +192,13 @@ def test_symmetry_plane_model_equals_the_seam_with_face_contact(params):
     for name, membrane, bending in block.states:
         r = solve_with_contact(K1, f1(membrane, bending), fixed1, pairs, solve1)
         assert r.active.mean() == pytest.approx(quarter.states[name].shut_fraction, abs=0.05)
+
+
+def test_element_estimate_is_the_deepest_blocks_mesh_within_a_factor_of_two(params):
+    from strainwave.fea import surface_crack as fs
+    from strainwave.fea.budget import estimate
+    t = params.flexspline_cup.wall_thickness_mm
+    h = fs.default_size_mm(params, quick=False)
+    deepest = fs.block_for(t, fs.SurfaceCrack.deepest_crack_mm(params), fs.ASPECT, 2e5, 0.3, 1e-5, ())
+    elements = fs.block_mesh(deepest, h, h).quality.elements
+    assert 0.5 < estimate(fs.STUDY, params, None).elements / elements < 2.0
