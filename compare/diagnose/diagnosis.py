@@ -5,8 +5,10 @@ import enum
 from dataclasses import dataclass, field
 
 from strainwave.compare.diagnose.baseline import Baseline
+from strainwave.compare.diagnose.catalogue_values import CatalogueValues
 from strainwave.compare.diagnose.locate import Located
 from strainwave.compare.diagnose.structure import StructureTest
+from strainwave.compare.diagnose.units import Display
 
 
 class Verdict(str, enum.Enum):
@@ -28,9 +30,9 @@ class RankedEffect:
     weight: float = 0.0         # BIC weight among the ranked models
     warnings: tuple[str, ...] = ()
 
-    def to_dict(self) -> dict:
+    def to_dict(self, display: Display = Display()) -> dict:
         return {"id": self.id, "model": self.model or self.id, "components": list(self.components),
-                "parameters": {k: {"value": v, "unit": u, "std_error": self.errors.get(k)}
+                "parameters": {k: _with_error(display, v, u, self.errors.get(k))
                                for k, (v, u) in self.parameters.items()},
                 "delta_bic": self.delta_bic, "bic_weight": self.weight, "rms": self.rms,
                 "warnings": list(self.warnings)}
@@ -64,12 +66,22 @@ class Diagnosis:
     quantities: dict = field(default_factory=dict)   # name -> (value, unit) of the best model
     fitted_rows: int = 0
     noise_model: str = ""                      # the recording's noise model the structures were judged against
+    catalogue: CatalogueValues | None = None   # K1..T2 on the loop's mean curve, loss, lost motion (torsion)
+    display: Display = Display()               # the recording's own units for text and JSON (values stay canonical)
 
     def __post_init__(self):
         if not isinstance(self.verdict, Verdict):
             raise ValueError(f"verdict must be a Verdict, got {self.verdict!r}")
         if self.named and self.verdict is not Verdict.EXPLAINED:
             raise ValueError("only an explained diagnosis names effects")
+
+    @property
+    def response_unit(self) -> str:
+        return "rad" if self.kind == "torsion" else "mm"
+
+    def in_units(self, value: float) -> float:
+        """A response-unit value (noise, RMS) in the recording's own unit."""
+        return self.display.convert(value, self.response_unit)[0]
 
     @property
     def primary(self) -> str | None:
@@ -98,15 +110,17 @@ class Diagnosis:
                 "ambiguous": self.ambiguous, "mismatch": self.mismatch,
                 "confidence": {"runner_up": self.runner_up, "margin_bic": self.margin_bic,
                                "bic_weight": self.effects[0].weight if self.effects else None},
-                "quantities": {k: {"value": v, "unit": u} for k, (v, u) in self.quantities.items()},
-                "suggestion": self.suggestion.to_dict() if self.suggestion else None,
+                "quantities": {k: _shown(self.display, v, u) for k, (v, u) in self.quantities.items()},
+                "catalogue": self._catalogue_dict(),
+                "units": self.display.to_dict(),
+                "suggestion": self.suggestion.to_dict(self.display) if self.suggestion else None,
                 "structure": self.structure,
                 "goodness_of_fit": {"baseline": self.gof_baseline.to_dict() if self.gof_baseline else None,
                                     "model": self.gof_model.to_dict() if self.gof_model else None,
                                     "noise_model": self.noise_model},
-                "noise_std": self.noise_std, "located": self.located.to_dict(),
-                "effects": [e.to_dict() for e in self.effects] if self.mismatch else [],
-                "fit": {"rms_before": self.rms_before, "rms_after": self.rms_after,
+                "noise_std": self.in_units(self.noise_std), "located": self.located.to_dict(),
+                "effects": [e.to_dict(self.display) for e in self.effects] if self.mismatch else [],
+                "fit": {"rms_before": self.in_units(self.rms_before), "rms_after": self.in_units(self.rms_after),
                         "bic_before": self.bic_before, "bic_after": self.bic_after,
                         "fitted_rows": self.fitted_rows},
                 "explanation": self.explanation}
@@ -114,7 +128,8 @@ class Diagnosis:
     def summary(self) -> str:
         lines = [f"{self.recording}: {self.kind} / {self.specimen}, {self.n_samples} samples; "
                  f"baseline {self.baseline.source}",
-                 f"  noise std {self.noise_std:.3g} ({self.noise_model or 'white'}); rms {self.rms_before:.3g} -> {self.rms_after:.3g}; "
+                 f"  noise std {self.response_text(self.noise_std)} ({self.noise_model or 'white'}); "
+                 f"rms {self.response_text(self.rms_before)} -> {self.response_text(self.rms_after)}; "
                  f"BIC {self.bic_before:.1f} -> {self.bic_after:.1f}",
                  f"  verdict: {self.verdict.value}" + (f" ({' + '.join(self.named)})" if self.named else "")
                  + (" - AMBIGUOUS with " + str(self.runner_up) if self.ambiguous else "")]
@@ -126,12 +141,44 @@ class Diagnosis:
                 lines.append(f"  {e.model or e.id:<52s} delta BIC {e.delta_bic:9.1f}  weight {e.weight:.2f}")
             top = self.effects[0] if self.effects else None
             for name, (v, u) in (top.parameters.items() if top else ()):
-                se = top.errors.get(name)
-                lines.append(f"    {name:<38s} {v:.6g}" + (f" +/- {se:.2g}" if se is not None else "") + f" {u}")
+                lines.append(f"    {name:<38s} " + _text(self.display, v, u, top.errors.get(name)))
             for w in (top.warnings if top else ()):
                 lines.append(f"    warning: {w}")
+        if self.catalogue is not None:
+            lines.append("  catalogue values (loop's mean curve; Harmonic Drive's definitions):")
+            for name, (v, se, u) in self.catalogue.values.items():
+                lines.append(f"    {name:<38s} " + _text(self.display, v, u, se))
+            lines.extend(f"    warning: {w}" for w in self.catalogue.warnings)
         lines.append(f"  {self.explanation}")
         return "\n".join(lines)
+
+    def response_text(self, value: float) -> str:
+        return self.display.text(value, self.response_unit)
+
+    def _catalogue_dict(self) -> dict | None:
+        if self.catalogue is None:
+            return None
+        return {"source": self.catalogue.source, "warnings": list(self.catalogue.warnings),
+                "values": {k: _with_error(self.display, v, u, se)
+                           for k, (v, se, u) in self.catalogue.values.items()}}
+
+
+def _shown(display: Display, value, unit: str) -> dict:
+    """A value in the recording's units."""
+    v, u = display.convert(value, unit)
+    return {"value": v, "unit": u}
+
+
+def _with_error(display: Display, value, unit: str, std_error) -> dict:
+    """A value and its standard error (None when unknown) in the recording's units."""
+    return {**_shown(display, value, unit),
+            "std_error": None if std_error is None else display.convert(std_error, unit)[0]}
+
+
+def _text(display: Display, value, unit: str, std_error=None) -> str:
+    v, u = display.convert(value, unit)
+    se = None if std_error is None else display.convert(std_error, unit)[0]
+    return f"{v:.6g}" + (f" +/- {se:.2g}" if se is not None else "") + f" {u}"
 
 
 __all__ = ["Diagnosis", "RankedEffect", "Verdict"]

@@ -47,9 +47,10 @@ from strainwave.compare.diagnose.judge import AMBIGUOUS_BIC, BIC_THRESHOLD, MIN_
 from strainwave.compare.diagnose.locate import Located, locate, locate_effect
 from strainwave.compare.diagnose.parallel import usable_workers
 from strainwave.compare.diagnose.quantities import Reading, read_quantities
-from strainwave.compare.diagnose.recording import Recording, parse_recording
+from strainwave.compare.diagnose.recording import Recording, TestFlags, parse_recording
 from strainwave.compare.diagnose.rows import MAX_FIT_ROWS, subsample
 from strainwave.compare.diagnose.structure import describe
+from strainwave.compare.diagnose.units import Display
 from strainwave.compare.diagnose.verdict import Answer, decide
 
 # a baseline this many times off the recording's secant stiffness (either way) describes another specimen
@@ -168,15 +169,17 @@ def explained(noise: Noise, answer: Answer, reading: Reading, location: Location
                      suggestion=effects[0] if verdict is Verdict.UNEXPLAINED and effects and not answer.glitch_only else None,
                      structure=location.structure, gof_baseline=noise.gof_base,
                      gof_model=answer.gof_best if answer.mismatch else None, quantities=reading.quantities,
-                     fitted_rows=n, noise_model=j.noise.describe())
+                     fitted_rows=n, noise_model=j.noise.describe(), catalogue=reading.catalogue,
+                     display=Display.of(rec.units))
     return dataclasses.replace(diag, explanation=explain(diag))
 
 
 def diagnose_file(path: Path, *, params_path=None, baseline: str = "analytic", json_out: Path | None = None,
-                  plot_out: Path | None = None) -> Diagnosis:
-    """CLI entry: parse, apply [params] overrides from the header, diagnose, write JSON/plot atomically."""
+                  plot_out: Path | None = None, flags: TestFlags | None = None) -> Diagnosis:
+    """CLI entry: parse (``flags``: [test] keys from the command line), apply [params] overrides from the header,
+    diagnose, write JSON/plot atomically."""
     from strainwave.params import load_params
-    rec = parse_recording(path)
+    rec = parse_recording(path, flags)
     params = load_params(params_path, overrides=rec.param_overrides or None)
     diag, arrays = diagnose(rec, params, baseline)
     if json_out is not None:
@@ -184,9 +187,15 @@ def diagnose_file(path: Path, *, params_path=None, baseline: str = "analytic", j
     if plot_out is not None:
         from strainwave.compare.diagnose.plot import plot_diagnosis
         title = f"{diag.recording}: {diag.verdict.value}" + (f" - {' + '.join(diag.named)}" if diag.named else "")
-        plot_diagnosis(Path(plot_out), load=arrays["load"], response=arrays["response"],
-                       baseline=arrays["baseline"], augmented=arrays["augmented"],
-                       load_label=f"{rec.load_name}", response_label=f"{rec.response_name}", title=title,
+        shown = diag.display
+        load, load_unit = shown.convert(arrays["load"], rec.load_unit)
+        response, response_unit = shown.convert(arrays["response"], rec.response_unit)
+        named = (lambda name, unit: f"{name} [{unit}]") if shown.spelling else (lambda name, unit: name)
+        plot_diagnosis(Path(plot_out), load=load, response=response,
+                       baseline=shown.convert(arrays["baseline"], rec.response_unit)[0],
+                       augmented=shown.convert(arrays["augmented"], rec.response_unit)[0],
+                       load_label=named(rec.load_name, load_unit),
+                       response_label=named(rec.response_name, response_unit), title=title,
                        model_label=f"augmented: {arrays['model_label']}")
     return diag
 

@@ -12,6 +12,7 @@ import numpy as np
 
 from strainwave.compare.diagnose import loop_stiffness
 from strainwave.compare.diagnose.candidates import Candidates, Noise
+from strainwave.compare.diagnose.catalogue_values import CatalogueValues, catalogue_values
 from strainwave.compare.diagnose.diagnosis import RankedEffect
 from strainwave.compare.diagnose.effects.loop import ARCMIN_PER_RAD, load_path_model, loop_quantities, width_load
 from strainwave.compare.diagnose.fit import Fit, lag1
@@ -28,6 +29,7 @@ class Reading:
 
     effects: tuple[RankedEffect, ...]     # every candidate, the answer's model first
     quantities: dict                      # name -> (value, unit)
+    catalogue: CatalogueValues | None     # the catalogue's numbers of a gear's loop (catalogue_values.py)
 
 
 def read_quantities(noise: Noise, cands: Candidates, answer: Answer) -> Reading:
@@ -44,7 +46,10 @@ def read_quantities(noise: Noise, cands: Candidates, answer: Answer) -> Reading:
     if "hysteresis_loss_arcmin" in quantities and effects:
         quantities = _with_loss_error(ctx, best, quantities, next((e for e in effects if e.model == best.label),
                                                                    effects[0]))
-    return Reading(effects, quantities)
+    rec = noise.judge.rec
+    # a gear's catalogue numbers, or any torsion specimen's where the user states the rated torque
+    catalogue = catalogue_values(ctx, rec.rated_torque) if rec.specimen == "gear" or rec.rated_torque else None
+    return Reading(effects, quantities, catalogue)
 
 
 def _loop_width(ctx, fit: Fit) -> tuple[float, float]:
