@@ -19,7 +19,6 @@ variance, inflated by (1 + rho)/(1 - rho) for the residual's lag-1 correlation (
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -74,19 +73,24 @@ def _grid_start(u, t, d, y, scale: float) -> np.ndarray:
                 continue
             A = _columns(u, t, d, a, b)
             # normal equations: a 9 x 9 solve per knot pair (the columns are O(1), well conditioned)
-            coef = np.linalg.solve(A.T @ A, A.T @ y)
+            try:
+                coef = np.linalg.solve(A.T @ A, A.T @ y)
+            except np.linalg.LinAlgError:
+                continue                  # a knot beyond the recorded torques: its column is empty
             rss = float(np.sum((A @ coef - y) ** 2))
             if best is None or rss < best[0]:
                 best = (rss, np.concatenate([coef, [a, b]]))
-    return best[1]
+    return None if best is None else best[1]
 
 
-def _fit(ctx: Context) -> tuple[np.ndarray, np.ndarray, float]:
-    """(parameters, covariance, residual std) of the branch model on the steady rows."""
+def _fit(ctx: Context) -> tuple[np.ndarray, np.ndarray] | None:
+    """(parameters, covariance) of the branch model on the steady rows (None: no knots fit)."""
     keep = _steady(ctx)
     u, t, d, y = ctx.u[keep], ctx.t[keep], ctx.direction[keep], ctx.y[keep]
     scale = float(np.max(np.abs(u)))
     x0 = _grid_start(u, t, d, y, scale)
+    if x0 is None:
+        return None
     lo = np.full(len(x0), -np.inf)
     hi = np.full(len(x0), np.inf)
     lo[-2:], hi[-2:] = 0.0, scale
@@ -95,8 +99,7 @@ def _fit(ctx: Context) -> tuple[np.ndarray, np.ndarray, float]:
     dof = max(len(y) - len(x0), 1)
     rho = min(max(lag1(r), 0.0), 0.95)
     var = float(r @ r) / dof * (1.0 + rho) / (1.0 - rho)
-    cov = np.linalg.pinv(res.jac.T @ res.jac) * var
-    return res.x, cov, math.sqrt(var)
+    return res.x, np.linalg.pinv(res.jac.T @ res.jac) * var
 
 
 def _readings(x: np.ndarray, ctx: Context, rated: float | None) -> dict:
@@ -122,7 +125,16 @@ def catalogue_values(ctx: Context, rated_torque: float | None = None) -> Catalog
     the amplitude the loss should be read at); None without a reversal (no branch to read)."""
     if ctx.response_unit != "rad" or ctx.reversals < 1 or int(np.sum(_steady(ctx))) < 20:
         return None
-    x, cov, _ = _fit(ctx)
+    fitted = _fit(ctx)
+    if fitted is None:
+        return None
+    x, cov = fitted
+    with np.errstate(divide="ignore", invalid="ignore"):     # a slope of zero compliance is an infinite K
+        return _with_errors(ctx, x, cov, rated_torque)
+
+
+def _with_errors(ctx: Context, x: np.ndarray, cov: np.ndarray, rated_torque: float | None) -> CatalogueValues:
+    """The readings with their standard errors (J C J^T, J by finite differences) and the reader's warnings."""
     base = _readings(x, ctx, rated_torque)
     J = np.zeros((len(base), len(x)))
     names = list(base)

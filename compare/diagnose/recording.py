@@ -167,13 +167,7 @@ def parse_text(text: str, name: str = "recording.csv", flags: TestFlags | None =
         else:
             body_start = i
             break
-    header = _parse_header(header_lines, name, headless_ok=bool(flags))
-    if flags:
-        test = header.get("test", {})
-        header["test"] = {**(test if isinstance(test, dict) else {}), **flags.table(
-            test.get("kind") if isinstance(test, dict) else None)}
-        if "specimen" not in header["test"]:
-            raise InputError("--specimen", "not set", "a recording without a [test] specimen needs --specimen")
+    header = _with_flags(_parse_header(header_lines, name, headless_ok=bool(flags)), flags)
     kind, specimen, test = _parse_test(header, header_lines or [(1, "")], name)
     _check_overrides(header.get("params", {}), header_lines, name)
     (load_col, resp_col), optional = COLUMNS[kind]
@@ -233,6 +227,18 @@ def parse_text(text: str, name: str = "recording.csv", flags: TestFlags | None =
                      extra={c: v for c, v in col.items() if c not in (load_col, resp_col, "time_s")},
                      description=str(test.get("description", "")), rated_torque=test.get("rated_torque"),
                      units={c: unit for c, _, unit in converted})
+
+
+def _with_flags(header: dict, flags: TestFlags | None) -> dict:
+    """The header with the command line's [test] keys over its own."""
+    if not flags:
+        return header
+    test = header.get("test", {})
+    test = test if isinstance(test, dict) else {}
+    header["test"] = {**test, **flags.table(test.get("kind"))}
+    if "specimen" not in header["test"]:
+        raise InputError("--specimen", "not set", "a recording without a [test] specimen needs --specimen")
+    return header
 
 
 def _parse_header(header_lines: list[tuple[int, str]], name: str, headless_ok: bool = False) -> dict:
