@@ -95,9 +95,9 @@ def check_baseline_scale(rec: Recording, base: Baseline) -> None:
         what = (f"the recording's secant stiffness {1.0 / slope:.4g} {unit} is {1.0 / ratio:.3g} x the "
                 f"baseline's {1.0 / base.compliance:.4g} {unit} ({base.source}), which no catalogue effect "
                 f"explains: the specimen is not the one the baseline describes")
-    fix = (f"correct [test] {key} in the header" if given else
-           f"set [test] {key} = <the specimen's linear stiffness, {unit}> in the header, or its dimensions in the "
-           f"[params.*] tables (or --params)")
+    fix = (f"correct [test] {key} in the header (or --stiffness)" if given else
+           f"set [test] {key} = <the specimen's linear stiffness, {unit}> in the header (or --stiffness), or its "
+           f"dimensions in the [params.*] tables (or --params)")
     raise InputError(f"{rec.source}: [test] {key}", rec.baseline_stiffness if given else "not set",
                      f"{what}; {fix}")
 
