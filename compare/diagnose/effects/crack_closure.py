@@ -90,6 +90,12 @@ def _report(ctx: Context, theta, s: float) -> dict:
             "load_zero_offset": (u0 * ctx.X, ctx.load_unit)}
 
 
+def _exchange_rival(*args):
+    """exchange.rival (imported here: it reads the catalogue's base, which imports this module)."""
+    from strainwave.compare.diagnose.exchange import rival
+    return rival(*args)
+
+
 EFFECT = Effect(
     id="crack_closure",
     kinds=("torsion",),
@@ -100,6 +106,7 @@ EFFECT = Effect(
                  "other, so the part is softer for one sign of torque than for the other"),
     applicable=lambda ctx: ctx.two_sided,
     where=_where,
+    rival=_exchange_rival,
 )
 
 # the gradual closure's widest load width in log10 of the normalised torque: 20 % of the largest torque, so
