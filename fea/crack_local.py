@@ -2,7 +2,8 @@
 
 The global model is solved once, uncracked (no crack-front refinement, so its mesh does not depend on the
 crack depth). The local model is a patch of the part around the crack, meshed with the crack as a seam
-(``crack_seam``) and refined at its front, its cut faces held at the global displacement (interpolated
+(``crack_seam``) and refined at its front (a through-wall crack: ``crack_extruded``), its cut faces held at
+the global displacement (interpolated
 on the global curved P2 mesh), every other face as in the global model (traction free here). Solved
 closed and opened on one mesh, its strain energy falls by dU: the energy the crack releases at fixed
 grip on the cut. To first order in the crack size this is the energy released at fixed load, half the
