@@ -83,7 +83,7 @@ DELTA = "delta_flexibility_rad_per_Nmm"
 SEAM, GLOBAL_LOCAL = "seam", "global-local"
 CRACK_METHODS = (SEAM, GLOBAL_LOCAL)
 # global-local meets the crack-compliance rule on both gears at a quarter of the CPU, but its uncracked
-# global mesh widens the second gear's headline lambda_f GCI: validate keeps the seam (docs/decisions/027)
+# global mesh widens the second gear's headline lambda_f GCI: validate keeps the seam (docs/decisions/028)
 DEFAULT_CRACK_METHOD = SEAM
 # The local patch: half size L = PATCH_HALF_OVER_A a (fixed grip on its cut faces costs O((a/L)^2) of the
 # released energy: 1.3 (a/L)^2, docs/decisions/025), meshed as a tip-graded plane extruded through the wall
