@@ -24,7 +24,7 @@ validate: $(STAMP)
 	$(BIN)/strainwave validate --params strainwave/data/second_gear.toml --out reports/validate-second-gear
 
 test: $(STAMP)
-	$(BIN)/python -m pytest -q --durations=40 tests
+	$(BIN)/python -m pytest -q -n 2 --dist loadfile --durations=40 tests
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/run_all.py

@@ -49,20 +49,12 @@ def audit_records(params, s000: dict | None = None, s003: dict | None = None) ->
     """All audit records evaluated for ``params`` (pass precomputed seed summaries to avoid recomputing)."""
     s000 = s000 or seed000_summary(params)
     s003 = s003 or seed003_summary(params)
+    return (*_seed003_records(s003), *_seed000_crack_records(params, s000), *_seed000_example_records(params, s000))
+
+
+def _seed003_records(s003: dict) -> list[AuditRecord]:
     co, tn, th = s003["coefficients"], s003["tooth_number_min"], s003["thick_ring"]
-    P, C = Variant.PUBLISHED, Variant.CORRECTED
-    cr, cup, shaft = params.cracks, params.flexspline_cup, params.output_shaft
-    a, Ku, Kd = shaft.crack_depth_mm, cr.stress_nonuniformity, cr.dynamic_load_factor
-    d_e = shaft.outer_diameter_mm - 2 * a
-    t = s000["seed_table"]
-    lsum_c = s000["lambda_sum"]["corrected"]
-    kg0 = torsion.radial_stiffness_implied_N_per_mm(
-        t["lambda_H0"], params.gear.force_coefficient, cup.pitch_diameter_mm, params.gear.wave_number,
-        params.gear.radial_deformation_mm, params.gear.gear_ratio)
-    hertz_args = (*params.wave_generator.contact_semi_axes_mm, params.material.youngs_modulus_MPa,
-                  params.material.poisson_ratio)
-    table_add = (t["delta_lambda_H"] + t["delta_lambda_f"] + t["delta_lambda_so"]) / t["lambda_sum0"]
-    r = [
+    return [
         _rec(1, "003", "eqs 10, 11", "sigma_m and sigma_a printed as sigma_max + sigma_min (no /2, sign dropped); "
              "eq 11 carries the label sigma_m and says 'difference' for half the difference",
              "literal coefficients {lit_m:.4f} / {lit_a:.4f} vs half sum {m:.4f} and half difference {a_:.4f}",
@@ -83,6 +75,15 @@ def audit_records(params, s000: dict | None = None, s003: dict | None = None) ->
         _rec(5, "003", "eqs 3-7, Fig. 2", "the deformed mid-layer is not an ellipse: A,B move out by "
              "delta_AB/2 = 0.918 W0, not W0",
              "delta_AB/delta_CD = {q:.5f}", {"q": co["delta_AB_over_delta_CD"]}, "ring.delta_ab"),
+    ]
+
+
+def _seed000_crack_records(params, s000: dict) -> list[AuditRecord]:
+    P, C = Variant.PUBLISHED, Variant.CORRECTED
+    cr, shaft = params.cracks, params.output_shaft
+    a, Ku, Kd = shaft.crack_depth_mm, cr.stress_nonuniformity, cr.dynamic_load_factor
+    d_e = shaft.outer_diameter_mm - 2 * a
+    return [
         _rec(6, "000", "eq 3", "du = int G/P dA is missing a factor 2 (the expanded form with 2/E' is right)",
              "factor {f:.0f}", {"f": 2.0}, "cup.crack_compliance"),
         _rec(7, "000", "du_H, dK_G", "du_H printed with F_r^2 instead of F_r: dK_G gets units 1/mm and depends on "
@@ -108,6 +109,23 @@ def audit_records(params, s000: dict | None = None, s003: dict | None = None) ->
         _rec(12, "000", "lambda_so0", "hollow shaft treated with the solid-bar formula L/(0.1 mu d^4)",
              "published {p:.4g} vs hollow {c:.4g} rad/(N mm)",
              {"p": s000["lambda_so0"]["published"], "c": s000["lambda_so0"]["corrected"]}, "shaft.flexibility"),
+    ]
+
+
+def _seed000_example_records(params, s000: dict) -> list[AuditRecord]:
+    P, C = Variant.PUBLISHED, Variant.CORRECTED
+    cr, cup, shaft = params.cracks, params.flexspline_cup, params.output_shaft
+    Ku, Kd = cr.stress_nonuniformity, cr.dynamic_load_factor
+    d_e = shaft.outer_diameter_mm - 2 * shaft.crack_depth_mm
+    t = s000["seed_table"]
+    lsum_c = s000["lambda_sum"]["corrected"]
+    kg0 = torsion.radial_stiffness_implied_N_per_mm(
+        t["lambda_H0"], params.gear.force_coefficient, cup.pitch_diameter_mm, params.gear.wave_number,
+        params.gear.radial_deformation_mm, params.gear.gear_ratio)
+    hertz_args = (*params.wave_generator.contact_semi_axes_mm, params.material.youngs_modulus_MPa,
+                  params.material.poisson_ratio)
+    table_add = (t["delta_lambda_H"] + t["delta_lambda_f"] + t["delta_lambda_so"]) / t["lambda_sum0"]
+    return [
         _rec(13, "000", "example inputs", "K_G0 and r_m not given; the table's lambda_so0 needs L_s = 110 mm, "
              "not the stated 200 mm; the implied K_G0 is softer than one ball's two Hertz contacts at the seed's "
              "own ellipse a' x b' (no model of the seed reaches it: FEA cannot decide, reported as information)",
@@ -145,7 +163,6 @@ def audit_records(params, s000: dict | None = None, s003: dict | None = None) ->
              {"q": s000["delta_lambda_so"]["corrected_growing_crack"] / s000["delta_lambda_so"]["corrected"]},
              "shaft.crack_compliance"),
     ]
-    return tuple(r)
 
 
 def audit_as_dicts(params, s000: dict | None = None, s003: dict | None = None) -> list[dict]:

@@ -11,6 +11,8 @@ The pitch radius d1/2 is reported next to it.
 """
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 from strainwave.analytic import cracks, torsion
 from strainwave.analytic.variant import Variant
 
@@ -52,8 +54,8 @@ def _dlambda_H(params, K_G0: float, delta_K_G: float, variant: Variant):
     return lam(K_G) - lam(K_G0), K_G
 
 
-def seed000_summary(params) -> dict:
-    """Every seed-000 quantity for ``params`` (the default parameters are the seed's example)."""
+def _seed000_terms(params) -> SimpleNamespace:
+    """The seed-000 terms the summary lists, each per Variant where the seed and the correction differ."""
     mat, g, cup, shaft = params.material, params.gear, params.flexspline_cup, params.output_shaft
     wg, cr = params.wave_generator, params.cracks
     E, mu, G_impl = mat.youngs_modulus_MPa, mat.shear_modulus_MPa, mat.implied_shear_modulus_MPa
@@ -108,6 +110,17 @@ def seed000_summary(params) -> dict:
     tab = torsion.SEED000_TABLE
     tab_shares = torsion.shares(tab["lambda_H0"] + tab["delta_lambda_H"], tab["lambda_f0"] + tab["delta_lambda_f"],
                                 tab["lambda_so0"] + tab["delta_lambda_so"])
+    return SimpleNamespace(E=E, mu=mu, G_impl=G_impl, a_shaft=a_shaft, k_f=k_f, k_G=k_G, radii=radii, r_m=r_m, lf=lf, lf_Enu=lf_Enu, series=series, lso=lso, lso_Enu=lso_Enu, lso_table=lso_table, K_G0=K_G0, lH0=lH0, F_r=F_r, du=du, dK=dK, dlH=dlH, dlf=dlf, dlf_pitch=dlf_pitch, d_s=d_s, dlso=dlso, tot=tot, tab=tab, tab_shares=tab_shares)
+
+
+def seed000_summary(params) -> dict:
+    """Every seed-000 quantity for ``params`` (the default parameters are the seed's example)."""
+    t = _seed000_terms(params)
+    E, mu, G_impl, r_m, radii, d_s, tab = t.E, t.mu, t.G_impl, t.r_m, t.radii, t.d_s, t.tab
+    lf, lso, du, dK, dlH, dlf, dlf_pitch, dlso, tot = t.lf, t.lso, t.du, t.dK, t.dlH, t.dlf, t.dlf_pitch, t.dlso, t.tot
+    k_f, k_G, F_r, lf_Enu, series, lso_Enu, lso_table = t.k_f, t.k_G, t.F_r, t.lf_Enu, t.series, t.lso_Enu, t.lso_table
+    K_G0, lH0, a_shaft, tab_shares = t.K_G0, t.lH0, t.a_shaft, t.tab_shares
+    mat, shaft = params.material, params.output_shaft
     return {
         "material": {
             "youngs_modulus_MPa": E, "shear_modulus_MPa": mu, "poisson_ratio": mat.poisson_ratio,

@@ -118,26 +118,8 @@ def seed003_summary(params) -> dict:
     offset = fatigue.tooth_offset(design)
     const, const_signed = fatigue.tooth_constant(design), fatigue.tooth_constant(design, True)
 
-    # Separate model: Roark thick ring + Winkler-Bach, same rim.
-    sec = thick_ring.RingSection(r_m, delta, e.face_width_mm)
-    f_thick = thick_ring.thick_ring_factors(sec, nu)
-    W_thick = 2.0 * W0 * E * thick_ring.effective_I_mm4(sec, True) / (thick_ring.dv_coefficient(f_thick) * r_m ** 3)
-    dv, dh = thick_ring.deflections_mm(W_thick, sec, E, nu, thick=True)
-    # Winkler sign: M > 0 puts the outer fibre in tension. D flattens (outer fibre compressed), B bends up.
-    M_D = -thick_ring.moment_at_load_Nmm(W_thick, r_m, f_thick)
-    M_B = thick_ring.moment_at_free_point_Nmm(W_thick, r_m, f_thick)
-    # Hoop force: -W/2 at B, 0 at D (shear carries the load there); seed sign: outer fibre at D compressive.
-    wb = {
-        "D_outer": thick_ring.winkler_bach_stress_MPa(M_D, 0.0, sec.r_outer_mm, sec),
-        "D_inner": thick_ring.winkler_bach_stress_MPa(M_D, 0.0, sec.r_inner_mm, sec),
-        "B_outer": thick_ring.winkler_bach_stress_MPa(M_B, -0.5 * W_thick, sec.r_outer_mm, sec),
-        "B_inner": thick_ring.winkler_bach_stress_MPa(M_B, -0.5 * W_thick, sec.r_inner_mm, sec),
-    }
-    inner_f, outer_f = thick_ring.curvature_stress_factors(sec)
-
     phi_deg = np.arange(0.0, 91.0, 10.0)
     w = ring.radial_displacement_mm(np.radians(phi_deg), F, r_m, E, I)
-    roots = {dz: tooth_numbers(params, dz) for dz in sorted({2, 4, dZ})}
     return {
         "inputs": {"module_mm": m, "Z_R": Z_R, "tooth_difference": dZ, "Z_G": Z_G, "rim_thickness_mm": delta,
                    "face_width_mm": e.face_width_mm, "youngs_modulus_MPa": E, "K_delta": K_delta,
@@ -164,35 +146,62 @@ def seed003_summary(params) -> dict:
                    "n_sigma_eq14": fatigue.safety_from_teeth(Z_R, dZ, mat.fatigue_limit_MPa, E, const, offset),
                    "n_combined": fatigue.combined_safety_factor(n_abs),
                    "permissible": e.permissible_safety, "ok": n_abs >= e.permissible_safety},
-        "tooth_number_min": {
-            "constant": const, "constant_signed_mean": const_signed, "offset": offset,
-            "dZ2": roots[2]["abs"], "dZ4": roots[4]["abs"],
-            "Z_R_min_dZ2": _ceil(roots[2]["abs"]), "Z_R_min_dZ4": _ceil(roots[4]["abs"]),
-            "signed_mean_stress": {"dZ2": roots[2]["signed"], "dZ4": roots[4]["signed"],
-                                   "Z_R_min_dZ2": _ceil(roots[2]["signed"]),
-                                   "Z_R_min_dZ4": _ceil(roots[4]["signed"])},
-            "for_params": {"tooth_difference": dZ, "root": roots[dZ]["abs"], "Z_R_min": _ceil(roots[dZ]["abs"]),
-                           "root_signed_mean": roots[dZ]["signed"], "Z_R_min_signed": _ceil(roots[dZ]["signed"]),
-                           "Z_R_given": Z_R},
-            "paper_roots": {"dZ2": fatigue.PAPER_ROOTS[2], "dZ4": fatigue.PAPER_ROOTS[4]},
-            "paper_implied_constant": {f"dZ{dz}": fatigue.constant_implied_by_root(
-                r, dz, fatigue.PAPER_EXAMPLE["permissible_safety"], fatigue.PAPER_EXAMPLE["fatigue_limit_MPa"],
-                fatigue.PAPER_EXAMPLE["youngs_modulus_MPa"], fatigue.tooth_offset()) for dz, r in
-                fatigue.PAPER_ROOTS.items()},
-        },
+        "tooth_number_min": _tooth_number_record(params, const, const_signed, offset),
         "tooth_factors": tooth_factor_summary(params),
         "tooth_number_min_with_fea_factors": tooth_numbers_with_model(params),
-        "thick_ring": {
-            "model": "Roark Table 9.2 case 1 (thick ring, I -> A e R) + Winkler-Bach",
-            "alpha": f_thick.alpha, "beta": f_thick.beta, "k1": f_thick.k1, "k2": f_thick.k2,
-            "D_V_coefficient": thick_ring.dv_coefficient(f_thick), "D_H_coefficient": thick_ring.dh_coefficient(f_thick),
-            "force_for_W0_N": W_thick, "delta_CD_mm": dv, "delta_AB_mm": dh,
-            "compliance_ratio_to_thin": (dv / W_thick) / (ring.delta_cd_mm(1.0, r_m, E, I)),
-            "curvature_factor_inner": inner_f, "curvature_factor_outer": outer_f,
-            "winkler_bach_stress_MPa": wb,
-        },
+        "thick_ring": _thick_ring_record(r_m, delta, e.face_width_mm, W0, E, nu, I),
         "mid_layer": {"phi_from_B_deg": phi_deg.tolist(), "radial_displacement_mm": w.tolist(),
                       "note": "thin ring, not an ellipse; full outline: ring.deformed_mid_layer_mm(W0, r_m)"},
+    }
+
+
+def _thick_ring_record(r_m: float, delta: float, face_width: float, W0: float, E: float, nu: float, I: float) -> dict:
+    """A separate model of the same rim: Roark's thick ring and Winkler-Bach's curved-beam stresses."""
+    sec = thick_ring.RingSection(r_m, delta, face_width)
+    f_thick = thick_ring.thick_ring_factors(sec, nu)
+    W_thick = 2.0 * W0 * E * thick_ring.effective_I_mm4(sec, True) / (thick_ring.dv_coefficient(f_thick) * r_m ** 3)
+    dv, dh = thick_ring.deflections_mm(W_thick, sec, E, nu, thick=True)
+    # Winkler sign: M > 0 puts the outer fibre in tension. D flattens (outer fibre compressed), B bends up.
+    M_D = -thick_ring.moment_at_load_Nmm(W_thick, r_m, f_thick)
+    M_B = thick_ring.moment_at_free_point_Nmm(W_thick, r_m, f_thick)
+    # Hoop force: -W/2 at B, 0 at D (shear carries the load there); seed sign: outer fibre at D compressive.
+    wb = {
+        "D_outer": thick_ring.winkler_bach_stress_MPa(M_D, 0.0, sec.r_outer_mm, sec),
+        "D_inner": thick_ring.winkler_bach_stress_MPa(M_D, 0.0, sec.r_inner_mm, sec),
+        "B_outer": thick_ring.winkler_bach_stress_MPa(M_B, -0.5 * W_thick, sec.r_outer_mm, sec),
+        "B_inner": thick_ring.winkler_bach_stress_MPa(M_B, -0.5 * W_thick, sec.r_inner_mm, sec),
+    }
+    inner_f, outer_f = thick_ring.curvature_stress_factors(sec)
+    return {
+        "model": "Roark Table 9.2 case 1 (thick ring, I -> A e R) + Winkler-Bach",
+        "alpha": f_thick.alpha, "beta": f_thick.beta, "k1": f_thick.k1, "k2": f_thick.k2,
+        "D_V_coefficient": thick_ring.dv_coefficient(f_thick), "D_H_coefficient": thick_ring.dh_coefficient(f_thick),
+        "force_for_W0_N": W_thick, "delta_CD_mm": dv, "delta_AB_mm": dh,
+        "compliance_ratio_to_thin": (dv / W_thick) / (ring.delta_cd_mm(1.0, r_m, E, I)),
+        "curvature_factor_inner": inner_f, "curvature_factor_outer": outer_f,
+        "winkler_bach_stress_MPa": wb,
+    }
+
+
+def _tooth_number_record(params, const: float, const_signed: float, offset: float) -> dict:
+    """Seed 003 eq 14's least tooth number, for dZ = 2, 4 and the parameters' own, beside the paper's roots."""
+    Z_R, dZ = params.ewg_drive.flexspline_teeth, params.ewg_drive.tooth_difference
+    roots = {dz: tooth_numbers(params, dz) for dz in sorted({2, 4, dZ})}
+    return {
+        "constant": const, "constant_signed_mean": const_signed, "offset": offset,
+        "dZ2": roots[2]["abs"], "dZ4": roots[4]["abs"],
+        "Z_R_min_dZ2": _ceil(roots[2]["abs"]), "Z_R_min_dZ4": _ceil(roots[4]["abs"]),
+        "signed_mean_stress": {"dZ2": roots[2]["signed"], "dZ4": roots[4]["signed"],
+                               "Z_R_min_dZ2": _ceil(roots[2]["signed"]),
+                               "Z_R_min_dZ4": _ceil(roots[4]["signed"])},
+        "for_params": {"tooth_difference": dZ, "root": roots[dZ]["abs"], "Z_R_min": _ceil(roots[dZ]["abs"]),
+                       "root_signed_mean": roots[dZ]["signed"], "Z_R_min_signed": _ceil(roots[dZ]["signed"]),
+                       "Z_R_given": Z_R},
+        "paper_roots": {"dZ2": fatigue.PAPER_ROOTS[2], "dZ4": fatigue.PAPER_ROOTS[4]},
+        "paper_implied_constant": {f"dZ{dz}": fatigue.constant_implied_by_root(
+            r, dz, fatigue.PAPER_EXAMPLE["permissible_safety"], fatigue.PAPER_EXAMPLE["fatigue_limit_MPa"],
+            fatigue.PAPER_EXAMPLE["youngs_modulus_MPa"], fatigue.tooth_offset()) for dz, r in
+            fatigue.PAPER_ROOTS.items()},
     }
 
 

@@ -2,7 +2,8 @@
 
 For each shipped gear and each cup case of the full validation plan (the headline depth at the study's mesh,
 the sweep depths at the --quick mesh), both methods solve delta lambda_f on three meshes; printed per case:
-CPU seconds of each (time.process_time, which the machine's other jobs hardly change), delta lambda_f and
+CPU seconds of each (time.process_time, which the machine's other jobs hardly change; the wall time and the
+load beside it), delta lambda_f and
 its GCI, and the accuracy rule of issue 36: |new - old| <= RSS of the two GCIs. Also lambda_f and its GCI
 (the headline flexibility check's value). ``--patch`` instead sweeps the local patch's half size L/a at one
 depth, to show the fixed-grip error O((a/L)^2).
@@ -26,9 +27,10 @@ QUANTITIES = ("delta_flexibility_rad_per_Nmm", "flexibility_rad_per_Nmm")
 
 def solve(params, method: str, depth_mm: float, mesh_size_mm: float | None) -> dict:
     from strainwave.fea import cup_torsion
-    c0 = time.process_time()
+    c0, w0 = time.process_time(), time.perf_counter()
     r = cup_torsion.run(params, crack_depth_mm=depth_mm, mesh_size_mm=mesh_size_mm, crack_method=method)
-    row = {"method": method, "depth_mm": depth_mm, "cpu_s": round(time.process_time() - c0, 1)}
+    row = {"method": method, "depth_mm": depth_mm, "cpu_s": round(time.process_time() - c0, 1),
+           "wall_s": round(time.perf_counter() - w0, 1), "load": round(os.getloadavg()[0], 2)}
     for name in QUANTITIES:
         q = r.quantities[name]
         row[name] = [q.value, q.uncertainty]

@@ -2,7 +2,8 @@
 
 The global model is solved once, uncracked (no crack-front refinement, so its mesh does not depend on the
 crack depth). The local model is a patch of the part around the crack, meshed with the crack as a seam
-(``crack_seam``) and refined at its front, its cut faces held at the global displacement (interpolated
+(``crack_seam``) and refined at its front (a through-wall crack: ``crack_extruded``), its cut faces held at
+the global displacement (interpolated
 on the global curved P2 mesh), every other face as in the global model (traction free here). Solved
 closed and opened on one mesh, its strain energy falls by dU: the energy the crack releases at fixed
 grip on the cut. To first order in the crack size this is the energy released at fixed load, half the
@@ -109,25 +110,31 @@ class LocalEnergy:
         return self.closed_Nmm - self.opened_Nmm
 
 
-def patch_energy(md: MeshData, lame, global_u, *, group: str = "cut", study: str = "fea") -> tuple[float, int, float]:
+def patch_energy(md: MeshData, lame, global_u, *, group: str = "cut", study: str = "fea",
+                 plane_strain_faces: str | None = None) -> tuple[float, int, float]:
     """(strain energy, dofs, solve s) of ``md`` with the nodes of ``group`` held at ``global_u(points)``
-    (n, 3) mm and every other face free."""
+    (n, 3) mm and every other face free; ``plane_strain_faces``: a group whose other nodes keep u_z = 0
+    (the faces of a slab in plane strain)."""
     from strainwave.fea.solver import solve_elasticity
     from strainwave.fea.static import assemble
     sk, K, f, _, _ = assemble(md, lame, study=study)
     nodes = group_dofs(sk, md, group)
     g = np.asarray(global_u(sk.doflocs[:, nodes].T), float)
-    dofs = (3 * nodes[:, None] + np.arange(3)).ravel()
-    u, info = solve_elasticity(K, f, fixed_dofs=dofs, fixed_values=g.ravel(), coords=sk.doflocs, dim=3,
+    dofs, values = (3 * nodes[:, None] + np.arange(3)).ravel(), g.ravel()
+    if plane_strain_faces is not None:
+        faces = np.setdiff1d(group_dofs(sk, md, plane_strain_faces), nodes)
+        dofs, values = np.concatenate([dofs, 3 * faces + 2]), np.concatenate([values, np.zeros(faces.size)])
+    u, info = solve_elasticity(K, f, fixed_dofs=dofs, fixed_values=values, coords=sk.doflocs, dim=3,
                                study=study, method="direct")
     return 0.5 * float(u @ (K @ u)), info.dofs, info.time_s
 
 
-def local_release(md: MeshData, lame, global_u, *, study: str) -> LocalEnergy:
+def local_release(md: MeshData, lame, global_u, *, study: str, plane_strain_faces: str | None = None) -> LocalEnergy:
     """The patch solved closed and opened (``crack_seam.open_crack``) on one mesh."""
     from strainwave.fea.crack_seam import open_crack_for
-    closed, _, t0 = patch_energy(md, lame, global_u, study=study)
-    opened, dofs, t1 = patch_energy(open_crack_for(md, study), lame, global_u, study=study)
+    closed, _, t0 = patch_energy(md, lame, global_u, study=study, plane_strain_faces=plane_strain_faces)
+    opened, dofs, t1 = patch_energy(open_crack_for(md, study), lame, global_u, study=study,
+                                    plane_strain_faces=plane_strain_faces)
     return LocalEnergy(closed, opened, dofs, t0 + t1)
 
 

@@ -45,6 +45,8 @@ def gmsh_session(*, verbosity: int = 0, threads: int = 1, interruptible: bool = 
     main_thread = threading.current_thread() is threading.main_thread()
     previous = signal.getsignal(signal.SIGINT) if main_thread else None
     gmsh.initialize(readConfigFiles=False, interruptible=interruptible and main_thread)
+    if main_thread:
+        keep_sigpipe_ignored()
     try:
         gmsh.option.setNumber("General.Terminal", 1 if verbosity > 0 else 0)
         gmsh.option.setNumber("General.Verbosity", verbosity)
@@ -55,6 +57,13 @@ def gmsh_session(*, verbosity: int = 0, threads: int = 1, interruptible: bool = 
         gmsh.finalize()
         if main_thread and previous is not None:   # gmsh.finalize leaves SIGINT at its default action
             signal.signal(signal.SIGINT, previous)
+
+
+def keep_sigpipe_ignored() -> None:
+    """Put SIGPIPE back to ignored in the kernel, as Python starts it: gmsh.initialize sets it to its default
+    action behind Python's back, and a write to a closed socket (a Dask client gone, say) then kills the
+    process instead of raising BrokenPipeError. Main thread only."""
+    signal.signal(signal.SIGPIPE, signal.SIG_IGN)
 
 
 _PR_SET_PDEATHSIG = 1

@@ -10,6 +10,7 @@ centre or area no longer matches (the file changed) is refused, never silently m
 from __future__ import annotations
 
 import json
+import threading
 from pathlib import Path
 
 import numpy as np
@@ -39,10 +40,14 @@ def _gmsh_open():
     """gmsh, initialized for this call unless the caller holds a session; returns (gmsh, started)."""
     import gmsh
 
+    from strainwave.fea.session import keep_sigpipe_ignored
+
     started = not gmsh.isInitialized()
     if started:
         gmsh.initialize(readConfigFiles=False, interruptible=False)
         gmsh.option.setNumber("General.Terminal", 0)
+        if threading.current_thread() is threading.main_thread():
+            keep_sigpipe_ignored()
     return gmsh, started
 
 

@@ -183,20 +183,28 @@ def _named(solid, meta, slot, teeth: bool, is_cup: bool) -> dict:
     return {**named, **{name: F.refs(faces) for name, faces in more.items() if faces}}
 
 
+def check_crack_patch(part: Part, half_size_mm: float) -> None:
+    """ValueError unless ``part`` is a SEAM cup whose crack's patch (+-``half_size_mm`` axially and in arc)
+    lies in the smooth tube between the diaphragm region and the band."""
+    m = part.meta
+    if part.crack_surface is None or "crack_centre_mm" not in m:
+        raise ValueError("crack_patch: the part carries no seam crack")
+    z_c = m["crack_z_mm"]
+    bottom = BOSS_HEIGHT_WALLS * m["wall_mm"] + m["wall_mm"] if m["cup"] else 0.0
+    if not (bottom < z_c - half_size_mm and z_c + half_size_mm < m["band_z_mm"][0] and half_size_mm < m["mid_radius_mm"]):
+        raise ValueError(f"crack_patch: +-{half_size_mm:g} mm around z = {z_c:g} mm leaves the smooth tube "
+                         f"(z = {bottom:g}..{m['band_z_mm'][0]:g} mm)")
+
+
 def crack_patch(part: Part, half_size_mm: float) -> Part:
     """The global-local crack model's local part: the tube wall within +-``half_size_mm`` axially and the
     same arc length either way of a SEAM cup's crack centre, with the same seam. Its four cut faces form
     the group ``cut`` (held at the global displacement); the bore and outer cylinders stay free."""
     from build123d import Axis, Face, Polyline, Wire, revolve
 
+    check_crack_patch(part, half_size_mm)
     m = part.meta
-    if part.crack_surface is None or "crack_centre_mm" not in m:
-        raise ValueError("crack_patch: the part carries no seam crack")
     r_i, r_o, r_m, z_c = m["bore_radius_mm"], m["outer_radius_mm"], m["mid_radius_mm"], m["crack_z_mm"]
-    bottom = BOSS_HEIGHT_WALLS * m["wall_mm"] + m["wall_mm"] if m["cup"] else 0.0
-    if not (bottom < z_c - half_size_mm and z_c + half_size_mm < m["band_z_mm"][0] and half_size_mm < r_m):
-        raise ValueError(f"crack_patch: +-{half_size_mm:g} mm around z = {z_c:g} mm leaves the smooth tube "
-                         f"(z = {bottom:g}..{m['band_z_mm'][0]:g} mm)")
     theta = math.atan2(m["crack_centre_mm"][1], m["crack_centre_mm"][0])
     arc = half_size_mm / r_m
     lo, hi = z_c - half_size_mm, z_c + half_size_mm

@@ -216,8 +216,10 @@ def _cmd_compare(args) -> int:
 
 def _cmd_diagnose(args) -> int:
     from strainwave.compare.diagnose.pipeline import diagnose_file
+    from strainwave.compare.diagnose.recording import TestFlags
+    flags = TestFlags(args.kind, args.specimen, args.stiffness, args.rated_torque)
     diagnosis = diagnose_file(Path(args.recording), params_path=args.params, baseline=args.baseline,
-                              plot_out=Path(args.plot) if args.plot else None)
+                              plot_out=Path(args.plot) if args.plot else None, flags=flags)
     _emit(args, diagnosis.summary(), diagnosis.to_dict)
     return 0
 
@@ -475,6 +477,12 @@ def _add_diagnose(add) -> None:
     p.add_argument("--baseline", choices=("analytic", "fea"), default="analytic",
                    help="model the recording is compared with")
     p.add_argument("--plot", metavar="OUT.png", help="also plot the recording, the baseline and the fit")
+    p.add_argument("--kind", help="[test] kind, for a recording without a header (or over its header's)")
+    p.add_argument("--specimen", help="[test] specimen, for a recording without a header (or over its header's)")
+    p.add_argument("--stiffness", metavar="K", help="the specimen's linear stiffness instead of the simulation's, "
+                   "e.g. '1.9e3 Nm/rad' (bare number: N*mm/rad, or N/mm for a ring)")
+    p.add_argument("--rated-torque", metavar="T", help="the gear's rated torque, e.g. '7.8 Nm' (bare number: N*mm): "
+                   "the catalogue's hysteresis loss and lost motion (+/-4 %%) are read at it")
 
 
 def _add_size_crack(add) -> None:

@@ -58,10 +58,15 @@ def benchmark_module(name: str):
 
 @pytest.fixture(autouse=True)
 def _python_signal_dispositions():
-    """Every test starts and ends with Python's own SIGINT and SIGPIPE dispositions: a native library (gmsh
-    resets SIGINT to its default action) or a test that changes one must not let a later signal kill the run."""
+    """Every test starts and ends with Python's own SIGINT and SIGPIPE dispositions, set in the kernel: a native
+    library (gmsh.initialize resets both to their default actions behind Python's back, so signal.getsignal
+    cannot tell) or a test that changes one must not let a later signal kill the run."""
+    _resync_signals()
     yield
-    if signal.getsignal(signal.SIGINT) in (signal.SIG_DFL, None):
-        signal.signal(signal.SIGINT, signal.default_int_handler)
-    if signal.getsignal(signal.SIGPIPE) != signal.SIG_IGN:
-        signal.signal(signal.SIGPIPE, signal.SIG_IGN)
+    _resync_signals()
+
+
+def _resync_signals() -> None:
+    handler = signal.getsignal(signal.SIGINT)
+    signal.signal(signal.SIGINT, signal.default_int_handler if handler in (signal.SIG_DFL, None) else handler)
+    signal.signal(signal.SIGPIPE, signal.SIG_IGN)

@@ -261,7 +261,8 @@ def test_a_pair_is_judged_against_the_first_effects_plausible_form(params):
     import dataclasses as dc
     from strainwave.compare.diagnose.effects import large_deflection
     from strainwave.compare.diagnose.fit import fit_effects
-    from strainwave.compare.diagnose.pipeline import _best_plausible_per_effect, _implausible
+    from strainwave.compare.diagnose.candidates import best_plausible_per_effect as _best_plausible_per_effect
+    from strainwave.compare.diagnose.judge import implausible as _implausible
     kind = RecordingKind.RING_COMPRESSION
     u = _path(kind, 400)
     probe = parse_text(format_recording(kind, "ewg_ring", u * 2000.0, u))

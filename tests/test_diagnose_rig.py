@@ -205,6 +205,7 @@ def test_a_gear_curve_against_another_gears_baseline_names_the_key_to_set(strain
                          capture_output=True, text=True, timeout=300)
     assert out.returncode == 2 and "Traceback" not in out.stderr and out.stderr.count("\n") == 1
     assert "baseline_stiffness_Nmm_per_rad" in out.stderr and "cha.csv" in out.stderr
+    assert "--stiffness" in out.stderr                     # the flag that sets it, for a recording without a header
     assert sorted(p.name for p in tmp_path.iterdir()) == ["cha.csv"]
 
 

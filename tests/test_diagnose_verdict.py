@@ -629,7 +629,7 @@ def test_a_pair_tries_the_best_form_of_each_loop_law_class():
     """Beside another effect, a pair tries the best form of each law class first (Effect.law_class), then the
     next best of any class; forms without a class are each their own."""
     from types import SimpleNamespace
-    from strainwave.compare.diagnose.pipeline import _pair_forms
+    from strainwave.compare.diagnose.candidates import pair_forms as _pair_forms
 
     def fit(effect):
         return SimpleNamespace(effects=(effect,))

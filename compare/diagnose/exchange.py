@@ -16,10 +16,11 @@ load-zero crossings (and the record's middle where the load never crosses zero).
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import numpy as np
 
-from strainwave.compare.diagnose.effects.base import Context, Effect, Param
+from strainwave.compare.diagnose.effects.base import Context, Effect, Param, RivalReading
 
 LABEL = "a specimen exchanged or re-clamped mid-test (its compliance and zero changed once, while unloaded)"
 # a change in the first or last tenth of the record is an end effect (run-in, unloading), not an exchange
@@ -75,4 +76,24 @@ def exchanged_at(split: int) -> Effect:
     return dataclasses.replace(_EXCHANGE, contribution=_contribution(split), variant=f"at {split}")
 
 
-__all__ = ["EDGE", "LABEL", "MAX_CROSSINGS", "NEAR", "UNLOADED", "candidate_splits", "exchanged_at"]
+def rival(ctx: Context, kept: tuple[Effect, ...], heads: list, best_bic: float, sigma: float, uncertainty: float,
+          noise, stride: int) -> RivalReading:
+    """The named crack replaced by a specimen exchanged once while unloaded, the other named effects ``kept``:
+    the zero jumped where the compliance changed, which no crack draws; where each load sign was visited before
+    or after one instant only, a one-sided compliance is also one that changed in time."""
+    from strainwave.compare.diagnose.fit import fit_effects       # fit imports the catalogue, which names this
+    splits = candidate_splits(ctx)
+    fits = [(fit_effects(ctx, kept + (exchanged_at(k),), sigma, uncertainty,
+                         starts=[np.concatenate([*heads, np.zeros(2)])], noise=noise), k) for k in splits]
+    fitted, split = min(fits, key=lambda fk: fk[0].bic)
+    # the change's row is chosen among len(splits) rows, each with prior 1/len(splits): -2 ln of that prior
+    margin = float(fitted.bic + 2.0 * math.log(len(splits)) - best_bic)
+    row = split * stride + 1
+    return RivalReading(
+        margin, True,
+        f"the compliance and the zero change once, at row {row} while unloaded: {LABEL} draws the one-sided "
+        f"compliance better than a breathing crack (by {-margin:.0f} BIC units), and a crack does not move the zero",
+        f"{LABEL}, at row {row}; a test that visits both load signs before and after that row tells them apart")
+
+
+__all__ = ["EDGE", "LABEL", "MAX_CROSSINGS", "NEAR", "UNLOADED", "candidate_splits", "exchanged_at", "rival"]

@@ -60,14 +60,21 @@ def _pm(quantities: dict) -> str:
     return f" +/- {se[0]:.2g}" if se is not None else ""
 
 
+def _parameter(display, name: str, value: float, unit: str, std_error: float | None) -> str:
+    """``name = value +/- error unit`` in the recording's units."""
+    v, u = display.convert(value, unit)
+    se = None if std_error is None else display.convert(std_error, unit)[0]
+    return f"{name} = {v:.4g}".rstrip() + (f" +/- {se:.2g}" if se is not None else "") + f" {u}"
+
+
 def explain(diag) -> str:
-    noise = diag.noise_std
+    noise = diag.response_text(diag.noise_std)
     verdict = diag.verdict.value
     if verdict == "agrees":
         return (f"The recording agrees with the baseline ({diag.baseline.source}) within the noise "
-                f"({noise:.3g}, coloured noise allowed for) and the stated {100 * diag.baseline.uncertainty:.0f} % "
-                f"uncertainty of the simulated stiffness: residual RMS {diag.rms_before:.3g}; its structure test "
-                f"finds nothing beyond the noise and no catalogue effect improves BIC by more than 10.")
+                f"({noise}, coloured noise allowed for) and the stated {100 * diag.baseline.uncertainty:.0f} % "
+                f"uncertainty of the simulated stiffness: residual RMS {diag.response_text(diag.rms_before)}; its "
+                f"structure test finds nothing beyond the noise and no catalogue effect improves BIC by more than 10.")
     top = diag.effects[0] if diag.effects else None
     if verdict == "unexplained":
         sugg = ""
@@ -79,24 +86,26 @@ def explain(diag) -> str:
             but = (f"it reaches the noise only with values its physics does not allow ({'; '.join(top.warnings)})"
                    if implausible else "it leaves a residual that is not noise")
             sugg = (f" The best partial model, offered only as a suggestion, is {top.id.replace('+', ' with ')} "
-                    f"(delta BIC {top.delta_bic:.1f}, RMS {diag.rms_before:.3g} -> {top.rms:.3g}), but {but}.")
+                    f"(delta BIC {top.delta_bic:.1f}, RMS {diag.response_text(diag.rms_before)} -> "
+                    f"{diag.response_text(top.rms)}), but {but}.")
         none = ("no catalogue model explains it with plausible values" if implausible else
                 "no catalogue model brings the residual back to the noise")
         return (f"MISMATCH NOT EXPLAINED: the recording departs from the baseline ({diag.baseline.source}) beyond "
-                f"its noise ({noise:.3g}), and {none}. The residual: "
+                f"its noise ({noise}), and {none}. The residual: "
                 f"{diag.structure}.{sugg} Check the rig (sensor channels, clamping, drift, sampling) before trusting "
                 f"any named physics.")
     why = "; and ".join(CATALOGUE[c].explanation for c in top.components)
-    params = ", ".join(f"{k} = {v:.4g}".rstrip() + (f" +/- {top.errors[k]:.2g}" if k in top.errors else "") + f" {u}"
+    params = ", ".join(_parameter(diag.display, k, v, u, top.errors.get(k))
                        for k, (v, u) in list(top.parameters.items())[:6])
     runner = ""
     if diag.runner_up is not None and diag.margin_bic is not None:
         runner = (f" The runner-up, {diag.runner_up}, scores {diag.margin_bic:.1f} BIC units worse"
                   f"{' - AMBIGUOUS: the data cannot tell the two apart' if diag.ambiguous else ''}.")
     warn = (" Warnings: " + "; ".join(top.warnings) + ".") if top.warnings else ""
-    return (f"The recording departs from the baseline ({diag.baseline.source}) beyond its noise ({noise:.3g}) "
+    return (f"The recording departs from the baseline ({diag.baseline.source}) beyond its noise ({noise}) "
             f"and the {100 * diag.baseline.uncertainty:.0f} % stiffness uncertainty: {diag.located.description}. "
             f"The best explanation is {top.id.replace('+', ' together with ')}: {why}. Fitted: {params}. "
-            f"It lowers the residual RMS from {diag.rms_before:.3g} to {diag.rms_after:.3g} (BIC by "
+            f"It lowers the residual RMS from {diag.response_text(diag.rms_before)} to "
+            f"{diag.response_text(diag.rms_after)} (BIC by "
             f"{top.delta_bic:.1f}, weight {top.weight:.2f}) and leaves a residual consistent with the noise."
             f"{runner}{warn}" + (" " + loss_sentence(diag.quantities) if diag.quantities else ""))

@@ -24,7 +24,7 @@ What exceeds it is named from the raw readings, not guessed from the physics:
   a sensor glitch that offsets the channel), located where the mean levels of the STEP_SPAN samples either
   side differ most.
 
-With more than pipeline.MAX_FIT_ROWS rows the fit sees every k-th row; the check sees every row (the final
+With more than rows.MAX_FIT_ROWS rows the fit sees every k-th row; the check sees every row (the final
 model evaluated on all of them, the noise model read from that full-rate residual's fine scales).
 """
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Step 3: where is the mismatch? Ranges of the load and the branches on which the residual is significant.
+"""Step 6 (location): where is the mismatch? Ranges of the load and the branches on which the residual is significant.
 
 The baseline-fit residual is averaged in 20 load bins separately for each branch (loading/unloading x
 positive/negative load). A bin is significant when its mean exceeds 3 sigma/sqrt(n) (3 standard errors)
@@ -80,7 +80,7 @@ def locate_effect(ctx: Context, effects, thetas, binned: Located, variable: str)
     ranges, texts = [], []
     for e, th in zip(effects, thetas):
         if e.where is None:
-            texts.append(f"{e.id}: whole load range" + (", branch-dependent" if e.id == "hysteresis" else ""))
+            texts.append(f"{e.id}: whole load range" + (", branch-dependent" if e.loop else ""))
             ranges.append((float(ctx.u.min()), float(ctx.u.max())))
             continue
         rr, text = e.where(ctx, np.asarray(th))

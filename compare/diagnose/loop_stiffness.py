@@ -20,16 +20,13 @@ from strainwave.compare.diagnose.effects.base import Context
 from strainwave.compare.diagnose.effects.loop import load_path_model, reference_cycle
 from strainwave.compare.diagnose.fit import Fit
 
-LOOP = "hysteresis"
-# effects a loop may share the load path with and keep a stiffness the two readings define (a stiffening
-# changes every tangent: its K1, K2, K3 are read from s and keep the prior on s)
-LINEAR_COMPANIONS = frozenset({"compliance_offset"})
 
 
 def applies(fit: Fit) -> bool:
-    """A loop whose load path is otherwise linear."""
-    ids = {e.id for e in fit.effects if e.load_path}
-    return LOOP in ids and ids <= LINEAR_COMPANIONS | {LOOP}
+    """A loop whose load path is otherwise linear: only a series compliance beside it keeps a stiffness the two
+    readings define (a stiffening changes every tangent: its K1, K2, K3 are read from s and keep the prior on s)."""
+    path = [e for e in fit.effects if e.load_path]
+    return any(e.loop for e in path) and all(e.loop or e.series_compliance for e in path)
 
 
 def readings(ctx: Context, fit: Fit, series: bool = True) -> tuple[float, float]:
@@ -41,7 +38,7 @@ def readings(ctx: Context, fit: Fit, series: bool = True) -> tuple[float, float]
     y = fit.scale * ref.u + load_path_model(ref, fit)
     if not series:
         y = y - sum((e.contribution(ref, th) for e, th in zip(fit.effects, fit.split_theta())
-                     if e.id in LINEAR_COMPANIONS), np.zeros_like(ref.u))
+                     if e.series_compliance), np.zeros_like(ref.u))
     u, y = ref.u[start:], y[start:]
     k = int(np.argmin(u))
     secant = float((y[-1] - y[k]) / (u[-1] - u[k]))
@@ -61,7 +58,7 @@ def with_loop_prior(ctx: Context, fit: Fit) -> Fit:
     unchanged unless ``applies``."""
     if not applies(fit):
         return fit
-    if any(e.id in LINEAR_COMPANIONS for e in fit.effects):
+    if any(e.series_compliance for e in fit.effects):
         fit = _specimen_on_its_prior(ctx, fit)
     chi2 = prior_chi2(ctx, fit)
     return dataclasses.replace(fit, prior_chi2=chi2, bic=fit.bic - fit.prior_chi2 + chi2)
@@ -76,7 +73,7 @@ def _specimen_on_its_prior(ctx: Context, fit: Fit) -> Fit:
     theta = fit.theta.copy()
     i = 0
     for e in fit.effects:
-        if e.id in LINEAR_COMPANIONS:
+        if e.series_compliance:
             theta[i] -= shift        # compliance_offset: y += d u
             break
         i += e.n_params

@@ -1,4 +1,4 @@
-"""Step 5: the picture: data, baseline, augmented model (top) and residuals before/after (bottom).
+"""Step 7 (explanation): the picture: data, baseline, augmented model (top) and residuals before/after (bottom).
 
 Uses matplotlib's object API with the Agg canvas (no pyplot state, no display) and writes atomically.
 """

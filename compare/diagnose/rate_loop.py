@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.signal import lfilter
 
-from strainwave.compare.diagnose.effects.base import Context, Effect, Param
+from strainwave.compare.diagnose.effects.base import Context, Effect, Param, RivalReading
 
 LABEL = "a rate-dependent loop (viscoelastic creep, or a channel lagging in time)"
 
@@ -80,4 +80,25 @@ RATE_LOOP = Effect(
     variant="zener",
 )
 
-__all__ = ["LABEL", "ONE_RATE_SPREAD", "RATE_LOOP", "lagged", "several_rates"]
+
+
+def rival(ctx: Context, kept: tuple[Effect, ...], heads: list, best_bic: float, sigma: float, uncertainty: float,
+          noise, stride: int) -> RivalReading:
+    """The named friction loop replaced by linear viscoelastic creep, the other named effects ``kept``. The loop
+    keeps time, not travel, across loading rates: out of the catalogue (friction is rate-independent); at one
+    loading rate a better-fitting rival is only a better SHAPE (creep may keep twisting after the torque has
+    turned, a passive friction law may not): no evidence of rate dependence."""
+    from strainwave.compare.diagnose.fit import fit_effects       # fit imports the catalogue, which names this
+    starts = [np.concatenate([*heads, np.array(x0)]) for x0 in ((0.05, -2.5), (0.05, -1.5))]
+    fitted = fit_effects(ctx, kept + (RATE_LOOP,), sigma, uncertainty, starts=starts, noise=noise)
+    margin = float(fitted.bic - best_bic)
+    several = several_rates(ctx)
+    return RivalReading(
+        margin, several,
+        f"the loop is rate-dependent: {LABEL} draws it better than any friction law at the recording's several "
+        f"loading rates (by {-margin:.0f} BIC units), and friction does not depend on the loading rate",
+        LABEL + ("" if several else ", at the recording's one loading rate") +
+        "; a test at a second loading rate tells them apart")
+
+
+__all__ = ["LABEL", "ONE_RATE_SPREAD", "RATE_LOOP", "lagged", "rival", "several_rates"]

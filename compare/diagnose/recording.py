@@ -19,6 +19,7 @@ separator a locale uses (comma; semicolon with decimal commas; tab), recognised 
 from __future__ import annotations
 
 import csv
+import dataclasses
 import enum
 import math
 import tomllib
@@ -31,7 +32,7 @@ import numpy as np
 from strainwave.errors import InputError, RangeWarning
 from strainwave.input_guard import SNIFF_CHARS, sniff_sample
 from strainwave.params import load_params, read_limited
-from strainwave.compare.diagnose.units import canonical_column
+from strainwave.compare.diagnose.units import canonical_column, flag_value
 
 MIN_ROWS = 20
 # Size limits, so a mistaken path (/dev/zero, a day of raw DAQ data) is refused before it takes the
@@ -61,7 +62,7 @@ SPECIMENS = {RecordingKind.TORSION: ("output_shaft", "flexspline_cup", "gear"),
 COLUMNS = {RecordingKind.TORSION: (("torque_Nmm", "twist_rad"), ("time_s", "input_angle_rad")),
            RecordingKind.RING_COMPRESSION: (("force_N", "delta_cd_mm"), ("delta_ab_mm", "time_s"))}
 TEST_KEYS = {"kind", "specimen", "baseline_uncertainty", "baseline_stiffness_Nmm_per_rad",
-             "baseline_stiffness_N_per_mm", "description"}
+             "baseline_stiffness_N_per_mm", "description", "rated_torque_Nmm"}
 TOP_TABLES = {"test", "params", "meta"}
 
 
@@ -82,6 +83,8 @@ class Recording:
     param_overrides: dict = field(default_factory=dict)
     extra: dict = field(default_factory=dict)   # optional channels, e.g. delta_ab_mm
     description: str = ""
+    rated_torque: float | None = None           # N*mm (torsion): the catalogue's loss and lost motion are read at it
+    units: dict = field(default_factory=dict)   # canonical column -> the unit the file wrote it in ("" canonical)
 
     @property
     def n(self) -> int:
@@ -96,13 +99,51 @@ class Recording:
         return "rad" if self.kind is RecordingKind.TORSION else "mm"
 
 
-def parse_recording(path: Path | str) -> Recording:
+@dataclass(frozen=True)
+class TestFlags:
+    """[test] keys given on the command line (``--kind --specimen --stiffness --rated-torque``): they describe a
+    recording without a header, and override the header's keys where it has one."""
+
+    kind: str | None = None
+    specimen: str | None = None
+    stiffness: str | None = None       # a number with an optional unit (units.flag_value)
+    rated_torque: str | None = None
+
+    def __bool__(self) -> bool:
+        return any(v is not None for v in dataclasses.astuple(self))
+
+    def table(self, header_kind: object) -> dict:
+        """The flags as [test] entries in canonical units; a bad value: InputError naming the flag."""
+        kinds = [k.value for k in RecordingKind]
+        if self.kind is not None and self.kind not in kinds:
+            raise InputError("--kind", self.kind, f"one of {kinds}")
+        kind_name = self.kind if self.kind is not None else header_kind
+        if kind_name not in kinds:
+            raise InputError("--kind", "not set", f"a recording without a valid [test] kind needs --kind, one of {kinds}")
+        kind = RecordingKind(kind_name)
+        out = {} if self.kind is None else {"kind": self.kind}
+        if self.specimen is not None:
+            if self.specimen not in SPECIMENS[kind]:
+                raise InputError("--specimen", self.specimen, f"for {kind.value} one of {list(SPECIMENS[kind])}")
+            out["specimen"] = self.specimen
+        if self.stiffness is not None:
+            torsion = kind is RecordingKind.TORSION
+            key = "baseline_stiffness_Nmm_per_rad" if torsion else "baseline_stiffness_N_per_mm"
+            out[key] = flag_value("--stiffness", self.stiffness, "torsional_stiffness" if torsion else "ring_stiffness")
+        if self.rated_torque is not None:
+            if kind is not RecordingKind.TORSION:
+                raise InputError("--rated-torque", self.rated_torque, "only for a torsion recording")
+            out["rated_torque_Nmm"] = flag_value("--rated-torque", self.rated_torque, "torque")
+        return out
+
+
+def parse_recording(path: Path | str, flags: TestFlags | None = None) -> Recording:
     """Read and parse one recording file; any defect is an ``InputError`` naming the file and line."""
     path = Path(path)
-    return parse_bytes(read_limited(path, MAX_BYTES, str(path)), path.name)
+    return parse_bytes(read_limited(path, MAX_BYTES, str(path)), path.name, flags)
 
 
-def parse_bytes(raw: bytes, name: str = "recording.csv") -> Recording:
+def parse_bytes(raw: bytes, name: str = "recording.csv", flags: TestFlags | None = None) -> Recording:
     if b"\x00" in raw[:4096]:
         raise InputError(f"{name}:1", "binary data", "a recording must be a UTF-8 text file (CSV with # header)")
     try:
@@ -110,10 +151,10 @@ def parse_bytes(raw: bytes, name: str = "recording.csv") -> Recording:
     except UnicodeDecodeError as exc:
         line = raw[:exc.start].count(b"\n") + 1
         raise InputError(f"{name}:{line}", "undecodable bytes", "a recording must be a UTF-8 text file") from None
-    return parse_text(text, name)
+    return parse_text(text, name, flags)
 
 
-def parse_text(text: str, name: str = "recording.csv") -> Recording:
+def parse_text(text: str, name: str = "recording.csv", flags: TestFlags | None = None) -> Recording:
     lines = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
     header_lines, body_start = [], len(lines)
     for i, line in enumerate(lines):
@@ -126,8 +167,8 @@ def parse_text(text: str, name: str = "recording.csv") -> Recording:
         else:
             body_start = i
             break
-    header = _parse_header(header_lines, name)
-    kind, specimen, test = _parse_test(header, header_lines, name)
+    header = _with_flags(_parse_header(header_lines, name, headless_ok=bool(flags)), flags)
+    kind, specimen, test = _parse_test(header, header_lines or [(1, "")], name)
     _check_overrides(header.get("params", {}), header_lines, name)
     (load_col, resp_col), optional = COLUMNS[kind]
     if body_start >= len(lines):
@@ -184,12 +225,28 @@ def parse_text(text: str, name: str = "recording.csv") -> Recording:
                      baseline_stiffness=test.get("baseline_stiffness"),
                      param_overrides=header.get("params", {}),
                      extra={c: v for c, v in col.items() if c not in (load_col, resp_col, "time_s")},
-                     description=str(test.get("description", "")))
+                     description=str(test.get("description", "")), rated_torque=test.get("rated_torque"),
+                     units={c: unit for c, _, unit in converted})
 
 
-def _parse_header(header_lines: list[tuple[int, str]], name: str) -> dict:
+def _with_flags(header: dict, flags: TestFlags | None) -> dict:
+    """The header with the command line's [test] keys over its own."""
+    if not flags:
+        return header
+    test = header.get("test", {})
+    test = test if isinstance(test, dict) else {}
+    header["test"] = {**test, **flags.table(test.get("kind"))}
+    if "specimen" not in header["test"]:
+        raise InputError("--specimen", "not set", "a recording without a [test] specimen needs --specimen")
+    return header
+
+
+def _parse_header(header_lines: list[tuple[int, str]], name: str, headless_ok: bool = False) -> dict:
     if not header_lines:
-        raise InputError(f"{name}:1", "no header", "a recording starts with '# [test]' lines (kind, specimen)")
+        if headless_ok:
+            return {}
+        raise InputError(f"{name}:1", "no header", "a recording starts with '# [test]' lines (kind, specimen), "
+                                                   "or give --kind and --specimen")
     doc = "\n".join(text for _, text in header_lines)
     try:
         header = tomllib.loads(doc)
@@ -291,6 +348,12 @@ def _parse_test(header: dict, header_lines, name: str):
             raise InputError(f"{name}:{_find(header_lines, stiff_key)}", k,
                              f"test.{stiff_key} must be a number in [{lo:g}, {hi:g}]")
         out["baseline_stiffness"] = float(k)
+    if "rated_torque_Nmm" in test:
+        t = test["rated_torque_Nmm"]
+        if kind is not RecordingKind.TORSION or not _number_in(t, 1e-6, MAX_ABS["torque_Nmm"]) or t <= 0:
+            raise InputError(f"{name}:{_find(header_lines, 'rated_torque_Nmm')}", t,
+                             f"test.rated_torque_Nmm (torsion only) must be a torque in (0, {MAX_ABS['torque_Nmm']:g}]")
+        out["rated_torque"] = float(t)
     return kind, test["specimen"], out
 
 

@@ -54,6 +54,16 @@ class Context:
 
 
 @dataclass(frozen=True)
+class RivalReading:
+    """A model outside the catalogue heard against a named effect (its rival draws the same data)."""
+
+    margin_bic: float        # BIC(rival) - BIC(named model): negative when the rival fits better
+    decisive: bool           # the recording can tell the two apart (a rival better by > 10 then wins)
+    unexplained_note: str    # why the answer is unexplained when the rival wins
+    label: str               # the rival as a runner-up when the two tie
+
+
+@dataclass(frozen=True)
 class Effect:
     """A catalogue entry: stable id, model, parameters, and the sentence the report quotes."""
 
@@ -84,11 +94,24 @@ class Effect:
     signature: Callable[[Context, np.ndarray], np.ndarray] | None = None
     # another reading of the stated stiffness by the form of variant ``rereads`` (the same span, a different
     # stiffness under the prior): fitted only where that form's stiffness is off its prior by more than
-    # pipeline.REREAD_PRIOR_SIGMAS (closer, the prior costs it under one BIC unit, which no decision turns on)
+    # candidates.REREAD_PRIOR_SIGMAS (closer, the prior costs it under one BIC unit, which no decision turns on)
     rereads: str | None = None
     # False for an effect driven by something other than the load history (the wave generator's input angle, the
     # measured angle): it has no part in a loop drawn against the load, and the reference cycle carries no angle
     load_path: bool = True
+    # a friction loop: its width at zero load is the hysteresis loss, its stiffness the loop's secant and elastic
+    loop: bool = False
+    # a band at zero load (a backlash): where a loop's width is read, so beside it the data cannot read that width
+    zero_load_band: bool = False
+    # a linear compliance in series with the specimen: the pair partner of a stiffness outside its prior
+    series_compliance: bool = False
+    # effect ids this one cannot be told apart from (both a pure linear compliance change): never paired
+    degenerate_with: tuple[str, ...] = ()
+    # (specimen, effect id) pairs that are the normal model of that specimen, not a second effect to earn its place
+    normal_with: tuple[tuple[str, str], ...] = ()
+    # a model outside the catalogue that draws what this effect draws, heard whenever it is named:
+    # (ctx, kept effects, their thetas, BIC of the named model, sigma, uncertainty, noise, stride) -> RivalReading
+    rival: Callable[..., RivalReading] | None = None
 
     def signature_of(self, ctx: Context, theta: np.ndarray) -> np.ndarray:
         return (self.signature or self.contribution)(ctx, theta)
@@ -100,3 +123,11 @@ class Effect:
     @property
     def n_params(self) -> int:
         return len(self.params)
+
+    def degenerate(self, other: "Effect") -> bool:
+        """The two effects draw the same curve (declared on either)."""
+        return other.id in self.degenerate_with or self.id in other.degenerate_with
+
+    def normal_beside(self, other: "Effect", specimen: str) -> bool:
+        """The pair is the specimen's normal model (declared on either)."""
+        return (specimen, other.id) in self.normal_with or (specimen, self.id) in other.normal_with

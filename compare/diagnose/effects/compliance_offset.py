@@ -29,4 +29,5 @@ EFFECT = Effect(
     report=_report,
     explanation=("a linear compliance in series with the modelled part (fixture, clamping, an omitted bore "
                  "or bearing) makes the whole specimen uniformly softer or stiffer than simulated"),
+    series_compliance=True,
 )

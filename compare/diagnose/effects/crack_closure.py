@@ -90,16 +90,39 @@ def _report(ctx: Context, theta, s: float) -> dict:
             "load_zero_offset": (u0 * ctx.X, ctx.load_unit)}
 
 
+def _exchange_rival(*args):
+    """exchange.rival (imported here: it reads the catalogue's base, which imports this module)."""
+    from strainwave.compare.diagnose.exchange import rival
+    return rival(*args)
+
+
+# the largest load (normalised) at which the crack faces meet: residual stress shifts a crack's closure from
+# zero, by less than a tenth of the largest torque
+U0_MAX = 0.1
+
+
+def _plausible_zero(ctx: Context, theta, s: float) -> list[str]:
+    """A crack's faces meet near zero load and its closed side is linear from there: a closure point fitted at
+    its bound says the curve bends on both sides of zero (an even curvature: a sensor's non-linearity), which
+    a crack does not draw."""
+    if abs(theta[1]) >= U0_MAX / 1.05:
+        return [f"closure point {theta[1] * ctx.X:.4g} {ctx.load_unit} at its bound ({U0_MAX:g} of the largest "
+                f"torque): the curve bends on both sides of zero, not on one side as a crack's does"]
+    return []
+
+
 EFFECT = Effect(
     id="crack_closure",
     kinds=("torsion",),
-    params=(Param("d", -0.8, 0.8, (0.05, -0.05)), Param("u0", -0.1, 0.1, (0.0,))),
+    params=(Param("d", -0.8, 0.8, (0.05, -0.05)), Param("u0", -U0_MAX, U0_MAX, (0.0,))),
     contribution=_contribution,
     report=_report,
     explanation=("a fatigue crack opens under one torque direction and its faces press shut under the "
                  "other, so the part is softer for one sign of torque than for the other"),
     applicable=lambda ctx: ctx.two_sided,
     where=_where,
+    rival=_exchange_rival,
+    plausible=_plausible_zero,
 )
 
 # the gradual closure's widest load width in log10 of the normalised torque: 20 % of the largest torque, so
@@ -116,10 +139,10 @@ def _plausible_gradual(ctx: Context, theta, s: float) -> list[str]:
     sensor reading T + k T^2 was named crack_closure[gradual] at 300x the noise, its width at the bound, its
     stiffness ratio 0.995) or a stiffening, not a crack. As lost_motion's band at its bound is a stiffening."""
     if theta[2] >= LOG10_W_MAX - AT_BOUND:
-        return [f"closure width {10.0 ** theta[2] * ctx.X:.4g} {ctx.load_unit} at its bound (20 % of the largest "
+        return _plausible_zero(ctx, theta, s) + [f"closure width {10.0 ** theta[2] * ctx.X:.4g} {ctx.load_unit} at its bound (20 % of the largest "
                 f"torque): a closure this wide is an even curvature over the whole range (a sensor's "
                 f"non-linearity or a stiffening), not crack faces closing"]
-    return []
+    return _plausible_zero(ctx, theta, s)
 
 
 # the other forms are the sharp form with another closure law: same id, side, report and location

@@ -390,6 +390,12 @@ def _applicable(ctx: Context) -> bool:
     return ctx.reversals >= 1
 
 
+def _rate_rival(*args):
+    """rate_loop.rival (imported here: it reads the catalogue's base, which imports this module)."""
+    from strainwave.compare.diagnose.rate_loop import rival
+    return rival(*args)
+
+
 EFFECT = Effect(
     id="hysteresis",
     kinds=("torsion",),
@@ -401,6 +407,11 @@ EFFECT = Effect(
     variant="dahl",
     plausible=_plausible_dahl,
     law_class=STATE_LAW,
+    loop=True,
+    # a real drive's recording always shows its stiffening and its loop together: for a gear that pair is the
+    # normal model, not a second effect that must earn its place by more than 10 BIC units and by a structure
+    normal_with=(("gear", "nonlinear_stiffness"),),
+    rival=_rate_rival,
 )
 
 

@@ -89,6 +89,7 @@ EFFECT = Effect(
     applicable=lambda ctx: ctx.two_sided,
     where=_where,
     plausible=_plausible,
+    zero_load_band=True,
 )
 
 # relative widths of the shape form's bumps (in units of its scale w)

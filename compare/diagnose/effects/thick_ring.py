@@ -38,4 +38,5 @@ EFFECT = Effect(
                  "curved-beam neutral-axis shift add compliance that Roark's thick-ring formula predicts"),
     applicable=lambda ctx: ("thick_ring_factor" in ctx.geometry
                             and abs(ctx.geometry["thick_ring_factor"] - 1.0) >= ctx.uncertainty),
+    degenerate_with=("compliance_offset",),     # both are a pure linear compliance change
 )
