@@ -250,11 +250,45 @@ def _write_reports(out_dir: Path, doc: dict, views: dict[str, str], progress) ->
         write_html(out_dir / "report.html", doc, views=views)
 
 
+def _metadata(params, quick: bool, plan, outcomes, steps, timings: dict, out_dir: Path) -> dict:
+    """results.json's metadata: when, with what, and what each case and STEP export cost."""
+    return {
+        "created_utc": now_utc(), "params": params.to_dict(), "versions": versions(),
+        "settings": {"quick": quick, "order": ORDER, "mesh": "study defaults (quick: coarse), 3 refinements",
+                     "solver": "fea/ default (see each case's meta)",
+                     "step_export": "background process, overlapping the FEA stage",
+                     "sweep_depths_mm": {k: [c.crack_depth_mm for c in v] for k, v in plan.sweeps.items()}},
+        "cases": [_case_record(o, out_dir) for o in outcomes.values()],
+        "steps": [{"part": s.part, "files": [_relative(p, out_dir) for p in s.files], "seconds": s.seconds,
+                   "cached": s.cached, "error": s.error} for s in steps],
+        "timings_s": dict(timings), "total_s": 0.0,
+    }
+
+
+def _designer_lines(summary: dict) -> list[str]:
+    """The report's opening lines: seed 003's Z_R,min and seed 000's crack headline, both from FEA-confirmed forms."""
+    from strainwave.analytic.summary import crack_headline_lines, designer_headline
+    return ((designer_headline(summary["seed003"]) if "seed003" in summary else [])
+            + (crack_headline_lines(summary["crack_headline"]) if "crack_headline" in summary else []))
+
+
+def _design(params, book, plan, stresses) -> tuple[dict, object]:
+    """(the cup-on-the-wave-generator record, the design verdict): every reported component's stress factor,
+    and the cup's fatigue factor on its revolution cycle when that case ran."""
+    from strainwave.compare.validate.artifacts import COMPONENT_TITLES
+
+    wg_cup = wg_record(book, plan.label_of(WG_CUP_STUDY) or "", params)
+    factors = stress_factors(stresses, COMPONENT_TITLES, tuple(c for c, _ in plan.reported()))
+    if plan.label_of(WG_CUP_STUDY):
+        factors.append(fatigue_factor(wg_cup))
+    return wg_cup, design_verdict(params, factors)
+
+
 def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str], None]) -> Outcome:
     """Run the whole validation into ``out_dir``; returns the checks and timings (see module docstring)."""
-    from strainwave.analytic.summary import analytic_summary, crack_headline_lines, designer_headline
+    from strainwave.analytic.summary import analytic_summary
     from strainwave.interrupt import deferred_interrupt
-    from strainwave.compare.validate.artifacts import COMPONENT_TITLES, make_images
+    from strainwave.compare.validate.artifacts import make_images
     from strainwave.compare.validate.step_export import StepJob
 
     start = time.perf_counter()
@@ -296,11 +330,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
     progress(f"[2/{total}] step done: {sum(len(s.files) for s in steps)} STEP file(s), {timings['step']:.1f} s "
              f"wall (waited {timings['step_wait_after_images']:.1f} s after the images)")
     images, missing, stresses = _previews(steps, out_dir) + made.images, made.missing, made.stresses
-    wg_cup = wg_record(book, plan.label_of(WG_CUP_STUDY) or "", params)
-    factors = stress_factors(stresses, COMPONENT_TITLES, tuple(c for c, _ in plan.reported()))
-    if plan.label_of(WG_CUP_STUDY):
-        factors.append(fatigue_factor(wg_cup))
-    design = design_verdict(params, factors)
+    wg_cup, design = _design(params, book, plan, stresses)
     with _stage("reports", timings, progress, 6, total):
         checks = [c.to_dict() for c in check_set.checks]
         failed = [c["id"] for c in checks if not c["passed"]]
@@ -310,21 +340,8 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
             "passed": bool(checks) and not failed,
             "summary": {"checks": len(checks), "passed": len(checks) - len(failed), "failed": failed,
                         "not_evaluated": [c["id"] for c in checks if c["verdict"] == "not evaluated"]},
-            "metadata": {
-                "created_utc": now_utc(), "params": params.to_dict(), "versions": versions(),
-                "settings": {"quick": quick, "order": ORDER, "mesh": "study defaults (quick: coarse), 3 refinements",
-                             "solver": "fea/ default (see each case's meta)",
-                             "step_export": "background process, overlapping the FEA stage",
-                             "sweep_depths_mm": {k: [c.crack_depth_mm for c in v] for k, v in plan.sweeps.items()}},
-                "cases": [_case_record(o, out_dir) for o in outcomes.values()],
-                "steps": [{"part": s.part, "files": [_relative(p, out_dir) for p in s.files], "seconds": s.seconds,
-                           "cached": s.cached, "error": s.error} for s in steps],
-                "timings_s": dict(timings), "total_s": 0.0,
-            },
-            # the report's opening lines: seed 003's Z_R,min and seed 000's crack headline, both from
-            # FEA-confirmed forms
-            "designer": ((designer_headline(summary["seed003"]) if "seed003" in summary else [])
-                         + (crack_headline_lines(summary["crack_headline"]) if "crack_headline" in summary else [])),
+            "metadata": _metadata(params, quick, plan, outcomes, steps, timings, out_dir),
+            "designer": _designer_lines(summary),
             "design": design.to_dict(),
             "inputs": _inputs(plan, book, params),
             "stress_at_rated": {c: s.to_dict() for c, s in stresses.items()},
