@@ -50,10 +50,13 @@ def plain(value):
 
 
 def load_schema() -> dict:
-    """The results schema; a check's component is one of the check list's (``check_list.CHECKS``)."""
+    """The results schema; a check's component is one of the check list's (``check_list.CHECKS``) and a case's
+    study one of the registry's."""
+    from strainwave import registry
     from strainwave.compare.validate.check_list import current
     schema = json.loads(SCHEMA_PATH.read_text(encoding="utf-8"))
     schema["$defs"]["check"]["properties"]["component"]["enum"] = sorted({s.component for s in current()})
+    schema["$defs"]["case"]["properties"]["study"]["enum"] = sorted(registry.STUDIES)
     return schema
 
 
