@@ -1068,8 +1068,8 @@ def _torsion_clean(lab):
         sigma = c * tmax / loguni(rng, 200, 2000)
         qs = rng.uniform(0.5, 2.0) * sigma
         phi = c * (1 + rng.uniform(-0.01, 0.01)) * T
-        recs.append(_tors_rec(rng, f"tors_clean_quantised_{i}", "clean_torsion_quantised", [], [], {}, T, t, phi, sigma,
-                              q=qs, extra={"quantum_over_sigma": qs / sigma}))
+        recs.append(_tors_rec(rng, f"tors_clean_quantised_{i}", "clean_torsion_quantised", [], [], {}, T, t, phi,
+                              sigma, q=qs, extra={"quantum_over_sigma": qs / sigma}))
     # clean AR(1)
     for i in range(5):
         n = int(rng.integers(800, 2500))
@@ -1079,8 +1079,8 @@ def _torsion_clean(lab):
         sigma = c * tmax / loguni(rng, 200, 2000)
         rho = rng.uniform(0.9, 0.97)
         phi = c * (1 + rng.uniform(-0.01, 0.01)) * T
-        recs.append(_tors_rec(rng, f"tors_clean_ar1_{i}", "clean_torsion_ar1", [], [], {}, T, t, phi, sigma, noise="ar1",
-                              rho=rho, extra={"rho": rho}))
+        recs.append(_tors_rec(rng, f"tors_clean_ar1_{i}", "clean_torsion_ar1", [], [], {}, T, t, phi, sigma,
+                              noise="ar1", rho=rho, extra={"rho": rho}))
     # clean short and long
     for i, n in enumerate([int(rng.integers(60, 151)), 20000]):
         tmax = rng.uniform(2e5, 8e5)
@@ -1088,8 +1088,8 @@ def _torsion_clean(lab):
         t = np.arange(n) * 0.02
         sigma = c * tmax / loguni(rng, 200, 2000)
         phi = c * (1 + rng.uniform(-0.01, 0.01)) * T
-        recs.append(_tors_rec(rng, f"tors_clean_{'short' if i == 0 else 'long'}_{n}", "clean_torsion_length", [], [], {},
-                              T, t, phi, sigma, extra={"rows": n}))
+        recs.append(_tors_rec(rng, f"tors_clean_{'short' if i == 0 else 'long'}_{n}", "clean_torsion_length", [], [],
+                              {}, T, t, phi, sigma, extra={"rows": n}))
     return recs
 
 
@@ -1143,9 +1143,9 @@ def _torsion_sensor_and_drift(lab):
         xlin = c * Tm
         s_target = loguni(rng, 3, 50) if i else 300.0
         sigma = np.max(np.abs(nuisance_resid(inc, xlin, t))) / s_target
-        recs.append(_tors_rec(rng, f"tors_sensor_quadratic_{i}", "ooc:torque_sensor_quadratic", "ooc:torque_sensor_quadratic",
-                              [], {"sensor": s_target}, Tm, t, phi, sigma, snr_override=s_target,
-                              extra={"k_fs": kq}))
+        recs.append(_tors_rec(rng, f"tors_sensor_quadratic_{i}", "ooc:torque_sensor_quadratic",
+                              "ooc:torque_sensor_quadratic", [], {"sensor": s_target}, Tm, t, phi, sigma,
+                              snr_override=s_target, extra={"k_fs": kq}))
     # OOC: non-linear thermal drift
     for i in range(4):
         n = int(rng.integers(1000, 3000))
@@ -1164,9 +1164,9 @@ def _torsion_sensor_and_drift(lab):
         sigma = c * tmax / loguni(rng, 300, 2000)
         drift = amp * sigma * shape
         rms = float(np.sqrt(np.mean(nuisance_resid(drift, xlin, t) ** 2)) / sigma)
-        recs.append(_tors_rec(rng, f"tors_thermal_drift_{i}", "ooc:thermal_drift_nonlinear", "ooc:thermal_drift_nonlinear", [],
-                              {"drift": s_target}, T, t, c * T + drift, sigma, snr_override=s_target,
-                              extra={"rms_after_linear_detrend_sigmas": rms}))
+        recs.append(_tors_rec(rng, f"tors_thermal_drift_{i}", "ooc:thermal_drift_nonlinear",
+                              "ooc:thermal_drift_nonlinear", [], {"drift": s_target}, T, t, c * T + drift, sigma,
+                              snr_override=s_target, extra={"rms_after_linear_detrend_sigmas": rms}))
     return recs
 
 
