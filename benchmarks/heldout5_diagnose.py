@@ -121,6 +121,9 @@ import numpy as np
 from scipy.optimize import brentq
 from scipy.special import erf
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from load_paths import ramp_path  # noqa: E402
+
 REPO = Path(__file__).resolve().parents[1]
 EXE = REPO / ".venv" / "bin" / "strainwave"
 
@@ -447,15 +450,6 @@ def creep_response(t, F, c0, q, tau):
 
 
 # ---------------------------------------------------------------- load paths
-def ramp_path(points, n):
-    """piecewise-linear path through the points, n samples, equally spaced in travel (constant rate)."""
-    p = np.asarray(points, float)
-    seg = np.abs(np.diff(p))
-    cum = np.concatenate([[0], np.cumsum(seg)])
-    s = np.linspace(0, cum[-1], n)
-    return np.interp(s, cum, p)
-
-
 def hold_path(levels, n_ramp, n_hold):
     out = [np.array([0.0])]
     prev = 0.0

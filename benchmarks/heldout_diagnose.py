@@ -29,6 +29,9 @@ import time
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from load_paths import ramp_path  # noqa: E402
+
 ROOT = os.path.dirname(HERE)
 CLI = os.path.join(ROOT, ".venv", "bin", "strainwave")
 if not os.path.exists(CLI):
@@ -47,38 +50,29 @@ ARCMIN = math.pi / (180 * 60)
 
 
 # ---------------------------------------------------------------- load histories
-def tri_path(points, n):
-    """Piecewise-linear path through `points`, n samples, constant rate over the whole path length."""
-    pts = np.asarray(points, float)
-    seg = np.abs(np.diff(pts))
-    s = np.concatenate([[0], np.cumsum(seg)])
-    u = np.linspace(0, s[-1], n)
-    return np.interp(u, s, pts)
-
-
 def hist_full(n=2400, amp=1.0, cycles=3):
     pts = [0.0]
     for _ in range(cycles):
         pts += [amp, -amp]
     pts += [0.0]
-    return tri_path(pts, n)
+    return ramp_path(pts, n)
 
 
 def hist_onesided(n=2000, amp=1.0, cycles=4):
     pts = [0.0]
     for _ in range(cycles):
         pts += [amp, 0.0]
-    return tri_path(pts, n)
+    return ramp_path(pts, n)
 
 
 def hist_growing(n=2400):
-    return tri_path([0, .4, -.4, .7, -.7, 1, -1, 1, -1, 0], n)
+    return ramp_path([0, .4, -.4, .7, -.7, 1, -1, 1, -1, 0], n)
 
 
 def hist_tworate(n_slow=1600, n_fast=400):
     """2 slow full cycles then 2 fast ones at a constant sampling rate (fast = 4x the rate)."""
-    a = tri_path([0, 1, -1, 1, -1, 0], n_slow)
-    b = tri_path([0, 1, -1, 1, -1, 0], n_fast)
+    a = ramp_path([0, 1, -1, 1, -1, 0], n_slow)
+    b = ramp_path([0, 1, -1, 1, -1, 0], n_fast)
     return np.concatenate([a, b[1:]])
 
 
@@ -520,7 +514,7 @@ def ring_cases(rng, c_thin, c_thin_thick, r_thick, t_thick):
         C.append(dict(name=name, cat=cat, exp=exp, kind="ring_compression", specimen="ewg_ring",
                       cols=cols, hdr=hdr if hdr_ is None else hdr_, params=params, truth=truth or {}))
 
-    F = 40.0 * tri_path([0, 1, 0, 1, 0, 1, 0], 1500)     # delta ~ 2.4 mm = 6 % of r_m
+    F = 40.0 * ramp_path([0, 1, 0, 1, 0, 1, 0], 1500)     # delta ~ 2.4 mm = 6 % of r_m
     sig = 0.002 * c_thin * 40
     ring("ring_clean", "clean", set(), F, c_thin * F, sig)
     ring("ring_clean_quant", "clean", set(), F, quantise(c_thin * F, 0.5 * sig), sig)
@@ -530,13 +524,13 @@ def ring_cases(rng, c_thin, c_thin_thick, r_thick, t_thick):
     # delta = cF / (1 - 0.75 cF/r), first order gamma = +0.75, at delta/r_m ~ 0.06 (as the other ring cases): there
     # the elastica's next terms are ~1 % of its first correction; at 0.23 (150 N, this file's first version) this
     # rational form's would be 17 %, a curve no ring draws
-    Fl = 40.0 * tri_path([0, 1, 0, 1, 0], 1500)
+    Fl = 40.0 * ramp_path([0, 1, 0, 1, 0], 1500)
     d = c_thin * Fl / (1 - 0.75 * c_thin * Fl / r_m)
     ring("ring_large_deflection", "in", {"large_deflection"}, Fl, d, 0.002 * d.max())
     # plasticity: elastic-plastic with Ramberg-Osgood hardening above F_y, elastic unloading, permanent set
     sy = 400.0
     Fy = math.pi * sy * RING_B * RING_T ** 2 / 6 / r_m
-    Fp = Fy * tri_path([0, 0.8, 0, 1.2, 0, 1.5, 0, 1.5, 0], 2000)
+    Fp = Fy * ramp_path([0, 0.8, 0, 1.2, 0, 1.5, 0, 1.5, 0], 2000)
     dpl = np.zeros_like(Fp)
     peak = 0.0
     for i in range(len(Fp)):
@@ -548,7 +542,7 @@ def ring_cases(rng, c_thin, c_thin_thick, r_thick, t_thick):
     al = t_thick ** 2 / (12 * r_thick ** 2)
     be = 1.2 * 2 * 1.3 * al
     corr = ((1 - al + be) * math.pi / 4 - 2 * (1 - al) ** 2 / math.pi) / 0.148778
-    Ft = 2000.0 * tri_path([0, 1, 0, 1, 0, 1, 0], 1500)
+    Ft = 2000.0 * ramp_path([0, 1, 0, 1, 0, 1, 0], 1500)
     ring("ring_thick", "in", {"thick_ring"}, Ft, c_thin_thick * corr * Ft, 0.001 * c_thin_thick * 2000,
          hdr_={"baseline_uncertainty": 0.01}, params={"ewg_drive": {"rim_thickness_ratio": 0.1}},
          truth={"thick_corr": corr})
@@ -561,7 +555,7 @@ def ring_cases(rng, c_thin, c_thin_thick, r_thick, t_thick):
     ring("ring_plasticity_softknee", "in", {"plasticity"}, Fp, c_thin * Fp + dpl2, 0.002 * c_thin * Fy * 1.5,
          truth={"Fy": Fy, "set": float(dpl2[-1])})
     # ring pressed by friction plates: dissipative loop (Maxwell slip on the force, displacement driven)
-    dd = c_thin * 40 * tri_path([0, 1, 0.12, 1, 0.12, 1, 0.12], 1500)   # plates keep contact
+    dd = c_thin * 40 * ramp_path([0, 1, 0.12, 1, 0.12, 1, 0.12], 1500)   # plates keep contact
     Fr = maxwell_slip_twist_driven(dd, 1 / c_thin, np.full(6, 0.5 / c_thin), 40 * np.linspace(0.005, 0.02, 6))
     ring("ring_ooc_friction_loop", "out", None, Fr, dd, sig)
     d95 = c_thin * Fl / (1 - 0.75 * c_thin * Fl / r_m)
