@@ -308,333 +308,392 @@ def torsion_rec(name, cls, truth, t, T, phi_clean, effect, rng, snr, noise="whit
     return Rec(name, cls, truth, snr, csv_text(header(), cols), loss=loss, primary=primary, note=note)
 
 
+def _rng(seed, name):
+    """Each recording's own generator, seeded by (seed, its name)."""
+    return np.random.default_rng([seed, zlib.crc32(name.encode())])
+
+
+def _sine_case(seed, name, n_lo, n_hi, cycles, **path):
+    """The recording's own generator (seeded by its name), a row count in [n_lo, n_hi), its sine path."""
+    rng = _rng(seed, name)
+    n = int(rng.integers(n_lo, n_hi))
+    t, T = sine_path(n, cycles=cycles, **path)
+    return rng, t, T
+
+
+def _out(snr, nm, t, T, phi, eff, rng, **kw):
+    return torsion_rec(nm, "out", [], t, T, phi, [eff], rng, snr, **kw)
+
+
+def _in_lugre(seed, j, snr):
+    """LuGre friction joint in series with the specimen."""
+    nm = f"in_lugre_{j}"
+    rng = _rng(seed, nm)
+    n = int(rng.integers(900, 1600))
+    t, T = sine_path(n, cycles=2.6 + 0.2 * rng.random())
+    kj = K0 * rng.uniform(3, 6)
+    Fc = TFS * rng.uniform(0.15, 0.35)
+    u = deslope(T, lugre_joint(t, T, kj, Fc, sig0=40 * K0, tau_bristle=20 / 4000, tau_slide=20 / 300))
+    phi = T / K0 + u
+    loss = loop_width_last(T, phi)
+    return torsion_rec(nm, "in", ["hysteresis"], t, T, phi, [u], rng, snr, loss=loss,
+                       note=f"LuGre kj={kj/K0:.1f}K0 Fc={Fc/TFS:.2f}FS")
+
+
+def _in_maxslip3(seed, j, snr):
+    """3-element Maxwell-slip."""
+    nm = f"in_maxslip3_{j}"
+    rng = _rng(seed, nm)
+    n = int(rng.integers(800, 1500))
+    t, T = sine_path(n, cycles=2.6 + 0.2 * rng.random(), phase=0.0)
+    k = np.array([0.1, 0.25, 0.45]) * K0 * rng.uniform(0.8, 1.2)
+    f = np.array([0.012, 0.035, 0.07]) * TFS * rng.uniform(0.8, 1.2)
+    Kb = 0.85 * K0
+    phi = maxwell_slip(T, Kb, k, f)
+    phi = T / K0 + deslope(T, phi)
+    eff = phi - T / K0
+    loss = loop_width_last(T, phi)
+    return torsion_rec(nm, "in", ["hysteresis"], t, T, phi, [eff], rng, snr, loss=loss,
+                       note="3-element Maxwell-slip")
+
+
+def _in_cubic(seed, j, snr):
+    """Cubic stiffening."""
+    nm = f"in_cubic_{j}"
+    rng, t, T = _sine_case(seed, nm, 600, 1400, 2.3, phase=0.0)
+    ratio = rng.uniform(1.6, 2.6)
+    phi = cubic_twist(T, ratio)
+    return torsion_rec(nm, "in", ["nonlinear_stiffness"], t, T, phi, [phi - T / K0], rng, snr,
+                       note=f"cubic, K_fs/K_0={ratio:.2f}")
+
+
+def _in_table5(seed, j, snr):
+    """5-breakpoint compliance table."""
+    nm = f"in_table5_{j}"
+    rng, t, T = _sine_case(seed, nm, 600, 1400, 2.3)
+    comp = np.array([1.0, 0.88, 0.74, 0.62, 0.52, 0.46]) * rng.uniform(0.95, 1.05)
+    phi = table_twist(T, comp)
+    return torsion_rec(nm, "in", ["nonlinear_stiffness"], t, T, phi, [phi - T / K0], rng, snr,
+                       note="piecewise-linear compliance, 5 breakpoints")
+
+
+def _in_smoothdead(seed, j, snr):
+    """Smooth (viscous-layer) dead zone."""
+    nm = f"in_smoothdead_{j}"
+    rng, t, T = _sine_case(seed, nm, 800, 1600, 2.4)
+    b = PHI_FS * rng.uniform(0.03, 0.06)
+    w = TFS * rng.uniform(0.02, 0.05)
+    dz = b * T / np.sqrt(T ** 2 + w ** 2)
+    phi = T / K0 + dz
+    return torsion_rec(nm, "in", ["lost_motion"], t, T, phi, [dz], rng, snr,
+                       note=f"algebraic dead zone b={b/PHI_FS:.3f}phi_fs w={w/TFS:.3f}FS")
+
+
+def _in_crackramp(seed, j, snr):
+    """Crack: compliance rising linearly with |T| on one sign."""
+    nm = f"in_crackramp_{j}"
+    rng, t, T = _sine_case(seed, nm, 700, 1500, 2.4)
+    a = rng.uniform(0.12, 0.25)
+    sgn = 1 if j % 2 == 0 else -1
+    open_side = (sgn * T) > 0
+    ext = np.where(open_side, sgn * a * T ** 2 / (2 * TFS * K0), 0.0)
+    phi = T / K0 + ext
+    return torsion_rec(nm, "in", ["crack_closure"], t, T, phi, [ext], rng, snr,
+                       note=f"crack on {'+' if sgn > 0 else '-'} side, extra compliance a|T|/FS a={a:.2f}")
+
+
+def _in_cubic_lugre(seed, j, snr):
+    """Stiffening + LuGre loop (the weaker effect's SNR)."""
+    nm = f"in_cubic_lugre_{j}"
+    rng, t, T = _sine_case(seed, nm, 1000, 1700, 2.6)
+    ratio = rng.uniform(1.8, 2.4)
+    base = cubic_twist(T, ratio)
+    u = lugre_joint(t, T, K0 * 5, TFS * rng.uniform(0.2, 0.3), sig0=40 * K0,
+                    tau_bristle=20 / 4000, tau_slide=20 / 300)
+    u = deslope(T, u)
+    phi = base + u
+    loss = loop_width_last(T, phi)
+    stiff_eff = base - T / K0
+    return torsion_rec(nm, "in", ["nonlinear_stiffness", "hysteresis"], t, T, phi,
+                       [stiff_eff, u], rng, snr, loss=loss,
+                       primary="nonlinear_stiffness" if nuisance_peak(t, T, stiff_eff) >
+                       nuisance_peak(t, T, u) else "hysteresis",
+                       note=f"cubic ratio {ratio:.2f} + LuGre loop")
+
+
+def _in_kinematic(seed, j, snr):
+    """Kinematic error: 2x, 4x and a weak 6x harmonic of the wave generator angle."""
+    nm = f"in_kinematic_{j}"
+    rng, t, T = _sine_case(seed, nm, 1500, 2400, 2.2, period_s=60.0)
+    revs = rng.uniform(25, 45)
+    theta = 2 * np.pi * revs * t / t[-1] + rng.uniform(0, 2 * np.pi)
+    a2 = PHI_FS * 0.01
+    a6 = 0.04 if j % 2 else 0.0     # a weak 6x (tooth-pitch) harmonic on odd variants only
+    rip = a2 * (np.sin(2 * theta + rng.uniform(0, 6.3)) + 0.5 * np.sin(4 * theta + rng.uniform(0, 6.3))
+                + a6 * np.sin(6 * theta + 1.0))
+    phi = T / K0 + rip
+    return torsion_rec(nm, "in", ["kinematic_error"], t, T, phi, [rip], rng, snr,
+                       extra_cols={"input_angle_rad": theta},
+                       note=f"ripple 2x/4x (+6x at {a6:.2f}) over {revs:.0f} input revolutions")
+
+
+def _in_ring_plastic(seed, j, snr):
+    """Ring: elastic-plastic hinge with linear hardening, elastic unloading, reloading to a higher peak."""
+    nm = f"in_ring_plastic_{j}"
+    rng = _rng(seed, nm)
+    n = int(rng.integers(500, 900))
+    peaks = [0.6, 0.85, 1.0]
+    Fmax = 110.0
+    Fy = rng.uniform(55.0, 75.0)
+    H = rng.uniform(0.15, 0.3)  # hardening: tangent stiffness ratio after yield
+    # path: 0 -> p1 -> 0 -> p2 -> 0 -> p3 -> 0
+    seg = []
+    for p in peaks:
+        seg += [np.linspace(0, p, n // 6), np.linspace(p, 0, n // 6)]
+    F = Fmax * np.concatenate(seg)
+    t = np.arange(F.size, dtype=float)
+    d = np.empty_like(F)
+    Fmx = Fy
+    dp = 0.0
+    for i, Fi in enumerate(F):
+        if Fi > Fmx:
+            # plastic increment: beyond the current yield level the extra compliance is (1/H - 1)/KRING
+            dp += (Fi - Fmx) * (1 / H - 1) / KRING
+            Fmx = Fi
+        d[i] = Fi / KRING + dp
+    eff = d - F / KRING
+    sigma = nuisance_peak(t, F, eff) / snr
+    dd = d + white(rng, F.size, sigma) + rng.uniform(-2, 2) * sigma
+    txt = csv_text(header("ring_compression", "ewg_ring"), {"force_N": F, "delta_cd_mm": dd})
+    return Rec(nm, "in", ["plasticity"], snr, txt, note=f"hinge Fy={Fy:.0f} N, hardening {H:.2f}")
+
+
+def _out_spike(seed, j, snr):
+    """A single spike."""
+    nm = f"out_spike_{j}"
+    rng = _rng(seed, nm)
+    t, T = sine_path(1200, cycles=2.5)
+    sig = PHI_FS * 0.003
+    phi = T / K0
+    i0 = int(rng.integers(300, 900))
+    eff = np.zeros_like(T)
+    eff[i0] = (40 if j == 0 else 150) * sig * rng.choice([-1, 1])
+    r = torsion_rec(nm, "out", [], t, T, phi + eff, None, rng, None, sigma=sig,
+                    note=f"single spike of {abs(eff[i0])/sig:.0f} sigma at row {i0}")
+    r.snr = abs(eff[i0]) / sig
+    return r
+
+
+def _out_dropout(seed, j, snr):
+    """The twist channel stuck for 20 rows on a loading flank."""
+    nm = f"out_dropout_{j}"
+    rng = _rng(seed, nm)
+    t, T = sine_path(1200, cycles=2.5)
+    sig = PHI_FS * (0.004 if j == 0 else 0.001)
+    rr = torsion_rec(nm, "out", [], t, T, T / K0, None, rng, None, sigma=sig)
+    # re-parse the twist column and hold it for 20 rows on a loading flank
+    lines = rr.text.splitlines(True)
+    hdr_n = sum(1 for ln in lines if ln.startswith("#")) + 1
+    i0 = int(rng.integers(200, 900))
+    while abs(T[i0]) > 0.6 * TFS:
+        i0 += 7
+    held = lines[hdr_n + i0].rstrip("\n").split(",")[2]
+    for i in range(i0 + 1, i0 + 21):
+        parts = lines[hdr_n + i].rstrip("\n").split(",")
+        parts[2] = held
+        lines[hdr_n + i] = ",".join(parts) + "\n"
+    rr.text = "".join(lines)
+    rr.snr = float(np.max(np.abs(T[i0:i0 + 21] - T[i0])) / K0 / sig)
+    rr.note = f"twist channel stuck 20 rows from row {i0}"
+    return rr
+
+
+def _out_thermal_compliance(seed, j, snr):
+    """Compliance warming up."""
+    nm = f"out_thermal_compliance_{j}"
+    rng = _rng(seed, nm)
+    t, T = sine_path(1500, cycles=3.0)
+    g = rng.uniform(0.06, 0.1) * (1 - np.exp(-t / (0.4 * t[-1]))) / (1 - np.exp(-2.5))
+    phi = T / K0 * (1 + g)
+    return _out(snr, nm, t, T, phi, phi - T / K0, rng, note="compliance warming up +6..10 %")
+
+
+def _out_clamp_slip(seed, j, snr):
+    """The clamp slips once."""
+    nm = f"out_clamp_slip_{j}"
+    rng = _rng(seed, nm)
+    t, T = sine_path(1300, cycles=2.5)
+    i0 = int(rng.integers(450, 850))
+    step = np.zeros_like(T)
+    step[i0:] = 0.03 * PHI_FS * np.sign(T[i0] + 1e-9)
+    phi = T / K0 + step
+    return _out(snr, nm, t, T, phi, step, rng, note=f"clamp slips once at row {i0}")
+
+
+def _out_clip_pos(seed, j, snr):
+    """The twist saturates at +2/3 full scale."""
+    nm = f"out_clip_pos_{j}"
+    rng = _rng(seed, nm)
+    t, T = sine_path(1200, cycles=2.5)
+    lin = T / K0
+    phi = np.minimum(lin, (2 / 3) * PHI_FS)
+    return _out(snr, nm, t, T, phi, phi - lin, rng, note="twist saturates at +2/3 full scale")
+
+
+def _out_two_rates(seed, j, snr):
+    """Power-law damper seen at two rates."""
+    nm = f"out_two_rates_{j}"
+    rng = _rng(seed, nm)
+    n1, n2 = 700, 700
+    t1 = np.linspace(0, 2 * 40.0, n1, endpoint=False)
+    t2 = t1[-1] + (t1[1] - t1[0]) + np.linspace(0, 2 * 4.0, n2)
+    t = np.concatenate([t1, t2])
+    T = np.concatenate([TFS * np.sin(2 * np.pi * t1 / 40.0), TFS * np.sin(2 * np.pi * (t2 - t2[0]) / 4.0)])
+    T = np.concatenate([T, TFS * np.sin(2 * np.pi * np.linspace(0, 0.25, 60))])
+    t = np.concatenate([t, t[-1] + np.linspace(0.01, 1.0, 60)])
+    c = 0.05 * TFS * (0.02 * PHI_FS) ** -0.5   # damper torque 5 % FS at 0.02 phi_fs/s
+    phi = nonlinear_damper(t, T, K0, c, 0.5)
+    return _out(snr, nm, t, T, phi, phi - T / K0, rng, note="power-law damper (alpha 0.5), period 40 s then 4 s")
+
+
+def _out_wear_loop(seed, j, snr):
+    """Friction loop widening with every cycle (wear)."""
+    nm = f"out_wear_loop_{j}"
+    rng = _rng(seed, nm)
+    t, T = sine_path(1600, cycles=4.3)
+    u = deslope(T, wear_joint(T, 0.8))
+    phi = T / K0 + u
+    return _out(snr, nm, t, T, phi, u, rng, note="friction loop widening with every cycle (wear)")
+
+
+def _out_torque_range(seed, j, snr):
+    """Torque channel 5 % high above half load."""
+    nm = f"out_torque_range_{j}"
+    rng = _rng(seed, nm)
+    t, T = sine_path(1200, cycles=2.5)
+    Tr = np.where(np.abs(T) > 0.5 * TFS, 1.05 * T, T)
+    phi = T / K0
+    # effect in the response-vs-read-torque frame
+    eff = phi - Tr / K0
+    return _out(snr, nm, t, Tr, phi, eff, rng, torque_read=Tr, note="torque channel 5 % high above half load")
+
+
+def _out_softening(seed, j, snr):
+    """Symmetric softening above half load (yield onset)."""
+    nm = f"out_softening_{j}"
+    rng = _rng(seed, nm)
+    t, T = sine_path(1200, cycles=2.5)
+    Ty = 0.5 * TFS
+    a = np.abs(T)
+    ext = np.sign(T) * np.where(a > Ty, 0.6 * (a - Ty) ** 2 / (2 * (TFS - Ty)), 0.0) / K0
+    phi = T / K0 + ext
+    return _out(snr, nm, t, T, phi, ext, rng, note="symmetric softening above half load (yield onset)")
+
+
+def _post_hum(rng, t, T, phi, sigma, nm):
+    fs = 97.3
+    n = T.size
+    tt = np.arange(n) / fs
+    Tn = TFS * np.sin(2 * np.pi * tt / (n / fs / 2.5))
+    ph = Tn / K0 + white(rng, n, sigma) + 0.3 * sigma * np.sin(2 * np.pi * 50.0 * tt + 0.4)
+    return Rec(nm, "clean", [], None, csv_text(header(), {"time_s": tt, "torque_Nmm": Tn, "twist_rad": ph}),
+               note="50 Hz hum at 0.3 sigma, fs 97.3 Hz")
+
+
+
+def _post_quant(rng, t, T, phi, sigma, nm):
+    q = 2.5 * sigma
+    ph = np.round((phi + white(rng, T.size, sigma) + 0.3 * q) / q) * q
+    return Rec(nm, "clean", [], None, csv_text(header(), {"time_s": t, "torque_Nmm": T, "twist_rad": ph}),
+               note="quantisation step 2.5 sigma")
+
+
+
+def _post_jitter(rng, t, T, phi, sigma, nm):
+    n = T.size
+    dt = t[1] - t[0]
+    ts = t + rng.uniform(-0.4, 0.4, n) * dt          # true sampling instants
+    ts = np.maximum.accumulate(ts)
+    Tt = TFS * np.sin(2 * np.pi * ts / 20.0)
+    ph = Tt / K0 + white(rng, n, sigma) + 2 * sigma * ts / ts[-1]
+    return Rec(nm, "clean", [], None, csv_text(header(), {"time_s": ts, "torque_Nmm": Tt, "twist_rad": ph}),
+               note="time stamps jittered +-0.4 dt, drift 2 sigma")
+
+
+
+def _post_rwalk(rng, t, T, phi, sigma, nm):
+    n = T.size
+    ph = phi + white(rng, n, sigma) + np.cumsum(white(rng, n, 0.05 * sigma))
+    return Rec(nm, "clean", [], None, csv_text(header(), {"time_s": t, "torque_Nmm": T, "twist_rad": ph}),
+               note="white + random walk (steps 0.05 sigma)")
+
+
+
+def _post_offsets(rng, t, T, phi, sigma, nm):
+    n = T.size
+    ph = phi + 1e-4 + white(rng, n, sigma) + 8 * sigma * (t / t[-1]) - 3 * sigma
+    Tr = T + 0.004 * TFS
+    return Rec(nm, "clean", [], None, csv_text(header(), {"torque_Nmm": Tr, "twist_rad": ph, "time_s": t}),
+               note="torque offset 0.4 % FS, twist offset, 8-sigma drift; columns reordered")
+
+
+
+def _post_ring_clean(rng, t, T, phi, sigma, nm):
+    n = T.size
+    F = 60.0 * (1 - np.cos(2 * np.pi * np.arange(n) / (n / 3))) / 2
+    d = F / KRING * rng.uniform(0.995, 1.005)
+    s = 0.004 * 60 / KRING
+    dd = d + white(rng, n, s) + 0.01
+    return Rec(nm, "clean", [], None, csv_text(header("ring_compression", "ewg_ring"),
+                                               {"force_N": F, "delta_cd_mm": dd}), note="ring, white")
+
+
+
+def _clean(seed, nm, n, noise, rel, cycles=2.5, phase=0.0, post=None, with_time=True, tq=None):
+    rng = _rng(seed, nm)
+    t, T = sine_path(n, cycles=cycles, phase=phase)
+    sigma = PHI_FS * rel
+    phi = T / K0 * rng.uniform(0.995, 1.005)
+    r = torsion_rec(nm, "clean", [], t, T, phi, None, rng, None, noise=noise, sigma=sigma,
+                    with_time=with_time, torque_read=None if tq is None else tq(T))
+    if post is not None:
+        r = post(rng, t, T, phi, sigma, nm)
+    return r
+
+
+IN_CASES = (_in_lugre, _in_maxslip3, _in_cubic, _in_table5, _in_smoothdead, _in_crackramp, _in_cubic_lugre,
+            _in_kinematic)
+OUT_CASES = (_out_spike, _out_dropout, _out_thermal_compliance, _out_clamp_slip, _out_clip_pos, _out_two_rates,
+             _out_wear_loop, _out_torque_range, _out_softening)
+# clean recordings: (name, rows, noise, noise over full scale, options of _clean)
+CLEAN_CASES = (
+    ("clean_white_n200", 200, "white", 0.004, dict()),
+    ("clean_white_n20000", 20000, "white", 0.01, dict(cycles=4)),
+    ("clean_white_n600_lownoise", 600, "white", 0.0005, dict()),
+    ("clean_pink_a", 2000, "pink", 0.005, dict()),
+    ("clean_pink_b", 5000, "pink", 0.002, dict(cycles=3.5)),
+    ("clean_ar1", 1500, "ar1", 0.004, dict()),
+    ("clean_gain0.2pct_torque", 1200, "white", 0.003, dict(tq=lambda T: 1.002 * T)),
+    ("clean_midcycle_start", 1100, "white", 0.004, dict(phase=1.9, cycles=2.3)),
+    ("clean_midcycle_notime", 900, "white", 0.004, dict(phase=4.0, with_time=False)),
+    ("clean_mains_hum_a", 2000, "white", 0.004, dict(post=_post_hum)),
+    ("clean_mains_hum_b", 8000, "white", 0.002, dict(post=_post_hum)),
+    ("clean_quant_coarse_a", 1000, "white", 0.003, dict(post=_post_quant)),
+    ("clean_quant_coarse_b", 3000, "white", 0.002, dict(post=_post_quant)),
+    ("clean_time_jitter", 1400, "white", 0.004, dict(post=_post_jitter)),
+    ("clean_randomwalk", 2500, "white", 0.004, dict(post=_post_rwalk)),
+    ("clean_offsets_drift", 1300, "white", 0.003, dict(post=_post_offsets)),
+    ("clean_ring_a", 600, "white", 0.004, dict(post=_post_ring_clean)),
+    ("clean_ring_b", 1800, "white", 0.004, dict(post=_post_ring_clean)),
+)
+
+
 def build(seed):
-    recs = []
-
-    def R(name):
-        return np.random.default_rng([seed, zlib.crc32(name.encode())])
-
-    def sine_case(name, n_lo, n_hi, cycles, **path):
-        """The recording's own generator (seeded by its name), a row count in [n_lo, n_hi), its sine path."""
-        rng = R(name)
-        n = int(rng.integers(n_lo, n_hi))
-        t, T = sine_path(n, cycles=cycles, **path)
-        return rng, t, T
-
-    snrs_in = [2.0, 4.0, 8.0, 25.0]
-    # ---------------- in catalogue ----------------
-    for j, snr in enumerate(snrs_in):
-        # LuGre friction joint in series with the specimen
-        nm = f"in_lugre_{j}"
-        rng = R(nm)
-        n = int(rng.integers(900, 1600))
-        t, T = sine_path(n, cycles=2.6 + 0.2 * rng.random())
-        kj = K0 * rng.uniform(3, 6)
-        Fc = TFS * rng.uniform(0.15, 0.35)
-        u = deslope(T, lugre_joint(t, T, kj, Fc, sig0=40 * K0, tau_bristle=20 / 4000, tau_slide=20 / 300))
-        phi = T / K0 + u
-        loss = loop_width_last(T, phi)
-        recs.append(torsion_rec(nm, "in", ["hysteresis"], t, T, phi, [u], rng, snr, loss=loss,
-                                note=f"LuGre kj={kj/K0:.1f}K0 Fc={Fc/TFS:.2f}FS"))
-
-        # 3-element Maxwell-slip
-        nm = f"in_maxslip3_{j}"
-        rng = R(nm)
-        n = int(rng.integers(800, 1500))
-        t, T = sine_path(n, cycles=2.6 + 0.2 * rng.random(), phase=0.0)
-        k = np.array([0.1, 0.25, 0.45]) * K0 * rng.uniform(0.8, 1.2)
-        f = np.array([0.012, 0.035, 0.07]) * TFS * rng.uniform(0.8, 1.2)
-        Kb = 0.85 * K0
-        phi = maxwell_slip(T, Kb, k, f)
-        phi = T / K0 + deslope(T, phi)
-        eff = phi - T / K0
-        loss = loop_width_last(T, phi)
-        recs.append(torsion_rec(nm, "in", ["hysteresis"], t, T, phi, [eff], rng, snr, loss=loss,
-                                note="3-element Maxwell-slip"))
-
-        # cubic stiffening
-        nm = f"in_cubic_{j}"
-        rng, t, T = sine_case(nm, 600, 1400, 2.3, phase=0.0)
-        ratio = rng.uniform(1.6, 2.6)
-        phi = cubic_twist(T, ratio)
-        recs.append(torsion_rec(nm, "in", ["nonlinear_stiffness"], t, T, phi, [phi - T / K0], rng, snr,
-                                note=f"cubic, K_fs/K_0={ratio:.2f}"))
-
-        # 5-breakpoint table
-        nm = f"in_table5_{j}"
-        rng, t, T = sine_case(nm, 600, 1400, 2.3)
-        comp = np.array([1.0, 0.88, 0.74, 0.62, 0.52, 0.46]) * rng.uniform(0.95, 1.05)
-        phi = table_twist(T, comp)
-        recs.append(torsion_rec(nm, "in", ["nonlinear_stiffness"], t, T, phi, [phi - T / K0], rng, snr,
-                                note="piecewise-linear compliance, 5 breakpoints"))
-
-        # smooth (viscous-layer) dead zone
-        nm = f"in_smoothdead_{j}"
-        rng, t, T = sine_case(nm, 800, 1600, 2.4)
-        b = PHI_FS * rng.uniform(0.03, 0.06)
-        w = TFS * rng.uniform(0.02, 0.05)
-        dz = b * T / np.sqrt(T ** 2 + w ** 2)
-        phi = T / K0 + dz
-        recs.append(torsion_rec(nm, "in", ["lost_motion"], t, T, phi, [dz], rng, snr,
-                                note=f"algebraic dead zone b={b/PHI_FS:.3f}phi_fs w={w/TFS:.3f}FS"))
-
-        # crack: compliance rising linearly with |T| on one sign
-        nm = f"in_crackramp_{j}"
-        rng, t, T = sine_case(nm, 700, 1500, 2.4)
-        a = rng.uniform(0.12, 0.25)
-        sgn = 1 if j % 2 == 0 else -1
-        open_side = (sgn * T) > 0
-        ext = np.where(open_side, sgn * a * T ** 2 / (2 * TFS * K0), 0.0)
-        phi = T / K0 + ext
-        recs.append(torsion_rec(nm, "in", ["crack_closure"], t, T, phi, [ext], rng, snr,
-                                note=f"crack on {'+' if sgn > 0 else '-'} side, extra compliance a|T|/FS a={a:.2f}"))
-
-        # stiffening + LuGre loop (weaker effect's SNR)
-        nm = f"in_cubic_lugre_{j}"
-        rng, t, T = sine_case(nm, 1000, 1700, 2.6)
-        ratio = rng.uniform(1.8, 2.4)
-        base = cubic_twist(T, ratio)
-        u = lugre_joint(t, T, K0 * 5, TFS * rng.uniform(0.2, 0.3), sig0=40 * K0,
-                        tau_bristle=20 / 4000, tau_slide=20 / 300)
-        u = deslope(T, u)
-        phi = base + u
-        loss = loop_width_last(T, phi)
-        stiff_eff = base - T / K0
-        recs.append(torsion_rec(nm, "in", ["nonlinear_stiffness", "hysteresis"], t, T, phi,
-                                [stiff_eff, u], rng, snr, loss=loss,
-                                primary="nonlinear_stiffness" if nuisance_peak(t, T, stiff_eff) >
-                                nuisance_peak(t, T, u) else "hysteresis",
-                                note=f"cubic ratio {ratio:.2f} + LuGre loop"))
-
-        # kinematic error: 2x, 4x and a weak 6x harmonic of the wave generator angle
-        nm = f"in_kinematic_{j}"
-        rng, t, T = sine_case(nm, 1500, 2400, 2.2, period_s=60.0)
-        revs = rng.uniform(25, 45)
-        theta = 2 * np.pi * revs * t / t[-1] + rng.uniform(0, 2 * np.pi)
-        a2 = PHI_FS * 0.01
-        a6 = 0.04 if j % 2 else 0.0     # a weak 6x (tooth-pitch) harmonic on odd variants only
-        rip = a2 * (np.sin(2 * theta + rng.uniform(0, 6.3)) + 0.5 * np.sin(4 * theta + rng.uniform(0, 6.3))
-                    + a6 * np.sin(6 * theta + 1.0))
-        phi = T / K0 + rip
-        recs.append(torsion_rec(nm, "in", ["kinematic_error"], t, T, phi, [rip], rng, snr,
-                                extra_cols={"input_angle_rad": theta},
-                                note=f"ripple 2x/4x (+6x at {a6:.2f}) over {revs:.0f} input revolutions"))
-
-    # ring: elastic-plastic hinge with linear hardening, elastic unloading, reloading to a higher peak
-    for j, snr in enumerate([4.0, 10.0, 30.0]):
-        nm = f"in_ring_plastic_{j}"
-        rng = R(nm)
-        n = int(rng.integers(500, 900))
-        peaks = [0.6, 0.85, 1.0]
-        Fmax = 110.0
-        Fy = rng.uniform(55.0, 75.0)
-        H = rng.uniform(0.15, 0.3)  # hardening: tangent stiffness ratio after yield
-        # path: 0 -> p1 -> 0 -> p2 -> 0 -> p3 -> 0
-        seg = []
-        for p in peaks:
-            seg += [np.linspace(0, p, n // 6), np.linspace(p, 0, n // 6)]
-        F = Fmax * np.concatenate(seg)
-        t = np.arange(F.size, dtype=float)
-        d = np.empty_like(F)
-        Fmx = Fy
-        dp = 0.0
-        for i, Fi in enumerate(F):
-            if Fi > Fmx:
-                # plastic increment: beyond the current yield level the extra compliance is (1/H - 1)/KRING
-                dp += (Fi - Fmx) * (1 / H - 1) / KRING
-                Fmx = Fi
-            d[i] = Fi / KRING + dp
-        eff = d - F / KRING
-        sigma = nuisance_peak(t, F, eff) / snr
-        dd = d + white(rng, F.size, sigma) + rng.uniform(-2, 2) * sigma
-        txt = csv_text(header("ring_compression", "ewg_ring"), {"force_N": F, "delta_cd_mm": dd})
-        recs.append(Rec(nm, "in", ["plasticity"], snr, txt, note=f"hinge Fy={Fy:.0f} N, hardening {H:.2f}"))
-
-    # ---------------- clean ----------------
-    def clean(nm, n, noise, rel, cycles=2.5, phase=0.0, post=None, with_time=True, tq=None):
-        rng = R(nm)
-        t, T = sine_path(n, cycles=cycles, phase=phase)
-        sigma = PHI_FS * rel
-        phi = T / K0 * rng.uniform(0.995, 1.005)
-        r = torsion_rec(nm, "clean", [], t, T, phi, None, rng, None, noise=noise, sigma=sigma,
-                        with_time=with_time, torque_read=None if tq is None else tq(T))
-        if post is not None:
-            r = post(rng, t, T, phi, sigma, nm)
-        return r
-
-    recs.append(clean("clean_white_n200", 200, "white", 0.004))
-    recs.append(clean("clean_white_n20000", 20000, "white", 0.01, cycles=4))
-    recs.append(clean("clean_white_n600_lownoise", 600, "white", 0.0005))
-    recs.append(clean("clean_pink_a", 2000, "pink", 0.005))
-    recs.append(clean("clean_pink_b", 5000, "pink", 0.002, cycles=3.5))
-    recs.append(clean("clean_ar1", 1500, "ar1", 0.004))
-    recs.append(clean("clean_gain0.2pct_torque", 1200, "white", 0.003, tq=lambda T: 1.002 * T))
-    recs.append(clean("clean_midcycle_start", 1100, "white", 0.004, phase=1.9, cycles=2.3))
-    recs.append(clean("clean_midcycle_notime", 900, "white", 0.004, phase=4.0, with_time=False))
-
-    def hum(rng, t, T, phi, sigma, nm):
-        fs = 97.3
-        n = T.size
-        tt = np.arange(n) / fs
-        Tn = TFS * np.sin(2 * np.pi * tt / (n / fs / 2.5))
-        ph = Tn / K0 + white(rng, n, sigma) + 0.3 * sigma * np.sin(2 * np.pi * 50.0 * tt + 0.4)
-        return Rec(nm, "clean", [], None, csv_text(header(), {"time_s": tt, "torque_Nmm": Tn, "twist_rad": ph}),
-                   note="50 Hz hum at 0.3 sigma, fs 97.3 Hz")
-
-    recs.append(clean("clean_mains_hum_a", 2000, "white", 0.004, post=hum))
-    recs.append(clean("clean_mains_hum_b", 8000, "white", 0.002, post=hum))
-
-    def quant(rng, t, T, phi, sigma, nm):
-        q = 2.5 * sigma
-        ph = np.round((phi + white(rng, T.size, sigma) + 0.3 * q) / q) * q
-        return Rec(nm, "clean", [], None, csv_text(header(), {"time_s": t, "torque_Nmm": T, "twist_rad": ph}),
-                   note="quantisation step 2.5 sigma")
-
-    recs.append(clean("clean_quant_coarse_a", 1000, "white", 0.003, post=quant))
-    recs.append(clean("clean_quant_coarse_b", 3000, "white", 0.002, post=quant))
-
-    def jitter(rng, t, T, phi, sigma, nm):
-        n = T.size
-        dt = t[1] - t[0]
-        ts = t + rng.uniform(-0.4, 0.4, n) * dt          # true sampling instants
-        ts = np.maximum.accumulate(ts)
-        Tt = TFS * np.sin(2 * np.pi * ts / 20.0)
-        ph = Tt / K0 + white(rng, n, sigma) + 2 * sigma * ts / ts[-1]
-        return Rec(nm, "clean", [], None, csv_text(header(), {"time_s": ts, "torque_Nmm": Tt, "twist_rad": ph}),
-                   note="time stamps jittered +-0.4 dt, drift 2 sigma")
-
-    recs.append(clean("clean_time_jitter", 1400, "white", 0.004, post=jitter))
-
-    def rwalk(rng, t, T, phi, sigma, nm):
-        n = T.size
-        ph = phi + white(rng, n, sigma) + np.cumsum(white(rng, n, 0.05 * sigma))
-        return Rec(nm, "clean", [], None, csv_text(header(), {"time_s": t, "torque_Nmm": T, "twist_rad": ph}),
-                   note="white + random walk (steps 0.05 sigma)")
-
-    recs.append(clean("clean_randomwalk", 2500, "white", 0.004, post=rwalk))
-
-    def offsets(rng, t, T, phi, sigma, nm):
-        n = T.size
-        ph = phi + 1e-4 + white(rng, n, sigma) + 8 * sigma * (t / t[-1]) - 3 * sigma
-        Tr = T + 0.004 * TFS
-        return Rec(nm, "clean", [], None, csv_text(header(), {"torque_Nmm": Tr, "twist_rad": ph, "time_s": t}),
-                   note="torque offset 0.4 % FS, twist offset, 8-sigma drift; columns reordered")
-
-    recs.append(clean("clean_offsets_drift", 1300, "white", 0.003, post=offsets))
-
-    def ring_clean(rng, t, T, phi, sigma, nm):
-        n = T.size
-        F = 60.0 * (1 - np.cos(2 * np.pi * np.arange(n) / (n / 3))) / 2
-        d = F / KRING * rng.uniform(0.995, 1.005)
-        s = 0.004 * 60 / KRING
-        dd = d + white(rng, n, s) + 0.01
-        return Rec(nm, "clean", [], None, csv_text(header("ring_compression", "ewg_ring"),
-                                                   {"force_N": F, "delta_cd_mm": dd}), note="ring, white")
-
-    recs.append(clean("clean_ring_a", 600, "white", 0.004, post=ring_clean))
-    recs.append(clean("clean_ring_b", 1800, "white", 0.004, post=ring_clean))
-
-    # ---------------- out of catalogue ----------------
-    for j, snr in enumerate([6.0, 25.0]):
-        def out(nm, t, T, phi, eff, rng, **kw):
-            return torsion_rec(nm, "out", [], t, T, phi, [eff], rng, snr, **kw)
-
-        nm = f"out_spike_{j}"
-        rng = R(nm)
-        t, T = sine_path(1200, cycles=2.5)
-        sig = PHI_FS * 0.003
-        phi = T / K0
-        i0 = int(rng.integers(300, 900))
-        eff = np.zeros_like(T)
-        eff[i0] = (40 if j == 0 else 150) * sig * rng.choice([-1, 1])
-        r = torsion_rec(nm, "out", [], t, T, phi + eff, None, rng, None, sigma=sig,
-                        note=f"single spike of {abs(eff[i0])/sig:.0f} sigma at row {i0}")
-        r.snr = abs(eff[i0]) / sig
-        recs.append(r)
-
-        nm = f"out_dropout_{j}"
-        rng = R(nm)
-        t, T = sine_path(1200, cycles=2.5)
-        sig = PHI_FS * (0.004 if j == 0 else 0.001)
-        rr = torsion_rec(nm, "out", [], t, T, T / K0, None, rng, None, sigma=sig)
-        # re-parse the twist column and hold it for 20 rows on a loading flank
-        lines = rr.text.splitlines(True)
-        hdr_n = sum(1 for ln in lines if ln.startswith("#")) + 1
-        i0 = int(rng.integers(200, 900))
-        while abs(T[i0]) > 0.6 * TFS:
-            i0 += 7
-        held = lines[hdr_n + i0].rstrip("\n").split(",")[2]
-        for i in range(i0 + 1, i0 + 21):
-            parts = lines[hdr_n + i].rstrip("\n").split(",")
-            parts[2] = held
-            lines[hdr_n + i] = ",".join(parts) + "\n"
-        rr.text = "".join(lines)
-        rr.snr = float(np.max(np.abs(T[i0:i0 + 21] - T[i0])) / K0 / sig)
-        rr.note = f"twist channel stuck 20 rows from row {i0}"
-        recs.append(rr)
-
-        nm = f"out_thermal_compliance_{j}"
-        rng = R(nm)
-        t, T = sine_path(1500, cycles=3.0)
-        g = rng.uniform(0.06, 0.1) * (1 - np.exp(-t / (0.4 * t[-1]))) / (1 - np.exp(-2.5))
-        phi = T / K0 * (1 + g)
-        recs.append(out(nm, t, T, phi, phi - T / K0, rng, note="compliance warming up +6..10 %"))
-
-        nm = f"out_clamp_slip_{j}"
-        rng = R(nm)
-        t, T = sine_path(1300, cycles=2.5)
-        i0 = int(rng.integers(450, 850))
-        step = np.zeros_like(T)
-        step[i0:] = 0.03 * PHI_FS * np.sign(T[i0] + 1e-9)
-        phi = T / K0 + step
-        recs.append(out(nm, t, T, phi, step, rng, note=f"clamp slips once at row {i0}"))
-
-        nm = f"out_clip_pos_{j}"
-        rng = R(nm)
-        t, T = sine_path(1200, cycles=2.5)
-        lin = T / K0
-        phi = np.minimum(lin, (2 / 3) * PHI_FS)
-        recs.append(out(nm, t, T, phi, phi - lin, rng, note="twist saturates at +2/3 full scale"))
-
-        nm = f"out_two_rates_{j}"
-        rng = R(nm)
-        n1, n2 = 700, 700
-        t1 = np.linspace(0, 2 * 40.0, n1, endpoint=False)
-        t2 = t1[-1] + (t1[1] - t1[0]) + np.linspace(0, 2 * 4.0, n2)
-        t = np.concatenate([t1, t2])
-        T = np.concatenate([TFS * np.sin(2 * np.pi * t1 / 40.0), TFS * np.sin(2 * np.pi * (t2 - t2[0]) / 4.0)])
-        T = np.concatenate([T, TFS * np.sin(2 * np.pi * np.linspace(0, 0.25, 60))])
-        t = np.concatenate([t, t[-1] + np.linspace(0.01, 1.0, 60)])
-        c = 0.05 * TFS * (0.02 * PHI_FS) ** -0.5   # damper torque 5 % FS at 0.02 phi_fs/s
-        phi = nonlinear_damper(t, T, K0, c, 0.5)
-        recs.append(out(nm, t, T, phi, phi - T / K0, rng, note="power-law damper (alpha 0.5), period 40 s then 4 s"))
-
-        nm = f"out_wear_loop_{j}"
-        rng = R(nm)
-        t, T = sine_path(1600, cycles=4.3)
-        u = deslope(T, wear_joint(T, 0.8))
-        phi = T / K0 + u
-        recs.append(out(nm, t, T, phi, u, rng, note="friction loop widening with every cycle (wear)"))
-
-        nm = f"out_torque_range_{j}"
-        rng = R(nm)
-        t, T = sine_path(1200, cycles=2.5)
-        Tr = np.where(np.abs(T) > 0.5 * TFS, 1.05 * T, T)
-        phi = T / K0
-        # effect in the response-vs-read-torque frame
-        eff = phi - Tr / K0
-        recs.append(out(nm, t, Tr, phi, eff, rng, torque_read=Tr,
-                        note="torque channel 5 % high above half load"))
-
-        nm = f"out_softening_{j}"
-        rng = R(nm)
-        t, T = sine_path(1200, cycles=2.5)
-        Ty = 0.5 * TFS
-        a = np.abs(T)
-        ext = np.sign(T) * np.where(a > Ty, 0.6 * (a - Ty) ** 2 / (2 * (TFS - Ty)), 0.0) / K0
-        phi = T / K0 + ext
-        recs.append(out(nm, t, T, phi, ext, rng, note="symmetric softening above half load (yield onset)"))
-
+    """Every recording, in catalogue then clean then out of catalogue; each draws from its own generator."""
+    recs = [case(seed, j, snr) for j, snr in enumerate([2.0, 4.0, 8.0, 25.0]) for case in IN_CASES]
+    recs += [_in_ring_plastic(seed, j, snr) for j, snr in enumerate([4.0, 10.0, 30.0])]
+    recs += [_clean(seed, nm, n, noise, rel, **kw) for nm, n, noise, rel, kw in CLEAN_CASES]
+    recs += [case(seed, j, snr) for j, snr in enumerate([6.0, 25.0]) for case in OUT_CASES]
     return recs
 
 
@@ -707,6 +766,64 @@ def score(rec, d):
     return res
 
 
+def _run_row(r, tmp, keep):
+    """Diagnose one recording, print its line, return its row."""
+    path = (keep or Path(tmp)) / f"{r.name}.csv"
+    path.write_text(r.text)
+    d = run_diagnose(path, Path(tmp) / f"{r.name}.json")
+    s = score(r, d)
+    tag = ("OK" if s["ok"] else "MISS") if s["scored"] else ("(ok)" if s["ok"] else "(n/s)")
+    extra = ""
+    if "loss_truth" in s:
+        L = s["loss_reported"]
+        extra = f"  loss {L if L is None else round(L, 3)} vs {s['loss_truth']:.3f} arcmin" + \
+            ("" if s["loss_ok"] else " LOSS-MISS")
+    snr = "-" if r.snr is None else f"{r.snr:.1f}"
+    print(f"{r.name:28s} {r.cls:5s} {'+'.join(r.truth) or ('clean' if r.cls == 'clean' else 'out-of-cat'):34s} "
+          f"{snr:>6s} {s['verdict']:11s} {'+'.join(s['named']) or '-':34s} {'y' if s['ambiguous'] else 'n':3s} "
+          f"{tag}{extra}" + (f"  [no JSON: {s['stderr'].splitlines()[-1] if s.get('stderr') else ''}; "
+                             f"text says {s.get('text_verdict')}]" if s.get("json_error") else ""), flush=True)
+    return {"name": r.name, "class": r.cls, "truth": r.truth, "primary": r.primary, "snr": r.snr,
+            "note": r.note, **s,
+            "suggestion": (d.get("suggestion") or {}).get("id") if isinstance(d.get("suggestion"), dict)
+            else d.get("suggestion"),
+            "structure": d.get("structure")}
+
+
+def _summary(rows):
+    """The headline fractions of the scored classes."""
+    def pct(xs):
+        return f"{100.0 * sum(xs) / len(xs):.0f} % ({sum(xs)}/{len(xs)})" if xs else "n/a"
+
+    ins = [x for x in rows if x["class"] == "in" and x["scored"]]
+    cl = [x for x in rows if x["class"] == "clean"]
+    oc = [x for x in rows if x["class"] == "out"]
+    lo = [x for x in rows if x["class"] == "in" and "loss_ok" in x and x["scored"]]
+    return {
+        "in_catalogue_primary_named": pct([x["primary_ok"] for x in ins]),
+        "in_catalogue_exact_set": pct([x["exact_ok"] for x in ins]),
+        "clean_false_alarms": pct([not x["ok"] for x in cl]),
+        "out_of_catalogue_flagged": pct([x["ok"] for x in oc]),
+        "out_of_catalogue_confidently_wrong": pct([x["confidently_wrong"] for x in oc]),
+        "loss_within_10pct": pct([bool(x["loss_ok"]) for x in lo]),
+        "diagnose_failed_no_json (all classes)": pct([bool(x.get("json_error")) for x in rows]),
+        "in_catalogue_below_snr3_exact (not scored)": pct(
+            [x["exact_ok"] for x in rows if x["class"] == "in" and not x["scored"]]),
+    }
+
+
+def _print_misses(rows):
+    """The scored recordings the tool missed, with what it said."""
+    misses = [x for x in rows if x["scored"] and (not x["ok"] or x.get("loss_ok") is False)]
+    if misses:
+        print("\nMISSES:")
+        for x in misses:
+            why = "loss" if x["ok"] else "verdict"
+            said = x["verdict"] if not x.get("json_error") else f"{x['verdict']} (text: {x.get('text_verdict')})"
+            print(f"  {x['name']:28s} truth={'+'.join(x['truth']) or x['class']} said={said} "
+                  f"{'+'.join(x['named'])} amb={x['ambiguous']} ({why}) [{x['note']}]")
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--seed", type=int, default=0)
@@ -735,63 +852,17 @@ def main(argv=None):
     keep = Path(a.keep) if a.keep else None
     if keep:
         keep.mkdir(parents=True, exist_ok=True)
-    rows = []
     t0 = time.time()
     hdr = f"{'name':28s} {'class':5s} {'truth':34s} {'SNR':>6s} {'verdict':11s} {'named':34s} {'amb':3s} result"
     print(hdr)
     print("-" * len(hdr))
-    for r in recs:
-        path = (keep or Path(tmp)) / f"{r.name}.csv"
-        path.write_text(r.text)
-        d = run_diagnose(path, Path(tmp) / f"{r.name}.json")
-        s = score(r, d)
-        tag = ("OK" if s["ok"] else "MISS") if s["scored"] else ("(ok)" if s["ok"] else "(n/s)")
-        extra = ""
-        if "loss_truth" in s:
-            L = s["loss_reported"]
-            extra = f"  loss {L if L is None else round(L, 3)} vs {s['loss_truth']:.3f} arcmin" + \
-                ("" if s["loss_ok"] else " LOSS-MISS")
-        snr = "-" if r.snr is None else f"{r.snr:.1f}"
-        print(f"{r.name:28s} {r.cls:5s} {'+'.join(r.truth) or ('clean' if r.cls == 'clean' else 'out-of-cat'):34s} "
-              f"{snr:>6s} {s['verdict']:11s} {'+'.join(s['named']) or '-':34s} {'y' if s['ambiguous'] else 'n':3s} "
-              f"{tag}{extra}" + (f"  [no JSON: {s['stderr'].splitlines()[-1] if s.get('stderr') else ''}; "
-                                 f"text says {s.get('text_verdict')}]" if s.get("json_error") else ""), flush=True)
-        rows.append({"name": r.name, "class": r.cls, "truth": r.truth, "primary": r.primary, "snr": r.snr,
-                     "note": r.note, **s,
-                     "suggestion": (d.get("suggestion") or {}).get("id") if isinstance(d.get("suggestion"), dict)
-                     else d.get("suggestion"),
-                     "structure": d.get("structure")})
-
-    def pct(xs):
-        return f"{100.0 * sum(xs) / len(xs):.0f} % ({sum(xs)}/{len(xs)})" if xs else "n/a"
-
-    ins = [x for x in rows if x["class"] == "in" and x["scored"]]
-    cl = [x for x in rows if x["class"] == "clean"]
-    oc = [x for x in rows if x["class"] == "out"]
-    lo = [x for x in rows if x["class"] == "in" and "loss_ok" in x and x["scored"]]
-    summary = {
-        "in_catalogue_primary_named": pct([x["primary_ok"] for x in ins]),
-        "in_catalogue_exact_set": pct([x["exact_ok"] for x in ins]),
-        "clean_false_alarms": pct([not x["ok"] for x in cl]),
-        "out_of_catalogue_flagged": pct([x["ok"] for x in oc]),
-        "out_of_catalogue_confidently_wrong": pct([x["confidently_wrong"] for x in oc]),
-        "loss_within_10pct": pct([bool(x["loss_ok"]) for x in lo]),
-        "diagnose_failed_no_json (all classes)": pct([bool(x.get("json_error")) for x in rows]),
-        "in_catalogue_below_snr3_exact (not scored)": pct(
-            [x["exact_ok"] for x in rows if x["class"] == "in" and not x["scored"]]),
-    }
+    rows = [_run_row(r, tmp, keep) for r in recs]
+    summary = _summary(rows)
     print()
     print(f"seed {a.seed}, {len(rows)} recordings, {time.time() - t0:.0f} s")
     for k, v in summary.items():
         print(f"  {k:45s} {v}")
-    misses = [x for x in rows if x["scored"] and (not x["ok"] or x.get("loss_ok") is False)]
-    if misses:
-        print("\nMISSES:")
-        for x in misses:
-            why = "loss" if x["ok"] else "verdict"
-            said = x["verdict"] if not x.get("json_error") else f"{x['verdict']} (text: {x.get('text_verdict')})"
-            print(f"  {x['name']:28s} truth={'+'.join(x['truth']) or x['class']} said={said} "
-                  f"{'+'.join(x['named'])} amb={x['ambiguous']} ({why}) [{x['note']}]")
+    _print_misses(rows)
     if a.out:
         od = Path(a.out)
         od.mkdir(parents=True, exist_ok=True)

@@ -603,6 +603,74 @@ def score(truth, res):
     return s
 
 
+def _row(truth, res):
+    """Score one recording and print its line; its row."""
+    s = score(truth, res)
+    snr = truth["snr_weakest"]
+    ok = {True: "Y", False: "N", None: "-"}[s["ok"]]
+    if s.get("exact") is False and s.get("primary_ok"):
+        ok = "p"
+    named = ",".join(s["named"]) + (" (amb)" if s["ambiguous"] else "")
+    tw = truth.get("loop_width_true_arcmin")
+    star = truth.get("loop_width_source", " ")[0]
+    star = star if star in "*+" else " "
+    ws = truth.get("loop_width_steady_arcmin")
+    lse = None if (ws is None or s["loss"] is None) else (s["loss"] - ws) / ws
+    le = s.get("loss_err")
+    print(f"{truth['name']:26s} {truth['rows']:5d} {('%.1f' % snr) if snr else '  -':>6s} "
+          f"{truth['mode']:6s} {str(s['verdict']) if not s['crash'] else 'CRASH':11s} {named[:38]:38s} "
+          f"{ok:3s} {('%.3f' % s['loss']) if s['loss'] is not None else '':>7s} "
+          f"{('%.3f' % tw + star) if tw else '':>8s} {('%+.0f%%' % (100 * le)) if le is not None else '':>6s} "
+          f"{('%+.0f%%' % (100 * lse)) if lse is not None else '':>6s}")
+    return {"truth": truth, "score": s, "exit": res["exit"],
+            "stderr": res["stderr"] if s["crash"] or s["refused"] else ""}
+
+
+def _summarise(rows, key):
+    """Counts per group of rows (key: row -> group)."""
+    groups = {}
+    for r in rows:
+        groups.setdefault(key(r), []).append(r)
+    out = {}
+    for g, rs in groups.items():
+        sc = [r for r in rs if r["score"]["ok"] is not None]
+        full = [r for r in rs if r["truth"]["mode"] == "full" and r["score"]["scored"]]
+        clean = [r for r in rs if r["truth"]["mode"] == "clean"]
+        det = [r for r in rs if r["truth"]["mode"] == "detect" and r["score"]["scored"]]
+        loops = [r for r in rs if "loss_ok" in r["score"]]
+        out[g] = {"n": len(rs), "scored": len(sc),
+                  "exact": [sum(bool(r["score"].get("exact")) for r in full), len(full)],
+                  "primary": [sum(bool(r["score"].get("primary_ok")) for r in full), len(full)],
+                  "clean_agrees": [sum(bool(r["score"]["ok"]) for r in clean), len(clean)],
+                  "detected": [sum(bool(r["score"]["ok"]) for r in det), len(det)],
+                  "loss_within_10pct": [sum(bool(r["score"]["loss_ok"]) for r in loops), len(loops)],
+                  "crashes": sum(r["score"]["crash"] for r in rs),
+                  "refused": sum(r["score"]["refused"] for r in rs)}
+    return out
+
+
+def _frac(p):
+    return f"{p[0]}/{p[1]}" if p[1] else "-"
+
+
+def _print_summaries(rows):
+    """Print the per-class, per-protocol and overall tables; the tables."""
+    summaries = {}
+    for title, key in (("physics class", lambda r: r["truth"]["physics"]),
+                       ("protocol", lambda r: r["truth"]["protocol"]),
+                       ("all", lambda r: "all")):
+        sm = _summarise(rows, key)
+        summaries[title] = sm
+        print(f"\nper {title}:")
+        print(f"  {'':14s} {'n':>3s} {'exact':>7s} {'primary':>7s} {'clean ok':>8s} {'detect':>7s} "
+              f"{'loss10%':>7s} {'crash':>5s} {'exit2':>5s}")
+        for g, m in sm.items():
+            print(f"  {g:14s} {m['n']:3d} {_frac(m['exact']):>7s} {_frac(m['primary']):>7s} "
+                  f"{_frac(m['clean_agrees']):>8s} {_frac(m['detected']):>7s} {_frac(m['loss_within_10pct']):>7s} "
+                  f"{m['crashes']:5d} {m['refused']:5d}")
+    return summaries
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--seed", type=int, default=0)
@@ -631,69 +699,12 @@ def main(argv=None):
     with tempfile.TemporaryDirectory(prefix="heldout4_") as tmp:
         with ThreadPoolExecutor(max(1, a.jobs)) as ex:
             results = list(ex.map(lambda n: run_one(n, a.seed, tmp, a.keep), names))
-    rows = []
     hdr = (f"{'recording':26s} {'rows':>5s} {'SNR':>6s} {'mode':6s} {'verdict':11s} {'named':38s} "
            f"{'ok':3s} {'loss':>7s} {'true':>8s} {'err':>6s} {'vs+-FS':>6s}")
     print(hdr)
     print("-" * len(hdr))
-    for truth, res in results:
-        s = score(truth, res)
-        rows.append({"truth": truth, "score": s, "exit": res["exit"],
-                     "stderr": res["stderr"] if s["crash"] or s["refused"] else ""})
-        snr = truth["snr_weakest"]
-        ok = {True: "Y", False: "N", None: "-"}[s["ok"]]
-        if s.get("exact") is False and s.get("primary_ok"):
-            ok = "p"
-        named = ",".join(s["named"]) + (" (amb)" if s["ambiguous"] else "")
-        tw = truth.get("loop_width_true_arcmin")
-        star = truth.get("loop_width_source", " ")[0]
-        star = star if star in "*+" else " "
-        ws = truth.get("loop_width_steady_arcmin")
-        lse = None if (ws is None or s["loss"] is None) else (s["loss"] - ws) / ws
-        le = s.get("loss_err")
-        print(f"{truth['name']:26s} {truth['rows']:5d} {('%.1f' % snr) if snr else '  -':>6s} "
-              f"{truth['mode']:6s} {str(s['verdict']) if not s['crash'] else 'CRASH':11s} {named[:38]:38s} "
-              f"{ok:3s} {('%.3f' % s['loss']) if s['loss'] is not None else '':>7s} "
-              f"{('%.3f' % tw + star) if tw else '':>8s} {('%+.0f%%' % (100 * le)) if le is not None else '':>6s} "
-              f"{('%+.0f%%' % (100 * lse)) if lse is not None else '':>6s}")
-    # summaries
-    def summarise(key):
-        groups = {}
-        for r in rows:
-            groups.setdefault(key(r), []).append(r)
-        out = {}
-        for g, rs in groups.items():
-            sc = [r for r in rs if r["score"]["ok"] is not None]
-            full = [r for r in rs if r["truth"]["mode"] == "full" and r["score"]["scored"]]
-            clean = [r for r in rs if r["truth"]["mode"] == "clean"]
-            det = [r for r in rs if r["truth"]["mode"] == "detect" and r["score"]["scored"]]
-            loops = [r for r in rs if "loss_ok" in r["score"]]
-            out[g] = {"n": len(rs), "scored": len(sc),
-                      "exact": [sum(bool(r["score"].get("exact")) for r in full), len(full)],
-                      "primary": [sum(bool(r["score"].get("primary_ok")) for r in full), len(full)],
-                      "clean_agrees": [sum(bool(r["score"]["ok"]) for r in clean), len(clean)],
-                      "detected": [sum(bool(r["score"]["ok"]) for r in det), len(det)],
-                      "loss_within_10pct": [sum(bool(r["score"]["loss_ok"]) for r in loops), len(loops)],
-                      "crashes": sum(r["score"]["crash"] for r in rs),
-                      "refused": sum(r["score"]["refused"] for r in rs)}
-        return out
-
-    def frac(p):
-        return f"{p[0]}/{p[1]}" if p[1] else "-"
-
-    summaries = {}
-    for title, key in (("physics class", lambda r: r["truth"]["physics"]),
-                       ("protocol", lambda r: r["truth"]["protocol"]),
-                       ("all", lambda r: "all")):
-        sm = summarise(key)
-        summaries[title] = sm
-        print(f"\nper {title}:")
-        print(f"  {'':14s} {'n':>3s} {'exact':>7s} {'primary':>7s} {'clean ok':>8s} {'detect':>7s} "
-              f"{'loss10%':>7s} {'crash':>5s} {'exit2':>5s}")
-        for g, m in sm.items():
-            print(f"  {g:14s} {m['n']:3d} {frac(m['exact']):>7s} {frac(m['primary']):>7s} "
-                  f"{frac(m['clean_agrees']):>8s} {frac(m['detected']):>7s} {frac(m['loss_within_10pct']):>7s} "
-                  f"{m['crashes']:5d} {m['refused']:5d}")
+    rows = [_row(truth, res) for truth, res in results]
+    summaries = _print_summaries(rows)
     print("\n'ok' column: Y pass, N fail, p = primary named but not the exact set, - not scored "
           "(SNR < 3); loss 'true': width at zero torque of the last full-scale cycle; '+' = of the last "
           "zero crossings (the cycle crosses zero but is not full scale: what the recording contains); "

@@ -115,10 +115,14 @@ import tempfile
 import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 from scipy.optimize import brentq
 from scipy.special import erf
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from load_paths import ramp_path  # noqa: E402
 
 REPO = Path(__file__).resolve().parents[1]
 EXE = REPO / ".venv" / "bin" / "strainwave"
@@ -446,15 +450,6 @@ def creep_response(t, F, c0, q, tau):
 
 
 # ---------------------------------------------------------------- load paths
-def ramp_path(points, n):
-    """piecewise-linear path through the points, n samples, equally spaced in travel (constant rate)."""
-    p = np.asarray(points, float)
-    seg = np.abs(np.diff(p))
-    cum = np.concatenate([[0], np.cumsum(seg)])
-    s = np.linspace(0, cum[-1], n)
-    return np.interp(s, cum, p)
-
-
 def hold_path(levels, n_ramp, n_hold):
     out = [np.array([0.0])]
     prev = 0.0
@@ -557,37 +552,80 @@ def elastica_below_noise(el_med, med, F, xlin, t, sigma):
             return Fs, ld, opt, snrs
         Fs *= 0.7
 
-def build_all(seed: int):
-    rng = np.random.default_rng(seed)
+
+class Lab(NamedTuple):
+    """What every ring family draws on: the generator and the two rings with their elastica tables."""
+    rng: np.random.Generator
+    thin: Ring
+    med: Ring
+    el_thin: ElasticaTable
+    el_med: ElasticaTable
+
+
+K_TORSION = 7.89e8  # given linear stiffness, N mm / rad (a 70/45 mm shaft of 200 mm)
+
+
+def _ld_inc(ring, table, F):
+    return table(F) - ring.c_thin * F
+
+
+def _ring_time(n, rate_s=0.05):
+    return np.arange(n) * rate_s
+
+
+def _snr_plan(rng, k, n300=0):
+    """SNR plan: log-uniform 3..50 with a few at 300."""
+    v = [loguni(rng, 3, 50) for _ in range(k)]
+    for j in range(n300):
+        v[j] = 300.0
+    rng.shuffle(v)
+    return v
+
+
+def _tors_path(n, tmax, cycles=2):
+    pts = [0]
+    for _ in range(cycles):
+        pts += [tmax, -tmax]
+    pts += [0]
+    return ramp_path(pts, n)
+
+
+def _tors_rec(rng, name, cls, truth, opt, snrs, T, t, phi, sigma, noise="white", rho=0.0, q=0.0, spikes=(),
+              drift=True, extra=None, snr_override=None, K_given=K_TORSION):
+    n = len(T)
+    if noise == "ar1":
+        e = ar1(rng, n, rho, sigma)
+    else:
+        e = rng.normal(0, sigma, n)
+    off = rng.normal(0, 50 * sigma)
+    dr = rng.normal(0, 5 * sigma) * t / t[-1] if drift else 0.0
+    meas = phi + e + off + dr
+    if q > 0:
+        meas = np.round(meas / q) * q
+    for (j, amp) in spikes:
+        meas[j] += amp * sigma
+    r = Rec(name, cls, truth, opt, snr_override if snr_override is not None else
+            (min(snrs[k] for k in truth) if isinstance(truth, list) and truth else None), extra)
+    r.snrs = snrs
+    r.header = header_torsion(K_given, desc=name)
+    r.cols = ["time_s", "torque_Nmm", "twist_rad"]
+    r.data = [t, T, meas]
+    r.sigma = sigma
+    return r
+
+
+def _ring_large_deflection(lab):
+    """Thin ring, elastic: the elastica at planned signal-to-noise ratios."""
+    rng, thin, med, el_thin, el_med = lab
     recs = []
-    thin = Ring(0.012)
-    med = Ring(0.05)
-    el_thin = ElasticaTable(thin, -60, 60)
-    el_med = ElasticaTable(med, -4500, 4500)
-
-    def ld_inc(ring, table, F):
-        return table(F) - ring.c_thin * F
-
-    def ring_time(n, rate_s=0.05):
-        return np.arange(n) * rate_s
-
-    # SNR plan: log-uniform 3..50 with a few at 300
-    def snr_plan(k, n300=0):
-        v = [loguni(rng, 3, 50) for _ in range(k)]
-        for j in range(n300):
-            v[j] = 300.0
-        rng.shuffle(v)
-        return v
-
-    # ---------------- ring: large deflection (thin ring, elastic)
     protos = ["cycles", "preload", "single", "cycles", "increasing", "single"]
-    sn = snr_plan(6, n300=1)
+    sn = _snr_plan(rng, 6, n300=1)
     for i, proto in enumerate(protos):
         fmax = rng.uniform(15, 40)  # stays elastic for any steel >= 300 MPa at this section
         F, n = ring_path(rng, proto, fmax)
-        t = ring_time(len(F))
+        t = _ring_time(len(F))
         xlin = thin.c_thin_nom * F
-        inc = ld_inc(thin, el_thin, F)
+        inc = _ld_inc(thin, el_thin, F)
         peak = np.max(np.abs(nuisance_resid(inc, xlin, t)))
         sigma = peak / sn[i]
         scale = 1 + rng.uniform(-0.5, 0.5) * 0.02
@@ -597,24 +635,29 @@ def build_all(seed: int):
                              sigma, 0.012, None, drift=rng.uniform() < 0.5,
                              extra={"F_max_N": fmax, "delta_max_mm": float(np.max(y)),
                                     "delta_over_r": float(np.max(y) / thin.r)}))
+    return recs
 
-    # ---------------- ring: plasticity (medium ring)
+
+def _ring_plasticity(lab):
+    """Medium ring loaded past first yield: fibre-model plasticity with its elastica."""
+    rng, thin, med, el_thin, el_med = lab
+    recs = []
     protos = ["cycles", "increasing", "preload", "single", "cycles", "increasing"]
-    sn = snr_plan(6, n300=1)
+    sn = _snr_plan(rng, 6, n300=1)
     for i, proto in enumerate(protos):
         sy = loguni(rng, 300, 1200)
         Hk = rng.uniform(0.01, 0.05) * E_STEEL
         Fy = med.first_yield_force(sy)
         over = rng.uniform(1.15, 1.6)
         F, n = ring_path(rng, proto, over * Fy)
-        t = ring_time(len(F))
+        t = _ring_time(len(F))
         fr = FibreRing(med, sy, Hk)
         dpl = fr.run(F)
         pl_inc = dpl - med.c_thin * F
         xlin = med.c_thin_nom * F
         peak = np.max(np.abs(nuisance_resid(pl_inc, xlin, t)))
         sigma = peak / sn[i]
-        ld = ld_inc(med, el_med, F)
+        ld = _ld_inc(med, el_med, F)
         c_th = thick_ring_compliance(med)
         scale = 1 + rng.uniform(-0.5, 0.5) * 0.02
         y = scale * (c_th / med.c_thin) * dpl + ld
@@ -624,9 +667,14 @@ def build_all(seed: int):
                              sigma, 0.05, None, drift=rng.uniform() < 0.4,
                              extra={"sigma_y_MPa": sy, "H_over_E": Hk / E_STEEL, "F_first_yield_N": Fy,
                                     "F_peak_over_Fy": over, "thick_ratio": c_th / med.c_thin}))
+    return recs
 
-    # ---------------- ring: thick ring (curved-beam compliance), u = 1 %
-    sn = snr_plan(3)
+
+def _ring_thick(lab):
+    """Thick rings (curved-beam compliance) against a stated 1 % uncertainty."""
+    rng, thin, med, el_thin, el_med = lab
+    recs = []
+    sn = _snr_plan(rng, 3)
     for i, ratio in enumerate([0.10, 0.115, 0.13][:3]):
         rg = Ring(ratio)
         c_th = thick_ring_compliance(rg)
@@ -634,7 +682,7 @@ def build_all(seed: int):
         proto = ["cycles", "single", "preload"][i]
         # loads well below first yield of a 600 MPa steel, deflections tiny vs r (no elastica effect)
         F, n = ring_path(rng, proto, 0.5 * rg.first_yield_force(600.0))
-        t = ring_time(len(F))
+        t = _ring_time(len(F))
         xlin = rg.c_thin_nom * F
         sigma = np.max(np.abs(xlin)) / loguni(rng, 300, 3000)
         ld = ElasticaTable(rg, -F.max(), F.max(), 11)(F) - rg.c_thin * F
@@ -643,8 +691,13 @@ def build_all(seed: int):
         recs.append(ring_rec(rng, f"ring_thick_{i}", "ring_thick_ring", ["thick_ring"] + tr, opt,
                              {"thick_ring": z, **snrs}, F, t, y, sigma, ratio, 0.01, drift=True,
                              extra={"compliance_ratio_to_thin": c_th / rg.c_thin}, snr_override=z))
+    return recs
 
-    # ---------------- ring: compliance offset (thin ring, wall or modulus off), and one within the prior
+
+def _ring_compliance_offset(lab):
+    """Thin ring with its wall or modulus off, and one within the prior."""
+    rng, thin, med, el_thin, el_med = lab
+    recs = []
     u = 0.02
     for i, (kind, z_t, sign) in enumerate([("h", rng.uniform(4.5, 10), +1), ("E", rng.uniform(4.5, 10), +1),
                                            ("h", rng.uniform(4.5, 10), -1), ("h", rng.uniform(0.8, 1.5), +1)]):
@@ -662,7 +715,7 @@ def build_all(seed: int):
         rel = loguni(rng, 200, 2000)
         while True:
             F = F0 * fmax
-            t = ring_time(len(F))
+            t = _ring_time(len(F))
             xlin = rg.c_thin_nom * F
             sigma = np.max(np.abs(xlin)) / rel
             ld = ElasticaTable(rg, -10, 10, 11)(F) - rg.c_thin * F
@@ -683,8 +736,13 @@ def build_all(seed: int):
                              extra={"what": kind, "relative_error": val,
                                     "compliance_ratio": rg.c_thin / rg.c_thin_nom},
                              snr_override=z if truth else None))
+    return recs
 
-    # ---------------- ring: clean (white, AR(1))
+
+def _ring_clean(lab):
+    """Clean rings (white, AR(1)) with the elastica kept below the noise."""
+    rng, thin, med, el_thin, el_med = lab
+    recs = []
     for i in range(5):
         ar = i >= 3
         rg = [thin, med, thin, med, thin][i]
@@ -696,7 +754,7 @@ def build_all(seed: int):
         scl = rng.uniform(-0.5, 0.5) * 0.02
         while True:  # keep clean clean: the load comes down until the elastica is below the noise
             F = F0 * fmax
-            t = ring_time(len(F))
+            t = _ring_time(len(F))
             xlin = rg.c_thin_nom * F
             sigma = np.max(np.abs(xlin)) / rel
             ld = table(F) - rg.c_thin * F
@@ -710,10 +768,15 @@ def build_all(seed: int):
         recs.append(ring_rec(rng, f"ring_clean_{i}_{'ar1' if ar else 'white'}",
                              "clean_ring_ar1" if ar else "clean_ring_white", [], opt, snrs, F, t, y, sigma,
                              rg.ratio, None, drift=True, rho=rho, extra={"rho": rho}))
+    return recs
 
-    # ---------------- ring cracks at the load point C: opening under tension (bipolar rig), closed under
-    # compression (outer fibre: invisible in a compression test -> clean), opening under compression beyond
-    # a residual-stress closure (inner fibre)
+
+def _ring_cracks(lab):
+    """Cracks at the load point C: opening under tension (bipolar rig), closed under compression (outer fibre:
+    invisible in a compression test -> clean), opening under compression beyond a residual-stress closure (inner
+    fibre)."""
+    rng, thin, med, el_thin, el_med = lab
+    recs = []
     for i in range(4):
         kind = ["bipolar", "closed", "compression", "compression"][i]
         fy = med.first_yield_force(800.0)
@@ -739,7 +802,7 @@ def build_all(seed: int):
             m_open = rng.uniform(0.3, 0.5) * fmax * med.r / math.pi
             d = crack_ring_delta(med, F, cr, side=+1, m_open=m_open, m_width=0.08 * fmax * med.r / math.pi)
             label = "ooc:ring_crack_opening_under_compression"
-        t = ring_time(len(F))
+        t = _ring_time(len(F))
         inc = d - med.c_thin * F
         xlin = med.c_thin_nom * F
         c_th = thick_ring_compliance(med)
@@ -761,13 +824,18 @@ def build_all(seed: int):
         recs.append(ring_rec(rng, f"ring_crack_{i}_{kind}", label if label else "clean_ring_crack_closed", label,
                              opt, snrs, F, t, y, sigma, 0.05, None, drift=rng.uniform() < 0.5,
                              snr_override=s_target, extra={"crack_rot_compliance": cr}))
+    return recs
 
-    # ---------------- ring OOC: platen seating (Hertz point contacts)
+
+def _ring_platen_hertz(lab):
+    """Out of catalogue: platen seating by Hertz point contacts."""
+    rng, thin, med, el_thin, el_med = lab
+    recs = []
     for i in range(3):
         fmax = 0.7 * med.first_yield_force(600.0)
         proto = ["cycles", "single", "increasing"][i]
         F, n = ring_path(rng, proto, fmax)
-        t = ring_time(len(F))
+        t = _ring_time(len(F))
         Rstar = rng.uniform(8, 40)
         hz = hertz_pair(F, Rstar)
         xlin = med.c_thin_nom * F
@@ -781,13 +849,18 @@ def build_all(seed: int):
         recs.append(ring_rec(rng, f"ring_platen_hertz_{i}", "ooc:platen_seating_hertz", "ooc:platen_seating_hertz",
                              opt, snrs, F, t, y, sigma, 0.05, None, drift=False, snr_override=s_target,
                              extra={"R_star_mm": Rstar, "hertz_share_at_Fmax": float(hz.max() / y.max())}))
+    return recs
 
-    # ---------------- ring OOC: step-hold creep
+
+def _ring_creep_hold(lab):
+    """Out of catalogue: step-hold creep."""
+    rng, thin, med, el_thin, el_med = lab
+    recs = []
     for i in range(2):
         fmax = 0.7 * med.first_yield_force(600.0)
         levels = [fmax * x for x in ([0.3, 0.6, 1.0] if i == 0 else [0.5, 1.0, 0.5])]
         F = hold_path(levels, int(rng.integers(40, 80)), int(rng.integers(80, 160)))
-        t = ring_time(len(F), 0.5)
+        t = _ring_time(len(F), 0.5)
         q, tau = rng.uniform(0.01, 0.03), rng.uniform(1, 5)
         c_th = thick_ring_compliance(med)
         d = creep_response(t, F, c_th, q, tau)
@@ -802,15 +875,19 @@ def build_all(seed: int):
         recs.append(ring_rec(rng, f"ring_creep_hold_{i}", "ooc:step_hold_creep", "ooc:step_hold_creep", opt, snrs,
                              F, t, y, sigma, 0.05, None, drift=False, snr_override=s_target,
                              extra={"q": q, "tau_s": tau}))
+    return recs
 
-    # ---------------- ring: more protocols and rig realities
-    # A thin ring of a soft steel: plasticity with a strong elastica beside it
+
+def _ring_thin_plastic(lab):
+    """Thin ring of a soft steel: plasticity with a strong elastica beside it."""
+    rng, thin, med, el_thin, el_med = lab
+    recs = []
     for i in range(2):
         sy = rng.uniform(250, 400)
         Fy = thin.first_yield_force(sy)
         over = rng.uniform(1.2, 1.5)
         F, n = ring_path(rng, ["cycles", "preload"][i], over * Fy)
-        t = ring_time(len(F))
+        t = _ring_time(len(F))
         fr = FibreRing(thin, sy, rng.uniform(0.01, 0.05) * E_STEEL)
         dpl = fr.run(F)
         pl_inc = dpl - thin.c_thin * F
@@ -824,25 +901,37 @@ def build_all(seed: int):
                              0.012, None, drift=True, extra={"sigma_y_MPa": sy, "F_first_yield_N": Fy,
                                                              "F_peak_over_Fy": over,
                                                              "delta_over_r": float(y.max() / thin.r)}))
-    # B large deflection at high signal (100 and 300 sigma), load-unload cycles
+    return recs
+
+
+def _ring_ld_high_snr(lab):
+    """Large deflection at high signal (100 and 300 sigma), load-unload cycles."""
+    rng, thin, med, el_thin, el_med = lab
+    recs = []
     for i, sn_i in enumerate([100.0, 300.0]):
         fmax = rng.uniform(15, 40)
         F, n = ring_path(rng, "cycles", fmax)
-        t = ring_time(len(F))
+        t = _ring_time(len(F))
         xlin = thin.c_thin_nom * F
-        inc = ld_inc(thin, el_thin, F)
+        inc = _ld_inc(thin, el_thin, F)
         sigma = np.max(np.abs(nuisance_resid(inc, xlin, t))) / sn_i
         y = (1 + rng.uniform(-0.5, 0.5) * 0.02) * thin.c_thin * F + inc
         truth, opt, snrs = ring_effects_truth({"large_deflection": inc}, xlin, t, sigma)
         recs.append(ring_rec(rng, f"ring_ld_high_{int(sn_i)}", "ring_large_deflection", truth, opt, snrs, F, t, y,
                              sigma, 0.012, None, drift=True, extra={"F_max_N": fmax,
                                                                     "delta_over_r": float(y.max() / thin.r)}))
-    # C plasticity with AR(1) noise; large deflection read by a quantised transducer
+    return recs
+
+
+def _ring_ar1_and_quantised(lab):
+    """Plasticity with AR(1) noise; large deflection read by a quantised transducer."""
+    rng, thin, med, el_thin, el_med = lab
+    recs = []
     sy = loguni(rng, 400, 1000)
     Fy = med.first_yield_force(sy)
     over = rng.uniform(1.2, 1.5)
     F, n = ring_path(rng, "increasing", over * Fy)
-    t = ring_time(len(F))
+    t = _ring_time(len(F))
     fr = FibreRing(med, sy, rng.uniform(0.01, 0.05) * E_STEEL)
     dpl = fr.run(F)
     pl_inc = dpl - med.c_thin * F
@@ -856,19 +945,25 @@ def build_all(seed: int):
                          rho=rho, extra={"sigma_y_MPa": sy, "F_peak_over_Fy": over, "rho": rho}))
     fmax = rng.uniform(15, 40)
     F, n = ring_path(rng, "preload", fmax)
-    t = ring_time(len(F))
+    t = _ring_time(len(F))
     xlin = thin.c_thin_nom * F
-    inc = ld_inc(thin, el_thin, F)
+    inc = _ld_inc(thin, el_thin, F)
     sigma = np.max(np.abs(nuisance_resid(inc, xlin, t))) / loguni(rng, 5, 50)
     qs = rng.uniform(0.5, 2.0) * sigma
     truth, opt, snrs = ring_effects_truth({"large_deflection": inc}, xlin, t, sigma)
     recs.append(ring_rec(rng, "ring_ld_quantised", "ring_large_deflection", truth, opt, snrs, F, t,
                          thin.c_thin * F + inc, sigma, 0.012, None, q=qs, extra={"quantum_over_sigma": qs / sigma}))
-    # D out of catalogue on a ring: non-linear thermal drift of the displacement channel; a spike
+    return recs
+
+
+def _ring_drift_and_spike(lab):
+    """Out of catalogue on a ring: non-linear thermal drift of the displacement; a spike."""
+    rng, thin, med, el_thin, el_med = lab
+    recs = []
     for i in range(2):
         fmax = 0.6 * med.first_yield_force(600.0)
         F, n = ring_path(rng, ["cycles", "preload"][i], fmax)
-        t = ring_time(len(F))
+        t = _ring_time(len(F))
         xlin = med.c_thin_nom * F
         sigma = np.max(np.abs(xlin)) / loguni(rng, 100, 1000)
         Fs, ld, opt, snrs = elastica_below_noise(el_med, med, F, xlin, t, sigma)
@@ -887,7 +982,13 @@ def build_all(seed: int):
             amp = float(rng.uniform(12, 40) * rng.choice([-1, 1]))
             recs.append(ring_rec(rng, "ring_spike", "ooc:spike", "ooc:spike", [], snrs, F, t, y, sigma, 0.05, None,
                                  spikes=[(j, amp)], snr_override=abs(amp), extra={"spikes": [(j, amp)]}))
-    # E compliance offset against a tight (0.5 %) and a loose (5 %) stated uncertainty
+    return recs
+
+
+def _ring_offset_tight_loose(lab):
+    """Compliance offset against a tight (0.5 %) and a loose (5 %) stated uncertainty."""
+    rng, thin, med, el_thin, el_med = lab
+    recs = []
     for i, (u, z_t) in enumerate([(0.005, rng.uniform(5, 12)), (0.05, rng.uniform(0.8, 1.4))]):
         ratio_c = 1 + z_t * u
         rg = Ring(0.012, h_scale=ratio_c ** (-1 / 3))
@@ -897,7 +998,7 @@ def build_all(seed: int):
         fmax = rng.uniform(2, 5)
         while True:
             F = F0 * fmax
-            t = ring_time(len(F))
+            t = _ring_time(len(F))
             xlin = rg.c_thin_nom * F
             sigma = np.max(np.abs(xlin)) / rel
             ld = ElasticaTable(rg, 0, 10, 11)(F) - rg.c_thin * F
@@ -910,13 +1011,18 @@ def build_all(seed: int):
                              "clean_ring_offset_within_prior", truth, [], {"compliance_offset": z, **s_ld}, F, t,
                              rg.c_thin * F + ld, sigma, 0.012, u, extra={"compliance_ratio": rg.c_thin / rg.c_thin_nom},
                              snr_override=z if truth else None))
+    return recs
 
-    # F a few load-unload cycles with a strong linear drift (30-100 sigma over the record): a nuisance
+
+def _ring_linear_drift(lab):
+    """Load-unload cycles with a strong linear drift (30-100 sigma): a nuisance."""
+    rng, thin, med, el_thin, el_med = lab
+    recs = []
     fmax = rng.uniform(15, 40)
     F, n = ring_path(rng, "cycles", fmax)
-    t = ring_time(len(F))
+    t = _ring_time(len(F))
     xlin = thin.c_thin_nom * F
-    inc = ld_inc(thin, el_thin, F)
+    inc = _ld_inc(thin, el_thin, F)
     sigma = np.max(np.abs(nuisance_resid(inc, xlin, t))) / loguni(rng, 5, 50)
     truth, opt, snrs = ring_effects_truth({"large_deflection": inc}, xlin, t, sigma)
     dsig = float(rng.uniform(30, 100))
@@ -927,7 +1033,7 @@ def build_all(seed: int):
     Fy = med.first_yield_force(sy)
     over = rng.uniform(1.2, 1.5)
     F, n = ring_path(rng, "cycles", over * Fy)
-    t = ring_time(len(F))
+    t = _ring_time(len(F))
     dpl = FibreRing(med, sy, rng.uniform(0.01, 0.05) * E_STEEL).run(F)
     pl_inc = dpl - med.c_thin * F
     xlin = med.c_thin_nom * F
@@ -939,80 +1045,61 @@ def build_all(seed: int):
                          thick_ring_compliance(med) / med.c_thin * dpl + ld, sigma, 0.05, None, drift_sigmas=dsig,
                          extra={"sigma_y_MPa": sy, "F_first_yield_N": Fy, "F_peak_over_Fy": over,
                                 "drift_sigmas_1sd": dsig}))
+    return recs
 
-    # ================= torsion
-    K = 7.89e8  # given linear stiffness, N mm / rad (a 70/45 mm shaft of 200 mm)
 
-    def tors_path(n, tmax, cycles=2):
-        pts = [0]
-        for _ in range(cycles):
-            pts += [tmax, -tmax]
-        pts += [0]
-        return ramp_path(pts, n)
-
-    def tors_rec(name, cls, truth, opt, snrs, T, t, phi, sigma, noise="white", rho=0.0, q=0.0, spikes=(),
-                 drift=True, extra=None, snr_override=None, K_given=K):
-        n = len(T)
-        if noise == "ar1":
-            e = ar1(rng, n, rho, sigma)
-        else:
-            e = rng.normal(0, sigma, n)
-        off = rng.normal(0, 50 * sigma)
-        dr = rng.normal(0, 5 * sigma) * t / t[-1] if drift else 0.0
-        meas = phi + e + off + dr
-        if q > 0:
-            meas = np.round(meas / q) * q
-        for (j, amp) in spikes:
-            meas[j] += amp * sigma
-        r = Rec(name, cls, truth, opt, snr_override if snr_override is not None else
-                (min(snrs[k] for k in truth) if isinstance(truth, list) and truth else None), extra)
-        r.snrs = snrs
-        r.header = header_torsion(K_given, desc=name)
-        r.cols = ["time_s", "torque_Nmm", "twist_rad"]
-        r.data = [t, T, meas]
-        r.sigma = sigma
-        return r
-
-    c = 1 / K
+def _torsion_clean(lab):
+    """Clean torsion: quantised encoder, AR(1), short and long."""
+    rng = lab.rng
+    c = 1 / K_TORSION
+    recs = []
     # clean quantised encoder
     for i in range(3):
         n = int(rng.integers(800, 2000))
         tmax = rng.uniform(2e5, 8e5)
-        T = tors_path(n, tmax)
+        T = _tors_path(n, tmax)
         t = np.arange(n) * 0.02
         sigma = c * tmax / loguni(rng, 200, 2000)
         qs = rng.uniform(0.5, 2.0) * sigma
         phi = c * (1 + rng.uniform(-0.01, 0.01)) * T
-        recs.append(tors_rec(f"tors_clean_quantised_{i}", "clean_torsion_quantised", [], [], {}, T, t, phi, sigma,
-                             q=qs, extra={"quantum_over_sigma": qs / sigma}))
+        recs.append(_tors_rec(rng, f"tors_clean_quantised_{i}", "clean_torsion_quantised", [], [], {}, T, t, phi,
+                              sigma, q=qs, extra={"quantum_over_sigma": qs / sigma}))
     # clean AR(1)
     for i in range(5):
         n = int(rng.integers(800, 2500))
         tmax = rng.uniform(2e5, 8e5)
-        T = tors_path(n, tmax, cycles=int(rng.integers(1, 4)))
+        T = _tors_path(n, tmax, cycles=int(rng.integers(1, 4)))
         t = np.arange(n) * 0.02
         sigma = c * tmax / loguni(rng, 200, 2000)
         rho = rng.uniform(0.9, 0.97)
         phi = c * (1 + rng.uniform(-0.01, 0.01)) * T
-        recs.append(tors_rec(f"tors_clean_ar1_{i}", "clean_torsion_ar1", [], [], {}, T, t, phi, sigma, noise="ar1",
-                             rho=rho, extra={"rho": rho}))
+        recs.append(_tors_rec(rng, f"tors_clean_ar1_{i}", "clean_torsion_ar1", [], [], {}, T, t, phi, sigma,
+                              noise="ar1", rho=rho, extra={"rho": rho}))
     # clean short and long
     for i, n in enumerate([int(rng.integers(60, 151)), 20000]):
         tmax = rng.uniform(2e5, 8e5)
-        T = tors_path(n, tmax)
+        T = _tors_path(n, tmax)
         t = np.arange(n) * 0.02
         sigma = c * tmax / loguni(rng, 200, 2000)
         phi = c * (1 + rng.uniform(-0.01, 0.01)) * T
-        recs.append(tors_rec(f"tors_clean_{'short' if i == 0 else 'long'}_{n}", "clean_torsion_length", [], [], {},
-                             T, t, phi, sigma, extra={"rows": n}))
+        recs.append(_tors_rec(rng, f"tors_clean_{'short' if i == 0 else 'long'}_{n}", "clean_torsion_length", [], [],
+                              {}, T, t, phi, sigma, extra={"rows": n}))
+    return recs
+
+
+def _torsion_in_catalogue(lab):
+    """In catalogue: stiffening and crack closure, short, quantised, AR(1), long."""
+    rng = lab.rng
+    c = 1 / K_TORSION
+    recs = []
     # in catalogue: short stiffening, quantised stiffening, AR(1) stiffening, long crack
     specs = [("short", "nonlinear_stiffness"), ("quantised", "nonlinear_stiffness"), ("ar1", "nonlinear_stiffness"),
              ("long", "crack_closure"), ("quantised", "crack_closure"), ("short", "crack_closure")]
-    sn = snr_plan(6, n300=1)
+    sn = _snr_plan(rng, 6, n300=1)
     for i, (what, eff) in enumerate(specs):
         n = {"short": int(rng.integers(60, 151)), "long": 20000}.get(what, int(rng.integers(800, 2000)))
         tmax = rng.uniform(3e5, 8e5)
-        T = tors_path(n, tmax)
+        T = _tors_path(n, tmax)
         t = np.arange(n) * 0.02
         if eff == "nonlinear_stiffness":
             r3 = rng.uniform(1.5, 3.0)
@@ -1027,13 +1114,21 @@ def build_all(seed: int):
         noise = "ar1" if what == "ar1" else "white"
         rho = rng.uniform(0.9, 0.97) if noise == "ar1" else 0.0
         qs = rng.uniform(0.5, 2.0) * sigma if what == "quantised" else 0.0
-        recs.append(tors_rec(f"tors_{what}_{eff}", f"torsion_{eff}", [eff], [], {eff: sn[i]}, T, t, phi, sigma,
-                             noise=noise, rho=rho, q=qs, extra={"rows": n, "rho": rho, **params}))
+        recs.append(_tors_rec(rng, f"tors_{what}_{eff}", f"torsion_{eff}", [eff], [], {eff: sn[i]}, T, t, phi, sigma,
+                              noise=noise, rho=rho, q=qs, extra={"rows": n, "rho": rho, **params}))
+    return recs
+
+
+def _torsion_sensor_and_drift(lab):
+    """Out of catalogue: torque sensor quadratic non-linearity; non-linear thermal drift."""
+    rng = lab.rng
+    c = 1 / K_TORSION
+    recs = []
     # OOC: torque sensor quadratic non-linearity
     for i in range(5):
         n = int(rng.integers(800, 2000))
         tmax = rng.uniform(3e5, 8e5)
-        Ttrue = tors_path(n, tmax)
+        Ttrue = _tors_path(n, tmax)
         kq = rng.uniform(0.001, 0.005) * rng.choice([-1, 1])
         Tm = Ttrue + kq * Ttrue ** 2 / tmax
         t = np.arange(n) * 0.02
@@ -1042,14 +1137,14 @@ def build_all(seed: int):
         xlin = c * Tm
         s_target = loguni(rng, 3, 50) if i else 300.0
         sigma = np.max(np.abs(nuisance_resid(inc, xlin, t))) / s_target
-        recs.append(tors_rec(f"tors_sensor_quadratic_{i}", "ooc:torque_sensor_quadratic", "ooc:torque_sensor_quadratic",
-                             [], {"sensor": s_target}, Tm, t, phi, sigma, snr_override=s_target,
-                             extra={"k_fs": kq}))
+        recs.append(_tors_rec(rng, f"tors_sensor_quadratic_{i}", "ooc:torque_sensor_quadratic",
+                              "ooc:torque_sensor_quadratic", [], {"sensor": s_target}, Tm, t, phi, sigma,
+                              snr_override=s_target, extra={"k_fs": kq}))
     # OOC: non-linear thermal drift
     for i in range(4):
         n = int(rng.integers(1000, 3000))
         tmax = rng.uniform(3e5, 8e5)
-        T = tors_path(n, tmax, cycles=int(rng.integers(2, 5)))
+        T = _tors_path(n, tmax, cycles=int(rng.integers(2, 5)))
         t = np.arange(n) * 0.05
         tt = t / t[-1]
         tau = rng.uniform(0.1, 0.3)
@@ -1063,24 +1158,35 @@ def build_all(seed: int):
         sigma = c * tmax / loguni(rng, 300, 2000)
         drift = amp * sigma * shape
         rms = float(np.sqrt(np.mean(nuisance_resid(drift, xlin, t) ** 2)) / sigma)
-        recs.append(tors_rec(f"tors_thermal_drift_{i}", "ooc:thermal_drift_nonlinear", "ooc:thermal_drift_nonlinear", [],
-                             {"drift": s_target}, T, t, c * T + drift, sigma, snr_override=s_target,
-                             extra={"rms_after_linear_detrend_sigmas": rms}))
+        recs.append(_tors_rec(rng, f"tors_thermal_drift_{i}", "ooc:thermal_drift_nonlinear",
+                              "ooc:thermal_drift_nonlinear", [], {"drift": s_target}, T, t, c * T + drift, sigma,
+                              snr_override=s_target, extra={"rms_after_linear_detrend_sigmas": rms}))
+    return recs
+
+
+def _torsion_spikes(lab):
+    """Out of catalogue: one and two spikes."""
+    rng = lab.rng
+    c = 1 / K_TORSION
+    recs = []
     # OOC: spikes
     for i in range(2):
         n = int(rng.integers(800, 2000))
         tmax = rng.uniform(3e5, 8e5)
-        T = tors_path(n, tmax)
+        T = _tors_path(n, tmax)
         t = np.arange(n) * 0.02
         sigma = c * tmax / loguni(rng, 200, 2000)
         k = i + 1
         js = sorted(rng.choice(np.arange(50, n - 50), k, replace=False))
         spikes = [(int(j), float(rng.uniform(12, 40) * rng.choice([-1, 1]))) for j in js]
-        recs.append(tors_rec(f"tors_spike_{k}", "ooc:spike", "ooc:spike", [], {}, T, t, c * T, sigma,
-                             spikes=spikes, snr_override=min(abs(a) for _, a in spikes),
-                             extra={"spikes": spikes}))
+        recs.append(_tors_rec(rng, f"tors_spike_{k}", "ooc:spike", "ooc:spike", [], {}, T, t, c * T, sigma,
+                              spikes=spikes, snr_override=min(abs(a) for _, a in spikes),
+                              extra={"spikes": spikes}))
+    return recs
 
-    # ---------------- bad input: must exit 2 with one line
+
+def _bad_inputs():
+    """Bad input: each must exit 2 with one line."""
     bad = []
     b = Rec("bad_missing_column", "bad_input", "exit2")
     b.raw_text = "# [test]\n# kind = \"ring_compression\"\n# specimen = \"ewg_ring\"\nforce_N,time_s\n" + \
@@ -1095,8 +1201,25 @@ def build_all(seed: int):
         "".join(f"{i},{i * 0.06}\n" for i in range(20)) + "21,twelve\n" + \
         "".join(f"{i},{i * 0.06}\n" for i in range(22, 40))
     bad.append(b)
+    return bad
+
+
+FAMILIES = (_ring_large_deflection, _ring_plasticity, _ring_thick, _ring_compliance_offset, _ring_clean,
+            _ring_cracks, _ring_platen_hertz, _ring_creep_hold, _ring_thin_plastic, _ring_ld_high_snr,
+            _ring_ar1_and_quantised, _ring_drift_and_spike, _ring_offset_tight_loose, _ring_linear_drift,
+            _torsion_clean, _torsion_in_catalogue, _torsion_sensor_and_drift, _torsion_spikes)
+
+
+def build_all(seed: int):
+    """Every recording in a fixed order (the families draw from one generator in turn), then the bad inputs."""
+    thin, med = Ring(0.012), Ring(0.05)
+    lab = Lab(np.random.default_rng(seed), thin, med, ElasticaTable(thin, -60, 60),
+              ElasticaTable(med, -4500, 4500))
+    recs = []
+    for family in FAMILIES:
+        recs += family(lab)
     check_truths(recs)
-    return recs + bad
+    return recs + _bad_inputs()
 
 
 CATALOGUE = {"compliance_offset", "nonlinear_stiffness", "hysteresis", "lost_motion", "crack_closure",

@@ -43,6 +43,7 @@ import tempfile
 import zlib
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
+from functools import partial
 from pathlib import Path
 
 import numpy as np
@@ -626,117 +627,99 @@ def clean_recording(name, colour, rng) -> Rec:
                time=time, rows=rows, note=f"{shape} {cycles:g}cyc {d}")
 
 
+NPER = 6  # per law: stratified signal bins over [3, 300] log-uniform
+SNR_EDGES = np.exp(np.linspace(np.log(3.0), np.log(300.0), NPER + 1))
+
+
+def _hyst_binned(seed, name, law, i, *, group="hyst", src=None, **kw):
+    """A loop of one law with its signal drawn in bin i, from the generator of `src` (default: `name`)."""
+    edges = SNR_EDGES
+    rng = rng_for(seed, src or name)
+    snr = float(np.exp(rng.uniform(np.log(edges[i]), np.log(edges[i + 1]))))
+    return hyst_recording(name, group, law, rng, snr, **kw)
+
+
+def _clean(seed, name, colour):
+    return clean_recording(name, colour, rng_for(seed, name))
+
+
+def _hyst_stiff(seed, name, law):
+    rng = rng_for(seed, name)
+    snr = float(np.exp(rng.uniform(np.log(10), np.log(300))))
+    return hyst_recording(name, "hyst", law, rng, snr, stiffen=float(rng.uniform(0.5, 2.0)))
+
+
+def _edge(seed, name, law, snr, **kw):
+    return hyst_recording(name, "edge", law, rng_for(seed, name), snr, **kw)
+
+
+def _edge_backlash(seed, name, law):
+    """A lost-motion (backlash) twist b*tanh(T/w) in series, clearance 2b ~ the loop width."""
+    rng = rng_for(seed, name)
+    holder = {}
+
+    def extra(T, rng=rng, holder=holder):
+        Tm = np.max(np.abs(T))
+        if "w" not in holder:
+            holder["w"] = float(rng.uniform(0.02, 0.06)) * Tm
+        return holder["b"] * np.tanh(T / holder["w"])
+    # first pass: width without backlash -> b
+    base = hyst_recording(name, "edge", law, rng_for(seed, name), 30.0, rows=2000, cycles=3.0, shape="sine",
+                          colour="white")
+    holder["b"] = 0.5 * float(rng.uniform(0.7, 1.3)) * base.loss_true_arcmin / RAD2ARCMIN
+    return hyst_recording(name, "edge", law, rng_for(seed, name), 30.0, rows=2000, cycles=3.0, shape="sine",
+                          colour="white", extra=extra, truth_extra="+lost_motion",
+                          note=f"backlash clearance 2b = {2 * holder['b'] * RAD2ARCMIN:.3f} arcmin")
+
+
+def _edge_quant(seed, name):
+    rec = hyst_recording(name, "edge", "iwan", rng_for(seed, name), 20.0, rows=2000, cycles=3.0, colour="white")
+    # re-quantise the twist with a step of 1/4 of the loop width (encoder resolution)
+    step = rec.loss_true_arcmin / RAD2ARCMIN / 4
+    rec.phi = np.round(rec.phi / step) * step
+    rec.note += " + encoder step = width/4"
+    return rec
+
+
+def _edge_secant(seed, src):
+    """The same recording as a Preisach case of the scored group, but the stated stiffness is the noiseless
+    loop's least-squares secant instead of the full-scale tangent (a convention check)."""
+    law = src[len("hyst_"):].rsplit("_", 1)[0]
+    i = int(src.rsplit("_", 1)[1])
+    return _hyst_binned(seed, "edge_secantK_" + src[len("hyst_"):], law, i, group="edge", src=src, stated="secant")
+
+
+def _edge_cases():
+    """(name, factory(seed)) of the edge cases, in their fixed order."""
+    sine, white = dict(shape="sine", colour="white"), dict(colour="white")
+    cases = [("edge_snr3_iwan", partial(_edge, name="edge_snr3_iwan", law="iwan", snr=3.0, rows=1000, cycles=3.0,
+                                        **sine, note="signal exactly 3x")),
+             ("edge_snr3_bw2_short", partial(_edge, name="edge_snr3_bw2_short", law="bw2", snr=3.0, rows=300,
+                                             cycles=1.5, **sine, note="signal exactly 3x, 300 rows, 1.5 cycles"))]
+    cases += [(f"edge_{tag}", partial(_edge_backlash, name=f"edge_{tag}", law=law))
+              for tag, law in [("backlash_pi", "pi"), ("backlash_dahl2", "dahl2")]]
+    cases.append(("edge_pink_preisach", partial(_edge, name="edge_pink_preisach", law="preisach_gauss", snr=10.0,
+                                                rows=2000, colour="pink", note="pink+white noise")))
+    cases += [("edge_secantK_" + src[len("hyst_"):], partial(_edge_secant, src=src))
+              for src in ["hyst_preisach_gauss_4", "hyst_preisach_lognorm_1", "hyst_preisach_gauss_2"]]
+    cases.append(("edge_snr2_dahl05", partial(_edge, name="edge_snr2_dahl05", law="dahl05", snr=2.0, rows=2000,
+                                              cycles=3.0, **white, note="below the 3x floor")))
+    cases.append(("edge_bw1_sharp_saturated", partial(_edge, name="edge_bw1_sharp_saturated", law="bw2", snr=100.0,
+                                                      rows=3000, cycles=4.0, shape="triangle", **white,
+                                                      note="n=2, fast saturation")))
+    cases.append(("edge_quant_coarse_iwan", partial(_edge_quant, name="edge_quant_coarse_iwan")))
+    return cases
+
+
 def build(seed: int) -> list[tuple[str, callable]]:
     """(name, factory) in a fixed order; each factory draws from its own name-seeded generator."""
-    specs = []
-    nper = 6  # per law: stratified signal bins over [3, 300] log-uniform
-    edges = np.exp(np.linspace(np.log(3.0), np.log(300.0), nper + 1))
-    for law in LAWS:
-        for i in range(nper):
-            name = f"hyst_{law}_{i}"
-
-            def fac(name=name, law=law, i=i):
-                rng = rng_for(seed, name)
-                snr = float(np.exp(rng.uniform(np.log(edges[i]), np.log(edges[i + 1]))))
-                return hyst_recording(name, "hyst", law, rng, snr)
-            specs.append((name, fac))
-    for j, law in enumerate(["bw2", "preisach_gauss", "pi", "iwan", "dahl05", "bristle"]):
-        name = f"hyst_stiff_{law}"
-
-        def fac(name=name, law=law):
-            rng = rng_for(seed, name)
-            snr = float(np.exp(rng.uniform(np.log(10), np.log(300))))
-            return hyst_recording(name, "hyst", law, rng, snr, stiffen=float(rng.uniform(0.5, 2.0)))
-        specs.append((name, fac))
-    for colour in ["pink", "ar2", "butter", "quant", "thermal", "mixture"]:
-        for i in range(5):
-            name = f"clean_{colour}_{i}"
-
-            def fac(name=name, colour=colour):
-                return clean_recording(name, colour, rng_for(seed, name))
-            specs.append((name, fac))
-
-    # edge cases
-    def e_snr3():
-        rng = rng_for(seed, "edge_snr3_iwan")
-        return hyst_recording("edge_snr3_iwan", "edge", "iwan", rng, 3.0, rows=1000, cycles=3.0,
-                              shape="sine", colour="white", note="signal exactly 3x")
-    specs.append(("edge_snr3_iwan", e_snr3))
-
-    def e_snr3_bw():
-        rng = rng_for(seed, "edge_snr3_bw2_short")
-        return hyst_recording("edge_snr3_bw2_short", "edge", "bw2", rng, 3.0, rows=300, cycles=1.5,
-                              shape="sine", colour="white", note="signal exactly 3x, 300 rows, 1.5 cycles")
-    specs.append(("edge_snr3_bw2_short", e_snr3_bw))
-
-    for tag, law in [("backlash_pi", "pi"), ("backlash_dahl2", "dahl2")]:
-        name = f"edge_{tag}"
-
-        def fac(name=name, law=law):
-            rng = rng_for(seed, name)
-            # a lost-motion (backlash) twist b*tanh(T/w) in series, clearance 2b ~ the loop width
-            holder = {}
-
-            def extra(T, rng=rng, holder=holder):
-                Tm = np.max(np.abs(T))
-                if "w" not in holder:
-                    holder["w"] = float(rng.uniform(0.02, 0.06)) * Tm
-                return holder["b"] * np.tanh(T / holder["w"])
-            # first pass: width without backlash -> b
-            rng2 = rng_for(seed, name)
-            base = hyst_recording(name, "edge", law, rng2, 30.0, rows=2000, cycles=3.0, shape="sine",
-                                  colour="white")
-            holder["b"] = 0.5 * float(rng.uniform(0.7, 1.3)) * base.loss_true_arcmin / RAD2ARCMIN
-            rng3 = rng_for(seed, name)
-            rec = hyst_recording(name, "edge", law, rng3, 30.0, rows=2000, cycles=3.0, shape="sine",
-                                 colour="white", extra=extra, truth_extra="+lost_motion",
-                                 note=f"backlash clearance 2b = {2 * holder['b'] * RAD2ARCMIN:.3f} arcmin")
-            return rec
-        specs.append((name, fac))
-
-    def e_pink():
-        rng = rng_for(seed, "edge_pink_preisach")
-        return hyst_recording("edge_pink_preisach", "edge", "preisach_gauss", rng, 10.0, rows=2000,
-                              colour="pink", note="pink+white noise")
-    specs.append(("edge_pink_preisach", e_pink))
-
-    # the same recordings as two Preisach cases of the scored group, but the stated stiffness is the
-    # noiseless loop's least-squares secant instead of the full-scale tangent (a convention check)
-    for src in ["hyst_preisach_gauss_4", "hyst_preisach_lognorm_1", "hyst_preisach_gauss_2"]:
-        name = "edge_secantK_" + src[len("hyst_"):]
-
-        def fac(name=name, src=src):
-            law = src[len("hyst_"):].rsplit("_", 1)[0]
-            i = int(src.rsplit("_", 1)[1])
-            rng = rng_for(seed, src)
-            snr = float(np.exp(rng.uniform(np.log(edges[i]), np.log(edges[i + 1]))))
-            rec = hyst_recording(name, "edge", law, rng, snr, stated="secant")
-            return rec
-        specs.append((name, fac))
-
-    def e_sub():
-        rng = rng_for(seed, "edge_snr2_dahl05")
-        return hyst_recording("edge_snr2_dahl05", "edge", "dahl05", rng, 2.0, rows=2000, cycles=3.0,
-                              colour="white", note="below the 3x floor")
-    specs.append(("edge_snr2_dahl05", e_sub))
-
-    def e_sat():
-        rng = rng_for(seed, "edge_bw1_sharp_saturated")
-        rec = hyst_recording("edge_bw1_sharp_saturated", "edge", "bw2", rng, 100.0, rows=3000,
-                             cycles=4.0, shape="triangle", colour="white", note="n=2, fast saturation")
-        return rec
-    specs.append(("edge_bw1_sharp_saturated", e_sat))
-
-    def e_quant():
-        rng = rng_for(seed, "edge_quant_coarse_iwan")
-        rec = hyst_recording("edge_quant_coarse_iwan", "edge", "iwan", rng, 20.0, rows=2000, cycles=3.0,
-                             colour="white")
-        # re-quantise the twist with a step of 1/4 of the loop width (encoder resolution)
-        step = rec.loss_true_arcmin / RAD2ARCMIN / 4
-        rec.phi = np.round(rec.phi / step) * step
-        rec.note += " + encoder step = width/4"
-        return rec
-    specs.append(("edge_quant_coarse_iwan", e_quant))
+    specs = [(f"hyst_{law}_{i}", partial(_hyst_binned, seed, f"hyst_{law}_{i}", law, i))
+             for law in LAWS for i in range(NPER)]
+    specs += [(f"hyst_stiff_{law}", partial(_hyst_stiff, seed, f"hyst_stiff_{law}", law))
+              for law in ["bw2", "preisach_gauss", "pi", "iwan", "dahl05", "bristle"]]
+    specs += [(f"clean_{colour}_{i}", partial(_clean, seed, f"clean_{colour}_{i}", colour))
+              for colour in ["pink", "ar2", "butter", "quant", "thermal", "mixture"] for i in range(5)]
+    specs += [(name, partial(fac, seed)) for name, fac in _edge_cases()]
     return specs
 
 

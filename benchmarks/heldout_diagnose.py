@@ -29,6 +29,9 @@ import time
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from load_paths import ramp_path  # noqa: E402
+
 ROOT = os.path.dirname(HERE)
 CLI = os.path.join(ROOT, ".venv", "bin", "strainwave")
 if not os.path.exists(CLI):
@@ -47,38 +50,29 @@ ARCMIN = math.pi / (180 * 60)
 
 
 # ---------------------------------------------------------------- load histories
-def tri_path(points, n):
-    """Piecewise-linear path through `points`, n samples, constant rate over the whole path length."""
-    pts = np.asarray(points, float)
-    seg = np.abs(np.diff(pts))
-    s = np.concatenate([[0], np.cumsum(seg)])
-    u = np.linspace(0, s[-1], n)
-    return np.interp(u, s, pts)
-
-
 def hist_full(n=2400, amp=1.0, cycles=3):
     pts = [0.0]
     for _ in range(cycles):
         pts += [amp, -amp]
     pts += [0.0]
-    return tri_path(pts, n)
+    return ramp_path(pts, n)
 
 
 def hist_onesided(n=2000, amp=1.0, cycles=4):
     pts = [0.0]
     for _ in range(cycles):
         pts += [amp, 0.0]
-    return tri_path(pts, n)
+    return ramp_path(pts, n)
 
 
 def hist_growing(n=2400):
-    return tri_path([0, .4, -.4, .7, -.7, 1, -1, 1, -1, 0], n)
+    return ramp_path([0, .4, -.4, .7, -.7, 1, -1, 1, -1, 0], n)
 
 
 def hist_tworate(n_slow=1600, n_fast=400):
     """2 slow full cycles then 2 fast ones at a constant sampling rate (fast = 4x the rate)."""
-    a = tri_path([0, 1, -1, 1, -1, 0], n_slow)
-    b = tri_path([0, 1, -1, 1, -1, 0], n_fast)
+    a = ramp_path([0, 1, -1, 1, -1, 0], n_slow)
+    b = ramp_path([0, 1, -1, 1, -1, 0], n_fast)
     return np.concatenate([a, b[1:]])
 
 
@@ -227,27 +221,43 @@ def run_diag(path):
 
 
 # ---------------------------------------------------------------- cases
-def torsion_cases(rng):
-    """Yield (name, category, expected_set, recording kwargs, truth dict)."""
-    C = []
-    base_hdr = {"baseline_stiffness_Nmm_per_rad": K0, "baseline_uncertainty": 0.05}
+class _Cases:
+    """The generator every torsion family draws from in turn, and the cases so far."""
 
-    def tors(name, cat, exp, T, phi, hdr=None, t=None, extra=None, truth=None, specimen="gear", nz=None):
+    def __init__(self, rng):
+        self.rng, self.C = rng, []
+        self.base_hdr = {"baseline_stiffness_Nmm_per_rad": K0, "baseline_uncertainty": 0.05}
+
+    def tors(self, name, cat, exp, T, phi, hdr=None, t=None, extra=None, truth=None, specimen="gear", nz=None):
         n = len(T)
-        nz = nz if nz is not None else noise(rng, n)
+        nz = nz if nz is not None else noise(self.rng, n)
         cols = {"torque_Nmm": T}
         if t is not None:
             cols["time_s"] = t
         cols["twist_rad"] = phi + nz
         if extra:
             cols.update(extra)
-        C.append(dict(name=name, cat=cat, exp=exp, kind="torsion", specimen=specimen, cols=cols,
-                      hdr=base_hdr if hdr is None else hdr, truth=truth or {}))
+        self.C.append(dict(name=name, cat=cat, exp=exp, kind="torsion", specimen=specimen, cols=cols,
+                           hdr=self.base_hdr if hdr is None else hdr, truth=truth or {}))
 
+
+def _shared(*names):
+    """The paths and effect sizes several torsion families share (no random draws), by name."""
     dt = 0.01
-    # ---------------- clean
     T = TR * hist_full()
-    t = np.arange(len(T)) * dt
+    th = np.linspace(0, 12 * 2 * np.pi, len(T))
+    s = dict(dt=dt, T=T, t=np.arange(len(T)) * dt, To=TR * hist_onesided(), Tg=TR * hist_growing(),
+             K1=K0, K3=2.0 * K0, T0=0.25 * TR,
+             b=4e-5, wb=0.03 * TR,   # +-4e-5 rad (8 arcsec) band, 3 % of rated torque
+             dC=0.15 / K0, th=th,
+             ke=1.5e-5 * np.sin(2 * th + 0.4) + 0.6e-5 * np.sin(4 * th + 1.1))   # 3 + 1.2 arcsec
+    return tuple(s[n] for n in names) if len(names) > 1 else s[names[0]]
+
+
+def _torsion_clean(cases):
+    """Clean torsion: white, AR(1), MA, quantised, drift, within the prior, one-sided, growing."""
+    tors, rng = cases.tors, cases.rng
+    dt, T, t, To, Tg = _shared("dt", "T", "t", "To", "Tg")
     tors("clean_white", "clean", set(), T, T / K0, t=t)
     tors("clean_white_big", "clean", set(), T, T / K0, t=t, nz=noise(rng, len(T), sigma=2e-5))
     for rho in (0.5, 0.9, 0.95):
@@ -258,12 +268,14 @@ def torsion_cases(rng):
          nz=quantise(T / K0 + noise(rng, len(T), sigma=1.5e-6), 6e-6) - T / K0)   # 2^20 count encoder
     tors("clean_drift_offset", "clean", set(), T, T / K0 + 4e-5 + 2e-5 * t / t[-1], t=t)
     tors("clean_stiff_in_prior", "clean", set(), T, T / (K0 * 1.03), t=t)
-    To = TR * hist_onesided()
     tors("clean_onesided", "clean", set(), To, To / K0, t=np.arange(len(To)) * dt)
-    Tg = TR * hist_growing()
     tors("clean_growing", "clean", set(), Tg, Tg / K0, t=np.arange(len(Tg)) * dt)
-    # ---------------- nonlinear stiffness (smooth; no knees)
-    K1, K3, T0 = K0, 2.0 * K0, 0.25 * TR
+
+
+def _torsion_stiffness(cases):
+    """Non-linear stiffness (smooth; no knees) and rows of the CHA table."""
+    tors, rng = cases.tors, cases.rng
+    dt, T, t, To, K1, K3, T0 = _shared("dt", "T", "t", "To", "K1", "K3", "T0")
     phi = T / K3 + (1 / K1 - 1 / K3) * T0 * np.tanh(T / T0)
     tors("stiff_tanh", "in", {"nonlinear_stiffness"}, T, phi, t=t)
     phi = (T / K0) / np.sqrt(1 + np.abs(T) / (0.5 * TR))
@@ -295,7 +307,12 @@ def torsion_cases(rng):
             tors(lbl + "_loop", "in", {"nonlinear_stiffness", "hysteresis"}, Tc, ph,
                  t=np.arange(len(Tc)) * dt, hdr={"baseline_stiffness_Nmm_per_rad": Kk1, "baseline_uncertainty": 0.3},
                  nz=noise(rng, len(Tc), sigma=s), truth={"energy": e, "width": w})
-    # ---------------- hysteresis
+
+
+def _torsion_single_effects(cases):
+    """Hysteresis, lost motion, crack, compliance offset and kinematic error."""
+    tors, rng = cases.tors, cases.rng
+    dt, T, t, Tg, b, wb, dC, th, ke = _shared("dt", "T", "t", "Tg", "b", "wb", "dC", "th", "ke")
     for zs_frac, nm, nzk in [(0.05, "hyst_boucwen", "white"), (0.015, "hyst_boucwen_small", "white"),
                              (0.04, "hyst_boucwen_ar95", "ar1")]:
         ph = bouc_wen_torque_driven(T, K0, 3 * K0, zs_frac * TR)
@@ -311,7 +328,6 @@ def torsion_cases(rng):
     tors("hyst_maxwell_slip", "in", {"hysteresis"}, Tm, ph_path, t=np.arange(len(Tm)) * dt,
          truth={"energy": e, "width": w})
     # ---------------- lost motion (smooth backlash)
-    b, wb = 4e-5, 0.03 * TR           # +-4e-5 rad (8 arcsec) band, 3 % of rated torque
     tors("backlash_algebraic", "in", {"lost_motion"}, T, T / K0 + b * T / np.sqrt(T ** 2 + wb ** 2), t=t)
     Tc0 = 0.05 * TR
     x = T - Tc0
@@ -319,7 +335,6 @@ def torsion_cases(rng):
          T / K0 + np.sign(x) * b * (1 - np.exp(-np.abs(x) / (0.02 * TR))) +
          np.sign(x) * (np.abs(x) / TR) ** (2 / 3) * 0.05 * PHI_FS, t=t)
     # ---------------- crack (open for one sign)
-    dC = 0.15 / K0
     tors("crack_pos", "in", {"crack_closure"}, T, T / K0 + dC * softplus(T, 0.05 * TR), t=t,
          truth={"crack_side": "+"})
     tors("crack_neg_gradual", "in", {"crack_closure"}, T, T / K0 - 0.2 / K0 * softplus(-T, 0.15 * TR), t=t,
@@ -330,10 +345,14 @@ def torsion_cases(rng):
     tors("compliance_soft20", "in", {"compliance_offset"}, T, T / (K0 / 1.2), t=t)
     tors("compliance_stiff15", "in", {"compliance_offset"}, Tg, Tg / (K0 * 1.15), t=np.arange(len(Tg)) * dt)
     # ---------------- kinematic error (rotating test: wave generator angle, ratio 100)
-    th = np.linspace(0, 12 * 2 * np.pi, len(T))
-    ke = 1.5e-5 * np.sin(2 * th + 0.4) + 0.6e-5 * np.sin(4 * th + 1.1)   # 3 + 1.2 arcsec
     tors("kinematic_error", "in", {"kinematic_error"}, T, T / K0 + ke, t=t, extra={"input_angle_rad": th})
-    # ---------------- pairs
+
+
+def _torsion_pairs_and_weak(cases):
+    """Pairs, the analytic baseline and harder (weak, coloured) in-catalogue cases."""
+    tors, rng = cases.tors, cases.rng
+    dt, T, t, To, K1, K3, T0, b, wb, dC, th, ke = _shared("dt", "T", "t", "To", "K1", "K3", "T0", "b", "wb", "dC",
+                                                          "th", "ke")
     ph = bouc_wen_torque_driven(T, K0, 3 * K0, 0.03 * TR) + dC * softplus(T, 0.05 * TR)
     e, w = loop_truth(T, ph)
     tors("pair_crack_hyst", "in", {"crack_closure", "hysteresis"}, T, ph, t=t,
@@ -364,6 +383,12 @@ def torsion_cases(rng):
          truth={"crack_side": "+"})
     tors("kinematic_error_ar90", "in", {"kinematic_error"}, T, T / K0 + ke, t=t, extra={"input_angle_rad": th},
          nz=noise(rng, len(T), "ar1", sigma=SIG, rho=0.9))
+
+
+def _torsion_harder(cases):
+    """The output shaft, quantised AR(1), asymmetric friction, more pairs, a long recording."""
+    tors, rng = cases.tors, cases.rng
+    dt, T, t, To, K1, K3, T0, b, wb, dC = _shared("dt", "T", "t", "To", "K1", "K3", "T0", "b", "wb", "dC")
     # output shaft, analytic baseline (doc formula, G = E/2(1+nu)), clean
     G = E_MOD / 2.6
     Ks = math.pi * G * (70.0 ** 4 - 45.0 ** 4) / (32 * 200.0)
@@ -396,7 +421,12 @@ def torsion_cases(rng):
     e, w = loop_truth(T6, ph)
     tors("hyst_boucwen_6000rows", "in", {"hysteresis"}, T6, ph, t=np.arange(len(T6)) * 0.004,
          truth={"energy": e, "width": w})
-    # ---------------- harder out-of-catalogue cases
+
+
+def _torsion_ooc_harder(cases):
+    """Harder out-of-catalogue cases: softening, lags, saturation, growing damage."""
+    tors, rng = cases.tors, cases.rng
+    dt, T, t, To = _shared("dt", "T", "t", "To")
     tors("ooc_softening_clamp", "out", None, T, T / K0 * (1 + 0.3 * (T / TR) ** 2), t=t)
     tors("ooc_even_sensor_nonlin", "out", None, T, T / K0 + 3e-5 * (T / TR) ** 2, t=t)
     phl1 = np.concatenate([np.zeros(5), (T / K0)[:-5]])
@@ -411,7 +441,12 @@ def torsion_cases(rng):
     tors("ooc_crack_growing", "out", None, T, T / K0 + (0.05 + 0.20 * t / t[-1]) / K0 * softplus(T, 0.05 * TR),
          t=t)
     tors("ooc_gain_drift_linear", "out", None, T * (1 - 0.07 * t / t[-1]), T / K0, t=t)
-    # ---------------- out of catalogue
+
+
+def _torsion_ooc(cases):
+    """Out of catalogue: drifts, gain steps, lags, creep, clipping, splices, stick-slip."""
+    tors, rng = cases.tors, cases.rng
+    dt, T, t = _shared("dt", "T", "t")
     tors("ooc_warmup_drift", "out", None, T, T / K0 + 2.5e-4 * (1 - np.exp(-t / (0.3 * t[-1]))), t=t)
     Kt = K0 * (1 - 0.10 * (1 - np.exp(-t / (0.4 * t[-1]))))
     tors("ooc_thermal_stiffness_drift", "out", None, T, T / Kt, t=t)
@@ -452,7 +487,18 @@ def torsion_cases(rng):
     # stick-slip: twist advances in steps (the friction of the fixture releases every ~4 % of FS)
     step = 0.04 * PHI_FS
     tors("ooc_stick_slip_steps", "out", None, T, step * np.round(T / K0 / step) * 0.5 + 0.5 * T / K0, t=t)
-    return C
+
+
+TORSION_FAMILIES = (_torsion_clean, _torsion_stiffness, _torsion_single_effects, _torsion_pairs_and_weak,
+                    _torsion_harder, _torsion_ooc_harder, _torsion_ooc)
+
+
+def torsion_cases(rng):
+    """The torsion cases (dicts: name, cat, exp, kind, specimen, cols, hdr, truth), family by family."""
+    cases = _Cases(rng)
+    for family in TORSION_FAMILIES:
+        family(cases)
+    return cases.C
 
 
 def ring_cases(rng, c_thin, c_thin_thick, r_thick, t_thick):
@@ -468,7 +514,7 @@ def ring_cases(rng, c_thin, c_thin_thick, r_thick, t_thick):
         C.append(dict(name=name, cat=cat, exp=exp, kind="ring_compression", specimen="ewg_ring",
                       cols=cols, hdr=hdr if hdr_ is None else hdr_, params=params, truth=truth or {}))
 
-    F = 40.0 * tri_path([0, 1, 0, 1, 0, 1, 0], 1500)     # delta ~ 2.4 mm = 6 % of r_m
+    F = 40.0 * ramp_path([0, 1, 0, 1, 0, 1, 0], 1500)     # delta ~ 2.4 mm = 6 % of r_m
     sig = 0.002 * c_thin * 40
     ring("ring_clean", "clean", set(), F, c_thin * F, sig)
     ring("ring_clean_quant", "clean", set(), F, quantise(c_thin * F, 0.5 * sig), sig)
@@ -478,13 +524,13 @@ def ring_cases(rng, c_thin, c_thin_thick, r_thick, t_thick):
     # delta = cF / (1 - 0.75 cF/r), first order gamma = +0.75, at delta/r_m ~ 0.06 (as the other ring cases): there
     # the elastica's next terms are ~1 % of its first correction; at 0.23 (150 N, this file's first version) this
     # rational form's would be 17 %, a curve no ring draws
-    Fl = 40.0 * tri_path([0, 1, 0, 1, 0], 1500)
+    Fl = 40.0 * ramp_path([0, 1, 0, 1, 0], 1500)
     d = c_thin * Fl / (1 - 0.75 * c_thin * Fl / r_m)
     ring("ring_large_deflection", "in", {"large_deflection"}, Fl, d, 0.002 * d.max())
     # plasticity: elastic-plastic with Ramberg-Osgood hardening above F_y, elastic unloading, permanent set
     sy = 400.0
     Fy = math.pi * sy * RING_B * RING_T ** 2 / 6 / r_m
-    Fp = Fy * tri_path([0, 0.8, 0, 1.2, 0, 1.5, 0, 1.5, 0], 2000)
+    Fp = Fy * ramp_path([0, 0.8, 0, 1.2, 0, 1.5, 0, 1.5, 0], 2000)
     dpl = np.zeros_like(Fp)
     peak = 0.0
     for i in range(len(Fp)):
@@ -496,7 +542,7 @@ def ring_cases(rng, c_thin, c_thin_thick, r_thick, t_thick):
     al = t_thick ** 2 / (12 * r_thick ** 2)
     be = 1.2 * 2 * 1.3 * al
     corr = ((1 - al + be) * math.pi / 4 - 2 * (1 - al) ** 2 / math.pi) / 0.148778
-    Ft = 2000.0 * tri_path([0, 1, 0, 1, 0, 1, 0], 1500)
+    Ft = 2000.0 * ramp_path([0, 1, 0, 1, 0, 1, 0], 1500)
     ring("ring_thick", "in", {"thick_ring"}, Ft, c_thin_thick * corr * Ft, 0.001 * c_thin_thick * 2000,
          hdr_={"baseline_uncertainty": 0.01}, params={"ewg_drive": {"rim_thickness_ratio": 0.1}},
          truth={"thick_corr": corr})
@@ -509,7 +555,7 @@ def ring_cases(rng, c_thin, c_thin_thick, r_thick, t_thick):
     ring("ring_plasticity_softknee", "in", {"plasticity"}, Fp, c_thin * Fp + dpl2, 0.002 * c_thin * Fy * 1.5,
          truth={"Fy": Fy, "set": float(dpl2[-1])})
     # ring pressed by friction plates: dissipative loop (Maxwell slip on the force, displacement driven)
-    dd = c_thin * 40 * tri_path([0, 1, 0.12, 1, 0.12, 1, 0.12], 1500)   # plates keep contact
+    dd = c_thin * 40 * ramp_path([0, 1, 0.12, 1, 0.12, 1, 0.12], 1500)   # plates keep contact
     Fr = maxwell_slip_twist_driven(dd, 1 / c_thin, np.full(6, 0.5 / c_thin), 40 * np.linspace(0.005, 0.02, 6))
     ring("ring_ooc_friction_loop", "out", None, Fr, dd, sig)
     d95 = c_thin * Fl / (1 - 0.75 * c_thin * Fl / r_m)
@@ -564,58 +610,36 @@ def judge(c, j):
     return r
 
 
-def main(argv=None):
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--out", default=None, help="keep recordings and JSON here")
-    ap.add_argument("--only", default=None)
-    ap.add_argument("--seed", type=int, default=20261124)
-    a = ap.parse_args(argv)
-    tmp = a.out or tempfile.mkdtemp(prefix="heldout_diag_")
-    os.makedirs(tmp, exist_ok=True)
-    rng = np.random.default_rng(a.seed)
-    commit = subprocess.run(["git", "-C", ROOT, "log", "--oneline", "-1"], capture_output=True,
-                            text=True).stdout.strip()
-    print(f"# held-out diagnose benchmark; commit {commit}; {time.strftime('%Y-%m-%d %H:%M:%S UTC', time.gmtime())}")
-    c_thin = pilot_ring(tmp)
-    c_thick = pilot_ring(tmp, {"ewg_drive": {"rim_thickness_ratio": 0.1}})
-    t_thick = 0.1 * 72.0
-    r_thick = (c_thick * E_MOD * RING_B * t_thick ** 3 / 12 / 0.148778) ** (1 / 3)
-    cases = torsion_cases(rng) + ring_cases(rng, c_thin, c_thick, r_thick, t_thick)
-    if a.only:
-        cases = [c for c in cases if a.only in c["name"]]
-    rows = []
-    t_all = time.time()
-    hdr = f"{'case':32s} {'expected':40s} {'verdict':12s} {'named (primary) amb':48s} {'rms/noise':>9s} {'dBIC':>8s} {'chi2':>6s} {'lag1':>5s} {'s':>5s} ok"
-    print(hdr)
-    print("-" * len(hdr))
-    for c in cases:
-        path = os.path.join(tmp, c["name"] + ".csv")
-        write_rec(path, c["kind"], c["specimen"], c["cols"], c["hdr"], c.get("params"))
-        j, dt = run_diag(path)
-        if "_error" in j:
-            r = {"ok": False, "conf_wrong": False, "verdict": "ERROR", "named": set(), "amb": False,
-                 "primary": None, "prim_ok": False, "set_ok": False}
-            print(f"{c['name']:32s} {expected_str(c):40s} ERROR {j['_error']}")
-            rows.append((c, j, r))
-            continue
-        r = judge(c, j)
-        fit = j.get("fit", {})
-        ratio = (fit.get("rms_after") or float("nan")) / (j.get("noise_std") or float("nan"))
-        dbic = (j["effects"][0]["delta_bic"] if j.get("effects") else float("nan"))
-        gof = (j.get("goodness_of_fit") or {})
-        gm = gof.get("model") or gof.get("baseline") or {}
-        chi2, lag1 = gm.get("chi2_per_sample", float("nan")), gm.get("lag1", float("nan"))
-        nm = "+".join(sorted(r["named"])) + (f" ({r['primary']})" if r["primary"] else "")
-        if j.get("suggestion"):
-            sg = j["suggestion"]
-            nm += " sugg:" + (sg.get("id", "") if isinstance(sg, dict) else str(sg))[:20]
-        nm += " AMB" if r["amb"] else ""
-        print(f"{c['name']:32s} {expected_str(c):40s} {str(r['verdict']):12s} {nm:48s} {ratio:9.2f} "
-              f"{dbic:8.1f} {chi2:6.1f} {lag1:5.2f} {dt:5.1f} {'OK' if r['ok'] else 'WRONG'}{' CONF-WRONG' if r['conf_wrong'] else ''}",
-              flush=True)
-        rows.append((c, j, r))
+def _run_case(c, tmp):
+    """Write one case, diagnose it, print its line; (case, JSON, judgement)."""
+    path = os.path.join(tmp, c["name"] + ".csv")
+    write_rec(path, c["kind"], c["specimen"], c["cols"], c["hdr"], c.get("params"))
+    j, dt = run_diag(path)
+    if "_error" in j:
+        r = {"ok": False, "conf_wrong": False, "verdict": "ERROR", "named": set(), "amb": False,
+             "primary": None, "prim_ok": False, "set_ok": False}
+        print(f"{c['name']:32s} {expected_str(c):40s} ERROR {j['_error']}")
+        return c, j, r
+    r = judge(c, j)
+    fit = j.get("fit", {})
+    ratio = (fit.get("rms_after") or float("nan")) / (j.get("noise_std") or float("nan"))
+    dbic = (j["effects"][0]["delta_bic"] if j.get("effects") else float("nan"))
+    gof = (j.get("goodness_of_fit") or {})
+    gm = gof.get("model") or gof.get("baseline") or {}
+    chi2, lag1 = gm.get("chi2_per_sample", float("nan")), gm.get("lag1", float("nan"))
+    nm = "+".join(sorted(r["named"])) + (f" ({r['primary']})" if r["primary"] else "")
+    if j.get("suggestion"):
+        sg = j["suggestion"]
+        nm += " sugg:" + (sg.get("id", "") if isinstance(sg, dict) else str(sg))[:20]
+    nm += " AMB" if r["amb"] else ""
+    print(f"{c['name']:32s} {expected_str(c):40s} {str(r['verdict']):12s} {nm:48s} {ratio:9.2f} "
+          f"{dbic:8.1f} {chi2:6.1f} {lag1:5.2f} {dt:5.1f} {'OK' if r['ok'] else 'WRONG'}{' CONF-WRONG' if r['conf_wrong'] else ''}",
+          flush=True)
+    return c, j, r
 
-    # ---------------- physics sanity checks
+
+def _physics_checks(rows):
+    """The true energy, width, crack side and yield beside what the tool reported."""
     print("\n# physics checks")
     for c, j, r in rows:
         tr = c["truth"]
@@ -649,7 +673,9 @@ def main(argv=None):
             print(f"{c['name']:28s} true F_y {tr['Fy']:.3g} N (0.2%-type knee, RO), final set {tr['set']:.3g} mm"
                   f" | fitted {pars}")
 
-    # ---------------- summaries
+
+def _summary(rows, commit, t_all):
+    """The headline fractions per category."""
     def pct(a_, b_):
         return f"{100 * a_ / b_:.0f} % ({a_}/{b_})" if b_ else "n/a"
     ins = [(c, j, r) for c, j, r in rows if c["cat"] == "in"]
@@ -661,6 +687,34 @@ def main(argv=None):
     print("clean false alarms                :", pct(sum(r["verdict"] != "agrees" for _, _, r in cln), len(cln)))
     print("out-of-cat unexplained-or-ambig.  :", pct(sum(r["ok"] for _, _, r in out), len(out)))
     print("confidently wrong (all cases)     :", pct(sum(r["conf_wrong"] for _, _, r in rows), len(rows)))
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--out", default=None, help="keep recordings and JSON here")
+    ap.add_argument("--only", default=None)
+    ap.add_argument("--seed", type=int, default=20261124)
+    a = ap.parse_args(argv)
+    tmp = a.out or tempfile.mkdtemp(prefix="heldout_diag_")
+    os.makedirs(tmp, exist_ok=True)
+    rng = np.random.default_rng(a.seed)
+    commit = subprocess.run(["git", "-C", ROOT, "log", "--oneline", "-1"], capture_output=True,
+                            text=True).stdout.strip()
+    print(f"# held-out diagnose benchmark; commit {commit}; {time.strftime('%Y-%m-%d %H:%M:%S UTC', time.gmtime())}")
+    c_thin = pilot_ring(tmp)
+    c_thick = pilot_ring(tmp, {"ewg_drive": {"rim_thickness_ratio": 0.1}})
+    t_thick = 0.1 * 72.0
+    r_thick = (c_thick * E_MOD * RING_B * t_thick ** 3 / 12 / 0.148778) ** (1 / 3)
+    cases = torsion_cases(rng) + ring_cases(rng, c_thin, c_thick, r_thick, t_thick)
+    if a.only:
+        cases = [c for c in cases if a.only in c["name"]]
+    t_all = time.time()
+    hdr = f"{'case':32s} {'expected':40s} {'verdict':12s} {'named (primary) amb':48s} {'rms/noise':>9s} {'dBIC':>8s} {'chi2':>6s} {'lag1':>5s} {'s':>5s} ok"
+    print(hdr)
+    print("-" * len(hdr))
+    rows = [_run_case(c, tmp) for c in cases]
+    _physics_checks(rows)
+    _summary(rows, commit, t_all)
     if not a.out:
         shutil.rmtree(tmp, ignore_errors=True)
 
