@@ -430,7 +430,7 @@ def test_pdf_is_printed_with_every_image(quick_run, results):
     from pypdf import PdfReader
 
     out, proc = quick_run
-    assert results["files"]["report_pdf"] == "report.pdf", [l for l in proc.stdout.splitlines() if "pdf" in l]
+    assert results["files"]["report_pdf"] == "report.pdf", [l for l in (proc.stdout + proc.stderr).splitlines() if "pdf" in l]
     reader = PdfReader(out / "report.pdf")
     # about 17 A4 pages for --quick; far fewer means a truncated print, far more a runaway layout
     assert 8 <= len(reader.pages) <= 60

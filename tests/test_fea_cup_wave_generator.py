@@ -82,7 +82,7 @@ def test_bending_check_passes_and_fails_on_a_perturbed_reference(setup, monkeypa
     assert checks[0].fea > 0 > checks[1].fea           # outer fibre in tension at the major axis
     true_refs = wg_cup_checks.references
     monkeypatch.setattr(wg_cup_checks, "references",
-                        lambda params, axis: {k: 1.1 * v for k, v in true_refs(params, axis).items()})
+                        lambda params, axis: true_refs(params, axis).scaled(1.1))
     assert not any(c.passed for c in wg_cup_checks.wg_checks(book, "wg", p))
 
 
