@@ -9,7 +9,7 @@ export OMP_NUM_THREADS ?= 1
 export OPENBLAS_NUM_THREADS ?= 1
 export MKL_NUM_THREADS ?= 1
 
-.PHONY: validate test bench clean-venv
+.PHONY: validate test test-heavy bench clean-venv
 
 $(STAMP): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -23,8 +23,13 @@ validate: $(STAMP)
 	$(BIN)/strainwave validate --out reports/validate
 	$(BIN)/strainwave validate --params strainwave/data/second_gear.toml --out reports/validate-second-gear
 
+# The suite on both cores, one file per worker (its module fixtures run once); the end-to-end runs of minutes
+# (validate --quick, sweeps on Dask, the CLI under strace) are the heavy set, which CI runs after it.
 test: $(STAMP)
-	$(BIN)/python -m pytest -q -n 2 --dist loadfile --durations=40 tests
+	$(BIN)/python -m pytest -q -n 2 --dist loadfile -m "not heavy" --durations=25 tests
+
+test-heavy: $(STAMP)
+	$(BIN)/python -m pytest -q -n 2 --dist loadfile -m heavy --durations=25 tests
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/run_all.py

@@ -39,6 +39,7 @@ def test_load_params_takes_section_overrides(params):
         sw.load_params(overrides={"gear": {"rated_output_torque_Nmm": -1.0}})
 
 
+@pytest.mark.heavy
 def test_three_identical_meshes_are_refused_not_a_zero_gci(params, tmp_path):
     # h = 30 mm on the shaft: its 45/70 mm walls cap gmsh's size, so all three meshes come out the same
     with pytest.raises(InputError, match="three meshes came out identical"):

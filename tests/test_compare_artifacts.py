@@ -99,6 +99,7 @@ def wired(tmp_path_factory):
     return out, check_set, made.images, made.missing, r_m, delta_cd, made.stresses, made.views
 
 
+@pytest.mark.heavy
 def test_exact_fields_pass_their_checks_and_missing_studies_do_not(wired):
     _, check_set, *_ = wired
     checks = check_set.by_id()

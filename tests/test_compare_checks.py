@@ -124,6 +124,7 @@ def test_schema_rejects_a_check_without_a_tolerance_reason():
         validate_results(broken)
 
 
+@pytest.mark.heavy
 def test_isolated_case_reports_errors_and_time_limits_instead_of_dying():
     from strainwave.compare.validate.isolated import run_isolated
 

@@ -21,6 +21,9 @@ from PIL import Image
 from strainwave.compare.validate.checks import REQUIRED_IDS
 from strainwave.compare.validate.results import load_schema
 
+# every test here reads one `validate --quick` run (minutes): the heavy set (`make test-heavy`)
+pytestmark = pytest.mark.heavy
+
 CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_FLAGS = ("--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
                   "--disable-background-networking", "--disable-component-update", "--disable-sync")

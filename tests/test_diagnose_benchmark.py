@@ -130,6 +130,7 @@ def test_scorer_counts_each_target_from_hand_made_outcomes():
     assert t["CHA + loop: exactly nonlinear_stiffness + hysteresis"].status == "n/a"
 
 
+@pytest.mark.heavy
 def test_smoke_run_of_both_families_writes_tables(tmp_path):
     classes = {1: ("clean_torsion_coloured", "hysteresis", "plasticity"),
                2: ("clean_coloured", "bouc_wen", "ramberg_osgood", "ripple_time", "spliced")}

@@ -34,6 +34,7 @@ def _diagnosis(params, ripple_of_torque: bool):
     return diagnose(rec, params, workers=1)[0]
 
 
+@pytest.mark.heavy
 def test_a_torque_proportional_2x_ripple_is_read_as_a_breathing_crack_and_sized(params):
     diag = _diagnosis(params, True)
     reading = ripple_reading(diag, _curve())

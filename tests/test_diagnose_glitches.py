@@ -120,6 +120,7 @@ def test_spike_on_a_row_the_fit_skipped_is_found(params):
     assert d.verdict is Verdict.UNEXPLAINED and "sample 4002 " in d.structure and "spike" in d.structure
 
 
+@pytest.mark.heavy
 @pytest.mark.parametrize("kind", ["white", "ar1", "random_walk", "quantised"])
 def test_clean_long_recording_raises_no_glitch(params, kind):
     # every row is checked (the fit sees every 4th): the full-rate residual's own noise model keeps the

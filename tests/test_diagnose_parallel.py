@@ -3,6 +3,7 @@ import dataclasses
 import os
 
 import numpy as np
+import pytest
 
 from strainwave.compare.diagnose.baseline import analytic_baseline
 from strainwave.compare.diagnose.generators.cha import cha_recording, cha_rows
@@ -20,6 +21,7 @@ def _same_fit(a, b):
     np.testing.assert_array_equal(a.model, b.model)
 
 
+@pytest.mark.heavy
 def test_two_workers_give_the_diagnosis_one_gives(params):
     """A CHA gear with a friction loop: singles and pairs (dozens of fits) split between two processes."""
     rec = parse_text(cha_recording(cha_rows()[3], hysteresis=True, n=1200))

@@ -8,6 +8,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 ENV = {**os.environ, "OMP_NUM_THREADS": "1"}
 
@@ -39,6 +41,7 @@ def test_diagnose_example_names_the_backlash(tmp_path):
     assert "lost_motion" in out, out
 
 
+@pytest.mark.heavy
 def test_export_example_names_the_faces_in_gmsh(tmp_path):
     out = _run("export_part.py", str(tmp_path), cwd=tmp_path).stdout
     index = json.loads((tmp_path / "output-shaft.faces.json").read_text())

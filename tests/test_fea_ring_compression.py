@@ -122,6 +122,7 @@ def test_ewg_prescribed_deformation_reaches_W0(ring):
     assert e.force_N > 0
 
 
+@pytest.mark.heavy
 def test_study_quick_carries_gci(monkeypatch, tmp_path):
     import strainwave.fea.ring_compression as rc
     from strainwave.geometry.involute import ToothSpec, gear_face

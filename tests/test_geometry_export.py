@@ -111,6 +111,7 @@ def _spy_on_read_back_naming(monkeypatch):
     return calls
 
 
+@pytest.mark.heavy
 def test_toothed_cup_faces_are_named_in_the_writers_model(params, tmp_path, monkeypatch):
     """The teeth of the cup are moved into place (their faces carry a location) and are still named by
     the writer's own map, without reading the file back; the names are the read-back ones."""
@@ -225,6 +226,7 @@ def _cli(strainwave_cmd, tmp_path, *args):
                           capture_output=True, text=True, timeout=120)
 
 
+@pytest.mark.heavy
 def test_cli_export_step(strainwave_cmd, tmp_path):
     out = tmp_path / "shaft.step"
     png = tmp_path / "shaft.png"

@@ -6,11 +6,14 @@ import sys
 import zipfile
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 SOURCES = {"strainwave": "strainwave", "geometry": "strainwave/geometry", "fea": "strainwave/fea",
            "analytic": "strainwave/analytic", "compare": "strainwave/compare"}
 
 
+@pytest.mark.heavy
 def test_wheel_builds_without_warnings_and_ships_data(tmp_path):
     src = tmp_path / "src"
     src.mkdir()

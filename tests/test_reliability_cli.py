@@ -56,6 +56,7 @@ def test_mesh_estimate_is_within_a_factor_two_of_the_mesh(tmp_path):
     assert 0.5 < guess / real < 2.0, (guess, real)
 
 
+@pytest.mark.heavy
 @pytest.mark.parametrize("sig,group", [(signal.SIGINT, False), (signal.SIGKILL, False)])
 def test_interrupted_validate_leaves_no_process_half_file_or_traceback(harness, tmp_path, sig, group):
     """SIGINT (exit 130, 'error: interrupted', queued cases never start) and SIGKILL of the main process
@@ -78,6 +79,7 @@ def test_analytic_and_diagnose_are_deterministic(tmp_path, capsys, harness):
         assert harness._close(runs[0], runs[1], 1e-12), argv[0]
 
 
+@pytest.mark.heavy
 def test_commands_write_nothing_outside_their_outputs(harness, tmp_path):
     """analytic, diagnose, export-step --png and solve under strace with HOME and TMPDIR empty: no ldconfig/gcc
     temp files (pypardiso's find_library), no Mesa shader cache, no scratch in /tmp. ezdxf's font list in

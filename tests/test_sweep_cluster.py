@@ -80,6 +80,7 @@ def journal_probe(study, params, quick, *, journal: str, delay_s: float):
     return result
 
 
+@pytest.mark.heavy
 def test_cli_sweep_on_a_dask_cli_cluster(strainwave_cmd, tmp_path):
     short = tmp_path / "short.toml"
     short.write_text(f"[output_shaft]\nlength_mm = {L}\n")
@@ -97,6 +98,7 @@ def test_cli_sweep_on_a_dask_cli_cluster(strainwave_cmd, tmp_path):
     assert not (out / ".dask-scratch").exists()
 
 
+@pytest.mark.heavy
 def test_a_killed_worker_loses_no_point(tmp_path, monkeypatch):
     import functools
     monkeypatch.setattr(cache, "code_version", lambda: "pinned-for-the-lost-worker-test")

@@ -18,6 +18,7 @@ G = E / (2 * (1 + NU))
 Q = "flexibility_rad_per_Nmm"
 
 
+@pytest.mark.heavy
 def test_shaft_torsion_sweep_with_closed_forms_beside(tmp_path):
     out = tmp_path / "sweep"
     short = tmp_path / "short.toml"
@@ -71,6 +72,7 @@ def test_shaft_torsion_sweep_with_closed_forms_beside(tmp_path):
     assert pd.read_parquet(out / "sweep.parquet")["fea"].equals(frame["fea"])
 
 
+@pytest.mark.heavy
 def test_shaft_crack_depth_sweep_seeds_the_shafts_own_crack(tmp_path):
     """Sweeping output_shaft.crack_depth_mm meshes the shaft's crack at each depth, bounded by the shaft's
     own 12.5 mm wall (not the cup's 2.24 mm, issue 11): every point is good and the flexibility rises."""

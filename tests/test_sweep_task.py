@@ -95,6 +95,7 @@ def test_closed_forms_only_beside_quantities_in_the_same_unit(tmp_path):
     assert any("not compared" in w for w in other["warnings"])
 
 
+@pytest.mark.heavy
 def test_uncracked_shaft_point_imports_no_build123d(tmp_path):
     """A worker solving uncracked shaft points never pays build123d's import (~2.3 s of its start): the shaft
     it meshes is a bare OCC solid. Run in a fresh interpreter, since this one may have imported it already."""
