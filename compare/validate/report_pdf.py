@@ -7,6 +7,7 @@ profile folder inside the run's scratch.
 """
 from __future__ import annotations
 
+import os
 import shutil
 import subprocess
 import tempfile
@@ -37,11 +38,16 @@ def print_pdf(html: Path, pdf: Path, *, timeout_s: float = PDF_TIMEOUT_S) -> Pat
     browser = chromium()
     if browser is None:
         raise RuntimeError("no Chromium found (Debian: apt-get install chromium)")
-    with tempfile.TemporaryDirectory(prefix="strainwave-chromium-") as profile, atomic_path(pdf) as tmp:
+    # Chromium puts its singleton socket under TMPDIR: a deep output folder's scratch space passes the 108-byte
+    # limit of a socket path and Chromium aborts, so its profile and TMPDIR sit in the system's short /tmp
+    short = "/tmp" if os.path.isdir("/tmp") and os.access("/tmp", os.W_OK) else None
+    with tempfile.TemporaryDirectory(prefix="strainwave-chromium-", dir=short) as profile, atomic_path(pdf) as tmp:
         cmd = [browser, *CHROMIUM_FLAGS, f"--user-data-dir={profile}", "--virtual-time-budget=5000",
                f"--print-to-pdf={tmp}", Path(html).resolve().as_uri()]
+        env = {**os.environ, "TMPDIR": profile}
         try:
-            proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout_s, stdin=subprocess.DEVNULL)
+            proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout_s, stdin=subprocess.DEVNULL,
+                                  env=env)
         except subprocess.TimeoutExpired:
             raise RuntimeError(f"Chromium did not print {html.name} within {timeout_s:g} s") from None
         if proc.returncode != 0 or not Path(tmp).exists() or Path(tmp).stat().st_size == 0:
