@@ -124,8 +124,10 @@ def patch_energy(md: MeshData, lame, global_u, *, group: str = "cut", study: str
     if plane_strain_faces is not None:
         faces = np.setdiff1d(group_dofs(sk, md, plane_strain_faces), nodes)
         dofs, values = np.concatenate([dofs, 3 * faces + 2]), np.concatenate([values, np.zeros(faces.size)])
+    # p-multigrid CG: a 3D patch factorises with heavy fill (docs/decisions/031-cup-section-flexibility.md)
     u, info = solve_elasticity(K, f, fixed_dofs=dofs, fixed_values=values, coords=sk.doflocs, dim=3,
-                               study=study, method="direct")
+                               study=study, method="amg" if md.order == 2 else "auto",
+                               p2_element_dofs=sk.element_dofs if md.order == 2 else None)
     return 0.5 * float(u @ (K @ u)), info.dofs, info.time_s
 
 

@@ -17,6 +17,7 @@ from typing import ClassVar, Mapping
 
 from strainwave.errors import InputError
 from strainwave.fea.assembly import Lame
+from strainwave.fea.cup_axisym import section_fine_mm, solve_cup_section
 from strainwave.fea.crack_extruded import PlaneGrading, crack_tips_xy, cylinder_map, extruded_patch, plane_patch_mesh
 from strainwave.fea.crack_local import compliance_from_release, interpolate_p2, local_release
 from strainwave.fea.crack_seam import open_crack_for, seam_crack
@@ -82,9 +83,10 @@ DELTA = "delta_flexibility_rad_per_Nmm"
 # closed and opened); "global-local" solves the cup uncracked and the crack in a patch (crack_local)
 SEAM, GLOBAL_LOCAL = "seam", "global-local"
 CRACK_METHODS = (SEAM, GLOBAL_LOCAL)
-# global-local meets the crack-compliance rule on both gears at a quarter of the CPU, but its uncracked
-# global mesh widens the second gear's headline lambda_f GCI: validate keeps the seam (docs/decisions/028)
-DEFAULT_CRACK_METHOD = SEAM
+# global-local meets the crack-compliance rule on both gears at a quarter of the CPU; lambda_f of the smooth
+# cup comes from its exact (r, z) section, not the 3D global mesh (docs/decisions/031)
+DEFAULT_CRACK_METHOD = GLOBAL_LOCAL
+FLEX_3D = "flexibility_3d_rad_per_Nmm"     # the 3D mesh's own uncracked lambda_f, reported beside the section's
 # The local patch: half size L = PATCH_HALF_OVER_A a (fixed grip on its cut faces costs O((a/L)^2) of the
 # released energy: 1.3 (a/L)^2, docs/decisions/025), meshed as a tip-graded plane extruded through the wall
 # (crack_extruded): quarter-point tips of a/4 on the finest mesh, rings growing by 0.4 of the distance
@@ -122,7 +124,8 @@ class CupTorsion(TorsionVariant):
     default_size_mm = staticmethod(default_size_mm)
     report_component: ClassVar[str] = "cup"
     title: ClassVar[str] = "flexspline cup"
-    element_text: ClassVar[str] = "P{order} tetrahedra (curved, isoparametric); crack as a seam, closed and opened"
+    element_text: ClassVar[str] = ("P{order} tetrahedra (curved, isoparametric); lambda_f of the toothless cup on its "
+                                   "axisymmetric (r, z) section of P2 triangles; the crack as a seam or in a global-local patch")
     teeth: bool
     crack_method: str = DEFAULT_CRACK_METHOD
 
@@ -155,9 +158,14 @@ class CupTorsion(TorsionVariant):
         return _build(self.params, self.crack_depth_mm, self.teeth)
 
     def series(self) -> tuple[SeriesPlan, ...]:
-        return (SeriesPlan("solid", refinement_sizes(self.h_fine_mm, self.ratio)),)
+        plans = (SeriesPlan("solid", refinement_sizes(self.h_fine_mm, self.ratio)),)
+        if not self.teeth:      # the toothless cup is axisymmetric: lambda_f on its (r, z) section
+            plans += (SeriesPlan("section", refinement_sizes(section_fine_mm(self.params, False), self.ratio)),)
+        return plans
 
     def solve(self, part, series, h_mm, k, keep_fields, progress) -> MeshSolve:
+        if series == "section":
+            return solve_cup_section(self.params, h_mm, progress=progress)
         if self.crack_depth_mm is not None and self.crack_method == GLOBAL_LOCAL:
             return self._solve_global_local(part, h_mm, keep_fields, progress)
         cracked = self.crack_depth_mm is not None
@@ -200,8 +208,19 @@ class CupTorsion(TorsionVariant):
         s = series["solid"]
         cracked = self.crack_depth_mm is not None
         delta = s.values(DELTA) if cracked and self.crack_method == GLOBAL_LOCAL else None
-        return crack_flexibility_quantities(s.h_mm, s.values(FLEX), s.values(CRACKED) if cracked else None, UNIT,
-                                            delta=delta)
+        out = crack_flexibility_quantities(s.h_mm, s.values(FLEX), s.values(CRACKED) if cracked else None, UNIT,
+                                           delta=delta)
+        if "section" not in series:
+            return out
+        section = series["section"]
+        lam = section.values(FLEX)
+        out[FLEX_3D] = s.converged(FLEX, UNIT)
+        out[FLEX] = section.converged(FLEX, UNIT)
+        if cracked:
+            # the section's lambda_f plus the crack's delta, refinement k with refinement k
+            d = delta if delta is not None else [c - u for c, u in zip(s.values(CRACKED), s.values(FLEX))]
+            out[CRACKED] = s.converged(CRACKED, UNIT, [l0 + dk for l0, dk in zip(lam, d)])
+        return out
 
     def crack(self, part) -> CrackRecord | None:
         if self.crack_depth_mm is None:
@@ -224,6 +243,9 @@ class CupTorsion(TorsionVariant):
         out = dict(torsion_meta(self.params, self.order, self.ratio, series["solid"].h_mm), teeth=self.teeth)
         if self.crack_depth_mm is not None:
             out["crack_part"] = {k: v for k, v in part.meta.items() if isinstance(v, (int, float, str))}
+        if "section" in series:
+            s = series["section"]
+            out["axisymmetric"] = {"section_sizes_mm": list(s.h_mm), "section_nodes": [m.values["nodes"] for m in s.solves]}
         return out
 
 

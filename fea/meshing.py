@@ -39,6 +39,7 @@ class Refine:
     dist_max_mm: float
     points_mm: tuple[tuple[float, float, float], ...] = ()
     groups: tuple[str, ...] = ()
+    along_curves: bool = True     # False: a corner point refines around itself, not along its edges
 
 
 def _export_brep(shape, path: Path) -> None:
@@ -97,7 +98,7 @@ def _size_fields(model, size_mm: float, refine: Sequence[Refine], group_tags: Ma
             model.mesh.field.setNumbers(fd, "PointsList", pts)
             # the curves through the points (crack-front edges) refine along their whole length
             near = []
-            for _, c in model.getEntities(1):
+            for _, c in (model.getEntities(1) if r.along_curves else ()):
                 d = min(np.linalg.norm(np.array(model.getClosestPoint(1, c, p)[0]) - p) for p in r.points_mm)
                 if d <= 0.5 * r.size_mm:
                     near.append(c)

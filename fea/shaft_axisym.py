@@ -111,10 +111,13 @@ class SectionSolution:
     flexibility_rad_per_Nmm: float  # mean end rotation / T
 
 
-def solve_section(md: MeshData, section: Section, shear_modulus_MPa: float,
-                  torque_Nmm: float = 1.0) -> SectionSolution:
-    """The scalar axisymmetric torsion problem on ``md`` (x = r, y = z)."""
-    from skfem import BilinearForm, FacetBasis, Functional, LinearForm, solve, condense
+def solve_torsion_section(md: MeshData, shear_modulus_MPa: float, shear_per_torque, torque_Nmm: float = 1.0,
+                          *, loaded: str = "loaded", fixed: str = "fixed") -> SectionSolution:
+    """The scalar axisymmetric torsion problem on ``md`` (x = r, y = z): psi = 0 on ``fixed``, a tangential
+    shear tau = T ``shear_per_torque(r)`` on ``loaded``; flexibility = the area-weighted mean rotation of
+    ``loaded`` / T. Shared by every axisymmetric part (shaft, smooth cup)."""
+    from skfem import BilinearForm, FacetBasis, Functional, LinearForm, MeshTri, solve, condense
+    from skfem.mapping import MappingAffine
     from skfem.helpers import dot, grad
 
     from strainwave.fea.assembly import scalar_basis
@@ -128,15 +131,17 @@ def solve_section(md: MeshData, section: Section, shear_modulus_MPa: float,
         return 2 * np.pi * shear_modulus_MPa * w.x[0] ** 3 * dot(grad(u), grad(v))
 
     K = stiffness.assemble(basis)
-    end = FacetBasis(sk.mesh, sk.element, facets=facet_indices(sk, md, "loaded"), intorder=6)
-    J = section.polar_moment_mm4
+    # the loaded edge is straight: the vertices' affine map is exact there, and skfem's isoparametric facet
+    # inversion (Newton to 1e-12) stalls on small cells far from the origin
+    affine = MappingAffine(MeshTri(sk.mesh.p, sk.mesh.t, sort_t=False))   # same local vertex order as sk
+    end = FacetBasis(sk.mesh, sk.element, mapping=affine, facets=facet_indices(sk, md, loaded), intorder=6)
 
     @LinearForm
-    def end_shear(v, w):            # int tau r v dA with tau = T r / J, dA = 2 pi r dr
-        return 2 * np.pi * torque_Nmm / J * w.x[0] ** 3 * v
+    def shear(v, w):                # int tau u_theta dA, u_theta = r psi, dA = 2 pi r ds
+        return 2 * np.pi * torque_Nmm * shear_per_torque(w.x[0]) * w.x[0] ** 2 * v
 
-    f = end_shear.assemble(end)
-    psi = solve(*condense(K, f, D=group_dofs(sk, md, "fixed")))
+    f = shear.assemble(end)
+    psi = solve(*condense(K, f, D=group_dofs(sk, md, fixed)))
 
     @Functional
     def rotation_area(w):
@@ -148,6 +153,13 @@ def solve_section(md: MeshData, section: Section, shear_modulus_MPa: float,
 
     twist = rotation_area.assemble(end, psi=end.interpolate(psi)) / area.assemble(end)
     return SectionSolution(md, psi, sk, basis, float(twist / torque_Nmm))
+
+
+def solve_section(md: MeshData, section: Section, shear_modulus_MPa: float,
+                  torque_Nmm: float = 1.0) -> SectionSolution:
+    """The shaft's section: Saint-Venant end shear tau = T r / J on z = L."""
+    J = section.polar_moment_mm4
+    return solve_torsion_section(md, shear_modulus_MPa, lambda r: r / J, torque_Nmm)
 
 
 def flexibility_rad_per_Nmm(md: MeshData, section: Section, shear_modulus_MPa: float,

@@ -18,6 +18,7 @@ Geometry choices (the seed gives d1, delta, L only):
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 from strainwave.errors import InputError
 from strainwave.params import CupShape
@@ -74,6 +75,28 @@ def _profile(fc, z_top: float, split_at: float | None):
     edges += [E((r_o, 0, z_top), (r_i, 0, z_top)), E((r_i, 0, z_top), inner_top), *inner,
               E((r_hb, 0, z1), (r_hb, 0, 0))]
     return Face(Wire(edges))
+
+
+@dataclass(frozen=True)
+class SmoothSection:
+    """The smooth cup's (r, z) half section as revolved (``face``: x = r, z in the xz plane), the band's start
+    z_b on its outer edge, and the re-entrant corners where the torsion field is singular."""
+
+    face: object
+    outer_radius_mm: float
+    band_z_mm: float
+    length_mm: float
+    corners_mm: tuple[tuple[float, float], ...]
+
+
+def smooth_section(params) -> SmoothSection:
+    """The half section of the smooth (toothless) cup that ``build(teeth=False)`` revolves."""
+    fc = params.flexspline_cup
+    d1, t, length = fc.pitch_diameter_mm, fc.wall_thickness_mm, fc.length_mm
+    z_b = length - BAND_RATIO * d1
+    # the hub's outer edge meets the diaphragm's underside at a 270 deg corner (none in an open tube)
+    corners = ((HUB_RATIO * d1, (BOSS_HEIGHT_WALLS - 1) * t),) if fc.cup else ()
+    return SmoothSection(_profile(fc, length, z_b), d1 / 2, z_b, length, corners)
 
 
 def tooth_spec(params) -> ToothSpec:

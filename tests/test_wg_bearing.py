@@ -110,9 +110,9 @@ def test_drive_stiffness_takes_the_wave_generator_from_the_fea_and_fails_on_the_
     from strainwave.compare.validate import wg_bearing_checks as wc
     params, s = ring
     G, sh = params.material.implied_shear_modulus_MPa, params.output_shaft
-    from strainwave.compare.validate.torsion_checks import CUP_JUNCTION_CORRECTION
+    from strainwave.analytic.cup_junction import junction_compliance
     # the stand-in FEA cup is the series model with the junction compliance it omits (the calibrated correction)
-    cup = {"flexibility_rad_per_Nmm": cup_series_model(params, G).total * (1.0 + CUP_JUNCTION_CORRECTION)}
+    cup = {"flexibility_rad_per_Nmm": cup_series_model(params, G).total + junction_compliance(params, G)}
     shaft = {"flexibility_rad_per_Nmm": torsion.shaft_flexibility(sh.length_mm, sh.outer_diameter_mm,
                                                                   sh.inner_diameter_mm, G, Variant.CORRECTED)}
     labels, s000 = {"cup": "cup", "shaft": "shaft"}, seed000_summary(params)

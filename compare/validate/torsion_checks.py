@@ -73,64 +73,62 @@ def shaft_flexibility(book: FeaBook, label: str, s000: dict, params) -> Check:
                           {"fea": f"FEA {label}", "analytic": "seed 000 lambda_so0 (corrected: G = E/2(1+nu))"})
 
 
-# The diaphragm junctions the series shell model ignores add a near-constant compliance: a correction calibrated
-# on cups of OTHER proportions, held out on the default, its scatter the only allowance
-# (docs/decisions/026-cup-junction-calibration.md). FEA, series model in rad/(N mm), default fine meshes.
-CUP_CALIBRATION_CUPS = {"d1 120 / delta 1.8 / L 110 mm": (1.0309e-9, 9.7936e-10),
-                        "d1 200 / delta 3.0 / L 240 mm": (2.6163e-10, 2.5048e-10)}
-# Held out (not fitted on): the default cup, quick meshes (GCI 0.57 % by the former rule).
-CUP_CALIBRATION_HELD_OUT = {"d1 160 / delta 2.24 / L 160 mm (the default), quick meshes": (4.8537e-10, 4.6342e-10)}
-
-
-def cup_calibration(cups=None) -> tuple[float, float]:
-    """(correction, scatter): the mean of FEA / series model - 1 over the fit cups, and the largest deviation
-    of one fit cup from that mean (the allowance that remains)."""
-    ratios = [fea / model - 1.0 for fea, model in (cups or CUP_CALIBRATION_CUPS).values()]
-    mean = sum(ratios) / len(ratios)
-    return mean, max(abs(r - mean) for r in ratios)
-
-
-CUP_JUNCTION_CORRECTION, CUP_JUNCTION_SCATTER = cup_calibration()
+def cup_model_flexibility(params, G_MPa: float) -> tuple[float, float]:
+    """(series shell model + the junction compliance, the series model alone) rad/(N mm): the corrected cup
+    closed form (``analytic.cup_junction``), also the cup's share of ``gear.stiffness``."""
+    from strainwave.analytic.cup_junction import junction_compliance
+    from strainwave.analytic.seed000 import cup_series_model
+    series = cup_series_model(params, G_MPa).total
+    return series + junction_compliance(params, G_MPa), series
 
 
 def cup_flexibility_reference(params, s000: dict | None = None) -> Reference:
-    """corrected: the series shell model x (1 + the junction calibration); published: seed 000's lambda_f0."""
-    from strainwave.analytic.seed000 import cup_series_model, seed000_summary
+    """corrected: the series shell model + the calibrated junction compliance; published: seed 000's lambda_f0."""
+    from strainwave.analytic.seed000 import seed000_summary
 
     lf = (seed000_summary(params) if s000 is None else s000)["lambda_f0_variants"]
-    series = cup_series_model(params, params.material.implied_shear_modulus_MPa)
-    return Reference(lf["published"], series.total * (1.0 + CUP_JUNCTION_CORRECTION), FLEX_UNIT,
-                     "published: seed 000 lambda_f0 (k_f, k_G); corrected: strainwave series shell model",
-                     (("series_model", series.total),))
+    corrected, series = cup_model_flexibility(params, params.material.implied_shear_modulus_MPa)
+    return Reference(lf["published"], corrected, FLEX_UNIT,
+                     "published: seed 000 lambda_f0 (k_f, k_G); corrected: strainwave series shell model + junctions",
+                     (("series_model", series),))
 
 
 def cup_flexibility(book: FeaBook, label: str, s000: dict, params) -> Check:
-    """Cup flexibility: published = seed 000's lambda_f0 (0.1, k_f k_G), corrected = the series shell model.
+    """Cup flexibility: published = seed 000's lambda_f0 (0.1, k_f k_G), corrected = the series shell model
+    (tube + diaphragm + hub, G = E/2(1+nu)) plus the junction compliance calibrated on other cups.
 
     The seed's lambda_f0 is a bare tube (scaled by k_G = 0.83 for a cup) and omits the diaphragm, whose
-    torsional compliance is as large as the tube's; the corrected value is strainwave's series shell
-    model (tube + diaphragm + hub, ``analytic.torsion.cup_series_flexibility``) with G = E/2(1+nu) as the FEA.
+    torsional compliance is as large as the tube's. The FEA is the toothless cup's exact (r, z) section.
     """
+    from strainwave.analytic.cup_junction import JUNCTION, in_calibrated_range
     from strainwave.analytic.seed000 import cup_series_model
 
     lf = s000.get("lambda_f0_variants", {})
-    series = cup_series_model(params, params.material.implied_shear_modulus_MPa)
+    G = params.material.implied_shear_modulus_MPa
+    series = cup_series_model(params, G)
+    corrected, _ = cup_model_flexibility(params, G)
+    inside, why = in_calibrated_range(params)
     analytic = cup_flexibility_reference(params, s000).variants()
     note = (f"published = seed 000's lambda_f0 = k_f k_G c_L/(0.1 mu [1-(1-2c_delta)^4] d1^3) with "
             f"k_f = {s000.get('k_f')}, k_G = {s000.get('k_G')}; corrected = strainwave's series shell model "
             f"(tube + diaphragm + hub, G = E/2(1+nu)): tube {series.tube:.4g} + diaphragm {series.diaphragm:.4g} "
-            f"+ hub {series.hub:.4g} = {series.total:.5g} {FLEX_UNIT}; the seed's lambda_f0 omits the diaphragm; "
-            f"pi/32 tube-only value (k_f k_G) = {lf.get('corrected', float('nan')):.5g}, with G = E/2(1+nu) "
-            f"{lf.get('corrected_E_nu', float('nan')):.5g} {FLEX_UNIT}; asserted (corrected) = series model x "
-            f"(1 + {100 * CUP_JUNCTION_CORRECTION:.3g} %), the junction compliance the model omits as a correction "
-            f"calibrated on cups of other proportions ({', '.join(CUP_CALIBRATION_CUPS)}) and held out on this "
-            f"one; its scatter {100 * CUP_JUNCTION_SCATTER:.2g} % is the only allowance")
-    allowances = {"scatter of the junction calibration over its fit cups (torsion_checks.cup_calibration)":
-                  CUP_JUNCTION_SCATTER}
+            f"+ hub {series.hub:.4g} = {series.total:.5g} {FLEX_UNIT}, plus the junctions' compliance "
+            f"{corrected - series.total:.4g} (G d1^3 Delta lambda = {JUNCTION.intercept:.4g} + "
+            f"({JUNCTION.slope:.4g}) delta/d1, fitted on {len(_fit_cups())} cups of other proportions, analytic/"
+            f"cup_junction.py) = {corrected:.5g}; the seed's lambda_f0 omits the diaphragm; pi/32 tube-only value "
+            f"(k_f k_G) = {lf.get('corrected', float('nan')):.5g}, with G = E/2(1+nu) "
+            f"{lf.get('corrected_E_nu', float('nan')):.5g} {FLEX_UNIT}"
+            + ("" if inside else f"; FLAGGED: the junction calibration is used outside its range ({why})"))
+    allowances = {"scatter of the junction calibration over its fit cups (analytic/cup_junction.py)": JUNCTION.scatter}
     return _from_quantity("cup.flexibility", "flexspline cup torsional flexibility lambda_f0", FLEX_UNIT, book,
                           label, CUP_FLEX, analytic, allowances, note,
                           {"fea": f"FEA {label}", "analytic": "published: seed 000 lambda_f0 (k_f, k_G); "
-                                                              "corrected: strainwave series shell model"})
+                                                              "corrected: strainwave series shell model + junctions"})
+
+
+def _fit_cups() -> dict:
+    from strainwave.analytic.cup_junction import FIT_CUPS
+    return FIT_CUPS
 
 
 # ---- crack compliances: evaluated at the shallowest resolved depth of the sweep ----

@@ -171,10 +171,10 @@ def gear_stiffness(book: FeaBook, labels: dict[str, str], wg_label: str, s000: d
     series shell cup, the hollow shaft; G = E/2(1+nu)); published: the seed's K_HD; ``today``: the FEA cup and
     shaft with the seed's K_G0 (what this check asserted before issue 34)."""
     from strainwave.analytic import torsion
-    from strainwave.analytic.seed000 import cup_series_model
     from strainwave.analytic.variant import Variant
     from strainwave.registry import FLEX_UNIT
-    from strainwave.compare.validate.torsion_checks import CUP_FLEX, CUP_JUNCTION_CORRECTION, CUP_JUNCTION_SCATTER, SHAFT_FLEX, variants
+    from strainwave.analytic.cup_junction import JUNCTION
+    from strainwave.compare.validate.torsion_checks import CUP_FLEX, SHAFT_FLEX, cup_model_flexibility, variants
 
     unit, quantity = "N*mm/rad", "drive torsional stiffness K_HD (uncracked), wave generator from the FEA"
     analytic = {k: v for k, v in variants(s000.get("K_HD")).items() if k == "published"}
@@ -192,7 +192,7 @@ def gear_stiffness(book: FeaBook, labels: dict[str, str], wg_label: str, s000: d
     K = 1.0 / total
     unc = K * (lam_H * (qg.uncertainty or 0.0) / qg.value + (qf.uncertainty or 0.0) + (qs.uncertainty or 0.0)) / total
     G = params.material.implied_shear_modulus_MPa
-    cup_model = cup_series_model(params, G).total * (1.0 + CUP_JUNCTION_CORRECTION)   # calibrated (cup check)
+    cup_model = cup_model_flexibility(params, G)[0]   # calibrated (cup check)
     shaft_model = torsion.shaft_flexibility(sh.length_mm, sh.outer_diameter_mm, sh.inner_diameter_mm, G,
                                             Variant.CORRECTED)
     analytic = {**analytic, "corrected": 1.0 / (lam(K_cf) + cup_model + shaft_model)}
@@ -203,7 +203,7 @@ def gear_stiffness(book: FeaBook, labels: dict[str, str], wg_label: str, s000: d
     ring_g = wgb.ring_local_compliance_mm_per_N(s.E_MPa, s.thickness_mm, s.width_mm, max(s.patch_half_widths_mm))
     ring_share = ring_g * max(loads["ball_loads_N"]) / (max(loads["ball_loads_N"]) / loads["hertz_constant"]) ** (2 / 3)
     allowances = {f"scatter of the cup's junction calibration, on the cup share {100 * qf.value / total:.0f} %":
-                  CUP_JUNCTION_SCATTER * qf.value / total,
+                  JUNCTION.scatter * qf.value / total,
                   f"the inner ring's compliance under the balls (rigid in the closed form), on the wave generator "
                   f"share {100 * lam_H / total:.0f} %": ring_share * lam_H / total}
     tol = fea_tolerance(K, unc, allowances=allowances)

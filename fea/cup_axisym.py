@@ -1,0 +1,88 @@
+"""The smooth cup's torsional flexibility on its (r, z) section: an exact 2D reduction of the 3D study.
+
+The toothless cup, its clamp (the hub face z = 0) and its load (a uniform tangential shear on the band)
+are all axisymmetric, so torsion keeps u_r = u_z = 0 and u_theta = r psi(r, z): the scalar problem of
+``shaft_axisym.solve_torsion_section`` on the cup's half section is the 3D problem, not an approximation.
+A 2D mesh resolves the hub's re-entrant corner and the band's edge at a cost of seconds, so the uncracked
+lambda_f carries a GCI far below the 3D whole-cup mesh's (docs/decisions/031-cup-section-flexibility.md).
+"""
+from __future__ import annotations
+
+import math
+import time
+from typing import Callable
+
+from strainwave.fea.mesh_data import MeshData
+from strainwave.fea.skeleton import MeshSolve
+
+__all__ = ["section_fine_mm", "mesh_cup_section", "solve_cup_section", "section_flexibility"]
+
+# Section size wall/6 (quick wall/4); the hub's corner (r^2/3 field) refined to a tenth of it, the band's
+# edge (a traction step, log field) to a quarter: finer cells at r = d1/2 defeat skfem's facet inversion
+WALL_OVER_H = {False: 6.0, True: 4.0}
+CORNER_OVER_H, EDGE_OVER_H = 10.0, 4.0
+FLEX = "flexibility_rad_per_Nmm"
+
+
+def section_fine_mm(params, quick: bool) -> float:
+    """Finest global size of the cup's section series."""
+    return params.flexspline_cup.wall_thickness_mm / WALL_OVER_H[quick]
+
+
+def mesh_cup_section(model, section, *, size_mm: float, wall_mm: float, order: int = 2) -> MeshData:
+    """P2 triangles of the half section (x = r, y = z): "fixed" on z = 0, "loaded" on the band's outer
+    edge; refined at the re-entrant corners and at the band's start."""
+    from strainwave.fea.meshing import Refine, _import_shape, extract, generate
+
+    _import_shape(model, section.face)
+    model.occ.rotate(model.occ.getEntities(), 0, 0, 0, 1, 0, 0, -math.pi / 2)   # (x, 0, z) -> (x, z, 0)
+    model.occ.synchronize()
+    tol = 1e-6 * section.length_mm
+    picks = {"fixed": lambda lo, hi: abs(lo[1]) < tol and abs(hi[1]) < tol,
+             "loaded": lambda lo, hi: abs(lo[0] - section.outer_radius_mm) < tol
+             and abs(hi[0] - section.outer_radius_mm) < tol and lo[1] > section.band_z_mm - tol}
+    groups = {}
+    for name, pick in picks.items():
+        tags = [t for _, t in model.getEntities(1) if pick(model.getBoundingBox(1, t)[:3], model.getBoundingBox(1, t)[3:])]
+        if not tags:
+            raise ValueError(f"cup section: no edge found for group {name!r}")
+        model.addPhysicalGroup(1, tags, name=name)
+        groups[name] = (1, tags)
+    model.addPhysicalGroup(2, [t for _, t in model.getEntities(2)], name="section")
+    corners = tuple((r, z, 0.0) for r, z in section.corners_mm)
+    edge = ((section.outer_radius_mm, section.band_z_mm, 0.0),)
+    refine = [Refine(size_mm / over, 0.5 * wall_mm, 2.0 * wall_mm, points_mm=pts, along_curves=False)
+              for over, pts in ((CORNER_OVER_H, corners), (EDGE_OVER_H, edge)) if pts]
+    generate(model, 2, order, size_mm=size_mm, refine=refine)
+    return extract(model, 2, order, groups, size_mm)
+
+
+def solve_cup_section(params, h_mm: float, *, keep_fields: bool = False,
+                      progress: Callable[[str], None] = lambda m: None) -> MeshSolve:
+    """lambda_f of the smooth cup on its section meshed at global size ``h_mm``."""
+    from strainwave.fea.session import mesh_in_child
+    from strainwave.fea.shaft_axisym import solve_torsion_section
+    from strainwave.geometry.flexspline_cup import smooth_section
+
+    t0 = time.perf_counter()
+    section = smooth_section(params)
+    wall = params.flexspline_cup.wall_thickness_mm
+    md = mesh_in_child(lambda model: mesh_cup_section(model, section, size_mm=h_mm, wall_mm=wall),
+                       what="cup-torsion section")
+    t_mesh = time.perf_counter() - t0
+    arm = 2.0 * math.pi * section.outer_radius_mm ** 2 * (section.length_mm - section.band_z_mm)
+    sol = solve_torsion_section(md, params.material.implied_shear_modulus_MPa, lambda r: 1.0 / arm + 0.0 * r)
+    progress(f"cup-torsion (axisymmetric): h = {h_mm:.3g} mm, {md.nodes_mm.shape[0]} nodes, "
+             f"lambda_f {sol.flexibility_rad_per_Nmm:.6e}")
+    return MeshSolve(h_mm, {FLEX: sol.flexibility_rad_per_Nmm, "nodes": float(md.nodes_mm.shape[0])}, md.quality,
+                     {"mesh": t_mesh, "axisymmetric": time.perf_counter() - t0 - t_mesh},
+                     fields={"section": sol} if keep_fields else {})
+
+
+def section_flexibility(params, *, quick: bool = False, unit: str = "rad/(N*mm)"):
+    """lambda_f of the smooth cup on three section meshes, with its GCI (``Quantity``): the junction
+    calibration's FEA value (compare/validate/torsion_checks.py)."""
+    from strainwave.fea.refinement import DEFAULT_RATIO, converged_quantity, on_three_meshes, refinement_sizes
+    sizes = refinement_sizes(section_fine_mm(params, quick), DEFAULT_RATIO)
+    solves = on_three_meshes(lambda h, k: solve_cup_section(params, h), sizes)
+    return converged_quantity(FLEX, unit, [s.h_mm for s in solves], [s.values[FLEX] for s in solves])
