@@ -21,13 +21,14 @@ The per-element matmul + np.unique + 9 bincounts it replaces was several times s
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 import scipy.sparse as sp
 
 from strainwave.fea.block_scatter import component_pairs, orient, pair_keys, split_matrix, symmetric_matrix, upper_blocks
-from strainwave.fea.element_gradients import (ElementGeometry, default_intorder, geometry_of_basis, reference_gradients,
-                                simplex_quadrature)
+from strainwave.fea.element_gradients import (ElementGeometry, default_intorder, element_geometry, geometry_of_basis,
+                                              quadrature_points, reference_gradients, simplex_quadrature)
 
 
 @dataclass(frozen=True)
@@ -42,6 +43,49 @@ class Lame:
         mu = E / (2.0 * (1.0 + nu))
         lam = E * nu / (1.0 - nu ** 2) if plane_stress else E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu))
         return cls(lam, mu)
+
+
+@dataclass(frozen=True)
+class ThermalStrain:
+    """Isotropic thermal (initial) strain eps_th = alpha dT I over the stress-free reference temperature.
+
+    temperature_rise_K : x (dim, ...) in mm -> dT (...) in K (or deg C: a difference), at any points.
+    """
+
+    alpha_per_K: float
+    temperature_rise_K: Callable[[np.ndarray], np.ndarray]
+
+    def stress_per_K(self, lame: Lame, dim: int) -> float:
+        """c in C eps_th = c dT I: (3 lam + 2 mu) alpha = E alpha / (1 - 2 nu) in 3D; in 2D with plane-stress
+        ``lame`` (the project's only 2D model) (2 lam* + 2 mu) alpha = E alpha / (1 - nu)."""
+        return (dim * lame.lam_MPa + 2.0 * lame.mu_MPa) * self.alpha_per_K
+
+    def rise_at(self, x: np.ndarray) -> np.ndarray:
+        """dT at the points x (dim, ...), broadcast to their shape (a uniform rise may return a scalar)."""
+        return np.broadcast_to(np.asarray(self.temperature_rise_K(x), float), x.shape[1:])
+
+
+def thermal_load(nodes: np.ndarray, element_dofs: np.ndarray, order: int, lame: Lame, thermal: ThermalStrain, *,
+                 thickness_mm: float = 1.0, intorder: int | None = None, chunk: int = 4096) -> np.ndarray:
+    """Consistent load of a thermal strain, f = int B^T C eps_th dV, interleaved (dim * n_dofs,).
+
+    For isotropic C, C eps_th = c dT I, so f_(i,a) = int c dT d(phi_i)/dx_a dV. Isoparametric P1/P2 simplex
+    mesh: ``nodes`` (dim, n) and ``element_dofs`` (nloc, nel) as ``element_gradients.element_geometry``'s;
+    dT is evaluated at the quadrature points (the stiffness' rule unless ``intorder``, so that a uniform
+    rise is reproduced to round-off). 2D: plane stress, times ``thickness_mm``."""
+    dim = nodes.shape[0]
+    points, weights = simplex_quadrature(dim, default_intorder(order) if intorder is None else intorder)
+    coef = thermal.stress_per_K(lame, dim) * (thickness_mm if dim == 2 else 1.0)
+    n_dofs = nodes.shape[1]
+    f = np.zeros(dim * n_dofs)
+    for s in range(0, element_dofs.shape[1], chunk):
+        edofs = element_dofs[:, s:s + chunk]
+        geom = element_geometry(nodes, edofs, order, quadrature=(points, weights), n_dofs=n_dofs)
+        dT = thermal.rise_at(quadrature_points(nodes, edofs, order, points))          # (nq, ne)
+        fe = np.einsum("kaqe,qe->kae", geom.grad, coef * dT * geom.dx)                  # (nloc, dim, ne)
+        rows = dim * edofs[:, None, :] + np.arange(dim)[None, :, None]
+        f += np.bincount(rows.ravel(), weights=fe.ravel(), minlength=f.size)
+    return f
 
 
 def scalar_basis(mesh, element, *, intorder: int | None = None):

@@ -71,6 +71,22 @@ def reference_gradients(dim: int, order: int, points: np.ndarray) -> np.ndarray:
     return np.concatenate([vert, np.stack(edge)], axis=0)
 
 
+def reference_values(dim: int, order: int, points: np.ndarray) -> np.ndarray:
+    """(nloc, nq) reference-element shape-function values at ``points`` (dim, nq), the same Lagrange basis
+    and local order as ``reference_gradients``: P1 N_i = L_i; P2 vertex L_i (2 L_i - 1), edge 4 L_a L_b."""
+    L = np.vstack([1.0 - points.sum(axis=0), points])                  # (dim+1, nq)
+    if order == 1:
+        return L
+    return np.vstack([L * (2.0 * L - 1.0)] + [4.0 * L[a] * L[b] for a, b in SKFEM_EDGES[dim]])
+
+
+def quadrature_points(nodes: np.ndarray, geo_dofs: np.ndarray, geo_order: int, points: np.ndarray) -> np.ndarray:
+    """(dim, nq, nel) physical positions of the reference ``points`` (dim, nq) under the (curved) element map
+    of the geometry nodes ``nodes`` (dim, n) indexed by ``geo_dofs`` (ngeo, nel)."""
+    N = reference_values(nodes.shape[0], geo_order, points)
+    return np.einsum("kq,cke->cqe", N, nodes[:, geo_dofs])
+
+
 def _inverse_det(J: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Batched inverse and determinant of J (dim, dim, ...) by cofactors (inv has the same layout)."""
     if J.shape[0] == 2:

@@ -26,7 +26,7 @@ from typing import Mapping
 import numpy as np
 
 from strainwave.io_atomic import atomic_path
-from strainwave.fea.assembly import Lame
+from strainwave.fea.assembly import Lame, ThermalStrain
 from strainwave.fea.mesh_data import MeshData, SkfemMesh
 
 # VTK cell types and the gmsh -> VTK node permutation (VTK tet10 mid-edge order 01 12 20 03 13 23)
@@ -42,8 +42,9 @@ def nodal_displacement(md: MeshData, sk: SkfemMesh, u: np.ndarray) -> np.ndarray
     return out
 
 
-def _element_node_stress(sk: SkfemMesh, u: np.ndarray, lame: Lame, d: int):
-    """Cauchy stress at each element's own nodes: (3, 3, nel, nloc) (plane stress: zz = 0), and the basis."""
+def _element_node_stress(sk: SkfemMesh, u: np.ndarray, lame: Lame, d: int, thermal: ThermalStrain | None = None):
+    """Cauchy stress sigma = C (eps - eps_th) at each element's own nodes: (d, d, nel, nloc) (plane stress:
+    zz = 0), and the basis."""
     from skfem import Basis
     elem = sk.element
     X = np.asarray(elem.doflocs, float).T                      # reference node positions (dim, nloc)
@@ -57,20 +58,27 @@ def _element_node_stress(sk: SkfemMesh, u: np.ndarray, lame: Lame, d: int):
     eps = 0.5 * (grad + grad.transpose(1, 0, 2, 3))
     tr = np.trace(eps)
     sig = 2 * lame.mu_MPa * eps
+    # C eps_th = c dT I: only the diagonal moves, by the rise at each element node
+    hydro = lame.lam_MPa * tr
+    if thermal is not None:
+        x = sk.doflocs[:, basis.element_dofs].transpose(0, 2, 1)                 # (d, nel, nloc)
+        hydro = hydro - thermal.stress_per_K(lame, d) * thermal.rise_at(x)
     for a in range(d):
-        sig[a, a] += lame.lam_MPa * tr
+        sig[a, a] += hydro
     return sig, basis
 
 
 _COMPONENTS = [(0, 0), (1, 1), (2, 2), (0, 1), (1, 2), (2, 0)]
 
 
-def nodal_stress(md: MeshData, sk: SkfemMesh, u: np.ndarray, lame: Lame) -> np.ndarray:
+def nodal_stress(md: MeshData, sk: SkfemMesh, u: np.ndarray, lame: Lame,
+                 thermal: ThermalStrain | None = None) -> np.ndarray:
     """Averaged nodal Cauchy stress (N, 6) as xx, yy, zz, xy, yz, zx in MPa (plane stress: zz = 0).
 
-    ``lame`` must match the analysis (plane-stress Lame constants in 2D)."""
+    ``lame`` must match the analysis (plane-stress Lame constants in 2D); ``thermal`` the thermal strain
+    it was solved with (sigma = C (eps - eps_th))."""
     d = md.dim
-    sig, basis = _element_node_stress(sk, u, lame, d)
+    sig, basis = _element_node_stress(sk, u, lame, d, thermal)
     dofs = basis.element_dofs                                   # (nloc, nel); quadrature node q = local dof q
     n = basis.N
     count = np.bincount(dofs.ravel(), minlength=n)
@@ -81,10 +89,11 @@ def nodal_stress(md: MeshData, sk: SkfemMesh, u: np.ndarray, lame: Lame) -> np.n
     return s_dof[sk.node_to_dof]
 
 
-def cell_stress(md: MeshData, sk: SkfemMesh, u: np.ndarray, lame: Lame) -> np.ndarray:
+def cell_stress(md: MeshData, sk: SkfemMesh, u: np.ndarray, lame: Lame,
+                thermal: ThermalStrain | None = None) -> np.ndarray:
     """Mean Cauchy stress of each cell over its own nodes (M, 6), in MeshData cell order (= skfem's)."""
     d = md.dim
-    sig, _ = _element_node_stress(sk, u, lame, d)
+    sig, _ = _element_node_stress(sk, u, lame, d, thermal)
     out = np.zeros((md.cells.shape[0], 6))
     for k, (a, b) in enumerate(_COMPONENTS):
         if a < d and b < d:

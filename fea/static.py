@@ -17,7 +17,8 @@ from typing import Callable, Mapping
 import numpy as np
 
 from strainwave.fea import fused_sweeps
-from strainwave.fea.assembly import Lame, compiled_stiffness, facet_vector_basis, scalar_basis, stiffness
+from strainwave.fea.assembly import (Lame, ThermalStrain, compiled_stiffness, facet_vector_basis, scalar_basis, stiffness,
+                                     thermal_load)
 from strainwave.fea.element_gradients import default_intorder, element_geometry
 from strainwave.fea.mesh_data import MeshData, SkfemMesh, facet_indices, group_dofs, to_skfem
 from strainwave.errors import StageError
@@ -57,7 +58,7 @@ class StaticSolution:
 
 
 def _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions, point_loads, thickness_mm, study, progress,
-              compiled=False):
+              compiled=False, thermal=None):
     sk = to_skfem(md)
     d = md.dim
     progress(f"{study}: assembling {sk.doflocs.shape[1] * d} dofs (P{md.order}, {md.cells.shape[0]} elements)")
@@ -76,6 +77,8 @@ def _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions, point_loads,
             trac, sk.node_to_dof, d, K.shape[0])
     if point_loads is not None:
         f += point_loads
+    if thermal is not None:
+        f += thermal_load(sk.doflocs, sk.element_dofs, md.order, lame, thermal, thickness_mm=thickness_mm)
     dofs, vals = [], []
     for group, value in (fixed or {}).items():
         nodes = group_dofs(sk, md, group)
@@ -124,11 +127,12 @@ def solve_static(md: MeshData, lame: Lame, *, fixed: Mapping[str, float | np.nda
                  fixed_dofs: np.ndarray | None = None, fixed_values: np.ndarray | float = 0.0,
                  tractions: Mapping[str, Traction] | None = None, point_loads: np.ndarray | None = None,
                  thickness_mm: float = 1.0, study: str = "fea", progress: Callable[[str], None] = lambda m: None,
-                 method: str = "auto") -> StaticSolution:
+                 method: str = "auto", thermal: ThermalStrain | None = None) -> StaticSolution:
     """Assemble and solve; ``fixed`` clamps named groups (all components, value 0 or a (dim,) vector).
 
     ``fixed_dofs``/``fixed_values`` add explicit Dirichlet dofs (interleaved numbering); ``point_loads``
-    is added to the load vector as is."""
+    is added to the load vector as is; ``thermal`` adds the load of a thermal strain (``assembly.thermal_load``;
+    recover its stress with the same ``thermal`` in ``fields.nodal_stress``)."""
     t = {}
     t0 = time.perf_counter()
     # systems that load numba for the fused solve anyway also assemble with its kernels (docs/decisions/004-assembly-kernels.md)
@@ -136,7 +140,7 @@ def solve_static(md: MeshData, lame: Lame, *, fixed: Mapping[str, float | np.nda
         and md.dim * md.nodes_mm.shape[0] >= fused_sweeps.MIN_DOFS
     try:
         sk, K, f, all_dofs, all_vals = _assemble(md, lame, fixed, fixed_dofs, fixed_values, tractions,
-                                                 point_loads, thickness_mm, study, progress, compiled)
+                                                 point_loads, thickness_mm, study, progress, compiled, thermal)
     except (ValueError, KeyError, IndexError) as exc:   # mesh/group mismatch: name the stage, no traceback
         raise StageError("assembly", study, f"{type(exc).__name__}: {exc}") from exc
     d = md.dim
