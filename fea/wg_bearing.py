@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, replace
+from pathlib import Path
 
 import numpy as np
 
@@ -170,7 +171,23 @@ def solve_plain(s: RingSetup, h_mm: float, scale: float, profile_depth_mm: float
             "ball_ratio": float(q_fea.max()) * s.ball_count / s.force_N, "radial_stiffness": s.force_N / d0,
             "_ball_loads": q_fea, "_net_round": (ring_phi, all_round), "_profile": (x, profile),
             "_dofs": system.K.shape[0], "_elements": system.basis.mesh.t.shape[1],
-            "_nodes": system.scalar.N, "_quality": ring2d.triangle_quality(system.basis.mesh)}
+            "_nodes": system.scalar.N, "_quality": ring2d.triangle_quality(system.basis.mesh),
+            "_system": system, "_u": u_cam + u_f, "_stress": st_cam + st_f}
+
+
+def write_fields(vtu, s: RingSetup, plain: dict, material) -> Path:
+    """The uncracked ring of ``plain`` (a ``solve_plain`` result) on the cam under the Stribeck ball loads:
+    displacement, stress tensor (plane stress: zz = 0), von Mises, principal and hoop stress at the P2 nodes,
+    with the boundary groups bore and race (NAME.boundary.vtu)."""
+    from strainwave.fea.fields import field_info, stress_fields, write_vtu
+
+    md = ring2d.mesh_data(plain["_system"], s.r_bore_mm, s.r_race_mm)
+    u, st, zero = plain["_u"], plain["_stress"], np.zeros(md.nodes_mm.shape[0])
+    tensor = np.column_stack([st[0], st[1], zero, st[2], zero, zero])
+    point_data = {"displacement_mm": np.column_stack([u[0::2], u[1::2], zero]), **stress_fields(tensor),
+                  "hoop_stress_MPa": ring2d.hoop_stress(md.nodes_mm[:, :2].T, st)}
+    info = field_info(STUDY, f"{_load(s).describe()}; uncracked ring, finest mesh", material)
+    return write_vtu(Path(vtu), md, point_data, info=info)
 
 
 def _ball_count(s: RingSetup) -> int:
@@ -312,10 +329,11 @@ def run(params, *, force_N: float, w0_mm: float, ball_angles_rad, ball_loads_N, 
             "depth_mm": max(depths), **compressed},
             "net_race_hoop_stress": {"phi_deg": np.degrees(phi).tolist(), "MPa": net.tolist()}}
     mesh = MeshQuality(finest["_elements"], finest["_nodes"], finest["_dofs"], 2, *finest["_quality"])
+    fields = () if vtu is None else (write_fields(vtu, s, finest, params.material),)
     return StudyResult(STUDY, {**q, **qc}, mesh, _load(s), _supports(),
                        CrackRecord(max(depths), "2D edge crack at the major axis, frictionless face contact, "
                                    "sweep of depths (each on three meshes)"),
-                       {"uncracked": t1 - t0, "cracks": t2 - t1, "compressed": t3 - t2}, (), {}, meta, (mesh,) * 3)
+                       {"uncracked": t1 - t0, "cracks": t2 - t1, "compressed": t3 - t2}, fields, {}, meta, (mesh,) * 3)
 
 
 def _load(s: RingSetup) -> Load:
