@@ -250,6 +250,13 @@ class WgBearing(StudyFacts):
     elements_per_cell = 12.0
     default_size_mm = staticmethod(default_size_mm)
     plane = True
+    # solved at the rated F_r already (scale 1: the cam's share is not linear in F_r)
+    rated_load = "strainwave.analytic.rated_load:rated_radial_force"
+    report_component = "bearing"
+    title = "bearing inner ring on the cam"
+    image_marks = (("bore",), None, "F_r")     # the ball patches are too small to mark at the ring's scale
+    outside_design = ("the bearing's design factor is still the bonded-bore ring's (study bearing-ring); moving it "
+                      "to the ring on the cam, whose race the cam puts in hoop tension, is a design-verdict decision")
     element_text = ("P2 triangles on a graded polar grid, 2D plane stress, thickness = ring width B; race crack as "
                     "two coincident faces with frictionless contact")
 
