@@ -336,7 +336,9 @@ def run(params, *, force_N: float, w0_mm: float, ball_angles_rad, ball_loads_N, 
             "depth_mm": max(depths), **compressed},
             "net_race_hoop_stress": {"phi_deg": np.degrees(phi).tolist(), "MPa": net.tolist()}}
     mesh = MeshQuality(finest["_elements"], finest["_nodes"], finest["_dofs"], 2, *finest["_quality"])
-    fields = () if vtu is None else (write_fields(vtu, s, finest, params.material),)
+    # the crack sweep's fields are not kept: the one field is the uncracked ring, named so (rated_stress)
+    fields = () if vtu is None else (write_fields(Path(vtu).with_name(f"{Path(vtu).stem}_uncracked.vtu"), s, finest,
+                                                  params.material),)
     return StudyResult(STUDY, {**q, **qc}, mesh, _load(s), _supports(),
                        CrackRecord(max(depths), "2D edge crack at the major axis, frictionless face contact, "
                                    "sweep of depths (each on three meshes)"),

@@ -155,3 +155,16 @@ def test_the_cup_on_the_wave_generator_and_the_ring_on_the_cam_are_drawn(params,
         assert NO_DESIGN_LINE in caption and "No design factor:" in caption and _non_blank(target)
         assert f"peak {at.peaks.peak_von_mises_MPa:.4g} MPa" in caption
     assert math.isfinite(at.peaks.peak_von_mises_MPa)
+
+
+def test_a_field_named_uncracked_carries_no_crack_even_when_the_study_swept_cracks():
+    """wg-bearing sweeps its own race cracks (its result has a crack depth) but writes the uncracked ring: its
+    stress summary must not take a crack-tip zone from it; a cracked solve's single field still carries its crack."""
+    from pathlib import Path
+
+    from strainwave.rated_stress import stress_field_of
+    assert stress_field_of("wg-bearing", (Path("f/wg-bearing_uncracked.vtu"),), 1.0) == \
+        (Path("f/wg-bearing_uncracked.vtu"), False)
+    assert stress_field_of("cup-surface-crack", (Path("f/c_major.vtu"), Path("f/c_minor.vtu")), 0.4) == \
+        (Path("f/c_major.vtu"), True)
+    assert stress_field_of("cup-torsion", (Path("f/cup.vtu"),), 0.5) == (Path("f/cup.vtu"), True)
