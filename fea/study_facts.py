@@ -37,6 +37,7 @@ class StudyFacts:
     # why its stress field is drawn in its component's section but is no design factor (None: its peak von Mises
     # is the component's factor in the design verdict, compare/validate/design.py)
     outside_design: ClassVar[str | None] = None
+    signed_stress: ClassVar[tuple[str, str] | None] = None   # (VTU array, its words) of a signed stress also drawn
     image_view_from: ClassVar[tuple[float, float, float] | None] = None   # camera direction of its 3D picture (None: isometric)
     crack_opening_states: ClassVar[tuple[str, ...]] = ()   # its VTU suffixes ("_<state>") the crack-opening picture shows
     validate_label: ClassVar[str | None] = None            # label of its one uncracked validate case (None: name)

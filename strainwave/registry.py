@@ -160,7 +160,7 @@ STUDIES: dict[str, Study] = {s.name: s for s in (
                      "tangent torsional stiffness of the cup on the cam"),
         QuantitySpec("cycle_amplitude_MPa", "MPa", "outer-fibre hoop stress amplitude per revolution at rated T"),
         QuantitySpec("cycle_mean_MPa", "MPa", "outer-fibre hoop mean stress per revolution at rated T"),
-    ), vtu_fields=("displacement_mm", "von_mises_MPa", "stress_cylindrical_MPa")),
+    ), vtu_fields=("displacement_mm", "von_mises_MPa", "stress_cylindrical_MPa", "hoop_stress_MPa")),
     # The tooth-root crack as a semi-elliptical surface crack in a block of the band wall, its own sweep of depths;
     # its quantities are named per state and depth (fea.surface_crack.delta_name).
     Study("cup-surface-crack", "strainwave.fea.surface_crack:SurfaceCrack", "flexspline-cup", None, None, (),

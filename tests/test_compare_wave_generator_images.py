@@ -3,7 +3,6 @@ crack's opening at the major and minor axes) from fields solved on coarse meshes
 their peaks out of the design verdict (``StudyFacts.outside_design``)."""
 from __future__ import annotations
 
-import math
 import warnings
 
 import numpy as np
@@ -128,7 +127,9 @@ def test_the_cup_on_the_wave_generator_and_the_ring_on_the_cam_are_drawn(params,
     scale 1), and say they are no design factor."""
     from strainwave.analytic.study_loads import wg_bearing_load
     from strainwave.compare.validate import images
-    from strainwave.compare.validate.artifacts import NO_DESIGN_LINE, _pictured_stress
+    import meshio
+
+    from strainwave.compare.validate.artifacts import NO_DESIGN_LINE, _pictured_stress, _signed_picture
     from strainwave.fea import wg_band as wb
     from strainwave.fea.assembly import Lame
     from strainwave.fea.fields import field_info
@@ -154,7 +155,11 @@ def test_the_cup_on_the_wave_generator_and_the_ring_on_the_cam_are_drawn(params,
         caption = _pictured_stress(images, target, book, case, params)
         assert NO_DESIGN_LINE in caption and "No design factor:" in caption and _non_blank(target)
         assert f"peak {at.peaks.peak_von_mises_MPa:.4g} MPa" in caption
-    assert math.isfinite(at.peaks.peak_von_mises_MPa)
+        # the signed picture: its hoop stress read back by meshio, the cam's bending in tension and in compression
+        signed = _signed_picture(images, tmp_path / f"{case.label}_signed.png", book, case, params)
+        hoop = meshio.read(vtu).point_data["hoop_stress_MPa"]
+        assert hoop.max() > 0 > hoop.min() and _non_blank(tmp_path / f"{case.label}_signed.png")
+        assert f"tension up to {hoop.max():.4g} MPa" in signed and f"compression down to {hoop.min():.4g}" in signed
 
 
 def test_a_field_named_uncracked_carries_no_crack_even_when_the_study_swept_cracks():

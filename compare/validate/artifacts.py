@@ -158,6 +158,16 @@ def _pictured_stress(images, target: Path, book: FeaBook, case, params) -> str:
     return f"{rendered.caption}. No design factor: {facts.outside_design}"
 
 
+def _signed_picture(images, target: Path, book: FeaBook, case, params) -> str:
+    """The signed stress its variant names (``StudyFacts.signed_stress``) at the rated load."""
+    from strainwave.registry import study as registered
+    facts = registered(case.study).facts()
+    result, vtu, _ = _case_field(book, case)
+    array, words = facts.signed_stress
+    return images.render_signed(vtu, target, label=facts.title, array=array, words=words,
+                                load=rated_load_of(case.study, params, result), view_from=facts.image_view_from).caption
+
+
 def _opening_picture(images, target: Path, book: FeaBook, case) -> str:
     """The crack's opening in each state the study drew (``StudyFacts.crack_opening_states``)."""
     from strainwave.registry import study as registered
@@ -205,8 +215,11 @@ def make_images(out_dir: Path, book: FeaBook, plan: Plan, check_set: CheckSet, s
         facts = registered(case.study).facts()
         col.attempt(f"{facts.title} stress", component, "stress",
                     lambda t, cs=case: _pictured_stress(images, t, book, cs, params), f"{case.label}_von_mises.png")
+        if facts.signed_stress:
+            col.attempt(f"{facts.title}: {facts.signed_stress[1]}", component, "stress",
+                        lambda t, cs=case: _signed_picture(images, t, book, cs, params), f"{case.label}_signed.png")
         if facts.crack_opening_states:
-            col.attempt(f"{facts.title} crack opening", component, "crack-opening",
+            col.attempt(f"{facts.title}: crack opening", component, "crack-opening",
                         lambda t, cs=case: _opening_picture(images, t, book, cs), f"{case.label}_opening.png")
     for component, cases in plan.sweeps.items():
         if not cases:

@@ -311,6 +311,44 @@ def render_closeup(vtu: Path, png: Path, *, label: str, center_mm=None, radius_m
     return Rendered(Path(png), text.replace("\n", " "), None)
 
 
+def render_signed(vtu: Path, png: Path, *, label: str, array: str, words: str, load: RatedLoad,
+                  view_from=None) -> Rendered:
+    """A signed stress ``array`` of ``vtu`` at the rated load on the deformed shape: tension red, compression
+    blue, one range symmetric about zero; the largest tension and compression marked and printed."""
+    import pyvista as pv
+
+    with pv.VtkErrorCatcher(raise_errors=True):
+        mesh = scaled_to_rated(read_field(vtu), load.scale)
+        if array not in mesh.point_data:
+            raise ValueError(f"{vtu}: no point array {array!r}")
+        names = field_names(mesh)
+        values = np.asarray(mesh.point_data[array], dtype=float)
+        plane = bool(np.ptp(mesh.points[:, 2]) == 0.0)
+        exaggeration = auto_exaggeration(mesh, names.displacement) if names.displacement else 1.0
+        shown = _deformed(mesh, names.displacement, exaggeration)
+        hi, lo = int(np.argmax(values)), int(np.argmin(values))
+        where = {k: "(" + ", ".join(f"{x:.4g}" for x in mesh.points[k]) + ") mm" for k in (hi, lo)}
+        lines = [f"{label}: {words}", f"at {load.name} = {load.rated:.4g} {load.unit}",
+                 f"displacements x {exaggeration:g}; red tension, blue compression",
+                 f"tension up to {values[hi]:.4g} MPa at {where[hi]},",
+                 f"compression down to {values[lo]:.4g} MPa at {where[lo]}"]
+        top = max(abs(values[hi]), abs(values[lo])) or 1.0
+        plotter = off_screen_plotter(RenderSettings(WINDOW))
+        plotter.add_mesh(shown, scalars=array, cmap="coolwarm", clim=(-top, top), scalar_bar_args=_bar(f"{words} (MPa)"))
+        plotter.add_point_labels(shown.points[[hi, lo]], ["max tension", "max compression"], font_size=16,
+                                 point_color="black", point_size=12, render_points_as_spheres=True,
+                                 always_visible=True)
+        plotter.add_axes(color="black", line_width=3, labels_off=False)
+        _view(plotter, plane, view_from)
+        plotter.reset_camera()
+        plotter.camera.zoom(0.72)   # room for the title lines above the model
+        plotter.add_text("\n".join(lines), font_size=TITLE_PT, color="black")
+        image = plotter.screenshot(None, return_img=True)
+        plotter.close()
+    atomic_write_bytes(png, _png_bytes(image))
+    return Rendered(Path(png), " ".join(lines), exaggeration)
+
+
 def crack_face_opening(vtu: Path):
     """(crack face with ``opening_um`` = 2 u_z in um and ``on_front`` (1 on the nodes it shares with the ligament),
     ligament or None) of a crack on the symmetry plane z = 0 (its boundary groups ``crack`` and ``ligament``):
