@@ -155,7 +155,7 @@ def _pictured_stress(images, target: Path, book: FeaBook, case, params) -> str:
     rendered = images.render_stress(vtu, target, label=facts.title, at=at, marks=_marks(images, case.study),
                                     section=SECTION_OF_PLANE.get(case.study, "2D section") if planar else "",
                                     factor_line=NO_DESIGN_LINE, view_from=facts.image_view_from)
-    return f"{rendered.caption}. No design factor: {facts.outside_design}"
+    return rendered.caption.replace(NO_DESIGN_LINE, f"no design factor: {facts.outside_design}")
 
 
 def _signed_picture(images, target: Path, book: FeaBook, case, params) -> str:

@@ -405,8 +405,8 @@ def render_crack_opening(vtus: dict[str, Path], png: Path, *, label: str) -> Ren
         image = plotter.screenshot(None, return_img=True)
         plotter.close()
     atomic_write_bytes(png, _png_bytes(image))
-    caption = (f"{label}: the crack plane z = 0 seen along its normal (x along the surface, y into the wall), crack "
-               "face coloured by its opening 2 u_z, ligament grey; " + "; ".join(texts))
+    caption = (f"{label}: the crack plane z = 0 seen along its normal (x along the surface, y into the wall from the "
+               "surface at y = 0), crack face coloured by its opening 2 u_z, ligament grey; " + "; ".join(texts))
     return Rendered(Path(png), caption, None)
 
 
