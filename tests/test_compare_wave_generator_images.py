@@ -107,6 +107,11 @@ def test_the_surface_crack_block_is_drawn_but_stays_out_of_the_design_verdict(pa
                                                                        "crack-opening")):
         assert shown[name].kind == kind and shown[name].component == "cup" and _non_blank(out / shown[name].path)
     assert "no design factor: a block of the band wall" in shown["cup-surface-crack_von_mises.png"].caption
+    import jsonschema
+    from strainwave.compare.validate.results import load_schema
+    image_schema = {**load_schema()["$defs"]["image"], "$defs": load_schema()["$defs"]}
+    for image in made.images:   # results.json's images entry takes the new kind
+        jsonschema.validate(image.to_dict(), image_schema)
     faces = {s: crack_face_opening(v)[0] for s, v in (("major", major), ("minor", minor))}
     opening = {s: np.asarray(f.point_data["opening_um"]) for s, f in faces.items()}
     inside = {s: opening[s][np.asarray(f.point_data["on_front"]) == 0] for s, f in faces.items()}
