@@ -198,8 +198,9 @@ def _preview_of() -> dict[str, str]:
     from strainwave.registry import STUDIES
     out = {}
     for s in STUDIES.values():
-        component = s.facts().report_component
-        if component:
+        facts = s.facts()
+        component = facts.report_component
+        if component and not facts.outside_design:   # the preview opens its design study's inputs section
             out.setdefault(s.part, component)
     return out
 
