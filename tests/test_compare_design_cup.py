@@ -1,4 +1,6 @@
-"""The design verdict takes the flexspline's fatigue on the wave generator: the governing (smaller) factor."""
+"""The design verdict takes the flexspline's fatigue on the wave generator (the governing, smaller factor) and the
+bearing inner ring's on the cam."""
+import pytest
 from strainwave.compare.validate.design import DesignVerdict
 from strainwave.compare.validate.wg_cup_checks import fatigue_factor
 
@@ -18,26 +20,32 @@ def test_a_missing_case_is_not_evaluated_and_fails_the_design():
     assert not DesignVerdict(1.4, (f,)).passed
 
 
-def _ring_book(cam_MPa, net_MPa):
+def _ring_book(cam_MPa):
     from types import SimpleNamespace
 
     from strainwave.compare.validate.fea_book import FeaBook
-    q = {"race_stress_major_MPa": SimpleNamespace(value=cam_MPa, uncertainty=1.0),
-         "net_race_stress_major_MPa": SimpleNamespace(value=net_MPa, uncertainty=1.0)}
+    q = {"race_stress_major_MPa": SimpleNamespace(value=cam_MPa, uncertainty=1.0)}
     return FeaBook({"wg-bearing": SimpleNamespace(result=SimpleNamespace(quantities=q), error=None,
                                                   case=SimpleNamespace(study="wg-bearing"))})
 
 
 def test_the_bearing_ring_on_the_cam_is_goodman_on_its_ball_pass_cycle():
+    from strainwave.compare.validate.wg_bearing_checks import _ring, contact_pressure_MPa
     from strainwave.compare.validate.wg_bearing_checks import fatigue_factor as ring_factor
     from strainwave.params import load_params
     params = load_params()
-    # cam alone 800 MPa (a mean in the ring's frame), 700 MPa under the ball: sigma_a 50, sigma_m 750
-    f = ring_factor(_ring_book(800.0, 700.0), "wg-bearing", params)
-    assert f.safety_factor == 1.0 / (50.0 / 625.0 + 750.0 / 1080.0)
+    s = _ring(params)
+    p0 = contact_pressure_MPa(params)
+    # Hertz point contact of the most loaded ball: p0 = 3 Q / (2 pi a b) on the seed's ellipse scaled to Q
+    q, force = max(s.ball_loads_N), s.force_N
+    a, b = (x * (q / force) ** (1 / 3) for x in params.wave_generator.contact_semi_axes_mm)
+    assert p0 == pytest.approx(3 * q / (2 * 3.141592653589793 * a * b), rel=1e-12)
+    # cam alone 800 MPa (a mean in the ring's frame), each ball takes the race down by p0
+    f = ring_factor(_ring_book(800.0), "wg-bearing", params)
+    assert f.safety_factor == 1.0 / (0.5 * p0 / 625.0 + (800.0 - 0.5 * p0) / 1080.0)
     # the cam's mean stress alone takes the ring below [n] = 1.4, which the bonded-bore ring never showed
     assert not DesignVerdict(1.4, (f,)).passed
     # a ring the cam barely bends passes
-    assert DesignVerdict(1.4, (ring_factor(_ring_book(60.0, -10.0), "wg-bearing", params),)).passed
-    missing = ring_factor(_ring_book(680.0, 600.0), None, params)
+    assert DesignVerdict(1.4, (ring_factor(_ring_book(60.0), "wg-bearing", params),)).passed
+    missing = ring_factor(_ring_book(800.0), None, params)
     assert missing.safety_factor is None and missing.reason

@@ -219,24 +219,34 @@ def gear_stiffness(book: FeaBook, labels: dict[str, str], wg_label: str, s000: d
 
 
 
+def contact_pressure_MPa(params) -> float:
+    """Hertz peak pressure 3 Q / (2 pi a b) of the most loaded ball, its contact ellipse the seed's at F_r
+    scaled by (Q / F_r)^(1/3) as the FEA's patches are: the race's hoop stress under the ball's centre is about
+    -p0, a point the ring mesh, which spreads the ball over the ring's width, does not resolve."""
+    loads = wg_bearing_load(params)
+    q = max(loads["ball_loads_N"])
+    scale = (q / loads["force_N"]) ** (1.0 / 3.0)
+    a, b = (scale * x for x in params.wave_generator.contact_semi_axes_mm)
+    return 3.0 * q / (2.0 * math.pi * a * b)
+
+
 def fatigue_factor(book: FeaBook, label: str | None, params):
-    """The design verdict's entry for the inner ring on the cam at the race's major axis: the ring turns with
-    the cam, so the cam's hoop stress is a mean; each passing ball swings the race between it and the net stress
-    under the load-line ball (both FEA, rated F_r). Goodman on that cycle, no notch (a smooth race)."""
+    """The design verdict's entry for the inner ring on the cam at the race's major axis. The ring turns with
+    the cam, so the cam's hoop stress (FEA) is a mean; each passing ball takes the race from it to it - p0
+    (Hertz at the surface under the most loaded ball). Goodman on that cycle, no notch (a smooth race)."""
     from strainwave.analytic.cup_fatigue import goodman_safety_factor
     from strainwave.compare.validate.design import ComponentFactor
 
     title, definition = "Wave generator bearing inner ring on the cam", "Goodman on the ball-pass cycle at the race"
     cam = book.quantity(label, "race_stress_major_MPa")[0] if label else None
-    net = book.quantity(label, "net_race_stress_major_MPa")[0] if label else None
-    if cam is None or net is None:
+    if cam is None:
         return ComponentFactor("wg_bearing", title, None, definition, None, None, "",
                                "its FEA case did not run or failed (see the cases table)")
-    m = params.material
-    amplitude, mean = 0.5 * abs(cam.value - net.value), 0.5 * (cam.value + net.value)
+    m, p0 = params.material, contact_pressure_MPa(params)
+    amplitude, mean = 0.5 * p0, cam.value - 0.5 * p0
     n = goodman_safety_factor(m.fatigue_limit_MPa, m.ultimate_strength_MPa, 1.0, amplitude, mean)
     return ComponentFactor("wg_bearing", title, n,
-                           f"{definition}: hoop stress {cam.value:.4g} MPa (cam alone, a mean: the ring turns with "
-                           f"the cam) to {net.value:.4g} MPa (under the load-line ball): amplitude {amplitude:.4g} "
-                           f"about {mean:.4g} MPa; 1 / (sigma_a / sigma_-1 + sigma_m / R_m)",
+                           f"{definition}: hoop stress {cam.value:.4g} MPa (FEA, cam alone: a mean, the ring turns "
+                           f"with the cam) down by p0 = {p0:.4g} MPa under each passing ball: amplitude "
+                           f"{amplitude:.4g} about {mean:.4g} MPa; 1 / (sigma_a / sigma_-1 + sigma_m / R_m)",
                            amplitude, m.fatigue_limit_MPa, "wave generator insertion (w0) + rated radial load F_r")
