@@ -352,6 +352,20 @@ def schur_factor(A: sp.csr_matrix, tail: np.ndarray, study: str) -> SchurFactor:
     return SchurFactor(S, lambda b: call(33, b), lambda: solver.free_memory(everything=True))
 
 
+def tail_solve(S: np.ndarray, r: np.ndarray, held: np.ndarray, values: np.ndarray | float = 0.0) -> np.ndarray:
+    """The tail dofs' solution of the condensed system S u = r (``SchurFactor.S``) with the dofs ``held``
+    prescribed to ``values``: a dense Cholesky solve of S's free block."""
+    from scipy.linalg import cho_factor, cho_solve
+    held = np.asarray(held, bool)
+    u = np.zeros(r.shape)
+    u[held] = np.broadcast_to(values, held.shape)[held] if np.ndim(values) else values
+    free = ~held
+    if free.any():
+        rhs = r[free] - S[np.ix_(free, held)] @ u[held]
+        u[free] = cho_solve(cho_factor(S[np.ix_(free, free)]), rhs)
+    return u
+
+
 def _schur_splu(A: sp.csr_matrix, tail: np.ndarray, study: str) -> SchurFactor:
     """``SchurFactor`` by SuperLU: S from one solve of A_ii per tail dof (far slower than PARDISO's)."""
     keep = np.ones(A.shape[0], bool)

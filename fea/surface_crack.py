@@ -37,7 +37,7 @@ from strainwave.fea.study_facts import TORQUE_RATED, StudyFacts
 
 __all__ = ["STUDY", "ASPECT", "DEPTHS_OVER_T", "SurfaceCrack", "Block", "block_for", "block_mesh", "solve_block",
            "converge_depth", "delta_name", "sweep_depths_mm", "run", "FaceSystem",
-           "open_face", "open_compliance", "contact_state"]
+           "open_compliance", "contact_state"]
 
 STUDY = "cup-surface-crack"
 # the crack's shape: a/c = 0.5, a fatigue crack's usual aspect at a notch root (its depth grows slower)
@@ -198,7 +198,8 @@ class FaceSystem:
     def held(self, f: np.ndarray, r: np.ndarray, active: np.ndarray) -> np.ndarray:
         """The solution under f (face loads r) with the face dofs ``active`` held: the open ones from S's free
         block, then one solve under f plus the held dofs' reactions."""
-        u_face = open_face(self.factor.S, r, active)
+        from strainwave.fea.solver import tail_solve
+        u_face = tail_solve(self.factor.S, r, active)
         reaction = self.factor.S[active] @ u_face - r[active]
         b = f[self.free].copy()
         b[np.searchsorted(self.free, self.face_z[active])] += reaction
@@ -208,20 +209,11 @@ class FaceSystem:
         return u
 
 
-def open_face(S: np.ndarray, r: np.ndarray, active: np.ndarray) -> np.ndarray:
-    """Displacements of the face dofs with ``active`` held at zero: the open block of S u = r."""
-    from scipy.linalg import cho_factor, cho_solve
-    u = np.zeros_like(r)
-    open_ = ~np.asarray(active, bool)
-    if open_.any():
-        u[open_] = cho_solve(cho_factor(S[np.ix_(open_, open_)]), r[open_])
-    return u
-
-
 def open_compliance(S: np.ndarray, r: np.ndarray, active: np.ndarray) -> float:
     """f.u with the face dofs ``active`` held minus f.u with the whole face held: r_O . u_O (r the load f
     condensed on the face), exact without the difference of two energies."""
-    return float(r @ open_face(S, r, active))
+    from strainwave.fea.solver import tail_solve
+    return float(r @ tail_solve(S, r, active))
 
 
 def contact_state(system: FaceSystem, f: np.ndarray, r: np.ndarray, start: np.ndarray) -> tuple[np.ndarray, int, np.ndarray]:
