@@ -76,6 +76,17 @@ class Tube:
     h_mm: float
 
     @functools.cached_property
+    def pattern(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The stiffness's CSR pattern (indices, indptr) and the slot of each element-matrix entry in it, in
+        ``assemble``'s order: every assembly sums into the same slots (one pattern, not a COO sort per Newton step)."""
+        edofs = _element_dofs(self.basis)
+        n = edofs.shape[1]
+        keys = np.repeat(edofs, n, axis=1).ravel() * self.dofs + np.tile(edofs, (1, n)).ravel()
+        unique, slots = np.unique(keys, return_inverse=True)
+        indptr = np.searchsorted(unique, np.arange(self.dofs + 1) * self.dofs)
+        return slots, unique % self.dofs, indptr
+
+    @functools.cached_property
     def rot_t(self) -> sp.csr_matrix:
         """rot^T in CSR (rot.T is CSC: every product with it would convert)."""
         return self.rot.T.tocsr()
@@ -183,9 +194,9 @@ def assemble(tube: Tube, u: np.ndarray, lame: Lame, nonlinear: bool) -> tuple[sp
         blocks = Ke.reshape(ne, na, 3, na, 3)
         for i in range(3):
             blocks[:, :, i, :, i] += gsg
-    rows = np.repeat(edofs, 3 * na, axis=1).ravel()
-    cols = np.tile(edofs, (1, 3 * na)).ravel()
-    K = sp.csr_matrix((Ke.ravel(), (rows, cols)), shape=(tube.dofs, tube.dofs))
+    slots, indices, indptr = tube.pattern
+    K = sp.csr_matrix((np.bincount(slots, Ke.ravel(), minlength=indices.size), indices, indptr),
+                      shape=(tube.dofs, tube.dofs))
     return K, np.bincount(edofs.ravel(), fe.ravel(), minlength=tube.dofs)
 
 
@@ -248,7 +259,7 @@ def solve_constrained(tube: Tube, K: sp.csr_matrix, rhs: np.ndarray, fixed: np.n
     keep = np.ones(tube.dofs, bool)
     keep[fixed] = False
     b = (tube.rot_t @ rhs - Kc @ x)[keep]
-    x[keep], _ = _direct(condense(Kc, keep), b, STUDY, node_blocks=False)
+    x[keep], _ = _direct(condense(Kc, keep), b, STUDY, node_blocks=True)
     return tube.rot @ x
 
 
