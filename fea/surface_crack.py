@@ -21,6 +21,11 @@ delta lambda_f = 4 (f1.u1 - f1.u1_0) s^2: f1 the far-face load of a unit normal 
 with the converged contact set held, u1_0 the same with the whole face held (the uncracked block, same
 mesh), 4 the two symmetry planes, s the torque's crack-face stress per N*mm. P2 tetrahedra graded to the
 front (``refinement.CrackFrontGrading``), three meshes, GCI of formal order 1 (a crack compliance).
+
+Solution: one factorisation per mesh, of K with the face free, which also gives S, its Schur complement on the
+face's normal dofs (``FaceSystem``); a contact set is then a dense solve of S's open block, and
+f1.u1 - f1.u1_0 = r_O . S_OO^-1 r_O (r: f1 condensed on the face, O: the open dofs), without the difference of
+two energies.
 """
 from __future__ import annotations
 
