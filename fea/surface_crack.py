@@ -177,7 +177,7 @@ def _solve(K, f, fixed, sk):
 @dataclass
 class FaceSystem:
     """K with the base held, factorised once with its Schur complement S on the crack face's normal dofs: every
-    contact set is then a dense solve of S's free block (docs/decisions/032-surface-crack-face-schur.md)."""
+    contact set is then a dense solve of S's free block (docs/decisions/033-surface-crack-face-schur.md)."""
 
     K: object                   # the full stiffness
     base: np.ndarray            # held in every solve (the ligament, the symmetry plane x = 0, the corner)

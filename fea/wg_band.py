@@ -313,7 +313,7 @@ def _reassess(tube, R, u, bore, active, w0_mm, nonlinear) -> np.ndarray:
 def _insert_linear(tube: Tube, K0: sp.csr_matrix, w0_mm: float, contact: bool) -> Inserted:
     """The linear insertion. With the cam, its active set from K0 factorised once with its Schur complement S
     on the bore's radial dofs (the held end holds the band with the bore free): each set a dense solve of S's
-    free block (docs/decisions/033-wave-generator-solves.md). Then one solve with the set held, which keeps
+    free block (docs/decisions/034-wave-generator-solves.md). Then one solve with the set held, which keeps
     the stresses at round-off (S's products lose digits to the bore's stiff radial coupling)."""
     base, bore = held_dofs(tube, symmetric=True), band_bore_points(tube)
     radial = tube.comp[0][bore]
