@@ -111,10 +111,11 @@ class LocalEnergy:
 
 
 def patch_energy(md: MeshData, lame, global_u, *, group: str = "cut", study: str = "fea",
-                 plane_strain_faces: str | None = None) -> tuple[float, int, float]:
+                 plane_strain_faces: str | None = None, method: str = "direct") -> tuple[float, int, float]:
     """(strain energy, dofs, solve s) of ``md`` with the nodes of ``group`` held at ``global_u(points)``
     (n, 3) mm and every other face free; ``plane_strain_faces``: a group whose other nodes keep u_z = 0
-    (the faces of a slab in plane strain)."""
+    (the faces of a slab in plane strain); ``method``: "direct", or "amg" (p-multigrid CG on a P2 mesh),
+    faster on a chunky patch and slower on a thin plate-like one (``patch_solver``)."""
     from strainwave.fea.solver import solve_elasticity
     from strainwave.fea.static import assemble
     sk, K, f, _, _ = assemble(md, lame, study=study)
@@ -124,19 +125,31 @@ def patch_energy(md: MeshData, lame, global_u, *, group: str = "cut", study: str
     if plane_strain_faces is not None:
         faces = np.setdiff1d(group_dofs(sk, md, plane_strain_faces), nodes)
         dofs, values = np.concatenate([dofs, 3 * faces + 2]), np.concatenate([values, np.zeros(faces.size)])
-    # p-multigrid CG: a 3D patch factorises with heavy fill (docs/decisions/031-cup-section-flexibility.md)
+    pmg = method == "amg" and md.order == 2
     u, info = solve_elasticity(K, f, fixed_dofs=dofs, fixed_values=values, coords=sk.doflocs, dim=3,
-                               study=study, method="amg" if md.order == 2 else "auto",
-                               p2_element_dofs=sk.element_dofs if md.order == 2 else None)
+                               study=study, method="amg" if pmg else "direct",
+                               p2_element_dofs=sk.element_dofs if pmg else None)
     return 0.5 * float(u @ (K @ u)), info.dofs, info.time_s
 
 
-def local_release(md: MeshData, lame, global_u, *, study: str, plane_strain_faces: str | None = None) -> LocalEnergy:
+# Patch span over thickness up to which p-multigrid CG beats PARDISO: a chunky block factorises with 3D fill,
+# a thin plate-like one with little, while CG's iterations grow with the span (docs/decisions/031)
+AMG_MAX_SPAN_OVER_THICKNESS = 8.0
+
+
+def patch_solver(span_mm: float, thickness_mm: float) -> str:
+    """"amg" for a chunky patch (span / thickness up to AMG_MAX_SPAN_OVER_THICKNESS), else "direct"."""
+    return "amg" if span_mm <= AMG_MAX_SPAN_OVER_THICKNESS * thickness_mm else "direct"
+
+
+def local_release(md: MeshData, lame, global_u, *, study: str, plane_strain_faces: str | None = None,
+                  method: str = "direct") -> LocalEnergy:
     """The patch solved closed and opened (``crack_seam.open_crack``) on one mesh."""
     from strainwave.fea.crack_seam import open_crack_for
-    closed, _, t0 = patch_energy(md, lame, global_u, study=study, plane_strain_faces=plane_strain_faces)
+    closed, _, t0 = patch_energy(md, lame, global_u, study=study, plane_strain_faces=plane_strain_faces,
+                                 method=method)
     opened, dofs, t1 = patch_energy(open_crack_for(md, study), lame, global_u, study=study,
-                                    plane_strain_faces=plane_strain_faces)
+                                    plane_strain_faces=plane_strain_faces, method=method)
     return LocalEnergy(closed, opened, dofs, t0 + t1)
 
 

@@ -126,6 +126,14 @@ class CupWaveGenerator(StudyVariant):
     elements_per_cell: ClassVar[float] = 1.23
     default_size_mm = staticmethod(default_size_mm)
     rated_load: ClassVar[str] = TORQUE_RATED   # solved at the rated T already (scale 1: not linear in T)
+    report_component: ClassVar[str] = "cup"
+    title: ClassVar[str] = "flexspline cup on the wave generator"
+    image_marks: ClassVar[tuple] = ((), None, "T")     # its quarter-wall field carries no named faces
+    signed_stress: ClassVar[tuple] = ("hoop_stress_MPa", "hoop stress")   # the wave generator's bending
+    outside_design: ClassVar[str] = (
+        "the cup's design factor on the wave generator is its fatigue factor over the revolution's stress cycle "
+        "(amplitude and mean at the tooth root); a peak von Mises taken as fully reversed would count the wave "
+        "generator's pre-stress as an amplitude")
 
     @classmethod
     def volume_and_wall(cls, params) -> tuple[float, float]:

@@ -18,7 +18,7 @@ from scipy.sparse.linalg import splu
 
 from strainwave.fea.crack_contact import CrackPairs, solve_with_contact
 
-__all__ = ["graded_nodes", "RingMesh", "ring_mesh", "RingSystem", "assemble", "solve_ring"]
+__all__ = ["graded_nodes", "RingMesh", "ring_mesh", "RingSystem", "assemble", "solve_ring", "mesh_data", "hoop_stress"]
 
 
 def graded_nodes(x0: float, x1: float, size_fn) -> np.ndarray:
@@ -239,10 +239,7 @@ def nodal_stress(system: RingSystem, u: np.ndarray, E_MPa: float, nu: float) -> 
 def hoop_stress_at(system: RingSystem, stress: np.ndarray, points_xy: np.ndarray) -> np.ndarray:
     """sigma_phiphi at the points (2, n) from the projected nodal stress."""
     P = system.scalar.probes(points_xy)
-    sxx, syy, sxy = (P @ s for s in stress)
-    phi = np.arctan2(points_xy[1], points_xy[0])
-    c, s = np.cos(phi), np.sin(phi)
-    return sxx * s * s - 2.0 * sxy * s * c + syy * c * c
+    return hoop_stress(points_xy, np.stack([P @ s for s in stress]))
 
 
 def triangle_quality(mesh) -> tuple[float, float]:
@@ -252,3 +249,28 @@ def triangle_quality(mesh) -> tuple[float, float]:
     area = 0.5 * np.abs(e[0][0] * e[1][1] - e[0][1] * e[1][0])
     q = 4.0 * np.sqrt(3.0) * area / sum((v ** 2).sum(axis=0) for v in e)
     return float(q.min()), float(q.mean())
+
+
+def mesh_data(system: RingSystem, r_bore_mm: float, r_race_mm: float):
+    """The P2 ring as ``MeshData`` (6-node triangles on the scalar dofs, z = 0) with the boundary groups
+    ``bore`` and ``race`` (3-node edges), for the field writer (fea/fields.py)."""
+    from strainwave.fea.mesh_data import MeshData
+
+    mesh, scalar = system.basis.mesh, system.scalar
+    xy = scalar.doflocs
+    groups = {}
+    bf = mesh.boundary_facets()
+    r = np.hypot(*mesh.p[:, mesh.facets[:, bf]])
+    for name, radius in (("bore", r_bore_mm), ("race", r_race_mm)):
+        on = bf[np.all(np.abs(r - radius) < 1e-7 * radius, axis=0)]
+        # skfem numbers a P2 basis's vertex dofs as the mesh's vertices, its edge dofs after them
+        groups[name] = np.column_stack([mesh.facets[0, on], mesh.facets[1, on], scalar.facet_dofs[0, on]])
+    nodes = np.column_stack([xy[0], xy[1], np.zeros(xy.shape[1])])
+    return MeshData(nodes, np.ascontiguousarray(scalar.element_dofs.T), 2, 2, groups)
+
+
+def hoop_stress(points_xy: np.ndarray, stress: np.ndarray) -> np.ndarray:
+    """sigma_phiphi at points (2, n) from (sigma_xx, sigma_yy, sigma_xy) (3, n) there."""
+    phi = np.arctan2(points_xy[1], points_xy[0])
+    c, s = np.cos(phi), np.sin(phi)
+    return stress[0] * s * s - 2.0 * stress[2] * s * c + stress[1] * c * c

@@ -33,7 +33,13 @@ class StudyFacts:
     report_component: ClassVar[str | None] = None
     title: ClassVar[str] = ""
     element_text: ClassVar[str] = ""                       # "{order}" is filled with the finest mesh's degree
-    image_marks: ClassVar[tuple[tuple[str, ...], str, str] | None] = None   # (held faces, loaded faces, load symbol)
+    image_marks: ClassVar[tuple[tuple[str, ...], str | None, str] | None] = None   # (held faces, loaded faces, load symbol)
+    # why its stress field is drawn in its component's section but is no design factor (None: its peak von Mises
+    # is the component's factor in the design verdict, compare/validate/design.py)
+    outside_design: ClassVar[str | None] = None
+    signed_stress: ClassVar[tuple[str, str] | None] = None   # (VTU array, its words) of a signed stress also drawn
+    image_view_from: ClassVar[tuple[float, float, float] | None] = None   # camera direction of its 3D picture (None: isometric)
+    crack_opening_states: ClassVar[tuple[str, ...]] = ()   # its VTU suffixes ("_<state>") the crack-opening picture shows
     validate_label: ClassVar[str | None] = None            # label of its one uncracked validate case (None: name)
     sweep_at_quick_size: ClassVar[bool] = False            # validate's deeper crack cases mesh at the --quick size
 

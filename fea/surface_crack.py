@@ -29,9 +29,11 @@ two energies.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -41,7 +43,7 @@ from strainwave.fea.result import CrackRecord, Load, MeshQuality, StudyResult, S
 from strainwave.fea.study_facts import TORQUE_RATED, StudyFacts
 
 __all__ = ["STUDY", "ASPECT", "DEPTHS_OVER_T", "SurfaceCrack", "Block", "block_for", "block_mesh", "solve_block",
-           "converge_depth", "delta_name", "sweep_depths_mm", "run", "FaceSystem",
+           "converge_depth", "delta_name", "sweep_depths_mm", "run", "FIELDS_STATES", "field_paths", "FaceSystem",
            "open_compliance", "contact_state"]
 
 STUDY = "cup-surface-crack"
@@ -53,7 +55,8 @@ MAX_ACTIVE_SET_ITERATIONS = 30
 # front size a/12 on the finest mesh, graded to h over 2a + h/2 (docs/decisions/029-surface-crack-block.md)
 GRADING = CrackFrontGrading(tip_over_a=1.0 / 12.0, floor_over_h=0.02, near_over_a=0.25, zone_over_a=2.0,
                             grow_over_h=0.5)
-FIELDS_STATE = "major"      # the fields drawn: the crack wide open at the major axis, at the checked depth
+# the fields drawn, at the checked depth: the crack wide open at the major axis and held shut at the minor axis
+FIELDS_STATES = ("major", "minor")
 HALF_WIDTH_OVER_C = 4.0     # block half-width b = max(4 c, t): f_w of Newman-Raju <= 1.0007 at a/t <= 0.8
 LENGTH_OVER_T = 3.0         # far face at L = max(3 t, 4 c) from the crack plane (Saint-Venant decay ~ t)
 
@@ -146,7 +149,7 @@ class BlockSolution:
     nodes: int
     quality: tuple[float, float]
     solve_s: float
-    fields: tuple = ()          # (MeshData, skfem mesh, u) of the state asked for (``solve_block(fields_of=)``)
+    fields: dict = dataclasses.field(default_factory=dict)   # state -> (MeshData, skfem mesh, u) (``fields_of``)
 
 
 def _system(md, s: Block):
@@ -238,10 +241,10 @@ def contact_state(system: FaceSystem, f: np.ndarray, r: np.ndarray, start: np.nd
     raise RuntimeError(f"{STUDY}: crack-face active set did not settle in {MAX_ACTIVE_SET_ITERATIONS} iterations")
 
 
-def solve_block(s: Block, h_mm: float, h_fine_mm: float, fields_of: str | None = None) -> BlockSolution:
+def solve_block(s: Block, h_mm: float, h_fine_mm: float, fields_of: tuple[str, ...] = ()) -> BlockSolution:
     """One mesh: per state the contact set at (wave generator + rated torque), then the tangent compliance
     under the torque's unit membrane with that set held, minus the whole face held (uncracked). ``fields_of``:
-    keep that state's mesh and displacement for its fields."""
+    the states whose mesh and displacement are kept for their fields."""
     t0 = time.perf_counter()
     md = block_mesh(s, h_mm, h_fine_mm)
     sk, K, f_m, f_b, base, face_z = _system(md, s)
@@ -249,14 +252,15 @@ def solve_block(s: Block, h_mm: float, h_fine_mm: float, fields_of: str | None =
     try:
         r_m, r_b = system.face_loads(np.stack([f_m, f_b], axis=1)).T
         by_active: dict[bytes, float] = {}
-        out, fields = {}, ()
+        out, fields = {}, {}
         for name, membrane, bending in s.states:
             # start from the face points the uncracked stress presses shut: fewer iterations than from none
             y = sk.doflocs[1, face_z // 3]
             start = membrane + bending * (1.0 - 2.0 * y / s.t_mm) < 0.0
             active, iterations, u = contact_state(system, membrane * f_m + bending * f_b,
                                                   membrane * r_m + bending * r_b, start)
-            fields = (md, sk, u) if name == fields_of else fields
+            if name in fields_of:
+                fields[name] = (md, sk, u)
             key = np.packbits(active).tobytes()
             if key not in by_active:      # the open crack's compliance does not depend on the state's magnitudes
                 by_active[key] = open_compliance(system.factor.S, r_m, active)
@@ -290,6 +294,13 @@ class SurfaceCrack(StudyFacts):
     default_size_mm = staticmethod(default_size_mm)
     rated_load = TORQUE_RATED      # solved at the rated T on top of the wave generator (not linear in T: contact)
     title = "flexspline tooth-root surface crack"
+    report_component = "cup"
+    stress_field_suffix = "_major"          # the crack wide open: the state whose stress is drawn
+    crack_opening_states = FIELDS_STATES
+    image_marks = (("sym_x", "ligament"), "far", "sigma_n")
+    image_view_from = (1.0, -1.0, -0.8)      # below the crack plane, outside the tooth root: the crack's mouth in view
+    outside_design = ("a block of the band wall cut around the crack, loaded by the tooth root's far-field stress: "
+                      "its peak is the crack front's, not the cup's; the crack is judged by its compliance checks")
     element_text = ("P{order} tetrahedra graded to the crack front, quarter block of the band wall; the crack face "
                     "in frictionless contact with its mirror (symmetry plane)")
 
@@ -309,14 +320,14 @@ def delta_name(state: str, depth_mm: float) -> str:
     return f"delta_flexibility_{state}_a{depth_mm:g}_rad_per_Nmm"
 
 
-def converge_depth(s: Block, h_fine_mm: float, progress=lambda m: None, fields_of: str | None = None):
+def converge_depth(s: Block, h_fine_mm: float, progress=lambda m: None, fields_of: tuple[str, ...] = ()):
     """({quantity name: Quantity with GCI}, the three solutions, finest first) of one crack depth, every state on
-    the same three meshes h, h r, h r^2; ``fields_of``: the finest keeps that state's fields."""
+    the same three meshes h, h r, h r^2; ``fields_of``: the finest keeps these states' fields."""
     sizes = [h_fine_mm * DEFAULT_RATIO ** k for k in range(3)]
     runs = []
     for k in (2, 1, 0):
         progress(f"{STUDY}: a = {s.a_mm:g} mm, refinement {3 - k}/3 (h = {sizes[k]:.3g} mm)")
-        runs.append(solve_block(s, sizes[k], h_fine_mm, fields_of if k == 0 else None))
+        runs.append(solve_block(s, sizes[k], h_fine_mm, fields_of if k == 0 else ()))
     runs = runs[::-1]
     q = {}
     for name, _, _ in s.states:
@@ -341,9 +352,9 @@ def run(params, *, per_torque_MPa_per_Nmm: float, states, mesh_size_mm=None, ord
     for depth in sweep_depths_mm(params, quick):
         block = block_for(t, depth, ratio, m.youngs_modulus_MPa, m.poisson_ratio, per_torque_MPa_per_Nmm, states)
         drawn = vtu is not None and depth == sweep_depths_mm(params, True)[0]     # the checked depth
-        qd, runs = converge_depth(block, h, progress, FIELDS_STATE if drawn else None)
+        qd, runs = converge_depth(block, h, progress, FIELDS_STATES if drawn else ())
         q |= qd
-        fields = (_write_fields(vtu, block, runs[0], m),) if drawn else fields
+        fields = _write_fields(vtu, block, runs[0], m) if drawn else fields
         finest = runs[0] if finest is None or runs[0].dofs > finest.dofs else finest
         facts[f"{depth:g}"] = {"depth_mm": depth, "half_length_mm": block.c_mm, "half_width_mm": block.half_width_mm,
                                "length_mm": block.length_mm, "dofs": [r.dofs for r in runs],
@@ -367,14 +378,22 @@ def run(params, *, per_torque_MPa_per_Nmm: float, states, mesh_size_mm=None, ord
                        {"cracks": time.perf_counter() - t0}, fields, {}, meta, (mesh,) * 3)
 
 
-def _write_fields(vtu, block: Block, finest: BlockSolution, material):
-    """The finest mesh's fields of the open crack at the major axis (wave generator + rated torque)."""
-    from pathlib import Path
+def field_paths(vtu) -> dict[str, Path]:
+    """{state: <stem>_<state>.vtu} next to ``vtu``, one per drawn state (FIELDS_STATES)."""
+    v = Path(vtu)
+    return {state: v.with_name(f"{v.stem}_{state}.vtu") for state in FIELDS_STATES}
+
+
+def _write_fields(vtu, block: Block, finest: BlockSolution, material) -> tuple:
+    """The finest mesh's fields of each drawn state (wave generator + rated torque): <stem>_<state>.vtu."""
     from strainwave.fea.assembly import Lame
     from strainwave.fea.fields import field_info, write_solid_fields
-    md, sk, u = finest.fields
-    _, membrane, bending = next(st for st in block.states if st[0] == FIELDS_STATE)
-    load = (f"{FIELDS_STATE} state, wave generator + rated torque: crack-face normal stress {membrane:.4g} MPa membrane "
-            f"+ {bending:.4g} MPa outer-fibre bending on the far face (quarter block, a = {block.a_mm:g} mm)")
-    info = field_info(STUDY, load, material)
-    return write_solid_fields(Path(vtu), md, sk, u, Lame.from_young(block.E_MPa, block.nu), info)
+    written = []
+    for state, path in field_paths(vtu).items():
+        md, sk, u = finest.fields[state]
+        _, membrane, bending = next(st for st in block.states if st[0] == state)
+        load = (f"{state} state, wave generator + rated torque: crack-face normal stress {membrane:.4g} MPa membrane "
+                f"+ {bending:.4g} MPa outer-fibre bending on the far face (quarter block, a = {block.a_mm:g} mm)")
+        info = field_info(STUDY, load, material)
+        written.append(write_solid_fields(path, md, sk, u, Lame.from_young(block.E_MPa, block.nu), info))
+    return tuple(written)

@@ -425,7 +425,7 @@ _VTK_HEX = (0, 3, 6, 2, 1, 5, 7, 4)
 
 def write_fields(path, tube: Tube, u: np.ndarray, lame: Lame, nonlinear: bool, info: dict):
     """The quarter wall as VTU (8-node hexahedra on the P2 vertices): displacement, von Mises, Cauchy stress in
-    the cylindrical frame (rr, tt, zz, tz, rz, rt) at the vertices."""
+    the cylindrical frame (rr, tt, zz, tz, rz, rt) and its hoop component alone at the vertices."""
     from strainwave.io_atomic import atomic_path
     from strainwave.fea.fields import _grid, _write_grid
 
@@ -435,7 +435,8 @@ def write_fields(path, tube: Tube, u: np.ndarray, lame: Lame, nonlinear: bool, i
     voigt = np.stack([sig[:, 0, 0], sig[:, 1, 1], sig[:, 2, 2], sig[:, 1, 2], sig[:, 0, 2], sig[:, 0, 1]], axis=1)
     cells = tube.mesh.t[list(_VTK_HEX)].T
     grid = _grid(tube.mesh.p[:, :pm.p.shape[1]].T, [cells], np.full(cells.shape[0], 12), {
-        "displacement_mm": disp, "von_mises_MPa": von_mises_MPa(sig), "stress_cylindrical_MPa": voigt},
+        "displacement_mm": disp, "von_mises_MPa": von_mises_MPa(sig), "stress_cylindrical_MPa": voigt,
+        "hoop_stress_MPa": voigt[:, 1]},
         {"physical_group": np.ones(cells.shape[0], np.int64)}, info, ["solid"])
     with atomic_path(path) as tmp:
         _write_grid(tmp, grid)

@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, replace
+from pathlib import Path
 
 import numpy as np
 
@@ -170,7 +171,23 @@ def solve_plain(s: RingSetup, h_mm: float, scale: float, profile_depth_mm: float
             "ball_ratio": float(q_fea.max()) * s.ball_count / s.force_N, "radial_stiffness": s.force_N / d0,
             "_ball_loads": q_fea, "_net_round": (ring_phi, all_round), "_profile": (x, profile),
             "_dofs": system.K.shape[0], "_elements": system.basis.mesh.t.shape[1],
-            "_nodes": system.scalar.N, "_quality": ring2d.triangle_quality(system.basis.mesh)}
+            "_nodes": system.scalar.N, "_quality": ring2d.triangle_quality(system.basis.mesh),
+            "_system": system, "_u": u_cam + u_f, "_stress": st_cam + st_f}
+
+
+def write_fields(vtu, s: RingSetup, plain: dict, material) -> Path:
+    """The uncracked ring of ``plain`` (a ``solve_plain`` result) on the cam under the Stribeck ball loads:
+    displacement, stress tensor (plane stress: zz = 0), von Mises, principal and hoop stress at the P2 nodes,
+    with the boundary groups bore and race (NAME.boundary.vtu)."""
+    from strainwave.fea.fields import field_info, stress_fields, write_vtu
+
+    md = ring2d.mesh_data(plain["_system"], s.r_bore_mm, s.r_race_mm)
+    u, st, zero = plain["_u"], plain["_stress"], np.zeros(md.nodes_mm.shape[0])
+    tensor = np.column_stack([st[0], st[1], zero, st[2], zero, zero])
+    point_data = {"displacement_mm": np.column_stack([u[0::2], u[1::2], zero]), **stress_fields(tensor),
+                  "hoop_stress_MPa": ring2d.hoop_stress(md.nodes_mm[:, :2].T, st)}
+    info = field_info(STUDY, f"{_load(s).describe()}; uncracked ring, finest mesh", material)
+    return write_vtu(Path(vtu), md, point_data, info=info)
 
 
 def _ball_count(s: RingSetup) -> int:
@@ -233,6 +250,14 @@ class WgBearing(StudyFacts):
     elements_per_cell = 12.0
     default_size_mm = staticmethod(default_size_mm)
     plane = True
+    # solved at the rated F_r already (scale 1: the cam's share is not linear in F_r)
+    rated_load = "strainwave.analytic.rated_load:rated_radial_force"
+    report_component = "bearing"
+    title = "bearing inner ring on the cam"
+    image_marks = (("bore",), None, "F_r")     # the ball patches are too small to mark at the ring's scale
+    signed_stress = ("hoop_stress_MPa", "hoop stress")     # the cam's bending: tension or compression
+    outside_design = ("the bearing's design factor is still the bonded-bore ring's (study bearing-ring); moving it "
+                      "to the ring on the cam, whose race the cam puts in hoop tension, is a design-verdict decision")
     element_text = ("P2 triangles on a graded polar grid, 2D plane stress, thickness = ring width B; race crack as "
                     "two coincident faces with frictionless contact")
 
@@ -312,10 +337,13 @@ def run(params, *, force_N: float, w0_mm: float, ball_angles_rad, ball_loads_N, 
             "depth_mm": max(depths), **compressed},
             "net_race_hoop_stress": {"phi_deg": np.degrees(phi).tolist(), "MPa": net.tolist()}}
     mesh = MeshQuality(finest["_elements"], finest["_nodes"], finest["_dofs"], 2, *finest["_quality"])
+    # the crack sweep's fields are not kept: the one field is the uncracked ring, named so (rated_stress)
+    fields = () if vtu is None else (write_fields(Path(vtu).with_name(f"{Path(vtu).stem}_uncracked.vtu"), s, finest,
+                                                  params.material),)
     return StudyResult(STUDY, {**q, **qc}, mesh, _load(s), _supports(),
                        CrackRecord(max(depths), "2D edge crack at the major axis, frictionless face contact, "
                                    "sweep of depths (each on three meshes)"),
-                       {"uncracked": t1 - t0, "cracks": t2 - t1, "compressed": t3 - t2}, (), {}, meta, (mesh,) * 3)
+                       {"uncracked": t1 - t0, "cracks": t2 - t1, "compressed": t3 - t2}, fields, {}, meta, (mesh,) * 3)
 
 
 def _load(s: RingSetup) -> Load:

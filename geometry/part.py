@@ -15,6 +15,7 @@ class PartName(enum.Enum):
     EWG = "ewg"
     OUTPUT_SHAFT = "output-shaft"
     WG_BEARING_RING = "wg-bearing-ring"
+    WG_CAM = "wg-cam"
 
 
 class CrackModel(enum.Enum):

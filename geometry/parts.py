@@ -5,7 +5,7 @@ import dataclasses
 
 from strainwave.errors import InputError
 
-from strainwave.geometry import bearing_ring, ewg, ewg_ring, flexspline_cup, output_shaft
+from strainwave.geometry import bearing_ring, ewg, ewg_ring, flexspline_cup, output_shaft, wg_cam
 from strainwave.geometry.part import CrackModel, Part, PartName
 
 _BUILDERS = {
@@ -14,6 +14,7 @@ _BUILDERS = {
     PartName.EWG: ewg.build,
     PartName.OUTPUT_SHAFT: output_shaft.build,
     PartName.WG_BEARING_RING: bearing_ring.build,
+    PartName.WG_CAM: wg_cam.build,
 }
 CRACKABLE = (PartName.FLEXSPLINE_CUP, PartName.OUTPUT_SHAFT, PartName.WG_BEARING_RING)
 

@@ -21,6 +21,7 @@ PART_COLOURS_RGB: dict[str, tuple[float, float, float]] = {
     "wg-bearing-ring": (0.85, 0.62, 0.30),
     "output-shaft": (0.45, 0.55, 0.70),
     "ewg": (0.55, 0.75, 0.50),
+    "wg-cam": (0.55, 0.75, 0.50),     # a wave generator, like the EWG
 }
 
 

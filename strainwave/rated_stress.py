@@ -190,7 +190,8 @@ def stress_field_of(study: str, fields, crack_depth_mm: float | None) -> tuple[P
         return None
     path = chosen[0]
     paired = any(p.stem.endswith("_cracked") for p in files) and not path.stem.endswith("_cracked")
-    return path, crack_depth_mm is not None and not paired
+    # a study that sweeps its own cracks may write only its uncracked part, named so
+    return path, crack_depth_mm is not None and not paired and not path.stem.endswith("_uncracked")
 
 
 def rated_load(study: str, params, solved: float, quantities=None) -> RatedLoad:

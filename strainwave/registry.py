@@ -147,7 +147,7 @@ STUDIES: dict[str, Study] = {s.name: s for s in (
         QuantitySpec("ball_load_ratio", "1", "Z Q_max / F_r with Hertz balls on the FEA ring"),
         QuantitySpec("radial_stiffness_N_per_mm", "N/mm", "K_G: F_r over the outer race's approach (balls + ring)"),
         QuantitySpec("radial_compliance_mm_per_N", "mm/N", "ring compliance under the ball loads, uncracked"),
-    ), load_inputs="strainwave.analytic.study_loads:wg_bearing_load", vtu_fields=()),
+    ), load_inputs="strainwave.analytic.study_loads:wg_bearing_load", vtu_fields=SOLID_FIELDS + ("hoop_stress_MPa",)),
     # The cup on its wave generator (issue 34): prescribed shape and rigid cam, linear and nonlinear; the
     # hoop bending at the axes is checked against the ring forced into w0 cos 2 phi (analytic/ring_prescribed.py).
     Study("cup-wave-generator", "strainwave.fea.cup_wave_generator:CupWaveGenerator", "flexspline-cup", None, None, (
@@ -160,7 +160,7 @@ STUDIES: dict[str, Study] = {s.name: s for s in (
                      "tangent torsional stiffness of the cup on the cam"),
         QuantitySpec("cycle_amplitude_MPa", "MPa", "outer-fibre hoop stress amplitude per revolution at rated T"),
         QuantitySpec("cycle_mean_MPa", "MPa", "outer-fibre hoop mean stress per revolution at rated T"),
-    ), vtu_fields=()),
+    ), vtu_fields=("displacement_mm", "von_mises_MPa", "stress_cylindrical_MPa", "hoop_stress_MPa")),
     # The tooth-root crack as a semi-elliptical surface crack in a block of the band wall, its own sweep of depths;
     # its quantities are named per state and depth (fea.surface_crack.delta_name).
     Study("cup-surface-crack", "strainwave.fea.surface_crack:SurfaceCrack", "flexspline-cup", None, None, (),

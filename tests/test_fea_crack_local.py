@@ -90,6 +90,16 @@ def test_patch_energy_of_a_uniform_field_is_half_stress_times_strain_times_volum
     assert energy == pytest.approx(0.5 * sigma ** 2 / E * (2 * L_MM) ** 2 * B_MM, rel=1e-9)
 
 
+def test_patch_energy_by_p_multigrid_equals_the_direct_solve(plate_mesh):
+    from strainwave.fea.crack_local import patch_solver
+    lame, field = Lame.from_young(E, NU), _uniaxial_y(50.0)
+    direct = patch_energy(plate_mesh, lame, field, method="direct")[0]
+    # CG to a residual of 1e-7: the energy's error is quadratic in it
+    assert patch_energy(plate_mesh, lame, field, method="amg")[0] == pytest.approx(direct, rel=1e-9)
+    # a chunky patch goes to CG, a thin plate-like one to the factorisation
+    assert patch_solver(6.4, 1.4) == "amg" and patch_solver(71.7, 2.24) == "direct"
+
+
 def griffith_release_Nmm(sigma_MPa: float) -> float:
     """Energy a through crack 2a releases in an infinite plate of thickness B under sigma: pi a^2 sigma^2 B / E
     (plane stress; Griffith / Tada, The Stress Analysis of Cracks Handbook, 3rd ed., 5.1)."""

@@ -31,8 +31,10 @@ def test_open_crack_matches_newman_raju_and_the_shut_crack_adds_nothing(params, 
     from strainwave.fea.surface_crack import _write_fields, solve_block
     block = _block(params)
     # coarse: global h = t/2, front a/3 (the study's finest is t/4 and a/12)
-    r = solve_block(block, 0.5 * block.t_mm, 0.125 * block.t_mm, fields_of="major")
-    _check_open_crack_fields(_write_fields(tmp_path / "block.vtu", block, r, params.material), block)
+    r = solve_block(block, 0.5 * block.t_mm, 0.125 * block.t_mm, fields_of=("major", "minor"))
+    major_vtu, minor_vtu = _write_fields(tmp_path / "block.vtu", block, r, params.material)
+    assert (major_vtu.name, minor_vtu.name) == ("block_major.vtu", "block_minor.vtu")
+    _check_open_crack_fields(major_vtu, block)
     major, minor = r.states["major"], r.states["minor"]
     ref = sc.delta_flexibility(block.a_mm, ASPECT, block.t_mm, sc.tooth_root_loads(params, 0.0),
                                block.E_MPa / (1 - block.nu ** 2), half_width_mm=block.half_width_mm)

@@ -27,7 +27,7 @@ def params():
 
 # B-spline flanks are covered by the toothed cup; the ring goes smooth to keep the test fast
 CASES = [("output-shaft", 2.0, True), ("wg-bearing-ring", 0.5, True), ("ewg-flexspline-ring", None, False),
-         ("ewg", None, True), ("flexspline-cup", 0.5, True)]
+         ("ewg", None, True), ("flexspline-cup", 0.5, True), ("wg-cam", None, True)]
 
 
 def _gmsh_import(path):

@@ -163,6 +163,24 @@ def test_ewg_imposes_w0(params, generator):
     assert len(gen.solid.solids()) == (2 if generator == "rollers" else 1)
 
 
+def test_wave_generator_cam_is_the_rings_bore_plus_minus_w0(params):
+    """The cam's outline reaches the bearing ring's bore radius + w0 on x and - w0 on y (the shape the ring and
+    the cup are forced onto); its volume is the ellipse minus the hub bore times the ring's width."""
+    from build123d import Edge
+
+    cam = build_part("wg-cam", params)
+    ring = build_part("wg-bearing-ring", params)
+    w0, r_b, width = params.gear.radial_deformation_mm, ring.meta["bore_radius_mm"], ring.meta["width_mm"]
+    z = 0.5 * width
+    # distance from a short axial segment at 2 r_b on each axis: 2 r_b minus the cam's reach there
+    for (x, y), reach in (((2 * r_b, 0.0), r_b + w0), ((0.0, 2 * r_b), r_b - w0)):
+        probe = Edge.make_line((x, y, z), (x, y, z + 1e-3))
+        assert 2 * r_b - cam.solid.distance_to(probe) == pytest.approx(reach, rel=1e-9)
+    assert cam.meta["width_mm"] == pytest.approx(width, rel=1e-12)
+    assert cam.volume_mm3 == pytest.approx(cam.meta["volume_closed_form_mm3"], rel=EXACT)
+    assert {k: len(v) for k, v in cam.named_faces.items()} == {"contact": 1, "bore": 1}
+
+
 # ---- involute and flexspline cup --------------------------------------------------------------
 
 @pytest.mark.parametrize("internal", [False, True])

@@ -123,3 +123,31 @@ def test_drive_stiffness_takes_the_wave_generator_from_the_fea_and_fails_on_the_
     seed = _book({"radial_stiffness_N_per_mm": params.wave_generator.uncracked_radial_stiffness_N_per_mm}, {},
                  cup=cup, shaft=shaft)
     assert not wc.gear_stiffness(seed, labels, "wg-bearing", s000, params).passed
+
+
+def test_the_ring_on_the_cam_writes_a_readable_field(ring, tmp_path):
+    """wg-bearing's VTU (the finest uncracked ring on the cam under the ball loads) reads back with meshio and
+    pyvista: its P2 triangles, a finite hoop stress that is the study's own race stress at the major axis, and a
+    bore that follows the cam, u_r = w0 cos 2 phi."""
+    import meshio
+    import pyvista as pv
+
+    from strainwave.fea.wg_bearing import solve_plain, write_fields
+    params, s = ring
+    d = solve_plain(s, 5.0, 1.96, 1.0)
+    path = write_fields(tmp_path / "wg.vtu", s, d, params.material)
+    back = meshio.read(path)
+    assert len(back.points) == d["_nodes"] and back.cells_dict["triangle6"].shape == (d["_elements"], 6)
+    grid = pv.read(path)
+    hoop = np.asarray(grid.point_data["hoop_stress_MPa"])
+    assert np.isfinite(hoop).all() and np.isfinite(grid.point_data["von_mises_MPa"]).all()
+    p = np.asarray(grid.points)
+    r, phi = np.hypot(p[:, 0], p[:, 1]), np.arctan2(p[:, 1], p[:, 0])
+    race = np.flatnonzero(np.abs(r - s.r_race_mm) < 1e-6 * s.r_race_mm)
+    major = race[np.argmin(np.abs(phi[race]))]
+    assert hoop[major] == pytest.approx(d["net_race_major_MPa"], rel=1e-3)
+    bore = np.flatnonzero(np.abs(r - s.r_bore_mm) < 1e-6 * s.r_bore_mm)
+    u = np.asarray(grid.point_data["displacement_mm"])
+    u_r = u[bore, 0] * np.cos(phi[bore]) + u[bore, 1] * np.sin(phi[bore])
+    assert u_r == pytest.approx(s.w0_mm * np.cos(2 * phi[bore]), abs=1e-6 * s.w0_mm)
+    assert set(pv.read(tmp_path / "wg.boundary.vtu").field_data.keys()) >= {"physical_group_names"}

@@ -24,6 +24,8 @@ def _component_titles() -> dict[str, str]:
     titles = {}
     for s in STUDIES.values():
         facts = s.facts()
+        if facts.outside_design:
+            continue   # drawn under another study's component, with its own title
         if facts.report_component or s.component:
             titles[facts.report_component or s.component] = facts.title
     return titles
@@ -38,7 +40,7 @@ class Image:
     path: Path           # relative to the output folder
     caption: str
     component: str       # shaft | cup | bearing | ring | gear
-    kind: str            # preview | stress | closeup | ring-shape | convergence | crack-sweep | view3d
+    kind: str            # preview | stress | closeup | ring-shape | convergence | crack-sweep | crack-opening
 
     def to_dict(self) -> dict:
         return {"path": self.path.as_posix(), "caption": self.caption, "component": self.component,
@@ -92,7 +94,8 @@ def _require(path):
 
 # What a planar field of a component is, said on its picture
 SECTION_OF_PLANE = {"shaft": "axisymmetric (r, z) section: x = r, y = z",
-                    "ring": "2D plane stress section (x, y), thickness = face width B"}
+                    "ring": "2D plane stress section (x, y), thickness = face width B",
+                    "wg-bearing": "2D plane stress section (x, y), thickness = ring width B"}
 def _marks(images, study: str):
     """Supports and loads as the study applies them (its variant's ``image_marks``)."""
     from strainwave.registry import study as registered
@@ -102,16 +105,21 @@ def _marks(images, study: str):
     return images.Marks(*marks)
 
 
-def _stress_picture(images, target: Path, book: FeaBook, component: str, case, params,
-                    records: dict[str, StressAtRated], views: dict, col: _Collector) -> str:
-    outcome = book.outcomes.get(case.label)
-    if outcome is None or outcome.result is None:
+def _case_field(book: FeaBook, case):
+    """(result, VTU, cracked) of the field a case's stress picture shows (``stress_field_of``)."""
+    result = book.result(case.label)
+    if result is None:
         raise FileNotFoundError(f"case {case.label} has no result")
-    found = stress_field_of(case.study, outcome.result.fields, case.crack_depth_mm)
+    found = stress_field_of(case.study, result.fields, case.crack_depth_mm)
     if found is None or not found[0].exists():
         raise FileNotFoundError("the case wrote no VTU field (or it failed)")
-    vtu, cracked = found
-    at = stress_at_rated(case.study, params, outcome.result, vtu, cracked=cracked)
+    return result, *found
+
+
+def _stress_picture(images, target: Path, book: FeaBook, component: str, case, params,
+                    records: dict[str, StressAtRated], views: dict, col: _Collector) -> str:
+    result, vtu, cracked = _case_field(book, case)
+    at = stress_at_rated(case.study, params, result, vtu, cracked=cracked)
     records[component] = at
     planar = bool(np.ptp(images.read_field(vtu).points[:, 2]) == 0.0)
     from strainwave.registry import study as registered
@@ -128,6 +136,54 @@ def _stress_picture(images, target: Path, book: FeaBook, component: str, case, p
     except Exception as exc:  # noqa: BLE001 - a view that cannot be made is reported, the PNG stands
         col.missing.append(Missing(f"{COMPONENT_TITLES[component]} 3D view", f"{type(exc).__name__}: {exc}"))
     return rendered.caption
+
+
+NO_DESIGN_LINE = "no design factor: why in the caption"
+
+
+def _pictured_stress(images, target: Path, book: FeaBook, case, params) -> str:
+    """The stress picture of a study whose field is no design stress (``StudyFacts.outside_design``): drawn
+    like a design field, its peak kept out of every factor and of the stress table, its caption says why."""
+    from strainwave.rated_stress import crack_front_nodes
+    from strainwave.registry import study as registered
+    facts = registered(case.study).facts()
+    result, vtu, _ = _case_field(book, case)
+    # a field with a crack front (the block around a crack) leaves the front's singular zone out of its peak
+    cracked = result.crack is not None and crack_front_nodes(vtu).size > 0
+    at = stress_at_rated(case.study, params, result, vtu, cracked=cracked)
+    planar = bool(np.ptp(images.read_field(vtu).points[:, 2]) == 0.0)
+    rendered = images.render_stress(vtu, target, label=facts.title, at=at, marks=_marks(images, case.study),
+                                    section=SECTION_OF_PLANE.get(case.study, "2D section") if planar else "",
+                                    factor_line=NO_DESIGN_LINE, view_from=facts.image_view_from)
+    return rendered.caption.replace(NO_DESIGN_LINE, f"no design factor: {facts.outside_design}")
+
+
+def _signed_picture(images, target: Path, book: FeaBook, case, params) -> str:
+    """The signed stress its variant names (``StudyFacts.signed_stress``) at the rated load."""
+    from strainwave.registry import study as registered
+    facts = registered(case.study).facts()
+    result, vtu, _ = _case_field(book, case)
+    array, words = facts.signed_stress
+    return images.render_signed(vtu, target, label=facts.title, array=array, words=words,
+                                load=rated_load_of(case.study, params, result), view_from=facts.image_view_from).caption
+
+
+def _opening_picture(images, target: Path, book: FeaBook, case) -> str:
+    """The crack's opening in each state the study drew (``StudyFacts.crack_opening_states``)."""
+    from strainwave.registry import study as registered
+    facts = registered(case.study).facts()
+    result = book.result(case.label)
+    if result is None:
+        raise FileNotFoundError(f"case {case.label} has no result")
+    files = [Path(p) for p in result.fields if Path(p).exists()]
+    vtus = {}
+    for state in facts.crack_opening_states:
+        found = [p for p in files if p.suffix == ".vtu" and p.stem.endswith(f"_{state}")]
+        if not found:
+            raise FileNotFoundError(f"case {case.label} wrote no field of its {state} state")
+        vtus[state] = found[0]
+    depth = "" if result.crack is None else f", a = {result.crack.depth_mm:g} mm"
+    return images.render_crack_opening(vtus, target, label=f"{facts.title}{depth}").caption
 
 
 @dataclass(frozen=True)
@@ -154,6 +210,17 @@ def make_images(out_dir: Path, book: FeaBook, plan: Plan, check_set: CheckSet, s
                     lambda t, c=component, cs=case: _stress_picture(images, t, book, c, cs, params, stresses,
                                                                     views, col),
                     f"{component}_von_mises.png")
+    from strainwave.registry import study as registered
+    for component, case in plan.pictured():
+        facts = registered(case.study).facts()
+        col.attempt(f"{facts.title} stress", component, "stress",
+                    lambda t, cs=case: _pictured_stress(images, t, book, cs, params), f"{case.label}_von_mises.png")
+        if facts.signed_stress:
+            col.attempt(f"{facts.title}: {facts.signed_stress[1]}", component, "stress",
+                        lambda t, cs=case: _signed_picture(images, t, book, cs, params), f"{case.label}_signed.png")
+        if facts.crack_opening_states:
+            col.attempt(f"{facts.title}: crack opening", component, "crack-opening",
+                        lambda t, cs=case: _opening_picture(images, t, book, cs), f"{case.label}_opening.png")
     for component, cases in plan.sweeps.items():
         if not cases:
             continue

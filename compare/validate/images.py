@@ -79,9 +79,12 @@ def _bar(title: str) -> dict:
             "title_font_size": 20, "label_font_size": 18, "fmt": "%.3g", "width": 0.08, "height": 0.7}
 
 
-def _view(plotter, plane: bool) -> None:
+def _view(plotter, plane: bool, view_from=None) -> None:
+    """Plane fields from +z; 3D ones isometric, or from the direction ``view_from`` (z up)."""
     if plane:
         plotter.view_xy()
+    elif view_from is not None:
+        plotter.view_vector(view_from, viewup=(0.0, 0.0, 1.0))
     else:
         plotter.view_isometric()
 
@@ -186,9 +189,12 @@ def colour_top(von_mises: np.ndarray, peak: float) -> float:
 
 
 def render_stress(vtu: Path, png: Path, *, label: str, at: StressAtRated, marks: Marks, section: str = "",
-                  zoom: Zoom | None = None, exaggeration: float | None = None) -> Rendered:
+                  zoom: Zoom | None = None, exaggeration: float | None = None,
+                  factor_line: str | None = None, view_from=None) -> Rendered:
     """von Mises at the rated load (fields x the load's scale) on the deformed shape: supports and loads
-    marked, axis triad, peak marked and printed; ``zoom`` adds a close-up panel around the peak."""
+    marked, axis triad, peak marked and printed; ``zoom`` adds a close-up panel around the peak;
+    ``factor_line`` replaces the safety-factor line (a field that is no design stress); ``view_from``: the
+    camera's direction on a 3D field (None: isometric)."""
     import pyvista as pv
 
     shape = (1, 2) if zoom is not None else (1, 1)
@@ -208,7 +214,7 @@ def render_stress(vtu: Path, png: Path, *, label: str, at: StressAtRated, marks:
         lines = [f"{label}: von Mises at {at.load.name} = {at.load.rated:.4g} {at.load.unit}",
                  scale_text + (f"; {section}" if section else ""),
                  f"peak {p.peak_von_mises_MPa:.4g} MPa at ({where} mm, peak displacement {p.peak_displacement_mm:.3g} mm,",
-                 f"safety factor {at.safety_factor:.3g} vs fatigue limit {at.fatigue_limit_MPa:g} MPa"]
+                 factor_line or f"safety factor {at.safety_factor:.3g} vs fatigue limit {at.fatigue_limit_MPa:g} MPa"]
         if p.tip_peak_von_mises_MPa is not None:   # the singular crack tip: left out of the range, said apart
             lines.append(f"crack tip {p.tip_peak_von_mises_MPa:.4g} MPa: singular, within {p.tip_radius_mm:.3g} mm "
                          "of the front, left out of the factor")
@@ -236,7 +242,7 @@ def render_stress(vtu: Path, png: Path, *, label: str, at: StressAtRated, marks:
             plotter.add_point_labels([shown.points[peak_index]], ["peak"], font_size=16, point_color="white",
                                      point_size=12, render_points_as_spheres=True, always_visible=True)
             plotter.add_axes(color="black", line_width=3, labels_off=False)
-            _view(plotter, plane)
+            _view(plotter, plane, view_from)
             plotter.reset_camera()
             if z is None:
                 plotter.camera.zoom(0.85 if len(lines) <= 4 else 0.72)   # room for the title lines above the model
@@ -303,6 +309,105 @@ def render_closeup(vtu: Path, png: Path, *, label: str, center_mm=None, radius_m
         plotter.close()
     atomic_write_bytes(png, _png_bytes(image))
     return Rendered(Path(png), text.replace("\n", " "), None)
+
+
+def render_signed(vtu: Path, png: Path, *, label: str, array: str, words: str, load: RatedLoad,
+                  view_from=None) -> Rendered:
+    """A signed stress ``array`` of ``vtu`` at the rated load on the deformed shape: tension red, compression
+    blue, one range symmetric about zero; the largest tension and compression marked and printed."""
+    import pyvista as pv
+
+    with pv.VtkErrorCatcher(raise_errors=True):
+        mesh = scaled_to_rated(read_field(vtu), load.scale)
+        if array not in mesh.point_data:
+            raise ValueError(f"{vtu}: no point array {array!r}")
+        names = field_names(mesh)
+        values = np.asarray(mesh.point_data[array], dtype=float)
+        plane = bool(np.ptp(mesh.points[:, 2]) == 0.0)
+        exaggeration = auto_exaggeration(mesh, names.displacement) if names.displacement else 1.0
+        shown = _deformed(mesh, names.displacement, exaggeration)
+        hi, lo = int(np.argmax(values)), int(np.argmin(values))
+        where = {k: "(" + ", ".join(f"{x:.4g}" for x in mesh.points[k]) + ") mm" for k in (hi, lo)}
+        lines = [f"{label}: {words}", f"at {load.name} = {load.rated:.4g} {load.unit}",
+                 f"displacements x {exaggeration:g}; red tension, blue compression",
+                 f"tension up to {values[hi]:.4g} MPa at {where[hi]},",
+                 f"compression down to {values[lo]:.4g} MPa at {where[lo]}"]
+        top = max(abs(values[hi]), abs(values[lo])) or 1.0
+        plotter = off_screen_plotter(RenderSettings(WINDOW))
+        plotter.add_mesh(shown, scalars=array, cmap="coolwarm", clim=(-top, top), scalar_bar_args=_bar(f"{words} (MPa)"))
+        plotter.add_point_labels(shown.points[[hi, lo]], ["max tension", "max compression"], font_size=16,
+                                 point_color="black", point_size=12, render_points_as_spheres=True,
+                                 always_visible=True)
+        plotter.add_axes(color="black", line_width=3, labels_off=False)
+        _view(plotter, plane, view_from)
+        plotter.reset_camera()
+        plotter.camera.zoom(0.72)   # room for the title lines above the model
+        plotter.add_text("\n".join(lines), font_size=TITLE_PT, color="black")
+        image = plotter.screenshot(None, return_img=True)
+        plotter.close()
+    atomic_write_bytes(png, _png_bytes(image))
+    return Rendered(Path(png), " ".join(lines), exaggeration)
+
+
+def crack_face_opening(vtu: Path):
+    """(crack face with ``opening_um`` = 2 u_z in um and ``on_front`` (1 on the nodes it shares with the ligament),
+    ligament or None) of a crack on the symmetry plane z = 0 (its boundary groups ``crack`` and ``ligament``):
+    the mirror face moves by -u_z, so the faces part by 2 u_z."""
+    from strainwave.fea.fields import VOLUME_POINT_ID
+
+    groups = boundary_groups(vtu, ("crack", "ligament"))
+    if "crack" not in groups:
+        raise ValueError(f"{vtu}: no 'crack' boundary group")
+    face, ligament = groups["crack"], groups.get("ligament")
+    names = field_names(face)
+    if names.displacement is None:
+        raise ValueError(f"{vtu}: the crack face carries no displacement")
+    face.point_data["opening_um"] = 2e3 * displacement3(face, names.displacement)[:, 2]
+    shared = np.asarray(ligament.point_data[VOLUME_POINT_ID]) if ligament is not None else np.zeros(0, int)
+    face.point_data["on_front"] = np.isin(np.asarray(face.point_data[VOLUME_POINT_ID]), shared).astype(np.int8)
+    return face, ligament
+
+
+OPEN_OVER_MAX = 1e-3    # a crack-face node counts as open where it parts by more than this x the largest opening
+
+
+def render_crack_opening(vtus: dict[str, Path], png: Path, *, label: str) -> Rendered:
+    """The crack plane seen along its normal, one panel per state ({state: VTU}): the crack face coloured by
+    its opening 2 u_z (one colour range for all states), the ligament grey, the face's outline black."""
+    import pyvista as pv
+
+    with pv.VtkErrorCatcher(raise_errors=True):
+        faces = {state: crack_face_opening(vtu) for state, vtu in vtus.items()}
+        top = max(float(np.max(f.point_data["opening_um"])) for f, _ in faces.values())
+        if not top > 0:
+            raise ValueError(f"{label}: the crack is shut in every state drawn")
+        plotter = off_screen_plotter(RenderSettings((WINDOW[0] * len(faces), WINDOW[1]), shape=(1, len(faces))))
+        texts = []
+        for col, (state, (face, ligament)) in enumerate(faces.items()):
+            plotter.subplot(0, col)
+            opening = np.asarray(face.point_data["opening_um"])
+            inside = opening[np.asarray(face.point_data["on_front"]) == 0]   # the front never opens
+            share = float(np.mean(inside > OPEN_OVER_MAX * top))
+            text = (f"{state}: opening up to {opening.max():.3g} um, {100 * share:.0f} % of the crack face open "
+                    "(nodes off the front)")
+            texts.append(text)
+            if ligament is not None:
+                plotter.add_mesh(ligament, color="lightgrey")
+            plotter.add_mesh(face, scalars="opening_um", cmap="turbo", clim=(0.0, top), show_scalar_bar=col == 0,
+                             scalar_bar_args=_bar("opening 2 u_z (um)"))
+            plotter.add_mesh(face.extract_feature_edges(boundary_edges=True, feature_edges=False,
+                                                        manifold_edges=False), color="black", line_width=3)
+            plotter.add_axes(color="black", line_width=3)
+            plotter.view_xy()
+            plotter.reset_camera()
+            plotter.camera.zoom(0.8)   # room for the title lines above the plane
+            plotter.add_text(f"{label}\n{text}", font_size=TITLE_PT, color="black")
+        image = plotter.screenshot(None, return_img=True)
+        plotter.close()
+    atomic_write_bytes(png, _png_bytes(image))
+    caption = (f"{label}: the crack plane z = 0 seen along its normal (x along the surface, y into the wall from the "
+               "surface at y = 0), crack face coloured by its opening 2 u_z, ligament grey; " + "; ".join(texts))
+    return Rendered(Path(png), caption, None)
 
 
 def sample_circle(vtu: Path, radius_mm: float, n: int = 360) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:

@@ -35,6 +35,7 @@ from strainwave.compare.validate.report_md import write_markdown
 from strainwave.compare.validate.results import now_utc, plain, versions, write_results
 from strainwave.compare.validate.case_progress import CaseProgress
 from strainwave.compare.validate.runner import CaseOutcome, run_case
+from strainwave.compare.validate.wg_bearing_checks import STUDY as WG_BEARING_STUDY, fatigue_factor as bearing_fatigue_factor
 from strainwave.compare.validate.wg_cup_checks import STUDY as WG_CUP_STUDY, fatigue_factor, wg_record
 
 ORDER = 2   # quadratic elements, the fea/ default (curved P2)
@@ -198,8 +199,9 @@ def _preview_of() -> dict[str, str]:
     from strainwave.registry import STUDIES
     out = {}
     for s in STUDIES.values():
-        component = s.facts().report_component
-        if component:
+        facts = s.facts()
+        component = facts.report_component
+        if component and not facts.outside_design:   # the preview opens its design study's inputs section
             out.setdefault(s.part, component)
     return out
 
@@ -274,13 +276,15 @@ def _designer_lines(summary: dict) -> list[str]:
 
 def _design(params, book, plan, stresses) -> tuple[dict, object]:
     """(the cup-on-the-wave-generator record, the design verdict): every reported component's stress factor,
-    and the cup's fatigue factor on its revolution cycle when that case ran."""
+    the cup's fatigue factor on its revolution cycle and the bearing ring's on the cam when those cases ran."""
     from strainwave.compare.validate.artifacts import COMPONENT_TITLES
 
     wg_cup = wg_record(book, plan.label_of(WG_CUP_STUDY) or "", params)
     factors = stress_factors(stresses, COMPONENT_TITLES, tuple(c for c, _ in plan.reported()))
     if plan.label_of(WG_CUP_STUDY):
         factors.append(fatigue_factor(wg_cup))
+    if plan.label_of(WG_BEARING_STUDY):
+        factors.append(bearing_fatigue_factor(book, plan.label_of(WG_BEARING_STUDY), params))
     return wg_cup, design_verdict(params, factors)
 
 

@@ -40,10 +40,19 @@ class Plan:
         return None if case is None else case.label
 
     def reported(self) -> list[tuple[str, Case]]:
-        """(component, case) of the report's inputs and stress sections: each crack component's headline
-        case, then each single study its variant shows under a component (``StudyFacts.report_component``)."""
-        singles = [(STUDIES[c.study].facts().report_component, c) for c in self.singles]
-        return list(self.headline.items()) + [(name, c) for name, c in singles if name]
+        """(component, case) of the report's inputs and stress sections and of the design factors: each crack
+        component's headline case, then each single study its variant shows under a component
+        (``StudyFacts.report_component``) whose field is a design stress (no ``outside_design``)."""
+        return list(self.headline.items()) + [(f.report_component, c) for f, c in self._shown() if not f.outside_design]
+
+    def pictured(self) -> list[tuple[str, Case]]:
+        """(component, case) of each single study drawn in its component's section but kept out of the design
+        factors and the stress table (``StudyFacts.outside_design`` says why)."""
+        return [(f.report_component, c) for f, c in self._shown() if f.outside_design]
+
+    def _shown(self) -> list[tuple[type, Case]]:
+        facts = [(STUDIES[c.study].facts(), c) for c in self.singles]
+        return [(f, c) for f, c in facts if f.report_component]
 
 
 def single_cases() -> tuple[Case, ...]:

@@ -70,7 +70,7 @@ def _figure(image: dict, root: Path | None = None) -> str:
     source = escape(_source(image, root), quote=True)
     caption = escape(image["caption"])
     # stress pictures carry their numbers in the image: shown at full width, their titles stay legible
-    wide = ' class="wide"' if image["kind"] == "stress" else ""
+    wide = ' class="wide"' if image["kind"] in ("stress", "crack-opening") else ""
     return (f'<figure{wide}><img src="{source}" alt="{caption}" loading="eager">'
             f"<figcaption>{caption}</figcaption></figure>")
 

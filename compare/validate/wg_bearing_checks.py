@@ -217,3 +217,26 @@ def gear_stiffness(book: FeaBook, labels: dict[str, str], wg_label: str, s000: d
                                    "lambda_so0": f"FEA {labels['shaft']}"}))
 
 
+
+
+def fatigue_factor(book: FeaBook, label: str | None, params):
+    """The design verdict's entry for the inner ring on the cam at the race's major axis: the ring turns with
+    the cam, so the cam's hoop stress is a mean; each passing ball swings the race between it and the net stress
+    under the load-line ball (both FEA, rated F_r). Goodman on that cycle, no notch (a smooth race)."""
+    from strainwave.analytic.cup_fatigue import goodman_safety_factor
+    from strainwave.compare.validate.design import ComponentFactor
+
+    title, definition = "Wave generator bearing inner ring on the cam", "Goodman on the ball-pass cycle at the race"
+    cam = book.quantity(label, "race_stress_major_MPa")[0] if label else None
+    net = book.quantity(label, "net_race_stress_major_MPa")[0] if label else None
+    if cam is None or net is None:
+        return ComponentFactor("wg_bearing", title, None, definition, None, None, "",
+                               "its FEA case did not run or failed (see the cases table)")
+    m = params.material
+    amplitude, mean = 0.5 * abs(cam.value - net.value), 0.5 * (cam.value + net.value)
+    n = goodman_safety_factor(m.fatigue_limit_MPa, m.ultimate_strength_MPa, 1.0, amplitude, mean)
+    return ComponentFactor("wg_bearing", title, n,
+                           f"{definition}: hoop stress {cam.value:.4g} MPa (cam alone, a mean: the ring turns with "
+                           f"the cam) to {net.value:.4g} MPa (under the load-line ball): amplitude {amplitude:.4g} "
+                           f"about {mean:.4g} MPa; 1 / (sigma_a / sigma_-1 + sigma_m / R_m)",
+                           amplitude, m.fatigue_limit_MPa, "wave generator insertion (w0) + rated radial load F_r")
