@@ -117,3 +117,20 @@ def test_cams_active_set_by_the_schur_complement_meets_the_contact_conditions_of
     assert met and state.newton_iterations > 1 and 0 < state.active.sum() < bore.size
     assert np.abs(u - state.u).max() <= 1e-12 * np.abs(u).max()
     assert not conditions(np.ones(bore.size, bool))[1]
+
+
+def test_stiffness_pattern_sums_the_element_matrices_as_a_coo_assembly(setup):
+    import scipy.sparse as sp
+    _, _, tube, _ = setup
+    edofs = wb._element_dofs(tube.basis)
+    n = edofs.shape[1]
+    Ke = np.random.default_rng(2).standard_normal((edofs.shape[0], n, n))
+    coo = sp.csr_matrix((Ke.ravel(), (np.repeat(edofs, n, axis=1).ravel(), np.tile(edofs, (1, n)).ravel())),
+                        shape=(tube.dofs, tube.dofs))
+    slots, indices, indptr = tube.pattern
+    K = sp.csr_matrix((np.bincount(slots, Ke.ravel(), minlength=indices.size), indices, indptr), shape=coo.shape)
+    assert abs(K - coo).max() <= 1e-12 * abs(coo).max()
+    # a slot map off by one entry puts a block's value in its neighbour's place: the comparison can fail
+    shifted = sp.csr_matrix((np.bincount(np.roll(slots, 1), Ke.ravel(), minlength=indices.size), indices, indptr),
+                            shape=coo.shape)
+    assert abs(shifted - coo).max() > 0.1 * abs(coo).max()
