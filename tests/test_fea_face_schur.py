@@ -89,3 +89,15 @@ def test_every_contact_set_through_the_schur_complement_is_the_direct_constraine
                                                                              rel=1e-3)
     finally:
         system.factor.close()
+
+
+def test_a_block_nothing_holds_with_the_face_free_is_refused():
+    # without the ligament no dof holds u_z once the face is free: the factorisation must say so, not return S
+    from strainwave.errors import StageError
+    from strainwave.fea.surface_crack import FaceSystem
+    K, _, base, face_z, mesh = _cube()
+    x, nodes = mesh.p, np.arange(mesh.p.shape[1])
+    no_ligament = base[~np.isin(base, 3 * nodes[np.isclose(x[2], 0.0) & (x[0] > 0.5)] + 2)]
+    FaceSystem.of(K, base, face_z).factor.close()       # with it: factorised
+    with pytest.raises(StageError, match="PARDISO"):
+        FaceSystem.of(K, no_ligament, face_z)
