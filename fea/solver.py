@@ -331,8 +331,8 @@ def schur_factor(A: sp.csr_matrix, tail: np.ndarray, study: str) -> SchurFactor:
     except ImportError:
         return _schur_splu(A, tail, study)
     solver = _pardiso_solver(pypardiso, tuned=True)   # iparm 1 = 1: PARDISO reads iparm 36
-    solver.set_iparm(36, 2)
     n, m = A.shape[0], tail.size
+    solver.set_iparm(36, 2 if m else 0)
     solver.perm = np.zeros(n, np.int32)
     solver.perm[tail] = 1
     upper = sp.triu(A, format="csr")
