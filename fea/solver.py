@@ -310,6 +310,76 @@ def _direct(A: sp.csr_matrix, b: np.ndarray, study: str, *, node_blocks: bool = 
     return lu.solve(b), "splu"
 
 
+@dataclass
+class SchurFactor:
+    """One sparse factorisation of an SPD matrix A that also gave S, the Schur complement of A onto the dofs
+    ``tail`` (A_tt - A_ti A_ii^-1 A_it, dense, in the order of ``tail``): a system solved for many sets of
+    held ``tail`` dofs by dense solves of S's blocks, and ``solve`` for the full A with the same factors."""
+
+    S: np.ndarray
+    solve: Callable[[np.ndarray], np.ndarray]     # A^-1 b, b of shape (n,) or (n, k)
+    close: Callable[[], None]                     # frees the factors
+
+
+def schur_factor(A: sp.csr_matrix, tail: np.ndarray, study: str) -> SchurFactor:
+    """``SchurFactor`` of the SPD matrix A: PARDISO's Schur complement (iparm 36 = 2: the Schur complement in
+    the factorisation step, and the full factors kept for solves) when pypardiso is installed, else SuperLU."""
+    tail = np.asarray(tail, np.int64)
+    try:
+        with _mkl_rt_known():
+            import pypardiso
+    except ImportError:
+        return _schur_splu(A, tail, study)
+    solver = _pardiso_solver(pypardiso, tuned=True)   # iparm 1 = 1: PARDISO reads iparm 36
+    n, m = A.shape[0], tail.size
+    solver.set_iparm(36, 2 if m else 0)
+    solver.perm = np.zeros(n, np.int32)
+    solver.perm[tail] = 1
+    upper = sp.triu(A, format="csr")
+    upper.sort_indices()
+
+    def call(phase: int, b: np.ndarray) -> np.ndarray:
+        solver.set_phase(phase)
+        try:
+            return solver._call_pardiso(upper, np.asfortranarray(b, dtype=float))
+        except Exception as exc:   # a non-positive pivot: the matrix is singular (a rigid-body mode is free)
+            solver.free_memory(everything=True)
+            raise StageError("solve", study, f"PARDISO failed: {exc}") from exc
+
+    # the Schur complement comes back in the first m^2 entries of the solution array
+    x = call(12, np.zeros((n, max(1, -(-m * m // n)))))
+    S = np.array(np.asarray(x).ravel(order="F")[:m * m].reshape(m, m))
+    return SchurFactor(S, lambda b: call(33, b), lambda: solver.free_memory(everything=True))
+
+
+def tail_solve(S: np.ndarray, r: np.ndarray, held: np.ndarray, values: np.ndarray | float = 0.0) -> np.ndarray:
+    """The tail dofs' solution of the condensed system S u = r (``SchurFactor.S``) with the dofs ``held``
+    prescribed to ``values``: a dense Cholesky solve of S's free block."""
+    from scipy.linalg import cho_factor, cho_solve
+    held = np.asarray(held, bool)
+    u = np.zeros(r.shape)
+    u[held] = np.broadcast_to(values, held.shape)[held] if np.ndim(values) else values
+    free = ~held
+    if free.any():
+        rhs = r[free] - S[np.ix_(free, held)] @ u[held]
+        u[free] = cho_solve(cho_factor(S[np.ix_(free, free)]), rhs)
+    return u
+
+
+def _schur_splu(A: sp.csr_matrix, tail: np.ndarray, study: str) -> SchurFactor:
+    """``SchurFactor`` by SuperLU: S from one solve of A_ii per tail dof (far slower than PARDISO's)."""
+    keep = np.ones(A.shape[0], bool)
+    keep[tail] = False
+    inner = np.flatnonzero(keep)
+    try:
+        lu, lu_ii = (spla.splu(M.tocsc(), permc_spec="COLAMD") for M in (A, condense(A.tocsr(), keep)))
+    except RuntimeError as exc:   # singular: a rigid-body mode is not restrained
+        raise StageError("solve", study, f"direct factorisation failed: {exc}") from exc
+    A_it = A[inner][:, tail].toarray()
+    S = A[tail][:, tail].toarray() - A_it.T @ lu_ii.solve(A_it)
+    return SchurFactor(S, lu.solve, lambda: None)
+
+
 # METIS, 3x3 node blocks, two-level factorisation: faster on the 3D matrices (docs/decisions/007-pardiso-settings.md).
 PARDISO_IPARM = {1: 1, 2: 2, 8: 2, 24: 1, 37: -80}
 

@@ -21,6 +21,11 @@ delta lambda_f = 4 (f1.u1 - f1.u1_0) s^2: f1 the far-face load of a unit normal 
 with the converged contact set held, u1_0 the same with the whole face held (the uncracked block, same
 mesh), 4 the two symmetry planes, s the torque's crack-face stress per N*mm. P2 tetrahedra graded to the
 front (``refinement.CrackFrontGrading``), three meshes, GCI of formal order 1 (a crack compliance).
+
+Solution: one factorisation per mesh, of K with the face free, which also gives S, its Schur complement on the
+face's normal dofs (``FaceSystem``); a contact set is then a dense solve of S's open block, and
+f1.u1 - f1.u1_0 = r_O . S_OO^-1 r_O (r: f1 condensed on the face, O: the open dofs), without the difference of
+two energies.
 """
 from __future__ import annotations
 
@@ -38,7 +43,8 @@ from strainwave.fea.result import CrackRecord, Load, MeshQuality, StudyResult, S
 from strainwave.fea.study_facts import TORQUE_RATED, StudyFacts
 
 __all__ = ["STUDY", "ASPECT", "DEPTHS_OVER_T", "SurfaceCrack", "Block", "block_for", "block_mesh", "solve_block",
-           "converge_depth", "delta_name", "sweep_depths_mm", "run", "FIELDS_STATES", "field_paths"]
+           "converge_depth", "delta_name", "sweep_depths_mm", "run", "FIELDS_STATES", "field_paths", "FaceSystem",
+           "open_compliance", "contact_state"]
 
 STUDY = "cup-surface-crack"
 # the crack's shape: a/c = 0.5, a fatigue crack's usual aspect at a notch root (its depth grows slower)
@@ -171,17 +177,64 @@ def _solve(K, f, fixed, sk):
                             method="direct")[0]
 
 
-def contact_state(K, f, base, face_z, sk, start: np.ndarray) -> tuple[np.ndarray, int, np.ndarray]:
-    """Active set of the crack face's normal dofs (True = shut) at load ``f``, from ``start``, its iterations and
-    the solution with it held: held where u_z < 0 would interpenetrate the mirror face, released where the
-    holding force pulls (K u - f)_z < 0."""
+@dataclass
+class FaceSystem:
+    """K with the base held, factorised once with its Schur complement S on the crack face's normal dofs: every
+    contact set is then a dense solve of S's free block (docs/decisions/033-surface-crack-face-schur.md)."""
+
+    K: object                   # the full stiffness
+    base: np.ndarray            # held in every solve (the ligament, the symmetry plane x = 0, the corner)
+    face_z: np.ndarray          # the crack face's normal dofs, held where shut
+    free: np.ndarray            # dofs not in base
+    factor: object              # solver.SchurFactor of K[free][:, free] onto face_z
+
+    @classmethod
+    def of(cls, K, base, face_z) -> "FaceSystem":
+        from strainwave.fea.solver import condense, schur_factor
+        keep = np.ones(K.shape[0], bool)
+        keep[base] = False
+        free = np.flatnonzero(keep)
+        # the ligament holds the block with the face free: PARDISO refuses a singular K here (StageError)
+        factor = schur_factor(condense(K.tocsr(), keep), np.searchsorted(free, face_z), STUDY)
+        return cls(K, base, face_z, free, factor)
+
+    def face_loads(self, f: np.ndarray) -> np.ndarray:
+        """The loads (columns of f) condensed on the face dofs, S u0_F (u0: the face free)."""
+        u0 = self.factor.solve(f[self.free])
+        return self.factor.S @ u0[np.searchsorted(self.free, self.face_z)]
+
+    def held(self, f: np.ndarray, r: np.ndarray, active: np.ndarray) -> np.ndarray:
+        """The solution under f (face loads r) with the face dofs ``active`` held: the open ones from S's free
+        block, then one solve under f plus the held dofs' reactions."""
+        from strainwave.fea.solver import tail_solve
+        u_face = tail_solve(self.factor.S, r, active)
+        reaction = self.factor.S[active] @ u_face - r[active]
+        b = f[self.free].copy()
+        b[np.searchsorted(self.free, self.face_z[active])] += reaction
+        u = np.zeros_like(f)
+        u[self.free] = self.factor.solve(b)
+        u[self.face_z[active]] = 0.0
+        return u
+
+
+def open_compliance(S: np.ndarray, r: np.ndarray, active: np.ndarray) -> float:
+    """f.u with the face dofs ``active`` held minus f.u with the whole face held: r_O . u_O (r the load f
+    condensed on the face), exact without the difference of two energies."""
+    from strainwave.fea.solver import tail_solve
+    return float(r @ tail_solve(S, r, active))
+
+
+def contact_state(system: FaceSystem, f: np.ndarray, r: np.ndarray, start: np.ndarray) -> tuple[np.ndarray, int, np.ndarray]:
+    """Active set of the crack face's normal dofs (True = shut) at load ``f`` (condensed on the face: ``r``),
+    from ``start``, its iterations and the solution with it held: held where u_z < 0 would interpenetrate the
+    mirror face, released where the holding force pulls (K u - f)_z < 0."""
     active = np.asarray(start, bool).copy()
     for it in range(1, MAX_ACTIVE_SET_ITERATIONS + 1):
-        u = _solve(K, f, np.concatenate([base, face_z[active]]), sk)
+        u = system.held(f, r, active)
         # round-off bands: a point at zero gap and zero force stays as it is (no flip-flop between sweeps)
         tol, tol_f = 1e-9 * float(np.abs(u).max()), 1e-9 * float(np.abs(f).max())
-        force = (K @ u - f)[face_z]
-        new = (active & (force >= -tol_f)) | (~active & (u[face_z] < -tol))
+        force = (system.K @ u - f)[system.face_z]
+        new = (active & (force >= -tol_f)) | (~active & (u[system.face_z] < -tol))
         if np.array_equal(new, active):
             return active, it, u
         active = new
@@ -195,21 +248,26 @@ def solve_block(s: Block, h_mm: float, h_fine_mm: float, fields_of: tuple[str, .
     t0 = time.perf_counter()
     md = block_mesh(s, h_mm, h_fine_mm)
     sk, K, f_m, f_b, base, face_z = _system(md, s)
-    uncracked = float(f_m @ _solve(K, f_m, np.concatenate([base, face_z]), sk))
-    by_active: dict[bytes, float] = {}
-    out, fields = {}, {}
-    for name, membrane, bending in s.states:
-        # start from the face points the uncracked stress presses shut: fewer factorizations than from none
-        y = sk.doflocs[1, face_z // 3]
-        start = membrane + bending * (1.0 - 2.0 * y / s.t_mm) < 0.0
-        active, iterations, u = contact_state(K, membrane * f_m + bending * f_b, base, face_z, sk, start)
-        if name in fields_of:
-            fields[name] = (md, sk, u)
-        key = np.packbits(active).tobytes()
-        if key not in by_active:      # the open crack's compliance does not depend on the state's magnitudes
-            by_active[key] = float(f_m @ _solve(K, f_m, np.concatenate([base, face_z[active]]), sk)) - uncracked
-        delta = 4.0 * by_active[key] * s.per_torque_MPa_per_Nmm ** 2
-        out[name] = StateSolution(delta, float(active.mean()) if active.size else 0.0, iterations)
+    system = FaceSystem.of(K, base, face_z)
+    try:
+        r_m, r_b = system.face_loads(np.stack([f_m, f_b], axis=1)).T
+        by_active: dict[bytes, float] = {}
+        out, fields = {}, {}
+        for name, membrane, bending in s.states:
+            # start from the face points the uncracked stress presses shut: fewer iterations than from none
+            y = sk.doflocs[1, face_z // 3]
+            start = membrane + bending * (1.0 - 2.0 * y / s.t_mm) < 0.0
+            active, iterations, u = contact_state(system, membrane * f_m + bending * f_b,
+                                                  membrane * r_m + bending * r_b, start)
+            if name in fields_of:
+                fields[name] = (md, sk, u)
+            key = np.packbits(active).tobytes()
+            if key not in by_active:      # the open crack's compliance does not depend on the state's magnitudes
+                by_active[key] = open_compliance(system.factor.S, r_m, active)
+            delta = 4.0 * by_active[key] * s.per_torque_MPa_per_Nmm ** 2
+            out[name] = StateSolution(delta, float(active.mean()) if active.size else 0.0, iterations)
+    finally:
+        system.factor.close()
     q = md.quality
     return BlockSolution(out, K.shape[0], q.elements, q.nodes, (q.min_quality, q.mean_quality),
                          time.perf_counter() - t0, fields)

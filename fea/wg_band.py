@@ -16,8 +16,9 @@ both planes (u_r = u_z = 0 there), which is exact for the tangent problem of a s
 """
 from __future__ import annotations
 
+import functools
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
@@ -73,6 +74,36 @@ class Tube:
     z: np.ndarray
     rot: sp.csr_matrix          # u_cartesian = rot @ u_cylindrical
     h_mm: float
+    samplers: dict = field(default_factory=dict, repr=False, compare=False)   # stresses_at's located points
+
+    @functools.cached_property
+    def pattern(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The stiffness's CSR pattern (indices, indptr) and the slot of each element-matrix entry (``assemble``'s
+        order: element, 3 a + i, 3 b + k) in it: every assembly sums into the same slots, no COO sort per Newton
+        step. Found on the node pairs (9x fewer than the entries), each a 3x3 block of the scalar pattern."""
+        nodes = self.basis.element_dofs.T                       # (element, a)
+        n = self.basis.N
+        pairs, pair = np.unique((nodes[:, :, None] * n + nodes[:, None, :]).ravel(), return_inverse=True)
+        rows = pairs // n
+        ptr = np.searchsorted(pairs, np.arange(n + 1) * n)
+        width = np.diff(ptr)                                    # node pairs per node row
+        pair = pair.reshape(nodes.shape[0], nodes.shape[1], nodes.shape[1])
+        row = rows[pair]
+        first, w3 = 9 * ptr[row] + 3 * (pair - ptr[row]), 3 * width[row]
+        i = np.arange(3)
+        slots = first[:, :, None, :, None] + i[:, None, None] * w3[:, :, None, :, None] + i
+        p = np.arange(pairs.size)
+        at = 9 * ptr[rows] + 3 * (p - ptr[rows])                # each pair's block in its node row's three rows
+        indices = np.empty(9 * pairs.size, np.int64)
+        indices[(at[:, None, None] + i[:, None] * 3 * width[rows][:, None, None] + i).reshape(-1)] = \
+            np.broadcast_to(3 * (pairs % n)[:, None, None] + i, (pairs.size, 3, 3)).reshape(-1)
+        indptr = np.concatenate([[0], np.cumsum(np.repeat(3 * width, 3))])
+        return slots.reshape(-1), indices, indptr
+
+    @functools.cached_property
+    def rot_t(self) -> sp.csr_matrix:
+        """rot^T in CSR (rot.T is CSC: every product with it would convert)."""
+        return self.rot.T.tocsr()
 
     @property
     def dofs(self) -> int:
@@ -128,10 +159,10 @@ def _element_dofs(basis) -> np.ndarray:
 
 def _state(G: np.ndarray, Ue: np.ndarray, lame: Lame, nonlinear: bool):
     """(F, S) at every point: deformation gradient (I when linear) and 2nd Piola-Kirchhoff (linear: Hooke)."""
-    gu = np.einsum("eak,eqaJ->eqkJ", Ue, G)
+    gu = np.matmul(Ue.transpose(0, 2, 1)[:, None], G)          # (e, q, k, J): du_k/dX_J
     ident = np.eye(3)
     F = ident + gu if nonlinear else np.broadcast_to(ident, gu.shape)
-    strain = 0.5 * (np.einsum("eqMi,eqMj->eqij", F, F) - ident) if nonlinear else 0.5 * (gu + gu.swapaxes(2, 3))
+    strain = 0.5 * (np.matmul(F.swapaxes(2, 3), F) - ident) if nonlinear else 0.5 * (gu + gu.swapaxes(2, 3))
     tr = np.trace(strain, axis1=2, axis2=3)[..., None, None]
     return F, lame.lam_MPa * tr * ident + 2.0 * lame.mu_MPa * strain
 
@@ -152,7 +183,7 @@ def _strain_operator(G: np.ndarray, F: np.ndarray) -> np.ndarray:
     dE_JL = (F_iJ dN_a/dX_L + F_iL dN_a/dX_J)/2; linear when F = I."""
     ne, nq, na = G.shape[:3]
     B = np.empty((ne, nq, 6, na, 3))
-    B[:, :, :3] = np.einsum("eqiJ,eqaJ->eqJai", F, G)
+    B[:, :, :3] = F.swapaxes(2, 3)[:, :, :, None, :] * G.swapaxes(2, 3)[:, :, :, :, None]
     for m, (J, L) in enumerate(_PAIRS):
         B[:, :, 3 + m] = (F[:, :, None, :, J] * G[:, :, :, None, L] + F[:, :, None, :, L] * G[:, :, :, None, J])
     return B.reshape(ne, nq, 6, 3 * na)
@@ -166,16 +197,20 @@ def assemble(tube: Tube, u: np.ndarray, lame: Lame, nonlinear: bool) -> tuple[sp
     F, S = _state(G, u[edofs].reshape(ne, na, 3), lame, nonlinear)
     B = _strain_operator(G, F)
     S_voigt = np.stack([S[..., 0, 0], S[..., 1, 1], S[..., 2, 2], S[..., 1, 2], S[..., 0, 2], S[..., 0, 1]], axis=-1)
-    fe = np.einsum("eqmk,eqm,eq->ek", B, S_voigt, dx)
+    # contractions as batched matrix products: BLAS, not einsum's loops
+    fe = np.matmul((S_voigt * dx[:, :, None]).reshape(ne, 1, nq * 6), B.reshape(ne, nq * 6, -1))[:, 0]
     Bw = (B * dx[:, :, None, None]).reshape(ne, nq * 6, -1)
-    DB = np.einsum("mn,eqnk->eqmk", _voigt_D(lame), B).reshape(ne, nq * 6, -1)
+    DB = np.matmul(_voigt_D(lame), B).reshape(ne, nq * 6, -1)
     Ke = np.matmul(Bw.transpose(0, 2, 1), DB)
     if nonlinear:
-        gsg = np.einsum("eqaJ,eqJL,eqbL,eq->eab", G, S, G, dx)
-        Ke += np.einsum("eab,ik->eaibk", gsg, np.eye(3)).reshape(ne, 3 * na, 3 * na)
-    rows = np.repeat(edofs, 3 * na, axis=1).ravel()
-    cols = np.tile(edofs, (1, 3 * na)).ravel()
-    K = sp.csr_matrix((Ke.ravel(), (rows, cols)), shape=(tube.dofs, tube.dofs))
+        GSw = (np.matmul(G, S) * dx[:, :, None, None]).transpose(0, 2, 1, 3).reshape(ne, na, nq * 3)
+        gsg = np.matmul(GSw, G.transpose(0, 1, 3, 2).reshape(ne, nq * 3, na))
+        blocks = Ke.reshape(ne, na, 3, na, 3)
+        for i in range(3):
+            blocks[:, :, i, :, i] += gsg
+    slots, indices, indptr = tube.pattern
+    K = sp.csr_matrix((np.bincount(slots, Ke.ravel(), minlength=indices.size), indices, indptr),
+                      shape=(tube.dofs, tube.dofs))
     return K, np.bincount(edofs.ravel(), fe.ravel(), minlength=tube.dofs)
 
 
@@ -230,16 +265,15 @@ def band_bore_points(tube: Tube) -> np.ndarray:
 def solve_constrained(tube: Tube, K: sp.csr_matrix, rhs: np.ndarray, fixed: np.ndarray,
                       values: np.ndarray) -> np.ndarray:
     """Solve K x = rhs (Cartesian) with rotated-frame dofs ``fixed`` = ``values``; returns Cartesian x."""
-    from strainwave.fea.solver import _direct
+    from strainwave.fea.solver import _direct, condense
 
-    Kc = (tube.rot.T @ K @ tube.rot).tocsr()
-    bc = tube.rot.T @ rhs
+    Kc = (tube.rot_t @ K @ tube.rot).tocsr()
     x = np.zeros(tube.dofs)
     x[fixed] = values
-    free = np.setdiff1d(np.arange(tube.dofs), fixed)
-    A = Kc[free][:, free]
-    b = bc[free] - Kc[free][:, fixed] @ x[fixed]
-    x[free], _ = _direct(A.tocsr(), b, STUDY, node_blocks=False)
+    keep = np.ones(tube.dofs, bool)
+    keep[fixed] = False
+    b = (tube.rot_t @ rhs - Kc @ x)[keep]
+    x[keep], _ = _direct(condense(Kc, keep), b, STUDY, node_blocks=True)
     return tube.rot @ x
 
 
@@ -278,24 +312,65 @@ def _bore_target_mm(tube: Tube, u: np.ndarray, pts: np.ndarray, w0_mm: float, co
         return w0_mm * np.cos(2.0 * tube.phi[pts])
     if not nonlinear:
         return cam_radius_mm(tube.phi[pts], r_i, w0_mm) - r_i
-    v = (tube.rot.T @ u)[tube.comp[1][pts]]
+    v = (tube.rot_t @ u)[tube.comp[1][pts]]
     return cam_radius_mm(tube.phi[pts] + v / r_i, r_i, w0_mm) - r_i - 0.5 * v ** 2 / r_i
 
 
 def _reassess(tube, R, u, bore, active, w0_mm, nonlinear) -> np.ndarray:
     """The active set at ``u``: a held point stays while the cam pushes it (reaction >= 0); a free point is
     taken up where it would enter the cam."""
-    reaction = (tube.rot.T @ R)[tube.comp[0][bore]]
-    gap = (tube.rot.T @ u)[tube.comp[0][bore]] - _bore_target_mm(tube, u, bore, w0_mm, True, nonlinear)
+    reaction = (tube.rot_t @ R)[tube.comp[0][bore]]
+    gap = (tube.rot_t @ u)[tube.comp[0][bore]] - _bore_target_mm(tube, u, bore, w0_mm, True, nonlinear)
     return np.where(active, reaction >= 0.0, gap < -1e-6 * w0_mm)
+
+
+def _insert_linear(tube: Tube, K0: sp.csr_matrix, w0_mm: float, contact: bool) -> Inserted:
+    """The linear insertion. With the cam, its active set from K0 factorised once with its Schur complement S
+    on the bore's radial dofs (the held end holds the band with the bore free): each set a dense solve of S's
+    free block (docs/decisions/034-wave-generator-solves.md). Then one solve with the set held, which keeps
+    the stresses at round-off (S's products lose digits to the bore's stiff radial coupling)."""
+    base, bore = held_dofs(tube, symmetric=True), band_bore_points(tube)
+    radial = tube.comp[0][bore]
+    target = _bore_target_mm(tube, None, bore, w0_mm, contact, False)
+    active, steps = _cam_active_set(tube, K0, base, radial, target, w0_mm) if contact else (
+        np.ones(bore.size, bool), 1)
+    fixed = np.concatenate([base, radial[active]])
+    u = solve_constrained(tube, K0, np.zeros(tube.dofs), fixed, np.concatenate([np.zeros(base.size), target[active]]))
+    return Inserted(u, K0, active, steps, steps, False)
+
+
+def _cam_active_set(tube: Tube, K0, base, radial, target, w0_mm: float) -> tuple[np.ndarray, int]:
+    """The cam's active set on the bore's radial dofs ``radial`` (True = held at ``target``) of the linear band,
+    and the sets tried: from all held, a held point stays while the cam pushes it, a free one is taken up where
+    it would enter the cam."""
+    from strainwave.fea.solver import condense, schur_factor, tail_solve
+    keep = np.ones(tube.dofs, bool)
+    keep[base] = False
+    factor = schur_factor(condense((tube.rot_t @ K0 @ tube.rot).tocsr(), keep),
+                          np.searchsorted(np.flatnonzero(keep), radial), STUDY)
+    try:
+        active = np.ones(radial.size, bool)
+        for it in range(1, MAX_ACTIVE_SET + 1):
+            u_r = tail_solve(factor.S, np.zeros(radial.size), active, target)
+            reaction = factor.S @ u_r         # no load on the band: the cam's reaction on the bore
+            now = np.where(active, reaction >= 0.0, u_r - target < -1e-6 * w0_mm)
+            if np.array_equal(now, active):
+                return active, it
+            active = now
+    finally:
+        factor.close()
+    raise StageError("solve", STUDY, f"the cam's active set did not settle in {MAX_ACTIVE_SET} steps")
 
 
 def insert(tube: Tube, lame: Lame, w0_mm: float, *, contact: bool, nonlinear: bool, K0=None,
            start: Inserted | None = None) -> Inserted:
-    """The band forced onto the wave generator. Newton and, with contact, the active set of the bore's radial
-    dofs in one loop (a semi-smooth Newton): each step solves with the current set, then the set is
-    reassessed at the new state; done when the set holds and the step is below NEWTON_TOL."""
+    """The band forced onto the wave generator. Linear: ``_insert_linear``. Nonlinear: Newton and, with contact,
+    the active set of the bore's radial dofs in one loop (a semi-smooth Newton): each step solves with the
+    current set, then the set is reassessed at the new state; done when the set holds and the step is below
+    NEWTON_TOL."""
     K0 = K0 if K0 is not None else assemble(tube, np.zeros(tube.dofs), lame, False)[0]
+    if not nonlinear:
+        return _insert_linear(tube, K0, w0_mm, contact)
     base = held_dofs(tube, symmetric=True)
     bore = band_bore_points(tube)
     # a start (the linear solution) gives the nonlinear solve its active set and first iterate
@@ -303,20 +378,19 @@ def insert(tube: Tube, lame: Lame, w0_mm: float, *, contact: bool, nonlinear: bo
     u = np.zeros(tube.dofs) if start is None else start.u.copy()
     converged, changes = False, 0
     for it in range(1, MAX_NEWTON + MAX_ACTIVE_SET + 1):
-        K, R = (K0, K0 @ u) if not nonlinear else assemble(tube, u, lame, True)
+        K, R = assemble(tube, u, lame, True)
         if contact and it > 1:
-            now = _reassess(tube, R, u, bore, active, w0_mm, nonlinear)
+            now = _reassess(tube, R, u, bore, active, w0_mm, True)
             changed, active = not np.array_equal(now, active), now
             changes += changed
             converged = converged and not changed
         if converged:
-            return Inserted(u, K, active, it - 1, changes + 1, nonlinear)
+            return Inserted(u, K, active, it - 1, changes + 1, True)
         fixed = np.concatenate([base, tube.comp[0][bore[active]]])
-        target = np.concatenate([np.zeros(base.size), _bore_target_mm(tube, u, bore[active], w0_mm, contact,
-                                                                      nonlinear)])
-        du = solve_constrained(tube, K, -R, fixed, target - (tube.rot.T @ u)[fixed])
+        target = np.concatenate([np.zeros(base.size), _bore_target_mm(tube, u, bore[active], w0_mm, contact, True)])
+        du = solve_constrained(tube, K, -R, fixed, target - (tube.rot_t @ u)[fixed])
         u = u + du
-        converged = not nonlinear or np.linalg.norm(du) <= NEWTON_TOL * np.linalg.norm(u)
+        converged = np.linalg.norm(du) <= NEWTON_TOL * np.linalg.norm(u)
     raise StageError("solve", STUDY, f"insertion did not converge in {it} Newton / active-set steps")
 
 
@@ -333,25 +407,36 @@ def torque_increment(tube: Tube, state: Inserted, shear: np.ndarray) -> np.ndarr
 def stresses_at(tube: Tube, u: np.ndarray, lame: Lame, nonlinear: bool, r, phi, z) -> np.ndarray:
     """Cauchy stress (linear: Hooke's) at points given in (r, phi, z), in the cylindrical frame of each point:
     (N, 3, 3) with indices r, theta, z."""
+    pts = np.array([r, phi, z], dtype=float)
+    key = pts.tobytes()
+    if key not in tube.samplers:     # every state of a mesh is read at the same points: locate them once
+        tube.samplers[key] = _sampler(tube, pts)
+    out = np.empty((pts.shape[1], 3, 3))
+    for sel, G, edofs, Q in tube.samplers[key]:
+        F, S = _state(G, u[edofs].reshape(len(sel), -1, 3), lame, nonlinear)
+        F, S = F[:, 0], S[:, 0]
+        sigma = np.einsum("niJ,nJL,nkL->nik", F, S, F) / np.linalg.det(F)[:, None, None] if nonlinear else S
+        out[sel] = np.einsum("nij,njk,nlk->nil", Q, sigma, Q)     # Q sigma Q^T
+    return out
+
+
+def _sampler(tube: Tube, pts: np.ndarray) -> list[tuple]:
+    """Per group of points at one reference position: (their indices, shape-function gradients, element dofs,
+    rotation to the cylindrical frame)."""
     from skfem import CellBasis
 
-    pts = np.array([r, phi, z], dtype=float)
     tind = tube.param_mesh.element_finder()(*pts)
     X = tube.param_mesh.mapping().invF(pts[:, :, None], tind=tind)[:, :, 0]
-    out = np.empty((pts.shape[1], 3, 3))
     keys = np.round(X, 9)
+    groups = []
     for key in np.unique(keys, axis=1).T:
         sel = np.flatnonzero(np.all(keys.T == key, axis=1))
         cb = CellBasis(tube.mesh, tube.basis.elem, elements=tind[sel], quadrature=(X[:, sel[:1]], np.ones(1)))
-        G = _gradients(cb)
-        F, S = _state(G, u[_element_dofs(cb)].reshape(len(sel), -1, 3), lame, nonlinear)
-        F, S = F[:, 0], S[:, 0]
-        sigma = np.einsum("niJ,nJL,nkL->nik", F, S, F) / np.linalg.det(F)[:, None, None] if nonlinear else S
-        c, s = np.cos(phi[sel]), np.sin(phi[sel])
+        c, s = np.cos(pts[1, sel]), np.sin(pts[1, sel])
         Q = np.zeros((len(sel), 3, 3))
         Q[:, 0, 0], Q[:, 0, 1], Q[:, 1, 0], Q[:, 1, 1], Q[:, 2, 2] = c, s, -s, c, 1.0
-        out[sel] = np.einsum("nij,njk,nlk->nil", Q, sigma, Q)     # Q sigma Q^T
-    return out
+        groups.append((sel, _gradients(cb), _element_dofs(cb), Q))
+    return groups
 
 
 def von_mises_MPa(sig: np.ndarray) -> np.ndarray:

@@ -93,3 +93,44 @@ def test_contact_lifts_the_band_off_near_the_minor_axis(setup):
     bore = wb.band_bore_points(tube)
     held = tube.phi[bore][state.active]
     assert held.size and held.min() < 1e-9 and held.max() < 0.5 * math.pi - 1e-6
+
+
+def test_cams_active_set_by_the_schur_complement_meets_the_contact_conditions_of_the_direct_solve(setup):
+    # the set _cam_active_set settles on S is the direct constrained solve's contact state: the cam pushes every
+    # held point, no free point enters the cam; holding all points instead fails those conditions
+    p, geo, _, lame = setup
+    tube = wb.tube_mesh(geo, 6)
+    w0 = p.gear.radial_deformation_mm
+    state = wb.insert(tube, lame, w0, contact=True, nonlinear=False)
+    bore = wb.band_bore_points(tube)
+    radial = tube.comp[0][bore]
+    target = wb.cam_radius_mm(tube.phi[bore], geo.r_i_mm, w0) - geo.r_i_mm
+
+    def conditions(active):
+        base = wb.held_dofs(tube, symmetric=True)
+        fixed = np.concatenate([base, radial[active]])
+        u = wb.solve_constrained(tube, state.K, np.zeros(tube.dofs), fixed,
+                                 np.concatenate([np.zeros(base.size), target[active]]))
+        reaction, u_r = (tube.rot_t @ (state.K @ u))[radial], (tube.rot_t @ u)[radial]
+        return u, bool(np.all(reaction[active] >= 0.0) and np.all(u_r[~active] - target[~active] >= -1e-6 * w0))
+    u, met = conditions(state.active)
+    assert met and state.newton_iterations > 1 and 0 < state.active.sum() < bore.size
+    assert np.abs(u - state.u).max() <= 1e-12 * np.abs(u).max()
+    assert not conditions(np.ones(bore.size, bool))[1]
+
+
+def test_stiffness_pattern_sums_the_element_matrices_as_a_coo_assembly(setup):
+    import scipy.sparse as sp
+    _, _, tube, _ = setup
+    edofs = wb._element_dofs(tube.basis)
+    n = edofs.shape[1]
+    Ke = np.random.default_rng(2).standard_normal((edofs.shape[0], n, n))
+    coo = sp.csr_matrix((Ke.ravel(), (np.repeat(edofs, n, axis=1).ravel(), np.tile(edofs, (1, n)).ravel())),
+                        shape=(tube.dofs, tube.dofs))
+    slots, indices, indptr = tube.pattern
+    K = sp.csr_matrix((np.bincount(slots, Ke.ravel(), minlength=indices.size), indices, indptr), shape=coo.shape)
+    assert abs(K - coo).max() <= 1e-12 * abs(coo).max()
+    # a slot map off by one entry puts a block's value in its neighbour's place: the comparison can fail
+    shifted = sp.csr_matrix((np.bincount(np.roll(slots, 1), Ke.ravel(), minlength=indices.size), indices, indptr),
+                            shape=coo.shape)
+    assert abs(shifted - coo).max() > 0.1 * abs(coo).max()
