@@ -71,7 +71,7 @@ def _child(conn, study: str, params, kwargs: dict) -> None:
     # The run printed the material's E/G/nu warning once; each case re-validates the same material and
     # would print it again in Python's raw format (with a source line) on every case.
     warnings.simplefilter("ignore", MaterialWarning)
-    one_mkl_thread()
+    one_thread_per_case()
     try:
         from strainwave.fea.studies import run_study
 
@@ -88,15 +88,19 @@ def _child(conn, study: str, params, kwargs: dict) -> None:
         conn.close()
 
 
-def one_mkl_thread() -> None:
-    """MKL (PARDISO) in one thread in this case process, unless the user set MKL_NUM_THREADS.
+def one_thread_per_case() -> None:
+    """Every BLAS and OpenMP pool (OpenBLAS, MKL/PARDISO) in one thread in this case process, unless the user
+    set MKL_NUM_THREADS or OMP_NUM_THREADS.
 
-    Cases run two at a time on the two cores (and the STEP export beside them), so a second MKL thread
-    finds no free core: it spins in OpenMP's wait loop and takes CPU from the other case
-    (docs/decisions/014-validate-case-isolation.md).
-    MKL is loaded only when a case first solves
-    directly (pypardiso), after this; the fork server does not preload it."""
+    Cases run two at a time on the two cores (and the STEP export beside them), so a second thread finds no
+    free core: it spins in its wait loop and takes CPU from the other case (docs/decisions/014-validate-case-
+    isolation.md; OpenBLAS's second thread made the wave generator's case 8x slower, decision 035).
+    MKL is loaded only when a case first solves directly (pypardiso), after the environment variable is set;
+    numpy's OpenBLAS is preloaded by the fork server, so its pool is limited at run time."""
     os.environ.setdefault("MKL_NUM_THREADS", "1")
+    if "OMP_NUM_THREADS" not in os.environ and "OPENBLAS_NUM_THREADS" not in os.environ:
+        from threadpoolctl import threadpool_limits
+        threadpool_limits(limits=1)
 
 
 def _cpu_seconds() -> float:
