@@ -10,6 +10,7 @@
 """
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 from dataclasses import dataclass
@@ -19,7 +20,7 @@ import numpy as np
 from strainwave.compare.diagnose.baseline import Baseline
 from strainwave.compare.diagnose.effects import effects_for
 from strainwave.compare.diagnose.effects.base import Context
-from strainwave.compare.diagnose.fit import NOISE_FLOOR, Fit, fit_effects, rescored
+from strainwave.compare.diagnose.fit import MAX_NFEV, NOISE_FLOOR, Fit, fit_effects, rescored
 from strainwave.compare.diagnose.judge import (AMBIGUOUS_BIC, BIC_THRESHOLD, Judge, best_per_set, implausible,
                                                unresolved)
 from strainwave.compare.diagnose.loop_stiffness import with_loop_prior
@@ -32,6 +33,10 @@ from strainwave.compare.diagnose.structure import StructureTest, reference_noise
 # than this many prior sigmas off: closer, the prior costs that form under one BIC unit, about all another
 # reading of the stiffness could win back (speed)
 REREAD_PRIOR_SIGMAS = 1.0
+# the best pair's other form combinations are screened for this many evaluations; of those still short of their
+# optimum, the POLISHED best by BIC are refitted in full and the rest left out
+SCREEN_NFEV = 10
+POLISHED = 6
 
 
 @dataclass(frozen=True)
@@ -174,10 +179,21 @@ def _pairs(noise: Noise) -> list[Fit]:
     forms = {e.id: [f for f in pairable if f.id == e.id] for e in top.effects}
     (_, fa), (_, fb) = forms.items()
     done = {tuple(e.label for e in p.effects) for p in pairs}
-    return pairs + [with_loop_prior(j.ctx, f) for f in fit_all(
-        j.ctx, [FitTask(x.effects + y.effects, (np.concatenate([x.theta, y.theta]),), j.noise)
-                for x, y in itertools.product(fa, fb)
-                if (x.effects[0].label, y.effects[0].label) not in done], j.sigma, j.uncertainty, j.workers)]
+    combos = [FitTask(x.effects + y.effects, (np.concatenate([x.theta, y.theta]),), j.noise, SCREEN_NFEV)
+              for x, y in itertools.product(fa, fb) if (x.effects[0].label, y.effects[0].label) not in done]
+    return pairs + [with_loop_prior(j.ctx, f) for f in _screened(j, combos)]
+
+
+def _screened(j: Judge, combos: list[FitTask]) -> list[Fit]:
+    """The combinations fitted for SCREEN_NFEV evaluations; those not yet converged are refitted in full from the
+    same start where their BIC ranks among the POLISHED best of them, the others are left out (speed)."""
+    fits = fit_all(j.ctx, combos, j.sigma, j.uncertainty, j.workers)
+    unfinished = sorted((i for i, f in enumerate(fits) if not f.converged), key=lambda i: fits[i].bic)
+    polish = unfinished[:POLISHED]
+    for i, f in zip(polish, fit_all(j.ctx, [dataclasses.replace(combos[i], max_nfev=MAX_NFEV) for i in polish],
+                                    j.sigma, j.uncertainty, j.workers)):
+        fits[i] = f
+    return [f for i, f in enumerate(fits) if f.converged or i in polish]
 
 
 def _offset_pairs(noise: Noise) -> list[Fit]:
