@@ -64,7 +64,7 @@ class Noise:
 class Candidates:
     """Step 2: the pairs fitted beside the singles."""
 
-    pairs: tuple[Fit, ...]           # pairs of the best singles, every form combination of the best pair
+    pairs: tuple[Fit, ...]           # pairs of the best singles, the best pair's form combinations (screened)
     offset_pairs: tuple[Fit, ...]    # the best single beside a series compliance
 
 
@@ -186,7 +186,8 @@ def _pairs(noise: Noise) -> list[Fit]:
 
 def _screened(j: Judge, combos: list[FitTask]) -> list[Fit]:
     """The combinations fitted for SCREEN_NFEV evaluations; those not yet converged are refitted in full from the
-    same start where their BIC ranks among the POLISHED best of them, the others are left out (speed)."""
+    same start where their BIC ranks among the POLISHED best of them, the others are left out (speed:
+    docs/decisions/031-diagnose-pair-screening.md)."""
     fits = fit_all(j.ctx, combos, j.sigma, j.uncertainty, j.workers)
     unfinished = sorted((i for i, f in enumerate(fits) if not f.converged), key=lambda i: fits[i].bic)
     polish = unfinished[:POLISHED]
