@@ -10,7 +10,6 @@
 """
 from __future__ import annotations
 
-import dataclasses
 import itertools
 import math
 from dataclasses import dataclass
@@ -20,7 +19,7 @@ import numpy as np
 from strainwave.compare.diagnose.baseline import Baseline
 from strainwave.compare.diagnose.effects import effects_for
 from strainwave.compare.diagnose.effects.base import Context
-from strainwave.compare.diagnose.fit import MAX_NFEV, NOISE_FLOOR, Fit, fit_effects, rescored
+from strainwave.compare.diagnose.fit import NOISE_FLOOR, Fit, fit_effects, rescored
 from strainwave.compare.diagnose.judge import (AMBIGUOUS_BIC, BIC_THRESHOLD, Judge, best_per_set, implausible,
                                                unresolved)
 from strainwave.compare.diagnose.loop_stiffness import with_loop_prior
@@ -33,10 +32,6 @@ from strainwave.compare.diagnose.structure import StructureTest, reference_noise
 # than this many prior sigmas off: closer, the prior costs that form under one BIC unit, about all another
 # reading of the stiffness could win back (speed)
 REREAD_PRIOR_SIGMAS = 1.0
-# the best pair's other form combinations are screened for this many evaluations; of those still short of their
-# optimum, the POLISHED best by BIC are refitted in full and the rest left out
-SCREEN_NFEV = 10
-POLISHED = 6
 
 
 @dataclass(frozen=True)
@@ -64,7 +59,7 @@ class Noise:
 class Candidates:
     """Step 2: the pairs fitted beside the singles."""
 
-    pairs: tuple[Fit, ...]           # pairs of the best singles, the best pair's form combinations (screened)
+    pairs: tuple[Fit, ...]           # pairs of the best singles, every form combination of the best pair
     offset_pairs: tuple[Fit, ...]    # the best single beside a series compliance
 
 
@@ -179,22 +174,10 @@ def _pairs(noise: Noise) -> list[Fit]:
     forms = {e.id: [f for f in pairable if f.id == e.id] for e in top.effects}
     (_, fa), (_, fb) = forms.items()
     done = {tuple(e.label for e in p.effects) for p in pairs}
-    combos = [FitTask(x.effects + y.effects, (np.concatenate([x.theta, y.theta]),), j.noise, SCREEN_NFEV)
-              for x, y in itertools.product(fa, fb) if (x.effects[0].label, y.effects[0].label) not in done]
-    return pairs + [with_loop_prior(j.ctx, f) for f in _screened(j, combos)]
-
-
-def _screened(j: Judge, combos: list[FitTask]) -> list[Fit]:
-    """The combinations fitted for SCREEN_NFEV evaluations; those not yet converged are refitted in full from the
-    same start where their BIC ranks among the POLISHED best of them, the others are left out (speed:
-    docs/decisions/031-diagnose-pair-screening.md)."""
-    fits = fit_all(j.ctx, combos, j.sigma, j.uncertainty, j.workers)
-    unfinished = sorted((i for i, f in enumerate(fits) if not f.converged), key=lambda i: fits[i].bic)
-    polish = unfinished[:POLISHED]
-    for i, f in zip(polish, fit_all(j.ctx, [dataclasses.replace(combos[i], max_nfev=MAX_NFEV) for i in polish],
-                                    j.sigma, j.uncertainty, j.workers)):
-        fits[i] = f
-    return [f for i, f in enumerate(fits) if f.converged or i in polish]
+    return pairs + [with_loop_prior(j.ctx, f) for f in fit_all(
+        j.ctx, [FitTask(x.effects + y.effects, (np.concatenate([x.theta, y.theta]),), j.noise)
+                for x, y in itertools.product(fa, fb)
+                if (x.effects[0].label, y.effects[0].label) not in done], j.sigma, j.uncertainty, j.workers)]
 
 
 def _offset_pairs(noise: Noise) -> list[Fit]:

@@ -34,7 +34,6 @@ from strainwave.compare.diagnose.effects.base import Context, Effect
 # noise level, so synthetic noise-free files do not turn a stiffness error inside the prior into "evidence"
 NOISE_FLOOR = 1e-5
 AR_ORDER = 2
-MAX_NFEV = 150             # the optimiser's budget of residual evaluations per start
 
 
 def ar_profile(r: np.ndarray, order: int = AR_ORDER) -> tuple[float, np.ndarray]:
@@ -123,7 +122,6 @@ class Fit:
     prior_chi2: float = 0.0           # ((s - 1)/u)^2
     design: np.ndarray | None = None  # d model / d (theta, b0, b1, s) at the fit (n x (p + 3))
     uncertainty: float = 0.02         # the prior's relative sigma on s (its information 1/u^2 joins the data's)
-    converged: bool = True            # the optimiser stopped on its tolerances, not on max_nfev
 
     @property
     def id(self) -> str:
@@ -177,7 +175,7 @@ class _Projector:
 
 
 def fit_effects(ctx: Context, effects: tuple[Effect, ...], sigma: float, uncertainty: float,
-                starts: list[np.ndarray] | None = None, max_nfev: int = MAX_NFEV, noise=None) -> Fit:
+                starts: list[np.ndarray] | None = None, max_nfev: int = 150, noise=None) -> Fit:
     """Best fit of baseline + ``effects``; ``sigma`` is the noise std in normalised units; ``noise``: the
     recording's noise model to score the BIC with (``bic_fixed_noise``), else profiled (``bic_ar``)."""
     proj = _Projector(ctx, sigma / uncertainty)
@@ -193,7 +191,6 @@ def fit_effects(ctx: Context, effects: tuple[Effect, ...], sigma: float, uncerta
 
     params = [p for e in effects for p in e.params]
     at_bound: tuple[str, ...] = ()
-    converged = True
     if params:
         lo = np.array([p.lo for p in params])
         hi = np.array([p.hi for p in params])
@@ -207,7 +204,6 @@ def fit_effects(ctx: Context, effects: tuple[Effect, ...], sigma: float, uncerta
             if best is None or sol.cost < best.cost:
                 best = sol
         theta = best.x
-        converged = bool(best.status != 0)
         # a parameter pinned at a bound that is not a physical zero (e.g. a weight >= 0) is reported
         names = [f"{e.id}.{p.name}" for e in effects for p in e.params]
         at_bound = tuple(nm for nm, x, a, b, p in zip(names, theta, lo, hi, params)
@@ -233,7 +229,7 @@ def fit_effects(ctx: Context, effects: tuple[Effect, ...], sigma: float, uncerta
             s2 = rss / max(n - k, 1) * (1.0 + rho) / (1.0 - rho)
             cov = _theta_and_scale(design.T @ design / s2, uncertainty)
     return Fit(effects, theta, (float(beta[0]), float(beta[1]), float(beta[2])), model, rss, bic, k, cov,
-               at_bound, float(prior_chi2), design, uncertainty, converged)
+               at_bound, float(prior_chi2), design, uncertainty)
 
 
 class _Contribution:
@@ -340,5 +336,5 @@ def rescored(fit: Fit, ctx: Context, noise) -> Fit:
     return dataclasses.replace(fit, bic=bic_fixed_noise(r, fit.k, fit.prior_chi2, noise), cov=cov)
 
 
-__all__ = ["AR_ORDER", "Fit", "MAX_NFEV", "NOISE_FLOOR", "ar_profile", "bic_ar", "bic_fixed_noise", "noise_filter", "fit_effects",
+__all__ = ["AR_ORDER", "Fit", "NOISE_FLOOR", "ar_profile", "bic_ar", "bic_fixed_noise", "noise_filter", "fit_effects",
            "gls_cov", "lag1", "rescored"]

@@ -25,20 +25,18 @@ from typing import Sequence
 import numpy as np
 
 from strainwave.compare.diagnose.effects.base import Context, Effect
-from strainwave.compare.diagnose.fit import MAX_NFEV, Fit, fit_effects
+from strainwave.compare.diagnose.fit import Fit, fit_effects
 
 __all__ = ["FitTask", "fit_all", "usable_workers"]
 
 
 @dataclass(frozen=True)
 class FitTask:
-    """One call of ``fit_effects``: the effects, optional starting points, optional fixed noise model, the
-    optimiser's budget of evaluations."""
+    """One call of ``fit_effects``: the effects, optional starting points, optional fixed noise model."""
 
     effects: tuple[Effect, ...]
     starts: tuple[np.ndarray, ...] | None = None
     noise: object | None = None
-    max_nfev: int = MAX_NFEV
 
 
 def usable_workers() -> int:
@@ -57,8 +55,7 @@ def usable_workers() -> int:
 
 def _run(ctx: Context, task: FitTask, sigma: float, uncertainty: float) -> Fit:
     return fit_effects(ctx, task.effects, sigma, uncertainty,
-                       starts=None if task.starts is None else list(task.starts), max_nfev=task.max_nfev,
-                       noise=task.noise)
+                       starts=None if task.starts is None else list(task.starts), noise=task.noise)
 
 
 def _warm(ctx: Context, tasks: Sequence[FitTask]) -> None:
