@@ -46,10 +46,11 @@ class CrackLifeReport:
     def summary(self) -> str:
         head = f"{self.recording}: {self.verdict}" + (f" ({' + '.join(self.named)})" if self.named else "")
         if self.sizing is None:
-            return head + "\nno crack-type change to size: the diagnosis names neither crack_closure nor a compliance change"
+            return head + ("\nno crack-type change to size: the diagnosis names neither crack_closure, a compliance "
+                           "change nor a stiffness ripple at twice the input angle")
         s = self.sizing
-        lines = [head, f"measured compliance change {s['delta']:.4g} +/- {s['sigma']:.2g} {s['unit']} "
-                       f"(1 sigma, from {s['effect']})", *s["lines"], *life_lines(self.lives)]
+        lines = [head, f"measured {s.get('quantity', 'compliance change')} {s['delta']:.4g} +/- {s['sigma']:.2g} "
+                       f"{s['unit']} (1 sigma, from {s['effect']})", *s["lines"], *life_lines(self.lives)]
         return "\n".join(lines)
 
     def to_dict(self) -> dict:

@@ -289,10 +289,13 @@ def measured_change(diagnosis, load=None, response=None) -> tuple[float, float, 
 def size_diagnosis(diagnosis, params, load=None, response=None, *, results: Path | None = None,
                    cache_dir: Path | None = None, progress: Callable[[str], None] = lambda m: None) -> dict | None:
     """The sizing record of a diagnosis (and its recording's load and response): per candidate component of
-    its specimen, the depth or why not."""
+    its specimen, the depth or why not; a 2x stiffness ripple on the flexspline's breathing-ripple curve
+    (breathing_crack.size_ripple)."""
     change = measured_change(diagnosis, load, response)
     if change is None:
-        return None
+        from strainwave.compare.diagnose.breathing_crack import ripple_curve_fea, size_ripple
+        return size_ripple(diagnosis, SPECIMEN_COMPONENTS.get(diagnosis.specimen, ()),
+                           lambda: ripple_curve_fea(params, cache_dir, progress))
     delta, sigma, effect = change
     curves, missing = [], []
     for component in SPECIMEN_COMPONENTS.get(diagnosis.specimen, ()):

@@ -180,15 +180,9 @@ def fit_effects(ctx: Context, effects: tuple[Effect, ...], sigma: float, uncerta
     recording's noise model to score the BIC with (``bic_fixed_noise``), else profiled (``bic_ar``)."""
     proj = _Projector(ctx, sigma / uncertainty)
     n = len(ctx.u)
+    contribution = _Contribution(ctx, effects)
 
-    def contribution(theta):
-        total = np.zeros(n)
-        i = 0
-        for e in effects:
-            total += e.contribution(ctx, theta[i:i + e.n_params])
-            i += e.n_params
-        return total
-
+    @_last_call
     def residual(theta):
         z = ctx.y - contribution(theta)
         beta = proj.solve(z)
@@ -236,6 +230,40 @@ def fit_effects(ctx: Context, effects: tuple[Effect, ...], sigma: float, uncerta
             cov = _theta_and_scale(design.T @ design / s2, uncertainty)
     return Fit(effects, theta, (float(beta[0]), float(beta[1]), float(beta[2])), model, rss, bic, k, cov,
                at_bound, float(prior_chi2), design, uncertainty)
+
+
+class _Contribution:
+    """The effects' summed contribution at theta; each effect's last evaluation is kept, so a difference step in
+    one effect's parameter (the Jacobian of a pair) does not evaluate the other effect again."""
+
+    def __init__(self, ctx: Context, effects: tuple[Effect, ...]):
+        self.ctx, self.effects, self.n = ctx, effects, len(ctx.u)
+        self.last: list[tuple[bytes, np.ndarray] | None] = [None] * len(effects)
+
+    def __call__(self, theta: np.ndarray) -> np.ndarray:
+        total = np.zeros(self.n)
+        i = 0
+        for k, e in enumerate(self.effects):
+            part = np.asarray(theta[i:i + e.n_params], dtype=float)
+            key = part.tobytes()
+            if self.last[k] is None or self.last[k][0] != key:
+                self.last[k] = (key, e.contribution(self.ctx, part))
+            total += self.last[k][1]
+            i += e.n_params
+        return total
+
+
+def _last_call(fn):
+    """``fn`` (of a float vector) remembering its last argument and result: the optimiser's Jacobian step
+    evaluates the residual again at the point it has just accepted."""
+    last: list = [None, None]
+
+    def wrapped(theta):
+        key = np.asarray(theta, dtype=float).tobytes()
+        if last[0] != key:
+            last[0], last[1] = key, fn(theta)
+        return last[1].copy()
+    return wrapped
 
 
 def _jacobian(ctx: Context, effects: tuple[Effect, ...], proj: _Projector, residual, lo: np.ndarray, hi: np.ndarray):

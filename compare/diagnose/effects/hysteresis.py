@@ -105,6 +105,7 @@ def dahl_exponent_unit(ctx: Context, w: float, n: float) -> np.ndarray:
     return _dahl_state(ctx, approach)
 
 
+@functools.lru_cache(maxsize=64)
 def bouc_wen_travel(n: float, q: float) -> tuple[np.ndarray, np.ndarray]:
     """(tau, g): the travel tau (in units of w) the Bouc-Wen law needs to bring x = d z from -1 (saturated the
     other way) to x, tabulated against g = -ln(1 - x), the log of the distance to saturation. Trapezoids in x up
