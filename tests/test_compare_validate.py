@@ -434,6 +434,12 @@ def test_both_verdicts_open_the_report_and_a_failing_design_is_red(quick_run, re
         if f["component"] == "cup_wave_generator":   # the cup's fatigue factor on its revolution cycle
             fatigue = results["cup_wave_generator"]["fatigue"]
             assert f["safety_factor"] == pytest.approx(min(fatigue["n_eq13"], fatigue["n_goodman"]))
+        elif f["component"] == "wg_bearing":         # Goodman about the cam's race stress, swing p0 / 2
+            case = next(c for c in results["metadata"]["cases"] if c["study"] == "wg-bearing")
+            cam = case["result"]["quantities"]["race_stress_major_MPa"]["value"]
+            amplitude, m = f["stress_MPa"], results["metadata"]["params"]["material"]
+            assert f["safety_factor"] == pytest.approx(
+                1.0 / (amplitude / m["fatigue_limit_MPa"] + (cam - amplitude) / m["ultimate_strength_MPa"]))
         else:
             assert f["safety_factor"] == pytest.approx(results["stress_at_rated"][f["component"]]["safety_factor"])
     assert design["passed"] == all(f["passed"] for f in design["factors"])
