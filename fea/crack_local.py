@@ -3,12 +3,12 @@
 The global model is solved once, uncracked (no crack-front refinement, so its mesh does not depend on the
 crack depth). The local model is a patch of the part around the crack, meshed with the crack as a seam
 (``crack_seam``) and refined at its front (a through-wall crack: ``crack_extruded``), its cut faces held at
-the global displacement (interpolated
-on the global curved P2 mesh), every other face as in the global model (traction free here). Solved
-closed and opened on one mesh, its strain energy falls by dU: the energy the crack releases at fixed
-grip on the cut. To first order in the crack size this is the energy released at fixed load, half the
-compliance change times the load squared, so delta lambda = 2 dU / T^2 for the torque T of the global
-load. The neglected part is the patch's boundary held rigid: O((a / L)^2) for a patch of half size L.
+the global displacement (interpolated on the global curved P2 mesh), every other face as in the global
+model (traction free here). Opened, its strain energy falls by dU: the energy the crack releases at fixed
+grip on the cut, solved once on the opened mesh by Bueckner's superposition (``local_release``). To first
+order in the crack size this is the energy released at fixed load, half the compliance change times the
+load squared, so delta lambda = 2 dU / T^2 for the torque T of the global load. The neglected part is the
+patch's boundary held rigid: O((a / L)^2) for a patch of half size L.
 """
 from __future__ import annotations
 
@@ -100,14 +100,10 @@ def interpolate_p2(doflocs: np.ndarray, element_dofs: np.ndarray, u: np.ndarray,
 
 @dataclass(frozen=True)
 class LocalEnergy:
-    closed_Nmm: float       # strain energy of the uncracked patch under the global displacement
-    opened_Nmm: float       # the same patch and mesh, crack opened
+    released_Nmm: float     # strain energy the opened crack releases at fixed grip on the patch's cut
     dofs: int               # of the opened patch
     solve_s: float
-
-    @property
-    def released_Nmm(self) -> float:
-        return self.closed_Nmm - self.opened_Nmm
+    field: tuple = ()       # (opened mesh, skfem mesh, displacement of the opened patch) when asked for
 
 
 def patch_energy(md: MeshData, lame, global_u, *, group: str = "cut", study: str = "fea",
@@ -116,20 +112,31 @@ def patch_energy(md: MeshData, lame, global_u, *, group: str = "cut", study: str
     (n, 3) mm and every other face free; ``plane_strain_faces``: a group whose other nodes keep u_z = 0
     (the faces of a slab in plane strain); ``method``: "direct", or "amg" (p-multigrid CG on a P2 mesh),
     faster on a chunky patch and slower on a thin plate-like one (``patch_solver``)."""
-    from strainwave.fea.solver import solve_elasticity
     from strainwave.fea.static import assemble
     sk, K, f, _, _ = assemble(md, lame, study=study)
-    nodes = group_dofs(sk, md, group)
-    g = np.asarray(global_u(sk.doflocs[:, nodes].T), float)
-    dofs, values = (3 * nodes[:, None] + np.arange(3)).ravel(), g.ravel()
-    if plane_strain_faces is not None:
-        faces = np.setdiff1d(group_dofs(sk, md, plane_strain_faces), nodes)
-        dofs, values = np.concatenate([dofs, 3 * faces + 2]), np.concatenate([values, np.zeros(faces.size)])
-    pmg = method == "amg" and md.order == 2
-    u, info = solve_elasticity(K, f, fixed_dofs=dofs, fixed_values=values, coords=sk.doflocs, dim=3,
-                               study=study, method="amg" if pmg else "direct",
-                               p2_element_dofs=sk.element_dofs if pmg else None)
+    dofs = _held_dofs(sk, md, group, plane_strain_faces)
+    values = np.zeros(dofs.size)
+    cut = dofs[: 3 * group_dofs(sk, md, group).size]
+    values[: cut.size] = np.asarray(global_u(sk.doflocs[:, cut[::3] // 3].T), float).ravel()
+    u, info = _solve(K, f, sk, md, dofs, values, method, study)
     return 0.5 * float(u @ (K @ u)), info.dofs, info.time_s
+
+
+def _held_dofs(sk, md: MeshData, group: str, plane_strain_faces: str | None) -> np.ndarray:
+    """The dofs a patch holds: every component on ``group`` (the cut), u_z on a plane-strain slab's faces."""
+    nodes = group_dofs(sk, md, group)
+    dofs = (3 * nodes[:, None] + np.arange(3)).ravel()
+    if plane_strain_faces is None:
+        return dofs
+    return np.concatenate([dofs, 3 * np.setdiff1d(group_dofs(sk, md, plane_strain_faces), nodes) + 2])
+
+
+def _solve(K, f, sk, md: MeshData, dofs, values, method: str, study: str):
+    from strainwave.fea.solver import solve_elasticity
+    pmg = method == "amg" and md.order == 2
+    return solve_elasticity(K, f, fixed_dofs=dofs, fixed_values=values, coords=sk.doflocs, dim=3,
+                            study=study, method="amg" if pmg else "direct",
+                            p2_element_dofs=sk.element_dofs if pmg else None)
 
 
 # Patch span over thickness up to which p-multigrid CG beats PARDISO: a chunky block factorises with 3D fill,
@@ -143,14 +150,36 @@ def patch_solver(span_mm: float, thickness_mm: float) -> str:
 
 
 def local_release(md: MeshData, lame, global_u, *, study: str, plane_strain_faces: str | None = None,
-                  method: str = "direct") -> LocalEnergy:
-    """The patch solved closed and opened (``crack_seam.open_crack``) on one mesh."""
+                  method: str = "direct", keep_field: bool = False) -> LocalEnergy:
+    """The energy the crack releases in the patch, by Bueckner's superposition on the opened mesh.
+
+    The uncracked field w = ``global_u`` at the nodes of the opened patch is in equilibrium except across the
+    crack, where K w leaves equal and opposite forces r on the two faces' node pairs (their antisymmetric
+    part: the symmetric rest is w's interpolation residual). The opened patch is w + v with K v = -r and
+    v = 0 where the patch is held, so its energy falls by -v.r / 2: the closed-minus-opened difference of
+    two fixed-grip solves, from one solve and without subtracting two large energies."""
+    from strainwave.fea.crack_contact import crack_pairs
     from strainwave.fea.crack_seam import open_crack_for
-    closed, _, t0 = patch_energy(md, lame, global_u, study=study, plane_strain_faces=plane_strain_faces,
-                                 method=method)
-    opened, dofs, t1 = patch_energy(open_crack_for(md, study), lame, global_u, study=study,
-                                    plane_strain_faces=plane_strain_faces, method=method)
-    return LocalEnergy(closed, opened, dofs, t0 + t1)
+    from strainwave.fea.static import assemble
+    opened = open_crack_for(md, study)
+    sk, K, _, _, _ = assemble(opened, lame, study=study)
+    pairs = crack_pairs(opened).in_dofs(sk.node_to_dof)
+    # K's rows at the faces reach only the nodes of the elements that touch them: w is needed there alone
+    near = np.isin(sk.element_dofs, np.concatenate([pairs.plus, pairs.minus])).any(axis=0)
+    reach = np.arange(sk.doflocs.shape[1]) if keep_field else np.unique(sk.element_dofs[:, near])
+    w = np.zeros((sk.doflocs.shape[1], 3))
+    w[reach] = np.asarray(global_u(sk.doflocs[:, reach].T), float)
+    faces = (3 * np.concatenate([pairs.plus, pairs.minus])[:, None] + np.arange(3)).ravel()
+    kw = np.zeros(K.shape[0])
+    kw[faces] = K.tocsr()[faces] @ w.ravel()
+    kw = kw.reshape(-1, 3)
+    half_jump = 0.5 * (kw[pairs.plus] - kw[pairs.minus])
+    r = np.zeros_like(kw)
+    r[pairs.plus], r[pairs.minus] = half_jump, -half_jump
+    v, info = _solve(K, -r.ravel(), sk, opened, _held_dofs(sk, opened, "cut", plane_strain_faces), 0.0, method,
+                     study)
+    field = (opened, sk, w.ravel() + v) if keep_field else ()
+    return LocalEnergy(-0.5 * float(v @ r.ravel()), info.dofs, info.time_s, field)
 
 
 def compliance_from_release(released_Nmm: float, load: float) -> float:

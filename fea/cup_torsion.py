@@ -91,6 +91,8 @@ FLEX_3D = "flexibility_3d_rad_per_Nmm"     # the 3D mesh's own uncracked lambda_
 # released energy: 1.3 (a/L)^2, docs/decisions/025), meshed as a tip-graded plane extruded through the wall
 # (crack_extruded): quarter-point tips of a/4 on the finest mesh, rings growing by 0.4 of the distance
 PATCH_HALF_OVER_A = 32.0
+# the patch's stress read this fraction inside each element: a quarter-point tip's map is singular at its node
+QUARTER_POINT_INSET = 1e-3
 LOCAL_GRADING = PlaneGrading(tip_over_a=0.25, growth=0.4, far_over_a=8.0, layers=10, quarter_point=True)
 
 
@@ -196,14 +198,14 @@ class CupTorsion(TorsionVariant):
         md_loc, t_loc = local_patch_mesh(part, a, h_mm / self.h_fine_mm)
         global_u = partial(interpolate_p2, sol.sk.doflocs, sol.sk.element_dofs, sol.u)
         solver = patch_solver(2 * PATCH_HALF_OVER_A * a, self.params.flexspline_cup.wall_thickness_mm)
-        local = local_release(md_loc, sol.lame, global_u, study=STUDY, method=solver)
+        local = local_release(md_loc, sol.lame, global_u, study=STUDY, method=solver, keep_field=keep_fields)
         delta = compliance_from_release(local.released_Nmm, torque)
         progress(f"{STUDY}: local patch {local.dofs} dofs, released {local.released_Nmm:.4g} N mm")
         values = {FLEX: flex, CRACKED: flex + delta, DELTA: delta, "local_dofs": float(local.dofs)}
         timings = {"mesh": t_mesh + t_loc, "assembly": sol.timings_s["assembly"],
                    "solve": sol.timings_s["solve"] + local.solve_s}
         return MeshSolve(h_mm, values, md.quality, timings, sol.solver.to_dict(),
-                         {"solution": sol, "unit_shear_torque_Nmm": torque} if keep_fields else {})
+                         {"solution": sol, "unit_shear_torque_Nmm": torque, "patch": local.field} if keep_fields else {})
 
     def quantities(self, series: Mapping[str, Series]) -> dict:
         s = series["solid"]
@@ -230,15 +232,23 @@ class CupTorsion(TorsionVariant):
         if self.crack_method == GLOBAL_LOCAL:
             return CrackRecord(self.crack_depth_mm, f"global-local ({what}): the cup uncracked, the crack in a wall "
                                f"patch of +-{PATCH_HALF_OVER_A:g} a (tip-graded, extruded through the wall) held at "
-                               "the cup's displacement, solved closed and opened", part.meta.get("crack_z_mm"))
+                               "the cup's displacement, opened and loaded on its faces by the uncracked field's forces (Bueckner)",
+                               part.meta.get("crack_z_mm"))
         return seam_crack(self.crack_depth_mm, part, what)
 
     def write_fields(self, series: Mapping[str, Series], vtu: Path, load: Load) -> tuple[Path, ...]:
         finest = series["solid"].finest.fields
         sol = finest["solution"]
         scale = self.params.gear.output_torque_Nmm / finest["unit_shear_torque_Nmm"]   # fields at the design T
-        return (write_solid_fields(vtu, sol.md, sol.sk, sol.u * scale, sol.lame,
-                                   info=field_info(STUDY, load.describe(), self.params.material)),)
+        info = field_info(STUDY, load.describe(), self.params.material)
+        written = (write_solid_fields(vtu, sol.md, sol.sk, sol.u * scale, sol.lame, info=info),)
+        if not finest.get("patch"):
+            return written
+        # the crack's own field: its local patch opened, the global field plus Bueckner's correction
+        md_loc, sk_loc, u_loc = finest["patch"]
+        cracked = Path(vtu).with_name(Path(vtu).stem + "_cracked.vtu")
+        return written + (write_solid_fields(cracked, md_loc, sk_loc, u_loc * scale, sol.lame, info=info,
+                                             inset=QUARTER_POINT_INSET),)
 
     def meta(self, part, series: Mapping[str, Series]) -> dict:
         out = dict(torsion_meta(self.params, self.order, self.ratio, series["solid"].h_mm), teeth=self.teeth)

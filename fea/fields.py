@@ -42,12 +42,14 @@ def nodal_displacement(md: MeshData, sk: SkfemMesh, u: np.ndarray) -> np.ndarray
     return out
 
 
-def _element_node_stress(sk: SkfemMesh, u: np.ndarray, lame: Lame, d: int, thermal: ThermalStrain | None = None):
+def _element_node_stress(sk: SkfemMesh, u: np.ndarray, lame: Lame, d: int, thermal: ThermalStrain | None = None,
+                         inset: float = 0.0):
     """Cauchy stress sigma = C (eps - eps_th) at each element's own nodes: (d, d, nel, nloc) (plane stress:
-    zz = 0), and the basis."""
+    zz = 0), and the basis; ``inset`` > 0 reads each node that fraction of the way to the element's centre."""
     from skfem import Basis
     elem = sk.element
     X = np.asarray(elem.doflocs, float).T                      # reference node positions (dim, nloc)
+    X = X + inset * (X.mean(axis=1, keepdims=True) - X)
     basis = Basis(sk.mesh, elem, quadrature=(X, np.ones(X.shape[1])))
     nloc = X.shape[1]
     grad = np.zeros((d, d, basis.nelems, nloc))                # du_a/dx_b at each element's nodes
@@ -72,13 +74,14 @@ _COMPONENTS = [(0, 0), (1, 1), (2, 2), (0, 1), (1, 2), (2, 0)]
 
 
 def nodal_stress(md: MeshData, sk: SkfemMesh, u: np.ndarray, lame: Lame,
-                 thermal: ThermalStrain | None = None) -> np.ndarray:
+                 thermal: ThermalStrain | None = None, inset: float = 0.0) -> np.ndarray:
     """Averaged nodal Cauchy stress (N, 6) as xx, yy, zz, xy, yz, zx in MPa (plane stress: zz = 0).
 
     ``lame`` must match the analysis (plane-stress Lame constants in 2D); ``thermal`` the thermal strain
-    it was solved with (sigma = C (eps - eps_th))."""
+    it was solved with (sigma = C (eps - eps_th)); ``inset``: see ``_element_node_stress`` (a quarter-point
+    element's map is singular at its tip node)."""
     d = md.dim
-    sig, basis = _element_node_stress(sk, u, lame, d, thermal)
+    sig, basis = _element_node_stress(sk, u, lame, d, thermal, inset)
     dofs = basis.element_dofs                                   # (nloc, nel); quadrature node q = local dof q
     n = basis.N
     count = np.bincount(dofs.ravel(), minlength=n)
@@ -270,11 +273,11 @@ def stress_fields(stress: np.ndarray) -> dict[str, np.ndarray]:
 
 
 def write_solid_fields(path: Path, md: MeshData, sk: SkfemMesh, u: np.ndarray, lame: Lame,
-                       info: Mapping[str, str | float] | None = None) -> Path:
+                       info: Mapping[str, str | float] | None = None, inset: float = 0.0) -> Path:
     """The fields every elasticity study writes (the registry's ``vtu_fields``): displacement, the stress
     tensor, von Mises and the principal stresses at the mesh nodes, as VTU (``info``: FieldData, see
-    ``field_info``)."""
-    s = nodal_stress(md, sk, u, lame)
+    ``field_info``); ``inset``: see ``nodal_stress``."""
+    s = nodal_stress(md, sk, u, lame, inset=inset)
     return write_vtu(path, md, {"displacement_mm": nodal_displacement(md, sk, u), **stress_fields(s)}, info=info)
 
 

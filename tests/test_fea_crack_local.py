@@ -1,6 +1,6 @@
 """Global-local crack compliance (fea.crack_local): the P2 interpolation of the global field, the patch's
-strain energy under a prescribed displacement, and the released energy of a centre crack in a plate held
-at fixed grip against Griffith's closed form. Coarse meshes: a few seconds."""
+strain energy under a prescribed displacement, the released energy of a centre crack in a plate held
+at fixed grip against Griffith's closed form, and Bueckner's one-solve release against the two solves. Coarse meshes: a few seconds."""
 from __future__ import annotations
 
 import math
@@ -129,6 +129,22 @@ def test_fixed_grip_release_of_a_centre_crack_matches_griffith_and_fails_on_a_pe
     assert compliance_from_release(local.released_Nmm, load) == pytest.approx(2 * local.released_Nmm / load ** 2)
     with pytest.raises(ValueError, match="nonzero"):
         compliance_from_release(1.0, 0.0)
+
+
+def test_bueckner_release_is_the_closed_minus_opened_energy_and_its_field_the_opened_solution(plate_mesh):
+    """A uniform field is the closed patch's own discrete solution (P2 holds it exactly), so the one-solve
+    superposition must give the two fixed-grip solves' energy difference and the opened patch's field."""
+    from strainwave.fea.crack_seam import open_crack_for
+    from strainwave.fea.static import assemble
+    lame, field = Lame.from_young(E, NU), _uniaxial_y(50.0)
+    closed = patch_energy(plate_mesh, lame, field)[0]
+    opened_md = open_crack_for(plate_mesh, "test")
+    opened = patch_energy(opened_md, lame, field)[0]
+    local = local_release(plate_mesh, lame, field, study="test", keep_field=True)
+    assert local.released_Nmm == pytest.approx(closed - opened, rel=1e-7)
+    md, sk, u = local.field
+    K = assemble(md, lame, study="test")[1]
+    assert 0.5 * float(u @ (K @ u)) == pytest.approx(opened, rel=1e-9)
 
 
 def test_cup_crack_patch_is_the_wall_sector_around_the_seam_and_refuses_to_leave_the_tube():
