@@ -27,26 +27,30 @@ OUTSIDE_TOL = 0.05      # largest distance outside the nearest element (in its s
 
 
 def _p2_shape(lam: np.ndarray) -> np.ndarray:
-    """(..., 10) P2 tet shape values at barycentric ``lam`` (..., 4): vertices, then SKFEM_EDGES' edges."""
+    """(..., 10 or 6) P2 shape values at barycentric ``lam`` (..., 4 or 3) of a tet or a triangle: vertices,
+    then SKFEM_EDGES' edges."""
     vert = lam * (2.0 * lam - 1.0)
-    edge = np.stack([4.0 * lam[..., a] * lam[..., b] for a, b in SKFEM_EDGES[3]], axis=-1)
+    edge = np.stack([4.0 * lam[..., a] * lam[..., b] for a, b in SKFEM_EDGES[lam.shape[-1] - 1]], axis=-1)
     return np.concatenate([vert, edge], axis=-1)
 
 
 def _p2_shape_grad(lam: np.ndarray) -> np.ndarray:
-    """(..., 10, 3) derivatives of ``_p2_shape`` w.r.t. the reference coordinates (lam1, lam2, lam3)."""
-    dlam = np.array([[-1.0, -1.0, -1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
+    """(..., nloc, d) derivatives of ``_p2_shape`` w.r.t. the reference coordinates (lam1 .. lam_d)."""
+    d = lam.shape[-1] - 1
+    dlam = np.vstack([-np.ones(d), np.eye(d)])
     vert = (4.0 * lam - 1.0)[..., None] * dlam
-    edge = np.stack([4.0 * (lam[..., a, None] * dlam[b] + lam[..., b, None] * dlam[a]) for a, b in SKFEM_EDGES[3]],
+    edge = np.stack([4.0 * (lam[..., a, None] * dlam[b] + lam[..., b, None] * dlam[a]) for a, b in SKFEM_EDGES[d]],
                     axis=-2)
     return np.concatenate([vert, edge], axis=-2)
 
 
 def _reference_coords(x: np.ndarray, elem_x: np.ndarray) -> np.ndarray:
-    """Barycentric coordinates (n, 4) of points ``x`` (n, 3) in curved P2 tets with nodes ``elem_x`` (n, 10, 3)."""
-    v = elem_x[:, :4]
-    J = np.stack([v[:, 1] - v[:, 0], v[:, 2] - v[:, 0], v[:, 3] - v[:, 0]], axis=-1)
-    xi = np.linalg.solve(J, (x - v[:, 0])[..., None])[..., 0]      # straight tet: the start
+    """Barycentric coordinates (n, d + 1) of points ``x`` (n, d) in curved P2 simplices with nodes ``elem_x``
+    (n, nloc, d)."""
+    d = x.shape[1]
+    v = elem_x[:, :d + 1]
+    J = np.stack([v[:, k] - v[:, 0] for k in range(1, d + 1)], axis=-1)
+    xi = np.linalg.solve(J, (x - v[:, 0])[..., None])[..., 0]      # straight simplex: the start
     for _ in range(NEWTON_STEPS):
         lam = np.concatenate([1.0 - xi.sum(axis=1, keepdims=True), xi], axis=1)
         r = np.einsum("nk,nkd->nd", _p2_shape(lam), elem_x) - x
@@ -60,15 +64,17 @@ def _reference_coords(x: np.ndarray, elem_x: np.ndarray) -> np.ndarray:
     return lam
 
 
-def interpolate_p2(doflocs: np.ndarray, element_dofs: np.ndarray, u: np.ndarray, points_mm: np.ndarray) -> np.ndarray:
-    """(n, 3) displacement at ``points_mm`` (n, 3) of the interleaved P2 field ``u`` on a curved tet10 mesh
-    (scikit-fem numbering: ``doflocs`` (3, N), ``element_dofs`` (10, nel)). Each point takes the element
-    that holds it most deeply (largest smallest barycentric coordinate) among those whose bounding box
-    holds it: a point of a curved surface may lie a hair outside every element, and then the nearest one
-    extrapolates its polynomial."""
+def interpolate_p2(doflocs: np.ndarray, element_dofs: np.ndarray, u: np.ndarray, points_mm: np.ndarray,
+                   components: int = 3) -> np.ndarray:
+    """(n, components) values at ``points_mm`` (n, d) of the interleaved P2 field ``u`` on a curved tet10
+    (d = 3) or triangle6 (d = 2) mesh (scikit-fem numbering: ``doflocs`` (d, N), ``element_dofs`` (nloc,
+    nel)). Each point takes the element that holds it most deeply (largest smallest barycentric coordinate)
+    among those whose bounding box holds it: a point of a curved surface may lie a hair outside every
+    element, and then the nearest one extrapolates its polynomial."""
     pts = np.asarray(points_mm, float)
-    elem = doflocs[:, element_dofs].transpose(2, 1, 0)                # (nel, 10, 3)
-    centroids = elem[:, :4].mean(axis=1)
+    d = pts.shape[1]
+    elem = doflocs[:, element_dofs].transpose(2, 1, 0)                # (nel, nloc, d)
+    centroids = elem[:, :d + 1].mean(axis=1)
     reach = np.linalg.norm(elem - centroids[:, None], axis=2).max(axis=1)
     # every element whose node ball can hold the point (flat wall elements: the holder's centroid may be far)
     near = cKDTree(centroids).query_ball_point(pts, r=float(reach.max()) * (1.0 + OUTSIDE_TOL))
@@ -87,15 +93,15 @@ def interpolate_p2(doflocs: np.ndarray, element_dofs: np.ndarray, u: np.ndarray,
     inside = np.clip(best_lam, 0.0, None)
     inside /= inside.sum(axis=1, keepdims=True)
     gap = np.linalg.norm(np.einsum("nk,nkd->nd", _p2_shape(inside), elem_x) - pts, axis=1)
-    size = np.linalg.norm(elem_x[:, 1:4] - elem_x[:, :1], axis=2).max(axis=1)
+    size = np.linalg.norm(elem_x[:, 1:d + 1] - elem_x[:, :1], axis=2).max(axis=1)
     # points of the patch's curved faces may lie a hair outside the global P2 surface: extrapolated
     far = ~(gap <= OUTSIDE_TOL * size)
     if far.any():
         raise ValueError(f"interpolate_p2: {int(far.sum())} points lie outside the mesh (up to "
                          f"{float(np.nanmax(np.where(far, gap, 0.0))):.3g} mm)")
-    phi = _p2_shape(best_lam)                                          # (n, 10)
-    dofs = element_dofs[:, best_el].T                                  # (n, 10) scalar dofs
-    return np.stack([np.einsum("nk,nk->n", phi, u[3 * dofs + c]) for c in range(3)], axis=1)
+    phi = _p2_shape(best_lam)                                          # (n, nloc)
+    dofs = element_dofs[:, best_el].T                                  # (n, nloc) scalar dofs
+    return np.stack([np.einsum("nk,nk->n", phi, u[components * dofs + c]) for c in range(components)], axis=1)
 
 
 @dataclass(frozen=True)

@@ -10,12 +10,15 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import replace
 from typing import Callable
+
+import numpy as np
 
 from strainwave.fea.mesh_data import MeshData
 from strainwave.fea.skeleton import MeshSolve
 
-__all__ = ["section_fine_mm", "mesh_cup_section", "solve_cup_section", "section_flexibility"]
+__all__ = ["section_fine_mm", "mesh_cup_section", "solve_cup_section", "section_flexibility", "section_displacement"]
 
 # Section size wall/6 (quick wall/4); the hub's corner (r^2/3 field) refined to a tenth of it, the band's
 # edge (a traction step, log field) to a quarter: finer cells at r = d1/2 defeat skfem's facet inversion
@@ -74,7 +77,8 @@ def solve_cup_section(params, h_mm: float, *, keep_fields: bool = False,
     sol = solve_torsion_section(md, params.material.implied_shear_modulus_MPa, lambda r: 1.0 / arm + 0.0 * r)
     progress(f"cup-torsion (axisymmetric): h = {h_mm:.3g} mm, {md.nodes_mm.shape[0]} nodes, "
              f"lambda_f {sol.flexibility_rad_per_Nmm:.6e}")
-    return MeshSolve(h_mm, {FLEX: sol.flexibility_rad_per_Nmm, "nodes": float(md.nodes_mm.shape[0])}, md.quality,
+    scalar = replace(md.quality, dofs=md.nodes_mm.shape[0])      # psi: one unknown per node
+    return MeshSolve(h_mm, {FLEX: sol.flexibility_rad_per_Nmm, "nodes": float(md.nodes_mm.shape[0])}, scalar,
                      {"mesh": t_mesh, "axisymmetric": time.perf_counter() - t0 - t_mesh},
                      fields={"section": sol} if keep_fields else {})
 
@@ -86,3 +90,16 @@ def section_flexibility(params, *, quick: bool = False, unit: str = "rad/(N*mm)"
     sizes = refinement_sizes(section_fine_mm(params, quick), DEFAULT_RATIO)
     solves = on_three_meshes(lambda h, k: solve_cup_section(params, h), sizes)
     return converged_quantity(FLEX, unit, [s.h_mm for s in solves], [s.values[FLEX] for s in solves])
+
+
+def section_displacement(sol) -> Callable:
+    """The 3D displacement of the smooth cup from its section solution (``SectionSolution`` at unit torque):
+    points (n, 3) mm -> u = psi(r, z) (-y, x, 0), i.e. u_theta = r psi: exact, not an approximation."""
+    from strainwave.fea.crack_local import interpolate_p2
+
+    def displacement(points_mm):
+        x = np.asarray(points_mm, float)
+        rz = np.stack([np.hypot(x[:, 0], x[:, 1]), x[:, 2]], axis=1)
+        psi = interpolate_p2(sol.basis.doflocs, sol.basis.element_dofs, sol.psi, rz, components=1)[:, 0]
+        return np.stack([-psi * x[:, 1], psi * x[:, 0], np.zeros_like(psi)], axis=1)
+    return displacement

@@ -17,7 +17,7 @@ from typing import ClassVar, Mapping
 
 from strainwave.errors import InputError
 from strainwave.fea.assembly import Lame
-from strainwave.fea.cup_axisym import section_fine_mm, solve_cup_section
+from strainwave.fea.cup_axisym import section_displacement, section_fine_mm, solve_cup_section
 from strainwave.fea.crack_extruded import PlaneGrading, crack_tips_xy, cylinder_map, extruded_patch, plane_patch_mesh
 from strainwave.fea.crack_local import compliance_from_release, interpolate_p2, local_release, patch_solver
 from strainwave.fea.crack_seam import open_crack_for, seam_crack
@@ -91,6 +91,8 @@ FLEX_3D = "flexibility_3d_rad_per_Nmm"     # the 3D mesh's own uncracked lambda_
 # released energy: 1.3 (a/L)^2, docs/decisions/025), meshed as a tip-graded plane extruded through the wall
 # (crack_extruded): quarter-point tips of a/4 on the finest mesh, rings growing by 0.4 of the distance
 PATCH_HALF_OVER_A = 32.0
+# the section is solved for a unit torque (shaft_axisym.solve_torsion_section's default)
+SECTION_TORQUE_NMM = 1.0
 # the patch's stress read this fraction inside each element: a quarter-point tip's map is singular at its node
 QUARTER_POINT_INSET = 1e-3
 LOCAL_GRADING = PlaneGrading(tip_over_a=0.25, growth=0.4, far_over_a=8.0, layers=10, quarter_point=True)
@@ -130,6 +132,7 @@ class CupTorsion(TorsionVariant):
                                    "axisymmetric (r, z) section of P2 triangles; the crack as a seam or in a global-local patch")
     teeth: bool
     crack_method: str = DEFAULT_CRACK_METHOD
+    solid_series: bool = True       # the 3D cup (its fields, lambda_f on a 3D mesh); see ``run``
 
     @classmethod
     def volume_and_wall(cls, params) -> tuple[float, float]:
@@ -159,16 +162,25 @@ class CupTorsion(TorsionVariant):
         # the seam part IS the uncracked cup when solved closed
         return _build(self.params, self.crack_depth_mm, self.teeth)
 
+    @property
+    def patch_on_section(self) -> bool:
+        """The crack's patch driven by the exact axisymmetric field of the section (a smooth cup, global-local)."""
+        return self.crack_depth_mm is not None and self.crack_method == GLOBAL_LOCAL and not self.teeth
+
     def series(self) -> tuple[SeriesPlan, ...]:
-        plans = (SeriesPlan("solid", refinement_sizes(self.h_fine_mm, self.ratio)),)
+        plans = ()
+        if self.solid_series or not self.patch_on_section:
+            plans += (SeriesPlan("solid", refinement_sizes(self.h_fine_mm, self.ratio)),)
         if not self.teeth:      # the toothless cup is axisymmetric: lambda_f on its (r, z) section
             plans += (SeriesPlan("section", refinement_sizes(section_fine_mm(self.params, False), self.ratio)),)
         return plans
 
     def solve(self, part, series, h_mm, k, keep_fields, progress) -> MeshSolve:
         if series == "section":
-            return solve_cup_section(self.params, h_mm, progress=progress)
+            return self._solve_section(part, h_mm, k, keep_fields, progress)
         if self.crack_depth_mm is not None and self.crack_method == GLOBAL_LOCAL:
+            if self.patch_on_section:
+                return self._solve_solid(part, h_mm, keep_fields, progress)
             return self._solve_global_local(part, h_mm, keep_fields, progress)
         cracked = self.crack_depth_mm is not None
         refine = (CRACK_FRONT.refine(part.crack_front_mm, h_mm, self.h_fine_mm, self.crack_depth_mm),) if cracked else ()
@@ -187,13 +199,44 @@ class CupTorsion(TorsionVariant):
         return MeshSolve(h_mm, values, last.md.quality, timings, last.solver.to_dict(),
                          {"solution": last, "unit_shear_torque_Nmm": torque} if keep_fields else {})
 
-    def _solve_global_local(self, part, h_mm, keep_fields, progress) -> MeshSolve:
-        """The uncracked cup on the mesh of size h (no crack-front refinement), then the crack in its local
-        patch (``local_patch_mesh``: sizes times h / h_fine, layers over it) driven by that solution."""
+    def _solve_section(self, part, h_mm, k, keep_fields, progress) -> MeshSolve:
+        """lambda_f on the section; with a crack (``patch_on_section``) its patch on refinement k, held at the
+        section's exact 3D field for a unit torque."""
+        solved = solve_cup_section(self.params, h_mm, keep_fields=self.patch_on_section, progress=progress)
+        if not self.patch_on_section:
+            return solved
+        a, mat = self.crack_depth_mm, self.params.material
+        md_loc, t_loc = local_patch_mesh(part, a, self.ratio ** k)
+        solver = patch_solver(2 * PATCH_HALF_OVER_A * a, self.params.flexspline_cup.wall_thickness_mm)
+        local = local_release(md_loc, Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio),
+                              section_displacement(solved.fields["section"]), study=STUDY, method=solver,
+                              keep_field=keep_fields)
+        delta = compliance_from_release(local.released_Nmm, SECTION_TORQUE_NMM)
+        progress(f"{STUDY}: local patch {local.dofs} dofs, released {local.released_Nmm:.4g} N mm")
+        flex = solved.values[FLEX]
+        values = dict(solved.values, **{CRACKED: flex + delta, DELTA: delta, "local_dofs": float(local.dofs)})
+        timings = dict(solved.timings_s, mesh_patch=t_loc, solve_patch=local.solve_s)
+        return MeshSolve(h_mm, values, solved.mesh, timings, solved.solver,
+                         {"patch": local.field, "unit_shear_torque_Nmm": SECTION_TORQUE_NMM} if keep_fields else {})
+
+    def _uncracked_solid(self, part, h_mm, progress) -> tuple[MeshData, float, float, StaticSolution, float]:
+        """(mesh, meshing s, lambda_f, solution, unit-shear torque) of the uncracked 3D cup at size h."""
         md, t_mesh = mesh_for_study(part, study=STUDY, h_mm=h_mm, order=self.order, progress=progress,
                                     optimize_threshold=optimize_threshold(
                                         h_mm, self.params.flexspline_cup.wall_thickness_mm))
-        flex, sol, torque = solve_mesh(md, self.params, progress=progress)
+        return (md, t_mesh, *solve_mesh(md, self.params, progress=progress))
+
+    def _solve_solid(self, part, h_mm, keep_fields, progress) -> MeshSolve:
+        """The uncracked 3D cup on the mesh of size h: its own lambda_f and its fields."""
+        md, t_mesh, flex, sol, torque = self._uncracked_solid(part, h_mm, progress)
+        timings = {"mesh": t_mesh, "assembly": sol.timings_s["assembly"], "solve": sol.timings_s["solve"]}
+        return MeshSolve(h_mm, {FLEX: flex}, md.quality, timings, sol.solver.to_dict(),
+                         {"solution": sol, "unit_shear_torque_Nmm": torque} if keep_fields else {})
+
+    def _solve_global_local(self, part, h_mm, keep_fields, progress) -> MeshSolve:
+        """The uncracked cup on the mesh of size h (no crack-front refinement), then the crack in its local
+        patch (``local_patch_mesh``: sizes times h / h_fine, layers over it) driven by that solution."""
+        md, t_mesh, flex, sol, torque = self._uncracked_solid(part, h_mm, progress)
         a = self.crack_depth_mm
         md_loc, t_loc = local_patch_mesh(part, a, h_mm / self.h_fine_mm)
         global_u = partial(interpolate_p2, sol.sk.doflocs, sol.sk.element_dofs, sol.u)
@@ -208,6 +251,13 @@ class CupTorsion(TorsionVariant):
                          {"solution": sol, "unit_shear_torque_Nmm": torque, "patch": local.field} if keep_fields else {})
 
     def quantities(self, series: Mapping[str, Series]) -> dict:
+        if self.patch_on_section:
+            sec = series["section"]
+            out = crack_flexibility_quantities(sec.h_mm, sec.values(FLEX), sec.values(CRACKED), UNIT,
+                                               delta=sec.values(DELTA))
+            if "solid" in series:
+                out[FLEX_3D] = series["solid"].converged(FLEX, UNIT)
+            return out
         s = series["solid"]
         cracked = self.crack_depth_mm is not None
         delta = s.values(DELTA) if cracked and self.crack_method == GLOBAL_LOCAL else None
@@ -237,21 +287,29 @@ class CupTorsion(TorsionVariant):
         return seam_crack(self.crack_depth_mm, part, what)
 
     def write_fields(self, series: Mapping[str, Series], vtu: Path, load: Load) -> tuple[Path, ...]:
-        finest = series["solid"].finest.fields
-        sol = finest["solution"]
-        scale = self.params.gear.output_torque_Nmm / finest["unit_shear_torque_Nmm"]   # fields at the design T
+        """The 3D cup's field, and with a patch the crack's own: the patch opened (global field plus
+        Bueckner's correction), both at the design torque."""
         info = field_info(STUDY, load.describe(), self.params.material)
-        written = (write_solid_fields(vtu, sol.md, sol.sk, sol.u * scale, sol.lame, info=info),)
-        if not finest.get("patch"):
+        T = self.params.gear.output_torque_Nmm
+        written = ()
+        if "solid" in series:
+            finest = series["solid"].finest.fields
+            sol = finest["solution"]
+            written += (write_solid_fields(vtu, sol.md, sol.sk, sol.u * (T / finest["unit_shear_torque_Nmm"]),
+                                           sol.lame, info=info),)
+        with_patch = [s.finest.fields for s in series.values() if s.finest.fields.get("patch")]
+        if not with_patch:
             return written
-        # the crack's own field: its local patch opened, the global field plus Bueckner's correction
-        md_loc, sk_loc, u_loc = finest["patch"]
+        md_loc, sk_loc, u_loc = with_patch[0]["patch"]
+        mat = self.params.material
         cracked = Path(vtu).with_name(Path(vtu).stem + "_cracked.vtu")
-        return written + (write_solid_fields(cracked, md_loc, sk_loc, u_loc * scale, sol.lame, info=info,
+        return written + (write_solid_fields(cracked, md_loc, sk_loc, u_loc * (T / with_patch[0]["unit_shear_torque_Nmm"]),
+                                             Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio), info=info,
                                              inset=QUARTER_POINT_INSET),)
 
     def meta(self, part, series: Mapping[str, Series]) -> dict:
-        out = dict(torsion_meta(self.params, self.order, self.ratio, series["solid"].h_mm), teeth=self.teeth)
+        sizes = (series["solid"] if "solid" in series else series["section"]).h_mm
+        out = dict(torsion_meta(self.params, self.order, self.ratio, sizes), teeth=self.teeth)
         if self.crack_depth_mm is not None:
             out["crack_part"] = {k: v for k, v in part.meta.items() if isinstance(v, (int, float, str))}
         if "section" in series:
@@ -263,12 +321,13 @@ class CupTorsion(TorsionVariant):
 def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, progress=lambda m: None,
         quick=False, teeth: bool = False, ratio: float = DEFAULT_RATIO,
         crack_method: str | None = None) -> StudyResult:
-    """lambda_f on three meshes (GCI); with a crack delta lambda_f = cracked - uncracked on each whole-cup mesh
-    (``crack_method`` "seam", the default) or from the crack's local patch ("global-local": crack_local,
-    crack_extruded)."""
+    """lambda_f on three meshes (GCI); with a crack delta lambda_f from the crack's local patch ("global-local",
+    the default: crack_local, crack_extruded; a smooth cup's patch held at its section's exact field, the 3D
+    cup solved only for its fields) or cracked - uncracked on each whole-cup mesh (``crack_method`` "seam")."""
     fc = params.flexspline_cup
     h = mesh_size_mm or default_size_mm(params, quick)
     if h >= fc.length_mm / 4:
         raise InputError("--mesh-size-mm", h, f"must be < L/4 = {fc.length_mm / 4:g} mm for the cup")
-    variant = CupTorsion(params, order, h, ratio, crack_depth_mm, teeth, crack_method or DEFAULT_CRACK_METHOD)
+    variant = CupTorsion(params, order, h, ratio, crack_depth_mm, teeth, crack_method or DEFAULT_CRACK_METHOD,
+                         solid_series=vtu is not None)
     return run_variant(variant, vtu=vtu, progress=progress)
