@@ -35,9 +35,9 @@ def section_fine_mm(params, quick: bool) -> float:
 def mesh_cup_section(model, section, *, size_mm: float, wall_mm: float, order: int = 2) -> MeshData:
     """P2 triangles of the half section (x = r, y = z): "fixed" on z = 0, "loaded" on the band's outer
     edge; refined at the re-entrant corners and at the band's start."""
-    from strainwave.fea.meshing import Refine, _import_shape, extract, generate
+    from strainwave.fea.meshing import Refine, import_shape, extract, generate
 
-    _import_shape(model, section.face)
+    import_shape(model, section.face)
     model.occ.rotate(model.occ.getEntities(), 0, 0, 0, 1, 0, 0, -math.pi / 2)   # (x, 0, z) -> (x, z, 0)
     model.occ.synchronize()
     tol = 1e-6 * section.length_mm

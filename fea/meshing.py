@@ -52,7 +52,8 @@ def _export_brep(shape, path: Path) -> None:
         BRepTools.Write_s(shape, str(path))
 
 
-def _import_shape(model, shape) -> None:
+def import_shape(model, shape) -> None:
+    """An OCC shape into the gmsh ``model`` (through a BREP file: gmsh's own OCC, not build123d's)."""
     with tempfile.TemporaryDirectory(prefix="strainwave-brep-") as tmp:
         path = Path(tmp) / "shape.brep"
         _export_brep(shape, path)
@@ -273,7 +274,7 @@ def mesh_part(model, part, *, size_mm: float, order: int = 2, refine: Sequence[R
     optimize_threshold : tetrahedra below this quality are optimised (see ``generate``).
     preload_kernels : see ``generate``.
     """
-    _import_shape(model, part.solid)
+    import_shape(model, part.solid)
     if not model.getEntities(3):
         raise MeshingFailed(f"{part.name}: the BREP holds no volume")
     bbox = np.array(model.getBoundingBox(-1, -1))
@@ -378,7 +379,7 @@ def mesh_section(model, face=None, *, loops: Sequence[np.ndarray] | None = None,
         embedded inside), so a node sits exactly there; the group holds those nodes as (k, 1) rows.
     """
     if face is not None:
-        _import_shape(model, face)
+        import_shape(model, face)
     elif loops:
         _surface_from_loops(model, loops)
         model.occ.synchronize()
