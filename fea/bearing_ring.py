@@ -11,9 +11,11 @@ than the ring locally and carries it all round; a bonded bore is that rigid-cam 
 every rigid-body mode without a point constraint that would add its own compliance).
 Compliance: the work-conjugate displacement of the load, C = f.u / F_r^2 (what the crack-compliance
 integral of seed 000 is conjugate to). Crack effect: C(cracked) - C(uncracked) on ONE mesh per refinement:
-the ring is meshed with the crack as an embedded zero-width surface (geometry's CrackModel.SEAM), solved
-as is, then with the surface opened (fea.crack_seam.open_crack), so the far-field discretization error
-cancels in the difference.
+the ring is meshed with the crack as an embedded zero-width surface (geometry's CrackModel.SEAM) and the
+surface opened (fea.crack_seam.open_crack). One factorisation of the opened mesh, with its Schur complement on
+the crack pairs' openings (fea.face_schur.SeamSystem), gives both: every pair tied is the seam closed (the
+uncracked ring), the pairs in frictionless contact the cracked one, and the difference is the Schur complement's
+open block's own term, so the far-field discretization error cancels in it.
 """
 from __future__ import annotations
 
@@ -28,7 +30,7 @@ import numpy as np
 from strainwave.errors import StageError
 from strainwave.fea import fused_sweeps
 from strainwave.fea.assembly import Lame, elasticity_stiffness, scalar_basis
-from strainwave.fea.crack_contact import crack_pairs, solve_with_contact
+from strainwave.fea.crack_contact import crack_pairs
 from strainwave.fea.crack_seam import open_crack_for, seam_crack
 from strainwave.fea.fields import field_info, write_solid_fields
 from strainwave.fea.mesh_data import group_dofs, to_skfem
@@ -85,13 +87,9 @@ def ring_refine(part, params, *, size_mm, refine_points, local_mm, contact_mm=No
     return refine
 
 
-def compliance_on_mesh(md, part, params, lame, *, force_N, method=SOLVER, keep_field=False,
-                       contact: bool = False) -> tuple:
-    """Load (Hertzian patch, resultant F_r), fix the bore, solve once on ``md``:
-    (compliance, solver info dict, field or ()). ``contact``: an opened crack's faces may not pass through
-    each other (``crack_contact``, frictionless, solved by active set with the direct solver)."""
-    if method != "direct" and not contact and md.order == 2 and 3 * md.nodes_mm.shape[0] >= fused_sweeps.MIN_DOFS:
-        fused_sweeps.warm_up()        # numba loads beside the assembly (fused_sweeps.warm_up)
+def loaded_ring(md, part, params, lame, *, force_N) -> tuple:
+    """(skfem mesh, scalar basis, K, f, fixed dofs) of ``md``: the Hertzian patch (resultant F_r) and the bore
+    fixed."""
     a_ax, b_circ = params.wave_generator.contact_semi_axes_mm
     contact_name = "contact" if "contact" in part.named_faces else "race"
     centre = contact_centre_mm(part, contact_name)
@@ -108,24 +106,53 @@ def compliance_on_mesh(md, part, params, lame, *, force_N, method=SOLVER, keep_f
     fx = f[0::3].sum() * np.cos(np.arctan2(centre[1], centre[0])) + f[1::3].sum() * np.sin(np.arctan2(centre[1], centre[0]))
     f *= force_N / -fx                  # the resultant is F_r exactly (quadrature of the sqrt profile)
     fixed = (3 * group_dofs(sk, md, "bore")[:, None] + np.arange(3)).ravel()
-    if contact and "crack_plus" in md.groups:
-        infos = []
+    return sk, sb, K, f, fixed
 
-        def linear(Kc, fc, fixed_c):
-            uc, inf = solve_elasticity(Kc, fc, fixed_dofs=fixed_c, coords=sb.doflocs, dim=3, study=STUDY,
-                                       method="direct")
-            infos.append(inf)
-            return uc
-        res = solve_with_contact(K, f, fixed, crack_pairs(md).in_dofs(sk.node_to_dof), linear)
-        u = res.u
-        info = dict(infos[-1].to_dict(), contact_iterations=res.iterations, contact_pairs=int(res.active.size),
-                    contact_closed_pairs=int(res.active.sum()),
-                    contact_min_opening_mm=float(res.opening_mm.min()), contact_max_opening_mm=float(res.opening_mm.max()),
-                    compliance_without_contact_mm_per_N=float(f @ res.u_unconstrained) / force_N ** 2)
-        return float(f @ u) / force_N ** 2, info, ((md, sk, u) if keep_field else ())
+
+def compliance_on_mesh(md, part, params, lame, *, force_N, method=SOLVER, keep_field=False) -> tuple:
+    """Load (Hertzian patch, resultant F_r), fix the bore, solve once on ``md``:
+    (compliance, solver info dict, field or ())."""
+    if method != "direct" and md.order == 2 and 3 * md.nodes_mm.shape[0] >= fused_sweeps.MIN_DOFS:
+        fused_sweeps.warm_up()        # numba loads beside the assembly (fused_sweeps.warm_up)
+    sk, sb, K, f, fixed = loaded_ring(md, part, params, lame, force_N=force_N)
     u, info = solve_elasticity(K, f, fixed_dofs=fixed, coords=sb.doflocs, dim=3, study=STUDY, method=method,
                                p2_element_dofs=sb.element_dofs if md.order == 2 else None)
     return float(f @ u) / force_N ** 2, info.to_dict(), ((md, sk, u) if keep_field else ())
+
+
+def crack_compliances_on_mesh(md, opened, part, params, lame, *, force_N, keep_field=False) -> tuple:
+    """The seam mesh ``md`` uncracked and cracked from one factorisation of the opened mesh (``opened``) with
+    its Schur complement on the crack pairs' openings (``face_schur.SeamSystem``): every pair tied is ``md``
+    (the same nodes joined), the pairs in frictionless contact (``crack_contact``'s active set) the crack.
+    (uncracked, cracked, delta compliance, solver info dict, uncracked field or (), cracked field or ())."""
+    from strainwave.fea.face_schur import SeamSystem, open_compliance
+    sk, sb, K, f, fixed = loaded_ring(opened, part, params, lame, force_N=force_N)
+    t0 = time.perf_counter()
+    seam = SeamSystem.of(K, fixed, crack_pairs(opened).in_dofs(sk.node_to_dof), STUDY)
+    try:
+        ft, r = seam.loads(f)
+        tied = seam.solution(ft, r, np.ones(r.size, bool))
+        res = seam.contact(ft, r)
+        # the crack's compliance from S's open block, not the difference of two energies
+        delta = open_compliance(seam.faces.factor.S, r, seam.held(res.active)) / force_N ** 2
+    finally:
+        seam.close()
+    c0 = float(f @ tied) / force_N ** 2
+    inner = np.setdiff1d(seam.faces.free, seam.faces.face_z)
+    residual = float(np.linalg.norm((seam.T.T @ (K @ tied) - ft)[inner]) / np.linalg.norm(ft[inner]))
+    info = dict(method=f"{seam.faces.factor.method}-schur", dofs=int(seam.faces.free.size), iterations=1,
+                residual=residual, time_s=time.perf_counter() - t0, schur_dofs=int(r.size),
+                contact_iterations=res.iterations, contact_pairs=int(res.active.size),
+                contact_closed_pairs=int(res.active.sum()), contact_min_opening_mm=float(res.opening_mm.min()),
+                contact_max_opening_mm=float(res.opening_mm.max()),
+                compliance_without_contact_mm_per_N=float(f @ res.u_unconstrained) / force_N ** 2)
+    if not keep_field:
+        return c0, c0 + delta, delta, info, (), ()
+    # the tied solution on md's own dofs: md's nodes are the opened mesh's first ones
+    sk0 = to_skfem(md)
+    u0 = np.zeros(3 * sk0.node_to_dof.size)
+    u0.reshape(-1, 3)[sk0.node_to_dof] = tied.reshape(-1, 3)[sk.node_to_dof[:sk0.node_to_dof.size]]
+    return c0, c0 + delta, delta, info, (md, sk0, u0), (opened, sk, res.u)
 
 
 def mesh_ring(part, params, *, size_mm, order, refine_points, local_mm, contact_mm=None) -> tuple:
@@ -200,7 +227,7 @@ class BearingRing(StudyVariant):
     """The skeleton's hooks for the bearing ring: one 3D series. Every length of the size field scales with
     the refinement: global size h, contact size min(h, b'/3) r^k and crack-front size a/3 r^k, so the GCI
     covers the contact zone and the crack front too. With a crack each mesh carries the seam and is solved
-    closed and opened (faces in frictionless contact)."""
+    tied and opened (faces in frictionless contact) from one factorisation."""
 
     study: ClassVar[str] = STUDY
     elements_per_cell: ClassVar[float] = 10.2
@@ -282,22 +309,20 @@ class BearingRing(StudyVariant):
                                     local_mm=local_mm if cracked else h_mm, contact_mm=contact_mm)
         timings = {"mesh": time.perf_counter() - t0}
         t1 = time.perf_counter()
-        c0, info, field0 = compliance_on_mesh(md, part, self.params, self.lame, force_N=self.force_N,
-                                              keep_field=keep_fields)
-        timings["assemble+solve_uncracked"] = time.perf_counter() - t1
-        values, fields, solver = {COMPLIANCE: c0}, {"uncracked": field0}, info
         if cracked:
-            t1 = time.perf_counter()
             # the opened crack's faces may separate but not interpenetrate (crack_contact)
             opened = open_crack_for(md, STUDY)
-            c1, info1, field1 = compliance_on_mesh(opened, part, self.params, self.lame, force_N=self.force_N,
-                                                   keep_field=keep_fields, contact=True)
-            timings["assemble+solve_cracked"] = time.perf_counter() - t1
-            values[CRACKED] = c1
-            fields["cracked"] = field1
+            c0, c1, delta, info, field0, field1 = crack_compliances_on_mesh(
+                md, opened, part, self.params, self.lame, force_N=self.force_N, keep_field=keep_fields)
+            timings["assemble+solve_uncracked+cracked"] = time.perf_counter() - t1
+            values, fields = {COMPLIANCE: c0, CRACKED: c1, DELTA: delta}, {"uncracked": field0, "cracked": field1}
             # the uncracked mesh's facts; the opened one adds the duplicated crack nodes
-            solver = dict(info, dofs_total=md.quality.dofs, dofs_cracked=opened.quality.dofs,
-                          **{key: v for key, v in info1.items() if key.startswith(("contact", "compliance"))})
+            solver = dict(info, dofs_total=md.quality.dofs, dofs_cracked=opened.quality.dofs)
+        else:
+            c0, solver, field0 = compliance_on_mesh(md, part, self.params, self.lame, force_N=self.force_N,
+                                                    keep_field=keep_fields)
+            timings["assemble+solve_uncracked"] = time.perf_counter() - t1
+            values, fields = {COMPLIANCE: c0}, {"uncracked": field0}
         solver = dict(solver, size_factor=size_factor)
         return MeshSolve(h_mm * size_factor, values, md.quality, timings, solver,
                          fields if keep_fields else {})
@@ -307,8 +332,7 @@ class BearingRing(StudyVariant):
         q = {COMPLIANCE: s.converged(COMPLIANCE, "mm/N")}
         if self.crack_depth_mm is not None:
             q[CRACKED] = s.converged(CRACKED, "mm/N")
-            q[DELTA] = s.converged(DELTA, "mm/N", [cc - cu for cc, cu in zip(s.values(CRACKED), s.values(COMPLIANCE))],
-                                   order=CRACK_FORMAL_ORDER)
+            q[DELTA] = s.converged(DELTA, "mm/N", order=CRACK_FORMAL_ORDER)
         return q
 
     def load(self, part) -> Load:

@@ -22,7 +22,7 @@ import scipy.sparse as sp
 
 from strainwave.fea.mesh_data import MeshData
 
-__all__ = ["CrackPairs", "crack_pairs", "ContactResult", "solve_with_contact"]
+__all__ = ["CrackPairs", "crack_pairs", "tangents", "ContactResult", "settle_active_set", "solve_with_contact"]
 
 MAX_ITERATIONS = 30
 
@@ -68,7 +68,8 @@ def crack_pairs(opened: MeshData, group: str = "crack") -> CrackPairs:
     return CrackPairs(pairs[:, 0], pairs[:, 1], n)
 
 
-def _tangents(n: np.ndarray) -> tuple[np.ndarray, ...]:
+def tangents(n: np.ndarray) -> tuple[np.ndarray, ...]:
+    """Unit tangents completing the unit normal n to a right-handed frame (one in 2D, two in 3D)."""
     if n.size == 2:
         return (np.array([-n[1], n[0]]),)
     a = np.eye(3)[np.argmin(np.abs(n))]
@@ -80,7 +81,7 @@ def _tangents(n: np.ndarray) -> tuple[np.ndarray, ...]:
 def _transformation(N: int, pairs: CrackPairs, active: np.ndarray) -> tuple[sp.csr_matrix, np.ndarray]:
     """T (N x M) with u = T v, and the reduced index of every kept original dof (-1 for eliminated ones)."""
     n, dim = pairs.normal, pairs.dim
-    tangents = _tangents(n)
+    frame = tangents(n)
     j_act, i_act = pairs.plus[active], pairs.minus[active]
     removed = np.zeros(N, bool)
     removed[(dim * j_act[:, None] + np.arange(dim)).ravel()] = True
@@ -94,7 +95,7 @@ def _transformation(N: int, pairs: CrackPairs, active: np.ndarray) -> tuple[sp.c
         r = dim * j_act + c
         for d in range(dim):                     # (n . u_i) n
             rows.append(r), cols.append(col[dim * i_act + d]), vals.append(np.full(j_act.size, n[c] * n[d]))
-        for k, t in enumerate(tangents):
+        for k, t in enumerate(frame):
             rows.append(r), cols.append(tang_col + k), vals.append(np.full(j_act.size, t[c]))
     T = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(N, M))
     T.eliminate_zeros()
@@ -124,34 +125,46 @@ class ContactResult:
     u_unconstrained: np.ndarray   # the linear solve that lets the faces pass through each other
 
 
+def settle_active_set(state, n_pairs: int, tol_mm: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
+    """The active-set rule, from no pair in contact: a pair is activated when its opening is below -tol_mm and
+    released when its contact force pulls. ``state(active) -> (opening, force)`` solves one set (force 0 off
+    it). Returns the converged (active, opening, force) and the number of set changes."""
+    active = np.zeros(n_pairs, bool)
+    gap, force = state(active)
+    for it in range(1, MAX_ITERATIONS + 1):
+        new = (active & (force >= 0.0)) | (~active & (gap < -tol_mm))
+        if np.array_equal(new, active):
+            return active, gap, force, it - 1
+        active = new
+        gap, force = state(active)
+    raise RuntimeError(f"crack-face contact: active set did not settle in {MAX_ITERATIONS} iterations")
+
+
 def solve_with_contact(K: sp.spmatrix, f: np.ndarray, fixed_dofs: np.ndarray, pairs: CrackPairs, solve,
                        *, tol_mm: float | None = None) -> ContactResult:
     """Active-set frictionless contact; ``solve(K, f, fixed_dofs) -> u`` is the linear solver. ``pairs`` index
     scalar dofs (vector dof = dim x scalar + component, interleaved as in ``assembly``; dim = pairs.dim).
 
-    Starts from the unconstrained solve (the pairs it interpenetrates are the first active set)."""
+    Starts from the unconstrained solve (the pairs it interpenetrates are the first active set); each set is
+    a solve of K with the active pairs' normal dofs eliminated."""
     K = K.tocsr()
     N = K.shape[0]
-    u = u0 = solve(K, f, fixed_dofs)
-    n = pairs.normal
+    u0 = solve(K, f, fixed_dofs)
     # penetration threshold: round-off of the solve, relative to the largest displacement
-    tol = tol_mm if tol_mm is not None else 1e-9 * float(np.abs(u).max())
-    active = np.zeros(pairs.minus.size, bool)
-    for it in range(1, MAX_ITERATIONS + 1):
-        gap = (u.reshape(-1, pairs.dim)[pairs.plus] - u.reshape(-1, pairs.dim)[pairs.minus]) @ n
+    tol = tol_mm if tol_mm is not None else 1e-9 * float(np.abs(u0).max())
+    last = {}
+
+    def state(active):
+        u = u0
+        if active.any():
+            T, col = _transformation(N, pairs, active)
+            fixed = _reduced_fixed(T, col, np.asarray(fixed_dofs, dtype=np.int64))
+            u = T @ solve((T.T @ K @ T).tocsr(), T.T @ f, fixed)
         force = np.zeros(pairs.minus.size)
         if active.any():
-            r = (K @ u - f).reshape(-1, pairs.dim)
-            force[active] = r[pairs.plus[active]] @ n
-        new = (active & (force >= 0.0)) | (~active & (gap < -tol))
-        if np.array_equal(new, active):
-            return ContactResult(u, active, gap, force, it - 1, u0)
-        active = new
-        if not active.any():
-            u = solve(K, f, fixed_dofs)
-            continue
-        T, col = _transformation(N, pairs, active)
-        fixed = _reduced_fixed(T, col, np.asarray(fixed_dofs, dtype=np.int64))
-        Kr = (T.T @ K @ T).tocsr()
-        u = T @ solve(Kr, T.T @ f, fixed)
-    raise RuntimeError(f"crack-face contact: active set did not settle in {MAX_ITERATIONS} iterations")
+            force[active] = (K @ u - f).reshape(-1, pairs.dim)[pairs.plus[active]] @ pairs.normal
+        last["u"] = u
+        return (u.reshape(-1, pairs.dim)[pairs.plus] - u.reshape(-1, pairs.dim)[pairs.minus]) @ pairs.normal, force
+
+    active, gap, force, iterations = settle_active_set(state, pairs.minus.size, tol)
+    return ContactResult(last["u"], active, gap, force, iterations, u0)

@@ -319,6 +319,7 @@ class SchurFactor:
     S: np.ndarray
     solve: Callable[[np.ndarray], np.ndarray]     # A^-1 b, b of shape (n,) or (n, k)
     close: Callable[[], None]                     # frees the factors
+    method: str = "pardiso"                       # the sparse solver that made it: "pardiso" or "splu"
 
 
 def schur_factor(A: sp.csr_matrix, tail: np.ndarray, study: str) -> SchurFactor:
@@ -377,7 +378,7 @@ def _schur_splu(A: sp.csr_matrix, tail: np.ndarray, study: str) -> SchurFactor:
         raise StageError("solve", study, f"direct factorisation failed: {exc}") from exc
     A_it = A[inner][:, tail].toarray()
     S = A[tail][:, tail].toarray() - A_it.T @ lu_ii.solve(A_it)
-    return SchurFactor(S, lu.solve, lambda: None)
+    return SchurFactor(S, lu.solve, lambda: None, "splu")
 
 
 # METIS, 3x3 node blocks, two-level factorisation: faster on the 3D matrices (docs/decisions/007-pardiso-settings.md).

@@ -38,13 +38,13 @@ from pathlib import Path
 import numpy as np
 
 from strainwave.errors import InputError
+from strainwave.fea.face_schur import FaceSystem, open_compliance
 from strainwave.fea.refinement import CRACK_FORMAL_ORDER, DEFAULT_RATIO, CrackFrontGrading, converged_quantity
 from strainwave.fea.result import CrackRecord, Load, MeshQuality, StudyResult, Support
 from strainwave.fea.study_facts import TORQUE_RATED, StudyFacts
 
 __all__ = ["STUDY", "ASPECT", "DEPTHS_OVER_T", "SurfaceCrack", "Block", "block_for", "block_mesh", "solve_block",
-           "converge_depth", "delta_name", "sweep_depths_mm", "run", "FIELDS_STATES", "field_paths", "FaceSystem",
-           "open_compliance", "contact_state"]
+           "converge_depth", "delta_name", "sweep_depths_mm", "run", "FIELDS_STATES", "field_paths", "contact_state"]
 
 STUDY = "cup-surface-crack"
 # the crack's shape: a/c = 0.5, a fatigue crack's usual aspect at a notch root (its depth grows slower)
@@ -177,53 +177,6 @@ def _solve(K, f, fixed, sk):
                             method="direct")[0]
 
 
-@dataclass
-class FaceSystem:
-    """K with the base held, factorised once with its Schur complement S on the crack face's normal dofs: every
-    contact set is then a dense solve of S's free block (docs/decisions/033-surface-crack-face-schur.md)."""
-
-    K: object                   # the full stiffness
-    base: np.ndarray            # held in every solve (the ligament, the symmetry plane x = 0, the corner)
-    face_z: np.ndarray          # the crack face's normal dofs, held where shut
-    free: np.ndarray            # dofs not in base
-    factor: object              # solver.SchurFactor of K[free][:, free] onto face_z
-
-    @classmethod
-    def of(cls, K, base, face_z) -> "FaceSystem":
-        from strainwave.fea.solver import condense, schur_factor
-        keep = np.ones(K.shape[0], bool)
-        keep[base] = False
-        free = np.flatnonzero(keep)
-        # the ligament holds the block with the face free: PARDISO refuses a singular K here (StageError)
-        factor = schur_factor(condense(K.tocsr(), keep), np.searchsorted(free, face_z), STUDY)
-        return cls(K, base, face_z, free, factor)
-
-    def face_loads(self, f: np.ndarray) -> np.ndarray:
-        """The loads (columns of f) condensed on the face dofs, S u0_F (u0: the face free)."""
-        u0 = self.factor.solve(f[self.free])
-        return self.factor.S @ u0[np.searchsorted(self.free, self.face_z)]
-
-    def held(self, f: np.ndarray, r: np.ndarray, active: np.ndarray) -> np.ndarray:
-        """The solution under f (face loads r) with the face dofs ``active`` held: the open ones from S's free
-        block, then one solve under f plus the held dofs' reactions."""
-        from strainwave.fea.solver import tail_solve
-        u_face = tail_solve(self.factor.S, r, active)
-        reaction = self.factor.S[active] @ u_face - r[active]
-        b = f[self.free].copy()
-        b[np.searchsorted(self.free, self.face_z[active])] += reaction
-        u = np.zeros_like(f)
-        u[self.free] = self.factor.solve(b)
-        u[self.face_z[active]] = 0.0
-        return u
-
-
-def open_compliance(S: np.ndarray, r: np.ndarray, active: np.ndarray) -> float:
-    """f.u with the face dofs ``active`` held minus f.u with the whole face held: r_O . u_O (r the load f
-    condensed on the face), exact without the difference of two energies."""
-    from strainwave.fea.solver import tail_solve
-    return float(r @ tail_solve(S, r, active))
-
-
 def contact_state(system: FaceSystem, f: np.ndarray, r: np.ndarray, start: np.ndarray) -> tuple[np.ndarray, int, np.ndarray]:
     """Active set of the crack face's normal dofs (True = shut) at load ``f`` (condensed on the face: ``r``),
     from ``start``, its iterations and the solution with it held: held where u_z < 0 would interpenetrate the
@@ -248,7 +201,7 @@ def solve_block(s: Block, h_mm: float, h_fine_mm: float, fields_of: tuple[str, .
     t0 = time.perf_counter()
     md = block_mesh(s, h_mm, h_fine_mm)
     sk, K, f_m, f_b, base, face_z = _system(md, s)
-    system = FaceSystem.of(K, base, face_z)
+    system = FaceSystem.of(K, base, face_z, STUDY)
     try:
         r_m, r_b = system.face_loads(np.stack([f_m, f_b], axis=1)).T
         by_active: dict[bytes, float] = {}

@@ -1,6 +1,6 @@
 """The crack face's contact by one factorisation: the Schur complement on the face dofs (PARDISO and SuperLU)
 equals the dense one, and every contact set held through it gives the direct constrained solve's displacement
-and compliance (fea/surface_crack.py ``FaceSystem``)."""
+and compliance (fea/face_schur.py ``FaceSystem``)."""
 from __future__ import annotations
 
 import numpy as np
@@ -68,9 +68,10 @@ def _direct(K, f, fixed, mesh):
 
 
 def test_every_contact_set_through_the_schur_complement_is_the_direct_constrained_solve():
-    from strainwave.fea.surface_crack import FaceSystem, contact_state, open_compliance
+    from strainwave.fea.face_schur import FaceSystem, open_compliance
+    from strainwave.fea.surface_crack import contact_state
     K, f, base, face_z, mesh = _cube()
-    system = FaceSystem.of(K, base, face_z)
+    system = FaceSystem.of(K, base, face_z, "test")
     try:
         r = system.face_loads(f[:, None])[:, 0]
         shut = _direct(K, f, np.concatenate([base, face_z]), mesh)
@@ -94,10 +95,10 @@ def test_every_contact_set_through_the_schur_complement_is_the_direct_constraine
 def test_a_block_nothing_holds_with_the_face_free_is_refused():
     # without the ligament no dof holds u_z once the face is free: the factorisation must say so, not return S
     from strainwave.errors import StageError
-    from strainwave.fea.surface_crack import FaceSystem
+    from strainwave.fea.face_schur import FaceSystem
     K, _, base, face_z, mesh = _cube()
     x, nodes = mesh.p, np.arange(mesh.p.shape[1])
     no_ligament = base[~np.isin(base, 3 * nodes[np.isclose(x[2], 0.0) & (x[0] > 0.5)] + 2)]
-    FaceSystem.of(K, base, face_z).factor.close()       # with it: factorised
+    FaceSystem.of(K, base, face_z, "test").factor.close()       # with it: factorised
     with pytest.raises(StageError, match="PARDISO"):
-        FaceSystem.of(K, no_ligament, face_z)
+        FaceSystem.of(K, no_ligament, face_z, "test")
