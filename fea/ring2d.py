@@ -16,9 +16,9 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import splu
 
-from strainwave.fea.crack_contact import CrackPairs, solve_with_contact
+from strainwave.fea.crack_contact import CrackPairs
 
-__all__ = ["graded_nodes", "RingMesh", "ring_mesh", "RingSystem", "assemble", "solve_ring", "mesh_data", "hoop_stress"]
+__all__ = ["graded_nodes", "RingMesh", "ring_mesh", "RingSystem", "assemble", "seam_system", "solve_ring", "crack_work", "mesh_data", "hoop_stress"]
 
 
 def graded_nodes(x0: float, x1: float, size_fn) -> np.ndarray:
@@ -150,23 +150,29 @@ def _bore_fixed(system: "RingSystem") -> np.ndarray:
     return np.concatenate([2 * system.bore_dofs, [2 * anchor + 1]])
 
 
-def _tie(system: "RingSystem") -> sp.csr_matrix:
-    """P (N x M): u = P v with each crack pair's + copy following its - node in every component (the same
-    mesh uncracked, without a second assembly)."""
-    n, pairs = system.K.shape[0], system.pairs
-    plus = (2 * pairs.plus[:, None] + np.arange(2)).ravel()
-    minus = (2 * pairs.minus[:, None] + np.arange(2)).ravel()
-    kept = np.setdiff1d(np.arange(n), plus)
-    col = np.full(n, -1, dtype=np.int64)
-    col[kept] = np.arange(kept.size)
-    col[plus] = col[minus]
-    return sp.csr_matrix((np.ones(n), (np.arange(n), col)), shape=(n, kept.size))
+def seam_system(system: "RingSystem"):
+    """The cracked ring with the bore held, factorised once with its Schur complement on the crack pairs'
+    openings (``face_schur.SeamSystem``): the faces tied and every contact set are dense solves on it."""
+    from strainwave.fea.face_schur import SeamSystem
+    return SeamSystem.of(system.K, _bore_fixed(system), system.pairs, "wg-bearing")
 
 
-def solve_ring(system: RingSystem, f_global: np.ndarray, bore_radial_mm: np.ndarray | None):
+def _with_seam(system: "RingSystem", seam, job):
+    """``job(seam)`` on ``seam``, or on the system's own one made and freed for it when None."""
+    if seam is not None:
+        return job(seam)
+    seam = seam_system(system)
+    try:
+        return job(seam)
+    finally:
+        seam.close()
+
+
+def solve_ring(system: RingSystem, f_global: np.ndarray, bore_radial_mm: np.ndarray | None, seam=None):
     """Displacements (global x, y interleaved) under the loads ``f_global`` with the bore's radial
     displacement prescribed (``bore_radial_mm`` per bore dof, None = 0). With a crack the faces may separate
-    but not interpenetrate (frictionless contact). Returns (u, contact result or None)."""
+    but not interpenetrate (frictionless contact, ``crack_contact``'s active set, each set a dense solve on
+    ``seam``: ``seam_system``'s factorisation, made here when None). Returns (u, contact result or None)."""
     up = np.zeros(system.K.shape[0])
     if bore_radial_mm is not None:
         up[2 * system.bore_dofs] = bore_radial_mm
@@ -174,8 +180,19 @@ def solve_ring(system: RingSystem, f_global: np.ndarray, bore_radial_mm: np.ndar
     f = system.R.T @ f_global - system.K @ up
     if system.pairs is None:
         return system.R @ (up + _direct(system.K, f, fixed)), None
-    res = solve_with_contact(system.K, f, fixed, system.pairs, _direct)
+    res = _with_seam(system, seam, lambda sm: sm.contact(*sm.loads(f)))
     return system.R @ (up + res.u), res
+
+
+def crack_work(system: RingSystem, seam, f_global: np.ndarray, base, loaded) -> float:
+    """f.(u(base + f) - u(base)) on the cracked mesh minus f.u on it tied, f the loads ``f_global``, ``base`` and
+    ``loaded`` the contact results (``solve_ring`` on ``seam``) of a state without and with f: from the Schur
+    complement alone, w_f . (lambda_loaded - lambda_base + r_f) with r_f the condensed f, w_f = S^-1 r_f and
+    lambda the held normal openings' reactions, without the difference of the full solutions' energies."""
+    from strainwave.fea.solver import tail_solve
+    r = seam.loads(system.R.T @ f_global)[1]
+    w = tail_solve(seam.faces.factor.S, r, np.zeros(r.size, bool))
+    return float(r @ w + w[seam.normal] @ (loaded.contact_force_N - base.contact_force_N))
 
 
 def race_facets(mesh, r_race_mm: float) -> np.ndarray:
@@ -208,18 +225,20 @@ def patch_load_vectors(system: RingSystem, r_race_mm: float, angles_rad, half_wi
     return out
 
 
-def solve_many(system: RingSystem, F_global: np.ndarray, *, tied: bool = False) -> np.ndarray:
+def solve_many(system: RingSystem, F_global: np.ndarray, *, tied: bool = False, seam=None) -> np.ndarray:
     """Columns of displacements under the load columns ``F_global``, the bore held radially; ``tied``: a
-    cracked mesh solved with its crack faces joined (the uncracked ring on the same mesh). Without ``tied``
-    no crack contact is imposed (the uncracked ring, or an open crack)."""
+    cracked mesh solved with its crack faces joined (the uncracked ring on the same mesh: every pair's opening
+    held on ``seam``, ``seam_system``'s factorisation, made here when None). Without ``tied`` no crack contact
+    is imposed (the uncracked ring, or an open crack)."""
     fixed = _bore_fixed(system)
     F = system.R.T @ F_global
     if not tied or system.pairs is None:
         return system.R @ _direct(system.K, F, fixed)
-    P = _tie(system)
-    K0 = (P.T @ system.K @ P).tocsr()
-    col = np.asarray(P.argmax(axis=1)).ravel()
-    return system.R @ (P @ _direct(K0, P.T @ F, np.unique(col[fixed])))
+
+    def tied_columns(sm):
+        held = np.ones(sm.faces.face_z.size, bool)
+        return np.column_stack([sm.solution(*sm.loads(F[:, k]), held) for k in range(F.shape[1])])
+    return system.R @ _with_seam(system, seam, tied_columns)
 
 
 def nodal_stress(system: RingSystem, u: np.ndarray, E_MPa: float, nu: float) -> np.ndarray:
