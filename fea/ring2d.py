@@ -14,7 +14,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.sparse.linalg import splu
 
 from strainwave.fea.crack_contact import CrackPairs
 
@@ -103,13 +102,12 @@ def _edge_dofs(mesh, scalar, a_nodes: np.ndarray, b_nodes: np.ndarray) -> np.nda
 def assemble(mesh, pairs_nodes, *, E_MPa: float, nu: float, width_mm: float, r_bore_mm: float) -> RingSystem:
     """Plane stress (thickness = ring width B) P2 stiffness, rotated to (r, phi) at the bore nodes."""
     from skfem import Basis, ElementTriP2, ElementVector
-    from skfem.models.elasticity import lame_parameters, linear_elasticity
+
+    from strainwave.fea.assembly import Lame, elasticity_stiffness
 
     basis = Basis(mesh, ElementVector(ElementTriP2()))
     scalar = Basis(mesh, ElementTriP2())
-    lam, mu = lame_parameters(E_MPa, nu)
-    lam_ps = 2.0 * lam * mu / (lam + 2.0 * mu)          # plane stress
-    K = (width_mm * linear_elasticity(lam_ps, mu).assemble(basis)).tocsr()
+    K = elasticity_stiffness(scalar, Lame.from_young(E_MPa, nu, plane_stress=True), thickness_mm=width_mm)
     xy = scalar.doflocs
     bore = np.flatnonzero(np.hypot(*xy) < r_bore_mm * (1.0 + 1e-9))     # nodes and chord midpoints
     R = _bore_rotation(2 * scalar.N, bore, np.arctan2(xy[1, bore], xy[0, bore]))
@@ -249,10 +247,12 @@ def nodal_stress(system: RingSystem, u: np.ndarray, E_MPa: float, nu: float) -> 
     exx, eyy, exy = g[0, 0], g[1, 1], 0.5 * (g[0, 1] + g[1, 0])
     c = E_MPa / (1.0 - nu ** 2)
     comps = (c * (exx + nu * eyy), c * (eyy + nu * exx), E_MPa / (1.0 + nu) * exy)
-    mass = BilinearForm(lambda a, b, w: a * b).assemble(system.scalar).tocsc()
-    lu = splu(mass)
+    from strainwave.fea.solver import _direct as direct
+
+    mass = BilinearForm(lambda a, b, w: a * b).assemble(system.scalar).tocsr()
     rhs = LinearForm(lambda v, w: w["s"] * v)
-    return np.stack([lu.solve(rhs.assemble(system.scalar, s=s)) for s in comps])
+    b = np.column_stack([rhs.assemble(system.scalar, s=s) for s in comps])
+    return direct(mass, b, "wg-bearing")[0].reshape(b.shape).T
 
 
 def hoop_stress_at(system: RingSystem, stress: np.ndarray, points_xy: np.ndarray) -> np.ndarray:
