@@ -93,10 +93,16 @@ class RingSystem:
 
 def _edge_dofs(mesh, scalar, a_nodes: np.ndarray, b_nodes: np.ndarray) -> np.ndarray:
     """Scalar P2 dofs of the mesh edges (a_k, b_k) (their mid-side dofs)."""
-    facets = np.sort(mesh.facets, axis=0)
-    lookup = {(int(p), int(q)): k for k, (p, q) in enumerate(facets.T)}
-    ids = [lookup[tuple(sorted((int(p), int(q))))] for p, q in zip(a_nodes, b_nodes)]
-    return scalar.facet_dofs[0, np.asarray(ids, dtype=np.int64)]
+    n = np.int64(mesh.p.shape[1])
+    facets = np.sort(mesh.facets, axis=0).astype(np.int64)
+    keys = facets[0] * n + facets[1]
+    a, b = np.asarray(a_nodes, np.int64), np.asarray(b_nodes, np.int64)
+    want = np.minimum(a, b) * n + np.maximum(a, b)
+    order = np.argsort(keys)
+    ids = order[np.minimum(np.searchsorted(keys[order], want), keys.size - 1)]
+    if not np.array_equal(keys[ids], want):
+        raise ValueError("ring2d: a crack edge is not an edge of the mesh")
+    return scalar.facet_dofs[0, ids]
 
 
 def assemble(mesh, pairs_nodes, *, E_MPa: float, nu: float, width_mm: float, r_bore_mm: float) -> RingSystem:
