@@ -176,14 +176,20 @@ def _with_seam(system: "RingSystem", seam, job):
         seam.close()
 
 
+def _bore_displacement(system: RingSystem, bore_radial_mm: np.ndarray | None) -> np.ndarray:
+    """The prescribed part of u (nodal frames): the bore's radial dofs at ``bore_radial_mm`` (None = 0)."""
+    up = np.zeros(system.K.shape[0])
+    if bore_radial_mm is not None:
+        up[2 * system.bore_dofs] = bore_radial_mm
+    return up
+
+
 def solve_ring(system: RingSystem, f_global: np.ndarray, bore_radial_mm: np.ndarray | None, seam=None):
     """Displacements (global x, y interleaved) under the loads ``f_global`` with the bore's radial
     displacement prescribed (``bore_radial_mm`` per bore dof, None = 0). With a crack the faces may separate
     but not interpenetrate (frictionless contact, ``crack_contact``'s active set, each set a dense solve on
     ``seam``: ``seam_system``'s factorisation, made here when None). Returns (u, contact result or None)."""
-    up = np.zeros(system.K.shape[0])
-    if bore_radial_mm is not None:
-        up[2 * system.bore_dofs] = bore_radial_mm
+    up = _bore_displacement(system, bore_radial_mm)
     fixed = _bore_fixed(system)
     f = system.R.T @ f_global - system.K @ up
     if system.pairs is None:
@@ -233,15 +239,22 @@ def patch_load_vectors(system: RingSystem, r_race_mm: float, angles_rad, half_wi
     return out
 
 
-def solve_many(system: RingSystem, F_global: np.ndarray, *, tied: bool = False, seam=None) -> np.ndarray:
+def solve_many(system: RingSystem, F_global: np.ndarray, *, tied: bool = False, seam=None,
+               bore_radial_mm: np.ndarray | None = None) -> np.ndarray:
     """Columns of displacements under the load columns ``F_global``, the bore held radially; ``tied``: a
     cracked mesh solved with its crack faces joined (the uncracked ring on the same mesh: every pair's opening
     held on ``seam``, ``seam_system``'s factorisation, made here when None). Without ``tied`` no crack contact
-    is imposed (the uncracked ring, or an open crack)."""
+    is imposed (the uncracked ring, or an open crack), and ``bore_radial_mm`` adds a first column: the bore's
+    radial displacement prescribed without loads (``solve_ring``'s, from the same factorisation)."""
     fixed = _bore_fixed(system)
     F = system.R.T @ F_global
     if not tied or system.pairs is None:
-        return system.R @ _direct(system.K, F, fixed)
+        if bore_radial_mm is None:
+            return system.R @ _direct(system.K, F, fixed)
+        up = _bore_displacement(system, bore_radial_mm)
+        U = _direct(system.K, np.column_stack([-(system.K @ up), F]), fixed)
+        U[:, 0] += up
+        return system.R @ U
 
     def tied_columns(sm):
         held = np.ones(sm.faces.face_z.size, bool)
@@ -250,19 +263,24 @@ def solve_many(system: RingSystem, F_global: np.ndarray, *, tied: bool = False, 
 
 
 def nodal_stress(system: RingSystem, u: np.ndarray, E_MPa: float, nu: float) -> np.ndarray:
-    """(3, scalar dofs): plane-stress sigma_xx, sigma_yy, sigma_xy L2-projected onto the P2 space."""
+    """(3, scalar dofs): plane-stress sigma_xx, sigma_yy, sigma_xy L2-projected onto the P2 space; for columns
+    of displacements u (dofs, k), (k, 3, scalar dofs) from one factorisation of the mass matrix."""
     from skfem import BilinearForm, LinearForm
 
-    g = system.basis.interpolate(u).grad
-    exx, eyy, exy = g[0, 0], g[1, 1], 0.5 * (g[0, 1] + g[1, 0])
-    c = E_MPa / (1.0 - nu ** 2)
-    comps = (c * (exx + nu * eyy), c * (eyy + nu * exx), E_MPa / (1.0 + nu) * exy)
     from strainwave.fea.solver import _direct as direct
 
-    mass = BilinearForm(lambda a, b, w: a * b).assemble(system.scalar).tocsr()
+    c = E_MPa / (1.0 - nu ** 2)
     rhs = LinearForm(lambda v, w: w["s"] * v)
-    b = np.column_stack([rhs.assemble(system.scalar, s=s) for s in comps])
-    return direct(mass, b, "wg-bearing", iparm=MASS_IPARM)[0].reshape(b.shape).T
+    b = []
+    for column in np.reshape(u, (u.shape[0], -1)).T:
+        g = system.basis.interpolate(column).grad
+        exx, eyy, exy = g[0, 0], g[1, 1], 0.5 * (g[0, 1] + g[1, 0])
+        comps = (c * (exx + nu * eyy), c * (eyy + nu * exx), E_MPa / (1.0 + nu) * exy)
+        b += [rhs.assemble(system.scalar, s=s) for s in comps]
+    b = np.column_stack(b)
+    mass = BilinearForm(lambda a, b, w: a * b).assemble(system.scalar).tocsr()
+    stress = direct(mass, b, "wg-bearing", iparm=MASS_IPARM)[0].reshape(b.shape).T
+    return stress if np.ndim(u) == 1 else stress.reshape(-1, 3, stress.shape[1])
 
 
 def hoop_stress_at(system: RingSystem, stress: np.ndarray, points_xy: np.ndarray) -> np.ndarray:
