@@ -4,7 +4,8 @@ phi = 0 running in from the outer surface (the race).
 The mesh is graded in r and phi towards the crack tip and the race; its angular columns run from phi = 0 to
 2 pi, and the last column is merged into the first below the crack tip only, so the crack is two coincident
 faces (the uncracked ring is the same mesh with every node merged). Crack-face node pairs go to
-``fea.crack_contact`` (frictionless, active set). The bore sits on a cam: its radial displacement is
+``fea.crack_contact`` (frictionless, active set), each set a dense solve on one factorisation with the Schur
+complement on the pairs' openings (``fea.face_schur.SeamSystem``; every pair held: the faces tied). The bore sits on a cam: its radial displacement is
 prescribed, its tangential one is free (a frictionless cam), with one tangential condition on the bore at
 phi = 0 against the rigid rotation (on the symmetry line, so it carries no force).
 """
