@@ -4,7 +4,8 @@ phi = 0 running in from the outer surface (the race).
 The mesh is graded in r and phi towards the crack tip and the race; its angular columns run from phi = 0 to
 2 pi, and the last column is merged into the first below the crack tip only, so the crack is two coincident
 faces (the uncracked ring is the same mesh with every node merged). Crack-face node pairs go to
-``fea.crack_contact`` (frictionless, active set). The bore sits on a cam: its radial displacement is
+``fea.crack_contact`` (frictionless, active set), each set a dense solve on one factorisation with the Schur
+complement on the pairs' openings (``fea.face_schur.SeamSystem``; every pair held: the faces tied). The bore sits on a cam: its radial displacement is
 prescribed, its tangential one is free (a frictionless cam), with one tangential condition on the bore at
 phi = 0 against the rigid rotation (on the symmetry line, so it carries no force).
 """
@@ -14,11 +15,14 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.sparse.linalg import splu
 
-from strainwave.fea.crack_contact import CrackPairs, solve_with_contact
+from strainwave.fea.crack_contact import CrackPairs
 
-__all__ = ["graded_nodes", "RingMesh", "ring_mesh", "RingSystem", "assemble", "solve_ring", "mesh_data", "hoop_stress"]
+__all__ = ["graded_nodes", "RingMesh", "ring_mesh", "RingSystem", "assemble", "seam_system", "solve_ring", "crack_work", "mesh_data", "hoop_stress"]
+
+
+# PARDISO's minimum-degree ordering for the stress projection's mass matrix: METIS costs more than the factors
+MASS_IPARM = {1: 1, 2: 0}
 
 
 def graded_nodes(x0: float, x1: float, size_fn) -> np.ndarray:
@@ -94,22 +98,27 @@ class RingSystem:
 
 def _edge_dofs(mesh, scalar, a_nodes: np.ndarray, b_nodes: np.ndarray) -> np.ndarray:
     """Scalar P2 dofs of the mesh edges (a_k, b_k) (their mid-side dofs)."""
-    facets = np.sort(mesh.facets, axis=0)
-    lookup = {(int(p), int(q)): k for k, (p, q) in enumerate(facets.T)}
-    ids = [lookup[tuple(sorted((int(p), int(q))))] for p, q in zip(a_nodes, b_nodes)]
-    return scalar.facet_dofs[0, np.asarray(ids, dtype=np.int64)]
+    n = np.int64(mesh.p.shape[1])
+    facets = np.sort(mesh.facets, axis=0).astype(np.int64)
+    keys = facets[0] * n + facets[1]
+    a, b = np.asarray(a_nodes, np.int64), np.asarray(b_nodes, np.int64)
+    want = np.minimum(a, b) * n + np.maximum(a, b)
+    order = np.argsort(keys)
+    ids = order[np.minimum(np.searchsorted(keys[order], want), keys.size - 1)]
+    if not np.array_equal(keys[ids], want):
+        raise ValueError("ring2d: a crack edge is not an edge of the mesh")
+    return scalar.facet_dofs[0, ids]
 
 
 def assemble(mesh, pairs_nodes, *, E_MPa: float, nu: float, width_mm: float, r_bore_mm: float) -> RingSystem:
     """Plane stress (thickness = ring width B) P2 stiffness, rotated to (r, phi) at the bore nodes."""
     from skfem import Basis, ElementTriP2, ElementVector
-    from skfem.models.elasticity import lame_parameters, linear_elasticity
+
+    from strainwave.fea.assembly import Lame, elasticity_stiffness
 
     basis = Basis(mesh, ElementVector(ElementTriP2()))
     scalar = Basis(mesh, ElementTriP2())
-    lam, mu = lame_parameters(E_MPa, nu)
-    lam_ps = 2.0 * lam * mu / (lam + 2.0 * mu)          # plane stress
-    K = (width_mm * linear_elasticity(lam_ps, mu).assemble(basis)).tocsr()
+    K = elasticity_stiffness(scalar, Lame.from_young(E_MPa, nu, plane_stress=True), thickness_mm=width_mm)
     xy = scalar.doflocs
     bore = np.flatnonzero(np.hypot(*xy) < r_bore_mm * (1.0 + 1e-9))     # nodes and chord midpoints
     R = _bore_rotation(2 * scalar.N, bore, np.arctan2(xy[1, bore], xy[0, bore]))
@@ -150,32 +159,55 @@ def _bore_fixed(system: "RingSystem") -> np.ndarray:
     return np.concatenate([2 * system.bore_dofs, [2 * anchor + 1]])
 
 
-def _tie(system: "RingSystem") -> sp.csr_matrix:
-    """P (N x M): u = P v with each crack pair's + copy following its - node in every component (the same
-    mesh uncracked, without a second assembly)."""
-    n, pairs = system.K.shape[0], system.pairs
-    plus = (2 * pairs.plus[:, None] + np.arange(2)).ravel()
-    minus = (2 * pairs.minus[:, None] + np.arange(2)).ravel()
-    kept = np.setdiff1d(np.arange(n), plus)
-    col = np.full(n, -1, dtype=np.int64)
-    col[kept] = np.arange(kept.size)
-    col[plus] = col[minus]
-    return sp.csr_matrix((np.ones(n), (np.arange(n), col)), shape=(n, kept.size))
+def seam_system(system: "RingSystem"):
+    """The cracked ring with the bore held, factorised once with its Schur complement on the crack pairs'
+    openings (``face_schur.SeamSystem``): the faces tied and every contact set are dense solves on it."""
+    from strainwave.fea.face_schur import SeamSystem
+    return SeamSystem.of(system.K, _bore_fixed(system), system.pairs, "wg-bearing")
 
 
-def solve_ring(system: RingSystem, f_global: np.ndarray, bore_radial_mm: np.ndarray | None):
-    """Displacements (global x, y interleaved) under the loads ``f_global`` with the bore's radial
-    displacement prescribed (``bore_radial_mm`` per bore dof, None = 0). With a crack the faces may separate
-    but not interpenetrate (frictionless contact). Returns (u, contact result or None)."""
+def _with_seam(system: "RingSystem", seam, job):
+    """``job(seam)`` on ``seam``, or on the system's own one made and freed for it when None."""
+    if seam is not None:
+        return job(seam)
+    seam = seam_system(system)
+    try:
+        return job(seam)
+    finally:
+        seam.close()
+
+
+def _bore_displacement(system: RingSystem, bore_radial_mm: np.ndarray | None) -> np.ndarray:
+    """The prescribed part of u (nodal frames): the bore's radial dofs at ``bore_radial_mm`` (None = 0)."""
     up = np.zeros(system.K.shape[0])
     if bore_radial_mm is not None:
         up[2 * system.bore_dofs] = bore_radial_mm
+    return up
+
+
+def solve_ring(system: RingSystem, f_global: np.ndarray, bore_radial_mm: np.ndarray | None, seam=None):
+    """Displacements (global x, y interleaved) under the loads ``f_global`` with the bore's radial
+    displacement prescribed (``bore_radial_mm`` per bore dof, None = 0). With a crack the faces may separate
+    but not interpenetrate (frictionless contact, ``crack_contact``'s active set, each set a dense solve on
+    ``seam``: ``seam_system``'s factorisation, made here when None). Returns (u, contact result or None)."""
+    up = _bore_displacement(system, bore_radial_mm)
     fixed = _bore_fixed(system)
     f = system.R.T @ f_global - system.K @ up
     if system.pairs is None:
         return system.R @ (up + _direct(system.K, f, fixed)), None
-    res = solve_with_contact(system.K, f, fixed, system.pairs, _direct)
+    res = _with_seam(system, seam, lambda sm: sm.contact(*sm.loads(f)))
     return system.R @ (up + res.u), res
+
+
+def crack_work(system: RingSystem, seam, f_global: np.ndarray, base, loaded) -> float:
+    """f.(u(base + f) - u(base)) on the cracked mesh minus f.u on it tied, f the loads ``f_global``, ``base`` and
+    ``loaded`` the contact results (``solve_ring`` on ``seam``) of a state without and with f: from the Schur
+    complement alone, w_f . (lambda_loaded - lambda_base + r_f) with r_f the condensed f, w_f = S^-1 r_f and
+    lambda the held normal openings' reactions, without the difference of the full solutions' energies."""
+    from strainwave.fea.solver import tail_solve
+    r = seam.loads(system.R.T @ f_global)[1]
+    w = tail_solve(seam.faces.factor.S, r, np.zeros(r.size, bool))
+    return float(r @ w + w[seam.normal] @ (loaded.contact_force_N - base.contact_force_N))
 
 
 def race_facets(mesh, r_race_mm: float) -> np.ndarray:
@@ -208,32 +240,48 @@ def patch_load_vectors(system: RingSystem, r_race_mm: float, angles_rad, half_wi
     return out
 
 
-def solve_many(system: RingSystem, F_global: np.ndarray, *, tied: bool = False) -> np.ndarray:
+def solve_many(system: RingSystem, F_global: np.ndarray, *, tied: bool = False, seam=None,
+               bore_radial_mm: np.ndarray | None = None) -> np.ndarray:
     """Columns of displacements under the load columns ``F_global``, the bore held radially; ``tied``: a
-    cracked mesh solved with its crack faces joined (the uncracked ring on the same mesh). Without ``tied``
-    no crack contact is imposed (the uncracked ring, or an open crack)."""
+    cracked mesh solved with its crack faces joined (the uncracked ring on the same mesh: every pair's opening
+    held on ``seam``, ``seam_system``'s factorisation, made here when None). Without ``tied`` no crack contact
+    is imposed (the uncracked ring, or an open crack), and ``bore_radial_mm`` adds a first column: the bore's
+    radial displacement prescribed without loads (``solve_ring``'s, from the same factorisation)."""
     fixed = _bore_fixed(system)
     F = system.R.T @ F_global
     if not tied or system.pairs is None:
-        return system.R @ _direct(system.K, F, fixed)
-    P = _tie(system)
-    K0 = (P.T @ system.K @ P).tocsr()
-    col = np.asarray(P.argmax(axis=1)).ravel()
-    return system.R @ (P @ _direct(K0, P.T @ F, np.unique(col[fixed])))
+        if bore_radial_mm is None:
+            return system.R @ _direct(system.K, F, fixed)
+        up = _bore_displacement(system, bore_radial_mm)
+        U = _direct(system.K, np.column_stack([-(system.K @ up), F]), fixed)
+        U[:, 0] += up
+        return system.R @ U
+
+    def tied_columns(sm):
+        held = np.ones(sm.faces.face_z.size, bool)
+        return np.column_stack([sm.solution(*sm.loads(F[:, k]), held) for k in range(F.shape[1])])
+    return system.R @ _with_seam(system, seam, tied_columns)
 
 
 def nodal_stress(system: RingSystem, u: np.ndarray, E_MPa: float, nu: float) -> np.ndarray:
-    """(3, scalar dofs): plane-stress sigma_xx, sigma_yy, sigma_xy L2-projected onto the P2 space."""
+    """(3, scalar dofs): plane-stress sigma_xx, sigma_yy, sigma_xy L2-projected onto the P2 space; for columns
+    of displacements u (dofs, k), (k, 3, scalar dofs) from one factorisation of the mass matrix."""
     from skfem import BilinearForm, LinearForm
 
-    g = system.basis.interpolate(u).grad
-    exx, eyy, exy = g[0, 0], g[1, 1], 0.5 * (g[0, 1] + g[1, 0])
+    from strainwave.fea.solver import _direct as direct
+
     c = E_MPa / (1.0 - nu ** 2)
-    comps = (c * (exx + nu * eyy), c * (eyy + nu * exx), E_MPa / (1.0 + nu) * exy)
-    mass = BilinearForm(lambda a, b, w: a * b).assemble(system.scalar).tocsc()
-    lu = splu(mass)
     rhs = LinearForm(lambda v, w: w["s"] * v)
-    return np.stack([lu.solve(rhs.assemble(system.scalar, s=s)) for s in comps])
+    b = []
+    for column in np.reshape(u, (u.shape[0], -1)).T:
+        g = system.basis.interpolate(column).grad
+        exx, eyy, exy = g[0, 0], g[1, 1], 0.5 * (g[0, 1] + g[1, 0])
+        comps = (c * (exx + nu * eyy), c * (eyy + nu * exx), E_MPa / (1.0 + nu) * exy)
+        b += [rhs.assemble(system.scalar, s=s) for s in comps]
+    b = np.column_stack(b)
+    mass = BilinearForm(lambda a, b, w: a * b).assemble(system.scalar).tocsr()
+    stress = direct(mass, b, "wg-bearing", iparm=MASS_IPARM)[0].reshape(b.shape).T
+    return stress if np.ndim(u) == 1 else stress.reshape(-1, 3, stress.shape[1])
 
 
 def hoop_stress_at(system: RingSystem, stress: np.ndarray, points_xy: np.ndarray) -> np.ndarray:

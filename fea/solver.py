@@ -283,10 +283,12 @@ def _amg_hierarchy(Kff, free, coords, dim, p2_element_dofs, blocks=None, p1_stif
     return ml
 
 
-def _direct(A: sp.csr_matrix, b: np.ndarray, study: str, *, node_blocks: bool = False) -> tuple[np.ndarray, str]:
+def _direct(A: sp.csr_matrix, b: np.ndarray, study: str, *, node_blocks: bool = False,
+            iparm: dict[int, int] | None = None) -> tuple[np.ndarray, str]:
     """Sparse direct solve: MKL PARDISO (symmetric positive definite, upper triangle) when pypardiso is
     installed, else SuperLU, which is far slower (docs/decisions/003-direct-vs-multigrid-solver.md).
-    ``node_blocks`` (3D elasticity): PARDISO with ``PARDISO_IPARM``, else with its defaults."""
+    ``node_blocks`` (3D elasticity): PARDISO with ``PARDISO_IPARM``, else with its defaults; ``iparm``: PARDISO
+    settings on top of those (1: 1 for PARDISO to read them; SuperLU ignores them)."""
     try:
         with _mkl_rt_known():
             import pypardiso
@@ -294,6 +296,8 @@ def _direct(A: sp.csr_matrix, b: np.ndarray, study: str, *, node_blocks: bool = 
         pypardiso = None
     if pypardiso is not None:
         solver = _pardiso_solver(pypardiso, tuned=node_blocks)
+        for number, value in (iparm or {}).items():
+            solver.set_iparm(number, value)
         upper = sp.triu(A, format="csr")
         upper.sort_indices()
         try:

@@ -147,16 +147,15 @@ def solve_plain(s: RingSetup, h_mm: float, scale: float, profile_depth_mm: float
     """The uncracked ring on one refinement: cam stresses, ball flexibility, coupled ball loads, compliance,
     and the hoop stress per newton along the crack line (phi = 0) from the race down to ``profile_depth_mm``."""
     system = _system(s, *grid(s, h_mm, scale, None))
-    zero = np.zeros(system.K.shape[0])
-    u_cam, _ = ring2d.solve_ring(system, zero, cam_displacement_mm(system, s.w0_mm))
     F = ring2d.patch_load_vectors(system, s.r_race_mm, s.ball_angles_rad, s.patch_half_widths_mm)
-    U = ring2d.solve_many(system, F)
+    # the cam alone first, then each ball's patch: one factorisation
+    U = ring2d.solve_many(system, F, bore_radial_mm=cam_displacement_mm(system, s.w0_mm))
+    u_cam, U = U[:, 0], U[:, 1:]
     q = np.asarray(s.ball_loads_N)
     u_f = U @ q
     G = F.T @ U
     q_fea, d0 = coupled_ball_loads(G, np.asarray(s.ball_angles_rad), s.force_N, s.hertz_constant, q)
-    st_cam = ring2d.nodal_stress(system, u_cam, s.E_MPa, s.nu)
-    st_f = ring2d.nodal_stress(system, u_f, s.E_MPa, s.nu)
+    st_cam, st_f = ring2d.nodal_stress(system, np.column_stack([u_cam, u_f]), s.E_MPa, s.nu)
     race = _race_points(s, (0.0, 0.5 * math.pi), system)
     cam = ring2d.hoop_stress_at(system, st_cam, race)
     bore = ring2d.hoop_stress_at(system, st_cam, np.array([[s.r_bore_mm * (1 + 1e-9)], [0.0]]))
@@ -196,22 +195,27 @@ def _ball_count(s: RingSetup) -> int:
 
 def solve_crack(s: RingSetup, h_mm: float, scale: float, depth_mm: float, w0_mm: float | None = None) -> dict:
     """One crack depth on one refinement: the compliance under the ball loads on the cracked mesh (faces in
-    contact, cam then cam + balls) minus the same mesh merged (uncracked)."""
+    contact, cam then cam + balls) minus the same mesh merged (uncracked), all three from one factorisation
+    with the Schur complement on the crack pairs' openings (``ring2d.seam_system``)."""
     w0 = s.w0_mm if w0_mm is None else w0_mm
     cracked = _system(s, *grid(s, h_mm, scale, depth_mm))
     q = np.asarray(s.ball_loads_N)
     f = ring2d.patch_load_vectors(cracked, s.r_race_mm, s.ball_angles_rad, s.patch_half_widths_mm) @ q
-    u0 = ring2d.solve_many(cracked, f[:, None], tied=True)[:, 0]
+    seam = ring2d.seam_system(cracked)
+    try:
+        u0 = ring2d.solve_many(cracked, f[:, None], tied=True, seam=seam)[:, 0]
+        bore = cam_displacement_mm(cracked, w0)
+        _, res1 = ring2d.solve_ring(cracked, np.zeros_like(f), bore, seam)
+        _, res2 = ring2d.solve_ring(cracked, f, bore, seam)
+        delta = ring2d.crack_work(cracked, seam, f, res1, res2) / s.force_N ** 2
+    finally:
+        seam.close()
     c0 = float(f @ u0) / s.force_N ** 2
     # the uncracked hoop stress per newton on the crack line, on this mesh (graded there): the closed form's input
     x = depth_mm * np.linspace(0.0, 1.0, 65)
     stress = ring2d.nodal_stress(cracked, u0, s.E_MPa, s.nu)
     profile = ring2d.hoop_stress_at(cracked, stress, np.array([s.r_race_mm * (1 - 1e-9) - x, 0 * x + 1e-9])) / s.force_N
-    bore = cam_displacement_mm(cracked, w0)
-    u1, res1 = ring2d.solve_ring(cracked, np.zeros_like(f), bore)
-    u2, res2 = ring2d.solve_ring(cracked, f, bore)
-    c1 = float(f @ (u2 - u1)) / s.force_N ** 2
-    return {"delta": c1 - c0, "uncracked": c0, "profile": (x, profile), "closed_pairs": int(res2.active.sum()), "pairs": int(res2.active.size),
+    return {"delta": delta, "uncracked": c0, "profile": (x, profile), "closed_pairs": int(res2.active.sum()), "pairs": int(res2.active.size),
             "mouth_opening_mm": float(res2.opening_mm[int(np.argmax(np.hypot(*cracked.scalar.doflocs[:, cracked.pairs.minus])))]),
             "dofs": cracked.K.shape[0]}
 
