@@ -287,7 +287,8 @@ DELIBERATE_CHANGES: dict[str, str] = {
     "cup.crack_compliance": _CRACK_GCI + "; cracks (issue 13): the FEA crack is the seed's through-wall 45 deg "
                             "crack in the fully loaded tube (was a part-through root crack in the load band): "
                             "2.60e-15 -> 1.02e-14 at a = 1.12 mm; corrected = both tips a^2/(2 pi E r_m^4 delta); " + _GCI_BOOK
-                            + "; decision 031: solved global-local (1.065e-14 at a = 1.12 mm, GCI 2.2 %)",
+                            + "; decision 031: solved global-local (1.065e-14 at a = 1.12 mm, GCI 2.2 %); decision 042: "
+                            "the patch in one solve (Bueckner) held at the section's exact field: 1.0659e-14, GCI 2.4 %",
     "cup.flexibility": _CUP_SEAM_MESH + "; " + _CUP_CALIBRATED + "; " + _GCI_BOOK + "; decision 031: the FEA is the "
                        "cup's exact (r, z) section (4.855e-10 -> 4.9155e-10, +1.2 %: the 3D meshes read low), corrected "
                        "= series model + junction line in delta/d1, tolerance 0.06 %",
