@@ -51,14 +51,18 @@ def _gmsh_open():
     return gmsh, started
 
 
-def face_index(step: Path) -> dict:
+def face_index(step: Path, named: list[tuple[str, tuple[float, float, float], float]] | None = None) -> dict:
     """The sidecar record of ``step``: every gmsh surface that carries a STEP face name, with its centre and
-    area (so a reader can check the file still matches), and the number of unnamed surfaces."""
+    area (so a reader can check the file still matches), and the number of unnamed surfaces.
+
+    ``named``: the (name, centre, area) the writer put on the file (``step_xcaf.named_refs`` of what it
+    wrote); None reads them back from the file with OCC's reader, a second translation of the whole file."""
     from scipy.spatial import cKDTree
 
     from strainwave.geometry.step_xcaf import read_step_face_names
 
-    named = read_step_face_names(step)
+    if named is None:
+        named = read_step_face_names(step)
     gmsh, started = _gmsh_open()
     try:
         gmsh.model.add(f"face-index-{Path(step).stem}")
@@ -85,11 +89,12 @@ def face_index(step: Path) -> dict:
             "faces": {str(tag): faces[tag] for tag in sorted(faces)}}
 
 
-def write_face_index(step: Path) -> Path:
-    """Write ``step``'s face index beside it (atomically); returns the sidecar's path."""
+def write_face_index(step: Path, named: list[tuple[str, tuple[float, float, float], float]] | None = None) -> Path:
+    """Write ``step``'s face index beside it (atomically); returns the sidecar's path. ``named``: see
+    ``face_index``."""
     from strainwave.io_atomic import atomic_write_text
 
-    return atomic_write_text(sidecar_path(step), json.dumps(face_index(step), indent=1) + "\n")
+    return atomic_write_text(sidecar_path(step), json.dumps(face_index(step, named), indent=1) + "\n")
 
 
 def apply_face_names(gmsh, sidecar: Path) -> dict[str, list[int]]:
