@@ -94,14 +94,14 @@ def export_part(name: str, params, out_path: Path, *, crack_depth_mm: float | No
         for drive, path in ((CUP_GEAR, out_path), (EWG_DRIVE, out_path.with_name(out_path.stem + "-ewg-drive.step"))):
             step = write_assembly_step(drive, drives[drive], path)
             # gmsh reads no STEP face names: the sidecar gives them, from the names just written
-            written += [step, write_face_index(step, named_refs(drives[drive]))]
+            written += [step, write_face_index(step, named_refs(drives[drive]), [p.shape for p in drives[drive]])]
         if png is not None:
             from strainwave.geometry.preview import render_assembly_preview
             written.append(render_assembly_preview(drives, Path(png)))
         return written
     part = build_part(part_name(name), params, crack_depth_mm=crack_depth_mm, teeth=teeth)
     step = write_step(part, out_path)
-    written += [step, write_face_index(step, named_refs([Placed(part)]))]
+    written += [step, write_face_index(step, named_refs([Placed(part)]), [part.solid])]
     if png is not None:
         from strainwave.geometry.preview import render_preview
         written.append(render_preview(part, Path(png)))
