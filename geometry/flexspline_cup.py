@@ -174,7 +174,7 @@ def toothed_solid(fc, spec: ToothSpec, *, sew: bool = True):
     """The revolved cup up to the band joined to the toothed band (``fc``: the cup's parameters).
 
     ``sew``: the faces of both but the annulus they share at the band's start, plus each tooth's end there,
-    sewn into one solid, without a boolean over the band's ~1400 faces; if sewing does not close one shell
+    sewn into one solid, without a boolean over all the band's faces; if sewing does not close one shell
     of those faces, or with ``sew=False``, the two solids' glued fuse, which gives the same solid."""
     from build123d import Axis, Edge, Face, GeomType, Location, Wire, extrude, revolve
 
