@@ -26,10 +26,21 @@ def small_cup_params():
         return load_params().with_values({"flexspline_cup.teeth": 40, "flexspline_cup.module_mm": 4.0})
 
 
+def _same_faces(a: list[tuple], b: list[tuple]) -> bool:
+    """``a`` and ``b`` (tag, centre, area) hold the same faces in any order: one to one, the same tag, centre
+    within 1e-7 mm and area within 1e-9 relative."""
+    from scipy.spatial import cKDTree
+
+    if len(a) != len(b):
+        return False
+    dist, nearest = cKDTree(np.array([c for _, c, _ in b])).query(np.array([c for _, c, _ in a]))
+    return (len(set(nearest)) == len(b) and bool(np.all(dist < 1e-7))
+            and all(ta == b[k][0] and abs(aa - b[k][2]) <= 1e-9 * aa for (ta, _, aa), k in zip(a, nearest)))
+
+
 def _faces(solid) -> list[tuple]:
-    """Every face as (kind, centre, area, radius), sorted: the same list means the same faces, in any order."""
-    return sorted((fi.kind, *np.round(fi.center_mm, 7), round(fi.area_mm2, 7), round(fi.radius_mm or 0.0, 9))
-                  for fi in face_infos(solid))
+    """Every face of ``solid`` as (kind, centre, area)."""
+    return [(fi.kind, fi.center_mm, fi.area_mm2) for fi in face_infos(solid)]
 
 
 @pytest.mark.parametrize("variant", [{}, {"flexspline_cup.shape": "bell"}, {"flexspline_cup.cup": False}])
@@ -43,7 +54,12 @@ def test_sewn_toothed_cup_is_the_fused_one(small_cup_params, variant):
     assert np.allclose(tuple(sewn.bounding_box().min) + tuple(sewn.bounding_box().max),
                        tuple(fused.bounding_box().min) + tuple(fused.bounding_box().max), rtol=0, atol=1e-9)
     assert len(sewn.faces()) == len(fused.faces())
-    assert _faces(sewn) == _faces(fused)
+    reference = _faces(fused)
+    assert _same_faces(_faces(sewn), reference)
+    # the comparison sees one face's area off by 1e-8, or one face missing (another one twice instead)
+    kind, centre, area = reference[0]
+    assert not _same_faces(_faces(sewn), [(kind, centre, area * (1 + 1e-8)), *reference[1:]])
+    assert not _same_faces(_faces(sewn), [reference[1], *reference[1:]])
 
 
 def test_cup_part_names_the_same_faces_as_the_fused_cup(small_cup_params, monkeypatch):
@@ -54,11 +70,11 @@ def test_cup_part_names_the_same_faces_as_the_fused_cup(small_cup_params, monkey
     fused = flexspline_cup.build(small_cup_params, teeth=True)
     assert sewn.named_faces.keys() == fused.named_faces.keys()
     for name in sewn.named_faces:
-        key = lambda ref: (tuple(np.round(ref.center_mm, 7)), round(ref.area_mm2, 7))  # noqa: E731
-        assert sorted(map(key, sewn.named_faces[name])) == sorted(map(key, fused.named_faces[name])), name
+        as_tuples = [[(name, ref.center_mm, ref.area_mm2) for ref in part.named_faces[name]] for part in (sewn, fused)]
+        assert _same_faces(*as_tuples), name
 
 
-def test_sewing_that_does_not_close_falls_back(small_cup_params):
+def test_sew_solid_refuses_an_open_shell(small_cup_params):
     """A missing face (one tooth end) leaves free edges: ``sew_solid`` refuses, it never returns an open
     shell as the part."""
     from build123d import Face, Location
