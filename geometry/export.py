@@ -15,7 +15,7 @@ from strainwave.io_atomic import atomic_path
 from strainwave.geometry.parts import build_part, part_name
 from strainwave.geometry.part import Part, PartName
 from strainwave.geometry.face_names import write_face_index
-from strainwave.geometry.step_xcaf import Placed, write_named_step
+from strainwave.geometry.step_xcaf import Placed, named_refs, write_named_step
 
 ASSEMBLY = "assembly"
 CUP_GEAR = "cup-type-gear"     # STEP assembly names of the two drives ``assembly`` writes
@@ -91,17 +91,17 @@ def export_part(name: str, params, out_path: Path, *, crack_depth_mm: float | No
     if name == ASSEMBLY:
         drives = {CUP_GEAR: cup_gear_assembly(params, crack_depth_mm=crack_depth_mm, teeth=teeth),
                   EWG_DRIVE: ewg_drive_assembly(params, teeth=teeth)}
-        for step in (write_assembly_step(CUP_GEAR, drives[CUP_GEAR], out_path),
-                     write_assembly_step(EWG_DRIVE, drives[EWG_DRIVE],
-                                         out_path.with_name(out_path.stem + "-ewg-drive.step"))):
-            written += [step, write_face_index(step)]   # gmsh reads no STEP face names: the sidecar gives them
+        for drive, path in ((CUP_GEAR, out_path), (EWG_DRIVE, out_path.with_name(out_path.stem + "-ewg-drive.step"))):
+            step = write_assembly_step(drive, drives[drive], path)
+            # gmsh reads no STEP face names: the sidecar gives them, from the names just written
+            written += [step, write_face_index(step, named_refs(drives[drive]), [p.shape for p in drives[drive]])]
         if png is not None:
             from strainwave.geometry.preview import render_assembly_preview
             written.append(render_assembly_preview(drives, Path(png)))
         return written
     part = build_part(part_name(name), params, crack_depth_mm=crack_depth_mm, teeth=teeth)
     step = write_step(part, out_path)
-    written += [step, write_face_index(step)]
+    written += [step, write_face_index(step, named_refs([Placed(part)]), [part.solid])]
     if png is not None:
         from strainwave.geometry.preview import render_preview
         written.append(render_preview(part, Path(png)))

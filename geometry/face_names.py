@@ -51,24 +51,48 @@ def _gmsh_open():
     return gmsh, started
 
 
-def face_index(step: Path) -> dict:
-    """The sidecar record of ``step``: every gmsh surface that carries a STEP face name, with its centre and
-    area (so a reader can check the file still matches), and the number of unnamed surfaces."""
-    from scipy.spatial import cKDTree
+def _import_surfaces(step: Path, shapes) -> list[tuple[int, np.ndarray, float]]:
+    """gmsh's surfaces (tag, centre, area) after it imports ``step``; with ``shapes``, the very shapes the
+    STEP file holds, in its order, imported as a BREP file instead: gmsh binds the same faces in the same
+    order (OCC's STEP writer and reader keep each shell's face order) without translating the STEP file."""
+    import tempfile
 
-    from strainwave.geometry.step_xcaf import read_step_face_names
-
-    named = read_step_face_names(step)
     gmsh, started = _gmsh_open()
     try:
         gmsh.model.add(f"face-index-{Path(step).stem}")
-        gmsh.model.occ.importShapes(str(step))
+        if shapes is None:
+            gmsh.model.occ.importShapes(str(step))
+        else:
+            from build123d import Compound
+
+            from strainwave.geometry.export import write_brep
+            with tempfile.TemporaryDirectory() as tmp:
+                brep = write_brep(shapes[0] if len(shapes) == 1 else Compound(list(shapes)), Path(tmp) / "shapes.brep")
+                gmsh.model.occ.importShapes(str(brep))
         gmsh.model.occ.synchronize()
         surfaces = _surfaces(gmsh)
         gmsh.model.remove()
     finally:
         if started:
             gmsh.finalize()
+    return surfaces
+
+
+def face_index(step: Path, named: list[tuple[str, tuple[float, float, float], float]] | None = None,
+               shapes=None) -> dict:
+    """The sidecar record of ``step``: every gmsh surface that carries a STEP face name, with its centre and
+    area (so a reader can check the file still matches), and the number of unnamed surfaces.
+
+    ``named``: the (name, centre, area) the writer put on the file (``step_xcaf.named_refs`` of what it
+    wrote); None reads them back from the file with OCC's reader, a second translation of the whole file.
+    ``shapes``: the shapes the file holds, in its order (see ``_import_surfaces``); None imports the file."""
+    from scipy.spatial import cKDTree
+
+    from strainwave.geometry.step_xcaf import read_step_face_names
+
+    if named is None:
+        named = read_step_face_names(step)
+    surfaces = _import_surfaces(Path(step), shapes)
     centres = np.array([c for _, c, _ in surfaces]) if surfaces else np.zeros((0, 3))
     size = float(np.ptp(centres, axis=0).max()) if len(centres) else 1.0
     tree = cKDTree(centres) if len(centres) else None
@@ -85,11 +109,13 @@ def face_index(step: Path) -> dict:
             "faces": {str(tag): faces[tag] for tag in sorted(faces)}}
 
 
-def write_face_index(step: Path) -> Path:
-    """Write ``step``'s face index beside it (atomically); returns the sidecar's path."""
+def write_face_index(step: Path, named: list[tuple[str, tuple[float, float, float], float]] | None = None,
+                     shapes=None) -> Path:
+    """Write ``step``'s face index beside it (atomically); returns the sidecar's path. ``named``, ``shapes``:
+    see ``face_index``."""
     from strainwave.io_atomic import atomic_write_text
 
-    return atomic_write_text(sidecar_path(step), json.dumps(face_index(step), indent=1) + "\n")
+    return atomic_write_text(sidecar_path(step), json.dumps(face_index(step, named, shapes), indent=1) + "\n")
 
 
 def apply_face_names(gmsh, sidecar: Path) -> dict[str, list[int]]:

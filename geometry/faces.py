@@ -36,11 +36,16 @@ class FaceInfo:
 
 def face_infos(solid) -> list[FaceInfo]:
     """One FaceInfo per face of ``solid`` (a build123d shape)."""
-    from build123d import CenterOf, GeomType
+    from build123d import GeomType, Vector
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
 
     out = []
     for i, f in enumerate(solid.faces()):
-        c = f.center(CenterOf.MASS)
+        # one surface integration for centre and area (build123d's center() and area each run their own)
+        props = GProp_GProps()
+        BRepGProp.SurfaceProperties_s(f.wrapped, props)
+        c = Vector(props.CentreOfMass())
         bb = f.bounding_box()
         kind, normal, radius = "other", None, None
         if f.geom_type == GeomType.PLANE:
@@ -49,7 +54,7 @@ def face_infos(solid) -> list[FaceInfo]:
             normal = (n.X, n.Y, n.Z)
         elif f.geom_type == GeomType.CYLINDER:
             kind, radius = "cylinder", float(f.radius)
-        out.append(FaceInfo(i, kind, (c.X, c.Y, c.Z), float(f.area), normal, radius,
+        out.append(FaceInfo(i, kind, (c.X, c.Y, c.Z), float(props.Mass()), normal, radius,
                             (bb.min.X, bb.min.Y, bb.min.Z), (bb.max.X, bb.max.Y, bb.max.Z)))
     return out
 

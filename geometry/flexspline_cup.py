@@ -26,8 +26,8 @@ from strainwave.params import CupShape
 from strainwave.geometry import faces as F
 from strainwave.geometry.crack_seams import helical_through_seam
 from strainwave.geometry.cracks import check_crack, inclined_root_slot
-from strainwave.geometry.involute import ToothSpec, cup_tooth_spec, gear_face, tip_thickness_mm
-from strainwave.geometry.occ import cut, fuse
+from strainwave.geometry.involute import ToothSpec, cup_tooth_spec, gear_edges, tip_thickness_mm, tooth_end_faces
+from strainwave.geometry.occ import cut, fuse, sew_solid
 from strainwave.geometry.part import CrackModel, Part, PartName
 
 BAND_RATIO = 0.2          # tooth face width / d1
@@ -136,11 +136,10 @@ def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True,
             raise InputError("crack_geometry.flexspline_axial_position_ratio", cg.flexspline_axial_position_ratio,
                              f"the crack (half length {c:g} mm) must lie inside the tooth band "
                              f"z = {z_b:g}..{length:g} mm, i.e. ratio in ({(z_b + c) / length:.4f}, {(length - c) / length:.4f})")
-    from build123d import Axis, Location, extrude, revolve
+    from build123d import Axis, revolve
 
     if teeth:
-        ring = extrude(gear_face(spec, inner_radius_mm=r_i), amount=band, clean=False).solids()[0].moved(Location((0, 0, z_b)))
-        solid = fuse(revolve(_profile(fc, z_b, None), Axis.Z).solids()[0], ring, touching=True)
+        solid = toothed_solid(fc, spec, sew=True)
         r_surface = spec.root_radius_mm
     else:
         solid = revolve(_profile(fc, length, z_b), Axis.Z, clean=False).solids()[0]
@@ -169,6 +168,34 @@ def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True,
                     slot_volume_mm3=slot.volume_mm3, crack_z_mm=z_c)
     return Part(PartName.FLEXSPLINE_CUP, solid, _named(solid, meta, slot, teeth, fc.cup),
                 slot.front_mm if slot else (), None, meta)
+
+
+def toothed_solid(fc, spec: ToothSpec, *, sew: bool = True):
+    """The revolved cup up to the band joined to the toothed band (``fc``: the cup's parameters).
+
+    ``sew``: the faces of both but the annulus they share at the band's start, plus each tooth's end there,
+    sewn into one solid, without a boolean over all the band's faces; if sewing does not close one shell
+    of those faces, or with ``sew=False``, the two solids' glued fuse, which gives the same solid."""
+    from build123d import Axis, Edge, Face, GeomType, Location, Wire, extrude, revolve
+
+    t, band = fc.wall_thickness_mm, BAND_RATIO * fc.pitch_diameter_mm
+    r_i, z_b = fc.pitch_diameter_mm / 2 - t, fc.length_mm - band
+    teeth, at_band = gear_edges(spec), Location((0, 0, z_b))
+    outline = Face(Wire([e for edges, root in teeth for e in (*edges, root)]), [Wire([Edge.make_circle(r_i)])])
+    ring = extrude(outline, amount=band, clean=False).solids()[0].moved(at_band)
+    body = revolve(_profile(fc, z_b, None), Axis.Z).solids()[0]
+    if not sew:
+        return fuse(body, ring, touching=True)
+
+    def shared(face) -> bool:   # the body's top annulus and the band's bottom face, both at z_b
+        if face.geom_type != GeomType.PLANE:
+            return False
+        bb = face.bounding_box()
+        return abs(bb.min.Z - z_b) < 1e-9 * fc.length_mm and abs(bb.max.Z - z_b) < 1e-9 * fc.length_mm
+    faces = [f for f in (*body.faces(), *ring.faces()) if not shared(f)]
+    faces += [Face(f.wrapped.Moved(at_band.wrapped)) for f in tooth_end_faces(teeth, spec.root_radius_mm)]
+    solid = sew_solid(faces, len(faces))
+    return solid if solid is not None else fuse(body, ring, touching=True)
 
 
 def _named(solid, meta, slot, teeth: bool, is_cup: bool) -> dict:

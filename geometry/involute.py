@@ -135,13 +135,21 @@ def _fillet_offset(spec: ToothSpec, rho_mm: float) -> tuple[float, float, float]
 
 
 def gear_wire(spec: ToothSpec, n_flank: int = 9):
-    """The closed toothed outline as a build123d Wire.
+    """The closed toothed outline as a build123d Wire: ``gear_edges`` in order."""
+    from build123d import Wire
+
+    return Wire([e for tooth, root in gear_edges(spec, n_flank) for e in (*tooth, root)])
+
+
+def gear_edges(spec: ToothSpec, n_flank: int = 9) -> list:
+    """The toothed outline's edges tooth by tooth: (the tooth's edges from root circle to root circle, the
+    root arc to the next tooth).
 
     Per tooth: two spline flanks (exact involute points), a tip arc, two root-fillet arcs and a root
     arc. Fillets are computed here analytically-numerically because OCC's 2D fillet is far too slow on
     hundreds of root corners (docs/decisions/015-cad-build-speed.md).
     """
-    from build123d import Edge, Wire
+    from build123d import Edge
 
     r_f, r_a = spec.root_radius_mm, spec.tip_radius_mm
     pitch = 2 * math.pi / spec.teeth
@@ -191,12 +199,13 @@ def gear_wire(spec: ToothSpec, n_flank: int = 9):
         return (*p_root, 0.0), (float(pm[0]), float(pm[1]), 0.0), (*p_flank, 0.0)
 
     filleted = psi_t is not None
-    edges = []
+    teeth = []
     for j in range(spec.teeth):
         th = j * pitch
         right = [pt(r, th - p) for r, p in zip(radii, psi)]
         left = [pt(r, th + p) for r, p in zip(radii[::-1], psi[::-1])]
         foot_r, foot_l = pt(r_t, th - float(psi[0])), pt(r_t, th + float(psi[0]))
+        edges = []
         if filleted:
             a, m, b = fillet(th, -1)
             edges.append(arc(a, m, foot_r))
@@ -211,8 +220,26 @@ def gear_wire(spec: ToothSpec, n_flank: int = 9):
             a, m, b = fillet(th, +1)
             edges.append(arc(foot_l, m, a))
         a0, a1 = th + dphi, th + pitch - dphi
-        edges.append(arc(pt(r_f, a0), pt(r_f, 0.5 * (a0 + a1)), pt(r_f, a1)))
-    return Wire(edges)
+        teeth.append((edges, arc(pt(r_f, a0), pt(r_f, 0.5 * (a0 + a1)), pt(r_f, a1))))
+    return teeth
+
+
+def tooth_end_faces(teeth: list, root_radius_mm: float) -> list:
+    """Planar faces (z = 0) each bounded by one tooth's edges of ``gear_edges`` and the root-circle arc
+    under the tooth: the external toothed outline minus its root disc, tooth by tooth."""
+    from build123d import Edge, Face
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeWire
+
+    faces = []
+    for edges, _ in teeth:
+        p0, p1 = edges[0].start_point(), edges[-1].end_point()
+        mid = math.atan2(p0.Y + p1.Y, p0.X + p1.X)     # the ends lie symmetric about the tooth's axis
+        foot = Edge.make_three_point_arc(p1, (root_radius_mm * math.cos(mid), root_radius_mm * math.sin(mid), 0.0), p0)
+        wire = BRepBuilderAPI_MakeWire()
+        for edge in (*edges, foot):        # OCC's own makers: build123d's Face() re-fixes every wire (slower)
+            wire.Add(edge.wrapped)
+        faces.append(Face(BRepBuilderAPI_MakeFace(wire.Wire(), True).Face()))
+    return faces
 
 
 def gear_face(spec: ToothSpec, inner_radius_mm: float | None = None, outer_radius_mm: float | None = None):

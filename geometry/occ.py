@@ -76,3 +76,27 @@ def imprint(a, *faces):
     from OCP.BRepAlgoAPI import BRepAlgoAPI_Splitter
     result = _run(BRepAlgoAPI_Splitter(), a, faces)
     return max(result.solids(), key=lambda s: s.volume)
+
+
+def sew_solid(faces, expected_faces: int, tol_mm: float = 1e-6):
+    """The closed solid bounded by ``faces`` (build123d faces that meet edge to edge, an edge of one may be
+    split on its neighbour), or None unless sewing gives one shell of ``expected_faces`` faces without
+    free or multiply shared edges. Joins solids that touch on one face without a boolean over all faces."""
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeSolid, BRepBuilderAPI_Sewing
+    from OCP.BRepLib import BRepLib
+    from OCP.TopAbs import TopAbs_SHELL
+    from OCP.TopoDS import TopoDS
+    from build123d import Shape
+
+    sewing = BRepBuilderAPI_Sewing(tol_mm)
+    for face in faces:
+        sewing.Add(face.wrapped)
+    sewing.Perform()
+    shell = sewing.SewedShape()
+    if shell.ShapeType() != TopAbs_SHELL or sewing.NbFreeEdges() or sewing.NbMultipleEdges():
+        return None
+    solid = BRepBuilderAPI_MakeSolid(TopoDS.Shell(shell)).Solid()
+    if not BRepLib.OrientClosedSolid_s(solid):    # outward normals, whichever way the shell came out
+        return None
+    solid = Shape.cast(solid)
+    return solid if len(solid.faces()) == expected_faces else None

@@ -17,21 +17,34 @@ from strainwave.geometry.part import Part
 
 
 def _polydata(shapes, tol_mm: float):
-    import pyvista as pv
+    """The shapes' triangulation as one PolyData: OCC's mesher (as build123d's ``tessellate``, without its
+    threads), handed to VTK as binary STL, not as one Python object per vertex (the slow part on the
+    toothed parts' many faces)."""
+    import tempfile
 
-    pts, tris, offset = [], [], 0
-    for shape in shapes:
-        verts, triangles = shape.tessellate(tol_mm, 0.3)
-        if not triangles:
-            continue
-        pts.append(np.array([(v.X, v.Y, v.Z) for v in verts]))
-        tris.append(np.asarray(triangles, dtype=np.int64) + offset)
-        offset += len(verts)
-    if not pts:
+    import pyvista as pv
+    from OCP.BRep import BRep_Builder
+    from OCP.BRepMesh import BRepMesh_IncrementalMesh
+    from OCP.BRepTools import BRepTools
+    from OCP.StlAPI import StlAPI_Writer
+    from OCP.TopoDS import TopoDS_Compound
+
+    if not shapes:
         return None
-    t = np.vstack(tris)
-    cells = np.hstack([np.full((t.shape[0], 1), 3, dtype=np.int64), t]).ravel()
-    return pv.PolyData(np.vstack(pts), cells)
+    compound, builder = TopoDS_Compound(), BRep_Builder()
+    builder.MakeCompound(compound)
+    for shape in shapes:
+        if not BRepTools.Triangulation_s(shape.wrapped, tol_mm):   # meshed finer already: kept, as build123d does
+            BRepMesh_IncrementalMesh(shape.wrapped, tol_mm, True, 0.3, False)
+        builder.Add(compound, shape.wrapped)
+    with tempfile.TemporaryDirectory() as tmp:
+        stl = Path(tmp) / "shapes.stl"
+        writer = StlAPI_Writer()
+        writer.ASCIIMode = False
+        if not writer.Write(compound, str(stl)):
+            raise RuntimeError("STL of the preview's shapes failed")
+        mesh = pv.read(stl)
+    return mesh if mesh.n_cells else None
 
 
 def _focus(part: Part):

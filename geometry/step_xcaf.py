@@ -282,6 +282,37 @@ def _name_faces(path: Path, placed: list[Placed]) -> None:
     Path(path).write_text(named, encoding="ascii")
 
 
+def _shares_face_shapes(solid) -> bool:
+    """True when two faces of ``solid`` are located copies of one TShape (an extrusion's top and bottom)."""
+    from OCP.TopAbs import TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopLoc import TopLoc_Location
+
+    seen: set[int] = set()
+    explorer = TopExp_Explorer(solid.wrapped, TopAbs_FACE)
+    while explorer.More():
+        key = hash(explorer.Current().Located(TopLoc_Location()))
+        explorer.Next()
+        if key in seen:
+            return True
+        seen.add(key)
+    return False
+
+
+def _unshared(item: Placed) -> Placed:
+    """``item`` with its solid copied (same geometry, one TShape per face) if faces share a TShape: then the
+    writer's map tells them apart and names them in memory, without reading the written file back."""
+    import dataclasses
+
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy
+    from build123d import Shape
+
+    if not _shares_face_shapes(item.part.solid):
+        return item
+    copied = Shape.cast(BRepBuilderAPI_Copy(item.part.solid.wrapped, True, False).Shape())
+    return Placed(dataclasses.replace(item.part, solid=copied), item.at)
+
+
 def write_named_step(placed: list[Placed], path: Path, *, assembly: str | None = None) -> Path:
     """Write one part (``assembly=None``, one entry) or an assembly named ``assembly`` of placed parts
     as STEP AP214 in mm, with part names and colours and named faces. ``path`` is written as given
@@ -291,6 +322,7 @@ def write_named_step(placed: list[Placed], path: Path, *, assembly: str | None =
 
     if assembly is None and len(placed) != 1:
         raise ValueError("a single-part STEP takes exactly one placed part")
+    placed = [_unshared(item) for item in placed]
     doc, shapes, colours = _document()
     if assembly is None:
         _add_part(colours, shapes.AddShape(placed[0].shape.wrapped, False), placed[0].part)

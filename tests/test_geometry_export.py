@@ -134,15 +134,12 @@ def test_toothed_cup_faces_are_named_in_the_writers_model(params, tmp_path, monk
             assert group in named_at[(tuple(round(c, 6) for c in ref.center_mm), round(ref.area_mm2, 6))]
 
 
-def test_faces_sharing_one_shape_are_named_from_the_written_file(tmp_path, monkeypatch):
-    """An extruded ring's top is a located copy of its bottom (one TShape): the writer's map cannot tell
-    them apart, so the names go on through the read-back, each on its own face."""
+def _ring_sharing_one_shape():
+    """An extruded ring whose top is a located copy of its bottom (one TShape), top and bottom named."""
     from build123d import Face, Wire, extrude
 
     from strainwave.geometry.part import FaceRef, Part, PartName
-    from strainwave.geometry.step_xcaf import read_step_face_names
 
-    calls = _spy_on_read_back_naming(monkeypatch)
     solid = extrude(Face(Wire.make_circle(10.0)) - Face(Wire.make_circle(5.0)), 3.0).solids()[0]
     flat = [f for f in solid.faces() if abs(f.normal_at(f.center()).Z) > 0.5]
     assert len(flat) == 2
@@ -151,10 +148,24 @@ def test_faces_sharing_one_shape_are_named_from_the_written_file(tmp_path, monke
     def ref(face):
         c = face.center()
         return (FaceRef((c.X, c.Y, c.Z), float(face.area)),)
-    part = Part(PartName.WG_BEARING_RING, solid, {"bottom": ref(bottom), "top": ref(top)})
+    return Part(PartName.WG_BEARING_RING, solid, {"bottom": ref(bottom), "top": ref(top)})
+
+
+@pytest.mark.parametrize("copy_first", [True, False])
+def test_faces_sharing_one_shape_are_each_named(tmp_path, monkeypatch, copy_first):
+    """The writer's map cannot tell a located copy from its original: the writer copies such a solid (one
+    TShape per face) and names it in memory; without that copy the names go on through the read-back.
+    Either way each name sits on its own face."""
+    from strainwave.geometry import step_xcaf
+
+    calls = _spy_on_read_back_naming(monkeypatch)
+    part = _ring_sharing_one_shape()
+    assert step_xcaf._shares_face_shapes(part.solid)
+    if not copy_first:
+        monkeypatch.setattr(step_xcaf, "_unshared", lambda item: item)
     path = write_step(part, tmp_path / "ring.step")
-    assert len(calls) == 1
-    back = sorted(read_step_face_names(path), key=lambda item: item[1][2])
+    assert len(calls) == (0 if copy_first else 1)
+    back = sorted(step_xcaf.read_step_face_names(path), key=lambda item: item[1][2])
     assert [(name, round(centre[2], 9)) for name, centre, _ in back] == [("bottom", 0.0), ("top", 3.0)]
 
 
