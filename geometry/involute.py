@@ -141,6 +141,18 @@ def gear_wire(spec: ToothSpec, n_flank: int = 9):
     return Wire([e for tooth, root in gear_edges(spec, n_flank) for e in (*tooth, root)])
 
 
+def _fitted_fillet(spec: ToothSpec) -> tuple:
+    """(rho, dphi, r_t, psi_t) of the root fillet, shrunk until it fits the tooth space (no fillet: dphi and
+    psi_t None, r_t the root radius)."""
+    rho = spec.root_fillet_mm
+    for _ in range(20):
+        try:
+            return (rho, *_fillet_offset(spec, rho)) if rho > 0 else (rho, None, spec.root_radius_mm, None)
+        except ValueError:
+            rho *= 0.7
+    return rho, None, spec.root_radius_mm, None
+
+
 def gear_edges(spec: ToothSpec, n_flank: int = 9) -> list:
     """The toothed outline's edges tooth by tooth: (the tooth's edges from root circle to root circle, the
     root arc to the next tooth).
@@ -153,15 +165,7 @@ def gear_edges(spec: ToothSpec, n_flank: int = 9) -> list:
 
     r_f, r_a = spec.root_radius_mm, spec.tip_radius_mm
     pitch = 2 * math.pi / spec.teeth
-    rho = spec.root_fillet_mm
-    for _ in range(20):  # shrink the fillet until it fits the tooth space
-        try:
-            dphi, r_t, psi_t = _fillet_offset(spec, rho) if rho > 0 else (None, r_f, None)
-            break
-        except ValueError:
-            rho *= 0.7
-    else:
-        dphi, r_t, psi_t = None, r_f, None
+    rho, dphi, r_t, psi_t = _fitted_fillet(spec)
     r_b = spec.base_radius_mm
     # below the base circle the flank is a radial line: a separate straight edge, because one spline
     # through the kink at r_b would smear it (5e-5 area error for Z = 30)
