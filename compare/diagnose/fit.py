@@ -304,7 +304,11 @@ class _Separable:
             B = np.column_stack([e.basis(ctx) for e in effects if e.basis is not None])
             dbeta = proj.Minv @ (proj.A.T @ B)
             self.J = np.vstack([-(B - proj.A @ dbeta), -proj.lam * dbeta[2]])
-            self.Q, self.R = np.linalg.qr(self.J)
+            # a weight whose column vanishes on the recorded path (relays the load never switches) cannot move the
+            # residual: it stays at zero (inside its bounds), and the others are solved without it
+            norms = np.linalg.norm(self.J, axis=0)
+            self.live = norms > 1e-12 * norms.max()
+            self.Q, self.R = np.linalg.qr(self.J[:, self.live])
 
     def _full(self, x: np.ndarray, w: np.ndarray) -> np.ndarray:
         theta = np.zeros(len(self.linear) + len(self.other))
@@ -313,20 +317,25 @@ class _Separable:
         return theta
 
     def weights(self, q: np.ndarray) -> np.ndarray:
-        """argmin |q + J w| over lo <= w <= hi: the unconstrained optimum where it is inside the box (the problem
+        """argmin |q + J w| over lo <= w <= hi."""
+        w = np.clip(np.zeros(len(self.lo)), self.lo, self.hi)
+        w[self.live] = self._live_weights(-(self.Q.T @ q), self.lo[self.live], self.hi[self.live])
+        return w
+
+    def _live_weights(self, rhs: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+        """argmin |R w - rhs| over lo <= w <= hi: the unconstrained optimum where it is inside the box (the problem
         is convex), else the optimum with the lower bounds only (NNLS from lo), else the bounded one (BVLS)."""
-        rhs = -(self.Q.T @ q)
         with np.errstate(all="ignore"):
             try:
                 w = solve_triangular(self.R, rhs)
             except np.linalg.LinAlgError:
-                w = np.full(len(self.lo), np.nan)
-        if np.all((w >= self.lo) & (w <= self.hi)):
+                w = np.full(len(lo), np.nan)
+        if np.all((w >= lo) & (w <= hi)):
             return w
-        w = self.lo + nnls(self.R, rhs - self.R @ self.lo)[0]
-        if np.all(w <= self.hi):
+        w = lo + nnls(self.R, rhs - self.R @ lo)[0]
+        if np.all(w <= hi):
             return w
-        return np.clip(lsq_linear(self.R, rhs, bounds=(self.lo, self.hi), method="bvls").x, self.lo, self.hi)
+        return np.clip(lsq_linear(self.R, rhs, bounds=(lo, hi), method="bvls").x, lo, hi)
 
     def residual(self, residual, x: np.ndarray) -> np.ndarray:
         """The residual at the other parameters ``x`` with the weights at their optimum given them."""
