@@ -358,7 +358,8 @@ def _loop_ctx(params, n=900):
 
 
 @pytest.mark.parametrize("forms", [("hysteresis[preisach-fine]",), ("nonlinear_stiffness", "hysteresis[play]"),
-                                   ("nonlinear_stiffness[smooth-knee]", "hysteresis[preisach]")])
+                                   ("nonlinear_stiffness[smooth-knee]", "hysteresis[preisach]"),
+                                   ("nonlinear_stiffness[monotone]", "hysteresis[dahl]")])
 def test_the_separable_solve_lands_where_the_full_fit_does(params, forms):
     """Weights of a form linear in them (Effect.basis) solved by bounded least squares inside the residual (variable
     projection) give the fit the trust region reaches with every weight among its parameters, on a curve none of
