@@ -4,7 +4,8 @@ Model (normalised units, see effects/base.py):  y = b0 + b1 t + s u + sum_k effe
 b0, b1 (channel zero offset and drift) and s (stiffness scale) enter linearly and are eliminated
 by least squares inside every residual evaluation (variable projection); s carries the Gaussian
 prior 1 +/- baseline_uncertainty. So are the weights of every form linear in its parameters (Effect.basis: a
-density of play operators or relays, a ripple's amplitudes), by bounded linear least squares (`_Separable`).
+density of play operators or relays, a ripple's amplitudes, a monotone stiffening's slope changes), by bounded
+linear least squares (`_Separable`).
 The other effect parameters are fitted by bounded trust-region least squares from a few starts.
 
 Noise is not assumed white: real sensors drift, are low-pass filtered and wander. The likelihood of
@@ -319,7 +320,8 @@ class _Separable:
     def weights(self, q: np.ndarray) -> np.ndarray:
         """argmin |q + J w| over lo <= w <= hi."""
         w = np.clip(np.zeros(len(self.lo)), self.lo, self.hi)
-        w[self.live] = self._live_weights(-(self.Q.T @ q), self.lo[self.live], self.hi[self.live])
+        if self.live.any():
+            w[self.live] = self._live_weights(-(self.Q.T @ q), self.lo[self.live], self.hi[self.live])
         return w
 
     def _live_weights(self, rhs: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
