@@ -3,8 +3,10 @@
 Model (normalised units, see effects/base.py):  y = b0 + b1 t + s u + sum_k effect_k(theta_k) + noise.
 b0, b1 (channel zero offset and drift) and s (stiffness scale) enter linearly and are eliminated
 by least squares inside every residual evaluation (variable projection); s carries the Gaussian
-prior 1 +/- baseline_uncertainty. The effect parameters are fitted by bounded trust-region least
-squares from a few starts.
+prior 1 +/- baseline_uncertainty. So are the weights of every form linear in its parameters (Effect.basis: a
+density of play operators or relays, a ripple's amplitudes, a monotone stiffening's slope changes), by bounded
+linear least squares (`_Separable`).
+The other effect parameters are fitted by bounded trust-region least squares from a few starts.
 
 Noise is not assumed white: real sensors drift, are low-pass filtered and wander. The likelihood of
 every model is that of an AR(2) or ARMA(1,1) noise process (noise_filter: whichever whitens better, both two
@@ -25,8 +27,8 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import least_squares
-from scipy.optimize._numdiff import approx_derivative   # least_squares' own differences, for a part of theta
+from scipy.linalg import solve_triangular
+from scipy.optimize import least_squares, lsq_linear, nnls
 
 from strainwave.compare.diagnose.effects.base import Context, Effect
 
@@ -194,16 +196,10 @@ def fit_effects(ctx: Context, effects: tuple[Effect, ...], sigma: float, uncerta
     if params:
         lo = np.array([p.lo for p in params])
         hi = np.array([p.hi for p in params])
-        jac = _jacobian(ctx, effects, proj, residual, lo, hi)
-        candidates = starts if starts is not None else [np.array(c) for c in itertools.product(*(p.starts for p in params))]
-        best = None
-        for x0 in candidates:
-            x0 = np.clip(np.asarray(x0, dtype=float), lo + 1e-9 * (hi - lo), hi - 1e-9 * (hi - lo))
-            sol = least_squares(residual, x0, jac=jac, bounds=(lo, hi), method="trf",
-                                x_scale=np.maximum(hi - lo, 1e-3) * 0.1, max_nfev=max_nfev, diff_step=1e-4)
-            if best is None or sol.cost < best.cost:
-                best = sol
-        theta = best.x
+        sep = _Separable(ctx, effects, proj, lo, hi)
+        reduced = _last_call(lambda x: sep.residual(residual, x))
+        theta = sep.theta(residual, _search(reduced, effects, starts, lo[sep.other], hi[sep.other], sep.other,
+                                            max_nfev))
         # a parameter pinned at a bound that is not a physical zero (e.g. a weight >= 0) is reported
         names = [f"{e.id}.{p.name}" for e in effects for p in e.params]
         at_bound = tuple(nm for nm, x, a, b, p in zip(names, theta, lo, hi, params)
@@ -266,33 +262,93 @@ def _last_call(fn):
     return wrapped
 
 
-def _jacobian(ctx: Context, effects: tuple[Effect, ...], proj: _Projector, residual, lo: np.ndarray, hi: np.ndarray):
-    """The residual's Jacobian for least_squares: "2-point" (scipy's own differences) unless some effect is linear
-    in its parameters (Effect.basis); then its columns are exact and constant, -(I - P) basis with the prior row
-    -lam d beta_s, and only the other parameters are differenced, with scipy's own step and bound rule."""
-    if not any(e.basis is not None for e in effects):
-        return "2-point"
-    sizes = [e.n_params for e in effects]
-    offsets = np.cumsum([0] + sizes)
-    linear = np.concatenate([np.arange(a, b) for e, a, b in zip(effects, offsets[:-1], offsets[1:])
-                             if e.basis is not None])
-    other = np.setdiff1d(np.arange(offsets[-1]), linear)
-    B = np.column_stack([e.basis(ctx) for e in effects if e.basis is not None])
-    dbeta = proj.Minv @ (proj.A.T @ B)             # beta = Minv (A^T (y - c) + lam^2 e_s): d beta = -Minv A^T b
-    J_linear = np.vstack([-(B - proj.A @ dbeta), -proj.lam * dbeta[2]])
+def _search(reduced, effects: tuple[Effect, ...], starts, lo: np.ndarray, hi: np.ndarray, other: np.ndarray,
+            max_nfev: int) -> np.ndarray:
+    """The best trust-region fit of the parameters ``other`` (the non-separable ones) over the starts: the
+    given ones, else every combination of the parameters' own starting values; starts alike there are run once."""
+    if not other.size:
+        return np.zeros(0)
+    params = [p for e in effects for p in e.params]
+    if starts is None:
+        starts = [np.array(c) for c in itertools.product(*(params[i].starts for i in other))]
+    else:
+        starts = [np.asarray(x0, dtype=float)[other] for x0 in starts]
+    best, tried = None, set()
+    for x0 in starts:
+        x0 = np.clip(np.asarray(x0, dtype=float), lo + 1e-9 * (hi - lo), hi - 1e-9 * (hi - lo))
+        if x0.tobytes() in tried:
+            continue
+        tried.add(x0.tobytes())
+        sol = least_squares(reduced, x0, bounds=(lo, hi), method="trf", x_scale=np.maximum(hi - lo, 1e-3) * 0.1,
+                            max_nfev=max_nfev, diff_step=1e-4)
+        if best is None or sol.cost < best.cost:
+            best = sol
+    return best.x
 
-    def jac(theta):
-        J = np.empty((J_linear.shape[0], len(theta)))
-        J[:, linear] = J_linear
-        if other.size:
-            def partial(x):
-                th = theta.copy()
-                th[other] = x
-                return residual(th)
-            J[:, other] = approx_derivative(partial, theta[other], rel_step=1e-4, method="2-point",
-                                            bounds=(lo[other], hi[other])).reshape(len(J), other.size)
-        return J
-    return jac
+
+class _Separable:
+    """The weights of the forms linear in their parameters (Effect.basis), solved inside every residual evaluation
+    by bounded linear least squares (variable projection): the trust region searches only the other parameters,
+    with fewer difference steps and smaller decompositions, and the weights are the exact optimum given them.
+
+    At zero weights the residual is q; with weights w it is q + J w, J = -(I - P) basis with the prior row
+    -lam d beta_s (beta = Minv (A^T (y - c) + lam^2 e_s), so d beta = -Minv A^T basis)."""
+
+    def __init__(self, ctx: Context, effects: tuple[Effect, ...], proj: "_Projector", lo: np.ndarray,
+                 hi: np.ndarray):
+        offsets = np.cumsum([0] + [e.n_params for e in effects])
+        self.linear = np.array([i for e, a, b in zip(effects, offsets[:-1], offsets[1:]) if e.basis is not None
+                                for i in range(a, b)], dtype=int)
+        self.other = np.setdiff1d(np.arange(offsets[-1]), self.linear)
+        self.lo, self.hi = lo[self.linear], hi[self.linear]
+        if self.linear.size:
+            B = np.column_stack([e.basis(ctx) for e in effects if e.basis is not None])
+            dbeta = proj.Minv @ (proj.A.T @ B)
+            self.J = np.vstack([-(B - proj.A @ dbeta), -proj.lam * dbeta[2]])
+            # a weight whose column vanishes on the recorded path (relays the load never switches) cannot move the
+            # residual: it stays at zero (inside its bounds), and the others are solved without it
+            norms = np.linalg.norm(self.J, axis=0)
+            self.live = norms > 1e-12 * norms.max()
+            self.Q, self.R = np.linalg.qr(self.J[:, self.live])
+
+    def _full(self, x: np.ndarray, w: np.ndarray) -> np.ndarray:
+        theta = np.zeros(len(self.linear) + len(self.other))
+        theta[self.other] = x
+        theta[self.linear] = w
+        return theta
+
+    def weights(self, q: np.ndarray) -> np.ndarray:
+        """argmin |q + J w| over lo <= w <= hi."""
+        w = np.clip(np.zeros(len(self.lo)), self.lo, self.hi)
+        if self.live.any():
+            w[self.live] = self._live_weights(-(self.Q.T @ q), self.lo[self.live], self.hi[self.live])
+        return w
+
+    def _live_weights(self, rhs: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+        """argmin |R w - rhs| over lo <= w <= hi: the unconstrained optimum where it is inside the box (the problem
+        is convex), else the optimum with the lower bounds only (NNLS from lo), else the bounded one (BVLS)."""
+        with np.errstate(all="ignore"):
+            try:
+                w = solve_triangular(self.R, rhs)
+            except np.linalg.LinAlgError:
+                w = np.full(len(lo), np.nan)
+        if np.all((w >= lo) & (w <= hi)):
+            return w
+        w = lo + nnls(self.R, rhs - self.R @ lo)[0]
+        if np.all(w <= hi):
+            return w
+        return np.clip(lsq_linear(self.R, rhs, bounds=(lo, hi), method="bvls").x, lo, hi)
+
+    def residual(self, residual, x: np.ndarray) -> np.ndarray:
+        """The residual at the other parameters ``x`` with the weights at their optimum given them."""
+        q = residual(self._full(x, np.zeros(len(self.linear))))
+        return q + self.J @ self.weights(q) if self.linear.size else q
+
+    def theta(self, residual, x: np.ndarray) -> np.ndarray:
+        """All parameters, in the effects' order: ``x`` with the weights solved at it."""
+        if not self.linear.size:
+            return self._full(x, np.zeros(0))
+        return self._full(x, self.weights(residual(self._full(x, np.zeros(len(self.linear))))))
 
 
 def _design(contribution, theta: np.ndarray, nuisance: np.ndarray, hi: np.ndarray) -> np.ndarray:

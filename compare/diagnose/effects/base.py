@@ -79,8 +79,8 @@ class Effect:
     # from one internal state vs from a density of elements, which can also bend the elastic line): a pair
     # tries the best form of each class, not the two best forms of one class. "" = a class of its own
     law_class: str = ""
-    # for a form linear in its parameters: ctx -> its columns (contribution = basis @ theta), so the fit takes
-    # their derivatives as they are instead of differencing the model once per weight (a relay density has 20)
+    # for a form linear in its parameters: ctx -> its columns (contribution = basis @ theta), so the fit solves its
+    # weights by bounded linear least squares instead of searching them (a relay density has 20)
     basis: Callable[[Context], np.ndarray] | None = None
     # where the fitted effect acts: (ranges of u in normalised units, branch/side text); None = everywhere
     where: Callable[[Context, np.ndarray], tuple[tuple[tuple[float, float], ...], str]] | None = None

@@ -143,10 +143,13 @@ def _where(ctx: Context, theta):
 MONOTONE_KNOTS = (0.05, 0.15, 0.3, 0.45, 0.6, 0.75, 0.9)
 
 
+def _basis_monotone(ctx: Context) -> np.ndarray:
+    """The twist per unit slope change at each knot (len(u) x knots): the form is linear in its weights."""
+    return -np.sign(ctx.u)[:, None] * np.maximum(np.abs(ctx.u)[:, None] - np.asarray(MONOTONE_KNOTS)[None, :], 0.0)
+
+
 def _contribution_monotone(ctx: Context, theta):
-    m = np.abs(ctx.u)
-    ramps = sum(a * np.maximum(m - p, 0.0) for a, p in zip(theta, MONOTONE_KNOTS))
-    return -np.sign(ctx.u) * ramps
+    return _basis_monotone(ctx) @ np.asarray(theta, dtype=float)
 
 
 def _report_monotone(ctx: Context, theta, s: float) -> dict:
@@ -257,5 +260,6 @@ CONTACT = _variant("contact", (Param("A", 0.0, 0.95, (0.15,)), Param("log10_xc",
                                Param("q", 0.0, 0.75, (0.5,))),
                    _contribution_contact, _report_contact)
 
-MONOTONE = _variant("monotone", tuple(Param(f"a_{p:g}", 0.0, 0.95, (0.0,)) for p in MONOTONE_KNOTS),
-                    _contribution_monotone, _report_monotone)
+MONOTONE = dataclasses.replace(
+    _variant("monotone", tuple(Param(f"a_{p:g}", 0.0, 0.95, (0.0,)) for p in MONOTONE_KNOTS), _contribution_monotone,
+             _report_monotone), basis=_basis_monotone)
