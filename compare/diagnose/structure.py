@@ -33,6 +33,12 @@ from strainwave.compare.diagnose.noise import KEEP, noise_std
 from strainwave.compare.diagnose.periodic import angle_load_columns, recorded_line, response_columns
 
 THRESHOLD = 10.0
+# the least swing, in white-noise sigmas, a user can see (judge.MIN_COMPONENT_SIGMAS says why)
+MIN_COMPONENT_SIGMAS = 1.5
+# A line in time that the load does not share (mains pick-up, a pump) averages out over the load's cycles and
+# shifts no specimen quantity: it is a rig fault to report only where a user can see it, MIN_COMPONENT_SIGMAS
+# of swing, the floor a named effect must reach; below it, thousands of samples still make it "significant"
+UNTIED_TO_LOAD = ("periodic_time",)
 STIFFNESS_CHI2 = 6.63     # chi-square(1) at 99 %: 2.58 prior sigmas
 # A structure must beat a random-walk wander of WANDER_SIGMAS at its frequencies (docs/decisions/023-diagnose-noise-model.md).
 WANDER_SIGMAS = 2.0
@@ -49,15 +55,16 @@ class Structure:
     threshold: float = THRESHOLD
     size: float = math.inf     # RMS of the fitted structure in white-noise sigmas (inf: not a residual shape)
     wander: float = 0.0        # RMS a random walk of WANDER_SIGMAS puts at the structure's frequencies
+    visible: bool = True       # swings by MIN_COMPONENT_SIGMAS or more (judged only where UNTIED_TO_LOAD)
 
     @property
     def significant(self) -> bool:
-        return self.delta_bic > self.threshold and self.size >= self.wander
+        return self.delta_bic > self.threshold and self.size >= self.wander and self.visible
 
     def to_dict(self) -> dict:
         return {"name": self.name, "delta_bic": self.delta_bic, "unique_delta_bic": self.unique_delta_bic,
                 "detail": self.detail, "size_noise_sigmas": self.size if math.isfinite(self.size) else None,
-                "wander_noise_sigmas": self.wander}
+                "wander_noise_sigmas": self.wander, "visible": self.visible}
 
 
 @dataclass(frozen=True)
@@ -632,8 +639,9 @@ def structure_test(ctx: Context, r: np.ndarray, sigma_white: float, prior_chi2: 
         others = tuple(nm for nm in bases if nm != name)
         without = joint_of(others) if others else base_score
         unique = noise.deflate(without - joint, drawns[name]) - (rank + extra) * ln_n
+        visible = name not in UNTIED_TO_LOAD or float(np.ptp(drawns[name])) >= MIN_COMPONENT_SIGMAS * sigma_white
         structures.append(Structure(name, float(alone[name]), float(unique), detail,
-                                    size=size[name][0], wander=size[name][1]))
+                                    size=size[name][0], wander=size[name][1], visible=visible))
     # a stiffness outside its prior is judged as the prior states it: beyond 2.6 sigma (p < 0.01)
     structures.append(Structure("stiffness", float(prior_chi2), float(prior_chi2), threshold=STIFFNESS_CHI2))
     w = noise.whiten(r)
@@ -700,5 +708,5 @@ def describe(test: StructureTest, ctx: Context, located_text: str, dt_s: float |
     return "; ".join(parts)
 
 
-__all__ = ["NoiseModel", "Structure", "StructureTest", "THRESHOLD", "describe", "fine_scale_noise", "flicker_noise",
+__all__ = ["MIN_COMPONENT_SIGMAS", "NoiseModel", "Structure", "StructureTest", "THRESHOLD", "describe", "fine_scale_noise", "flicker_noise",
            "reference_noise", "structure_test"]
