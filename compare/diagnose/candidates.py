@@ -115,12 +115,13 @@ def _catalogue_gain(ctx: Context, base_fit: Fit, ranked: list[Fit], noise) -> fl
     """BIC gain of the best plausible single under each model's own profiled filter, the most generous noise
     model (a misfit some plausible noise could have drawn is no evidence; a catalogue model is evidence only with
     physically plausible parameters), in units of the sensor's own slow power, which a filter fitted to the fine
-    scales may draw short (structure.slow_power_inflation: a steep low-pass sensor)."""
+    scales may draw short (structure.slow_power_inflation: a steep low-pass sensor; NoiseModel.flicker_inflation:
+    flicker noise at the effect's own frequencies)."""
     plausible = [f for f in ranked if not implausible(ctx, f)]
     if not plausible:
         return 0.0
     extra_ln_n = (plausible[0].k - base_fit.k) * math.log(len(ctx.u))
-    return noise.deflate(base_fit.bic - plausible[0].bic + extra_ln_n) - extra_ln_n
+    return noise.deflate(base_fit.bic - plausible[0].bic + extra_ln_n, base_fit.model - plausible[0].model) - extra_ln_n
 
 
 def pair_forms(forms: list[Fit], k: int) -> list[Fit]:

@@ -12,7 +12,7 @@ from strainwave.compare.diagnose.effects.base import Context
 from strainwave.compare.diagnose.fit import Fit
 from strainwave.compare.diagnose.recording import Recording
 from strainwave.compare.diagnose.rows import explained_rows, stride
-from strainwave.compare.diagnose.structure import NoiseModel, StructureTest, structure_test
+from strainwave.compare.diagnose.structure import MIN_COMPONENT_SIGMAS, NoiseModel, StructureTest, structure_test
 
 BIC_THRESHOLD = 10.0       # "very strong" on the Kass-Raftery scale
 AMBIGUOUS_BIC = 6.0        # "strong": closer than this, the data cannot tell the two apart
@@ -22,8 +22,8 @@ AMBIGUOUS_BIC = 6.0        # "strong": closer than this, the data cannot tell th
 # halve a one-sided effect); half of that leaves a factor two for a fitted contribution short of the true one.
 # Below it, many samples make a sub-noise misfit of another model form "significant": a Preisach loop drew a
 # crack of open/closed stiffness ratio 0.9994 beside it (peak 1.1 sigma, delta BIC 18; family 2, all three
-# seeds), and a contact-spread stiffening a backlash of 0.05 arcmin clearance at 0.1 arcmin noise (heldout4)
-MIN_COMPONENT_SIGMAS = 1.5
+# seeds), and a contact-spread stiffening a backlash of 0.05 arcmin clearance at 0.1 arcmin noise (heldout4).
+# MIN_COMPONENT_SIGMAS (structure.py, 1.5) also floors a line in time the load does not share.
 
 
 def unresolved(ctx: Context, fit: Fit, sigma: float) -> list[str]:

@@ -15,6 +15,7 @@ import math
 import numpy as np
 
 from strainwave.compare.diagnose.effects.base import Context
+from strainwave.compare.diagnose.noise import KEEP, noise_std
 
 ANGLE_LOAD_HARMONICS = (1, 2, 3, 4)
 # an interpolation error is read only at 5 or more periods over the recorded range (slower, it is a smooth function
@@ -31,13 +32,33 @@ def angle_load_columns(ctx: Context, harmonics=ANGLE_LOAD_HARMONICS) -> np.ndarr
     return np.column_stack([ctx.u * f(k * ctx.angle) for k in harmonics for f in (np.cos, np.sin)])
 
 
+# the load has moved to a new level when it is this many of its own sample-to-sample noise sigmas from the last one
+LEVEL_SIGMAS = 3.0
+
+
+def load_levels(u: np.ndarray) -> int:
+    """How many distinct load levels the path visits in turn: a sample counts where the load has moved by more than
+    LEVEL_SIGMAS of its own noise from the last counted one (any move for a noise-free channel). A load held for
+    many samples (a step-and-hold staircase) reads the response at one level, one phase of a line pitch."""
+    noisy = len(u) > 3 and float(np.quantile(np.abs(np.diff(u, 2)), KEEP)) > 0.0
+    tol = LEVEL_SIGMAS * noise_std(u) if noisy else 0.0
+    count, last = 1, float(u[0]) if len(u) else 0.0
+    for x in u[1:].tolist():
+        if abs(x - last) > tol:
+            count, last = count + 1, x
+    return count
+
+
 def response_grid(ctx: Context) -> np.ndarray:
-    """Candidate frequencies in cycles per normalised response unit (see MIN_CYCLES, SAMPLES_PER_PERIOD)."""
+    """Candidate frequencies in cycles per normalised response unit (see MIN_CYCLES, SAMPLES_PER_PERIOD), counting
+    the load levels visited (``load_levels``), not the samples: samples held at one level sample one phase."""
     span = float(np.ptp(ctx.y))
     if not span > 0.0:
         return np.zeros(0)
     passes = max(len(ctx.segments), 1)
-    top = len(ctx.y) / (SAMPLES_PER_PERIOD * passes)
+    if "load_levels" not in ctx.cache:
+        ctx.cache["load_levels"] = load_levels(ctx.u)
+    top = ctx.cache["load_levels"] / (SAMPLES_PER_PERIOD * passes)
     if top <= MIN_CYCLES:
         return np.zeros(0)
     return np.arange(MIN_CYCLES, top, 1.0 / GRID_PER_BIN) / span
@@ -83,4 +104,4 @@ def response_columns(ctx: Context, f: float, harmonics=(1, 2)) -> np.ndarray:
     return np.column_stack([g(2.0 * math.pi * k * f * ctx.y) for k in harmonics for g in (np.cos, np.sin)])
 
 
-__all__ = ["ANGLE_LOAD_HARMONICS", "CACHE_KEY", "angle_load_columns", "recorded_line", "response_columns", "response_grid", "response_line"]
+__all__ = ["ANGLE_LOAD_HARMONICS", "CACHE_KEY", "angle_load_columns", "load_levels", "recorded_line", "response_columns", "response_grid", "response_line"]

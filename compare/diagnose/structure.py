@@ -33,6 +33,12 @@ from strainwave.compare.diagnose.noise import KEEP, noise_std
 from strainwave.compare.diagnose.periodic import angle_load_columns, recorded_line, response_columns
 
 THRESHOLD = 10.0
+# the least swing, in white-noise sigmas, a user can see (judge.MIN_COMPONENT_SIGMAS says why)
+MIN_COMPONENT_SIGMAS = 1.5
+# A line in time that the load does not share (mains pick-up, a pump) averages out over the load's cycles and
+# shifts no specimen quantity: it is a rig fault to report only where a user can see it, MIN_COMPONENT_SIGMAS
+# of swing, the floor a named effect must reach; below it, thousands of samples still make it "significant"
+UNTIED_TO_LOAD = ("periodic_time",)
 STIFFNESS_CHI2 = 6.63     # chi-square(1) at 99 %: 2.58 prior sigmas
 # A structure must beat a random-walk wander of WANDER_SIGMAS at its frequencies (docs/decisions/023-diagnose-noise-model.md).
 WANDER_SIGMAS = 2.0
@@ -49,15 +55,16 @@ class Structure:
     threshold: float = THRESHOLD
     size: float = math.inf     # RMS of the fitted structure in white-noise sigmas (inf: not a residual shape)
     wander: float = 0.0        # RMS a random walk of WANDER_SIGMAS puts at the structure's frequencies
+    visible: bool = True       # swings by MIN_COMPONENT_SIGMAS or more (judged only where UNTIED_TO_LOAD)
 
     @property
     def significant(self) -> bool:
-        return self.delta_bic > self.threshold and self.size >= self.wander
+        return self.delta_bic > self.threshold and self.size >= self.wander and self.visible
 
     def to_dict(self) -> dict:
         return {"name": self.name, "delta_bic": self.delta_bic, "unique_delta_bic": self.unique_delta_bic,
                 "detail": self.detail, "size_noise_sigmas": self.size if math.isfinite(self.size) else None,
-                "wander_noise_sigmas": self.wander}
+                "wander_noise_sigmas": self.wander, "visible": self.visible}
 
 
 @dataclass(frozen=True)
@@ -256,6 +263,9 @@ class NoiseModel:
     # how many times more power the sensor has at the slow structures' frequencies than the filter draws there
     # (``slow_power_inflation``); 1 where the filter is not shown to fall short
     slow_inflation: float = 1.0
+    # flicker (1/f) noise read at the fine scales (``flicker_noise``): (white level, flicker amplitude c) of the
+    # spectrum white + pi c / omega; (0, 0) where the fine scales show none
+    flicker: tuple[float, float] = (0.0, 0.0)
 
     def __post_init__(self):
         if self.b.ndim != 1 or self.a.ndim != 1 or self.b[0] != 1.0 or self.a[0] != 1.0:
@@ -274,10 +284,26 @@ class NoiseModel:
         with np.errstate(divide="ignore", invalid="ignore"):
             return self.innovation_var * np.abs(num) ** 2 / np.abs(den) ** 2
 
-    def deflate(self, evidence: float) -> float:
+    def deflate(self, evidence: float, drawn: np.ndarray | None = None) -> float:
         """A likelihood-ratio statistic of slow structure measured under this filter, in units of the sensor's
-        own slow power (see ``slow_power_inflation``)."""
-        return evidence / self.slow_inflation
+        own slow power (see ``slow_power_inflation``); with flicker noise, at the frequencies of the structure
+        ``drawn`` (``flicker_inflation``)."""
+        return evidence / max(self.slow_inflation, self.flicker_inflation(drawn))
+
+    def flicker_inflation(self, drawn: np.ndarray | None) -> float:
+        """How many times more power the flicker puts at ``drawn``'s frequencies than the filter: the mean of
+        the ratio weighted as the evidence is, by drawn's power over the filter's (a GLS statistic sums
+        |drawn_k|^2 / S(k)); 1 without flicker or without ``drawn``."""
+        white, c = self.flicker
+        if c <= 0.0 or drawn is None:
+            return 1.0
+        power = np.abs(np.fft.rfft(drawn - drawn.mean()))[1:] ** 2
+        omega = 2.0 * np.pi * np.arange(1, len(power) + 1) / len(drawn)
+        model = self.psd(omega)
+        ratio = np.maximum(1.0, (white + np.pi * c / omega) / model)
+        weight = power / model
+        total = float(weight.sum())
+        return float(np.sum(weight * ratio) / total) if total > 0.0 else 1.0
 
     def whiten(self, x: np.ndarray) -> np.ndarray:
         """Innovations of x (vector or column stack), start-up samples dropped."""
@@ -285,6 +311,11 @@ class NoiseModel:
         return lfilter(self.b, self.a, x, axis=0)[len(self.b) - 1:]
 
     def describe(self) -> str:
+        slow = f"; {self.slow_inflation:.3g} x its power at the slowest scales" if self.slow_inflation > 1.0 else ""
+        flicker = "; flicker (1/f) noise at the slow scales" if self.flicker[1] > 0.0 else ""
+        return self._filter_text() + slow + flicker
+
+    def _filter_text(self) -> str:
         if len(self.b) == 1:
             return "white"
         if len(self.b) == 2:
@@ -323,6 +354,23 @@ def _variogram(b: np.ndarray, a: np.ndarray, lags: np.ndarray) -> np.ndarray:
     return out
 
 
+def _fine_variogram(x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(lags, empirical semivariogram, weights) of x over its first FINE_LAGS lags; lag k rests on ~n/k
+    independent differences, so ln v(k) is weighted by n/(2 k)."""
+    n = len(x)
+    lags = np.arange(1, min(FINE_LAGS, max(n // 8, 2)) + 1)
+    emp = np.array([0.5 * float(np.mean((x[k:] - x[:-k]) ** 2)) for k in lags])
+    return lags, emp, n / (2.0 * lags)
+
+
+def _shape_misfit(emp: np.ndarray, w: np.ndarray, model: np.ndarray) -> tuple[float, float]:
+    """(weighted chi-square of ln emp - ln model about their best common offset, that offset): how well a
+    variogram SHAPE follows the empirical one, its scale free."""
+    d = np.log(emp) - np.log(model)
+    c = float(np.sum(w * d) / np.sum(w))
+    return float(np.sum(w * (d - c) ** 2)), c
+
+
 def fine_scale_noise(x: np.ndarray) -> NoiseModel:
     """The noise filter whose semivariogram over the first FINE_LAGS lags has the shape of x's.
 
@@ -333,13 +381,9 @@ def fine_scale_noise(x: np.ndarray) -> NoiseModel:
     saturating, flat) that the few smooth structures barely touch. Candidates: white, AR(2) (least squares,
     if red), ARMA(1,1) on the grid of fit.noise_filter with theta <= phi (red), including phi = 1 (a random
     walk plus white). Lag k rests on ~n/k independent differences, so ln v(k) is weighted by n/(2 k)."""
-    n = len(x)
-    L = min(FINE_LAGS, max(n // 8, 2))
-    lags = np.arange(1, L + 1)
-    emp = np.array([0.5 * float(np.mean((x[k:] - x[:-k]) ** 2)) for k in lags])
+    lags, emp, w = _fine_variogram(x)
     if not np.all(emp > 0):
         return NoiseModel(np.array([1.0]), np.array([1.0]), float(np.mean(x ** 2)))
-    w = n / (2.0 * lags)
     candidates = [(np.array([1.0]), np.array([1.0]))]
     _, coef = ar_profile(x)
     if abs(1.0 - coef.sum()) <= abs(1.0 + coef[0] - coef[1:].sum()):
@@ -359,9 +403,7 @@ def fine_scale_noise(x: np.ndarray) -> NoiseModel:
         model = _variogram(bb, aa, lags)
         if not np.all(np.isfinite(model)) or np.any(model <= 0):
             continue
-        d = np.log(emp) - np.log(model)
-        c = float(np.sum(w * d) / np.sum(w))
-        chi2 = float(np.sum(w * (d - c) ** 2))
+        chi2, c = _shape_misfit(emp, w, model)
         if i < first_order and len(bb) <= 2:
             first_best = min(first_best, chi2)
         if i >= first_order and chi2 + DOUBLE_POLE_CHI2 >= first_best:
@@ -394,6 +436,36 @@ def slow_power_inflation(x: np.ndarray, model: NoiseModel) -> float:
     bound = max(float(np.median(power[lo:hi])) / math.log(2.0) / (1.0 + z / (math.log(2.0) * math.sqrt(hi - lo)))
                 for lo, hi in bands)
     return max(1.0, bound / floor)
+
+
+# Flicker (1/f) noise, common in bridge amplifiers and encoders' electronics, has equal power per octave down to the
+# slowest frequency: its semivariogram grows as the log of the lag, which no filter of the model draws (a random
+# walk grows linearly, an AR(1) or a low-pass saturates). Fitted at the fine scales, a filter follows it there and
+# draws its slow power several times short, so the flicker's own slow power is taken where its log-growing
+# shape beats the filter's by the 95 % point of chi-square(1) (as the double pole must, DOUBLE_POLE_CHI2)
+FLICKER_WHITE_SHARES = np.linspace(0.0, 1.0, 41)
+
+
+def flicker_noise(x: np.ndarray, model: NoiseModel) -> tuple[float, float]:
+    """(white level, flicker amplitude c) of the spectrum white + pi c / omega whose semivariogram follows x's
+    over the fine lags better than ``model``'s filter does (by DOUBLE_POLE_CHI2); (0, 0) where none does.
+
+    Flicker noise of power c/j in the record's Fourier bin j (j = 1 .. n/2) has the semivariogram
+    v(k) = sum_j (c/j) (1 - cos(2 pi j k / n)) and the periodogram level n c / (2 j) = pi c / omega; white noise
+    adds its variance to both."""
+    n = len(x)
+    lags, emp, w = _fine_variogram(x)
+    if n < 4 * SLOW_BINS or not np.all(emp > 0):
+        return 0.0, 0.0
+    j = np.arange(1, n // 2 + 1)
+    g = np.array([float(np.sum((1.0 - np.cos(2.0 * np.pi * j * k / n)) / j)) for k in lags])
+    own, _ = _shape_misfit(emp, w, _variogram(model.b, model.a, lags))
+    fits = [(*_shape_misfit(emp, w, share * g[0] + (1.0 - share) * g), share) for share in FLICKER_WHITE_SHARES]
+    chi2, c, share = min(fits, key=lambda f: f[0])
+    if share >= 1.0 or chi2 + DOUBLE_POLE_CHI2 >= own:
+        return 0.0, 0.0
+    # the fitted variogram is exp(c) (share g(1) + (1 - share) g(k)): the white part and the flicker's amplitude
+    return float(math.exp(c) * share * g[0]), float(math.exp(c) * (1.0 - share))
 
 
 def _wander_dominated(m: NoiseModel) -> bool:
@@ -436,7 +508,8 @@ def reference_noise(ctx: Context, r: np.ndarray) -> NoiseModel:
     model = fine_scale_noise(rest)
     if _wander_dominated(raw) and _still_wandering(model):
         return raw
-    return dataclasses.replace(model, slow_inflation=slow_power_inflation(rest, model))
+    return dataclasses.replace(model, slow_inflation=slow_power_inflation(rest, model),
+                               flicker=flicker_noise(rest, model))
 
 
 def _wander(drawn: np.ndarray) -> float:
@@ -541,13 +614,15 @@ def structure_test(ctx: Context, r: np.ndarray, sigma_white: float, prior_chi2: 
     bases = {}
     alone = {}
     size = {}
+    drawns = {}
     for name, (G, extra, detail) in groups.items():
         key = kept((name,))
         B, rank = _projected(ctx, key, lambda G=G: G)
         bases[name] = (B, rank, extra, detail)
         score, drawn = _scorer(ctx, noise, key, lambda B=B: np.column_stack([Q, B])).score(r, Q.shape[1])
         penalty = (rank + extra) * ln_n
-        alone[name] = noise.deflate(base_score - score) - penalty
+        drawns[name] = drawn
+        alone[name] = noise.deflate(base_score - score, drawn) - penalty
         size[name] = (math.sqrt(float(np.mean(drawn ** 2))) / sigma_white, _wander(drawn)) if rank else (0.0, 0.0)
 
     def joint_of(names: tuple[str, ...]) -> float:
@@ -563,9 +638,10 @@ def structure_test(ctx: Context, r: np.ndarray, sigma_white: float, prior_chi2: 
     for name, (B, rank, extra, detail) in bases.items():
         others = tuple(nm for nm in bases if nm != name)
         without = joint_of(others) if others else base_score
-        unique = noise.deflate(without - joint) - (rank + extra) * ln_n
+        unique = noise.deflate(without - joint, drawns[name]) - (rank + extra) * ln_n
+        visible = name not in UNTIED_TO_LOAD or float(np.ptp(drawns[name])) >= MIN_COMPONENT_SIGMAS * sigma_white
         structures.append(Structure(name, float(alone[name]), float(unique), detail,
-                                    size=size[name][0], wander=size[name][1]))
+                                    size=size[name][0], wander=size[name][1], visible=visible))
     # a stiffness outside its prior is judged as the prior states it: beyond 2.6 sigma (p < 0.01)
     structures.append(Structure("stiffness", float(prior_chi2), float(prior_chi2), threshold=STIFFNESS_CHI2))
     w = noise.whiten(r)
@@ -632,5 +708,5 @@ def describe(test: StructureTest, ctx: Context, located_text: str, dt_s: float |
     return "; ".join(parts)
 
 
-__all__ = ["NoiseModel", "Structure", "StructureTest", "THRESHOLD", "describe", "fine_scale_noise", "reference_noise",
-           "structure_test"]
+__all__ = ["MIN_COMPONENT_SIGMAS", "NoiseModel", "Structure", "StructureTest", "THRESHOLD", "describe", "fine_scale_noise", "flicker_noise",
+           "reference_noise", "structure_test"]
