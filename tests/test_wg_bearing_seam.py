@@ -5,8 +5,6 @@ per set); every pair tied is the same grid with the crack merged; ``crack_work``
 energies. A coarse 2D ring (18.6k dofs) whose cam is scaled down so that the crack is partly shut."""
 from __future__ import annotations
 
-import warnings
-
 import numpy as np
 import pytest
 
@@ -15,14 +13,10 @@ ENERGY_ROUNDOFF = 1e-12
 
 
 @pytest.fixture(scope="module")
-def ring():
+def ring(params):
     from strainwave.analytic.study_loads import wg_bearing_load
     from strainwave.fea import ring2d
     from strainwave.fea.wg_bearing import _system, grid, setup_from
-    from strainwave.params import load_params
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        params = load_params()
     s = setup_from(params, **wg_bearing_load(params))
     r, phi, tip = grid(s, 5.0, 1.96, 1.0)
     cracked = _system(s, r, phi, tip)
