@@ -121,9 +121,9 @@ def patch_energy(md: MeshData, lame, global_u, *, group: str = "cut", study: str
     from strainwave.fea.static import assemble
     sk, K, f, _, _ = assemble(md, lame, study=study)
     dofs = _held_dofs(sk, md, group, plane_strain_faces)
+    cut = group_dofs(sk, md, group)          # _held_dofs lists the cut's 3 components first
     values = np.zeros(dofs.size)
-    cut = dofs[: 3 * group_dofs(sk, md, group).size]
-    values[: cut.size] = np.asarray(global_u(sk.doflocs[:, cut[::3] // 3].T), float).ravel()
+    values[: 3 * cut.size] = np.asarray(global_u(sk.doflocs[:, cut].T), float).ravel()
     u, info = _solve(K, f, sk, md, dofs, values, method, study)
     return 0.5 * float(u @ (K @ u)), info.dofs, info.time_s
 
