@@ -45,20 +45,29 @@ class FaceSystem:
 
     def face_loads(self, f: np.ndarray) -> np.ndarray:
         """The loads (columns of f) condensed on the face dofs, S u0_F (u0: the face free)."""
-        u0 = self.factor.solve(f[self.free])
-        return self.factor.S @ u0[np.searchsorted(self.free, self.face_z)]
+        return self.condensed(self.free_solution(f))
 
-    def held(self, f: np.ndarray, r: np.ndarray, active: np.ndarray) -> np.ndarray:
-        """The solution under f (face loads r) with the face dofs ``active`` held: the open ones from S's free
-        block, then one solve under f plus the held dofs' reactions."""
+    def free_solution(self, f: np.ndarray) -> np.ndarray:
+        """u0 under f (columns) with the face free and the base held: one back-substitution."""
+        u0 = np.zeros_like(f, dtype=float)
+        u0[self.free] = self.factor.solve(f[self.free])
+        return u0
+
+    def condensed(self, u0: np.ndarray) -> np.ndarray:
+        """The load whose face-free solution is u0, condensed on the face dofs: S u0_F."""
+        return self.factor.S @ u0[self.face_z]
+
+    def held(self, f: np.ndarray, r: np.ndarray, active: np.ndarray, values: np.ndarray | float = 0.0) -> np.ndarray:
+        """The solution under f (face loads r) with the face dofs ``active`` held at ``values``: the open ones
+        from S's free block, then one solve under f plus the held dofs' reactions."""
         from strainwave.fea.solver import tail_solve
-        u_face = tail_solve(self.factor.S, r, active)
+        u_face = tail_solve(self.factor.S, r, active, values)
         reaction = self.factor.S[active] @ u_face - r[active]
         b = f[self.free].copy()
         b[np.searchsorted(self.free, self.face_z[active])] += reaction
         u = np.zeros_like(f)
         u[self.free] = self.factor.solve(b)
-        u[self.face_z[active]] = 0.0
+        u[self.face_z[active]] = u_face[active]
         return u
 
 

@@ -177,21 +177,43 @@ def _solve(K, f, fixed, sk):
                             method="direct")[0]
 
 
-def contact_state(system: FaceSystem, f: np.ndarray, r: np.ndarray, start: np.ndarray) -> tuple[np.ndarray, int, np.ndarray]:
+def contact_state(system: FaceSystem, f: np.ndarray, r: np.ndarray, start: np.ndarray,
+                  u_free: np.ndarray | None = None) -> tuple[np.ndarray, int, np.ndarray]:
     """Active set of the crack face's normal dofs (True = shut) at load ``f`` (condensed on the face: ``r``),
     from ``start``, its iterations and the solution with it held: held where u_z < 0 would interpenetrate the
-    mirror face, released where the holding force pulls (K u - f)_z < 0."""
+    mirror face, released where the holding force pulls (K u - f)_z < 0. Each iteration is S's alone (the
+    face's u and the held points' forces are S's); the settled set is checked once on the full solution, whose
+    round-off bands are the rule's. ``u_free``: the solution with the face free (the bands' first scale)."""
     active = np.asarray(start, bool).copy()
+    tol_f = 1e-9 * float(np.abs(f).max())
+    # round-off bands: a point at zero gap and zero force stays as it is (no flip-flop between sweeps)
+    scale = float(np.abs(u_free if u_free is not None else system.held(f, r, active)).max())
     for it in range(1, MAX_ACTIVE_SET_ITERATIONS + 1):
-        u = system.held(f, r, active)
-        # round-off bands: a point at zero gap and zero force stays as it is (no flip-flop between sweeps)
-        tol, tol_f = 1e-9 * float(np.abs(u).max()), 1e-9 * float(np.abs(f).max())
-        force = (system.K @ u - f)[system.face_z]
-        new = (active & (force >= -tol_f)) | (~active & (u[system.face_z] < -tol))
+        u_face, force = _face_state(system, r, active)
+        new = _settled(active, u_face, force, 1e-9 * scale, tol_f)
         if np.array_equal(new, active):
-            return active, it, u
+            u = u_free if u_free is not None and not active.any() else system.held(f, r, active)
+            scale = float(np.abs(u).max())
+            new = _settled(active, u[system.face_z], (system.K @ u - f)[system.face_z], 1e-9 * scale, tol_f)
+            if np.array_equal(new, active):
+                return active, it, u
         active = new
     raise RuntimeError(f"{STUDY}: crack-face active set did not settle in {MAX_ACTIVE_SET_ITERATIONS} iterations")
+
+
+def _face_state(system: FaceSystem, r: np.ndarray, active: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The face's normal displacement with ``active`` held and the holding force there (0 off it), from S."""
+    from strainwave.fea.solver import tail_solve
+    S = system.factor.S
+    u_face = tail_solve(S, r, active)
+    force = np.zeros(r.shape)
+    force[active] = S[active] @ u_face - r[active]
+    return u_face, force
+
+
+def _settled(active, u_face, force, tol, tol_f) -> np.ndarray:
+    """The next set: a held point stays while its force holds (>= -tol_f), an open one shuts below -tol."""
+    return (active & (force >= -tol_f)) | (~active & (u_face < -tol))
 
 
 def solve_block(s: Block, h_mm: float, h_fine_mm: float, fields_of: tuple[str, ...] = ()) -> BlockSolution:
@@ -203,7 +225,8 @@ def solve_block(s: Block, h_mm: float, h_fine_mm: float, fields_of: tuple[str, .
     sk, K, f_m, f_b, base, face_z = _system(md, s)
     system = FaceSystem.of(K, base, face_z, STUDY)
     try:
-        r_m, r_b = system.face_loads(np.stack([f_m, f_b], axis=1)).T
+        u0 = system.free_solution(np.stack([f_m, f_b], axis=1))
+        r_m, r_b = system.condensed(u0).T
         by_active: dict[bytes, float] = {}
         out, fields = {}, {}
         for name, membrane, bending in s.states:
@@ -211,7 +234,7 @@ def solve_block(s: Block, h_mm: float, h_fine_mm: float, fields_of: tuple[str, .
             y = sk.doflocs[1, face_z // 3]
             start = membrane + bending * (1.0 - 2.0 * y / s.t_mm) < 0.0
             active, iterations, u = contact_state(system, membrane * f_m + bending * f_b,
-                                                  membrane * r_m + bending * r_b, start)
+                                                  membrane * r_m + bending * r_b, start, u0 @ [membrane, bending])
             if name in fields_of:
                 fields[name] = (md, sk, u)
             key = np.packbits(active).tobytes()
