@@ -90,6 +90,22 @@ def _cycle_values(tube, state, du_unit, arm_mm3, lame, rated_torque_Nmm) -> dict
             "cycle_mean_MPa": 0.5 * (hi + lo), "cycle_torque_shear_MPa": float(abs(plus["shear_outer"][MID, 0]))}
 
 
+def _case_values(params, tube, lame, name, state, du, twist, arm, facts) -> dict[str, float]:
+    """One case's values (and its solver facts into ``facts``): the state's, the end effect (prescribed linear),
+    the revolution's cycle (contact nonlinear, whose rated-torque field is kept)."""
+    s = _sample(tube, state.u, lame, state.nonlinear)
+    values = _state_values(name, s, 4.0 * arm / float(twist @ du))
+    facts[name] = {"newton_steps": state.newton_iterations, "active_set_changes": state.active_set_iterations,
+                   "bore_points_in_contact": int(state.active.sum()), "bore_points": int(state.active.size)}
+    if name == "prescribed_linear":
+        bend = 0.5 * (s["hoop_outer"] - s["hoop_inner"])
+        values |= {f"end_bending_major_s{k}_MPa": float(bend[k, 0]) for k in range(len(STATIONS))}
+    if name == "contact_nonlinear":
+        values |= _cycle_values(tube, state, du, arm, lame, params.gear.rated_output_torque_Nmm)
+        facts["fields_u"] = state.u + params.gear.rated_output_torque_Nmm / (4.0 * arm) * du
+    return values
+
+
 def solve_mesh(params, n_theta: int) -> tuple[dict[str, float], object, dict]:
     """Every case on one mesh: the values by name, the tube and the solver facts."""
     geo = wb.tube_geometry(params)
@@ -100,22 +116,20 @@ def solve_mesh(params, n_theta: int) -> tuple[dict[str, float], object, dict]:
     K0 = wb.assemble(tube, np.zeros(tube.dofs), lame, False)[0]
     shear, twist, arm, _ = wb.band_outer_loads(tube)
     values, facts = {}, {}
-    for model in MODELS:
-        linear = wb.insert(tube, lame, w0, contact=model == "contact", nonlinear=False, K0=K0)
-        for kin, state in (("linear", linear), ("nonlinear", wb.insert(
-                tube, lame, w0, contact=model == "contact", nonlinear=True, K0=K0, start=linear))):
-            name = case_name(model, kin)
-            du = wb.torque_increment(tube, state, shear)
-            s = _sample(tube, state.u, lame, state.nonlinear)
-            values |= _state_values(name, s, 4.0 * arm / float(twist @ du))
-            facts[name] = {"newton_steps": state.newton_iterations, "active_set_changes": state.active_set_iterations,
-                           "bore_points_in_contact": int(state.active.sum()), "bore_points": int(state.active.size)}
-            if name == "prescribed_linear":
-                bend = 0.5 * (s["hoop_outer"] - s["hoop_inner"])
-                values |= {f"end_bending_major_s{k}_MPa": float(bend[k, 0]) for k in range(len(STATIONS))}
-            if name == "contact_nonlinear":
-                values |= _cycle_values(tube, state, du, arm, lame, params.gear.rated_output_torque_Nmm)
-                facts["fields_u"] = state.u + params.gear.rated_output_torque_Nmm / (4.0 * arm) * du
+    # K0 factorised twice for every linear state: symmetric (insertion) and antisymmetric (torque) conditions
+    systems = {sym: wb.bore_system(tube, K0, symmetric=sym) for sym in (True, False)}
+    try:
+        for model in MODELS:
+            linear = wb.insert(tube, lame, w0, contact=model == "contact", nonlinear=False, K0=K0,
+                               system=systems[True])
+            for kin, state in (("linear", linear), ("nonlinear", wb.insert(
+                    tube, lame, w0, contact=model == "contact", nonlinear=True, K0=K0, start=linear))):
+                name = case_name(model, kin)
+                du = wb.torque_increment(tube, state, shear, None if state.nonlinear else systems[False])
+                values |= _case_values(params, tube, lame, name, state, du, twist, arm, facts)
+    finally:
+        for system in systems.values():
+            system.close()
     return values, tube, facts
 
 

@@ -167,47 +167,35 @@ def _state(G: np.ndarray, Ue: np.ndarray, lame: Lame, nonlinear: bool):
     return F, lame.lam_MPa * tr * ident + 2.0 * lame.mu_MPa * strain
 
 
-_PAIRS = ((1, 2), (0, 2), (0, 1))          # Voigt order 11, 22, 33, 23, 13, 12 (engineering shear)
-
-
-def _voigt_D(lame: Lame) -> np.ndarray:
-    D = np.zeros((6, 6))
-    D[:3, :3] = lame.lam_MPa
-    D[np.arange(3), np.arange(3)] += 2.0 * lame.mu_MPa
-    D[np.arange(3, 6), np.arange(3, 6)] = lame.mu_MPa
-    return D
-
-
-def _strain_operator(G: np.ndarray, F: np.ndarray) -> np.ndarray:
-    """B (element, point, 6, 3 a + i): the variation of the Green-Lagrange strain (Voigt) by N_a e_i,
-    dE_JL = (F_iJ dN_a/dX_L + F_iL dN_a/dX_J)/2; linear when F = I."""
-    ne, nq, na = G.shape[:3]
-    B = np.empty((ne, nq, 6, na, 3))
-    B[:, :, :3] = F.swapaxes(2, 3)[:, :, :, None, :] * G.swapaxes(2, 3)[:, :, :, :, None]
-    for m, (J, L) in enumerate(_PAIRS):
-        B[:, :, 3 + m] = (F[:, :, None, :, J] * G[:, :, :, None, L] + F[:, :, None, :, L] * G[:, :, :, None, J])
-    return B.reshape(ne, nq, 6, 3 * na)
+def _tangent_moduli(F: np.ndarray, S: np.ndarray, lame: Lame, nonlinear: bool) -> np.ndarray:
+    """A (element, point, J, i, k, L) = dP_iJ/dF_kL of St Venant-Kirchhoff: F_iI C_IJKL F_kK, plus d_ik S_JL
+    when nonlinear (the geometric stiffness); stored J-first so the element matrices need no large transpose."""
+    lam, mu = lame.lam_MPa, lame.mu_MPa
+    ident = np.eye(3)
+    Ft = F.swapaxes(2, 3)
+    A = np.empty(F.shape[:2] + (3, 3, 3, 3))
+    np.multiply(Ft[:, :, :, :, None, None], lam * F[:, :, None, None, :, :], out=A)     # lam F_iJ F_kL
+    A += mu * np.matmul(F, Ft)[:, :, None, :, :, None] * ident[:, None, None, :]       # mu (F F^T)_ik d_JL
+    A += mu * F[:, :, None, :, None, :] * Ft[:, :, :, None, :, None]                   # mu F_iL F_kJ
+    if nonlinear:
+        A += ident[None, :, :, None] * S[:, :, :, None, None, :]                       # d_ik S_JL
+    return A
 
 
 def assemble(tube: Tube, u: np.ndarray, lame: Lame, nonlinear: bool) -> tuple[sp.csr_matrix, np.ndarray]:
     """(tangent stiffness, internal force vector) at ``u`` (Cartesian dofs), vectorised over elements:
-    K = sum_q w (B^T D B + G S G^T x I), f = sum_q w B^T S."""
+    K_aibk = sum_q w dN_a/dX_J A_iJkL dN_b/dX_L, f_ai = sum_q w dN_a/dX_J P_iJ (P = F S)."""
     G, dx, edofs = _gradients(tube.basis), tube.basis.dx, _element_dofs(tube.basis)
     ne, nq, na = G.shape[:3]
     F, S = _state(G, u[edofs].reshape(ne, na, 3), lame, nonlinear)
-    B = _strain_operator(G, F)
-    S_voigt = np.stack([S[..., 0, 0], S[..., 1, 1], S[..., 2, 2], S[..., 1, 2], S[..., 0, 2], S[..., 0, 1]], axis=-1)
-    # contractions as batched matrix products: BLAS, not einsum's loops
-    fe = np.matmul((S_voigt * dx[:, :, None]).reshape(ne, 1, nq * 6), B.reshape(ne, nq * 6, -1))[:, 0]
-    Bw = (B * dx[:, :, None, None]).reshape(ne, nq * 6, -1)
-    DB = np.matmul(_voigt_D(lame), B).reshape(ne, nq * 6, -1)
-    Ke = np.matmul(Bw.transpose(0, 2, 1), DB)
-    if nonlinear:
-        GSw = (np.matmul(G, S) * dx[:, :, None, None]).transpose(0, 2, 1, 3).reshape(ne, na, nq * 3)
-        gsg = np.matmul(GSw, G.transpose(0, 1, 3, 2).reshape(ne, nq * 3, na))
-        blocks = Ke.reshape(ne, na, 3, na, 3)
-        for i in range(3):
-            blocks[:, :, i, :, i] += gsg
+    Gt = G.transpose(0, 2, 1, 3).reshape(ne, na, nq * 3)                                # (e, a, (q, J))
+    P = np.matmul(F, S) * dx[:, :, None, None]                                          # (e, q, i, J)
+    fe = np.matmul(Gt, P.swapaxes(2, 3).reshape(ne, nq * 3, 3))
+    A = _tangent_moduli(F, S, lame, nonlinear) * dx[:, :, None, None, None, None]
+    # contractions as batched matrix products (BLAS): over L for every point, then over (q, J) per element
+    W = np.matmul(A.reshape(ne, nq, 9, 3, 3), G.swapaxes(2, 3)[:, :, None])             # (e, q, (J, i), k, b)
+    Ke = np.matmul(Gt, W.reshape(ne, nq * 3, 9 * na))
+    Ke = Ke.reshape(ne, na, 3, 3, na).transpose(0, 1, 2, 4, 3)                           # (e, a, i, b, k)
     slots, indices, indptr = tube.pattern
     K = sp.csr_matrix((np.bincount(slots, Ke.ravel(), minlength=indices.size), indices, indptr),
                       shape=(tube.dofs, tube.dofs))
@@ -277,6 +265,44 @@ def solve_constrained(tube: Tube, K: sp.csr_matrix, rhs: np.ndarray, fixed: np.n
     return tube.rot @ x
 
 
+@dataclass
+class BoreSystem:
+    """K in the nodal frames with ``held_dofs`` held, factorised once with its Schur complement S on the band
+    bore's radial dofs that the base leaves free (``face_schur.FaceSystem``): every set of held bore points is
+    then a dense solve of S's free block and back-substitutions, no factorisation."""
+
+    faces: object               # face_schur.FaceSystem
+    on_face: np.ndarray         # bool over band_bore_points: radial dof free in the base (antisymmetric: off the planes)
+
+    def close(self) -> None:
+        self.faces.factor.close()
+
+
+def bore_system(tube: Tube, K: sp.csr_matrix, symmetric: bool) -> BoreSystem:
+    """``BoreSystem`` of K under the symmetric or antisymmetric conditions (the held end holds the band with the
+    bore free)."""
+    from strainwave.fea.face_schur import FaceSystem
+    base, radial = held_dofs(tube, symmetric), tube.comp[0][band_bore_points(tube)]
+    on_face = ~np.isin(radial, base)
+    return BoreSystem(FaceSystem.of((tube.rot_t @ K @ tube.rot).tocsr(), base, radial[on_face], STUDY), on_face)
+
+
+def held_solve(tube: Tube, system: BoreSystem, rhs: np.ndarray, active: np.ndarray, values) -> np.ndarray:
+    """``solve_constrained`` through a ``BoreSystem``: K x = rhs (Cartesian) with its base held at 0 and the
+    bore's radial dofs ``active`` (over band_bore_points) at ``values`` (a scalar or one per bore point);
+    returns Cartesian x. One step of iterative refinement on the residual, with the same factors, brings the
+    digits S's products lose to the bore's stiff radial coupling back to round-off."""
+    fs, on = system.faces, system.on_face
+    active = np.asarray(active, bool)[on]
+    values = np.asarray(values, float)[on] if np.ndim(values) else values
+    f = tube.rot_t @ rhs
+    x = fs.held(f, fs.face_loads(f), active, values)
+    res = f - fs.K @ x
+    res[fs.base] = 0.0
+    res[fs.face_z[active]] = 0.0
+    x += fs.held(res, fs.face_loads(res), active)
+    return tube.rot @ x
+
 # ---- the wave generator's insertion: prescribed shape or rigid cam in frictionless contact ----
 
 MAX_NEWTON = 25
@@ -324,55 +350,50 @@ def _reassess(tube, R, u, bore, active, w0_mm, nonlinear) -> np.ndarray:
     return np.where(active, reaction >= 0.0, gap < -1e-6 * w0_mm)
 
 
-def _insert_linear(tube: Tube, K0: sp.csr_matrix, w0_mm: float, contact: bool) -> Inserted:
-    """The linear insertion. With the cam, its active set from K0 factorised once with its Schur complement S
-    on the bore's radial dofs (the held end holds the band with the bore free): each set a dense solve of S's
-    free block (docs/decisions/034-wave-generator-solves.md). Then one solve with the set held, which keeps
-    the stresses at round-off (S's products lose digits to the bore's stiff radial coupling)."""
-    base, bore = held_dofs(tube, symmetric=True), band_bore_points(tube)
-    radial = tube.comp[0][bore]
+def _insert_linear(tube: Tube, K0: sp.csr_matrix, w0_mm: float, contact: bool, system) -> Inserted:
+    """The linear insertion through ``system`` (``bore_system`` of K0, symmetric: every bore point on its face): with the cam, its active set
+    on S (docs/decisions/034-wave-generator-solves.md), then the state with the set held (``held_solve``,
+    refined: docs/decisions/043-wave-generator-and-surface-crack-speed.md)."""
+    bore = band_bore_points(tube)
     target = _bore_target_mm(tube, None, bore, w0_mm, contact, False)
-    active, steps = _cam_active_set(tube, K0, base, radial, target, w0_mm) if contact else (
-        np.ones(bore.size, bool), 1)
-    fixed = np.concatenate([base, radial[active]])
-    u = solve_constrained(tube, K0, np.zeros(tube.dofs), fixed, np.concatenate([np.zeros(base.size), target[active]]))
-    return Inserted(u, K0, active, steps, steps, False)
+    active, steps = _cam_active_set(system.faces.factor.S, np.zeros(bore.size), np.ones(bore.size, bool), target,
+                                    np.full(bore.size, -1e-6 * w0_mm)) if contact else (np.ones(bore.size, bool), 1)
+    return Inserted(held_solve(tube, system, np.zeros(tube.dofs), active, target), K0, active, steps, steps, False)
 
 
-def _cam_active_set(tube: Tube, K0, base, radial, target, w0_mm: float) -> tuple[np.ndarray, int]:
-    """The cam's active set on the bore's radial dofs ``radial`` (True = held at ``target``) of the linear band,
-    and the sets tried: from all held, a held point stays while the cam pushes it, a free one is taken up where
-    it would enter the cam."""
-    from strainwave.fea.solver import condense, schur_factor, tail_solve
-    keep = np.ones(tube.dofs, bool)
-    keep[base] = False
-    factor = schur_factor(condense((tube.rot_t @ K0 @ tube.rot).tocsr(), keep),
-                          np.searchsorted(np.flatnonzero(keep), radial), STUDY)
-    try:
-        active = np.ones(radial.size, bool)
-        for it in range(1, MAX_ACTIVE_SET + 1):
-            u_r = tail_solve(factor.S, np.zeros(radial.size), active, target)
-            reaction = factor.S @ u_r         # no load on the band: the cam's reaction on the bore
-            now = np.where(active, reaction >= 0.0, u_r - target < -1e-6 * w0_mm)
-            if np.array_equal(now, active):
-                return active, it
-            active = now
-    finally:
-        factor.close()
+def _cam_active_set(S: np.ndarray, r: np.ndarray, active: np.ndarray, target: np.ndarray,
+                    take_up: np.ndarray) -> tuple[np.ndarray, int]:
+    """The cam's active set on the bore's radial dofs (True = held at ``target``) of the condensed system
+    S u = r + reaction, from ``active``, and the sets tried: a held point stays while the cam pushes it
+    (reaction >= 0), a free one is taken up where u - target < ``take_up``."""
+    from strainwave.fea.solver import tail_solve
+    for it in range(1, MAX_ACTIVE_SET + 1):
+        u_r = tail_solve(S, r, active, target)
+        reaction = S @ u_r - r          # the cam's reaction on the bore (0 off the set)
+        now = np.where(active, reaction >= 0.0, u_r - target < take_up)
+        if np.array_equal(now, active):
+            return active, it
+        active = now
     raise StageError("solve", STUDY, f"the cam's active set did not settle in {MAX_ACTIVE_SET} steps")
 
 
 def insert(tube: Tube, lame: Lame, w0_mm: float, *, contact: bool, nonlinear: bool, K0=None,
-           start: Inserted | None = None) -> Inserted:
-    """The band forced onto the wave generator. Linear: ``_insert_linear``. Nonlinear: Newton and, with contact,
-    the active set of the bore's radial dofs in one loop (a semi-smooth Newton): each step solves with the
-    current set, then the set is reassessed at the new state; done when the set holds and the step is below
-    NEWTON_TOL."""
+           start: Inserted | None = None, system=None) -> Inserted:
+    """The band forced onto the wave generator. Linear: ``_insert_linear`` through ``system`` (``bore_system``
+    of K0, symmetric; made and freed here when None). Nonlinear: Newton and, with contact, the active set of
+    the bore's radial dofs in one loop (a semi-smooth Newton): each step solves with the set that the step's
+    own linearised contact problem settles on (``_contact_step``), then the set is reassessed at the new
+    state; done when the set holds and the step is below NEWTON_TOL."""
     K0 = K0 if K0 is not None else assemble(tube, np.zeros(tube.dofs), lame, False)[0]
     if not nonlinear:
-        return _insert_linear(tube, K0, w0_mm, contact)
-    base = held_dofs(tube, symmetric=True)
-    bore = band_bore_points(tube)
+        own = system is None
+        system = bore_system(tube, K0, symmetric=True) if own else system
+        try:
+            return _insert_linear(tube, K0, w0_mm, contact, system)
+        finally:
+            if own:
+                system.close()
+    base, bore = held_dofs(tube, symmetric=True), band_bore_points(tube)
     # a start (the linear solution) gives the nonlinear solve its active set and first iterate
     active = np.ones(bore.size, bool) if start is None else start.active.copy()
     u = np.zeros(tube.dofs) if start is None else start.u.copy()
@@ -386,17 +407,40 @@ def insert(tube: Tube, lame: Lame, w0_mm: float, *, contact: bool, nonlinear: bo
             converged = converged and not changed
         if converged:
             return Inserted(u, K, active, it - 1, changes + 1, True)
-        fixed = np.concatenate([base, tube.comp[0][bore[active]]])
-        target = np.concatenate([np.zeros(base.size), _bore_target_mm(tube, u, bore[active], w0_mm, contact, True)])
-        du = solve_constrained(tube, K, -R, fixed, target - (tube.rot_t @ u)[fixed])
+        if contact:
+            active, du = _contact_step(tube, K, R, u, bore, active, w0_mm)
+        else:
+            fixed = np.concatenate([base, tube.comp[0][bore]])
+            target = np.concatenate([np.zeros(base.size), _bore_target_mm(tube, u, bore, w0_mm, False, True)])
+            du = solve_constrained(tube, K, -R, fixed, target - (tube.rot_t @ u)[fixed])
         u = u + du
         converged = np.linalg.norm(du) <= NEWTON_TOL * np.linalg.norm(u)
     raise StageError("solve", STUDY, f"insertion did not converge in {it} Newton / active-set steps")
 
 
-def torque_increment(tube: Tube, state: Inserted, shear: np.ndarray) -> np.ndarray:
+def _contact_step(tube: Tube, K, R, u, bore, active, w0_mm: float) -> tuple[np.ndarray, np.ndarray]:
+    """One Newton step of the band on the cam: the tangent K factorised once with its Schur complement on the
+    bore (``bore_system``), the step's linearised contact problem (cam radius at the current state) settled on
+    S from ``active`` (``_cam_active_set``), the step with that set held. Returns (set, Cartesian step)."""
+    system = bore_system(tube, K, symmetric=True)
+    fs = system.faces          # the symmetric conditions leave every bore point's radial dof free
+    try:
+        f = -(tube.rot_t @ R)
+        r = fs.face_loads(f)
+        # the held points' radial step: onto the cam's radius at the current state
+        step = _bore_target_mm(tube, u, bore, w0_mm, True, True) - (tube.rot_t @ u)[fs.face_z]
+        active, _ = _cam_active_set(fs.factor.S, r, active, step, np.full(bore.size, -1e-6 * w0_mm))
+        return active, tube.rot @ fs.held(f, r, active, step)
+    finally:
+        system.close()
+
+
+def torque_increment(tube: Tube, state: Inserted, shear: np.ndarray, system=None) -> np.ndarray:
     """Displacement increment of the unit tangential shear on the band at the inserted state (tangent problem,
-    antisymmetric about both planes; the cam holds the radial dofs it touches)."""
+    antisymmetric about both planes; the cam holds the radial dofs it touches). ``system``: a ``bore_system``
+    of the state's K, antisymmetric (one factorisation for every state on that K)."""
+    if system is not None:
+        return held_solve(tube, system, shear, state.active, 0.0)
     bore = band_bore_points(tube)
     fixed = np.concatenate([held_dofs(tube, symmetric=False), tube.comp[0][bore[state.active]]])
     return solve_constrained(tube, state.K, shear, fixed, np.zeros(fixed.size))
