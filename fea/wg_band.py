@@ -78,8 +78,8 @@ class Tube:
 
     @functools.cached_property
     def pattern(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The stiffness's CSR pattern (indices, indptr) and the slot of each element-matrix entry (``assemble``'s
-        order: element, 3 a + i, 3 b + k) in it: every assembly sums into the same slots, no COO sort per Newton
+        """The stiffness's CSR pattern (indices, indptr) and the slot of each element-matrix entry K_aibk in it, in
+        ``assemble``'s order (element, a, i, k, b): every assembly sums into the same slots, no COO sort per Newton
         step. Found on the node pairs (9x fewer than the entries), each a 3x3 block of the scalar pattern."""
         nodes = self.basis.element_dofs.T                       # (element, a)
         n = self.basis.N
@@ -91,7 +91,7 @@ class Tube:
         row = rows[pair]
         first, w3 = 9 * ptr[row] + 3 * (pair - ptr[row]), 3 * width[row]
         i = np.arange(3)
-        slots = first[:, :, None, :, None] + i[:, None, None] * w3[:, :, None, :, None] + i
+        slots = first[:, :, None, None, :] + i[:, None, None] * w3[:, :, None, None, :] + i[:, None]
         p = np.arange(pairs.size)
         at = 9 * ptr[rows] + 3 * (p - ptr[rows])                # each pair's block in its node row's three rows
         indices = np.empty(9 * pairs.size, np.int64)
@@ -194,8 +194,7 @@ def assemble(tube: Tube, u: np.ndarray, lame: Lame, nonlinear: bool) -> tuple[sp
     A = _tangent_moduli(F, S, lame, nonlinear) * dx[:, :, None, None, None, None]
     # contractions as batched matrix products (BLAS): over L for every point, then over (q, J) per element
     W = np.matmul(A.reshape(ne, nq, 9, 3, 3), G.swapaxes(2, 3)[:, :, None])             # (e, q, (J, i), k, b)
-    Ke = np.matmul(Gt, W.reshape(ne, nq * 3, 9 * na))
-    Ke = Ke.reshape(ne, na, 3, 3, na).transpose(0, 1, 2, 4, 3)                           # (e, a, i, b, k)
+    Ke = np.matmul(Gt, W.reshape(ne, nq * 3, 9 * na))                                    # (e, a, (i, k, b))
     slots, indices, indptr = tube.pattern
     K = sp.csr_matrix((np.bincount(slots, Ke.ravel(), minlength=indices.size), indices, indptr),
                       shape=(tube.dofs, tube.dofs))
@@ -204,28 +203,44 @@ def assemble(tube: Tube, u: np.ndarray, lame: Lame, nonlinear: bool) -> tuple[sp
 
 def band_outer_loads(tube: Tube) -> tuple[np.ndarray, np.ndarray, float, float]:
     """(load vector of a unit tangential shear, twist functional g (twist = g.u, the area-weighted mean
-    rotation), quarter moment arm int r dA, quarter area) on the band's outer surface."""
-    from skfem import FacetBasis
+    rotation), quarter moment arm int r dA, quarter area) on the band's outer surface: the band's elements at
+    their outer reference face (one element through the wall), the facet rule of intorder 6."""
+    from skfem import CellBasis
+    from skfem.quadrature import get_quadrature
+    from skfem.refdom import RefQuad
 
-    geo = tube.geo
-    bf = tube.mesh.boundary_facets()
-    v = tube.mesh.p[:, tube.mesh.facets[:, bf]]                # vertices lie on the cylinder exactly
-    on = np.all(np.hypot(v[0], v[1]) > geo.r_m_mm, axis=0) & np.all(v[2] > geo.band_start_mm - TOL_MM, axis=0)
-    facets = bf[on]
-    fb = FacetBasis(tube.mesh, tube.basis.elem, facets=facets, intorder=6)
-    x = fb.global_coordinates().value
-    r2 = x[0] ** 2 + x[1] ** 2
-    e_theta = np.stack([-x[1], x[0]]) / np.sqrt(r2)
-    rot_weight = np.stack([-x[1], x[0]]) / r2
-    dofs = fb.element_dofs                                     # (a, facet) scalar dofs
+    geo, pm = tube.geo, tube.param_mesh
+    elements = np.flatnonzero(pm.p[2, pm.t].min(axis=0) > geo.band_start_mm - TOL_MM)
+    axis, value = _outer_face(tube, elements)
+    tangent = [j for j in range(3) if j != axis]
+    st, w = get_quadrature(RefQuad, 6)
+    X = np.empty((3, st.shape[1]))
+    X[axis], X[tangent] = value, st
+    cb = CellBasis(tube.mesh, tube.basis.elem, elements=elements, quadrature=(X, w))
+    x = cb.global_coordinates().value
+    r = np.hypot(x[0], x[1])
+    DF = cb.mapping.DF(X, tind=elements)            # (i, J, element, point)
+    dA = np.linalg.norm(np.cross(DF[:, tangent[0]], DF[:, tangent[1]], axis=0), axis=0) * w
+    e_theta, rot_weight = np.stack([-x[1], x[0]]) / r, np.stack([-x[1], x[0]]) / r ** 2
+    N = np.stack([cb.basis[a][0].value for a in range(len(cb.basis))]) * dA      # (a, element, point)
+    dofs = cb.element_dofs.ravel()                                               # (a, element) scalar dofs
     shear, turn = np.zeros(tube.dofs), np.zeros(tube.dofs)
-    for a in range(dofs.shape[0]):
-        N = fb.basis[a][0].value * fb.dx
-        for k in (0, 1):
-            np.add.at(shear, 3 * dofs[a] + k, np.sum(N * e_theta[k], axis=1))
-            np.add.at(turn, 3 * dofs[a] + k, np.sum(N * rot_weight[k], axis=1))
-    arm, area = float(np.sum(np.sqrt(r2) * fb.dx)), float(np.sum(fb.dx))
+    for k in (0, 1):
+        shear += np.bincount(3 * dofs + k, np.sum(N * e_theta[k], axis=2).ravel(), minlength=tube.dofs)
+        turn += np.bincount(3 * dofs + k, np.sum(N * rot_weight[k], axis=2).ravel(), minlength=tube.dofs)
+    arm, area = float(np.sum(r * dA)), float(np.sum(dA))
     return shear, turn / area, arm, area
+
+
+def _outer_face(tube: Tube, elements: np.ndarray) -> tuple[int, float]:
+    """(reference axis, its value) of the face that every one of ``elements`` has on the outer radius."""
+    from skfem.refdom import RefHex
+    r = tube.param_mesh.p[0, tube.param_mesh.t[:, elements]]         # (vertex, element): the param mesh's r
+    for axis in range(3):
+        for value in (0.0, 1.0):
+            if np.all(_on(r[RefHex.p[axis] == value], tube.geo.r_o_mm, tube.geo.r_o_mm)):
+                return axis, value
+    raise StageError("mesh", STUDY, "the band's elements share no reference face on the outer radius")
 
 
 # ---- constraints in the nodal cylindrical frames ----
@@ -465,22 +480,21 @@ def stresses_at(tube: Tube, u: np.ndarray, lame: Lame, nonlinear: bool, r, phi, 
 
 
 def _sampler(tube: Tube, pts: np.ndarray) -> list[tuple]:
-    """Per group of points at one reference position: (their indices, shape-function gradients, element dofs,
-    rotation to the cylindrical frame)."""
+    """The points as one group: (their indices, shape-function gradients, element dofs, rotation to the
+    cylindrical frame). One basis on their elements at every distinct reference position (each point's gradients
+    are its own element's at its own position), not a basis per position."""
     from skfem import CellBasis
 
     tind = tube.param_mesh.element_finder()(*pts)
     X = tube.param_mesh.mapping().invF(pts[:, :, None], tind=tind)[:, :, 0]
-    keys = np.round(X, 9)
-    groups = []
-    for key in np.unique(keys, axis=1).T:
-        sel = np.flatnonzero(np.all(keys.T == key, axis=1))
-        cb = CellBasis(tube.mesh, tube.basis.elem, elements=tind[sel], quadrature=(X[:, sel[:1]], np.ones(1)))
-        c, s = np.cos(pts[1, sel]), np.sin(pts[1, sel])
-        Q = np.zeros((len(sel), 3, 3))
-        Q[:, 0, 0], Q[:, 0, 1], Q[:, 1, 0], Q[:, 1, 1], Q[:, 2, 2] = c, s, -s, c, 1.0
-        groups.append((sel, _gradients(cb), _element_dofs(cb), Q))
-    return groups
+    _, first, position = np.unique(np.round(X, 9), axis=1, return_index=True, return_inverse=True)
+    elements, element = np.unique(tind, return_inverse=True)
+    cb = CellBasis(tube.mesh, tube.basis.elem, elements=elements, quadrature=(X[:, first], np.ones(first.size)))
+    G = _gradients(cb)[element, position.ravel()][:, None]          # (point, 1, a, J)
+    c, s = np.cos(pts[1]), np.sin(pts[1])
+    Q = np.zeros((pts.shape[1], 3, 3))
+    Q[:, 0, 0], Q[:, 0, 1], Q[:, 1, 0], Q[:, 1, 1], Q[:, 2, 2] = c, s, -s, c, 1.0
+    return [(np.arange(pts.shape[1]), G, _element_dofs(cb)[element], Q)]
 
 
 def von_mises_MPa(sig: np.ndarray) -> np.ndarray:

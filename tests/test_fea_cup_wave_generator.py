@@ -115,7 +115,7 @@ def test_cams_active_set_by_the_schur_complement_meets_the_contact_conditions_of
         return u, bool(np.all(reaction[active] >= 0.0) and np.all(u_r[~active] - target[~active] >= -1e-6 * w0))
     u, met = conditions(state.active)
     assert met and state.newton_iterations > 1 and 0 < state.active.sum() < bore.size
-    assert np.abs(u - state.u).max() <= 1e-12 * np.abs(u).max()
+    assert np.abs(u - state.u).max() <= 1e-10 * np.abs(u).max()     # the Schur route (held_solve) at round-off
     assert not conditions(np.ones(bore.size, bool))[1]
 
 
@@ -128,9 +128,10 @@ def test_stiffness_pattern_sums_the_element_matrices_as_a_coo_assembly(setup):
     coo = sp.csr_matrix((Ke.ravel(), (np.repeat(edofs, n, axis=1).ravel(), np.tile(edofs, (1, n)).ravel())),
                         shape=(tube.dofs, tube.dofs))
     slots, indices, indptr = tube.pattern
-    K = sp.csr_matrix((np.bincount(slots, Ke.ravel(), minlength=indices.size), indices, indptr), shape=coo.shape)
+    ordered = Ke.reshape(Ke.shape[0], n // 3, 3, n // 3, 3).transpose(0, 1, 2, 4, 3).ravel()   # assemble's (e, a, i, k, b)
+    K = sp.csr_matrix((np.bincount(slots, ordered, minlength=indices.size), indices, indptr), shape=coo.shape)
     assert abs(K - coo).max() <= 1e-12 * abs(coo).max()
     # a slot map off by one entry puts a block's value in its neighbour's place: the comparison can fail
-    shifted = sp.csr_matrix((np.bincount(np.roll(slots, 1), Ke.ravel(), minlength=indices.size), indices, indptr),
+    shifted = sp.csr_matrix((np.bincount(np.roll(slots, 1), ordered, minlength=indices.size), indices, indptr),
                             shape=coo.shape)
     assert abs(shifted - coo).max() > 0.1 * abs(coo).max()
