@@ -135,3 +135,96 @@ def test_stiffness_pattern_sums_the_element_matrices_as_a_coo_assembly(setup):
     shifted = sp.csr_matrix((np.bincount(np.roll(slots, 1), ordered, minlength=indices.size), indices, indptr),
                             shape=coo.shape)
     assert abs(shifted - coo).max() > 0.1 * abs(coo).max()
+
+
+def test_linear_stiffness_is_scikit_fems_linear_elasticity(setup):
+    # assemble's tangent-moduli contraction at u = 0 against scikit-fem's own form on the same mesh and quadrature
+    import skfem
+    from skfem.models.elasticity import linear_elasticity
+    _, _, tube, lame = setup
+    K0 = wb.assemble(tube, np.zeros(tube.dofs), lame, False)[0]
+    vector = skfem.CellBasis(tube.mesh, skfem.ElementVector(skfem.ElementHex2()), intorder=5)
+    ref = skfem.asm(linear_elasticity(lame.lam_MPa, lame.mu_MPa), vector)
+    assert abs(K0 - ref).max() <= 1e-12 * abs(ref).max()
+    # another Poisson ratio is another matrix: the comparison can fail
+    other = Lame.from_young(2.1e5, 0.29)
+    assert abs(K0 - skfem.asm(linear_elasticity(other.lam_MPa, other.mu_MPa), vector)).max() > 1e-3 * abs(ref).max()
+
+
+def test_band_loads_on_the_outer_reference_face_are_scikit_fems_facet_integrals(setup):
+    import skfem
+    _, geo, tube, _ = setup
+    shear, _, arm, area = wb.band_outer_loads(tube)
+    bf = tube.mesh.boundary_facets()
+    v = tube.mesh.p[:, tube.mesh.facets[:, bf]]
+    outer = np.all(np.hypot(v[0], v[1]) > geo.r_m_mm, axis=0) & np.all(v[2] > geo.band_start_mm - 1e-7, axis=0)
+    fb = skfem.FacetBasis(tube.mesh, skfem.ElementVector(skfem.ElementHex2()), facets=bf[outer], intorder=6)
+
+    @skfem.LinearForm
+    def tangential(w, p):
+        return (-p.x[1] * w[0] + p.x[0] * w[1]) / np.hypot(p.x[0], p.x[1])
+
+    ref = skfem.asm(tangential, fb)
+    assert np.abs(shear - ref).max() <= 1e-12 * np.abs(ref).max()
+    assert area == pytest.approx(float(np.sum(fb.dx)), rel=1e-12)
+    x = fb.global_coordinates().value
+    assert arm == pytest.approx(float(np.sum(np.hypot(x[0], x[1]) * fb.dx)), rel=1e-12)
+    # the tangential shear is not the axial one: the comparison can fail
+    assert np.abs(shear - skfem.asm(skfem.LinearForm(lambda w, p: w[2]), fb)).max() > 0.1 * np.abs(ref).max()
+
+
+def test_solves_through_the_antisymmetric_schur_factor_are_the_direct_constrained_solves(setup):
+    # a load on every dof with a random set of held bore points, and the torque increment: held_solve through
+    # one factorisation of K0 (the planes hold their own bore points' u_r) equals solve_constrained
+    _, geo, _, lame = setup
+    tube = wb.tube_mesh(geo, 6)
+    K0 = wb.assemble(tube, np.zeros(tube.dofs), lame, False)[0]
+    rng = np.random.default_rng(3)
+    load, shear = rng.standard_normal(tube.dofs), wb.band_outer_loads(tube)[0]
+    radial = tube.comp[0][wb.band_bore_points(tube)]
+    active = rng.random(radial.size) < 0.4
+    base = wb.held_dofs(tube, symmetric=False)
+
+    def direct(held):
+        fixed = np.unique(np.concatenate([base, radial[held]]))
+        return wb.solve_constrained(tube, K0, load, fixed, np.zeros(fixed.size))
+    state = wb.Inserted(np.zeros(tube.dofs), K0, active, 1, 1, False)
+    systems = {sym: wb.bore_system(tube, K0, symmetric=sym) for sym in (False, True)}
+    try:
+        u = wb.held_solve(tube, systems[False], load, active, 0.0)
+        du = wb.torque_increment(tube, state, shear, systems[False])
+        du_symmetric = wb.held_solve(tube, systems[True], shear, active, 0.0)
+    finally:
+        for system in systems.values():
+            system.close()
+    ref, du_ref = direct(active), wb.torque_increment(tube, state, shear)
+    assert np.abs(u - ref).max() <= 1e-10 * np.abs(ref).max()
+    assert np.abs(du - du_ref).max() <= 1e-10 * np.abs(du_ref).max()
+    assert 0 < systems[False].on_face.sum() < radial.size and systems[True].on_face.all()
+    # another set, or the insertion's symmetric conditions under the torque, is another solution: both can fail
+    assert np.abs(direct(~active) - ref).max() > 1e-3 * np.abs(ref).max()
+    assert np.abs(du_symmetric - du_ref).max() > 1e-3 * np.abs(du_ref).max()
+
+
+def test_nonlinear_cam_contact_meets_its_contact_conditions(setup):
+    # each Newton step settles its set on the tangent's Schur complement; the converged state is in equilibrium
+    # off the held dofs, the cam pushes every held point (on its radius) and no free point enters it
+    p, geo, _, lame = setup
+    tube = wb.tube_mesh(geo, 6)
+    w0 = p.gear.radial_deformation_mm
+    linear = wb.insert(tube, lame, w0, contact=True, nonlinear=False)
+    state = wb.insert(tube, lame, w0, contact=True, nonlinear=True, start=linear)
+    bore = wb.band_bore_points(tube)
+    radial = tube.comp[0][bore]
+    free = np.ones(tube.dofs, bool)
+    free[np.concatenate([wb.held_dofs(tube, symmetric=True), radial[state.active]])] = False
+
+    def residual(u):
+        return tube.rot_t @ wb.assemble(tube, u, lame, True)[1]
+    R = residual(state.u)
+    gap = (tube.rot_t @ state.u)[radial] - wb._bore_target_mm(tube, state.u, bore, w0, True, True)
+    assert np.abs(R[free]).max() <= 1e-6 * np.abs(R).max()
+    assert np.all(R[radial][state.active] >= 0.0) and np.all(gap[~state.active] >= -1e-6 * w0)
+    assert np.abs(gap[state.active]).max() <= 1e-9 * w0 and 0 < state.active.sum() < bore.size
+    # the linear state is no nonlinear equilibrium: the first check can fail
+    assert np.abs(residual(linear.u)[free]).max() > 1e-3 * np.abs(R).max()
