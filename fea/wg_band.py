@@ -287,7 +287,7 @@ class BoreSystem:
     then a dense solve of S's free block and back-substitutions, no factorisation."""
 
     faces: object               # face_schur.FaceSystem
-    on_face: np.ndarray         # bool over band_bore_points: radial dof free in the base (antisymmetric: off the planes)
+    on_face: np.ndarray         # bool over band_bore_points: u_r free in the base (antisymmetric: off the planes)
 
     def close(self) -> None:
         self.faces.factor.close()
@@ -317,6 +317,7 @@ def held_solve(tube: Tube, system: BoreSystem, rhs: np.ndarray, active: np.ndarr
     res[fs.face_z[active]] = 0.0
     x += fs.held(res, fs.face_loads(res), active)
     return tube.rot @ x
+
 
 # ---- the wave generator's insertion: prescribed shape or rigid cam in frictionless contact ----
 
@@ -366,9 +367,9 @@ def _reassess(tube, R, u, bore, active, w0_mm, nonlinear) -> np.ndarray:
 
 
 def _insert_linear(tube: Tube, K0: sp.csr_matrix, w0_mm: float, contact: bool, system) -> Inserted:
-    """The linear insertion through ``system`` (``bore_system`` of K0, symmetric: every bore point on its face): with the cam, its active set
-    on S (docs/decisions/034-wave-generator-solves.md), then the state with the set held (``held_solve``,
-    refined: docs/decisions/043-wave-generator-and-surface-crack-speed.md)."""
+    """The linear insertion through ``system`` (``bore_system`` of K0, symmetric: every bore point on its face):
+    with the cam, its active set on S (docs/decisions/034-wave-generator-solves.md), then the state with the set
+    held (``held_solve``, refined: docs/decisions/043-wave-generator-and-surface-crack-speed.md)."""
     bore = band_bore_points(tube)
     target = _bore_target_mm(tube, None, bore, w0_mm, contact, False)
     active, steps = _cam_active_set(system.faces.factor.S, np.zeros(bore.size), np.ones(bore.size, bool), target,

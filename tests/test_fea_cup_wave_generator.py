@@ -128,7 +128,8 @@ def test_stiffness_pattern_sums_the_element_matrices_as_a_coo_assembly(setup):
     coo = sp.csr_matrix((Ke.ravel(), (np.repeat(edofs, n, axis=1).ravel(), np.tile(edofs, (1, n)).ravel())),
                         shape=(tube.dofs, tube.dofs))
     slots, indices, indptr = tube.pattern
-    ordered = Ke.reshape(Ke.shape[0], n // 3, 3, n // 3, 3).transpose(0, 1, 2, 4, 3).ravel()   # assemble's (e, a, i, k, b)
+    # assemble's order of the entries: (element, a, i, k, b)
+    ordered = Ke.reshape(Ke.shape[0], n // 3, 3, n // 3, 3).transpose(0, 1, 2, 4, 3).ravel()
     K = sp.csr_matrix((np.bincount(slots, ordered, minlength=indices.size), indices, indptr), shape=coo.shape)
     assert abs(K - coo).max() <= 1e-12 * abs(coo).max()
     # a slot map off by one entry puts a block's value in its neighbour's place: the comparison can fail
