@@ -76,7 +76,7 @@ def test_a_run_without_step_starts_no_export_and_says_why(tmp_path):
 
     job = StepJob(load_params(), tmp_path / "step", ResultCache(tmp_path / "cache"), lambda m: None,
                   preview_dir=tmp_path / "images", parts=())
-    assert job.process is None and job.result()[0] == [] and not (tmp_path / "step").exists()
+    assert job.process is None and job.result() == ([], 0.0) and not (tmp_path / "step").exists()
     meta = {"settings": {"quick": True, "order": 2, "step": False}, "cases": [], "total_s": 1.0,
             "created_utc": "now", "versions": {"strainwave": "x", "code_version": "y"}}
     assert "no STEP export" in run_line({"metadata": meta}) and "--step" in no_step_line({"metadata": meta})

@@ -338,8 +338,9 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
         timings["step_wait_after_images"] = time.perf_counter() - wait_start
     finally:
         step_job.cancel()
-    progress(f"[2/{total}] step done: {sum(len(s.files) for s in steps)} STEP file(s), {timings['step']:.1f} s "
-             f"wall (waited {timings['step_wait_after_images']:.1f} s after the images)")
+    if step:
+        progress(f"[2/{total}] step done: {sum(len(s.files) for s in steps)} STEP file(s), {timings['step']:.1f} s "
+                 f"wall (waited {timings['step_wait_after_images']:.1f} s after the images)")
     images, missing, stresses = _previews(steps, out_dir) + made.images, made.missing, made.stresses
     wg_cup, design = _design(params, book, plan, stresses)
     with _stage("reports", timings, progress, 6, total):

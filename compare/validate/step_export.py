@@ -72,7 +72,6 @@ class StepJob:
     def __init__(self, params, step_dir: Path, cache: ResultCache, progress: Callable[[str], None],
                  preview_dir: Path | None = None, parts: tuple[PartName, ...] | None = None):
         self.cache, self.progress = cache, progress
-        self.started = time.perf_counter()
         self.done: list[StepOutcome] = []
         self.keys: dict[str, str] = {}
         self.folders = tuple(Path(d) for d in (step_dir, preview_dir) if d is not None)
@@ -100,7 +99,8 @@ class StepJob:
                      + ", ".join(p for p, _, _ in jobs))
 
     def result(self) -> tuple[list[StepOutcome], float]:
-        """Wait for the background parts; returns every part's outcome and the wall time of the export."""
+        """Wait for the background parts; returns every part's outcome and the export's wall time (the
+        worker's seconds over the parts it built; 0 when every part came from the cache or none was asked for)."""
         received = set()
         while self.process is not None and len(received) < len(self.keys):
             try:
@@ -122,7 +122,8 @@ class StepJob:
         self.cancel()
         order = {p.value: i for i, p in enumerate(PartName)}
         self.done.sort(key=lambda s: order[s.part])
-        return self.done, time.perf_counter() - self.started
+        # the worker's own time per part: the wait for result() after the export finished is not the export's
+        return self.done, sum(s.seconds for s in self.done if not s.cached)
 
     def cancel(self) -> None:
         """Stop the background export (on an interrupted run; harmless after it finished)."""
