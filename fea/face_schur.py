@@ -48,17 +48,17 @@ class FaceSystem:
         u0 = self.factor.solve(f[self.free])
         return self.factor.S @ u0[np.searchsorted(self.free, self.face_z)]
 
-    def held(self, f: np.ndarray, r: np.ndarray, active: np.ndarray) -> np.ndarray:
-        """The solution under f (face loads r) with the face dofs ``active`` held: the open ones from S's free
-        block, then one solve under f plus the held dofs' reactions."""
+    def held(self, f: np.ndarray, r: np.ndarray, active: np.ndarray, values: np.ndarray | float = 0.0) -> np.ndarray:
+        """The solution under f (face loads r) with the face dofs ``active`` held at ``values`` (per face dof, or
+        one number): the open ones from S's free block, then one solve under f plus the held dofs' reactions."""
         from strainwave.fea.solver import tail_solve
-        u_face = tail_solve(self.factor.S, r, active)
+        u_face = tail_solve(self.factor.S, r, active, values)
         reaction = self.factor.S[active] @ u_face - r[active]
         b = f[self.free].copy()
         b[np.searchsorted(self.free, self.face_z[active])] += reaction
         u = np.zeros_like(f)
         u[self.free] = self.factor.solve(b)
-        u[self.face_z[active]] = 0.0
+        u[self.face_z[active]] = u_face[active]
         return u
 
 
