@@ -24,7 +24,7 @@ from strainwave.compare.validate.design import DesignVerdict, design_verdict, st
 from strainwave.compare.validate.fea_book import FeaBook
 from strainwave.compare.validate.gci_table import gci_rows
 from strainwave.compare.validate.isolated import stop_descendants
-from strainwave.compare.validate.nafems_appendix import nafems_appendix
+from strainwave.compare.validate.nafems_appendix import NafemsJob
 from strainwave.io_atomic import remove_stale_temps
 from strainwave.compare.validate.plan import make_plan
 from strainwave.compare.validate.report_html import write_html
@@ -315,14 +315,15 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
     progress(f"[2/{total}] step: " + ("every part as STEP, in parallel with the FEA" if step
                                       else "skipped (--quick exports no STEP; add --step)"))
     step_job = StepJob(params, out_dir / "step", cache, progress, preview_dir=out_dir / "images", parts=None if step else ())
+    nafems_job = NafemsJob(cache, progress)   # beside the FEA cases, or from the cache (it takes no parameter)
     try:
         with _stage("fea", timings, progress, 3, total):
             outcomes = _run_cases(plan.all_cases(), params, fields_dir=out_dir / "fields", cache=cache,
                                   quick=quick, progress=progress)
         book = FeaBook(outcomes)
         nafems_start = time.perf_counter()
-        nafems = nafems_appendix(out_dir, progress)
-        timings["nafems"] = time.perf_counter() - nafems_start
+        nafems = nafems_job.appendix(out_dir)
+        timings["nafems"] = time.perf_counter() - nafems_start   # the wait after the FEA
         with _stage("checks", timings, progress, 4, total):
             check_set = build_checks(book, plan, summary, params)
             audit = audit_with_evidence(summary.get("audit", []), check_set.by_id(),
@@ -338,6 +339,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
         timings["step_wait_after_images"] = time.perf_counter() - wait_start
     finally:
         step_job.cancel()
+        nafems_job.cancel()
     if step:
         progress(f"[2/{total}] step done: {sum(len(s.files) for s in steps)} STEP file(s), {timings['step']:.1f} s "
                  f"wall (waited {timings['step_wait_after_images']:.1f} s after the images)")
