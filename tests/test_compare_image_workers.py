@@ -15,8 +15,8 @@ def test_both_processes_draw_and_the_records_come_back_in_order():
         time.sleep(0.1)
         return {"k": k, "by_worker": os.getpid() != parent}
     checks = []
-    out = run_tasks(12, one, lambda: checks.append(1), lambda k, why: {"k": k, "died": why})
-    assert [r["k"] for r in out] == list(range(12))
+    out = run_tasks(20, one, lambda: checks.append(1), lambda k, why: {"k": k, "died": why})
+    assert [r["k"] for r in out] == list(range(20))
     assert any(r["by_worker"] for r in out) and not all(r["by_worker"] for r in out)
     assert len(checks) >= sum(not r["by_worker"] for r in out)     # a checkpoint before each task here
 
