@@ -58,8 +58,8 @@ class FaceSystem:
         return self.factor.S @ u0[self.face_z]
 
     def held(self, f: np.ndarray, r: np.ndarray, active: np.ndarray, values: np.ndarray | float = 0.0) -> np.ndarray:
-        """The solution under f (face loads r) with the face dofs ``active`` held at ``values``: the open ones
-        from S's free block, then one solve under f plus the held dofs' reactions."""
+        """The solution under f (face loads r) with the face dofs ``active`` held at ``values`` (per face dof, or
+        one number): the open ones from S's free block, then one solve under f plus the held dofs' reactions."""
         from strainwave.fea.solver import tail_solve
         u_face = tail_solve(self.factor.S, r, active, values)
         reaction = self.factor.S[active] @ u_face - r[active]

@@ -193,7 +193,8 @@ def _grid(points: np.ndarray, cells: list[np.ndarray], types: np.ndarray, point_
 
 
 def _write_grid(path: Path, grid) -> None:
-    """VTK's own XML writer: appended raw binary, zlib level 9 (meshio reads zlib and LZMA, not LZ4)."""
+    """VTK's own XML writer: appended raw binary, zlib level 1 (meshio reads zlib and LZMA, not LZ4): level 9
+    took up to 17 times as long for files 0.5-2 % smaller (docs/decisions/045-ring-images-nafems-cost.md)."""
     from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
 
     writer = vtkXMLUnstructuredGridWriter()
@@ -203,7 +204,7 @@ def _write_grid(path: Path, grid) -> None:
     writer.EncodeAppendedDataOff()
     writer.SetHeaderTypeToUInt64()
     writer.SetCompressorTypeToZLib()
-    writer.SetCompressionLevel(9)
+    writer.SetCompressionLevel(1)
     if writer.Write() != 1:
         raise OSError(f"VTK could not write {path}")
 

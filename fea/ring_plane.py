@@ -21,7 +21,7 @@ from strainwave.fea.ring_loads import ArcLoad
 from strainwave.fea.ring_sections import (MidLayer, boundary_stress_MPa, hoop_at, mid_layer, peak_near, section_hoop_MPa,
                             signed_principal)
 from strainwave.fea.session import mesh_in_child
-from strainwave.fea.solver import solve_elasticity
+from strainwave.fea.solver import SolverInfo
 from strainwave.fea.surface import SurfaceQuadrature
 
 
@@ -169,12 +169,9 @@ def solve_ring_section(face, geo: RingGeometry, load: ArcLoad, lame: Lame, *, si
     fy[top] *= load.force_N / -fy[top].sum()
     fy[~top] *= load.force_N / fy[~top].sum()
     f[1::2] = fy
-    cases = {"force": (f, base_fixed, np.zeros(base_fixed.size))}
-    if ewg_w0_mm is not None:
-        fixed = np.concatenate([base_fixed, 2 * arc_top + 1, 2 * arc_bottom + 1])
-        vals = np.concatenate([np.zeros(base_fixed.size), np.full(arc_top.size, -ewg_w0_mm),
-                               np.full(arc_bottom.size, ewg_w0_mm)])
-        cases["ewg"] = (np.zeros_like(f), fixed, vals)
+    # one factorisation serves both cases: the EWG strips hold the arcs' u_y, from the Schur complement on them
+    arc_y = np.sort(np.concatenate([2 * arc_top + 1, 2 * arc_bottom + 1]))
+    solutions, reaction_N = _solve_cases(K, f, base_fixed, arc_y, np.isin(arc_y, 2 * arc_top + 1), ewg_w0_mm)
     # the inner boundary (bore or tooth flanks and roots) and the outer circle, told apart by radius
     radius = lambda x: np.hypot(x[0], x[1])                                  # noqa: E731
     inner = sk.mesh.facets_satisfying(lambda x: radius(x) < geo.r_m_mm, boundaries_only=True)
@@ -183,12 +180,10 @@ def solve_ring_section(face, geo: RingGeometry, load: ArcLoad, lame: Lame, *, si
     fb_out = _facet_bases(sk, outer)
     window = 0.5 * pitch_rad if pitch_rad else 0.5 * geo.thickness_mm / geo.r_root_mm
     out = {}
-    for name, (rhs, fixed, vals) in cases.items():
-        ts = time.perf_counter()
-        u, info = solve_elasticity(K, rhs, fixed_dofs=fixed, fixed_values=vals, coords=sb.doflocs, dim=2, method="direct",
-                                   study="ring-compression")
+    t3 = time.perf_counter()
+    for name, (rhs, u, info) in solutions.items():
         te = time.perf_counter()
-        force = -float((K @ u - rhs)[2 * arc_top + 1].sum()) if name == "ewg" else load.force_N
+        force = reaction_N if name == "ewg" else load.force_N
         sig_in, xyz = _boundary_stress(fb_in, u, lame)
         vals_in = signed_principal(sig_in)
         sig_out, xyz_out = _boundary_stress(fb_out, u, lame)
@@ -200,7 +195,47 @@ def solve_ring_section(face, geo: RingGeometry, load: ArcLoad, lame: Lame, *, si
             root_B_MPa=peak_near(vals_in, xyz, 0.0, window), root_D_MPa=peak_near(vals_in, xyz, 0.5 * np.pi, window),
             outer_B_MPa=peak_near(hoop_out, xyz_out, 0.0, window),
             outer_D_MPa=peak_near(hoop_out, xyz_out, 0.5 * np.pi, window),
-            mesh=md, timings_s={"mesh": t1 - t0, "assemble": t2 - t1, "solve": te - ts,
+            mesh=md, timings_s={"mesh": t1 - t0, "assemble": t2 - t1, "solve": t3 - t2,
                                 "extract": time.perf_counter() - te},
             solver=info.to_dict(), fields=(sk, u) if keep_fields else ())
     return out
+
+
+def _solve_cases(K, f: np.ndarray, base: np.ndarray, arc_y: np.ndarray, top: np.ndarray,
+                 w0_mm: float | None) -> tuple[dict, float | None]:
+    """({case: (load vector, u, solver facts)}, the EWG top arc's reaction or None): the force case (``f``, ``base`` held) and, with ``w0_mm``, the EWG case
+    (no load, the arcs' u_y ``arc_y`` also held: -W0 where ``top``, +W0 below), from one factorisation of K with ``base`` held and its Schur complement on ``arc_y``
+    (``face_schur.FaceSystem``)."""
+    from strainwave.fea.face_schur import FaceSystem
+
+    t0 = time.perf_counter()
+    system = FaceSystem.of(K, base, arc_y, "ring-compression")
+    reaction_N = None
+    try:
+        free = system.free
+        u = np.zeros(K.shape[0])
+        u[free] = system.factor.solve(f[free])
+        out = {"force": (f, u, _info(K, f, u, free, system.factor.method, t0))}
+        if w0_mm is not None:
+            t1 = time.perf_counter()
+            zero, held = np.zeros_like(f), np.ones(arc_y.size, bool)
+            u_ewg = system.held(zero, np.zeros(arc_y.size), held, np.where(top, -w0_mm, w0_mm))
+            # the top strip's reaction as v.K u, v the field of the top strip moved by 1 (the bottom one held): the
+            # solution's round-off cancels to first order, where the sum of K u over the strip amplifies it
+            v = system.held(zero, np.zeros(arc_y.size), held, top.astype(float))
+            keep = np.setdiff1d(free, arc_y, assume_unique=True)
+            out["ewg"] = (zero, u_ewg, _info(K, zero, u_ewg, keep, system.factor.method, t1))
+            reaction_N = -float(v @ (K @ u_ewg))
+    finally:
+        system.factor.close()
+    return out, reaction_N
+
+
+def _info(K, f: np.ndarray, u: np.ndarray, free: np.ndarray, method: str, t0: float) -> SolverInfo:
+    """Solver facts of one case (``solver.solve_elasticity``'s): ||f - K u|| / ||f - K u_held|| over the equations of
+    its unknowns ``free`` (u_held: u with the unknowns zeroed, the prescribed values kept)."""
+    held = u.copy()
+    held[free] = 0.0
+    b = (f - K @ held)[free]
+    r = b - (K @ (u - held))[free]
+    return SolverInfo(method, int(free.size), 1, float(np.linalg.norm(r) / np.linalg.norm(b)), time.perf_counter() - t0)

@@ -53,17 +53,22 @@ def find_cells(mesh, points_mm: np.ndarray) -> np.ndarray:
     return np.array(cells)
 
 
+def _point_basis(basis, cell: int, ref: np.ndarray):
+    """``basis``' element ``cell`` at the one reference point ``ref`` (dim, 1): the global dofs shared, not made
+    again for the whole mesh, and no dof locations (a mapping of every element)."""
+    from skfem import CellBasis
+    return CellBasis(basis.mesh, basis.elem, mapping=basis.mapping, elements=np.array([cell]),
+                     quadrature=(ref, np.array([1.0])), dofs=basis.dofs, disable_doflocs=True)
+
+
 def stress_at_points(basis, u: np.ndarray, points_mm: np.ndarray, lame: Lame) -> np.ndarray:
     """Stress tensors (n, dim, dim) at points (dim, n), from the element containing each point."""
-    from skfem import CellBasis
-
     mesh, mapping = basis.mesh, basis.mapping
     cells = find_cells(mesh, points_mm)
     ref = mapping.invF(points_mm[:, :, None], tind=cells)        # (dim, n, 1)
     out = []
     for i, cell in enumerate(cells):
-        one = CellBasis(mesh, basis.elem, mapping=mapping, elements=np.array([cell]),
-                        quadrature=(ref[:, i, :], np.array([1.0])))
+        one = _point_basis(basis, cell, ref[:, i, :])
         grad = one.interpolate(u).grad[:, :, 0, 0]
         out.append(_stress_from_grad(grad, lame))
     return np.array(out)
@@ -121,9 +126,7 @@ def mid_layer(basis, u, r_m_mm: float, z_mm: float | None = None) -> MidLayer:
     ref = basis.mapping.invF(pts[:, :, None], tind=cells)
     values = []
     for i, cell in enumerate(cells):
-        from skfem import CellBasis
-        one = CellBasis(basis.mesh, basis.elem, mapping=basis.mapping, elements=np.array([cell]),
-                        quadrature=(ref[:, i, :], np.array([1.0])))
+        one = _point_basis(basis, cell, ref[:, i, :])
         values.append(np.asarray(one.interpolate(u))[:, 0, 0])
     return MidLayer(*values)
 

@@ -57,11 +57,13 @@ def run_study(study: str, params=None, *, mesh_size_mm: float | None = None, ord
 
 
 def validate(out_dir: str | Path = "reports/validate", params=None, *, quick: bool = False,
-             progress: Callable[[str], None] | None = None):
+             progress: Callable[[str], None] | None = None, step: bool | None = None):
     """Every study against both seeds' closed forms, into ``out_dir`` (report.html/.pdf, results.json, CSVs,
-    STEP, VTU). Returns the outcome: ``.passed`` is the validation verdict, ``.design`` the design verdict."""
+    STEP unless quick (``step`` overrides), VTU). Returns the outcome: ``.passed`` is the validation verdict,
+    ``.design`` the design verdict."""
     from strainwave.compare.validate.pipeline import run_validate
-    return run_validate(_params(params), Path(out_dir), quick=quick, progress=progress or (lambda msg: None))
+    return run_validate(_params(params), Path(out_dir), quick=quick, progress=progress or (lambda msg: None),
+                        step=step)
 
 
 def diagnose(recording: str | Path, *, params: str | Path | None = None, baseline: str = "analytic",

@@ -192,7 +192,8 @@ def _cmd_validate(args) -> int:
     for study in STUDIES:   # every study runs at its default size: the parameters alone may blow the budget
         check_budget(study, params, None, args.quick, flag="--params")
     check_cad_teeth(params, list(TOOTHED_PARTS))   # validate exports every part as designed, teeth on
-    outcome = run_validate(params, Path(args.out), quick=args.quick, progress=_progress)
+    outcome = run_validate(params, Path(args.out), quick=args.quick, progress=_progress,
+                           step=True if args.step else None)
     _emit(args, outcome.summary(), lambda: {
         "passed": outcome.passed, "design": None if outcome.design is None else outcome.design.to_dict(),
         "out_dir": str(outcome.out_dir), "timings_s": outcome.timings_s,
@@ -456,7 +457,9 @@ def _add_solve(add) -> None:
 def _add_validate(add) -> None:
     p = add("validate", _cmd_validate, "all studies vs the closed forms: report, images, STEP, VTU")
     p.add_argument("--out", default="reports/validate", metavar="DIR", help="output directory")
-    p.add_argument("--quick", action="store_true", help="coarse meshes, one crack depth per component")
+    p.add_argument("--quick", action="store_true", help="coarse meshes, one crack depth per component, no STEP")
+    p.add_argument("--step", action="store_true", help="export every part as STEP with its preview also with "
+                   "--quick (the full run always does)")
     p.add_argument("--require-design", action="store_true",
                    help="exit 3 when the validation passes but the design does not meet [n] at the rated load "
                         "(ewg_drive.permissible_safety); without it the exit status is the validation's alone")

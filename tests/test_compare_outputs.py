@@ -57,6 +57,33 @@ def test_exit_status_is_the_validation_unless_the_design_is_required(monkeypatch
     assert main(argv) == status
 
 
+@pytest.mark.parametrize("flags, step", [(["--quick"], None), (["--quick", "--step"], True), ([], None)])
+def test_validate_passes_the_step_choice_on(monkeypatch, tmp_path, flags, step):
+    import strainwave.compare.validate.pipeline as pipeline
+    from strainwave.cli import main
+
+    seen = {}
+    monkeypatch.setattr(pipeline, "run_validate", lambda *a, **k: seen.update(k) or _Outcome(True, True))
+    assert main(["-q", "validate", "--out", str(tmp_path / "out")] + flags) == 0
+    assert seen["step"] is step and seen["quick"] == ("--quick" in flags)
+
+
+def test_a_run_without_step_starts_no_export_and_says_why(tmp_path):
+    from strainwave.cache import ResultCache
+    from strainwave.compare.validate.report_text import no_step_line, run_line
+    from strainwave.compare.validate.step_export import StepJob
+    from strainwave.params import load_params
+
+    job = StepJob(load_params(), tmp_path / "step", ResultCache(tmp_path / "cache"), lambda m: None,
+                  preview_dir=tmp_path / "images", parts=())
+    assert job.process is None and job.result() == ([], 0.0) and not (tmp_path / "step").exists()
+    meta = {"settings": {"quick": True, "order": 2, "step": False}, "cases": [], "total_s": 1.0,
+            "created_utc": "now", "versions": {"strainwave": "x", "code_version": "y"}}
+    assert "no STEP export" in run_line({"metadata": meta}) and "--step" in no_step_line({"metadata": meta})
+    meta["settings"]["step"] = True   # the export ran and every part failed: another reason, not "skipped"
+    assert "no STEP" not in run_line({"metadata": meta}) and "could be built" in no_step_line({"metadata": meta})
+
+
 def test_sweep_legend_lists_only_what_is_drawn():
     curves = {"published": (np.array([1.0]), np.array([2e-8])), "corrected": (np.array([1.0]), np.array([1e-9]))}
     # one depth (a --quick sweep) whose FEA value is <= 0: nothing of the FEA can be drawn on a log axis

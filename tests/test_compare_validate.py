@@ -31,7 +31,8 @@ CHROMIUM_FLAGS = ("--headless", "--no-sandbox", "--disable-gpu", "--disable-quic
 
 def _validate(out: Path) -> subprocess.CompletedProcess:
     env = {**os.environ, "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
-    return subprocess.run([sys.executable, "-m", "strainwave.cli", "validate", "--quick", "--out", str(out)],
+    # --step: the quick run also exports the parts, so the STEP files and previews are checked end to end
+    return subprocess.run([sys.executable, "-m", "strainwave.cli", "validate", "--quick", "--step", "--out", str(out)],
                           capture_output=True, text=True, env=env, timeout=600)
 
 

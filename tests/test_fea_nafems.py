@@ -8,6 +8,7 @@ reads -91.97 MPa, OptiStruct OS-V 0070). The fine meshes (1 % with their GCI) ru
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
 
 import numpy as np
@@ -124,3 +125,31 @@ def test_le11_mesh_is_the_quarter_body_of_revolution(coarse):
     # curved P2 faces follow the spheres to O((h/R)^3) per face: far below 0.5 % at h = 490 mm on R >= 1000 mm
     assert volume == pytest.approx(exact, rel=5e-3)
     assert md.nodes_mm[:, 2].max() == pytest.approx(1790.0) and md.nodes_mm[:, :2].min() >= -1e-9
+
+
+def test_validate_runs_the_coarse_cases_beside_the_fea_and_caches_them_by_code_version(coarse, tmp_path, monkeypatch):
+    """NafemsJob: the coarse cases from a forked process give the appendix nafems_appendix gives in-process; a second
+    run reads them from the cache (no process); a failure is said in the notes and not cached."""
+    from strainwave.cache import ResultCache
+    from strainwave.compare.validate.nafems_appendix import NafemsJob, nafems_appendix
+    from strainwave.errors import StageError
+
+    monkeypatch.setattr(nafems, "run_all", lambda level, progress=None: list(coarse.values()))
+    out, cache, said = tmp_path / "validate", ResultCache(tmp_path / "cache"), []
+    (tmp_path / "cache").mkdir()
+    job = NafemsJob(cache, said.append)
+    assert job.process is not None
+    first = job.appendix(out)
+    assert json.dumps(first) == json.dumps(nafems_appendix(out))
+    assert [c["id"] for c in first["cases"]] == ["LE1", "LE10", "LE11"]
+
+    def fails(level, progress=None):
+        raise StageError("solve", "nafems", "no")
+    monkeypatch.setattr(nafems, "run_all", fails)
+    again = NafemsJob(cache, said.append)
+    assert again.process is None and json.dumps(again.appendix(out)) == json.dumps(first)
+    empty = ResultCache(tmp_path / "other")
+    (tmp_path / "other").mkdir()
+    failed = NafemsJob(empty, said.append).appendix(out)
+    assert failed["cases"] == [] and any("did not run" in n for n in failed["notes"])
+    assert not list((tmp_path / "other").iterdir())

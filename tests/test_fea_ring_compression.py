@@ -199,3 +199,37 @@ def test_facet_traction_on_curved_p2_surface(ring):
     radial = quad.load_vector(lambda x: np.stack([x[0], x[1], 0 * x[2]]) / np.hypot(x[0], x[1]), sk.node_to_dof, 3, n)
     assert radial[0::3].sum() == pytest.approx(r * half_b, rel=1e-6)
     assert radial[2::3].sum() == pytest.approx(0.0, abs=1e-12)
+
+
+def test_one_factorisation_serves_force_and_ewg_cases():
+    """ring_plane._solve_cases (one factorisation, the EWG strips held through its Schur complement) against two
+    direct solves with the conditions eliminated (solver.solve_elasticity): a clamped-free P2 strip, a load on its
+    top edge and, for the EWG case, its top and bottom edges' u_y held at -W0 and +W0."""
+    from skfem import Basis, ElementTriP2, MeshTri
+
+    from strainwave.fea.assembly import elasticity_stiffness
+    from strainwave.fea.ring_plane import _solve_cases
+    from strainwave.fea.solver import solve_elasticity
+
+    sb = Basis(MeshTri.init_tensor(np.linspace(0.0, 8.0, 17), np.linspace(0.0, 1.0, 5)), ElementTriP2())
+    K = elasticity_stiffness(sb, Lame.from_young(E_MPA, NU, plane_stress=True), thickness_mm=2.0).tocsr()
+    x, y = sb.doflocs
+    base = np.concatenate([2 * np.flatnonzero(x < 1e-12), 2 * np.flatnonzero(x < 1e-12) + 1])
+    top_dofs, bottom_dofs = np.flatnonzero((y > 1 - 1e-12) & (x > 5.9)), np.flatnonzero((y < 1e-12) & (x > 5.9))
+    f = np.zeros(K.shape[0])
+    f[2 * top_dofs + 1] = -1.0
+    arc_y = np.sort(np.concatenate([2 * top_dofs + 1, 2 * bottom_dofs + 1]))
+    top = np.isin(arc_y, 2 * top_dofs + 1)
+    w0 = 0.01
+    cases, reaction = _solve_cases(K, f, base, arc_y, top, w0)
+    u_force, _ = solve_elasticity(K, f, fixed_dofs=base, coords=sb.doflocs, dim=2, method="direct")
+    fixed = np.concatenate([base, arc_y])
+    values = np.concatenate([np.zeros(base.size), np.where(top, -w0, w0)])
+    u_ewg, _ = solve_elasticity(K, np.zeros_like(f), fixed_dofs=fixed, fixed_values=values, coords=sb.doflocs, dim=2,
+                                method="direct")
+    assert np.abs(cases["force"][1] - u_force).max() <= 1e-9 * np.abs(u_force).max()
+    assert np.abs(cases["ewg"][1] - u_ewg).max() <= 1e-9 * np.abs(u_ewg).max()
+    direct_reaction = -float((K @ u_ewg)[2 * top_dofs + 1].sum())
+    assert reaction == pytest.approx(direct_reaction, rel=1e-9)
+    assert abs(reaction) > 0
+    assert cases["force"][2].residual < 1e-9 and cases["ewg"][2].residual < 1e-9

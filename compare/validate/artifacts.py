@@ -5,7 +5,7 @@ can say what is missing and why.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
@@ -56,22 +56,63 @@ class Missing:
         return {"what": self.what, "reason": self.reason}
 
 
+@dataclass(frozen=True)
+class Drawn:
+    """What a picture gives besides its PNG: the caption and the records the report merges (the stress at the
+    rated load and the 3D view of a component, a part that could not be made)."""
+    caption: str
+    stresses: dict = field(default_factory=dict)      # component -> StressAtRated
+    views: dict = field(default_factory=dict)         # component -> view3d.View
+    missing: tuple[Missing, ...] = ()
+
+
+@dataclass(frozen=True)
+class Attempted:
+    """One picture's outcome, as typed records (a worker process sends it back to be merged in order)."""
+    image: Image | None
+    drawn: Drawn | None
+    failure: Missing | None
+    said: tuple[str, ...] = ()
+
+
 class _Collector:
+    """The pictures to make, in the report's order; ``run`` makes them in two processes (``image_workers``)."""
+
     def __init__(self, out_dir: Path, progress, checkpoint: Callable[[], None] = lambda: None):
         self.out_dir, self.progress, self.checkpoint = Path(out_dir), progress, checkpoint
-        self.images: list[Image] = []
-        self.missing: list[Missing] = []
+        self.tasks: list[tuple] = []
 
-    def attempt(self, what: str, component: str, kind: str, make: Callable[[Path], str], name: str) -> None:
-        self.checkpoint()   # a Ctrl-C during the previous picture stops the run here, between pictures
+    def attempt(self, what: str, component: str, kind: str, make: Callable[[Path], str | Drawn], name: str) -> None:
+        self.tasks.append((what, component, kind, make, name))
+
+    def one(self, k: int) -> Attempted:
+        what, component, kind, make, name = self.tasks[k]
         target = self.out_dir / "images" / name
         try:
-            caption = make(target)
+            drawn = make(target)
         except Exception as exc:  # noqa: BLE001 - a failed picture is reported, the run goes on
-            self.missing.append(Missing(what, f"{type(exc).__name__}: {exc}"))
-            self.progress(f"  image {name}: FAILED ({type(exc).__name__}: {exc})")
-            return
-        self.images.append(Image(target.relative_to(self.out_dir), caption, component, kind))
+            reason = f"{type(exc).__name__}: {exc}"
+            return Attempted(None, None, Missing(what, reason), (f"  image {name}: FAILED ({reason})",))
+        drawn = drawn if isinstance(drawn, Drawn) else Drawn(drawn)
+        return Attempted(Image(target.relative_to(self.out_dir), drawn.caption, component, kind), drawn, None)
+
+    def run(self) -> "Artifacts":
+        """Every picture (two at a time), merged in the order they were asked for."""
+        from strainwave.compare.validate.image_workers import run_tasks
+
+        images, missing, stresses, views = [], [], {}, {}
+        for outcome in run_tasks(len(self.tasks), self.one, self.checkpoint,
+                                 lambda k, why: Attempted(None, None, Missing(self.tasks[k][0], why))):
+            for line in outcome.said:
+                self.progress(line)
+            if outcome.failure is not None:
+                missing.append(outcome.failure)
+                continue
+            images.append(outcome.image)
+            missing += outcome.drawn.missing
+            stresses.update(outcome.drawn.stresses)
+            views.update(outcome.drawn.views)
+        return Artifacts(images, missing, stresses, views)
 
 
 def _vtu(book: FeaBook, label: str, prefer: str = "") -> Path | None:
@@ -116,11 +157,9 @@ def _case_field(book: FeaBook, case):
     return result, *found
 
 
-def _stress_picture(images, target: Path, book: FeaBook, component: str, case, params,
-                    records: dict[str, StressAtRated], views: dict, col: _Collector) -> str:
+def _stress_picture(images, target: Path, book: FeaBook, component: str, case, params) -> Drawn:
     result, vtu, cracked = _case_field(book, case)
     at = stress_at_rated(case.study, params, result, vtu, cracked=cracked)
-    records[component] = at
     planar = bool(np.ptp(images.read_field(vtu).points[:, 2]) == 0.0)
     from strainwave.registry import study as registered
     radius = registered(case.study).facts().image_zoom_mm(params)   # a second panel on the peak, if the study has one
@@ -131,11 +170,12 @@ def _stress_picture(images, target: Path, book: FeaBook, component: str, case, p
                                     zoom=zoom)
     from strainwave.compare.validate.view3d import make_view
     try:
-        views[component] = make_view(component, vtu, at, exaggeration=rendered.exaggeration or 1.0,
-                                     label=COMPONENT_TITLES[component])
+        view = make_view(component, vtu, at, exaggeration=rendered.exaggeration or 1.0,
+                         label=COMPONENT_TITLES[component])
     except Exception as exc:  # noqa: BLE001 - a view that cannot be made is reported, the PNG stands
-        col.missing.append(Missing(f"{COMPONENT_TITLES[component]} 3D view", f"{type(exc).__name__}: {exc}"))
-    return rendered.caption
+        return Drawn(rendered.caption, {component: at}, {},
+                     (Missing(f"{COMPONENT_TITLES[component]} 3D view", f"{type(exc).__name__}: {exc}"),))
+    return Drawn(rendered.caption, {component: at}, {component: view})
 
 
 NO_DESIGN_LINE = "no design factor: why in the caption"
@@ -203,12 +243,9 @@ def make_images(out_dir: Path, book: FeaBook, plan: Plan, check_set: CheckSet, s
     from strainwave.compare.validate import images  # pyvista only here
 
     col = _Collector(out_dir, progress, checkpoint)
-    stresses: dict[str, StressAtRated] = {}
-    views: dict = {}
     for component, case in plan.reported():
         col.attempt(f"{COMPONENT_TITLES[component]} stress", component, "stress",
-                    lambda t, c=component, cs=case: _stress_picture(images, t, book, c, cs, params, stresses,
-                                                                    views, col),
+                    lambda t, c=component, cs=case: _stress_picture(images, t, book, c, cs, params),
                     f"{component}_von_mises.png")
     from strainwave.registry import study as registered
     for component, case in plan.pictured():
@@ -250,7 +287,7 @@ def make_images(out_dir: Path, book: FeaBook, plan: Plan, check_set: CheckSet, s
         make = (lambda t: _bearing_sweep(t, book, plan.label_of(WG_BEARING) or "", params)) \
             if component == "bearing" else (lambda t, r=report, c=component: _sweep(t, r, c))
         col.attempt(f"{component} crack sweep", component, "crack-sweep", make, f"{component}_crack_sweep.png")
-    return Artifacts(col.images, col.missing, stresses, views)
+    return col.run()
 
 
 def _case_of(check, plan: Plan) -> str | None:

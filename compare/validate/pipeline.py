@@ -24,7 +24,7 @@ from strainwave.compare.validate.design import DesignVerdict, design_verdict, st
 from strainwave.compare.validate.fea_book import FeaBook
 from strainwave.compare.validate.gci_table import gci_rows
 from strainwave.compare.validate.isolated import stop_descendants
-from strainwave.compare.validate.nafems_appendix import nafems_appendix
+from strainwave.compare.validate.nafems_appendix import NafemsJob
 from strainwave.io_atomic import remove_stale_temps
 from strainwave.compare.validate.plan import make_plan
 from strainwave.compare.validate.report_html import write_html
@@ -252,13 +252,15 @@ def _write_reports(out_dir: Path, doc: dict, views: dict[str, str], progress) ->
         write_html(out_dir / "report.html", doc, views=views)
 
 
-def _metadata(params, quick: bool, plan, outcomes, steps, timings: dict, out_dir: Path) -> dict:
+def _metadata(params, quick: bool, step: bool, plan, outcomes, steps, timings: dict, out_dir: Path) -> dict:
     """results.json's metadata: when, with what, and what each case and STEP export cost."""
     return {
         "created_utc": now_utc(), "params": params.to_dict(), "versions": versions(),
         "settings": {"quick": quick, "order": ORDER, "mesh": "study defaults (quick: coarse), 3 refinements",
                      "solver": "fea/ default (see each case's meta)",
-                     "step_export": "background process, overlapping the FEA stage",
+                     "step": step,
+                     "step_export": ("background process at low priority, overlapping the FEA stage" if step
+                                     else "not exported (--quick without --step)"),
                      "sweep_depths_mm": {k: [c.crack_depth_mm for c in v] for k, v in plan.sweeps.items()}},
         "cases": [_case_record(o, out_dir) for o in outcomes.values()],
         "steps": [{"part": s.part, "files": [_relative(p, out_dir) for p in s.files], "seconds": s.seconds,
@@ -288,8 +290,11 @@ def _design(params, book, plan, stresses) -> tuple[dict, object]:
     return wg_cup, design_verdict(params, factors)
 
 
-def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str], None]) -> Outcome:
-    """Run the whole validation into ``out_dir``; returns the checks and timings (see module docstring)."""
+def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str], None],
+                 step: bool | None = None) -> Outcome:
+    """Run the whole validation into ``out_dir``; returns the checks and timings (see module docstring).
+    ``step`` (default: not ``quick``) exports every part as STEP with its preview; --quick leaves the CAD
+    out unless asked, since the STEP export alone costs more CPU than all of --quick's FEA cases."""
     from strainwave.analytic.summary import analytic_summary
     from strainwave.interrupt import deferred_interrupt
     from strainwave.compare.validate.artifacts import make_images
@@ -306,16 +311,19 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
     with _stage("analytic", timings, progress, 1, total):
         summary = analytic_summary(params)
     plan = make_plan(params, quick=quick)
-    progress(f"[2/{total}] step: every part as STEP, in parallel with the FEA")
-    step_job = StepJob(params, out_dir / "step", cache, progress, preview_dir=out_dir / "images")
+    step = not quick if step is None else step
+    progress(f"[2/{total}] step: " + ("every part as STEP, in parallel with the FEA" if step
+                                      else "skipped (--quick exports no STEP; add --step)"))
+    step_job = StepJob(params, out_dir / "step", cache, progress, preview_dir=out_dir / "images", parts=None if step else ())
+    nafems_job = NafemsJob(cache, progress)   # beside the FEA cases, or from the cache (it takes no parameter)
     try:
         with _stage("fea", timings, progress, 3, total):
             outcomes = _run_cases(plan.all_cases(), params, fields_dir=out_dir / "fields", cache=cache,
                                   quick=quick, progress=progress)
         book = FeaBook(outcomes)
         nafems_start = time.perf_counter()
-        nafems = nafems_appendix(out_dir, progress)
-        timings["nafems"] = time.perf_counter() - nafems_start
+        nafems = nafems_job.appendix(out_dir)
+        timings["nafems"] = time.perf_counter() - nafems_start   # the wait after the FEA
         with _stage("checks", timings, progress, 4, total):
             check_set = build_checks(book, plan, summary, params)
             audit = audit_with_evidence(summary.get("audit", []), check_set.by_id(),
@@ -331,8 +339,10 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
         timings["step_wait_after_images"] = time.perf_counter() - wait_start
     finally:
         step_job.cancel()
-    progress(f"[2/{total}] step done: {sum(len(s.files) for s in steps)} STEP file(s), {timings['step']:.1f} s "
-             f"wall (waited {timings['step_wait_after_images']:.1f} s after the images)")
+        nafems_job.cancel()
+    if step:
+        progress(f"[2/{total}] step done: {sum(len(s.files) for s in steps)} STEP file(s), {timings['step']:.1f} s "
+                 f"wall (waited {timings['step_wait_after_images']:.1f} s after the images)")
     images, missing, stresses = _previews(steps, out_dir) + made.images, made.missing, made.stresses
     wg_cup, design = _design(params, book, plan, stresses)
     with _stage("reports", timings, progress, 6, total):
@@ -344,7 +354,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
             "passed": bool(checks) and not failed,
             "summary": {"checks": len(checks), "passed": len(checks) - len(failed), "failed": failed,
                         "not_evaluated": [c["id"] for c in checks if c["verdict"] == "not evaluated"]},
-            "metadata": _metadata(params, quick, plan, outcomes, steps, timings, out_dir),
+            "metadata": _metadata(params, quick, step, plan, outcomes, steps, timings, out_dir),
             "designer": _designer_lines(summary),
             "design": design.to_dict(),
             "inputs": _inputs(plan, book, params),

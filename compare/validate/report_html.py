@@ -178,7 +178,8 @@ def _appendix(doc: dict) -> list[str]:
     links = [(Path(p).name, p) for p in files["step"] + files["fields"]] + [
         (n, n) for n in ("results.json", *files.get("tables", ()), files.get("report_pdf", ""), "report.md") if n]
     parts.append('<h2 id="files">Files</h2><p>Beside this page in its folder (relative links):</p><ul>' + "".join(
-        f'<li><a href="{escape(p, quote=True)}">{escape(n)}</a></li>' for n, p in links) + "</ul>")
+        f'<li><a href="{escape(p, quote=True)}">{escape(n)}</a></li>' for n, p in links)
+        + ("" if files["step"] else f"<li>STEP: {escape(rt.no_step_line(doc))}</li>") + "</ul>")
     parts.append('<h2 id="versions">Versions</h2>' + _table(("package", "version"), list(meta["versions"].items())))
     return parts
 

@@ -93,7 +93,7 @@ def render_markdown(doc: dict) -> str:
         lines += ["## Images that could not be made", ""]
         lines += [f"- {m['what']}: {m['reason']}" for m in doc["missing_images"]] + [""]
     lines += ["## Files", ""]
-    lines += [f"- STEP: [{Path(p).name}]({p})" for p in doc["files"]["step"]]
+    lines += [f"- STEP: [{Path(p).name}]({p})" for p in doc["files"]["step"]] or [f"- STEP: {rt.no_step_line(doc)}"]
     lines += [f"- VTU: [{Path(p).name}]({p})" for p in doc["files"]["fields"]]
     lines += ["- [results.json](results.json)"] + [f"- [{n}]({n})" for n in doc["files"].get("tables", ())]
     lines += [f"- [{doc['files']['report_pdf']}]({doc['files']['report_pdf']})"] if doc["files"].get("report_pdf") else []

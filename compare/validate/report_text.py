@@ -80,10 +80,18 @@ def tip_line(component: str, s: dict) -> str | None:
 def run_line(doc: dict) -> str:
     m = doc["metadata"]
     mode = "--quick (coarse meshes, fewer sweep points)" if m["settings"]["quick"] else "full"
+    mode += "" if m["settings"].get("step", True) else ", no STEP export (add --step)"
     cached = sum(1 for c in m["cases"] if c["cached"])
     return (f"{mode} run, {len(m['cases'])} FEA cases ({cached} reused from the cache), P{m['settings']['order']} "
             f"elements, total {m['total_s']:.1f} s, {m['created_utc']}, strainwave {m['versions']['strainwave']} "
             f"(code {m['versions']['code_version']})")
+
+
+def no_step_line(doc: dict) -> str:
+    """Why the files list holds no STEP: the run skipped the export, or every part failed to build."""
+    if not doc["metadata"]["settings"].get("step", True):
+        return "not exported (--quick; run without --quick, or add --step)"
+    return "no part could be built (see the STEP errors in results.json metadata.steps)"
 
 
 def check_row(c: dict) -> tuple[str, ...]:
