@@ -218,7 +218,7 @@ def _cmd_compare(args) -> int:
 def _cmd_diagnose(args) -> int:
     from strainwave.compare.diagnose.pipeline import diagnose_file
     from strainwave.compare.diagnose.recording import TestFlags
-    flags = TestFlags(args.kind, args.specimen, args.stiffness, args.rated_torque)
+    flags = TestFlags(args.kind, args.specimen, args.stiffness, args.rated_torque, args.columns)
     diagnosis = diagnose_file(Path(args.recording), params_path=args.params, baseline=args.baseline,
                               plot_out=Path(args.plot) if args.plot else None, flags=flags)
     _emit(args, diagnosis.summary(), diagnosis.to_dict)
@@ -486,6 +486,9 @@ def _add_diagnose(add) -> None:
                    "e.g. '1.9e3 Nm/rad' (bare number: N*mm/rad, or N/mm for a ring)")
     p.add_argument("--rated-torque", metavar="T", help="the gear's rated torque, e.g. '7.8 Nm' (bare number: N*mm): "
                    "the catalogue's hysteresis loss and lost motion (+/-4 %%) are read at it")
+    p.add_argument("--columns", metavar="MAP", help="which columns to read, by 1-based position, with a unit where "
+                   "the column row names none: e.g. 'torque=2:Nm,twist=3:deg' (quantities: torque, twist, time, "
+                   "input_angle; ring: force, delta_cd, delta_ab, time); the other columns are not read")
 
 
 def _add_size_crack(add) -> None:

@@ -30,9 +30,9 @@ from pathlib import Path
 import numpy as np
 
 from strainwave.errors import InputError, RangeWarning
-from strainwave.input_guard import SNIFF_CHARS, sniff_sample
 from strainwave.params import load_params, read_limited
-from strainwave.compare.diagnose.units import canonical_column, flag_value
+from strainwave.compare.diagnose import table
+from strainwave.compare.diagnose.units import column_names, flag_value, read_columns
 
 MIN_ROWS = 20
 # Size limits, so a mistaken path (/dev/zero, a day of raw DAQ data) is refused before it takes the
@@ -108,6 +108,7 @@ class TestFlags:
     specimen: str | None = None
     stiffness: str | None = None       # a number with an optional unit (units.flag_value)
     rated_torque: str | None = None
+    columns: str | None = None         # ``torque=2,twist=3:deg``: which columns to read, by position (units.read_columns)
 
     def __bool__(self) -> bool:
         return any(v is not None for v in dataclasses.astuple(self))
@@ -144,61 +145,52 @@ def parse_recording(path: Path | str, flags: TestFlags | None = None) -> Recordi
 
 
 def parse_bytes(raw: bytes, name: str = "recording.csv", flags: TestFlags | None = None) -> Recording:
+    return parse_text(decode(raw, name), name, flags)
+
+
+def decode(raw: bytes, name: str) -> str:
+    """UTF-8 (with or without BOM), UTF-16 with its BOM (a spreadsheet's "Unicode text"), else Windows-1252, the
+    Latin-1 superset a Western European Windows rig PC writes (``[°]``, ``[µm]``)."""
+    if raw[:2] in (b"\xff\xfe", b"\xfe\xff"):
+        try:
+            return raw.decode("utf-16")
+        except UnicodeDecodeError:
+            raise InputError(f"{name}:1", "undecodable bytes", "a UTF-16 file with a byte-order mark must be UTF-16") \
+                from None
     if b"\x00" in raw[:4096]:
-        raise InputError(f"{name}:1", "binary data", "a recording must be a UTF-8 text file (CSV with # header)")
+        raise InputError(f"{name}:1", "binary data", "a recording must be a text file (CSV with # header)")
     try:
-        text = raw.decode("utf-8-sig")
+        return raw.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        pass
+    try:
+        return raw.decode("cp1252")
     except UnicodeDecodeError as exc:
         line = raw[:exc.start].count(b"\n") + 1
-        raise InputError(f"{name}:{line}", "undecodable bytes", "a recording must be a UTF-8 text file") from None
-    return parse_text(text, name, flags)
+        raise InputError(f"{name}:{line}", "undecodable bytes",
+                         "a recording must be a text file in UTF-8 or Windows-1252 (Latin-1)") from None
 
 
 def parse_text(text: str, name: str = "recording.csv", flags: TestFlags | None = None) -> Recording:
     lines = text.replace("\r\n", "\n").replace("\r", "\n").split("\n")
-    header_lines, body_start = [], len(lines)
-    for i, line in enumerate(lines):
-        if line.startswith("#"):
-            # spreadsheets pad every row with commas, the header rows included
-            text = line.rstrip().rstrip(",").rstrip()
-            header_lines.append((i + 1, text[2:] if text.startswith("# ") else text[1:]))
-        elif line.strip() == "":
-            continue
-        else:
-            body_start = i
-            break
+    header_lines, body_start = _hash_block(lines)
     header = _with_flags(_parse_header(header_lines, name, headless_ok=bool(flags)), flags)
     kind, specimen, test = _parse_test(header, header_lines or [(1, "")], name)
     _check_overrides(header.get("params", {}), header_lines, name)
-    (load_col, resp_col), optional = COLUMNS[kind]
+    (load_col, resp_col), _ = COLUMNS[kind]
     if body_start >= len(lines):
         raise InputError(f"{name}:{len(lines)}", "end of file", f"expected a CSV header row '{load_col},{resp_col}'")
-    delimiter = _sniff_delimiter(lines, body_start)
-    try:
-        header_cells = _split(lines[body_start], delimiter)
-    except csv.Error as exc:   # e.g. a cell beyond csv's field-size limit
-        raise InputError(f"{name}:{body_start + 1}", lines[body_start][:60], f"not a CSV row ({exc})") from None
-    hline = body_start + 1
-    # a column row in the engineer's units (units.py): the canonical names, the values converted below
-    converted = [canonical_column(c, kind.value, f"{name}:{hline}") for c in header_cells]
-    columns = [c for c, _, _ in converted]
-    allowed = (load_col, resp_col) + optional
-    for col in columns:
-        if col not in allowed:
-            raise InputError(f"{name}:{hline}", col, f"unknown column for kind {kind.value!r}; allowed: {', '.join(allowed)}")
-    if len(set(columns)) != len(columns):
-        raise InputError(f"{name}:{hline}", ",".join(columns), "duplicate column name")
-    for col in (load_col, resp_col):
-        if col not in columns:
-            raise InputError(f"{name}:{hline}", ",".join(columns), f"missing column {col!r} (kind {kind.value!r})")
-    data = _parse_rows(lines, body_start + 1, columns, name, delimiter) * np.array([f for _, f, _ in converted])
+    layout, columns = _table(lines, body_start, kind, name, flags.columns if flags else None)
+    data = _parse_rows(lines, layout, columns, name)
     if data.shape[0] < MIN_ROWS:
         raise InputError(f"{name}:{len(lines)}", f"{data.shape[0]} data rows", f"need at least {MIN_ROWS} rows")
-    col = {c: data[:, j] for j, c in enumerate(columns)}
+    col = {c: data[:, j] for j, (_, c, _, _) in enumerate(columns)}
+    first = layout.data_start - 1       # _row_line counts data rows after this line
+    hline = layout.data_start
     for c, values in col.items():
         if np.any(np.abs(values) > MAX_ABS[c]):
             bad = int(np.argmax(np.abs(values) > MAX_ABS[c]))
-            raise InputError(f"{name}:{_row_line(lines, body_start, bad)}", float(values[bad]),
+            raise InputError(f"{name}:{_row_line(lines, first, bad)}", float(values[bad]),
                              f"|{c}| must be <= {MAX_ABS[c]:g} (beyond any rig; the fit would overflow)")
     load, resp = col[load_col], col[resp_col]
     if np.max(np.abs(load)) < MIN_LOAD_FULL_SCALE:
@@ -212,12 +204,12 @@ def parse_text(text: str, name: str = "recording.csv", flags: TestFlags | None =
         raise InputError(f"{name}:{hline + 1}", load_col, "the load column is constant; nothing to compare")
     if kind is RecordingKind.RING_COMPRESSION and np.any(load < -0.01 * np.max(np.abs(load))):
         bad = int(np.argmax(load < -0.01 * np.max(np.abs(load))))
-        raise InputError(f"{name}:{_row_line(lines, body_start, bad)}", float(load[bad]),
+        raise InputError(f"{name}:{_row_line(lines, first, bad)}", float(load[bad]),
                          "force_N is a compression force and must be >= 0 (beyond 1 % of full scale noise)")
     time_s = col.get("time_s")
     if time_s is not None and np.any(np.diff(time_s) < 0):
         bad = int(np.argmax(np.diff(time_s) < 0)) + 1
-        raise InputError(f"{name}:{_row_line(lines, body_start, bad)}", float(time_s[bad]),
+        raise InputError(f"{name}:{_row_line(lines, first, bad)}", float(time_s[bad]),
                          "time_s must not decrease (rows are in acquisition order)")
     return Recording(source=name, kind=kind, specimen=specimen, load=load, response=resp, time_s=time_s,
                      load_name=load_col, response_name=resp_col,
@@ -226,7 +218,56 @@ def parse_text(text: str, name: str = "recording.csv", flags: TestFlags | None =
                      param_overrides=header.get("params", {}),
                      extra={c: v for c, v in col.items() if c not in (load_col, resp_col, "time_s")},
                      description=str(test.get("description", "")), rated_torque=test.get("rated_torque"),
-                     units={c: unit for c, _, unit in converted})
+                     units={c: unit for _, c, _, unit in columns})
+
+
+def _hash_block(lines: list[str]) -> tuple[list[tuple[int, str]], int]:
+    """The leading ``#`` lines as (file line, text) and the index of the first other non-blank line. Lines of a
+    block without a TOML table (``# exported by RigSoft``) are comments, not a header."""
+    block, body_start = [], len(lines)
+    for i, line in enumerate(lines):
+        if line.startswith("#"):
+            # spreadsheets pad every row with commas, the header rows included
+            text = line.rstrip().rstrip(",;").rstrip()
+            block.append((i + 1, text[2:] if text.startswith("# ") else text[1:]))
+        elif line.strip() != "":
+            body_start = i
+            break
+    is_toml = any(text.strip().startswith("[") for _, text in block)
+    return (block if is_toml else []), body_start
+
+
+def _table(lines: list[str], start: int, kind: RecordingKind, name: str, mapping: str | None):
+    """The file's layout (table.py) and the columns read from it (units.read_columns)."""
+    (load_col, resp_col), optional = COLUMNS[kind]
+
+    def names_both(cells: list[str]) -> bool:
+        try:
+            found = {c for _, c, _, _ in read_columns(cells, kind.value, "", None)}
+        except InputError:
+            return False
+        return {load_col, resp_col} <= found
+
+    layout = table.find_layout(lines, start, names_both)
+    row = layout.column_row
+    where = f"{name}:{(row if row is not None else layout.data_start) + 1}"
+    if row is None and mapping is None:
+        raise InputError(where, lines[layout.data_start].strip()[:60],
+                         f"expected a column row naming {load_col} and {resp_col} before the data, or --columns")
+    try:
+        cells = table.split_header(lines[row], layout.delimiter) if row is not None else []
+    except csv.Error as exc:   # e.g. a cell beyond csv's field-size limit
+        raise InputError(where, lines[row][:60], f"not a CSV row ({exc})") from None
+    columns = read_columns(cells, kind.value, where, mapping)
+    found = [c for _, c, _, _ in columns]
+    for col in (load_col, resp_col):
+        if col not in found:
+            allowed = ", ".join((load_col, resp_col) + optional)
+            raise InputError(where, (lines[row] if row is not None else "").strip()[:60],
+                             f"no {col} column (kind {kind.value!r}); name it {allowed} or "
+                             f"'<quantity> [<unit>]' with quantity one of: {column_names(kind.value)}; "
+                             f"or map it: --columns {col.rsplit('_', 1)[0]}=N:<unit>")
+    return layout, columns
 
 
 def _with_flags(header: dict, flags: TestFlags | None) -> dict:
@@ -365,54 +406,32 @@ def _find(header_lines, key: str) -> int:
     return header_lines[0][0] if header_lines else 1
 
 
-def _sniff_delimiter(lines: list[str], start: int) -> str:
-    """Comma, semicolon or tab, from the column-header row and up to 20 data rows (csv.Sniffer)."""
-    sample = [ln for ln in lines[start:start + 40] if ln.strip() and not ln.startswith("#")][:21]
-    try:
-        return csv.Sniffer().sniff(sniff_sample(sample), delimiters=",;\t").delimiter
-    except csv.Error:
-        # one-column or irregular text: the most frequent candidate of the header row, else a comma
-        head = lines[start][:SNIFF_CHARS]
-        counts = {d: head.count(d) for d in (";", "\t", ",")}
-        best = max(counts, key=counts.get)
-        return best if counts[best] else ","
-
-
-def _split(line: str, delimiter: str = ",") -> list[str]:
-    cells = [c.strip() for c in next(csv.reader([line], delimiter=delimiter, quotechar='"'))]
-    while cells and cells[-1] == "":   # trailing separators from spreadsheets
-        cells.pop()
-    return cells
-
-
-def _number(cell: str, delimiter: str) -> float:
-    """A numeric cell; with a semicolon or tab separator a decimal comma is accepted (1,5e-3)."""
-    if "_" in cell or not cell.isascii():   # float() reads 1_000 and Arabic-Indic digits; no spreadsheet writes those
-        raise ValueError(cell)
-    if delimiter != "," and "," in cell and "." not in cell:
-        cell = cell.replace(",", ".")
-    return float(cell)
-
-
-def _parse_rows(lines: list[str], start: int, columns: list[str], name: str, delimiter: str = ",") -> np.ndarray:
+def _parse_rows(lines: list[str], layout: table.Layout, columns: list, name: str) -> np.ndarray:
+    """The read columns of every data row, each converted to its canonical unit."""
     rows = []
-    ncol = len(columns)
-    for i in range(start, len(lines)):
+    picks = [j for j, _, _, _ in columns]
+    names = ",".join(c for _, c, _, _ in columns)
+    row = layout.column_row
+    ncol = len(table.split_header(lines[row], layout.delimiter)) if row is not None else None
+    for i in range(layout.data_start, len(lines)):
         line = lines[i]
         if line.strip() == "" or line.startswith("#"):
             continue
         try:
-            cells = _split(line, delimiter)
+            cells = table.split(line, layout.delimiter)
         except csv.Error as exc:
             raise InputError(f"{name}:{i + 1}", line.strip()[:60], f"not a CSV row ({exc})") from None
-        if len(cells) != ncol:
-            sep = {"\t": "tab", ";": "';'", ",": "','"}[delimiter]
-            raise InputError(f"{name}:{i + 1}", line.strip()[:60],
-                             f"expected {ncol} cells separated by {sep} ({','.join(columns)})")
+        cells = table.check_cells(cells, ncol, f"{name}:{i + 1}", line, layout, names)
+        picked = [cells[j] if j < len(cells) else "" for j in picks]
+        for (j, col, _, _), cell in zip(columns, picked):
+            if cell == "":
+                raise InputError(f"{name}:{i + 1}", line.strip()[:60],
+                                 f"no value in column {j + 1} ({col}); every data row needs a number there "
+                                 f"(cells separated by {layout.separator})")
         try:
-            values = [_number(c, delimiter) for c in cells]
+            values = [table.number(c, layout.decimal) for c in picked]
         except ValueError:
-            bad = next(c for c in cells if not _is_float(c, delimiter))
+            bad = next(c for c in picked if not table.is_number(c, layout.decimal))
             raise InputError(f"{name}:{i + 1}", bad, "every cell must be a number") from None
         if not all(math.isfinite(v) for v in values):
             raise InputError(f"{name}:{i + 1}", line.strip()[:60], "NaN or infinite values are not allowed")
@@ -420,15 +439,7 @@ def _parse_rows(lines: list[str], start: int, columns: list[str], name: str, del
         if len(rows) > MAX_ROWS:
             raise InputError(f"{name}:{i + 1}", f"more than {MAX_ROWS} data rows",
                              "decimate the recording (diagnose fits on at most 2,500 strided rows)")
-    return np.asarray(rows, dtype=float).reshape(-1, ncol)
-
-
-def _is_float(text: str, delimiter: str = ",") -> bool:
-    try:
-        _number(text, delimiter)
-        return True
-    except ValueError:
-        return False
+    return np.asarray(rows, dtype=float).reshape(-1, len(columns)) * np.array([f for _, _, f, _ in columns])
 
 
 def _row_line(lines: list[str], start: int, row: int) -> int:
