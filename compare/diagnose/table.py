@@ -98,14 +98,16 @@ def _sniff(sample: list[str], head: str) -> str:
 
 
 def _decimal(body: list[str], delimiter: str) -> str:
-    """The decimal mark: a number grouped by one mark and ending in the other names both; else, apart from a
-    comma-separated file, a comma in a cell is a decimal comma."""
+    """The decimal mark: a point in a comma-separated file; else a number grouped by one mark and ending in the
+    other names both, and a comma in a cell is a decimal comma."""
+    if delimiter == ",":
+        return "."
     text = "\n".join(body)
     if re.search(r"\d\.\d{3},\d", text):
         return ","
     if re.search(r"\d,\d{3}\.\d", text):
         return "."
-    return "," if delimiter != "," and "," in text else "."
+    return "," if "," in text else "."
 
 
 def split(line: str, delimiter: str) -> list[str]:
