@@ -12,9 +12,8 @@ Format (docs/recordings.md)::
     0.0,1.2e-7
 
 Every defect raises ``InputError`` whose key is ``<file>:<line>`` so the user can go straight to it.
-Spreadsheet exports are accepted: BOM, CRLF, trailing separators, blank lines, quoted cells, and the
-separator a locale uses (comma; semicolon with decimal commas; tab), recognised by the standard library's
-``csv.Sniffer`` on the column-header row and the first data rows.
+Rig and spreadsheet exports are accepted as they are written: their layout (metadata before the column row, the
+separator and the decimal mark) is ``table.py``'s, their column names and units ``units.py``'s.
 """
 from __future__ import annotations
 
