@@ -211,3 +211,19 @@ def test_rows_beyond_the_row_limit_are_refused_at_their_line(monkeypatch):
     with pytest.raises(recording_module.InputError) as err:
         parse_bytes(_good_text().encode(), "long.csv", _flags([]))
     assert err.value.key == "long.csv:102" and "decimate" in err.value.allowed
+
+
+def test_a_ring_export_in_german_with_a_latin1_micro_sign():
+    """A ring compressed to 1 kN, deflection F/k with k = 2e4 N/mm, written as 'Kraft [kN];Weg [µm]' in
+    Windows-1252 with decimal commas; and the same file read in mm instead of µm does not match."""
+    F_N = np.linspace(0.0, 1000.0, 30)
+    delta_mm = F_N / 2e4
+    ring = TestFlags("ring_compression", "ewg_ring")
+    text = _table("Kraft [kN];Weg [µm]", [[_euro(f / 1e3, 5) for f in F_N], [_euro(d * 1e3, 4) for d in delta_mm]],
+                  ";")
+    rec = parse_bytes(text.encode("cp1252"), "ring.csv", ring)
+    np.testing.assert_allclose(rec.load, F_N, atol=5e-3)
+    np.testing.assert_allclose(rec.response, delta_mm, atol=5e-8)
+    assert rec.units == {"force_N": "kN", "delta_cd_mm": "µm"}
+    wrong = parse_bytes(text.replace("[µm]", "[mm]").encode("cp1252"), "ring.csv", ring)
+    assert not np.allclose(wrong.response, delta_mm, atol=5e-8)

@@ -107,7 +107,7 @@ class TestFlags:
     specimen: str | None = None
     stiffness: str | None = None       # a number with an optional unit (units.flag_value)
     rated_torque: str | None = None
-    columns: str | None = None         # ``torque=2,twist=3:deg``: which columns to read, by position (units.read_columns)
+    columns: str | None = None         # ``torque=2,twist=3:deg``: columns read by position (units.read_columns)
 
     def __bool__(self) -> bool:
         return any(v is not None for v in dataclasses.astuple(self))

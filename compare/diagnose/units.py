@@ -65,7 +65,9 @@ def canonical_column(column: str, kind: str, where: str) -> tuple[str, float, st
         return column, 1.0, ""
     name, unit = split_unit(column)
     quantity = _quantity(name, kind)
-    if quantity is None or (quantity[1] in _OPTIONAL and unit not in quantity[3] and _other_dimension(unit, quantity[2])):
+    if quantity is None:
+        return None
+    if quantity[1] in _OPTIONAL and unit not in quantity[3] and _other_dimension(unit, quantity[2]):
         return None
     return unit_of(quantity, unit, where, name, f"write it in the column row ('{name} [<unit>]') or give it with "
                                                 f"--columns {quantity[1].rsplit('_', 1)[0]}=N:<unit>")
@@ -81,7 +83,8 @@ def _other_dimension(unit: str | None, target: str) -> bool:
     if unit is None:
         return False
     try:
-        return _registry(pint).Quantity(1.0, unit).dimensionality != _registry(pint).Quantity(1.0, target).dimensionality
+        registry = _registry(pint)
+        return registry.Quantity(1.0, unit).dimensionality != registry.Quantity(1.0, target).dimensionality
     except Exception:   # pint raises several unrelated types on text that is no unit: then it is no other dimension
         return False
 
