@@ -290,6 +290,32 @@ def _design(params, book, plan, stresses) -> tuple[dict, object]:
     return wg_cup, design_verdict(params, factors)
 
 
+def _prepare(out_dir: Path) -> ResultCache:
+    """The run folder, cleared of what a run killed with -9 left under temporary names; its result cache."""
+    out_dir.mkdir(parents=True, exist_ok=True)
+    for folder in _output_folders(out_dir):
+        remove_stale_temps(folder)
+    return ResultCache(out_dir / "cache")
+
+
+def _start_step(params, out_dir: Path, cache, progress, step: bool, total: int):
+    """The background STEP export of every part (none when ``step`` is off: the job then waits for nothing)."""
+    from strainwave.compare.validate.step_export import StepJob
+
+    progress(f"[2/{total}] step: " + ("every part as STEP, in parallel with the FEA" if step
+                                      else "skipped (--quick exports no STEP; add --step)"))
+    return StepJob(params, out_dir / "step", cache, progress, preview_dir=out_dir / "images",
+                   parts=None if step else ())
+
+
+def _files(out_dir: Path, outcomes, steps) -> dict:
+    """results.json's files: the STEP and VTU files written (relative to the run folder) and the reports."""
+    fields = sorted({_relative(p, out_dir) for o in outcomes.values() if o.result for p in o.result.fields})
+    return {"step": [_relative(p, out_dir) for s in steps for p in s.files], "fields": fields,
+            "report_html": "report.html", "report_md": "report.md", "tables": list(CSV_FILES),
+            "report_pdf": "report.pdf" if chromium() else None}
+
+
 def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str], None],
                  step: bool | None = None) -> Outcome:
     """Run the whole validation into ``out_dir``; returns the checks and timings (see module docstring).
@@ -298,23 +324,16 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
     from strainwave.analytic.summary import analytic_summary
     from strainwave.interrupt import deferred_interrupt
     from strainwave.compare.validate.artifacts import make_images
-    from strainwave.compare.validate.step_export import StepJob
-
     start = time.perf_counter()
     out_dir = Path(out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
-    for folder in _output_folders(out_dir):   # what a run killed with -9 left under temporary names
-        remove_stale_temps(folder)
-    cache = ResultCache(out_dir / "cache")
+    cache = _prepare(out_dir)
     timings: dict[str, float] = {}
     total = 6
     with _stage("analytic", timings, progress, 1, total):
         summary = analytic_summary(params)
     plan = make_plan(params, quick=quick)
     step = not quick if step is None else step
-    progress(f"[2/{total}] step: " + ("every part as STEP, in parallel with the FEA" if step
-                                      else "skipped (--quick exports no STEP; add --step)"))
-    step_job = StepJob(params, out_dir / "step", cache, progress, preview_dir=out_dir / "images", parts=None if step else ())
+    step_job = _start_step(params, out_dir, cache, progress, step, total)
     nafems_job = NafemsJob(cache, progress)   # beside the FEA cases, or from the cache (it takes no parameter)
     try:
         with _stage("fea", timings, progress, 3, total):
@@ -348,7 +367,6 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
     with _stage("reports", timings, progress, 6, total):
         checks = [c.to_dict() for c in check_set.checks]
         failed = [c["id"] for c in checks if not c["passed"]]
-        fields = sorted({_relative(p, out_dir) for o in outcomes.values() if o.result for p in o.result.fields})
         doc = {
             "schema_version": 1,
             "passed": bool(checks) and not failed,
@@ -367,9 +385,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
             "checks": checks, "audit": audit, "catalogue": catalogue_document(),
             "crack_sweeps": {k: r.to_dict() for k, r in check_set.sweeps.items()},
             "images": [i.to_dict() for i in images], "missing_images": [m.to_dict() for m in missing],
-            "files": {"step": [_relative(p, out_dir) for s in steps for p in s.files], "fields": fields,
-                      "report_html": "report.html", "report_md": "report.md", "tables": list(CSV_FILES),
-                      "report_pdf": "report.pdf" if chromium() else None},
+            "files": _files(out_dir, outcomes, steps),
         }
         doc["metadata"]["total_s"] = time.perf_counter() - start
         doc = plain(doc)
