@@ -127,6 +127,7 @@ class CupTorsion(TorsionVariant):
     clamped_face: ClassVar[str] = "hub face"
     sweep_at_quick_size: ClassVar[bool] = True   # the crack delta, closed and opened on one mesh
     crack_field_alone: ClassVar[bool] = True     # the patch's own field, without solving the 3D cup
+    shares_cache: ClassVar[bool] = True          # the section, the same in every cup case of a gear
     elements_per_cell: ClassVar[float] = 13.3
     default_size_mm = staticmethod(default_size_mm)
     report_component: ClassVar[str] = "cup"
@@ -136,6 +137,7 @@ class CupTorsion(TorsionVariant):
     teeth: bool
     crack_method: str = DEFAULT_CRACK_METHOD
     solid_series: bool = True       # the 3D cup (its fields, lambda_f on a 3D mesh); see ``run``
+    section_cache: Path | None = None   # where the section's solutions are kept for the other cup cases
 
     @classmethod
     def volume_and_wall(cls, params) -> tuple[float, float]:
@@ -205,7 +207,8 @@ class CupTorsion(TorsionVariant):
     def _solve_section(self, part, h_mm, k, keep_fields, progress) -> MeshSolve:
         """lambda_f on the section; with a crack (``patch_on_section``) its patch on refinement k, held at the
         section's exact 3D field for a unit torque."""
-        solved = solve_cup_section(self.params, h_mm, keep_fields=self.patch_on_section, progress=progress)
+        solved = solve_cup_section(self.params, h_mm, keep_fields=self.patch_on_section, progress=progress,
+                                   cache_dir=self.section_cache)
         if not self.patch_on_section:
             return solved
         a, mat = self.crack_depth_mm, self.params.material
@@ -323,15 +326,16 @@ class CupTorsion(TorsionVariant):
 
 def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, progress=lambda m: None,
         quick=False, teeth: bool = False, ratio: float = DEFAULT_RATIO,
-        crack_method: str | None = None, crack_field_only: bool = False) -> StudyResult:
+        crack_method: str | None = None, crack_field_only: bool = False, cache_dir: Path | None = None) -> StudyResult:
     """lambda_f on three meshes (GCI); with a crack delta lambda_f from the crack's local patch ("global-local",
     the default: crack_local, crack_extruded; a smooth cup's patch held at its section's exact field, the 3D
     cup solved only for its fields) or cracked - uncracked on each whole-cup mesh (``crack_method`` "seam").
-    ``crack_field_only``: with a patch, ``vtu`` gets the opened patch's field alone (the 3D cup is not solved)."""
+    ``crack_field_only``: with a patch, ``vtu`` gets the opened patch's field alone (the 3D cup is not solved).
+    ``cache_dir``: the section's solutions are kept there and read back (``cup_axisym.solve_cup_section``)."""
     fc = params.flexspline_cup
     h = mesh_size_mm or default_size_mm(params, quick)
     if h >= fc.length_mm / 4:
         raise InputError("--mesh-size-mm", h, f"must be < L/4 = {fc.length_mm / 4:g} mm for the cup")
     variant = CupTorsion(params, order, h, ratio, crack_depth_mm, teeth, crack_method or DEFAULT_CRACK_METHOD,
-                         solid_series=vtu is not None and not crack_field_only)
+                         solid_series=vtu is not None and not crack_field_only, section_cache=cache_dir)
     return run_variant(variant, vtu=vtu, progress=progress)

@@ -44,6 +44,7 @@ class StudyFacts:
     sweep_at_quick_size: ClassVar[bool] = False            # validate's deeper crack cases mesh at the --quick size
     # its run takes crack_field_only: the crack's own field written without the whole part's (the close-up's case)
     crack_field_alone: ClassVar[bool] = False
+    shares_cache: ClassVar[bool] = False        # its run takes cache_dir: results its cases share are kept there
 
     @classmethod
     def default_size_mm(cls, params, quick: bool) -> float:

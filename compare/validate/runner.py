@@ -78,6 +78,7 @@ def run_case(case: Case, params, *, fields_dir: Path, cache: ResultCache, quick:
               "vtu": Path(fields_dir) / f"{case.label}.vtu" if case.fields else None, "quick": quick}
     if case.fields and case.crack_field_only:
         kwargs["crack_field_only"] = True
+    kwargs["cache_dir"] = cache.root      # what the study's cases share (the cup's section), beside the results
     child = run_isolated(case.study, params, kwargs, timeout_s=timeout_s or CASE_TIMEOUT_S[quick],
                          progress=lambda msg: progress(f"    {msg}"))
     if child.result is None:
