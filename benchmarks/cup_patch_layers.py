@@ -71,8 +71,8 @@ def main() -> int:
     from strainwave.fea.cup_torsion import LOCAL_GRADING
     from strainwave.fea.studies import with_crack
     base = load_params(GEARS[args.gear])
-    gradings = [("rule", LOCAL_GRADING)] + [(f"{n} layers", dataclasses.replace(LOCAL_GRADING, layers=n, face_layer_to_tip=False))
-                                           for n in args.layers]
+    fixed = [(f"{n} layers", dataclasses.replace(LOCAL_GRADING, layers=n, face_layer_to_tip=False)) for n in args.layers]
+    gradings = [("rule", LOCAL_GRADING)] + fixed
     for depth in args.depth:
         params = with_crack("cup-torsion", base, depth)
         for name, grading in gradings if not args.finest_only else gradings[1:]:

@@ -36,7 +36,8 @@ def run_one(case, params, quick: bool, out: Path) -> dict:
     child = run_isolated(case.study, params, kwargs, timeout_s=900.0, progress=lambda m: None)
     if child.result is None:
         raise SystemExit(f"{case.label}: {child.error}")
-    return {"case": case.label, "cpu_s": round(child.cpu_s, 2), "wall_s": round(child.seconds, 1), "load": round(load, 2),
+    return {"case": case.label, "cpu_s": round(child.cpu_s, 2), "wall_s": round(child.seconds, 1),
+            "load": round(load, 2),
             "fields": [Path(p).name for p in child.result["fields"]],
             "timings_s": {k: round(v, 2) for k, v in child.result["timings_s"].items()}}
 
@@ -58,8 +59,8 @@ def main() -> int:
     for _ in range(args.repeat):
         out = Path(tempfile.mkdtemp(prefix="case-cpu-"))
         for label in args.labels:
-            print(json.dumps({"gear": args.gear, "quick": args.quick, **run_one(cases[label], params, args.quick, out)}),
-                  flush=True)
+            row = run_one(cases[label], params, args.quick, out)
+            print(json.dumps({"gear": args.gear, "quick": args.quick, **row}), flush=True)
     return 0
 
 

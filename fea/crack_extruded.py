@@ -19,7 +19,8 @@ import numpy as np
 
 from strainwave.fea.mesh_data import GMSH_EDGES, MeshData
 
-__all__ = ["PlaneGrading", "cosine_layers", "cosine_planes", "crack_tips_xy", "cylinder_map", "extruded_patch", "plane_patch_mesh"]
+__all__ = ["PlaneGrading", "cosine_layers", "cosine_planes", "crack_tips_xy", "cylinder_map", "extruded_patch",
+           "plane_patch_mesh"]
 
 _TET_FACES = ((0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3))
 _TRI_EDGES = ((0, 1), (1, 2), (2, 0))      # triangle6 mid-node order

@@ -150,7 +150,7 @@ def section_flexibility(params, *, quick: bool = False, unit: str = "rad/(N*mm)"
     return converged_quantity(FLEX, unit, [s.h_mm for s in solves], [s.values[FLEX] for s in solves])
 
 
-def section_displacement(sol: "SectionField") -> Callable:
+def section_displacement(sol: SectionField) -> Callable:
     """The 3D displacement of the smooth cup from its section solution (``SectionField`` at unit torque):
     points (n, 3) mm -> u = psi(r, z) (-y, x, 0), i.e. u_theta = r psi: exact, not an approximation."""
     from strainwave.fea.crack_local import interpolate_p2
