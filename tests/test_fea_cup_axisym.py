@@ -60,8 +60,8 @@ def test_section_is_read_back_for_another_crack_depth_and_solved_again_for_anoth
     u_first, u_again = (section_displacement(s.fields["section"])(x) for s in (first, again))
     assert np.array_equal(u_again, u_first)
     assert solve_cup_section(deeper, h, cache_dir=tmp_path).fields == {}        # fields only when asked for
-    stiffer = params.with_value("material.youngs_modulus_MPa", 1.1 * params.material.youngs_modulus_MPa)
+    longer = params.with_value("flexspline_cup.length_mm", 1.1 * params.flexspline_cup.length_mm)
     with pytest.raises(AssertionError, match="meshed again"):
-        solve_cup_section(stiffer, h, cache_dir=tmp_path)
+        solve_cup_section(longer, h, cache_dir=tmp_path)
     with pytest.raises(AssertionError, match="meshed again"):
         solve_cup_section(params, 1.2 * h, cache_dir=tmp_path)
