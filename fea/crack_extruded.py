@@ -19,7 +19,8 @@ import numpy as np
 
 from strainwave.fea.mesh_data import GMSH_EDGES, MeshData
 
-__all__ = ["PlaneGrading", "crack_tips_xy", "cylinder_map", "extruded_patch", "plane_patch_mesh"]
+__all__ = ["PlaneGrading", "cosine_layers", "cosine_planes", "crack_tips_xy", "cylinder_map", "extruded_patch",
+           "plane_patch_mesh"]
 
 _TET_FACES = ((0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3))
 _TRI_EDGES = ((0, 1), (1, 2), (2, 0))      # triangle6 mid-node order
@@ -37,11 +38,32 @@ class PlaneGrading:
     far_over_a: float
     layers: int
     quarter_point: bool = True
+    # ``layers`` is the most: the finest mesh takes the fewest whose layer at each face is no thicker than the
+    # tip (the faces' corner zone scales with a; a thin wall's field hardly varies through it)
+    face_layer_to_tip: bool = False
 
-    def sizes(self, a_mm: float, f: float) -> tuple[float, float, float, int]:
-        """(tip, far, growth, layers) of the mesh at refinement factor ``f`` >= 1."""
-        layers = max(2, int(round(self.layers / f)))
+    def sizes(self, a_mm: float, f: float, wall_mm: float | None = None) -> tuple[float, float, float, int]:
+        """(tip, far, growth, layers) of the mesh at refinement factor ``f`` >= 1 through a wall of ``wall_mm``
+        (needed with ``face_layer_to_tip``)."""
+        finest = self.layers
+        if self.face_layer_to_tip:
+            finest = cosine_layers(wall_mm, self.tip_over_a * a_mm, self.layers)
+        layers = max(2, int(round(finest / f)))
         return f * self.tip_over_a * a_mm, f * self.far_over_a * a_mm, min(1.0, f * self.growth), layers
+
+
+def cosine_planes(wall_mm: float, layers: int) -> np.ndarray:
+    """The ``layers`` + 1 node planes w through the wall [-t/2, t/2] on a cosine spacing (thinnest at the faces)."""
+    return -0.5 * wall_mm * np.cos(np.pi * np.arange(layers + 1) / layers)
+
+
+def cosine_layers(wall_mm: float, face_mm: float, most: int) -> int:
+    """The fewest layers (2 to ``most``) of ``cosine_planes`` through ``wall_mm`` whose outermost,
+    t/2 (1 - cos(pi/n)), is at most ``face_mm``."""
+    if not (wall_mm > 0.0 and face_mm > 0.0 and math.isfinite(wall_mm) and math.isfinite(face_mm)):
+        raise ValueError(f"cosine_layers: wall {wall_mm!r} and face layer {face_mm!r} mm must be finite and > 0")
+    n = math.ceil(math.pi / math.acos(max(-1.0, 1.0 - 2.0 * face_mm / wall_mm)) - 1e-9)
+    return int(min(most, max(2, n)))
 
 
 def plane_patch_mesh(model, half_size_mm: float, tips_xy: np.ndarray, *, tip_mm: float, far_mm: float,
@@ -133,7 +155,7 @@ def extruded_patch(plane: MeshData, wall_mm: float, layers: int, to_xyz: Callabl
     w in [-t/2, t/2] in ``layers`` on a cosine spacing, mapped by ``to_xyz`` ((n, 3) slab -> (n, 3) mm)."""
     xy, tri = plane.nodes_mm[:, :2], plane.cells[:, :3]
     n2 = xy.shape[0]
-    w = -0.5 * wall_mm * np.cos(np.pi * np.arange(layers + 1) / layers)
+    w = cosine_planes(wall_mm, layers)
     x = np.hstack([np.tile(xy, (layers + 1, 1)), np.repeat(w, n2)[:, None]])
     plane_id = np.tile(np.arange(n2), layers + 1)
     tets = _oriented(_prism_tets(tri, n2, layers), x)

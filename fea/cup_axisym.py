@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import replace
+from dataclasses import dataclass, replace
+from pathlib import Path
 from typing import Callable
 
 import numpy as np
@@ -18,7 +19,8 @@ import numpy as np
 from strainwave.fea.mesh_data import MeshData
 from strainwave.fea.skeleton import MeshSolve
 
-__all__ = ["section_fine_mm", "mesh_cup_section", "solve_cup_section", "section_flexibility", "section_displacement"]
+__all__ = ["SectionField", "section_fine_mm", "mesh_cup_section", "solve_cup_section", "section_flexibility",
+           "section_displacement"]
 
 # Section size wall/6 (quick wall/4); the hub's corner (r^2/3 field) refined to a tenth of it, the band's
 # edge (a traction step, log field) to a quarter: finer cells at r = d1/2 defeat skfem's facet inversion
@@ -61,8 +63,24 @@ def mesh_cup_section(model, section, *, size_mm: float, wall_mm: float, order: i
 
 
 def solve_cup_section(params, h_mm: float, *, keep_fields: bool = False,
-                      progress: Callable[[str], None] = lambda m: None) -> MeshSolve:
-    """lambda_f of the smooth cup on its section meshed at global size ``h_mm``."""
+                      progress: Callable[[str], None] = lambda m: None, cache_dir: Path | None = None) -> MeshSolve:
+    """lambda_f of the smooth cup on its section meshed at global size ``h_mm``; with ``keep_fields`` its
+    ``SectionField`` too. ``cache_dir``: the solution is kept there and read back by every later call with the
+    same parameters but the crack's depth (the smooth section carries no crack) and size."""
+    cached = None if cache_dir is None else _cache_file(params, h_mm, cache_dir)
+    if cached is not None and cached.exists():
+        try:
+            return _read_section(cached, h_mm, keep_fields)
+        except (OSError, KeyError, ValueError):
+            pass  # a damaged entry is solved again, never trusted
+    solved = _solve_section(params, h_mm, progress)
+    if cached is not None:
+        _write_section(cached, solved)
+    return solved if keep_fields else replace(solved, fields={})
+
+
+def _solve_section(params, h_mm: float, progress: Callable[[str], None]) -> MeshSolve:
+    """The section meshed and solved: values, mesh, timings and its ``SectionField``."""
     from strainwave.fea.session import mesh_in_child
     from strainwave.fea.shaft_axisym import solve_torsion_section
     from strainwave.geometry.flexspline_cup import smooth_section
@@ -78,9 +96,49 @@ def solve_cup_section(params, h_mm: float, *, keep_fields: bool = False,
     progress(f"cup-torsion (axisymmetric): h = {h_mm:.3g} mm, {md.nodes_mm.shape[0]} nodes, "
              f"lambda_f {sol.flexibility_rad_per_Nmm:.6e}")
     scalar = replace(md.quality, dofs=md.nodes_mm.shape[0])      # psi: one unknown per node
+    field = SectionField(sol.basis.doflocs, sol.basis.element_dofs, sol.psi)
     return MeshSolve(h_mm, {FLEX: sol.flexibility_rad_per_Nmm, "nodes": float(md.nodes_mm.shape[0])}, scalar,
-                     {"mesh": t_mesh, "axisymmetric": time.perf_counter() - t0 - t_mesh},
-                     fields={"section": sol} if keep_fields else {})
+                     {"mesh": t_mesh, "axisymmetric": time.perf_counter() - t0 - t_mesh}, fields={"section": field})
+
+
+@dataclass(frozen=True)
+class SectionField:
+    """The section's solution as ``section_displacement`` reads it: psi at the P2 dofs (r, z) of its mesh."""
+
+    doflocs: np.ndarray         # (2, N) r, z mm
+    element_dofs: np.ndarray    # (6, elements)
+    psi: np.ndarray             # (N,) rad per unit torque
+
+
+def _cache_file(params, h_mm: float, cache_dir: Path) -> Path:
+    from strainwave.cache import case_key
+    data = params.to_dict()
+    data["flexspline_cup"].pop("root_crack_depth_mm", None)     # the smooth section carries no crack
+    return Path(cache_dir) / f"cup-section-{case_key('cup-section', {'params': data, 'h_mm': h_mm})}.npz"
+
+
+def _write_section(path: Path, solved: MeshSolve) -> None:
+    import io
+    import json
+
+    from strainwave.io_atomic import atomic_write_bytes
+    f, buffer = solved.fields["section"], io.BytesIO()
+    meta = {"values": dict(solved.values), "mesh": solved.mesh.to_dict()}
+    np.savez(buffer, doflocs=f.doflocs, element_dofs=f.element_dofs, psi=f.psi, meta=np.array(json.dumps(meta)))
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    atomic_write_bytes(Path(path), buffer.getvalue())
+
+
+def _read_section(path: Path, h_mm: float, keep_fields: bool) -> MeshSolve:
+    import json
+
+    from strainwave.fea.result import MeshQuality
+    t0 = time.perf_counter()
+    with np.load(path) as data:
+        meta = json.loads(str(data["meta"]))
+        field = SectionField(data["doflocs"], data["element_dofs"], data["psi"])
+    return MeshSolve(h_mm, meta["values"], MeshQuality(**meta["mesh"]), {"axisymmetric": time.perf_counter() - t0},
+                     fields={"section": field} if keep_fields else {})
 
 
 def section_flexibility(params, *, quick: bool = False, unit: str = "rad/(N*mm)"):
@@ -92,14 +150,14 @@ def section_flexibility(params, *, quick: bool = False, unit: str = "rad/(N*mm)"
     return converged_quantity(FLEX, unit, [s.h_mm for s in solves], [s.values[FLEX] for s in solves])
 
 
-def section_displacement(sol) -> Callable:
-    """The 3D displacement of the smooth cup from its section solution (``SectionSolution`` at unit torque):
+def section_displacement(sol: SectionField) -> Callable:
+    """The 3D displacement of the smooth cup from its section solution (``SectionField`` at unit torque):
     points (n, 3) mm -> u = psi(r, z) (-y, x, 0), i.e. u_theta = r psi: exact, not an approximation."""
     from strainwave.fea.crack_local import interpolate_p2
 
     def displacement(points_mm):
         x = np.asarray(points_mm, float)
         rz = np.stack([np.hypot(x[:, 0], x[:, 1]), x[:, 2]], axis=1)
-        psi = interpolate_p2(sol.basis.doflocs, sol.basis.element_dofs, sol.psi, rz, components=1)[:, 0]
+        psi = interpolate_p2(sol.doflocs, sol.element_dofs, sol.psi, rz, components=1)[:, 0]
         return np.stack([-psi * x[:, 1], psi * x[:, 0], np.zeros_like(psi)], axis=1)
     return displacement

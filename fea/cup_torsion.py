@@ -89,13 +89,15 @@ DEFAULT_CRACK_METHOD = GLOBAL_LOCAL
 FLEX_3D = "flexibility_3d_rad_per_Nmm"     # the 3D mesh's own uncracked lambda_f, reported beside the section's
 # The local patch: half size L = PATCH_HALF_OVER_A a (fixed grip on its cut faces costs O((a/L)^2) of the
 # released energy: 1.3 (a/L)^2, docs/decisions/025), meshed as a tip-graded plane extruded through the wall
-# (crack_extruded): quarter-point tips of a/4 on the finest mesh, rings growing by 0.4 of the distance
+# (crack_extruded): quarter-point tips of a/4 on the finest mesh, rings growing by 0.4 of the distance, up to
+# 10 layers through the wall, the fewest whose face layer is no thicker than the tip (docs/decisions/044)
 PATCH_HALF_OVER_A = 32.0
 # the section is solved for a unit torque (shaft_axisym.solve_torsion_section's default)
 SECTION_TORQUE_NMM = 1.0
 # the patch's stress read this fraction inside each element: a quarter-point tip's map is singular at its node
 QUARTER_POINT_INSET = 1e-3
-LOCAL_GRADING = PlaneGrading(tip_over_a=0.25, growth=0.4, far_over_a=8.0, layers=10, quarter_point=True)
+LOCAL_GRADING = PlaneGrading(tip_over_a=0.25, growth=0.4, far_over_a=8.0, layers=10, quarter_point=True,
+                             face_layer_to_tip=True)
 
 
 def local_patch_mesh(part, a_mm: float, f: float, grading: PlaneGrading = LOCAL_GRADING) -> tuple[MeshData, float]:
@@ -105,7 +107,7 @@ def local_patch_mesh(part, a_mm: float, f: float, grading: PlaneGrading = LOCAL_
     half = PATCH_HALF_OVER_A * a_mm
     check_crack_patch(part, half)
     m, t0 = part.meta, time.perf_counter()
-    tip, far, growth, layers = grading.sizes(a_mm, f)
+    tip, far, growth, layers = grading.sizes(a_mm, f, m["wall_mm"])
     tips = crack_tips_xy(a_mm, m["crack_angle_deg"])
     plane = mesh_in_child(lambda model: plane_patch_mesh(model, half, tips, tip_mm=tip, far_mm=far, growth=growth),
                           what=f"{STUDY} crack patch")
@@ -124,6 +126,8 @@ class CupTorsion(TorsionVariant):
     load_distribution: ClassVar[str] = "uniform tangential shear on the toothed band, moment T"
     clamped_face: ClassVar[str] = "hub face"
     sweep_at_quick_size: ClassVar[bool] = True   # the crack delta, closed and opened on one mesh
+    crack_field_alone: ClassVar[bool] = True     # the patch's own field, without solving the 3D cup
+    shares_cache: ClassVar[bool] = True          # the section, the same in every cup case of a gear
     elements_per_cell: ClassVar[float] = 13.3
     default_size_mm = staticmethod(default_size_mm)
     report_component: ClassVar[str] = "cup"
@@ -133,6 +137,7 @@ class CupTorsion(TorsionVariant):
     teeth: bool
     crack_method: str = DEFAULT_CRACK_METHOD
     solid_series: bool = True       # the 3D cup (its fields, lambda_f on a 3D mesh); see ``run``
+    section_cache: Path | None = None   # where the section's solutions are kept for the other cup cases
 
     @classmethod
     def volume_and_wall(cls, params) -> tuple[float, float]:
@@ -202,7 +207,8 @@ class CupTorsion(TorsionVariant):
     def _solve_section(self, part, h_mm, k, keep_fields, progress) -> MeshSolve:
         """lambda_f on the section; with a crack (``patch_on_section``) its patch on refinement k, held at the
         section's exact 3D field for a unit torque."""
-        solved = solve_cup_section(self.params, h_mm, keep_fields=self.patch_on_section, progress=progress)
+        solved = solve_cup_section(self.params, h_mm, keep_fields=self.patch_on_section, progress=progress,
+                                   cache_dir=self.section_cache)
         if not self.patch_on_section:
             return solved
         a, mat = self.crack_depth_mm, self.params.material
@@ -320,14 +326,16 @@ class CupTorsion(TorsionVariant):
 
 def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, progress=lambda m: None,
         quick=False, teeth: bool = False, ratio: float = DEFAULT_RATIO,
-        crack_method: str | None = None) -> StudyResult:
+        crack_method: str | None = None, crack_field_only: bool = False, cache_dir: Path | None = None) -> StudyResult:
     """lambda_f on three meshes (GCI); with a crack delta lambda_f from the crack's local patch ("global-local",
     the default: crack_local, crack_extruded; a smooth cup's patch held at its section's exact field, the 3D
-    cup solved only for its fields) or cracked - uncracked on each whole-cup mesh (``crack_method`` "seam")."""
+    cup solved only for its fields) or cracked - uncracked on each whole-cup mesh (``crack_method`` "seam").
+    ``crack_field_only``: with a patch, ``vtu`` gets the opened patch's field alone (the 3D cup is not solved).
+    ``cache_dir``: the section's solutions are kept there and read back (``cup_axisym.solve_cup_section``)."""
     fc = params.flexspline_cup
     h = mesh_size_mm or default_size_mm(params, quick)
     if h >= fc.length_mm / 4:
         raise InputError("--mesh-size-mm", h, f"must be < L/4 = {fc.length_mm / 4:g} mm for the cup")
     variant = CupTorsion(params, order, h, ratio, crack_depth_mm, teeth, crack_method or DEFAULT_CRACK_METHOD,
-                         solid_series=vtu is not None)
+                         solid_series=vtu is not None and not crack_field_only, section_cache=cache_dir)
     return run_variant(variant, vtu=vtu, progress=progress)

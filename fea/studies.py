@@ -34,8 +34,18 @@ def with_crack(study: str, params, crack_depth_mm: float | None):
 
 def run_study(study: str, params, *, mesh_size_mm: float | None = None, order: int = 2,
               crack_depth_mm: float | None = None, vtu: Path | None = None,
-              progress: Callable[[str], None] | None = None, quick: bool = False) -> StudyResult:
+              progress: Callable[[str], None] | None = None, quick: bool = False,
+              crack_field_only: bool = False, cache_dir: Path | None = None) -> StudyResult:
+    """``crack_field_only``: ``vtu`` receives the crack's own field alone (a study whose facts say
+    ``crack_field_alone``; validate's close-up case), so the whole part need not be solved for its field.
+    ``cache_dir``: a folder where a study whose facts say ``shares_cache`` keeps what its cases share (others
+    ignore it)."""
     spec = registered(study)
+    if crack_field_only and not spec.facts().crack_field_alone:
+        raise ValueError(f"{study}: cannot write its crack's field alone (crack_field_only)")
+    only = {"crack_field_only": True} if crack_field_only else {}
+    if cache_dir is not None and spec.facts().shares_cache:
+        only["cache_dir"] = Path(cache_dir)
     if order not in (1, 2):
         raise InputError("--order", order, "must be 1 or 2")
     params = with_crack(study, params, crack_depth_mm)
@@ -47,7 +57,7 @@ def run_study(study: str, params, *, mesh_size_mm: float | None = None, order: i
     size = mesh_size_mm
     for _ in range(DEFAULT_RETRIES + 1):
         result = module.run(params, mesh_size_mm=size, order=order, crack_depth_mm=crack_depth_mm,
-                            vtu=vtu, progress=say, quick=quick, **spec.load_for(params))
+                            vtu=vtu, progress=say, quick=quick, **only, **spec.load_for(params))
         finest = identical_meshes(result)
         if finest is None:
             return result

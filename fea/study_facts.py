@@ -42,6 +42,9 @@ class StudyFacts:
     crack_opening_states: ClassVar[tuple[str, ...]] = ()   # its VTU suffixes ("_<state>") the crack-opening picture shows
     validate_label: ClassVar[str | None] = None            # label of its one uncracked validate case (None: name)
     sweep_at_quick_size: ClassVar[bool] = False            # validate's deeper crack cases mesh at the --quick size
+    # its run takes crack_field_only: the crack's own field written without the whole part's (the close-up's case)
+    crack_field_alone: ClassVar[bool] = False
+    shares_cache: ClassVar[bool] = False        # its run takes cache_dir: results its cases share are kept there
 
     @classmethod
     def default_size_mm(cls, params, quick: bool) -> float:

@@ -110,6 +110,25 @@ def test_plan_sweeps_reach_half_the_wall_and_stay_inside_it():
     assert len(labels) == len(set(labels))  # every case writes its own fields/<label>.vtu
 
 
+def test_plan_asks_only_the_close_up_case_for_its_crack_field_alone_where_its_study_can():
+    from strainwave.compare.validate.runner import Case
+    from strainwave.registry import STUDIES
+
+    params = load_params()
+    plan = make_plan(params, quick=False)
+    for cases in plan.sweeps.values():
+        can = STUDIES[cases[-1].study].facts().crack_field_alone
+        assert [(c.fields, c.crack_field_only) for c in cases] == [(False, False)] * (len(cases) - 1) + [(True, can)]
+    assert plan.sweeps["cup"][-1].crack_field_only and not plan.sweeps["shaft"][-1].crack_field_only
+    assert not any(c.crack_field_only for c in plan.headline.values())       # the stress pictures need the part
+    assert not any(c.crack_field_only for c in make_plan(params, quick=True).all_cases())
+    # a crack-only result is never reused for a case that needs the whole part's field
+    deep = plan.sweeps["cup"][-1]
+    whole = Case(deep.label, deep.study, deep.crack_depth_mm, deep.mesh_size_mm)
+    assert deep.payload(params, False, 2) != whole.payload(params, False, 2)
+    assert "crack_field_only" not in whole.payload(params, False, 2)       # the other cases keep their keys
+
+
 def test_schema_rejects_a_check_without_a_tolerance_reason():
     check = not_evaluated("shaft.flexibility", "q", "rad/(N*mm)", "missing").to_dict()
     doc = {"schema_version": 1, "passed": False,

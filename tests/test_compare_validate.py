@@ -289,7 +289,9 @@ DELIBERATE_CHANGES: dict[str, str] = {
                             "crack in the fully loaded tube (was a part-through root crack in the load band): "
                             "2.60e-15 -> 1.02e-14 at a = 1.12 mm; corrected = both tips a^2/(2 pi E r_m^4 delta); " + _GCI_BOOK
                             + "; decision 031: solved global-local (1.065e-14 at a = 1.12 mm, GCI 2.2 %); decision 042: "
-                            "the patch in one solve (Bueckner) held at the section's exact field: 1.0659e-14, GCI 2.4 %",
+                            "the patch in one solve (Bueckner) held at the section's exact field: 1.0659e-14, GCI 2.4 %; "
+                            "decision 044: through-wall layers the fewest (up to 10) whose face layer is no thicker "
+                            "than the a/4 tip, 5 at a = 1.12 mm: 1.06586e-14 -> 1.06569e-14, GCI 2.36 -> 2.44 %",
     "cup.flexibility": _CUP_SEAM_MESH + "; " + _CUP_CALIBRATED + "; " + _GCI_BOOK + "; decision 031: the FEA is the "
                        "cup's exact (r, z) section (4.855e-10 -> 4.9155e-10, +1.2 %: the 3D meshes read low), corrected "
                        "= series model + junction line in delta/d1, tolerance 0.06 %",

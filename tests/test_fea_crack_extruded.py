@@ -12,7 +12,8 @@ import pytest
 
 from strainwave.fea.assembly import Lame
 from strainwave.fea.convergence import grid_convergence
-from strainwave.fea.crack_extruded import PlaneGrading, crack_tips_xy, cylinder_map, extruded_patch, plane_patch_mesh
+from strainwave.fea.crack_extruded import (PlaneGrading, cosine_layers, cosine_planes, crack_tips_xy, cylinder_map,
+                                          extruded_patch, plane_patch_mesh)
 from strainwave.fea.crack_local import local_release
 from strainwave.fea.refinement import CRACK_FORMAL_ORDER, refinement_sizes
 from strainwave.fea.session import mesh_in_child
@@ -81,3 +82,24 @@ def test_cylinder_map_rolls_the_slab_onto_the_wall_sector_with_crack_and_cut_gro
     s, z = r_m * (np.arctan2(crack[:, 1], crack[:, 0]) - 0.3), crack[:, 2] - 5.0
     assert np.allclose(s, z, atol=1e-9) and np.abs(z).max() == pytest.approx(A_MM / math.sqrt(2))
     assert set(md.groups) == {"crack", "cut", "faces"}
+
+
+@pytest.mark.parametrize("wall_mm, face_mm", [(2.24, 0.28), (2.24, 0.099), (1.4, 0.175), (1.4, 0.06175), (1.0, 0.3)])
+def test_cosine_layers_are_the_fewest_whose_face_layer_fits(wall_mm, face_mm):
+    n = cosine_layers(wall_mm, face_mm, most=40)
+    planes = cosine_planes(wall_mm, n)
+    assert planes[0] == pytest.approx(-wall_mm / 2) and planes[-1] == pytest.approx(wall_mm / 2)
+    layer = np.diff(planes)
+    assert layer[0] == pytest.approx(layer[-1]) and layer[0] == layer.min()       # thinnest at the two faces
+    assert layer[0] <= face_mm * (1 + 1e-12)
+    assert n == 2 or np.diff(cosine_planes(wall_mm, n - 1))[0] > face_mm          # one fewer is too thick
+
+
+def test_cosine_layers_keep_the_cap_and_refuse_a_bad_size():
+    assert cosine_layers(2.24, 0.025, most=10) == 10            # a/4 of a = 0.1 mm alone would take 15
+    assert cosine_layers(2.24, 5.0, most=10) == 2               # a face layer beyond the wall: the fewest
+    grading = PlaneGrading(tip_over_a=0.25, growth=0.4, far_over_a=8.0, layers=10, face_layer_to_tip=True)
+    finest = grading.sizes(1.12, 1.0, 2.24)[3]
+    assert finest == cosine_layers(2.24, 0.28, 10) and grading.sizes(1.12, 1.4, 2.24)[3] == round(finest / 1.4)
+    with pytest.raises(ValueError, match="cosine_layers"):
+        cosine_layers(0.0, 0.1, 10)

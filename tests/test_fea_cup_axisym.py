@@ -42,3 +42,26 @@ def test_mid_tube_twist_rate_is_saint_venant_torsion_of_the_tube(tube_field):
         rate = (np.linalg.norm(u[1]) - np.linalg.norm(u[0])) / (r * (z[1] - z[0]))
         # unit torque: d(theta)/dz = 1 / (G J); the diaphragm's and the band's end effects have decayed here
         assert rate == pytest.approx(1.0 / (G * J), rel=1e-3)
+
+
+def test_section_is_read_back_for_another_crack_depth_and_solved_again_for_another_cup(tmp_path, monkeypatch):
+    from strainwave.fea import session
+    params = load_params(None)
+    h = 2 * section_fine_mm(params, True)
+    first = solve_cup_section(params, h, keep_fields=True, cache_dir=tmp_path)
+
+    def no_mesh(*args, **kwargs):
+        raise AssertionError("meshed again")
+    monkeypatch.setattr(session, "mesh_in_child", no_mesh)
+    deeper = params.with_value("flexspline_cup.root_crack_depth_mm", 0.5)     # the smooth section has no crack
+    again = solve_cup_section(deeper, h, keep_fields=True, cache_dir=tmp_path)
+    assert again.values == first.values and again.mesh == first.mesh
+    x = _points(79.0, np.linspace(40.0, 100.0, 5))
+    u_first, u_again = (section_displacement(s.fields["section"])(x) for s in (first, again))
+    assert np.array_equal(u_again, u_first)
+    assert solve_cup_section(deeper, h, cache_dir=tmp_path).fields == {}        # fields only when asked for
+    longer = params.with_value("flexspline_cup.length_mm", 1.1 * params.flexspline_cup.length_mm)
+    with pytest.raises(AssertionError, match="meshed again"):
+        solve_cup_section(longer, h, cache_dir=tmp_path)
+    with pytest.raises(AssertionError, match="meshed again"):
+        solve_cup_section(params, 1.2 * h, cache_dir=tmp_path)

@@ -116,3 +116,38 @@ def test_cup_optimiser_threshold_is_lowered_only_on_meshes_of_seven_walls_or_mor
     full = [optimize_threshold(h, wall) for h in refinement_sizes(cup_torsion.default_size_mm(params, False), 1.4)]
     assert sorted(quick) == [0.1, OPTIMIZE_THRESHOLD, OPTIMIZE_THRESHOLD]
     assert full == [OPTIMIZE_THRESHOLD] * 3
+
+
+def test_cup_crack_field_alone_skips_the_3d_cup_and_other_studies_refuse_it(params, monkeypatch, tmp_path):
+    # validate's close-up case: the patch's own field is written without meshing and solving the 3D cup
+    variants = []
+    monkeypatch.setattr(cup_torsion, "run_variant", lambda variant, **kw: variants.append((variant, kw)))
+    for only in (False, True):
+        cup_torsion.run(params, crack_depth_mm=1.12, vtu=tmp_path / "cup.vtu", crack_field_only=only)
+    (full, kw_full), (alone, kw_alone) = variants
+    assert [p.name for p in full.series()] == ["solid", "section"] and kw_full["vtu"] == tmp_path / "cup.vtu"
+    assert [p.name for p in alone.series()] == ["section"] and kw_alone["vtu"] == tmp_path / "cup.vtu"
+    with pytest.raises(ValueError, match="crack_field_only"):
+        run_study("shaft-torsion", params, crack_depth_mm=1.0, vtu=tmp_path / "shaft.vtu", crack_field_only=True)
+
+
+def test_cache_dir_reaches_only_a_study_that_shares_it(params, monkeypatch, tmp_path):
+    # validate passes its cache folder to every case; the cup keeps its section there, the shaft ignores it
+    from types import SimpleNamespace
+    calls = {}
+
+    def recorder(name):
+        def run(p, **kw):
+            calls[name] = kw
+            return SimpleNamespace(quantities={})
+        return run
+    for module in (cup_torsion, shaft_torsion):
+        monkeypatch.setattr(module, "run", recorder(module.__name__))
+    run_study("cup-torsion", params, crack_depth_mm=1.12, cache_dir=tmp_path)
+    run_study("shaft-torsion", params, crack_depth_mm=1.0, cache_dir=tmp_path)
+    assert calls[cup_torsion.__name__]["cache_dir"] == tmp_path and "cache_dir" not in calls[shaft_torsion.__name__]
+    monkeypatch.undo()      # the cup's own run, down to the variant it solves
+    variants = []
+    monkeypatch.setattr(cup_torsion, "run_variant", lambda variant, **kw: variants.append(variant))
+    cup_torsion.run(params, crack_depth_mm=1.12, cache_dir=tmp_path)
+    assert variants[-1].section_cache == tmp_path

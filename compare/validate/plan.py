@@ -109,9 +109,11 @@ def make_plan(params, *, quick: bool) -> Plan:
             headline[c] = Case(f"{c}-a{depth:g}", COMPONENT_STUDY[c], depth)
             sweep_h = sweep_mesh_size_mm(params, c)
             deeper = [d for d in depths if d > depth]
-            # only the deepest sweep case's field is drawn (the crack-tip close-up): the others write none
-            sweeps[c] = tuple(Case(f"{c}-a{d:g}", COMPONENT_STUDY[c], d, sweep_h, fields=d == deeper[-1])
-                              for d in deeper)
+            # only the deepest sweep case's field is drawn (the crack-tip close-up): the others write none, and it
+            # writes the crack's own field alone where its study can (the close-up reads no other)
+            alone = STUDIES[COMPONENT_STUDY[c]].facts().crack_field_alone
+            sweeps[c] = tuple(Case(f"{c}-a{d:g}", COMPONENT_STUDY[c], d, sweep_h, fields=d == deeper[-1],
+                                   crack_field_only=alone and d == deeper[-1]) for d in deeper)
     plan = Plan(headline, sweeps, single_cases())
     for case in plan.all_cases():   # every crack checked against its own wall before any mesh is built
         with_crack(case.study, params, case.crack_depth_mm)

@@ -25,10 +25,12 @@ class Case:
     crack_depth_mm: float | None = None
     mesh_size_mm: float | None = None        # finest global size; None = the study's default
     fields: bool = True                      # write fields/<label>.vtu (a report picture draws it)
+    crack_field_only: bool = False           # of the fields, only the crack's own (the close-up draws no other)
 
     def payload(self, params, quick: bool, order: int) -> dict:
+        only = {"crack_field_only": True} if self.crack_field_only else {}
         return {"study": self.study, "crack_depth_mm": self.crack_depth_mm, "quick": quick, "order": order,
-                "mesh_size_mm": self.mesh_size_mm, "params": params.to_dict()}
+                "mesh_size_mm": self.mesh_size_mm, "params": params.to_dict(), **only}
 
 
 @dataclass(frozen=True)
@@ -74,6 +76,9 @@ def run_case(case: Case, params, *, fields_dir: Path, cache: ResultCache, quick:
     progress(f"  {case.label}: solving {_describe(case)} ...")
     kwargs = {"mesh_size_mm": case.mesh_size_mm, "order": order, "crack_depth_mm": case.crack_depth_mm,
               "vtu": Path(fields_dir) / f"{case.label}.vtu" if case.fields else None, "quick": quick}
+    if case.fields and case.crack_field_only:
+        kwargs["crack_field_only"] = True
+    kwargs["cache_dir"] = cache.root      # what the study's cases share (the cup's section), beside the results
     child = run_isolated(case.study, params, kwargs, timeout_s=timeout_s or CASE_TIMEOUT_S[quick],
                          progress=lambda msg: progress(f"    {msg}"))
     if child.result is None:
