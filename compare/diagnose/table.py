@@ -63,7 +63,7 @@ def find_layout(lines: list[str], start: int, recognised) -> Layout:
     column_row = None
     if candidates:
         delimiter = _sniff([lines[candidates[-1]]] + data, lines[candidates[-1]])
-        column_row = next((i for i in candidates if recognised(split_header(lines[i], delimiter))), candidates[-1])
+        column_row = next((i for i in candidates if recognised(_header_or_none(lines[i], delimiter))), candidates[-1])
     else:
         delimiter = _sniff(data, data[0])
     body = lines[first_data if column_row is None else column_row + 1:]
@@ -119,6 +119,14 @@ def split(line: str, delimiter: str) -> list[str]:
     while cells and cells[-1] == "":
         cells.pop()
     return cells
+
+
+def _header_or_none(line: str, delimiter: str) -> list[str]:
+    """A candidate column row's cells; none when csv cannot split it (the reader names that line later)."""
+    try:
+        return split_header(line, delimiter)
+    except csv.Error:
+        return []
 
 
 def split_header(line: str, delimiter: str) -> list[str]:
