@@ -129,6 +129,7 @@ class CupTorsion(TorsionVariant):
     crack_field_alone: ClassVar[bool] = True     # the patch's own field, without solving the 3D cup
     shares_cache: ClassVar[bool] = True          # the section, the same in every cup case of a gear
     elements_per_cell: ClassVar[float] = 13.3
+    cpu_s_per_element: ClassVar[tuple[float, float]] = (3.2e-4, 6.2e-4)   # full, --quick: validate's schedule (decision 049)
     default_size_mm = staticmethod(default_size_mm)
     report_component: ClassVar[str] = "cup"
     title: ClassVar[str] = "flexspline cup"

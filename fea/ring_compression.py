@@ -95,6 +95,7 @@ class RingCompression(StudyVariant):
 
     study: ClassVar[str] = STUDY
     elements_per_cell: ClassVar[float] = 0.54
+    cpu_s_per_element: ClassVar[tuple[float, float]] = (7.2e-4, 4.1e-3)   # full, --quick: validate's schedule (decision 049)
     plane: ClassVar[bool] = True
     teeth_key: ClassVar[str] = "ewg_drive.flexspline_teeth"
     rated_load: ClassVar[str] = "strainwave.analytic.rated_load:rated_ewg_force"

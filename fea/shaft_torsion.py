@@ -106,6 +106,7 @@ class ShaftTorsion(TorsionVariant):
     clamped_face: ClassVar[str] = "end face z = 0"
     sweep_at_quick_size: ClassVar[bool] = True   # the crack delta, closed and opened on one mesh
     elements_per_cell: ClassVar[float] = 4.7
+    cpu_s_per_element: ClassVar[tuple[float, float]] = (1.6e-3, 1.5e-3)   # full, --quick: validate's schedule (decision 049)
     default_size_mm = staticmethod(default_size_mm)
     report_component: ClassVar[str] = "shaft"
     title: ClassVar[str] = "output shaft"

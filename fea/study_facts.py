@@ -23,6 +23,9 @@ class StudyFacts:
     study: ClassVar[str]                                   # registry name
     # fea/budget.py: finest-mesh elements per min(h, t) h^2 cell (plane: per min(h, t) h), measured on its meshes
     elements_per_cell: ClassVar[float]
+    # CPU s of one validate case per finest-mesh element of that estimate (full run, --quick): orders the cases and
+    # estimates the time left (docs/decisions/049-validate-case-cost-model.md); studies differ 100-fold per element
+    cpu_s_per_element: ClassVar[tuple[float, float]] = (2e-4, 2e-4)
     plane: ClassVar[bool] = False                          # meshed as a plane section
     teeth_key: ClassVar[str | None] = None                 # dotted tooth count its CAD cuts (budgeted), if any
     # "module:function" in analytic/: (study, params, solved, quantities {name: value}) -> RatedLoad; None: the

@@ -252,6 +252,7 @@ class WgBearing(StudyFacts):
     study = STUDY
     # graded to the race patches and the crack tip: the cracked quick mesh at a = 1 mm, h = 1.67 mm (12)
     elements_per_cell = 12.0
+    cpu_s_per_element = (2.8e-4, 1.3e-4)   # full, --quick: validate's schedule (decision 049)
     default_size_mm = staticmethod(default_size_mm)
     plane = True
     # solved at the rated F_r already (scale 1: the cam's share is not linear in F_r)

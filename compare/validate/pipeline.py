@@ -176,7 +176,7 @@ def _run_cases(cases, params, *, fields_dir: Path, cache, quick: bool, progress)
 
     pool = ThreadPoolExecutor(max_workers=workers)
     try:
-        futures = {case.label: pool.submit(tracked, case) for case in longest_first(cases, durations, tracker.elements)}
+        futures = {case.label: pool.submit(tracked, case) for case in longest_first(cases, durations, tracker.costs)}
         outcomes = {case.label: futures[case.label].result() for case in cases}
     except KeyboardInterrupt:
         # Ctrl-C: queued cases must not start, running ones stop now. Their threads only wait on child
