@@ -25,6 +25,10 @@ MIN_CYCLES = 5.0
 SAMPLES_PER_PERIOD = 4.0
 GRID_PER_BIN = 4           # frequency grid: a quarter of the range's Fourier bin
 LINE_CONTRAST = 30.0       # a line's power over its neighbours' median (as structure.LINE_CONTRAST in time)
+# a line pitch is read only where the reading's own noise leaves its phase: at twice the line frequency the noise
+# sigma jitters the phase by 4 pi sigma / pitch radians, so pitches under 4 pi sigma scramble it, and there the
+# noise correlates with functions of its own reading (a curve in the load was fitted by a "pitch" of 1.6 sigma)
+PITCH_NOISE_SIGMAS = 4.0 * math.pi
 
 
 def angle_load_columns(ctx: Context, harmonics=ANGLE_LOAD_HARMONICS) -> np.ndarray:
@@ -51,14 +55,19 @@ def load_levels(u: np.ndarray) -> int:
 
 def response_grid(ctx: Context) -> np.ndarray:
     """Candidate frequencies in cycles per normalised response unit (see MIN_CYCLES, SAMPLES_PER_PERIOD), counting
-    the load levels visited (``load_levels``), not the samples: samples held at one level sample one phase."""
+    the load levels visited (``load_levels``), not the samples: samples held at one level sample one phase; pitches
+    of at least PITCH_NOISE_SIGMAS white-noise sigmas of the response."""
     span = float(np.ptp(ctx.y))
     if not span > 0.0:
         return np.zeros(0)
     passes = max(len(ctx.segments), 1)
     if "load_levels" not in ctx.cache:
         ctx.cache["load_levels"] = load_levels(ctx.u)
+    if "response_noise" not in ctx.cache:
+        ctx.cache["response_noise"] = noise_std(ctx.y)
     top = ctx.cache["load_levels"] / (SAMPLES_PER_PERIOD * passes)
+    if ctx.cache["response_noise"] > 0.0:
+        top = min(top, span / (PITCH_NOISE_SIGMAS * ctx.cache["response_noise"]))
     if top <= MIN_CYCLES:
         return np.zeros(0)
     return np.arange(MIN_CYCLES, top, 1.0 / GRID_PER_BIN) / span
@@ -104,4 +113,4 @@ def response_columns(ctx: Context, f: float, harmonics=(1, 2)) -> np.ndarray:
     return np.column_stack([g(2.0 * math.pi * k * f * ctx.y) for k in harmonics for g in (np.cos, np.sin)])
 
 
-__all__ = ["ANGLE_LOAD_HARMONICS", "CACHE_KEY", "angle_load_columns", "load_levels", "recorded_line", "response_columns", "response_grid", "response_line"]
+__all__ = ["ANGLE_LOAD_HARMONICS", "CACHE_KEY", "PITCH_NOISE_SIGMAS", "angle_load_columns", "load_levels", "recorded_line", "response_columns", "response_grid", "response_line"]

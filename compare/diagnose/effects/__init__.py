@@ -14,7 +14,7 @@ VARIANTS = (nonlinear_stiffness.TWO_SLOPE, nonlinear_stiffness.SMOOTH_KNEE, nonl
             nonlinear_stiffness.CONTACT, hysteresis.DAHL_EXPONENT, hysteresis.BOUC_WEN, hysteresis.PLAY,
             hysteresis.PLAY_FINE, hysteresis.PREISACH, hysteresis.PREISACH_ELASTIC, hysteresis.PREISACH_FINE,
             crack_closure.GRADUAL, crack_closure.PROGRESSIVE, crack_closure.OPENING,
-            lost_motion.FLANK, lost_motion.SHAPE, large_deflection.SECOND_ORDER)
+            lost_motion.FLANK, lost_motion.SHAPE, large_deflection.SECOND_ORDER, plasticity.LIMIT_LOAD)
 
 
 def effects_for(kind: str) -> tuple[Effect, ...]:

@@ -7,6 +7,10 @@ twist carries it as a function of the reading itself. The line pitch is searched
 (periodic.response_line, on the residual of a straight line in the load) and refined within half a Fourier bin
 of the recorded range by the fit. Model (y the measured response, f the line frequency):
     y += a1 cos 2 pi f y + b1 sin 2 pi f y + a2 cos 4 pi f y + b2 sin 4 pi f y.
+The error is a fraction of the line pitch P: the position within a signal period is atan2 of the two signals, so
+an offset delta (of the amplitude) errs by up to delta P/(2 pi) at once the line frequency, an amplitude mismatch
+eps by eps P/(4 pi) and a phase error phi by phi P/(4 pi) at twice it. Signals that still decode (their Lissajous
+figure encloses its centre: delta < 1, eps < 1, phi < pi/2) bound the errors by P/(2 pi) and P/8.
 """
 from __future__ import annotations
 
@@ -28,6 +32,24 @@ def _frequency(ctx: Context, theta) -> float:
 
 def _contribution(ctx: Context, theta):
     return response_columns(ctx, _frequency(ctx, theta)) @ theta[1:]
+
+
+# the largest interpolation errors of quadrature signals that still decode, per harmonic, in line pitches
+MAX_ERROR_PITCHES = {1: 1.0 / (2.0 * math.pi), 2: 1.0 / 8.0}
+
+
+def _plausible(ctx: Context, theta, s: float) -> list[str]:
+    """An "error" larger than the decodable bound is not an interpolation error: a curve in the load fitted by a
+    line pitch near the noise (the noise correlates with the phase of its own reading there)."""
+    pitch = 1.0 / _frequency(ctx, theta)
+    out = []
+    for i, k in enumerate((1, 2)):
+        amp = math.hypot(theta[1 + 2 * i], theta[2 + 2 * i])
+        if amp > MAX_ERROR_PITCHES[k] * pitch:
+            out.append(f"interpolation error {amp * ctx.Y:.3g} {ctx.response_unit} at {k}x the line frequency is "
+                       f"{amp / pitch:.2g} line pitches ({pitch * ctx.Y:.3g} {ctx.response_unit}); quadrature "
+                       f"signals that still decode err by at most {MAX_ERROR_PITCHES[k]:.3g} of a pitch")
+    return out
 
 
 def _report(ctx: Context, theta, s: float) -> dict:
@@ -56,4 +78,5 @@ EFFECT = Effect(
                  "every line pitch of the measured angle, whatever the load: a sensor error, not the specimen"),
     applicable=lambda ctx: len(response_grid(ctx)) > 0 and line(ctx)[0] > 0.0,
     load_path=False,
+    plausible=_plausible,
 )
