@@ -332,7 +332,8 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
         crack_method: str | None = None, crack_field_only: bool = False, cache_dir: Path | None = None) -> StudyResult:
     """lambda_f on three meshes (GCI); with a crack delta lambda_f from the crack's local patch ("global-local",
     the default: crack_local, crack_extruded; a smooth cup's patch held at its section's exact field, the 3D
-    cup solved on the finest mesh only, for its field) or cracked - uncracked on each whole-cup mesh (``crack_method`` "seam").
+    cup solved on the finest mesh only, for its field) or cracked - uncracked on each whole-cup mesh
+    (``crack_method`` "seam").
     ``crack_field_only``: with a patch, ``vtu`` gets the opened patch's field alone (the 3D cup is not solved).
     ``cache_dir``: the section's solutions are kept there and read back (``cup_axisym.solve_cup_section``)."""
     fc = params.flexspline_cup
