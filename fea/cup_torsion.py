@@ -96,6 +96,9 @@ PATCH_HALF_OVER_A = 32.0
 SECTION_TORQUE_NMM = 1.0
 # the patch's stress read this fraction inside each element: a quarter-point tip's map is singular at its node
 QUARTER_POINT_INSET = 1e-3
+# Nodes within half a wall of the hub's sharp corner are its singular zone: outside it the section's three meshes
+# agree to 0.2 % at the rated torque, inside the stress grows as h^(-1/3) (docs/decisions/052).
+CORNER_ZONE_OVER_WALL = 0.5
 LOCAL_GRADING = PlaneGrading(tip_over_a=0.25, growth=0.4, far_over_a=8.0, layers=10, quarter_point=True,
                              face_layer_to_tip=True)
 
@@ -150,6 +153,12 @@ class CupTorsion(TorsionVariant):
     @classmethod
     def deepest_crack_mm(cls, params) -> float:
         return 0.5 * params.flexspline_cup.wall_thickness_mm
+
+    @classmethod
+    def singular_edges_mm(cls, params) -> tuple[tuple[float, float, float], ...]:
+        from strainwave.geometry.flexspline_cup import reentrant_corners_mm
+        zone = CORNER_ZONE_OVER_WALL * params.flexspline_cup.wall_thickness_mm
+        return tuple((r, z, zone) for r, z in reentrant_corners_mm(params))
 
     @classmethod
     def dimensions(cls, params) -> tuple[tuple[str, str], ...]:
