@@ -186,8 +186,8 @@ def curve_from_results(path: Path, component: str) -> DeltaCurve:
                       tuple(r[2] for r in rows), wall, f"FEA crack sweep in {path}")
 
 
-# The curve's GCI enters every stated depth: sections 3x finer than the full run's hold it to 0.1-0.6 % of the
-# change (0.4-2.4 % on the full run's) at about 5 CPU s a point, paid once per shaft and cached.
+# The curve's GCI enters every stated depth: its sections are this much finer than the full run's, paid once per
+# shaft and cached (docs/decisions/053).
 SHAFT_CURVE_DENSITY = 3.0
 # Of the wall, shallow to nearly through; closer where the curve steepens, so its interpolation error stays
 # below the points' GCI there.
