@@ -36,6 +36,34 @@ def test_design_fails_below_n_and_an_extra_component_is_one_entry(params):
     assert not missing.passed and "not evaluated (counted as failing): Cup" in missing.headline()
 
 
+def test_a_factor_whose_gci_band_straddles_n_is_undecided_and_not_met(params):
+    """The band is the factor's range over the corners of its stresses' GCI bands: Goodman on (amplitude, mean)
+    +- their GCIs. A band wholly above [n] passes, wholly below fails; one that straddles [n] is UNDECIDED,
+    counted as failing and named with its band; moving the GCI shrinks it back to a PASS."""
+    from strainwave.analytic.cup_fatigue import goodman_safety_factor
+    from strainwave.compare.validate.design import factor_band
+    required = params.ewg_drive.permissible_safety
+
+    def goodman(a, m):
+        return goodman_safety_factor(625.0, 1000.0, 1.0, a, m)
+    band = factor_band(goodman, (370.0, 30.0), (100.0, 20.0))
+    assert band == pytest.approx((goodman(400.0, 120.0), goodman(340.0, 80.0)))
+    assert factor_band(goodman, (370.0, 30.0), (100.0, None)) is None       # no GCI, no band
+    n = goodman(370.0, 100.0)
+    assert band[0] < required < n          # n alone would pass; its band reaches below [n]
+
+    def factor(b):
+        return ComponentFactor("cup_wg", "Cup on the WG", n, "Goodman", 370.0, None, "T", band=b)
+    straddles = design_verdict(params, [_factor("shaft", 19.9), factor(band)])
+    assert straddles.factors[1].verdict(required) == "UNDECIDED" and not straddles.passed
+    assert f"undecided, [n] within the band the FEA's GCIs give (counted as failing): Cup on the WG n = {n:.3g}" \
+        in straddles.headline()
+    assert straddles.to_dict()["factors"][1]["band"] == list(band)
+    tight = factor_band(goodman, (370.0, 3.0), (100.0, 2.0))
+    assert design_verdict(params, [factor(tight)]).passed
+    assert ComponentFactor("x", "X", 1.0, "d", 1.0, None, "T", band=(0.9, 1.2)).verdict(required) == "FAIL"
+
+
 class _Outcome:
     def __init__(self, passed: bool, design_passed: bool):
         self.passed, self.design_passed, self.design = passed, design_passed, None

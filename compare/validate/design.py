@@ -2,17 +2,21 @@
 
 The validation verdict asks whether the closed forms hold (the FEA against the seeds); this one asks whether
 the drive as designed is strong enough. Each component carries one ``ComponentFactor``: its safety factor,
-the stress and limit it is the ratio of, and the factor's definition. A component factor another study adds
+the stress and limit it is the ratio of, and the factor's definition. Where its stresses carry a GCI, the factor
+carries the band they span: a band that straddles [n] is UNDECIDED (the meshes cannot tell), counted as not
+met. A component factor another study adds
 (a fatigue factor of the wave generator's cup, say) is one more entry of ``factors``: the verdict and both
 reports read the list, nothing else. The exit status of ``strainwave validate`` stays the validation's;
 ``--require-design`` makes a failing design exit 3.
 """
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass
+from typing import Callable
 
-__all__ = ["ComponentFactor", "DesignVerdict", "design_verdict", "stress_factors", "REQUIRED_SOURCE"]
+__all__ = ["ComponentFactor", "DesignVerdict", "design_verdict", "stress_factors", "factor_band", "REQUIRED_SOURCE"]
 
 REQUIRED_SOURCE = "ewg_drive.permissible_safety, seed 003 eq 12 (the seed's [n], 1.3..1.5)"
 
@@ -28,13 +32,25 @@ class ComponentFactor:
     limit_MPa: float | None   # the limit it is compared with
     load: str                 # the load it is at
     reason: str = ""          # why it is not evaluated
+    band: tuple[float, float] | None = None   # the factor's lowest and highest over its stresses' GCI bands
+
+    def verdict(self, required: float) -> str:
+        """PASS or FAIL against [n]; UNDECIDED where its band straddles [n]; NOT EVALUATED without a factor."""
+        n = self.safety_factor
+        if n is None or not math.isfinite(n):
+            return "NOT EVALUATED"
+        low, high = self.band or (n, n)
+        if min(low, n) >= required:
+            return "PASS"
+        return "FAIL" if max(high, n) < required else "UNDECIDED"
 
     def passed(self, required: float) -> bool:
-        return self.safety_factor is not None and math.isfinite(self.safety_factor) and self.safety_factor >= required
+        return self.verdict(required) == "PASS"
 
     def to_dict(self, required: float) -> dict:
         return {"component": self.component, "title": self.title, "safety_factor": self.safety_factor,
-                "required": required, "passed": self.passed(required), "definition": self.definition,
+                "required": required, "passed": self.passed(required), "verdict": self.verdict(required),
+                "band": None if self.band is None else list(self.band), "definition": self.definition,
                 "stress_MPa": self.stress_MPa, "limit_MPa": self.limit_MPa, "load": self.load,
                 "reason": self.reason}
 
@@ -56,10 +72,15 @@ class DesignVerdict:
         n = len(self.factors)
         text = (f"{'PASS' if self.passed else 'FAIL'}: {n - len(self.failing)} of {n} components meet [n] = "
                 f"{self.required:g} at the rated load")
-        below = [f for f in self.failing if f.safety_factor is not None]
+        below = [f for f in self.failing if f.verdict(self.required) == "FAIL"]
+        undecided = [f for f in self.failing if f.verdict(self.required) == "UNDECIDED"]
         unknown = [f for f in self.failing if f.safety_factor is None]
         if below:
             text += "; below [n]: " + ", ".join(f"{f.title} n = {f.safety_factor:.3g}" for f in below)
+        if undecided:
+            text += ("; undecided, [n] within the band the FEA's GCIs give (counted as failing): "
+                     + ", ".join(f"{f.title} n = {f.safety_factor:.3g} ({f.band[0]:.3g}..{f.band[1]:.3g})"
+                                 for f in undecided))
         if unknown:
             text += "; not evaluated (counted as failing): " + ", ".join(f.title for f in unknown)
         return text
@@ -85,6 +106,16 @@ def stress_factors(stresses: dict, titles: dict[str, str], components: tuple[str
                                    at.note, at.peaks.peak_von_mises_MPa,
                                    at.fatigue_limit_MPa, at.load.describe()))
     return out
+
+
+def factor_band(factor: Callable[..., float], *stresses: tuple[float, float | None]) -> tuple[float, float] | None:
+    """(lowest, highest) of ``factor(*values)`` over the corners of the stresses' bands, each stress given as
+    (value, GCI); None when any stress has no GCI (a band it cannot give)."""
+    if any(u is None or not math.isfinite(u) for _, u in stresses):
+        return None
+    corners = [factor(*(v + s * abs(u) for (v, u), s in zip(stresses, signs)))
+               for signs in itertools.product((-1.0, 1.0), repeat=len(stresses))]
+    return min(corners), max(corners)
 
 
 def design_verdict(params, factors: list[ComponentFactor]) -> DesignVerdict:

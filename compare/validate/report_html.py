@@ -35,7 +35,7 @@ nav.toc a{text-decoration:none} .tip{font-size:.9em;color:#633}
 @media print{canvas.sw-view,.colorbar{display:none} .nowebgl{display:block} figure{break-inside:avoid}
 h2{break-after:avoid} body{max-width:none}}
 td.PASS{background:#e3f6e3;font-weight:bold} td.FAIL{background:#fde8e8;font-weight:bold}
-td.NOT{background:#fff4d6;font-weight:bold}
+td.NOT,td.UNDECIDED{background:#fff4d6;font-weight:bold}
 figure{display:inline-block;margin:.5em;max-width:48%;vertical-align:top} figure.wide{max-width:98%}
 figure img{max-width:100%;border:1px solid #ddd} figcaption{font-size:.8em;color:#555}
 .notes{font-size:.8em;color:#444} code{background:#f5f5f5;padding:0 3px}
@@ -108,7 +108,7 @@ def _design_section(doc: dict) -> list[str]:
         return []
     parts = ['<h2 id="design">Design verdict: safety factors at the rated load</h2>',
              f"<p>Each component's factor against [n] = {design['required_safety_factor']:g} "
-             f"({escape(design['required_source'])}).</p>",
+             f"({escape(design['required_source'])}). {escape(rt.DESIGN_BAND_NOTE)}</p>",
              _table(rt.DESIGN_COLUMNS, [rt.design_row(f) for f in design["factors"]], result_col=5,
                     table_id="design-table")]
     tips = [t for t in (rt.singular_line(c, s) for c, s in doc.get("stress_at_rated", {}).items()) if t]

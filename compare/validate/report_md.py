@@ -31,7 +31,7 @@ def render_markdown(doc: dict) -> str:
     if design:
         lines += ["## Design verdict: safety factors at the rated load", "",
                   f"Each component's factor against [n] = {design['required_safety_factor']:g} "
-                  f"({design['required_source']}).", ""]
+                  f"({design['required_source']}). {rt.DESIGN_BAND_NOTE}", ""]
         lines += _table(rt.DESIGN_COLUMNS, [rt.design_row(f) for f in design["factors"]]) + [""]
         lines += [f"- {t}" for t in (rt.singular_line(c, s) for c, s in doc.get("stress_at_rated", {}).items()) if t]
         lines += [""]

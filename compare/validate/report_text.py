@@ -57,13 +57,19 @@ def design_passed(doc: dict) -> bool:
     return bool(doc.get("design") and doc["design"]["passed"])
 
 
-DESIGN_COLUMNS = ("component", "safety factor n", "[n]", "stress (MPa)", "limit (MPa)", "result", "load",
+# what a factor's band is, and why some have none
+DESIGN_BAND_NOTE = ("A band is the factor's range over its stresses' GCI bands: one that straddles [n] is UNDECIDED and "
+                    "counted as not met. A factor without a band is read on the finest mesh's stress field alone, "
+                    "whose peak carries no GCI.")
+DESIGN_COLUMNS = ("component", "safety factor n (band over the GCIs)", "[n]", "stress (MPa)", "limit (MPa)", "result", "load",
                   "definition")
 
 
 def design_row(f: dict) -> tuple[str, ...]:
-    result = "PASS" if f["passed"] else ("NOT EVALUATED" if f["safety_factor"] is None else "FAIL")
-    return (f["title"], num(f["safety_factor"], 3), num(f["required"], 3), num(f["stress_MPa"], 4),
+    result = f.get("verdict") or ("PASS" if f["passed"] else ("NOT EVALUATED" if f["safety_factor"] is None else "FAIL"))
+    band = f.get("band")
+    factor = num(f["safety_factor"], 3) + (f" ({band[0]:.3g}..{band[1]:.3g})" if band else "")
+    return (f["title"], factor, num(f["required"], 3), num(f["stress_MPa"], 4),
             num(f["limit_MPa"], 4), result, f["load"] or "-", f["definition"] + (f"; {f['reason']}" if f["reason"]
                                                                                   else ""))
 

@@ -235,7 +235,7 @@ def fatigue_factor(book: FeaBook, label: str | None, params):
     the cam, so the cam's hoop stress (FEA) is a mean; each passing ball takes the race from it to it - p0
     (Hertz at the surface under the most loaded ball). Goodman on that cycle, no notch (a smooth race)."""
     from strainwave.analytic.cup_fatigue import goodman_safety_factor
-    from strainwave.compare.validate.design import ComponentFactor
+    from strainwave.compare.validate.design import ComponentFactor, factor_band
 
     title, definition = "Wave generator bearing inner ring on the cam", "Goodman on the ball-pass cycle at the race"
     cam = book.quantity(label, "race_stress_major_MPa")[0] if label else None
@@ -244,9 +244,14 @@ def fatigue_factor(book: FeaBook, label: str | None, params):
                                "its FEA case did not run or failed (see the cases table)")
     m, p0 = params.material, contact_pressure_MPa(params)
     amplitude, mean = 0.5 * p0, cam.value - 0.5 * p0
-    n = goodman_safety_factor(m.fatigue_limit_MPa, m.ultimate_strength_MPa, 1.0, amplitude, mean)
-    return ComponentFactor("wg_bearing", title, n,
+    def goodman(hoop: float) -> float:
+        return goodman_safety_factor(m.fatigue_limit_MPa, m.ultimate_strength_MPa, 1.0, amplitude, hoop - 0.5 * p0)
+    band = factor_band(goodman, (cam.value, cam.uncertainty))
+    gci = ("no band: the hoop stress carries no GCI" if band is None else
+           f"band {band[0]:.3g}..{band[1]:.3g} over the hoop stress's GCI +-{abs(cam.uncertainty):.2g} MPa")
+    return ComponentFactor("wg_bearing", title, goodman(cam.value),
                            f"{definition}: hoop stress {cam.value:.4g} MPa (FEA, cam alone: a mean, the ring turns "
                            f"with the cam) down by p0 = {p0:.4g} MPa under each passing ball: amplitude "
-                           f"{amplitude:.4g} about {mean:.4g} MPa; 1 / (sigma_a / sigma_-1 + sigma_m / R_m)",
-                           amplitude, m.fatigue_limit_MPa, "wave generator insertion (w0) + rated radial load F_r")
+                           f"{amplitude:.4g} about {mean:.4g} MPa; 1 / (sigma_a / sigma_-1 + sigma_m / R_m); {gci}",
+                           amplitude, m.fatigue_limit_MPa, "wave generator insertion (w0) + rated radial load F_r",
+                           band=band)

@@ -89,10 +89,23 @@ def wg_record(book: FeaBook, label: str, params) -> dict:
     a, m = result.quantities.get("cycle_amplitude_MPa"), result.quantities.get("cycle_mean_MPa")
     if a is not None and m is not None:
         record["fatigue"] = cup_fatigue_of(params, a.value, m.value).to_dict() | {
+            "amplitude_gci_MPa": a.uncertainty, "mean_gci_MPa": m.uncertainty,
+            "band": _band(params, (a.value, a.uncertainty), (m.value, m.uncertainty)),
             "where": "band outer fibre (tooth root circle, smooth band) at mid-width, rigid cam, nonlinear, rated T",
             "notch": "K_sigma = ewg_drive.stress_concentration on the amplitude (the tooth root's notch)"}
     record["closed_form_axis_stresses_MPa"] = {axis: references(params, axis).variants() for axis in ("major", "minor")}
     return record
+
+
+def _band(params, amplitude: tuple[float, float | None], mean: tuple[float, float | None]):
+    """The governing factor's band over the amplitude's and the mean's GCI bands (None without both GCIs)."""
+    from strainwave.compare.validate.design import factor_band
+
+    def governing(a: float, m: float) -> float:
+        f = cup_fatigue_of(params, max(a, 0.0), m)
+        return min(f.n_eq13, f.n_goodman)
+    band = factor_band(governing, amplitude, mean)
+    return None if band is None else list(band)
 
 
 def wg_lines(record: dict) -> list[tuple[str, str]]:
@@ -138,5 +151,13 @@ def fatigue_factor(record: dict):
     return ComponentFactor("cup_wave_generator", "Flexspline cup on the wave generator", n,
                            f"min(seed 003 eq 13 = {f['n_eq13']:.3g}, Goodman = {f['n_goodman']:.3g}), {which} "
                            f"governs: stress amplitude {f['amplitude_MPa']:.4g} MPa about a mean of {f['mean_MPa']:.4g} "
-                           f"MPa over one input revolution ({f['where']}; {f['notch']})",
-                           f["amplitude_MPa"], None, "wave generator insertion + rated output torque")
+                           f"MPa over one input revolution ({f['where']}; {f['notch']}){_band_words(f)}",
+                           f["amplitude_MPa"], None, "wave generator insertion + rated output torque",
+                           band=tuple(f["band"]) if f.get("band") else None)
+
+
+def _band_words(f: dict) -> str:
+    if not f.get("band"):
+        return "; no band: the cycle's stresses carry no GCI"
+    return (f"; band {f['band'][0]:.3g}..{f['band'][1]:.3g} over the amplitude's GCI +-{abs(f['amplitude_gci_MPa']):.2g} "
+            f"MPa and the mean's +-{abs(f['mean_gci_MPa']):.2g} MPa")
