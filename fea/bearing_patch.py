@@ -31,7 +31,7 @@ __all__ = ["GlobalRing", "PatchRelease", "patch_release", "ring_patch", "read_gl
 class GlobalRing:
     """The uncracked ring on one refinement: its mesh, its P2 field under F_r, and its compliance."""
 
-    md: MeshData                # nodes and cells (no groups: only the field is read from it)
+    md: MeshData                # the ring's mesh (its named facets too: the field's file draws them)
     u: np.ndarray               # interleaved displacement at to_skfem(md)'s scalar dofs
     compliance_mm_per_N: float
     solver: dict                # the solve's facts (method, dofs, residual, ...)
@@ -56,7 +56,8 @@ def write_global(path: Path, ring: GlobalRing) -> None:
     meta = {"compliance": ring.compliance_mm_per_N, "solver": ring.solver, "h_mm": ring.md.h_mm,
             "quality": None if ring.md.quality is None else ring.md.quality.to_dict()}
     buffer = io.BytesIO()
-    np.savez(buffer, nodes=ring.md.nodes_mm, cells=ring.md.cells, u=ring.u, meta=np.array(json.dumps(meta)))
+    groups = {f"group:{name}": rows for name, rows in ring.md.groups.items()}
+    np.savez(buffer, nodes=ring.md.nodes_mm, cells=ring.md.cells, u=ring.u, meta=np.array(json.dumps(meta)), **groups)
     Path(path).parent.mkdir(parents=True, exist_ok=True)
     atomic_write_bytes(Path(path), buffer.getvalue())
 
@@ -66,7 +67,8 @@ def read_global(path: Path) -> GlobalRing:
     with np.load(path) as data:
         meta = json.loads(str(data["meta"]))
         quality = None if meta["quality"] is None else MeshQuality(**meta["quality"])
-        md = MeshData(data["nodes"], data["cells"], 3, 2, quality=quality, h_mm=float(meta["h_mm"]))
+        groups = {key.split(":", 1)[1]: data[key] for key in data.files if key.startswith("group:")}
+        md = MeshData(data["nodes"], data["cells"], 3, 2, groups, quality=quality, h_mm=float(meta["h_mm"]))
         return GlobalRing(md, data["u"], float(meta["compliance"]), meta["solver"])
 
 

@@ -19,7 +19,6 @@ open block's own term, so the far-field discretization error cancels in it.
 """
 from __future__ import annotations
 
-import dataclasses
 import math
 import time
 from dataclasses import dataclass
@@ -202,7 +201,7 @@ def global_ring(params, lame, *, force_N, h_mm, contact_mm, order, cache_dir=Non
     t1 = time.perf_counter()
     c0, info, (md, sk, u) = compliance_on_mesh(md, part, params, lame, force_N=force_N, keep_field=True)
     _, scale = race_load(md, sk, part, params, force_N=force_N)
-    ring = GlobalRing(dataclasses.replace(md, groups={}), u, c0, dict(info, load_scale=scale, size_factor=size_factor),
+    ring = GlobalRing(md, u, c0, dict(info, load_scale=scale, size_factor=size_factor),
                       t1 - t0, time.perf_counter() - t1)
     if path is not None:
         write_global(path, ring)
