@@ -102,17 +102,17 @@ class PatchRelease:
 
 
 def patch_release(md: MeshData, centre_mm, radius_mm: float, lame, global_u, *, force_N: float, study: str,
-                  load=None, keep_field: bool = False) -> PatchRelease:
+                  load=None, keep_field: bool = False, held_group: str = "bore") -> PatchRelease:
     """The crack's compliance from the patch of ``md`` (the cracked ring's seam mesh) within ``radius_mm`` of
-    ``centre_mm``, driven by the uncracked field ``global_u`` (points -> u); ``load``: opened patch ->
-    (SkfemMesh, the external load vector) on its faces (the race's pressure at the crack's mouth), or None."""
+    ``centre_mm``, driven by the uncracked field ``global_u`` (points -> u) on its cut and on ``held_group``;
+    ``load``: opened patch -> the external load vector on its faces (the race's pressure at the crack's mouth)."""
     from strainwave.fea.assembly import elasticity_stiffness, scalar_basis
     from strainwave.fea.crack_contact import crack_pairs
     from strainwave.fea.crack_seam import open_crack_for
     from strainwave.fea.face_schur import SeamSystem, open_compliance
     from strainwave.fea.mesh_data import to_skfem
     t0 = time.perf_counter()
-    patch, held = ring_patch(md, centre_mm, radius_mm)
+    patch, held = ring_patch(md, centre_mm, radius_mm, held_group)
     opened = open_crack_for(patch, study)
     sk = to_skfem(opened)
     K = elasticity_stiffness(scalar_basis(sk.mesh, sk.element), lame)
@@ -127,11 +127,13 @@ def patch_release(md: MeshData, centre_mm, radius_mm: float, lame, global_u, *, 
         ft, r = seam.loads(f - K @ lift)      # the held cut's displacement as a load on the free dofs
         res = seam.contact(ft, r, tol_mm=1e-9 * float(np.abs(lift).max()))
         delta = open_compliance(seam.faces.factor.S, r, seam.held(res.active)) / force_N ** 2
+        # the faces free to pass through each other: what the contact prevents
+        free = open_compliance(seam.faces.factor.S, r, np.zeros(r.size, bool)) / force_N ** 2
     finally:
         seam.close()
     info = dict(method=f"{seam.faces.factor.method}-schur-patch", dofs=int(seam.faces.free.size),
                 iterations=1, time_s=time.perf_counter() - t0, schur_dofs=int(r.size), patch_radius_mm=radius_mm,
                 contact_iterations=res.iterations, contact_pairs=int(res.active.size),
                 contact_closed_pairs=int(res.active.sum()), contact_min_opening_mm=float(res.opening_mm.min()),
-                contact_max_opening_mm=float(res.opening_mm.max()))
+                contact_max_opening_mm=float(res.opening_mm.max()), delta_without_contact_mm_per_N=free)
     return PatchRelease(delta, info, (opened, sk, lift + res.u) if keep_field else ())
