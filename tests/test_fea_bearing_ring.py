@@ -193,3 +193,31 @@ def test_the_whole_rings_seam_agrees_with_the_patch(study):
     assert abs(c.value - d.value) <= 3.0 * (c.uncertainty + d.uncertainty)
     # the same contact state: the crack at the Hertz centre mostly shut in both
     assert whole.solver["contact_closed_pairs"] > 0.8 * whole.solver["contact_pairs"]
+
+
+def test_the_uncracked_ring_is_read_back_for_another_depth_and_solved_again_for_another_ring(study, monkeypatch):
+    """The study's cache folder holds the uncracked ring per refinement (``global_ring``): a case at another crack
+    depth reads it back without meshing; another contact size or another ring is not in it."""
+    import strainwave.fea.bearing_ring as br
+    params = load_params()
+    force = bearing_ring_load(params)["force_N"]
+    variant = br.BearingRing(params, 2, H_MM, force, A_MM)
+    cache = study.fields[0].parent / "cache"
+    contact_mm = variant._local_sizes_mm(0)[0]
+
+    def no_mesh(*args, **kwargs):
+        raise AssertionError("meshed again")
+    monkeypatch.setattr(br, "mesh_part_isolated", no_mesh)
+    monkeypatch.setattr(br, "build_plain_part", lambda p: _ring(None))
+    deeper = params.with_value("wave_generator.bearing_crack_depth_mm", 2 * params.wave_generator.bearing_crack_depth_mm)
+    ring = br.global_ring(deeper, variant.lame, force_N=force, h_mm=H_MM, contact_mm=contact_mm, order=2,
+                          cache_dir=cache)
+    assert ring.compliance_mm_per_N == study["radial_compliance_mm_per_N"].value
+    with pytest.raises(AssertionError, match="meshed again"):
+        br.global_ring(params, variant.lame, force_N=force, h_mm=H_MM, contact_mm=1.1 * contact_mm, order=2,
+                       cache_dir=cache)
+    thicker = params.with_value("wave_generator.bearing_inner_ring_thickness_mm",
+                                1.1 * params.wave_generator.bearing_inner_ring_thickness_mm)
+    with pytest.raises(AssertionError, match="meshed again"):
+        br.global_ring(thicker, variant.lame, force_N=force, h_mm=H_MM, contact_mm=contact_mm, order=2,
+                       cache_dir=cache)
