@@ -96,6 +96,9 @@ PATCH_HALF_OVER_A = 32.0
 SECTION_TORQUE_NMM = 1.0
 # the patch's stress read this fraction inside each element: a quarter-point tip's map is singular at its node
 QUARTER_POINT_INSET = 1e-3
+# Nodes within half a wall of the hub's sharp corner are its singular zone: outside it the section's three meshes
+# agree to 0.2 % at the rated torque, inside the stress grows as h^(-1/3) (docs/decisions/052).
+CORNER_ZONE_OVER_WALL = 0.5
 LOCAL_GRADING = PlaneGrading(tip_over_a=0.25, growth=0.4, far_over_a=8.0, layers=10, quarter_point=True,
                              face_layer_to_tip=True)
 
@@ -137,7 +140,7 @@ class CupTorsion(TorsionVariant):
                                    "axisymmetric (r, z) section of P2 triangles; the crack as a seam or in a global-local patch")
     teeth: bool
     crack_method: str = DEFAULT_CRACK_METHOD
-    solid_series: bool = True       # the 3D cup (its fields, lambda_f on a 3D mesh); see ``run``
+    solid_field: bool = True        # the 3D cup's own field for the stress picture; see ``run``
     section_cache: Path | None = None   # where the section's solutions are kept for the other cup cases
 
     @classmethod
@@ -150,6 +153,12 @@ class CupTorsion(TorsionVariant):
     @classmethod
     def deepest_crack_mm(cls, params) -> float:
         return 0.5 * params.flexspline_cup.wall_thickness_mm
+
+    @classmethod
+    def singular_edges_mm(cls, params) -> tuple[tuple[float, float, float], ...]:
+        from strainwave.geometry.flexspline_cup import reentrant_corners_mm
+        zone = CORNER_ZONE_OVER_WALL * params.flexspline_cup.wall_thickness_mm
+        return tuple((r, z, zone) for r, z in reentrant_corners_mm(params))
 
     @classmethod
     def dimensions(cls, params) -> tuple[tuple[str, str], ...]:
@@ -175,7 +184,7 @@ class CupTorsion(TorsionVariant):
 
     def series(self) -> tuple[SeriesPlan, ...]:
         plans = ()
-        if self.solid_series or not self.patch_on_section:
+        if not self.patch_on_section:   # with a patch on the section, no quantity needs the 3D cup
             plans += (SeriesPlan("solid", refinement_sizes(self.h_fine_mm, self.ratio)),)
         if not self.teeth:      # the toothless cup is axisymmetric: lambda_f on its (r, z) section
             plans += (SeriesPlan("section", refinement_sizes(section_fine_mm(self.params, False), self.ratio)),)
@@ -185,8 +194,6 @@ class CupTorsion(TorsionVariant):
         if series == "section":
             return self._solve_section(part, h_mm, k, keep_fields, progress)
         if self.crack_depth_mm is not None and self.crack_method == GLOBAL_LOCAL:
-            if self.patch_on_section:
-                return self._solve_solid(part, h_mm, keep_fields, progress)
             return self._solve_global_local(part, h_mm, keep_fields, progress)
         cracked = self.crack_depth_mm is not None
         refine = (CRACK_FRONT.refine(part.crack_front_mm, h_mm, self.h_fine_mm, self.crack_depth_mm),) if cracked else ()
@@ -207,7 +214,7 @@ class CupTorsion(TorsionVariant):
 
     def _solve_section(self, part, h_mm, k, keep_fields, progress) -> MeshSolve:
         """lambda_f on the section; with a crack (``patch_on_section``) its patch on refinement k, held at the
-        section's exact 3D field for a unit torque."""
+        section's exact 3D field for a unit torque; with the fields kept, the 3D cup's own too (``solid_field``)."""
         solved = solve_cup_section(self.params, h_mm, keep_fields=self.patch_on_section, progress=progress,
                                    cache_dir=self.section_cache)
         if not self.patch_on_section:
@@ -223,8 +230,13 @@ class CupTorsion(TorsionVariant):
         flex = solved.values[FLEX]
         values = dict(solved.values, **{CRACKED: flex + delta, DELTA: delta, "local_dofs": float(local.dofs)})
         timings = dict(solved.timings_s, mesh_patch=t_loc, solve_patch=local.solve_s)
-        return MeshSolve(h_mm, values, solved.mesh, timings, solved.solver,
-                         {"patch": local.field, "unit_shear_torque_Nmm": SECTION_TORQUE_NMM} if keep_fields else {})
+        fields = {"patch": local.field, "patch_torque_Nmm": SECTION_TORQUE_NMM} if keep_fields else {}
+        if keep_fields and self.solid_field:
+            solid = self._solve_solid(part, self.h_fine_mm, True, progress)
+            fields.update(solid.fields)
+            for key, seconds in solid.timings_s.items():
+                timings[key] = timings.get(key, 0.0) + seconds
+        return MeshSolve(h_mm, values, solved.mesh, timings, solved.solver, fields)
 
     def _uncracked_solid(self, part, h_mm, progress) -> tuple[MeshData, float, float, StaticSolution, float]:
         """(mesh, meshing s, lambda_f, solution, unit-shear torque) of the uncracked 3D cup at size h."""
@@ -234,7 +246,8 @@ class CupTorsion(TorsionVariant):
         return (md, t_mesh, *solve_mesh(md, self.params, progress=progress))
 
     def _solve_solid(self, part, h_mm, keep_fields, progress) -> MeshSolve:
-        """The uncracked 3D cup on the mesh of size h: its own lambda_f and its fields."""
+        """The uncracked 3D cup on the mesh of size h, for its field: one mesh, as no check reads its lambda_f
+        (docs/decisions/051)."""
         md, t_mesh, flex, sol, torque = self._uncracked_solid(part, h_mm, progress)
         timings = {"mesh": t_mesh, "assembly": sol.timings_s["assembly"], "solve": sol.timings_s["solve"]}
         return MeshSolve(h_mm, {FLEX: flex}, md.quality, timings, sol.solver.to_dict(),
@@ -255,16 +268,14 @@ class CupTorsion(TorsionVariant):
         timings = {"mesh": t_mesh + t_loc, "assembly": sol.timings_s["assembly"],
                    "solve": sol.timings_s["solve"] + local.solve_s}
         return MeshSolve(h_mm, values, md.quality, timings, sol.solver.to_dict(),
-                         {"solution": sol, "unit_shear_torque_Nmm": torque, "patch": local.field} if keep_fields else {})
+                         {"solution": sol, "unit_shear_torque_Nmm": torque, "patch": local.field,
+                          "patch_torque_Nmm": torque} if keep_fields else {})
 
     def quantities(self, series: Mapping[str, Series]) -> dict:
         if self.patch_on_section:
             sec = series["section"]
-            out = crack_flexibility_quantities(sec.h_mm, sec.values(FLEX), sec.values(CRACKED), UNIT,
-                                               delta=sec.values(DELTA))
-            if "solid" in series:
-                out[FLEX_3D] = series["solid"].converged(FLEX, UNIT)
-            return out
+            return crack_flexibility_quantities(sec.h_mm, sec.values(FLEX), sec.values(CRACKED), UNIT,
+                                                delta=sec.values(DELTA))
         s = series["solid"]
         cracked = self.crack_depth_mm is not None
         delta = s.values(DELTA) if cracked and self.crack_method == GLOBAL_LOCAL else None
@@ -299,10 +310,10 @@ class CupTorsion(TorsionVariant):
         info = field_info(STUDY, load.describe(), self.params.material)
         T = self.params.gear.output_torque_Nmm
         written = ()
-        if "solid" in series:
-            finest = series["solid"].finest.fields
-            sol = finest["solution"]
-            written += (write_solid_fields(vtu, sol.md, sol.sk, sol.u * (T / finest["unit_shear_torque_Nmm"]),
+        solid = [s.finest.fields for s in series.values() if "solution" in s.finest.fields]
+        if solid:
+            sol = solid[0]["solution"]
+            written += (write_solid_fields(vtu, sol.md, sol.sk, sol.u * (T / solid[0]["unit_shear_torque_Nmm"]),
                                            sol.lame, info=info),)
         with_patch = [s.finest.fields for s in series.values() if s.finest.fields.get("patch")]
         if not with_patch:
@@ -310,7 +321,7 @@ class CupTorsion(TorsionVariant):
         md_loc, sk_loc, u_loc = with_patch[0]["patch"]
         mat = self.params.material
         cracked = Path(vtu).with_name(Path(vtu).stem + "_cracked.vtu")
-        return written + (write_solid_fields(cracked, md_loc, sk_loc, u_loc * (T / with_patch[0]["unit_shear_torque_Nmm"]),
+        return written + (write_solid_fields(cracked, md_loc, sk_loc, u_loc * (T / with_patch[0]["patch_torque_Nmm"]),
                                              Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio), info=info,
                                              inset=QUARTER_POINT_INSET),)
 
@@ -330,7 +341,8 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
         crack_method: str | None = None, crack_field_only: bool = False, cache_dir: Path | None = None) -> StudyResult:
     """lambda_f on three meshes (GCI); with a crack delta lambda_f from the crack's local patch ("global-local",
     the default: crack_local, crack_extruded; a smooth cup's patch held at its section's exact field, the 3D
-    cup solved only for its fields) or cracked - uncracked on each whole-cup mesh (``crack_method`` "seam").
+    cup solved on the finest mesh only, for its field) or cracked - uncracked on each whole-cup mesh
+    (``crack_method`` "seam").
     ``crack_field_only``: with a patch, ``vtu`` gets the opened patch's field alone (the 3D cup is not solved).
     ``cache_dir``: the section's solutions are kept there and read back (``cup_axisym.solve_cup_section``)."""
     fc = params.flexspline_cup
@@ -338,5 +350,5 @@ def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, pr
     if h >= fc.length_mm / 4:
         raise InputError("--mesh-size-mm", h, f"must be < L/4 = {fc.length_mm / 4:g} mm for the cup")
     variant = CupTorsion(params, order, h, ratio, crack_depth_mm, teeth, crack_method or DEFAULT_CRACK_METHOD,
-                         solid_series=vtu is not None and not crack_field_only, section_cache=cache_dir)
+                         solid_field=vtu is not None and not crack_field_only, section_cache=cache_dir)
     return run_variant(variant, vtu=vtu, progress=progress)

@@ -76,7 +76,7 @@ LE11_LOCAL_DIST_OVER_H = (0.5, 4.0)
 # sigma_zz at A converges at order 1, not the P2 stress order 2: the base (u_z = 0) mirrors the body, and the
 # mirrored field T = r + |z| kinks at the edge A lies on, which puts an r log r term in the stress there
 LE11_FORMAL_ORDER = 1.0
-FINE_TARGET_REL = 0.01             # issue 37: the fine cases within 1 % of the target
+FINE_TARGET_REL = 0.01             # the fine cases must come within 1 % of the target
 
 
 @dataclass(frozen=True)

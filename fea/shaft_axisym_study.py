@@ -14,7 +14,9 @@ from typing import Callable
 from strainwave.fea.fields import field_info, write_vtu
 from strainwave.fea.session import mesh_in_child
 from strainwave.fea.shaft_axisym import Section, mesh_section, open_crack_line, section_fields, solve_section
-from strainwave.fea.skeleton import MeshSolve
+from strainwave.fea.refinement import CRACK_FORMAL_ORDER, refinement_sizes
+from strainwave.fea.result import Quantity
+from strainwave.fea.skeleton import MeshSolve, Series
 
 # Section wall/8, tip a/80 (quick wall/5, a/40): the tip error is first order (docs/decisions/010-shaft-axisymmetric-crack.md).
 WALL_OVER_H = {False: 8.0, True: 5.0}
@@ -42,6 +44,16 @@ def solve_section_refinement(params, depth_mm: float, h_mm: float, h_fine_mm: fl
              f"delta lambda {delta:.4e}")
     return MeshSolve(h_mm, {"delta_flexibility_rad_per_Nmm": delta, "tip_size_mm": tip}, md.quality,
                      {"axisymmetric": time.perf_counter() - t0}, fields={"opened": opened} if keep_fields else {})
+
+
+def section_delta(params, depth_mm: float, *, density: float,
+                  progress: Callable[[str], None] = lambda m: None) -> Quantity:
+    """delta lambda with its GCI on three sections ``density`` times finer than the full run's (global size and
+    crack-tip size alike): for a curve whose GCI enters every depth read off it (crack sizing)."""
+    h_full = section_fine_mm(params, quick=False)
+    solves = tuple(solve_section_refinement(params, depth_mm, h, h_full, quick=False, keep_fields=False,
+                                            progress=progress) for h in refinement_sizes(h_full / density))
+    return Series("section", solves).converged("delta_flexibility_rad_per_Nmm", "rad/(N*mm)", order=CRACK_FORMAL_ORDER)
 
 
 def write_section_fields(params, finest: MeshSolve, path: Path) -> Path:

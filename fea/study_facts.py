@@ -80,6 +80,12 @@ class StudyFacts:
         return ()
 
     @classmethod
+    def singular_edges_mm(cls, params) -> tuple[tuple[float, float, float], ...]:
+        """(r, z, zone radius) of each sharp re-entrant edge of its part, a circle about the z axis, where the
+        model's stress is singular: nodes within the radius are left out of the design peak (rated_stress)."""
+        return ()
+
+    @classmethod
     def image_zoom_mm(cls, params) -> float | None:
         """Radius of the stress picture's zoom panel on the peak, if the picture has one."""
         return None

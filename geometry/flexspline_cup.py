@@ -89,14 +89,19 @@ class SmoothSection:
     corners_mm: tuple[tuple[float, float], ...]
 
 
+def reentrant_corners_mm(params) -> tuple[tuple[float, float], ...]:
+    """(r, z) of the cup's sharp re-entrant edges, circles about its axis: the hub's outer edge meets the
+    diaphragm's underside at a 270 deg corner (none in an open tube), where the torsion field is singular."""
+    fc = params.flexspline_cup
+    return ((HUB_RATIO * fc.pitch_diameter_mm, (BOSS_HEIGHT_WALLS - 1) * fc.wall_thickness_mm),) if fc.cup else ()
+
+
 def smooth_section(params) -> SmoothSection:
     """The half section of the smooth (toothless) cup that ``build(teeth=False)`` revolves."""
     fc = params.flexspline_cup
-    d1, t, length = fc.pitch_diameter_mm, fc.wall_thickness_mm, fc.length_mm
+    d1, length = fc.pitch_diameter_mm, fc.length_mm
     z_b = length - BAND_RATIO * d1
-    # the hub's outer edge meets the diaphragm's underside at a 270 deg corner (none in an open tube)
-    corners = ((HUB_RATIO * d1, (BOSS_HEIGHT_WALLS - 1) * t),) if fc.cup else ()
-    return SmoothSection(_profile(fc, length, z_b), d1 / 2, z_b, length, corners)
+    return SmoothSection(_profile(fc, length, z_b), d1 / 2, z_b, length, reentrant_corners_mm(params))
 
 
 def tooth_spec(params) -> ToothSpec:

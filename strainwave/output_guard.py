@@ -38,7 +38,7 @@ STAGE_PREFIX = ".strainwave-stage-"
 # An --out folder is strainwave's when it holds the manifest, or (written before the manifest existed) the
 # index file its command always writes: validate's results.json, a sweep's points.json, the benchmark's JSON.
 FOLDER_MARKS = (MANIFEST, "results.json", "points.json", "benchmark_diagnose.json")
-# What each flag writes: a file named otherwise would be read by the wrong program (issue 40, item 5).
+# What each flag writes: a file named otherwise would be read by the wrong program.
 SUFFIXES = {"--json": (".json",), "--plot": (".png",), "--png": (".png",), "--vtu": (".vtu",), "-o": (".step", ".stp")}
 
 

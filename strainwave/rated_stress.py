@@ -88,6 +88,10 @@ class FieldPeaks:
     tip_radius_mm: float | None = None
     tip_peak_von_mises_MPa: float | None = None
     tip_peak_location_mm: tuple[float, float, float] | None = None
+    # the part's sharp re-entrant edges (StudyFacts.singular_edges_mm), left out alike: radius, peak, where
+    corner_radius_mm: float | None = None
+    corner_peak_von_mises_MPa: float | None = None
+    corner_peak_location_mm: tuple[float, float, float] | None = None
 
     def __post_init__(self):
         if not (np.isfinite(self.peak_von_mises_MPa) and self.peak_von_mises_MPa >= 0):
@@ -99,23 +103,30 @@ class FieldPeaks:
 TIP_RADIUS_OVER_A = 0.25
 
 
-def field_peaks(mesh, tip_zone: np.ndarray | None = None, tip_radius_mm: float | None = None) -> FieldPeaks:
+def field_peaks(mesh, tip_zone: np.ndarray | None = None, tip_radius_mm: float | None = None,
+                corner_zone: np.ndarray | None = None, corner_radius_mm: float | None = None) -> FieldPeaks:
     """Peak nodal von Mises with its location, and the peak |u|, of a (scaled) field; nodes where ``tip_zone``
-    (bool per node) is set are left out of the peak, whose own maximum is recorded apart."""
+    or ``corner_zone`` (bool per node) is set are left out of the peak, and each zone's own maximum is recorded
+    apart."""
     names = field_names(mesh)
     if names.von_mises is None or names.von_mises not in mesh.point_data:
         raise ValueError("the field has no nodal von Mises array")
     vm = np.asarray(mesh.point_data[names.von_mises], dtype=float)
-    zone = np.zeros(vm.size, bool) if tip_zone is None else np.asarray(tip_zone, bool)
-    k = int(np.argmax(np.where(zone, -np.inf, vm)))
+    zones = {kind: (np.zeros(vm.size, bool) if zone is None else np.asarray(zone, bool), radius)
+             for kind, zone, radius in (("tip", tip_zone, tip_radius_mm), ("corner", corner_zone, corner_radius_mm))}
+    outside = ~(zones["tip"][0] | zones["corner"][0])
+    if not outside.any():
+        raise ValueError("every node of the field lies in a singular zone")
+    k = int(np.argmax(np.where(outside, vm, -np.inf)))
     u = displacement3(mesh, names.displacement) if names.displacement else np.zeros((mesh.n_points, 3))
-    tip = {}
-    if zone.any():
-        t = int(np.argmax(np.where(zone, vm, -np.inf)))
-        tip = {"tip_radius_mm": tip_radius_mm, "tip_peak_von_mises_MPa": float(vm[t]),
-               "tip_peak_location_mm": tuple(float(x) for x in mesh.points[t])}
+    apart = {}
+    for kind, (zone, radius) in zones.items():
+        if zone.any():
+            t = int(np.argmax(np.where(zone, vm, -np.inf)))
+            apart.update({f"{kind}_radius_mm": radius, f"{kind}_peak_von_mises_MPa": float(vm[t]),
+                          f"{kind}_peak_location_mm": tuple(float(x) for x in mesh.points[t])})
     return FieldPeaks(float(vm[k]), tuple(float(x) for x in mesh.points[k]), float(np.linalg.norm(u, axis=1).max()),
-                      k, **tip)
+                      k, **apart)
 
 
 def crack_front_nodes(vtu: Path) -> np.ndarray:
@@ -155,6 +166,19 @@ def tip_zone_of(mesh, vtu: Path, crack_depth_mm: float | None) -> tuple[np.ndarr
     radius = TIP_RADIUS_OVER_A * crack_depth_mm
     distance, _ = cKDTree(np.asarray(mesh.points)[front]).query(np.asarray(mesh.points))
     return distance <= radius, radius
+
+
+def corner_zone_of(mesh, edges_mm) -> tuple[np.ndarray | None, float | None]:
+    """(bool per node, radius) of the zones around sharp re-entrant edges, circles (r, z, radius) about the z axis
+    (``StudyFacts.singular_edges_mm``); (None, None) without any."""
+    if not edges_mm:
+        return None, None
+    x = np.asarray(mesh.points, dtype=float)
+    r = np.hypot(x[:, 0], x[:, 1])
+    zone = np.zeros(len(x), bool)
+    for r_e, z_e, radius in edges_mm:
+        zone |= np.hypot(r - r_e, x[:, 2] - z_e) <= radius
+    return zone, max(e[2] for e in edges_mm)
 
 
 def groups_at_node(vtu: Path, node: int) -> tuple[str, ...]:
@@ -239,6 +263,10 @@ class StressAtRated:
         elif self.cracked:
             text += ("; the field carries the crack, whose tip stress is singular (it grows with refinement): a peak "
                      "at the tip is not a design stress")
+        if p.corner_peak_von_mises_MPa is not None:
+            text += (f"; nodes within {p.corner_radius_mm:.3g} mm of a sharp re-entrant edge are left out (singular in "
+                     f"the model, which has no fillet there: their stress grows with refinement and a real fillet's "
+                     f"radius sets it), their peak {p.corner_peak_von_mises_MPa:.4g} MPa is shown apart")
         return text
 
     def lines(self) -> list[str]:
@@ -260,7 +288,11 @@ class StressAtRated:
                 "tip_radius_mm": self.peaks.tip_radius_mm,
                 "tip_peak_von_mises_MPa": self.peaks.tip_peak_von_mises_MPa,
                 "tip_peak_location_mm": None if self.peaks.tip_peak_location_mm is None
-                else list(self.peaks.tip_peak_location_mm)}
+                else list(self.peaks.tip_peak_location_mm),
+                "corner_radius_mm": self.peaks.corner_radius_mm,
+                "corner_peak_von_mises_MPa": self.peaks.corner_peak_von_mises_MPa,
+                "corner_peak_location_mm": None if self.peaks.corner_peak_location_mm is None
+                else list(self.peaks.corner_peak_location_mm)}
 
 
 def stress_at_rated(study: str, params, result, vtu: Path, *, cracked: bool) -> StressAtRated:
@@ -270,6 +302,7 @@ def stress_at_rated(study: str, params, result, vtu: Path, *, cracked: bool) -> 
     load = rated_load_of(study, params, result)
     mesh = scaled_to_rated(pv.read(str(vtu)), load.scale)
     zone, radius = tip_zone_of(mesh, vtu, result.crack_depth_mm if cracked else None)
-    peaks = field_peaks(mesh, zone, radius)
+    corner, corner_radius = corner_zone_of(mesh, registered(study).facts().singular_edges_mm(params))
+    peaks = field_peaks(mesh, zone, radius, corner, corner_radius)
     peaks = dataclasses.replace(peaks, peak_on=groups_at_node(vtu, peaks.peak_node))
     return StressAtRated(study, Path(vtu).name, load, peaks, params.material.fatigue_limit_MPa, cracked)

@@ -138,7 +138,7 @@ STUDIES: dict[str, Study] = {s.name: s for s in (
         QuantitySpec("tooth_influence", "1", "K_delta: toothed over smooth rim outer-fibre stress range"),
         QuantitySpec("stress_concentration", "1", "K_sigma: toothed root over smooth rim stress range"),
     ), load_inputs="strainwave.analytic.study_loads:ring_compression_load", specimen="ewg_ring"),
-    # The inner ring on the elliptical cam (issue 34): 2D, its own sweep of race-crack depths in one case.
+    # The inner ring on the elliptical cam: 2D, its own sweep of race-crack depths in one case.
     Study("wg-bearing", "strainwave.fea.wg_bearing:WgBearing", "wg-bearing-ring", None, None, (
         QuantitySpec("race_stress_major_MPa", "MPa", "race hoop stress at the major axis, cam alone"),
         QuantitySpec("race_stress_minor_MPa", "MPa", "race hoop stress at the minor axis, cam alone"),
@@ -148,7 +148,7 @@ STUDIES: dict[str, Study] = {s.name: s for s in (
         QuantitySpec("radial_stiffness_N_per_mm", "N/mm", "K_G: F_r over the outer race's approach (balls + ring)"),
         QuantitySpec("radial_compliance_mm_per_N", "mm/N", "ring compliance under the ball loads, uncracked"),
     ), load_inputs="strainwave.analytic.study_loads:wg_bearing_load", vtu_fields=SOLID_FIELDS + ("hoop_stress_MPa",)),
-    # The cup on its wave generator (issue 34): prescribed shape and rigid cam, linear and nonlinear; the
+    # The cup on its wave generator: prescribed shape and rigid cam, linear and nonlinear; the
     # hoop bending at the axes is checked against the ring forced into w0 cos 2 phi (analytic/ring_prescribed.py).
     Study("cup-wave-generator", "strainwave.fea.cup_wave_generator:CupWaveGenerator", "flexspline-cup", None, None, (
         QuantitySpec("prescribed_linear_bending_major_MPa", "MPa",

@@ -426,3 +426,28 @@ def test_the_separable_weights_are_the_bounded_least_squares_optimum(params, cas
     moved = w.copy()
     moved[np.argmax((w > lo) & (w < hi))] += 0.05 * (hi[0] - lo[0])
     assert kkt_violation(np.clip(moved, lo, hi)) > 1e-4
+
+
+def test_the_separable_weights_survive_a_stalled_nnls():
+    """scipy's NNLS stopped at its iteration cap on this well-conditioned system (cond ~2e3, from a cracked shaft's
+    recording behind a friction loop) and the diagnosis ended in an internal error: the weights now come from
+    BVLS there, and meet the optimality conditions of least squares with w >= 0 (KKT); a moved weight fails them."""
+    from pathlib import Path
+
+    from strainwave.compare.diagnose import fit as F
+    data = np.loadtxt(Path(__file__).parent / "data" / "nnls_stall_8x8.csv", delimiter=",")
+    R, rhs = data[:, :-1], data[:, -1]
+    sep = object.__new__(F._Separable)
+    sep.R = R
+    lo, hi = np.zeros(8), np.full(8, np.inf)
+
+    def kkt_violation(w):
+        g = R.T @ (R @ w - rhs)
+        return max(np.max(np.abs(g[w > 1e-12]), initial=0.0), np.max(-g[w <= 1e-12], initial=0.0)) / np.linalg.norm(R.T @ rhs)
+
+    w = sep._live_weights(rhs, lo, hi)
+    assert np.all(w >= 0) and np.any(w == 0)
+    assert kkt_violation(w) < 1e-8
+    moved = w.copy()
+    moved[0] *= 1.01
+    assert kkt_violation(moved) > 1e-4

@@ -71,6 +71,26 @@ def test_study_uses_the_section_for_a_full_circumferential_crack():
     assert math.isfinite(d.uncertainty) and d.uncertainty < 0.05 * d.value
 
 
+def test_finer_sections_for_a_crack_curve_agree_with_the_study_within_both_gcis():
+    import warnings
+
+    from strainwave.fea.shaft_axisym_study import section_delta
+    from strainwave.fea.studies import run_study
+    from strainwave.params import load_params
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        params = load_params()
+    study = run_study("shaft-torsion", params, crack_depth_mm=2.0)["delta_flexibility_rad_per_Nmm"]
+    same = section_delta(params, 2.0, density=1.0)
+    # density 1 is the full run's own section series: the same three meshes, the same value and band
+    assert same.value == pytest.approx(study.value, rel=1e-12)
+    assert same.uncertainty == pytest.approx(study.uncertainty, rel=1e-9)
+    finer = section_delta(params, 2.0, density=2.0)
+    assert abs(finer.value - study.value) <= math.hypot(finer.uncertainty, study.uncertainty)
+    assert finer.value > study.value           # a finer tip releases more compliance (first order, from below)
+    assert finer.uncertainty < 0.5 * study.uncertainty
+
+
 def test_crack_model_choice_follows_the_arc():
     import warnings
 

@@ -125,8 +125,11 @@ def test_cup_crack_field_alone_skips_the_3d_cup_and_other_studies_refuse_it(para
     for only in (False, True):
         cup_torsion.run(params, crack_depth_mm=1.12, vtu=tmp_path / "cup.vtu", crack_field_only=only)
     (full, kw_full), (alone, kw_alone) = variants
-    assert [p.name for p in full.series()] == ["solid", "section"] and kw_full["vtu"] == tmp_path / "cup.vtu"
-    assert [p.name for p in alone.series()] == ["section"] and kw_alone["vtu"] == tmp_path / "cup.vtu"
+    # the headline's 3D cup is no series: it is meshed and solved once, for its field (``solid_field``)
+    assert [p.name for p in full.series()] == ["section"] and full.solid_field
+    assert kw_full["vtu"] == tmp_path / "cup.vtu"
+    assert [p.name for p in alone.series()] == ["section"] and not alone.solid_field
+    assert kw_alone["vtu"] == tmp_path / "cup.vtu"
     with pytest.raises(ValueError, match="crack_field_only"):
         run_study("shaft-torsion", params, crack_depth_mm=1.0, vtu=tmp_path / "shaft.vtu", crack_field_only=True)
 
@@ -151,3 +154,50 @@ def test_cache_dir_reaches_only_a_study_that_shares_it(params, monkeypatch, tmp_
     monkeypatch.setattr(cup_torsion, "run_variant", lambda variant, **kw: variants.append(variant))
     cup_torsion.run(params, crack_depth_mm=1.12, cache_dir=tmp_path)
     assert variants[-1].section_cache == tmp_path
+
+
+# The mid-tube's shear stress in the written field against Saint-Venant's tau = T r / J: a P2 element carries
+# the tube's linear tau(r) exactly, so what is left is the nodal averaging and the curved faces' chords
+TUBE_SHEAR_TOLERANCE = 0.02
+
+
+def _tube_shear_error(vtu, params, reference_scale: float = 1.0) -> float:
+    """Largest |von Mises - sqrt(3) T r / J| / (sqrt(3) T r_o / J) over the field's nodes of the mid-tube, away
+    from the diaphragm and the loaded band by 10 walls."""
+    import pyvista as pv
+    fc, T = params.flexspline_cup, params.gear.output_torque_Nmm
+    ro, ri = fc.pitch_diameter_mm / 2, fc.pitch_diameter_mm / 2 - fc.wall_thickness_mm
+    J = math.pi / 2 * (ro ** 4 - ri ** 4)
+    mesh = pv.read(str(vtu))
+    x, vm = np.asarray(mesh.points, float), np.asarray(mesh.point_data["von_mises_MPa"], float)
+    band_z = fc.length_mm - 0.2 * fc.pitch_diameter_mm
+    mid = (x[:, 2] > 10 * fc.wall_thickness_mm + 10.0) & (x[:, 2] < band_z - 10 * fc.wall_thickness_mm)
+    assert mid.sum() > 50
+    exact = reference_scale * math.sqrt(3) * T * np.hypot(x[mid, 0], x[mid, 1]) / J
+    return float(np.abs(vm[mid] - exact).max() / (math.sqrt(3) * T * ro / J))
+
+
+def test_cup_headline_field_is_the_3d_cup_meshed_once_at_the_finest_size(params, monkeypatch, tmp_path):
+    """With the patch on the section, the stress picture's field is the 3D cup solved on one mesh (the finest),
+    written at the design torque; its mid-tube is Saint-Venant's tube, and a reference 5 % off is caught."""
+    from strainwave.fea.skeleton import Series
+    sizes = []
+    real = cup_torsion.mesh_for_study
+
+    def recorded(part, **kw):
+        sizes.append(kw["h_mm"])
+        return real(part, **kw)
+    monkeypatch.setattr(cup_torsion, "mesh_for_study", recorded)
+    h = cup_torsion.default_size_mm(params, True)     # --quick's headline size
+    variant = cup_torsion.CupTorsion(params, 2, h, 1.4, 1.12, False, section_cache=tmp_path)
+    part = variant.build()
+    coarse = variant.solve(part, "section", 4 * cup_torsion.section_fine_mm(params, True), 2, True, lambda m: None)
+    assert sizes == [h] and coarse.fields["solution"].md.quality.dofs > 0
+    files = variant.write_fields({"section": Series("section", (coarse,) * 3)}, tmp_path / "cup.vtu",
+                                 variant.load(part))
+    assert [f.name for f in files] == ["cup.vtu", "cup_cracked.vtu"]
+    assert _tube_shear_error(files[0], params) <= TUBE_SHEAR_TOLERANCE
+    assert _tube_shear_error(files[0], params, reference_scale=1.05) > TUBE_SHEAR_TOLERANCE
+    variant = cup_torsion.CupTorsion(params, 2, h, 1.4, 1.12, False, solid_field=False, section_cache=tmp_path)
+    assert "solution" not in variant.solve(part, "section", 4 * cup_torsion.section_fine_mm(params, True), 2, True,
+                                           lambda m: None).fields and sizes == [h]

@@ -326,7 +326,8 @@ class _Separable:
 
     def _live_weights(self, rhs: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
         """argmin |R w - rhs| over lo <= w <= hi: the unconstrained optimum where it is inside the box (the problem
-        is convex), else the optimum with the lower bounds only (NNLS from lo), else the bounded one (BVLS)."""
+        is convex), else the optimum with the lower bounds only (NNLS from lo), else (or when NNLS stalls) the bounded
+        one (BVLS)."""
         with np.errstate(all="ignore"):
             try:
                 w = solve_triangular(self.R, rhs)
@@ -334,9 +335,12 @@ class _Separable:
                 w = np.full(len(lo), np.nan)
         if np.all((w >= lo) & (w <= hi)):
             return w
-        w = lo + nnls(self.R, rhs - self.R @ lo)[0]
-        if np.all(w <= hi):
-            return w
+        try:
+            w = lo + nnls(self.R, rhs - self.R @ lo)[0]
+            if np.all(w <= hi):
+                return w
+        except RuntimeError:        # scipy's NNLS can stall at its iteration cap on a well-posed problem: BVLS solves it
+            pass
         return np.clip(lsq_linear(self.R, rhs, bounds=(lo, hi), method="bvls").x, lo, hi)
 
     def residual(self, residual, x: np.ndarray) -> np.ndarray:

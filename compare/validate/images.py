@@ -218,6 +218,9 @@ def render_stress(vtu: Path, png: Path, *, label: str, at: StressAtRated, marks:
         if p.tip_peak_von_mises_MPa is not None:   # the singular crack tip: left out of the range, said apart
             lines.append(f"crack tip {p.tip_peak_von_mises_MPa:.4g} MPa: singular, within {p.tip_radius_mm:.3g} mm "
                          "of the front, left out of the factor")
+        if p.corner_peak_von_mises_MPa is not None:
+            lines.append(f"sharp corner {p.corner_peak_von_mises_MPa:.4g} MPa: singular, within "
+                         f"{p.corner_radius_mm:.3g} mm of it, left out of the factor")
         top = colour_top(np.asarray(mesh.point_data[names.von_mises], float), p.peak_von_mises_MPa)
         if top < p.peak_von_mises_MPa:
             lines.append(f"colours to {top:.4g} MPa, the {SPIKE_PERCENTILE:g}th percentile (white above): a local "

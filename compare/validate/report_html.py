@@ -111,7 +111,7 @@ def _design_section(doc: dict) -> list[str]:
              f"({escape(design['required_source'])}).</p>",
              _table(rt.DESIGN_COLUMNS, [rt.design_row(f) for f in design["factors"]], result_col=5,
                     table_id="design-table")]
-    tips = [t for t in (rt.tip_line(c, s) for c, s in doc.get("stress_at_rated", {}).items()) if t]
+    tips = [t for t in (rt.singular_line(c, s) for c, s in doc.get("stress_at_rated", {}).items()) if t]
     if tips:
         parts.append('<ul class="tip">' + "".join(f"<li>{escape(t)}</li>" for t in tips) + "</ul>")
     return parts
@@ -130,7 +130,7 @@ def _component_section(doc: dict, component: str, title: str, root, views, ramp)
         parts.append(f'<p class="notes">{escape(inputs["mesh_note"])}</p></div>')
     if component in rated:
         parts.append(f"<p><b>Stress at the rated load</b> {escape(rt.rated_sentence(rated[component]))}</p>")
-        tip = rt.tip_line(component, rated[component])
+        tip = rt.singular_line(component, rated[component])
         if tip:
             parts.append(f'<p class="tip">{escape(tip)}</p>')
     parts.append(f'<h3 id="checks-{component}">Checks</h3>')

@@ -68,13 +68,21 @@ def design_row(f: dict) -> tuple[str, ...]:
                                                                                   else ""))
 
 
-def tip_line(component: str, s: dict) -> str | None:
-    """The crack tip's singular peak, shown apart from the design stress (None without one)."""
-    if s.get("tip_peak_von_mises_MPa") is None:
+def singular_line(component: str, s: dict) -> str | None:
+    """The singular peaks of a crack tip and of a sharp re-entrant edge, shown apart from the design stress (None
+    without either)."""
+    parts = []
+    if s.get("tip_peak_von_mises_MPa") is not None:
+        parts.append(f"crack-tip peak {s['tip_peak_von_mises_MPa']:.4g} MPa at {point(s['tip_peak_location_mm'])} mm, "
+                     f"within {s['tip_radius_mm']:.3g} mm of the crack front")
+    if s.get("corner_peak_von_mises_MPa") is not None:
+        parts.append(f"peak {s['corner_peak_von_mises_MPa']:.4g} MPa at {point(s['corner_peak_location_mm'])} mm, "
+                     f"within {s['corner_radius_mm']:.3g} mm of a sharp re-entrant edge (the model has no fillet "
+                     "there; a real fillet's radius sets its stress)")
+    if not parts:
         return None
-    return (f"{component}: crack-tip peak {s['tip_peak_von_mises_MPa']:.4g} MPa at {point(s['tip_peak_location_mm'])} "
-            f"mm, within {s['tip_radius_mm']:.3g} mm of the crack front: singular (it grows with refinement), left "
-            "out of the safety factor and the colour range")
+    return (f"{component}: {'; '.join(parts)}: singular (it grows with refinement), left out of the safety factor "
+            "and the colour range")
 
 
 def run_line(doc: dict) -> str:

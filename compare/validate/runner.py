@@ -52,8 +52,8 @@ def _describe(case: Case) -> str:
     return f"{case.study}{depth}"
 
 
-# Wall-time limit of one case. --quick promises well under a minute for the whole run, so a quick case
-# beyond 150 s means the study ignored ``quick``; a full case beyond 15 min would blow the 3-minute goal.
+# Wall-time limit of one case, far above any case's cost on a loaded machine: past it the study ignored ``quick``
+# or hangs.
 CASE_TIMEOUT_S = {True: 150.0, False: 900.0}
 
 
@@ -87,7 +87,7 @@ def run_case(case: Case, params, *, fields_dir: Path, cache: ResultCache, quick:
         progress(f"  {case.label}: FAILED after {child.seconds:.1f} s ({child.error})")
         return CaseOutcome(case, None, child.seconds, False, child.error)
     result = StudyResult.from_dict(child.result)
-    # the fields a reader opens are at the load the report states (issue 40), and say so in their FieldData; a
+    # the fields a reader opens are at the load the report states, and say so in their FieldData; a
     # study with no rated load of its own (wg-bearing: solved at its rated loads) keeps them as solved
     try:
         rated = rated_load_of(case.study, params, result)

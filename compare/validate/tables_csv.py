@@ -52,8 +52,8 @@ def gci_rows(doc: dict) -> list[dict]:
 
 STRESS_FIELDS = ("component", "load", "rated_load", "load_unit", "solved_load", "scale", "peak_von_mises_MPa", "x_mm",
                  "y_mm", "z_mm", "peak_on", "peak_displacement_mm", "fatigue_limit_MPa", "safety_factor",
-                 "required_safety_factor", "design_passed", "tip_radius_mm", "tip_peak_von_mises_MPa", "field_file",
-                 "note")
+                 "required_safety_factor", "design_passed", "tip_radius_mm", "tip_peak_von_mises_MPa", "corner_radius_mm",
+                 "corner_peak_von_mises_MPa", "field_file", "note")
 
 
 def stress_rows(doc: dict) -> list[dict]:
@@ -69,6 +69,8 @@ def stress_rows(doc: dict) -> list[dict]:
                      "fatigue_limit_MPa": s["fatigue_limit_MPa"], "safety_factor": s["safety_factor"],
                      "required_safety_factor": factor.get("required"), "design_passed": factor.get("passed"),
                      "tip_radius_mm": s.get("tip_radius_mm"), "tip_peak_von_mises_MPa": s.get("tip_peak_von_mises_MPa"),
+                     "corner_radius_mm": s.get("corner_radius_mm"),
+                     "corner_peak_von_mises_MPa": s.get("corner_peak_von_mises_MPa"),
                      "field_file": s["field_file"], "note": s["note"]})
     return rows
 
