@@ -29,7 +29,8 @@ def solve(params, case, cache_dir) -> tuple[dict, float, dict]:
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--gear", choices=sorted(GEARS), default="default")
-    ap.add_argument("--over", type=float, nargs="+", default=None, help="patch radius over max(a, c) (default: the code's)")
+    ap.add_argument("--over", type=float, nargs="+", default=None,
+                    help="patch radius over max(a, c) (default: the code's)")
     ap.add_argument("--depth", type=float, nargs="+", default=None, help="only these depths of the plan")
     args = ap.parse_args()
     import strainwave.fea.bearing_ring as br

@@ -296,7 +296,8 @@ class BearingRing(StudyVariant):
 
     study: ClassVar[str] = STUDY
     elements_per_cell: ClassVar[float] = 10.2
-    cpu_s_per_element: ClassVar[tuple[float, float]] = (1.1e-4, 2.2e-4)   # full, --quick: validate's schedule (decisions 049, 050)
+    # full, --quick: validate's schedule (decisions 049, 050)
+    cpu_s_per_element: ClassVar[tuple[float, float]] = (1.1e-4, 2.2e-4)
     default_size_mm = staticmethod(default_size_mm)
     rated_load: ClassVar[str] = "strainwave.analytic.rated_load:rated_radial_force"
     stress_field_suffix: ClassVar[str] = "_uncracked"   # a crack tip's peak is singular

@@ -209,7 +209,8 @@ def test_the_uncracked_ring_is_read_back_for_another_depth_and_solved_again_for_
         raise AssertionError("meshed again")
     monkeypatch.setattr(br, "mesh_part_isolated", no_mesh)
     monkeypatch.setattr(br, "build_plain_part", lambda p: _ring(None))
-    deeper = params.with_value("wave_generator.bearing_crack_depth_mm", 2 * params.wave_generator.bearing_crack_depth_mm)
+    deeper = params.with_value("wave_generator.bearing_crack_depth_mm",
+                               2 * params.wave_generator.bearing_crack_depth_mm)
     ring = br.global_ring(deeper, variant.lame, force_N=force, h_mm=H_MM, contact_mm=contact_mm, order=2,
                           cache_dir=cache)
     assert ring.compliance_mm_per_N == study["radial_compliance_mm_per_N"].value
