@@ -292,7 +292,8 @@ class BearingRing(StudyVariant):
     """The skeleton's hooks for the bearing ring: one 3D series. Every length of the size field scales with
     the refinement: global size h, contact size min(h, b'/3) r^k and crack-front size a/3 r^k, so the GCI
     covers the contact zone and the crack front too. With a crack each mesh carries the seam and is solved
-    tied and opened (faces in frictionless contact) from one factorisation."""
+    tied and opened (faces in frictionless contact) from one factorisation: of the whole ring, or, when the
+    uncracked ring is shared (``shares_uncracked``), of a patch around the crack."""
 
     study: ClassVar[str] = STUDY
     elements_per_cell: ClassVar[float] = 10.2
