@@ -16,6 +16,9 @@ surface opened (fea.crack_seam.open_crack). One factorisation of the opened mesh
 the crack pairs' openings (fea.face_schur.SeamSystem), gives both: every pair tied is the seam closed (the
 uncracked ring), the pairs in frictionless contact the cracked one, and the difference is the Schur complement's
 open block's own term, so the far-field discretization error cancels in it.
+With a cache folder (validate's full plan: several depths per gear) the uncracked ring is solved once per
+refinement and kept there, and each depth solves only a patch of its seam mesh around the crack, its cut held at
+the uncracked ring's field (fea.bearing_patch): the same Schur complement term, on a fraction of the dofs.
 """
 from __future__ import annotations
 
@@ -90,23 +93,32 @@ def ring_refine(part, params, *, size_mm, refine_points, local_mm, contact_mm=No
 def loaded_ring(md, part, params, lame, *, force_N) -> tuple:
     """(skfem mesh, scalar basis, K, f, fixed dofs) of ``md``: the Hertzian patch (resultant F_r) and the bore
     fixed."""
-    a_ax, b_circ = params.wave_generator.contact_semi_axes_mm
-    contact_name = "contact" if "contact" in part.named_faces else "race"
-    centre = contact_centre_mm(part, contact_name)
     sk = to_skfem(md)
     sb = scalar_basis(sk.mesh, sk.element)
     K = elasticity_stiffness(sb, lame)
+    f, _ = race_load(md, sk, part, params, force_N=force_N)
+    fixed = (3 * group_dofs(sk, md, "bore")[:, None] + np.arange(3)).ravel()
+    return sk, sb, K, f, fixed
+
+
+def race_load(md, sk, part, params, *, force_N, scale=None) -> tuple[np.ndarray, float]:
+    """(f, scale): the Hertzian pressure on ``md``'s contact facets, times ``scale``; None: the scale that makes
+    its resultant F_r exactly (the quadrature of the sqrt profile's edge), which a patch takes from its ring."""
+    a_ax, b_circ = params.wave_generator.contact_semi_axes_mm
+    contact_name = "contact" if "contact" in part.named_faces else "race"
+    centre = contact_centre_mm(part, contact_name)
     race_nodes = group_dofs(sk, md, contact_name)
-    r_race = float(np.median(np.hypot(*sb.doflocs[:2, race_nodes])))
+    r_race = float(np.median(np.hypot(*sk.doflocs[:2, race_nodes])))
     p = hertz_pressure(force_N, (a_ax, b_circ), centre, r_race)
     # integrated on the facet triangles (FacetBasis's inverse mapping fails on curved sliver tets), degree 6
     # for the sqrt profile's edge
     f = SurfaceQuadrature.of(md, contact_name, order=6).load_vector(
-        lambda x: -p(x) * np.stack([x[0], x[1], 0 * x[2]]) / np.hypot(x[0], x[1]), sk.node_to_dof, 3, 3 * sb.N)
-    fx = f[0::3].sum() * np.cos(np.arctan2(centre[1], centre[0])) + f[1::3].sum() * np.sin(np.arctan2(centre[1], centre[0]))
-    f *= force_N / -fx                  # the resultant is F_r exactly (quadrature of the sqrt profile)
-    fixed = (3 * group_dofs(sk, md, "bore")[:, None] + np.arange(3)).ravel()
-    return sk, sb, K, f, fixed
+        lambda x: -p(x) * np.stack([x[0], x[1], 0 * x[2]]) / np.hypot(x[0], x[1]), sk.node_to_dof, 3,
+        3 * sk.doflocs.shape[1])
+    if scale is None:
+        psi = np.arctan2(centre[1], centre[0])
+        scale = force_N / -(f[0::3].sum() * np.cos(psi) + f[1::3].sum() * np.sin(psi))
+    return f * scale, float(scale)
 
 
 def compliance_on_mesh(md, part, params, lame, *, force_N, method=SOLVER, keep_field=False) -> tuple:
@@ -153,6 +165,59 @@ def crack_compliances_on_mesh(md, opened, part, params, lame, *, force_N, keep_f
     u0 = np.zeros(3 * sk0.node_to_dof.size)
     u0.reshape(-1, 3)[sk0.node_to_dof] = tied.reshape(-1, 3)[sk.node_to_dof[:sk0.node_to_dof.size]]
     return c0, c0 + delta, delta, info, (md, sk0, u0), (opened, sk, res.u)
+
+
+# Patch radius over the crack's larger half-size max(a, c): its cut held rigid costs O((size / radius)^2)
+# (docs/decisions/050-bearing-crack-patch.md)
+PATCH_OVER_CRACK = 4.0
+
+
+def crack_centre_mm(part) -> np.ndarray:
+    """The crack's mouth centre: its front's points at the race (the seam's plane point at the surface)."""
+    front = np.asarray(part.crack_front_mm, float)
+    r = np.hypot(front[:, 0], front[:, 1])
+    mouth = front[r >= r.max() - 1e-9 * r.max()]
+    return mouth.mean(axis=0)
+
+
+def crack_half_size_mm(part) -> float:
+    """max(a, c): the front's farthest point from the mouth centre."""
+    return float(np.linalg.norm(np.asarray(part.crack_front_mm, float) - crack_centre_mm(part), axis=1).max())
+
+
+def global_ring(params, lame, *, force_N, h_mm, contact_mm, order, cache_dir=None, progress=lambda m: None):
+    """The uncracked ring (``bearing_patch.GlobalRing``) meshed at global size ``h_mm`` and contact size
+    ``contact_mm``; ``cache_dir``: kept there and read back by every later call with the same parameters but
+    the crack's depth (the ring carries no crack), sizes and order."""
+    from strainwave.fea.bearing_patch import GlobalRing, read_global, write_global
+    path = None if cache_dir is None else _global_file(params, force_N, h_mm, contact_mm, order, cache_dir)
+    if path is not None and path.exists():
+        try:
+            return read_global(path)
+        except (OSError, KeyError, ValueError):
+            pass  # a damaged entry is solved again, never trusted
+    progress(f"{STUDY}: the uncracked ring, h = {h_mm:.3g} mm")
+    part = build_plain_part(params)
+    t0 = time.perf_counter()
+    md, size_factor = mesh_ring(part, params, size_mm=h_mm, order=order, refine_points=(), local_mm=h_mm,
+                                contact_mm=contact_mm)
+    t1 = time.perf_counter()
+    c0, info, (md, sk, u) = compliance_on_mesh(md, part, params, lame, force_N=force_N, keep_field=True)
+    _, scale = race_load(md, sk, part, params, force_N=force_N)
+    ring = GlobalRing(md, u, c0, dict(info, load_scale=scale, size_factor=size_factor),
+                      t1 - t0, time.perf_counter() - t1)
+    if path is not None:
+        write_global(path, ring)
+    return ring
+
+
+def _global_file(params, force_N, h_mm, contact_mm, order, cache_dir) -> Path:
+    from strainwave.cache import case_key
+    data = params.to_dict()
+    data["wave_generator"].pop("bearing_crack_depth_mm", None)     # the uncracked ring carries no crack
+    key = case_key("bearing-ring-uncracked", {"params": data, "force_N": force_N, "h_mm": h_mm,
+                                              "contact_mm": contact_mm, "order": order})
+    return Path(cache_dir) / f"bearing-ring-uncracked-{key}.npz"
 
 
 def mesh_ring(part, params, *, size_mm, order, refine_points, local_mm, contact_mm=None) -> tuple:
@@ -227,11 +292,13 @@ class BearingRing(StudyVariant):
     """The skeleton's hooks for the bearing ring: one 3D series. Every length of the size field scales with
     the refinement: global size h, contact size min(h, b'/3) r^k and crack-front size a/3 r^k, so the GCI
     covers the contact zone and the crack front too. With a crack each mesh carries the seam and is solved
-    tied and opened (faces in frictionless contact) from one factorisation."""
+    tied and opened (faces in frictionless contact) from one factorisation: of the whole ring, or, when the
+    uncracked ring is shared (``shares_uncracked``), of a patch around the crack."""
 
     study: ClassVar[str] = STUDY
     elements_per_cell: ClassVar[float] = 10.2
-    cpu_s_per_element: ClassVar[tuple[float, float]] = (1.6e-4, 2.2e-4)   # full, --quick: validate's schedule (decision 049)
+    # full, --quick: validate's schedule (decisions 049, 050)
+    cpu_s_per_element: ClassVar[tuple[float, float]] = (1.1e-4, 2.2e-4)
     default_size_mm = staticmethod(default_size_mm)
     rated_load: ClassVar[str] = "strainwave.analytic.rated_load:rated_radial_force"
     stress_field_suffix: ClassVar[str] = "_uncracked"   # a crack tip's peak is singular
@@ -240,11 +307,14 @@ class BearingRing(StudyVariant):
     element_text: ClassVar[str] = ("P{order} tetrahedra (curved, isoparametric); crack as a seam with frictionless "
                                    "crack-face contact")
     image_marks: ClassVar[tuple] = (("bore",), "contact", "F_r")
+    shares_cache: ClassVar[bool] = True     # the uncracked ring, the same in every crack case of a gear
     params: object
     order: int
     h_fine_mm: float
     force_N: float
     crack_depth_mm: float | None
+    cache_dir: Path | None = None
+    quick: bool = False
 
     @classmethod
     def volume_and_wall(cls, params) -> tuple[float, float]:
@@ -301,8 +371,9 @@ class BearingRing(StudyVariant):
     def solve(self, part, series, h_mm, k, keep_fields, progress) -> MeshSolve:
         contact_mm, local_mm = self._local_sizes_mm(k)
         cracked = self.crack_depth_mm is not None
-        what = f"a = {self.crack_depth_mm:g} mm: one mesh, solved uncracked and with the crack opened" if cracked \
-            else "uncracked"
+        what = "uncracked" if not cracked else f"a = {self.crack_depth_mm:g} mm: " + (
+            "the crack's patch on the uncracked ring" if self.shares_uncracked else
+            "one mesh, solved uncracked and with the crack opened")
         progress(f"{STUDY}: {what}, h = {h_mm:.3g} mm")
         t0 = time.perf_counter()
         md, size_factor = mesh_ring(part, self.params, size_mm=h_mm, order=self.order,
@@ -310,7 +381,10 @@ class BearingRing(StudyVariant):
                                     local_mm=local_mm if cracked else h_mm, contact_mm=contact_mm)
         timings = {"mesh": time.perf_counter() - t0}
         t1 = time.perf_counter()
-        if cracked:
+        if cracked and self.shares_uncracked:
+            values, fields, solver = self._cracked(part, md, h_mm, contact_mm, keep_fields, progress)
+            timings.update(solver.pop("timings"))
+        elif cracked:
             # the opened crack's faces may separate but not interpenetrate (crack_contact)
             opened = open_crack_for(md, STUDY)
             c0, c1, delta, info, field0, field1 = crack_compliances_on_mesh(
@@ -327,6 +401,38 @@ class BearingRing(StudyVariant):
         solver = dict(solver, size_factor=size_factor)
         return MeshSolve(h_mm * size_factor, values, md.quality, timings, solver,
                          fields if keep_fields else {})
+
+    @property
+    def shares_uncracked(self) -> bool:
+        """The crack by the patch on the uncracked ring kept in the cache folder, which several depths share
+        (validate's full plan); without a folder (one solve) or with --quick (one depth) nothing is shared and
+        the whole ring's seam, one factorisation per mesh, costs less."""
+        return self.cache_dir is not None and not self.quick
+
+    def _cracked(self, part, md, h_mm, contact_mm, keep_fields, progress) -> tuple[dict, dict, dict]:
+        """(values, fields, solver facts with their "timings"): the uncracked ring on this refinement (solved
+        once per run: ``global_ring``), the crack from the patch of ``md`` around it (``bearing_patch``)."""
+        from strainwave.fea.bearing_patch import patch_release
+        ring = global_ring(self.params, self.lame, force_N=self.force_N, h_mm=h_mm, contact_mm=contact_mm,
+                           order=self.order, cache_dir=self.cache_dir, progress=progress)
+        t0 = time.perf_counter()
+        scale = ring.solver["load_scale"]
+
+        def load(opened):
+            return race_load(opened, to_skfem(opened), part, self.params, force_N=self.force_N, scale=scale)[0]
+        # the opened crack's faces may separate but not interpenetrate (crack_contact)
+        rel = patch_release(md, crack_centre_mm(part), PATCH_OVER_CRACK * crack_half_size_mm(part), self.lame,
+                            ring.displacement(), force_N=self.force_N, study=STUDY, load=load, keep_field=keep_fields)
+        c0 = ring.compliance_mm_per_N
+        values = {COMPLIANCE: c0, CRACKED: c0 + rel.delta_mm_per_N, DELTA: rel.delta_mm_per_N}
+        fields = {"uncracked": ring.field(), "cracked": rel.field} if keep_fields else {}
+        timings = {"uncracked_ring": ring.mesh_s + ring.solve_s, "patch": time.perf_counter() - t0}
+        # the cracked mesh's facts; the uncracked ring's beside them
+        solver = dict(rel.info, dofs_total=md.quality.dofs, uncracked_dofs=ring.solver["dofs"],
+                      uncracked_nodes=int(ring.md.nodes_mm.shape[0]),
+                      compliance_without_contact_mm_per_N=c0 + rel.info["delta_without_contact_mm_per_N"],
+                      uncracked_method=ring.solver["method"], timings=timings)
+        return values, fields, solver
 
     def quantities(self, series: Mapping[str, Series]) -> dict:
         s = series["solid"]
@@ -376,8 +482,11 @@ class BearingRing(StudyVariant):
 
 
 def run(params, *, force_N: float, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None,
-        progress=lambda m: None, quick=False) -> StudyResult:
+        progress=lambda m: None, quick=False, cache_dir: Path | None = None) -> StudyResult:
     """Radial compliance at the radial force ``force_N`` on three meshes (GCI); with a crack also the
-    cracked compliance and their difference on each mesh. None means uncracked, as in every study."""
+    cracked compliance and their difference on each mesh. None means uncracked, as in every study.
+    ``cache_dir``: the uncracked ring's solutions are kept there and read back (``global_ring``), each crack
+    solved on a patch around it (``BearingRing.shares_uncracked``)."""
     h = mesh_size_mm or default_size_mm(params, quick)
-    return run_variant(BearingRing(params, order, h, float(force_N), crack_depth_mm), vtu=vtu, progress=progress)
+    return run_variant(BearingRing(params, order, h, float(force_N), crack_depth_mm, cache_dir, quick), vtu=vtu,
+                       progress=progress)

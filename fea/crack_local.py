@@ -76,6 +76,12 @@ def interpolate_p2(doflocs: np.ndarray, element_dofs: np.ndarray, u: np.ndarray,
     elem = doflocs[:, element_dofs].transpose(2, 1, 0)                # (nel, nloc, d)
     centroids = elem[:, :d + 1].mean(axis=1)
     reach = np.linalg.norm(elem - centroids[:, None], axis=2).max(axis=1)
+    # an element whose padded box misses the points' box holds none: a patch's points need not search the part
+    pad = OUTSIDE_TOL * reach[:, None]
+    keep = np.all((elem.min(axis=1) - pad <= pts.max(axis=0)) & (elem.max(axis=1) + pad >= pts.min(axis=0)), axis=1)
+    if not keep.any():
+        raise ValueError(f"interpolate_p2: {pts.shape[0]} points lie outside the mesh")
+    element_dofs, elem, centroids, reach = element_dofs[:, keep], elem[keep], centroids[keep], reach[keep]
     # every element whose node ball can hold the point (flat wall elements: the holder's centroid may be far)
     near = cKDTree(centroids).query_ball_point(pts, r=float(reach.max()) * (1.0 + OUTSIDE_TOL))
     pi = np.repeat(np.arange(pts.shape[0]), [len(c) for c in near])

@@ -1,8 +1,11 @@
 """Bearing inner ring (seed 000) radial compliance under the Hertzian contact load, with and without a
 surface crack. The ring is built here from build123d primitives (bore 60, race 70 mm: t_i = 10 mm as in
 the seed's example) so the FEA is tested independently of geometry/; meshes are coarse on purpose.
-One study run (three meshes, uncracked and a 3 mm crack, VTU output) is shared by the tests: ~10 s."""
+One study run (three meshes, uncracked and a 3 mm crack on its patch, VTU output) is shared by the tests; the
+whole ring's seam route (no cache folder) and the plain ring run once more each."""
 from __future__ import annotations
+
+import math
 
 import numpy as np
 import pytest
@@ -42,8 +45,10 @@ def study(tmp_path_factory):
     vtu = tmp_path_factory.mktemp("bearing") / "ring.vtu"
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(br, "build_seam_part", lambda params, a: _ring(a))
+        mp.setattr(br, "build_plain_part", lambda params: _ring(None))      # the uncracked ring the patch reads
+        # a cache folder, as validate's full plan passes: the crack on a patch of the uncracked ring
         return br.run(load_params(), mesh_size_mm=H_MM, order=2, crack_depth_mm=A_MM, vtu=vtu,
-                      **bearing_ring_load(load_params()))
+                      cache_dir=vtu.parent / "cache", **bearing_ring_load(load_params()))
 
 
 def test_radial_force_is_seed_000_and_the_study_states_it(study):
@@ -119,11 +124,14 @@ def test_vtu_fields_written(study):
     grid = pv.read(str(cracked))
     assert {"displacement_mm", "von_mises_MPa", "stress_MPa"} <= set(grid.point_data.keys())
     npts = grid.n_points
-    # the uncracked file holds the finest mesh, every node (P2 cells keep their mid nodes); the cracked
-    # file the same mesh with the crack opened: more nodes (the duplicated crack-face nodes)
+    # the uncracked file holds the uncracked ring's finest mesh, every node (P2 cells keep their mid nodes); the
+    # cracked file the crack's patch of the seam mesh, opened: each crack pair's two nodes at one point
     n_unc = pv.read(str(uncracked)).n_points
-    assert n_unc == study.mesh.nodes
-    assert npts == study.solver["dofs_cracked"] // 3 and npts > n_unc
+    assert n_unc == study.solver["uncracked_nodes"] and npts < n_unc
+    _, counts = np.unique(np.round(np.asarray(grid.points, float), 9), axis=0, return_counts=True)
+    assert (counts == 2).sum() == study.solver["contact_pairs"] and counts.max() == 2
+    radius = study.solver["patch_radius_mm"]
+    assert np.linalg.norm(np.asarray(grid.points) - [R_RACE, 0.0, WIDTH / 2], axis=1).max() < 1.5 * radius
     # the arrays are zlib-compressed binary (fea/fields.py): read them as ParaView would
     import pyvista as pv
     vm = np.asarray(pv.read(str(cracked)).point_data["von_mises_MPa"], dtype=np.float64)
@@ -153,9 +161,10 @@ def test_isolated_meshing_survives_a_native_abort(monkeypatch):
         mi.mesh_part_isolated(None, size_mm=2.0, order=2, refine=[], factors=(1.0, 1.03))
 
 
-def test_no_crack_means_uncracked_and_agrees_with_the_seam_runs_uncracked_solve(study):
+def test_no_crack_means_uncracked_and_is_the_crack_runs_uncracked_ring(study):
     """crack_depth_mm=None is the uncracked ring (as for every study), not the parameter file's crack: only
-    the radial compliance, on plain meshes; it agrees with the seam run's uncracked solve within 3 x both GCIs."""
+    the radial compliance, on plain meshes. The crack run reads the same uncracked ring (``global_ring``), so its
+    uncracked compliance is this one; its cracked one adds the patch's crack term."""
     import strainwave.fea.bearing_ring as br
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(br, "build_plain_part", lambda params: _ring(None))
@@ -163,4 +172,53 @@ def test_no_crack_means_uncracked_and_agrees_with_the_seam_runs_uncracked_solve(
                        **bearing_ring_load(load_params()))
     assert set(plain.quantities) == {"radial_compliance_mm_per_N"} and plain.crack is None
     a, b = plain["radial_compliance_mm_per_N"], study["radial_compliance_mm_per_N"]
-    assert abs(a.value - b.value) <= 3.0 * (a.uncertainty + b.uncertainty)
+    assert b.convergence.values == pytest.approx(a.convergence.values, rel=1e-9)
+    cracked, delta = study["cracked_radial_compliance_mm_per_N"], study["delta_radial_compliance_mm_per_N"]
+    assert np.allclose(cracked.convergence.values, np.add(a.convergence.values, delta.convergence.values), rtol=1e-12)
+
+
+def test_the_whole_rings_seam_agrees_with_the_patch(study):
+    """Without a cache folder the crack is the whole ring's seam (one factorisation per mesh): its crack term agrees
+    with the patch's within the root-sum-square of their uncertainties, and its uncracked compliance (the tied seam
+    mesh) with the plain ring's within 3 x both GCIs."""
+    import strainwave.fea.bearing_ring as br
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(br, "build_seam_part", lambda params, a: _ring(a))
+        whole = br.run(load_params(), mesh_size_mm=H_MM, order=2, crack_depth_mm=A_MM,
+                       **bearing_ring_load(load_params()))
+    assert whole.solver["method"].endswith("-schur") and study.solver["method"].endswith("-schur-patch")
+    a, b = whole["delta_radial_compliance_mm_per_N"], study["delta_radial_compliance_mm_per_N"]
+    assert abs(a.value - b.value) <= math.hypot(a.uncertainty, b.uncertainty)
+    c, d = whole["radial_compliance_mm_per_N"], study["radial_compliance_mm_per_N"]
+    assert abs(c.value - d.value) <= 3.0 * (c.uncertainty + d.uncertainty)
+    # the same contact state: the crack at the Hertz centre mostly shut in both
+    assert whole.solver["contact_closed_pairs"] > 0.8 * whole.solver["contact_pairs"]
+
+
+def test_the_uncracked_ring_is_read_back_for_another_depth_and_solved_again_for_another_ring(study, monkeypatch):
+    """The study's cache folder holds the uncracked ring per refinement (``global_ring``): a case at another crack
+    depth reads it back without meshing; another contact size or another ring is not in it."""
+    import strainwave.fea.bearing_ring as br
+    params = load_params()
+    force = bearing_ring_load(params)["force_N"]
+    variant = br.BearingRing(params, 2, H_MM, force, A_MM)
+    cache = study.fields[0].parent / "cache"
+    contact_mm = variant._local_sizes_mm(0)[0]
+
+    def no_mesh(*args, **kwargs):
+        raise AssertionError("meshed again")
+    monkeypatch.setattr(br, "mesh_part_isolated", no_mesh)
+    monkeypatch.setattr(br, "build_plain_part", lambda p: _ring(None))
+    deeper = params.with_value("wave_generator.bearing_crack_depth_mm",
+                               2 * params.wave_generator.bearing_crack_depth_mm)
+    ring = br.global_ring(deeper, variant.lame, force_N=force, h_mm=H_MM, contact_mm=contact_mm, order=2,
+                          cache_dir=cache)
+    assert ring.compliance_mm_per_N == study["radial_compliance_mm_per_N"].value
+    with pytest.raises(AssertionError, match="meshed again"):
+        br.global_ring(params, variant.lame, force_N=force, h_mm=H_MM, contact_mm=1.1 * contact_mm, order=2,
+                       cache_dir=cache)
+    thicker = params.with_value("wave_generator.bearing_inner_ring_thickness_mm",
+                                1.1 * params.wave_generator.bearing_inner_ring_thickness_mm)
+    with pytest.raises(AssertionError, match="meshed again"):
+        br.global_ring(thicker, variant.lame, force_N=force, h_mm=H_MM, contact_mm=contact_mm, order=2,
+                       cache_dir=cache)
