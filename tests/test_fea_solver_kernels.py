@@ -1,10 +1,10 @@
-"""Solver kernels: ``solver.condense`` is K[keep][:, keep]; ``pmultigrid.pcg`` with ``v_cycle`` solves SPD systems;
+"""Solver kernels: ``solver.condense`` is K[keep][:, keep]; ``solver.upper_triangle`` is scipy's triu; ``pmultigrid.pcg`` with ``v_cycle`` solves SPD systems;
 the fused fine level (``fused_sweeps``) equals the pyamg / scipy path it replaces."""
 import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from strainwave.fea.solver import condense
+from strainwave.fea.solver import condense, upper_triangle
 
 
 @pytest.mark.parametrize("n", [1, 7, 60, 300])
@@ -19,6 +19,38 @@ def test_condense_equals_fancy_indexing(n):
         assert abs(got - want).sum() == 0.0
         assert got.has_sorted_indices or got.nnz == 0
 
+
+
+def _unsorted_with_duplicates_and_zeros(n: int) -> sp.csr_matrix:
+    """A CSR matrix built from its arrays: unsorted indices, repeated entries and explicit zeros."""
+    rng = np.random.default_rng(n)
+    rows = np.sort(rng.integers(0, n, 6 * n))
+    cols = rng.integers(0, max(1, n // 3), 6 * n) * 3 % n         # few distinct columns: repeats in a row
+    vals = rng.standard_normal(6 * n)
+    vals[::7] = 0.0
+    indptr = np.concatenate([[0], np.cumsum(np.bincount(rows, minlength=n))])
+    A = sp.csr_matrix((vals, cols, indptr), shape=(n, n))
+    assert n < 7 or not A.has_canonical_format
+    return A
+
+
+@pytest.mark.parametrize("n", [1, 7, 60, 300])
+@pytest.mark.parametrize("make", ["sorted", "messy"])
+def test_upper_triangle_is_scipys_triu_bit_for_bit(n, make):
+    A = sp.random(n, n, density=0.08, random_state=n, format="csr") if make == "sorted" else \
+        _unsorted_with_duplicates_and_zeros(n)
+    got, want = upper_triangle(A), sp.triu(A, format="csr")
+    want.sort_indices()
+    assert got.has_canonical_format
+    for name in ("indptr", "indices", "data"):
+        np.testing.assert_array_equal(getattr(got, name), getattr(want, name))
+
+
+def test_upper_triangle_differs_from_a_perturbed_triangle():
+    A = sp.random(60, 60, density=0.08, random_state=3, format="csr")
+    got = upper_triangle(A).toarray()
+    assert not np.array_equal(got, sp.triu(A, k=1).toarray())       # the diagonal is kept
+    assert not np.array_equal(got, sp.tril(A).toarray())
 
 def test_condense_with_empty_rows_last():
     A = sp.csr_matrix(np.diag([1.0, 2.0, 0.0, 0.0]))
