@@ -187,3 +187,32 @@ def test_midline_of_a_friction_loop_is_the_elastic_compliance_not_the_secant():
     assert slope == pytest.approx(c, rel=1e-6) and err < 1e-6 * c
     straight, _ = midline_compliance(np.linspace(0, T_max, 50), c * np.linspace(0, T_max, 50))
     assert straight == pytest.approx(c, rel=1e-12)             # no loop: the plain slope
+
+
+def _fake_point(params, depth_mm):
+    """A stand-in for the section solves: the thick tube's closed form at the depth, 1 % GCI."""
+    value = tube_crack.thick_tube_flexibility(R_O, R_I, depth_mm, G)
+    return {"value": value, "uncertainty": 0.01 * value}
+
+
+def _failing_point(params, depth_mm):
+    raise RuntimeError("solved again")
+
+
+def test_shaft_curve_points_come_back_in_depth_order_and_from_the_cache(params, tmp_path, monkeypatch):
+    """The curve's points are solved on both cores where forking is safe and come back in depth order; the next
+    call reads every point from the cache and solves none; a point that fails is an error, not a gap."""
+    from strainwave.compare.diagnose import crack_sizing
+    from strainwave.compare.diagnose.parallel import usable_workers
+    monkeypatch.setattr(crack_sizing, "_curve_point", _fake_point)
+    said = []
+    curve = crack_sizing.shaft_curve_fea(params, tmp_path, progress=said.append)
+    wall = params.output_shaft.wall_mm
+    expected = [_fake_point(params, round(f * wall, 6))["value"] for f in crack_sizing.SHAFT_DEPTH_FRACTIONS]
+    assert curve.delta == tuple(expected)
+    assert curve.depths_mm == tuple(round(f * wall, 6) for f in crack_sizing.SHAFT_DEPTH_FRACTIONS)
+    assert ("on 2 processes" in said[0]) == (usable_workers() > 1)
+    monkeypatch.setattr(crack_sizing, "_curve_point", _failing_point)
+    assert crack_sizing.shaft_curve_fea(params, tmp_path).delta == curve.delta
+    with pytest.raises(RuntimeError, match="solved again"):
+        crack_sizing.shaft_curve_fea(params, tmp_path / "empty")

@@ -200,28 +200,54 @@ def shaft_curve_fea(params, cache_dir: Path | None = None,
     solved on demand at SHAFT_DEPTH_FRACTIONS of the wall on sections SHAFT_CURVE_DENSITY times finer than the
     full run's, and cached per point under ``cache_dir``."""
     from strainwave.cache import ResultCache, case_key
-    from strainwave.fea.shaft_axisym_study import section_delta
 
     shaft = params.output_shaft
     wall = 0.5 * (shaft.outer_diameter_mm - shaft.inner_diameter_mm)
     r_o = 0.5 * shaft.outer_diameter_mm
     cache = ResultCache(Path(cache_dir)) if cache_dir is not None else None
-    points = []
-    for k, frac in enumerate(SHAFT_DEPTH_FRACTIONS, 1):
-        a = round(frac * wall, 6)
-        key = case_key("shaft-crack-curve", {"params": params.to_dict(), "a_mm": a, "density": SHAFT_CURVE_DENSITY})
-        rec = cache.get(key) if cache else None
-        if rec is None:
-            progress(f"shaft crack curve: a = {a:g} mm ({k}/{len(SHAFT_DEPTH_FRACTIONS)})")
-            q = section_delta(params, a, density=SHAFT_CURVE_DENSITY)
-            rec = {"value": q.value, "uncertainty": q.uncertainty or 0.0}
-            if cache:
-                cache.put(key, rec)
-        points.append((a, rec["value"], rec["uncertainty"]))
+    depths = [round(frac * wall, 6) for frac in SHAFT_DEPTH_FRACTIONS]
+    keys = [case_key("shaft-crack-curve", {"params": params.to_dict(), "a_mm": a, "density": SHAFT_CURVE_DENSITY})
+            for a in depths]
+    records = {a: cache.get(key) if cache else None for a, key in zip(depths, keys)}
+    missing = [a for a in depths if records[a] is None]
+    for a, rec in zip(missing, _solve_points(params, missing, progress)):
+        records[a] = rec
+        if cache:
+            cache.put(keys[depths.index(a)], rec)
+    points = [(a, records[a]["value"], records[a]["uncertainty"]) for a in depths]
     return DeltaCurve("shaft", "rad/(N*mm)", tuple(p[0] for p in points), tuple(p[1] for p in points),
                       tuple(p[2] for p in points), wall,
                       f"FEA: output shaft, axisymmetric crack section ({SHAFT_CURVE_DENSITY:g}x the full run's mesh density)",
                       front_length_mm=lambda a: 2.0 * math.pi * (r_o - a))
+
+
+def _curve_point(params, depth_mm: float) -> dict:
+    from strainwave.fea.shaft_axisym_study import section_delta
+    q = section_delta(params, depth_mm, density=SHAFT_CURVE_DENSITY)
+    return {"value": q.value, "uncertainty": q.uncertainty or 0.0}
+
+
+def _solve_points(params, depths: list[float], progress: Callable[[str], None]) -> list[dict]:
+    """The curve's points at ``depths``, in order: on both cores where forking is safe (each point is its own
+    three section solves), else one after another."""
+    from strainwave.compare.diagnose.parallel import usable_workers
+    workers = min(usable_workers(), len(depths))
+    if workers < 2:
+        out = []
+        for k, a in enumerate(depths, 1):
+            progress(f"shaft crack curve: a = {a:g} mm ({k}/{len(depths)})")
+            out.append(_curve_point(params, a))
+        return out
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+    progress(f"shaft crack curve: {len(depths)} depths on {workers} processes")
+    with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as pool:
+        futures = [pool.submit(_curve_point, params, a) for a in depths]
+        out = []
+        for k, (a, future) in enumerate(zip(depths, futures), 1):
+            out.append(future.result())
+            progress(f"shaft crack curve: a = {a:g} mm ({k}/{len(depths)})")
+        return out
 
 
 SPECIMEN_COMPONENTS = {"output_shaft": ("shaft",), "flexspline_cup": ("cup",), "gear": ("shaft", "cup")}
