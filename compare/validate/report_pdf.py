@@ -15,12 +15,14 @@ from pathlib import Path
 
 from strainwave.io_atomic import atomic_path
 
-__all__ = ["CHROMIUM_FLAGS", "chromium", "print_pdf", "PDF_TIMEOUT_S"]
+__all__ = ["CHROMIUM_FLAGS", "PRINT_FLAGS", "chromium", "print_pdf", "PDF_TIMEOUT_S"]
 
 CHROMIUM_CANDIDATES = ("/usr/bin/chromium", "chromium", "chromium-browser", "google-chrome")
 CHROMIUM_FLAGS = ("--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
                   "--disable-background-networking", "--disable-component-update", "--disable-sync",
                   "--no-pdf-header-footer")
+# the print hides the WebGL canvases: without 3D APIs the page skips the software GL set-up and draws, same PDF
+PRINT_FLAGS = ("--disable-3d-apis",)
 PDF_TIMEOUT_S = 180.0
 
 
@@ -42,7 +44,7 @@ def print_pdf(html: Path, pdf: Path, *, timeout_s: float = PDF_TIMEOUT_S) -> Pat
     # limit of a socket path and Chromium aborts, so its profile and TMPDIR sit in the system's short /tmp
     short = "/tmp" if os.path.isdir("/tmp") and os.access("/tmp", os.W_OK) else None
     with tempfile.TemporaryDirectory(prefix="strainwave-chromium-", dir=short) as profile, atomic_path(pdf) as tmp:
-        cmd = [browser, *CHROMIUM_FLAGS, f"--user-data-dir={profile}", "--virtual-time-budget=5000",
+        cmd = [browser, *CHROMIUM_FLAGS, *PRINT_FLAGS, f"--user-data-dir={profile}", "--virtual-time-budget=5000",
                f"--print-to-pdf={tmp}", Path(html).resolve().as_uri()]
         env = {**os.environ, "TMPDIR": profile}
         try:
