@@ -7,6 +7,7 @@ field (``compare/validate/images.py``).
 from __future__ import annotations
 
 import dataclasses
+import functools
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -15,8 +16,23 @@ import numpy as np
 from strainwave.analytic.rated_load import RatedLoad, fatigue_safety_factor
 from strainwave.registry import study as registered
 
-__all__ = ["FieldNames", "field_names", "displacement3", "applied_scale", "scaled_to_rated", "write_at_rated", "FieldPeaks", "field_peaks",
+__all__ = ["read_vtu", "FieldNames", "field_names", "displacement3", "applied_scale", "scaled_to_rated", "write_at_rated", "FieldPeaks", "field_peaks",
            "StressAtRated", "stress_field_of", "rated_load", "rated_load_of", "stress_at_rated", "groups_at_node"]
+
+
+def read_vtu(vtu: Path):
+    """The mesh of ``vtu``, read once per process while the file is unchanged (a stress picture, its 3D view and
+    its peak numbers read the same field and its boundary file). Shared: copy it (``scaled_to_rated``) to change it."""
+    path = Path(vtu).resolve()
+    stat = path.stat()
+    return _read_once(str(path), stat.st_mtime_ns, stat.st_size)
+
+
+@functools.lru_cache(maxsize=4)    # a picture's field and boundary file, or the two states of a crack opening
+def _read_once(path: str, mtime_ns: int, size: int):
+    import pyvista as pv
+
+    return pv.read(path)
 
 
 @dataclass(frozen=True)
@@ -133,14 +149,12 @@ def crack_front_nodes(vtu: Path) -> np.ndarray:
     """Nodes of ``vtu`` on its crack front: those on both opened crack faces (fea/crack_seam keeps the front's
     nodes shared), or, for a crack on a symmetry plane, those its face shares with the ligament; read from the
     boundary file. Empty without a crack."""
-    import pyvista as pv
-
     from strainwave.fea.fields import VOLUME_POINT_ID, field_text
 
     path = Path(vtu).with_name(f"{Path(vtu).stem}.boundary.vtu")
     if not path.exists():
         return np.zeros(0, int)
-    boundary = pv.read(str(path))
+    boundary = read_vtu(path)
     names = field_text(boundary, "physical_group_names") if "physical_group_names" in boundary.field_data.keys() \
         else []
     pair = next((p for p in (("crack_minus", "crack_plus"), ("crack", "ligament")) if set(p) <= set(names)), None)
@@ -184,14 +198,12 @@ def corner_zone_of(mesh, edges_mm) -> tuple[np.ndarray | None, float | None]:
 def groups_at_node(vtu: Path, node: int) -> tuple[str, ...]:
     """The named groups of ``vtu``'s boundary file (fea/fields.py: its points carry their node ids in the field's
     file) that hold the field's node ``node``."""
-    import pyvista as pv
-
     from strainwave.fea.fields import VOLUME_POINT_ID, field_text
 
     path = Path(vtu).with_name(f"{Path(vtu).stem}.boundary.vtu")
     if not path.exists() or node < 0:
         return ()
-    boundary = pv.read(str(path))
+    boundary = read_vtu(path)
     names = field_text(boundary, "physical_group_names") if "physical_group_names" in boundary.field_data.keys() \
         else []
     local = np.flatnonzero(np.asarray(boundary.point_data[VOLUME_POINT_ID]) == node)
@@ -297,10 +309,8 @@ class StressAtRated:
 
 def stress_at_rated(study: str, params, result, vtu: Path, *, cracked: bool) -> StressAtRated:
     """Peaks of ``vtu`` (one of ``result``'s fields) at the study's rated load."""
-    import pyvista as pv
-
     load = rated_load_of(study, params, result)
-    mesh = scaled_to_rated(pv.read(str(vtu)), load.scale)
+    mesh = scaled_to_rated(read_vtu(vtu), load.scale)
     zone, radius = tip_zone_of(mesh, vtu, result.crack_depth_mm if cracked else None)
     corner, corner_radius = corner_zone_of(mesh, registered(study).facts().singular_edges_mm(params))
     peaks = field_peaks(mesh, zone, radius, corner, corner_radius)

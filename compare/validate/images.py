@@ -17,7 +17,7 @@ import numpy as np
 
 from strainwave.io_atomic import atomic_write_bytes
 from strainwave.analytic.rated_load import RatedLoad
-from strainwave.rated_stress import StressAtRated, displacement3, field_names, scaled_to_rated
+from strainwave.rated_stress import StressAtRated, displacement3, field_names, read_vtu, scaled_to_rated
 from strainwave.render import RenderSettings, off_screen_plotter
 
 WINDOW = (1200, 900)
@@ -49,9 +49,8 @@ class Rendered:
 
 
 def read_field(vtu: Path):
-    import pyvista as pv
-
-    return pv.read(str(vtu))
+    """``vtu``'s mesh, shared with every reader in this process (``read_vtu``): copy it before changing it."""
+    return read_vtu(vtu)
 
 
 def auto_exaggeration(mesh, disp: str, fraction: float = 0.06) -> float:
@@ -91,14 +90,12 @@ def _view(plotter, plane: bool, view_from=None) -> None:
 
 def boundary_groups(vtu: Path, names: tuple[str, ...]):
     """{name: facets} of the named groups of ``vtu``'s boundary file (fea/fields.py), those that exist."""
-    import pyvista as pv
-
     from strainwave.fea.fields import field_text
 
     path = Path(vtu).with_name(f"{Path(vtu).stem}.boundary.vtu")
     if not path.exists():
         return {}
-    boundary = pv.read(str(path))
+    boundary = read_vtu(path)
     known = field_text(boundary, "physical_group_names") if "physical_group_names" in boundary.field_data.keys() \
         else []
     ids = np.asarray(boundary.cell_data["physical_group"])

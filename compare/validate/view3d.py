@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from strainwave.rated_stress import StressAtRated, displacement3, field_names, scaled_to_rated
+from strainwave.rated_stress import StressAtRated, displacement3, field_names, read_vtu, scaled_to_rated
 
 __all__ = ["View", "make_view", "viewer_script", "colorbar_css", "MAX_TRIANGLES"]
 
@@ -43,9 +43,7 @@ def _b64(a: np.ndarray) -> str:
 
 def make_view(component: str, vtu: Path, at: StressAtRated, *, exaggeration: float, label: str) -> View:
     """The surface of ``vtu`` at the rated load of ``at``, displacements x ``exaggeration``, as a page payload."""
-    import pyvista as pv
-
-    mesh = scaled_to_rated(pv.read(str(vtu)), at.load.scale)
+    mesh = scaled_to_rated(read_vtu(vtu), at.load.scale)
     names = field_names(mesh)
     if names.von_mises is None or names.von_mises not in mesh.point_data:
         raise ValueError(f"{vtu}: no nodal von Mises field")
