@@ -6,11 +6,16 @@
         validate's images stage again on a finished run's folder OUT (its fields and results.json, with the
         PARAMS it ran on): CPU of this process and of the image worker, wall, and what was made (a convergence
         plot of a non-monotone quantity fails here: results.json stores its NaN observed order as null)
+    python benchmarks/ring_images_timing.py stages OUT [PARAMS.toml]
+        the images stage, then the reports stage (report.md, report.html, report.pdf, results.json from OUT's
+        results.json and the fresh pictures and 3D views): wall and CPU of each, Chromium's processes included
+        (this process is their subreaper) (docs/decisions/055-images-reports-cpu.md)
 
 Run each in a checkout of the old and of the new code, alternating, with ``OMP_NUM_THREADS=1 nice -n 10``.
 """
 from __future__ import annotations
 
+import ctypes
 import json
 import os
 import sys
@@ -46,7 +51,7 @@ def ring_series(params) -> str:
     return "ring 2D series CPU: " + ", ".join(out)
 
 
-def images_stage(out: Path, params) -> str:
+def images_stage(out: Path, params, reports: bool = False) -> str:
     from strainwave.analytic.summary import analytic_summary
     from strainwave.compare.validate import pipeline
     from strainwave.compare.validate.artifacts import make_images
@@ -75,8 +80,30 @@ def images_stage(out: Path, params) -> str:
         made = make_images(out, book, plan, check_set, summary, lambda m: None, params=params)
     t1 = os.times()
     (here, worker), (here0, worker0) = _cpu(t1), _cpu(t0)
-    return (f"images: wall {t1.elapsed - t0.elapsed:.2f} s, CPU this process {here - here0:.2f} s, worker "
+    said = (f"images: wall {t1.elapsed - t0.elapsed:.2f} s, CPU this process {here - here0:.2f} s, worker "
             f"{worker - worker0:.2f} s; {len(made.images)} images, {len(made.missing)} missing")
+    return said + ("; " + reports_stage(out, doc, made) if reports else "")
+
+
+def reports_stage(out: Path, doc: dict, made) -> str:
+    """report.md/.html/.pdf and results.json of ``doc`` with ``made``'s pictures and views, as the pipeline writes them."""
+    from strainwave.compare.validate import pipeline
+    from strainwave.compare.validate.results import write_results
+
+    doc = {**doc, "images": [i.to_dict() for i in made.images], "missing_images": [m.to_dict() for m in made.missing],
+           "views": {c: v.to_dict() for c, v in made.views.items()}}
+    t0 = os.times()
+    pipeline._write_reports(out, doc, {c: v.payload for c, v in made.views.items()}, lambda m: None)
+    write_results(out / "results.json", doc)
+    while True:        # Chromium's processes left to this subreaper: their CPU counts too
+        try:
+            os.waitpid(-1, 0)
+        except ChildProcessError:
+            break
+    t1 = os.times()
+    (here, children), (here0, children0) = _cpu(t1), _cpu(t0)
+    return (f"reports: wall {t1.elapsed - t0.elapsed:.2f} s, CPU this process {here - here0:.2f} s, Chromium "
+            f"{children - children0:.2f} s")
 
 
 def main(argv: list[str]) -> int:
@@ -85,9 +112,11 @@ def main(argv: list[str]) -> int:
     if len(argv) >= 1 and argv[0] == "ring":
         print(f"load {os.getloadavg()[0]:.2f}; " + ring_series(load_params(argv[1] if len(argv) > 1 else None)))
         return 0
-    if len(argv) >= 2 and argv[0] == "images":
+    if len(argv) >= 2 and argv[0] in ("images", "stages"):
         params = load_params(argv[2] if len(argv) > 2 else None)
-        print(f"load {os.getloadavg()[0]:.2f}; " + images_stage(Path(argv[1]), params))
+        if argv[0] == "stages":
+            ctypes.CDLL(None).prctl(36, 1, 0, 0, 0)     # PR_SET_CHILD_SUBREAPER: Chromium's helpers are reaped here
+        print(f"load {os.getloadavg()[0]:.2f}; " + images_stage(Path(argv[1]), params, reports=argv[0] == "stages"))
         return 0
     print(__doc__)
     return 2
