@@ -285,7 +285,7 @@ class CupTorsion(TorsionVariant):
             return out
         section = series["section"]
         lam = section.values(FLEX)
-        out[FLEX_3D] = s.converged(FLEX, UNIT)
+        out[FLEX_3D] = s.converged(FLEX_3D, UNIT, s.values(FLEX))
         out[FLEX] = section.converged(FLEX, UNIT)
         if cracked:
             # the section's lambda_f plus the crack's delta, refinement k with refinement k
