@@ -7,8 +7,6 @@ field (``compare/validate/images.py``).
 from __future__ import annotations
 
 import dataclasses
-import functools
-from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -17,41 +15,15 @@ import numpy as np
 from strainwave.analytic.rated_load import RatedLoad, fatigue_safety_factor
 from strainwave.registry import study as registered
 
-__all__ = ["read_vtu", "shared_reads", "FieldNames", "field_names", "displacement3", "applied_scale", "scaled_to_rated", "write_at_rated", "FieldPeaks", "field_peaks",
-           "StressAtRated", "stress_field_of", "rated_load", "rated_load_of", "stress_at_rated", "groups_at_node"]
-
-
-_SHARING = [False]    # inside ``shared_reads``
-
-
-@contextmanager
-def shared_reads():
-    """While inside, ``read_vtu`` reads each unchanged file once (the images stage: a stress picture, its 3D view
-    and its peak numbers read the same field and boundary file, and nothing rewrites them meanwhile)."""
-    _read_once.cache_clear()
-    _SHARING[0] = True
-    try:
-        yield
-    finally:
-        _SHARING[0] = False
-        _read_once.cache_clear()
+__all__ = ["read_vtu", "FieldNames", "field_names", "displacement3", "applied_scale", "scaled_to_rated",
+           "write_at_rated", "FieldPeaks", "field_peaks", "StressAtRated", "stress_field_of", "rated_load", "rated_load_of", "stress_at_rated", "groups_at_node"]
 
 
 def read_vtu(vtu: Path):
-    """The mesh of ``vtu``; inside ``shared_reads`` one mesh per unchanged file, shared: copy it
-    (``scaled_to_rated``) to change it."""
-    if not _SHARING[0]:
-        return _read_once.__wrapped__(str(vtu))
-    path = Path(vtu).resolve()
-    stat = path.stat()
-    return _read_once(str(path), stat.st_ino, stat.st_mtime_ns, stat.st_size)
-
-
-@functools.lru_cache(maxsize=4)    # a picture's field and boundary file, or the two states of a crack opening
-def _read_once(path: str, *_file_state):
+    """The mesh of ``vtu`` (one place that reads a field file, so pyvista is imported only when one is read)."""
     import pyvista as pv
 
-    return pv.read(path)
+    return pv.read(str(vtu))
 
 
 @dataclass(frozen=True)

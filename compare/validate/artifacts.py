@@ -15,7 +15,7 @@ from strainwave.compare.validate import plots
 from strainwave.compare.validate.check_set import CheckSet
 from strainwave.compare.validate.fea_book import FeaBook
 from strainwave.compare.validate.plan import Plan
-from strainwave.rated_stress import StressAtRated, rated_load_of, shared_reads, stress_at_rated, stress_field_of
+from strainwave.rated_stress import StressAtRated, rated_load_of, stress_at_rated, stress_field_of
 from strainwave.compare.validate.gci_table import asymptotic_flags
 from strainwave.compare.validate.wg_bearing_checks import STUDY as WG_BEARING
 
@@ -101,9 +101,8 @@ class _Collector:
         from strainwave.compare.validate.image_workers import run_tasks
 
         images, missing, stresses, views = [], [], {}, {}
-        with shared_reads():
-            outcomes = run_tasks(len(self.tasks), self.one, self.checkpoint,
-                                 lambda k, why: Attempted(None, None, Missing(self.tasks[k][0], why)))
+        outcomes = run_tasks(len(self.tasks), self.one, self.checkpoint,
+                             lambda k, why: Attempted(None, None, Missing(self.tasks[k][0], why)))
         for outcome in outcomes:
             for line in outcome.said:
                 self.progress(line)

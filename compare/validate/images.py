@@ -49,7 +49,7 @@ class Rendered:
 
 
 def read_field(vtu: Path):
-    """``vtu``'s mesh, shared with its other readers in the images stage (``read_vtu``): copy it to change it."""
+    """``vtu``'s mesh."""
     return read_vtu(vtu)
 
 
