@@ -112,7 +112,8 @@ def _cpu_seconds() -> float:
     return own.ru_utime + own.ru_stime + kids.ru_utime + kids.ru_stime
 
 
-def _context():
+def fork_server_context():
+    """The fork server's context: each process it forks starts with ``PRELOAD`` imported."""
     ctx = multiprocessing.get_context("forkserver")
     ctx.set_forkserver_preload(PRELOAD)
     return ctx
@@ -121,7 +122,7 @@ def _context():
 def run_isolated(study: str, params, kwargs: dict, *, timeout_s: float,
                  progress: Callable[[str], None]) -> ChildOutcome:
     """``run_study(study, params, **kwargs)`` in a child process, at most ``timeout_s`` seconds."""
-    ctx = _context()
+    ctx = fork_server_context()
     parent_conn, child_conn = ctx.Pipe(duplex=False)
     # Not a daemon: a study may start worker processes of its own (daemons may not have children);
     # the ``finally`` below terminates the child on every way out instead.

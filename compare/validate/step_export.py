@@ -6,7 +6,6 @@ code) and still on disk are not rebuilt.
 """
 from __future__ import annotations
 
-import multiprocessing
 import os
 import time
 from dataclasses import dataclass
@@ -89,8 +88,10 @@ class StepJob:
             jobs.append((part.value, Path(step_dir) / f"{part.value}.step", png))
         self.process = None
         if jobs:
-            # spawn, not fork: a clean interpreter for OCC; a daemon, so it never outlives the run
-            ctx = multiprocessing.get_context("spawn")
+            # from the cases' fork server: a clean interpreter for OCC with build123d already imported (a spawned
+            # one re-imports it); a daemon, so it never outlives the run
+            from strainwave.compare.validate.isolated import fork_server_context
+            ctx = fork_server_context()
             self.conn, child = ctx.Pipe(duplex=False)
             self.process = ctx.Process(target=_worker, args=(child, jobs, params), daemon=True)
             self.process.start()
