@@ -30,7 +30,7 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 DEFAULT_VARY = {
     # 4 x 4 = 16 uncracked points (a cracked quick point costs minutes on a loaded 2-core machine)
     "shaft-torsion": ["output_shaft.inner_diameter_mm=35:50:4", "output_shaft.length_mm=60:120:4"],
-    # issue 36: 8 cracked 3D points (global-local cup crack, quick meshes), each >= 5 s: start-up no longer bounds it
+    # 8 cracked 3D points (global-local cup crack, quick meshes), each >= 5 s: start-up no longer bounds the speed-up
     "cup-torsion": ["flexspline_cup.root_crack_depth_mm=0.3:1.1:8"],
 }
 
