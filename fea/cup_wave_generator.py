@@ -122,10 +122,12 @@ def solve_mesh(params, n_theta: int) -> tuple[dict[str, float], object, dict]:
         for model in MODELS:
             linear = wb.insert(tube, lame, w0, contact=model == "contact", nonlinear=False, K0=K0,
                                system=systems[True])
+            # K0's factors also precondition the Krylov solves of every nonlinear tangent (Newton, torque)
             for kin, state in (("linear", linear), ("nonlinear", wb.insert(
-                    tube, lame, w0, contact=model == "contact", nonlinear=True, K0=K0, start=linear))):
+                    tube, lame, w0, contact=model == "contact", nonlinear=True, K0=K0, start=linear,
+                    system=systems[True]))):
                 name = case_name(model, kin)
-                du = wb.torque_increment(tube, state, shear, None if state.nonlinear else systems[False])
+                du = wb.torque_increment(tube, state, shear, systems[False])
                 values |= _case_values(params, tube, lame, name, state, du, twist, arm, facts)
     finally:
         for system in systems.values():
