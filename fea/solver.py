@@ -337,6 +337,10 @@ class SchurFactor:
     solve: Callable[[np.ndarray], np.ndarray]     # A^-1 b, b of shape (n,) or (n, k)
     close: Callable[[], None]                     # frees the factors
     method: str = "pardiso"                       # the sparse solver that made it: "pardiso" or "splu"
+    # PARDISO's partial solves (phases 331 / 333): the forward substitution of b leaves on the tail the load
+    # condensed there, b_t - A_ti A_ii^-1 b_i; the backward one, given the tail's values there, A's solution
+    forward: Callable[[np.ndarray], np.ndarray] | None = None
+    backward: Callable[[np.ndarray], np.ndarray] | None = None
 
 
 def schur_factor(A: sp.csr_matrix, tail: np.ndarray, study: str) -> SchurFactor:
@@ -366,7 +370,33 @@ def schur_factor(A: sp.csr_matrix, tail: np.ndarray, study: str) -> SchurFactor:
     # the Schur complement comes back in the first m^2 entries of the solution array
     x = call(12, np.zeros((n, max(1, -(-m * m // n)))))
     S = np.array(np.asarray(x).ravel(order="F")[:m * m].reshape(m, m))
-    return SchurFactor(S, lambda b: call(33, b), lambda: solver.free_memory(everything=True))
+    return SchurFactor(S, lambda b: call(33, b), lambda: solver.free_memory(everything=True),
+                       forward=_pardiso_phase(solver, upper, 331, study),
+                       backward=_pardiso_phase(solver, upper, 333, study))
+
+
+def _pardiso_phase(solver, upper: sp.csr_matrix, phase: int, study: str) -> Callable[[np.ndarray], np.ndarray]:
+    """b -> x of PARDISO's ``phase`` on ``solver``'s factors of ``upper``, whose 1-based index arrays are made
+    once here: pypardiso's own call remakes them at every call, which costs as much as a partial solve."""
+    import ctypes
+    i32, f64 = ctypes.POINTER(ctypes.c_int32), ctypes.POINTER(ctypes.c_double)
+    ia, ja = upper.indptr.astype(np.int32) + 1, upper.indices.astype(np.int32) + 1
+    one = ctypes.byref(ctypes.c_int32(1))
+
+    def run(b: np.ndarray) -> np.ndarray:
+        b = np.asfortranarray(b, dtype=float)
+        x, error = np.zeros_like(b), ctypes.c_int32(0)
+        solver._mkl_pardiso(solver.pt.ctypes.data_as(ctypes.POINTER(solver._pt_type[0])), one, one,
+                            ctypes.byref(ctypes.c_int32(solver.mtype)), ctypes.byref(ctypes.c_int32(phase)),
+                            ctypes.byref(ctypes.c_int32(upper.shape[0])), upper.data.ctypes.data_as(f64),
+                            ia.ctypes.data_as(i32), ja.ctypes.data_as(i32), solver.perm.ctypes.data_as(i32),
+                            ctypes.byref(ctypes.c_int32(1 if b.ndim == 1 else b.shape[1])),
+                            solver.iparm.ctypes.data_as(i32), ctypes.byref(ctypes.c_int32(solver.msglvl)),
+                            b.ctypes.data_as(f64), x.ctypes.data_as(f64), ctypes.byref(error))
+        if error.value != 0:
+            raise StageError("solve", study, f"PARDISO phase {phase} failed: error {error.value}")
+        return x
+    return run
 
 
 def tail_solve(S: np.ndarray, r: np.ndarray, held: np.ndarray, values: np.ndarray | float = 0.0) -> np.ndarray:

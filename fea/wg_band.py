@@ -9,7 +9,9 @@ generator's cos 2 phi is symmetric about both axes. Every dof point carries its 
 stiffness is rotated node by node), so the cam's radial constraint, the symmetry planes and the held end are
 plain Dirichlet conditions.
 
-Kinematics: linear, or total Lagrangian with the Green-Lagrange strain and St Venant-Kirchhoff (Newton).
+Kinematics: linear, or total Lagrangian with the Green-Lagrange strain and St Venant-Kirchhoff (Newton: each
+step's tangent, and the torque's on a nonlinear state, solved by conjugate gradients preconditioned by the one
+factorisation of the linear stiffness K0, docs/decisions/061-wg-newton.md).
 The torque acts on top of the inserted state: the tangent stiffness at that state, loaded by a uniform
 tangential shear on the band's outer surface; on the quarter the torque increment is antisymmetric about
 both planes (u_r = u_z = 0 there), which is exact for the tangent problem of a symmetric state.
@@ -406,7 +408,8 @@ def insert(tube: Tube, lame: Lame, w0_mm: float, *, contact: bool, nonlinear: bo
     of K0, symmetric; made and freed here when None). Nonlinear: Newton and, with contact, the active set of
     the bore's radial dofs in one loop (a semi-smooth Newton): each step solves with the set that the step's
     own linearised contact problem settles on (``_contact_step``), then the set is reassessed at the new
-    state; done when the set holds and the step is below NEWTON_TOL."""
+    state; done when the set holds and the step is below NEWTON_TOL. With ``system`` every Newton step is a
+    Krylov solve of the tangent preconditioned by K0's factors (``_tangent_step``), else a factorisation."""
     K0 = K0 if K0 is not None else assemble(tube, np.zeros(tube.dofs), lame, False)[0]
     if not nonlinear:
         own = system is None
@@ -416,7 +419,7 @@ def insert(tube: Tube, lame: Lame, w0_mm: float, *, contact: bool, nonlinear: bo
         finally:
             if own:
                 system.close()
-    base, bore = held_dofs(tube, symmetric=True), band_bore_points(tube)
+    bore = band_bore_points(tube)
     # a start (the linear solution) gives the nonlinear solve its active set and first iterate
     active = np.ones(bore.size, bool) if start is None else start.active.copy()
     u = np.zeros(tube.dofs) if start is None else start.u.copy()
@@ -430,43 +433,129 @@ def insert(tube: Tube, lame: Lame, w0_mm: float, *, contact: bool, nonlinear: bo
             converged = converged and not changed
         if converged:
             return Inserted(u, K, active, it - 1, changes + 1, True)
-        if contact:
-            active, du = _contact_step(tube, K, R, u, bore, active, w0_mm)
-        else:
-            fixed = np.concatenate([base, tube.comp[0][bore]])
-            target = np.concatenate([np.zeros(base.size), _bore_target_mm(tube, u, bore, w0_mm, False, True)])
-            du = solve_constrained(tube, K, -R, fixed, target - (tube.rot_t @ u)[fixed])
+        held, du = _contact_step(tube, K, R, u, bore, active if contact else None, w0_mm, system)
+        active = active if held is None else held
         u = u + du
         converged = np.linalg.norm(du) <= NEWTON_TOL * np.linalg.norm(u)
     raise StageError("solve", STUDY, f"insertion did not converge in {it} Newton / active-set steps")
 
 
-def _contact_step(tube: Tube, K, R, u, bore, active, w0_mm: float) -> tuple[np.ndarray, np.ndarray]:
-    """One Newton step of the band on the cam: the tangent K factorised once with its Schur complement on the
-    bore (``bore_system``), the step's linearised contact problem (cam radius at the current state) settled on
-    S from ``active`` (``_cam_active_set``), the step with that set held. Returns (set, Cartesian step)."""
-    system = bore_system(tube, K, symmetric=True)
-    fs = system.faces          # the symmetric conditions leave every bore point's radial dof free
+def _contact_step(tube: Tube, K, R, u, bore, active, w0_mm: float, system=None) -> tuple[np.ndarray, np.ndarray]:
+    """One Newton step of the band on the cam (``active`` None: the prescribed shape, every bore point held):
+    the step's linearised contact problem (cam radius at the current state) settled on a Schur complement S on
+    the bore from ``active`` (``_cam_active_set``), then the step with that set held. ``system``: K0's
+    symmetric ``bore_system``, whose S predicts the set and whose factors precondition a Krylov solve of the
+    tangent (``_tangent_step``); without it, or when that stalls, K is factorised (with its own S on the bore
+    under the cam). Returns (set, Cartesian step)."""
+    prescribed = active is None
+    f = -(tube.rot_t @ R)
+    # the held points' radial step: onto the cam's radius (the prescribed shape) at the current state
+    step = _bore_target_mm(tube, u, bore, w0_mm, not prescribed, True) - (tube.rot_t @ u)[tube.comp[0][bore]]
+    take_up = np.full(bore.size, -1e-6 * w0_mm)
+    if system is not None:      # the symmetric conditions leave every bore point's radial dof free
+        held = np.ones(bore.size, bool) if prescribed else _cam_active_set(
+            system.faces.factor.S, _condensed_load(system.faces, f), active, step, take_up)[0]
+        du = _tangent_step(tube, K, f, system, held, step, KRYLOV_RTOL)
+        if du is not None:
+            return (None if prescribed else held), tube.rot @ du
+    if prescribed:
+        base = held_dofs(tube, symmetric=True)
+        fixed = np.concatenate([base, tube.comp[0][bore]])
+        return None, solve_constrained(tube, K, -R, fixed, np.concatenate([-(tube.rot_t @ u)[base], step]))
+    own = bore_system(tube, K, symmetric=True)
     try:
-        f = -(tube.rot_t @ R)
+        fs = own.faces
         r = fs.face_loads(f)
-        # the held points' radial step: onto the cam's radius at the current state
-        step = _bore_target_mm(tube, u, bore, w0_mm, True, True) - (tube.rot_t @ u)[fs.face_z]
-        active, _ = _cam_active_set(fs.factor.S, r, active, step, np.full(bore.size, -1e-6 * w0_mm))
-        return active, tube.rot @ fs.held(f, r, active, step)
+        held, _ = _cam_active_set(fs.factor.S, r, active, step, take_up)
+        return held, tube.rot @ fs.held(f, r, held, step)
     finally:
-        system.close()
+        own.close()
 
 
 def torque_increment(tube: Tube, state: Inserted, shear: np.ndarray, system=None) -> np.ndarray:
     """Displacement increment of the unit tangential shear on the band at the inserted state (tangent problem,
     antisymmetric about both planes; the cam holds the radial dofs it touches). ``system``: a ``bore_system``
-    of the state's K, antisymmetric (one factorisation for every state on that K)."""
-    if system is not None:
+    of K0, antisymmetric: the solve itself for a linear state (state.K is K0), the preconditioner of a Krylov
+    solve of the state's tangent for a nonlinear one (``_tangent_step``; factorised when that stalls)."""
+    if system is not None and not state.nonlinear:
         return held_solve(tube, system, shear, state.active, 0.0)
+    if system is not None:
+        du = _tangent_step(tube, state.K, tube.rot_t @ shear, system, state.active[system.on_face], 0.0,
+                           KRYLOV_RTOL_EXACT)
+        if du is not None:
+            return tube.rot @ du
     bore = band_bore_points(tube)
     fixed = np.concatenate([held_dofs(tube, symmetric=False), tube.comp[0][bore[state.active]]])
     return solve_constrained(tube, state.K, shear, fixed, np.zeros(fixed.size))
+
+
+# ---- the tangent's solves by preconditioned conjugate gradients (K0's factors as the preconditioner) ----
+
+# relative residual of a Newton step's Krylov solve: the inexact Newton then converges about as fast as the exact
+# one, and the last step, already below NEWTON_TOL, carries an error of a small fraction of itself
+KRYLOV_RTOL = 1e-6
+# the torque increment is read as a quantity (the torsional stiffness): solved to near round-off
+KRYLOV_RTOL_EXACT = 1e-11
+# iterations before a Krylov solve is abandoned for a factorisation of the tangent
+MAX_KRYLOV = 40
+
+
+def _condensed_load(fs, f: np.ndarray) -> np.ndarray:
+    """``FaceSystem.face_loads`` of one load, by one forward substitution where PARDISO's partial solves exist."""
+    if fs.factor.forward is None:
+        return fs.face_loads(f)
+    return np.asarray(fs.factor.forward(f[fs.free])).ravel()[np.searchsorted(fs.free, fs.face_z)]
+
+
+def held_preconditioner(system: BoreSystem, active: np.ndarray):
+    """r -> x: the nodal-frame solve of ``system``'s K (base held) with the face dofs ``active`` (over
+    system.faces.face_z) held at zero, by one forward and one backward substitution of its factors with S's
+    free block solved between them (PARDISO's partial solves; two full solves through ``FaceSystem.held``
+    otherwise). SPD on the dofs left free: the preconditioner of ``_tangent_step``."""
+    from scipy.linalg import cho_factor, cho_solve
+    fs = system.faces
+    active = np.asarray(active, bool)
+    open_ = ~active
+    chol = cho_factor(fs.factor.S[np.ix_(open_, open_)]) if open_.any() else None
+    tail = np.searchsorted(fs.free, fs.face_z)
+
+    def apply(r: np.ndarray) -> np.ndarray:
+        if fs.factor.forward is None:
+            return fs.held(r, fs.face_loads(r), active)
+        x = np.zeros(r.shape)
+        y = np.asarray(fs.factor.forward(r[fs.free])).ravel()
+        u_tail = np.zeros(tail.size)
+        if chol is not None:
+            u_tail[open_] = cho_solve(chol, y[tail][open_])
+        y[tail] = u_tail
+        x[fs.free] = np.asarray(fs.factor.backward(y)).ravel()
+        x[fs.face_z[active]] = 0.0
+        return x
+    return apply
+
+
+def _tangent_step(tube: Tube, K: sp.csr_matrix, f: np.ndarray, system: BoreSystem, active: np.ndarray, values,
+                  rtol: float) -> np.ndarray | None:
+    """Nodal-frame solution of K x = f (K Cartesian, f in the nodal frames) with ``system``'s base held at zero
+    and its face dofs ``active`` at ``values`` (per face dof, or one number), by conjugate gradients on the
+    dofs left free, preconditioned by ``held_preconditioner`` (K is symmetric: St Venant-Kirchhoff's tangent).
+    None when they do not reach ``rtol`` in MAX_KRYLOV iterations."""
+    import scipy.sparse.linalg as spla
+    fs = system.faces
+    active = np.asarray(active, bool)
+    x = np.zeros(tube.dofs)
+    x[fs.face_z[active]] = np.broadcast_to(values, active.shape)[active] if np.ndim(values) else values
+    keep = np.ones(tube.dofs)
+    keep[fs.base] = keep[fs.face_z[active]] = 0.0
+
+    def product(y: np.ndarray) -> np.ndarray:
+        return tube.rot_t @ (K @ (tube.rot @ y))
+
+    n = tube.dofs
+    A = spla.LinearOperator((n, n), matvec=lambda y: keep * product(keep * y), dtype=float)
+    M = spla.LinearOperator((n, n), matvec=held_preconditioner(system, active), dtype=float)
+    y, info = spla.cg(A, keep * (f - product(x)), M=M, rtol=rtol, atol=0.0, maxiter=MAX_KRYLOV)
+    return x + keep * y if info == 0 else None
 
 
 # ---- stresses at sample points ----

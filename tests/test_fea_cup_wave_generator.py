@@ -229,3 +229,72 @@ def test_nonlinear_cam_contact_meets_its_contact_conditions(setup):
     assert np.abs(gap[state.active]).max() <= 1e-9 * w0 and 0 < state.active.sum() < bore.size
     # the linear state is no nonlinear equilibrium: the first check can fail
     assert np.abs(residual(linear.u)[free]).max() > 1e-3 * np.abs(R).max()
+
+
+def _nonlinear_states(tube, lame, w0, system, systems):
+    """Both nonlinear insertions and their torque increments: by Krylov solves preconditioned by K0's factors
+    (``systems``), or (None) by a factorisation of every tangent."""
+    shear = wb.band_outer_loads(tube)[0]
+    out = {}
+    for contact in (False, True):
+        linear = wb.insert(tube, lame, w0, contact=contact, nonlinear=False, system=systems[True])
+        state = wb.insert(tube, lame, w0, contact=contact, nonlinear=True, start=linear,
+                          system=None if system is None else systems[True])
+        out[contact] = state, wb.torque_increment(tube, state, shear, None if system is None else systems[False])
+    return out
+
+
+def test_newton_by_krylov_solves_preconditioned_by_k0_is_the_refactorised_newton(setup, monkeypatch):
+    # the converged insertions (prescribed and cam), their contact sets and torque increments equal a Newton that
+    # factorises every tangent, and so does the fallback of stalled Krylov solves; the preconditioner used as the
+    # tangent's inverse (K0's chord) fails
+    import scipy.sparse.linalg as spla
+    p, geo, _, lame = setup
+    tube = wb.tube_mesh(geo, 6)
+    w0 = p.gear.radial_deformation_mm
+    K0 = wb.assemble(tube, np.zeros(tube.dofs), lame, False)[0]
+    systems = {sym: wb.bore_system(tube, K0, symmetric=sym) for sym in (True, False)}
+    try:
+        ref = _nonlinear_states(tube, lame, w0, None, systems)
+        new = _nonlinear_states(tube, lame, w0, True, systems)
+        monkeypatch.setattr(wb, "MAX_KRYLOV", 1)       # every Krylov solve stalls: the factorised fallback
+        stalled = _nonlinear_states(tube, lame, w0, True, systems)
+        monkeypatch.undo()
+        monkeypatch.setattr(spla, "cg", lambda A, b, M, **kw: (M @ b, 0))
+        chord = _nonlinear_states(tube, lame, w0, True, systems)
+    finally:
+        for system in systems.values():
+            system.close()
+
+    def agree(a, b):
+        (sa, da), (sb, db) = a, b
+        # Newton to NEWTON_TOL from both routes: the states at ~1e-13, the increments at KRYLOV_RTOL_EXACT's ~1e-12
+        return (np.array_equal(sa.active, sb.active) and np.abs(sa.u - sb.u).max() <= 1e-11 * np.abs(sb.u).max()
+                and np.abs(da - db).max() <= 1e-10 * np.abs(db).max()
+                and sa.newton_iterations <= sb.newton_iterations + 1)
+    assert all(agree(new[c], ref[c]) and agree(stalled[c], ref[c]) for c in (False, True))
+    assert 0 < ref[True][0].active.sum() < ref[True][0].active.size
+    assert not any(agree(chord[c], ref[c]) for c in (False, True))
+
+
+def test_held_preconditioner_by_partial_solves_is_the_two_solve_held_route(setup):
+    # one forward and one backward substitution with S's free block between them (PARDISO's phases 331 / 333)
+    # equal FaceSystem.held's two full solves for a random held set; another set is another solution
+    _, geo, _, lame = setup
+    tube = wb.tube_mesh(geo, 6)
+    K0 = wb.assemble(tube, np.zeros(tube.dofs), lame, False)[0]
+    system = wb.bore_system(tube, K0, symmetric=False)
+    rng = np.random.default_rng(5)
+    f = rng.standard_normal(tube.dofs)
+    active = rng.random(system.faces.face_z.size) < 0.5
+    try:
+        fs = system.faces
+        if fs.factor.forward is None:
+            pytest.skip("PARDISO's partial solves need pypardiso")
+        x = wb.held_preconditioner(system, active)(f)
+        ref = fs.held(f, fs.face_loads(f), active)
+        other = wb.held_preconditioner(system, ~active)(f)
+    finally:
+        system.close()
+    assert np.abs(x - ref).max() <= 1e-10 * np.abs(ref).max()
+    assert np.abs(other - ref).max() > 1e-3 * np.abs(ref).max()
