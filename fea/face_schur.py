@@ -123,9 +123,13 @@ class SeamSystem:
         ft = self.T.T @ f
         return ft, self.faces.face_loads(ft[:, None])[:, 0]
 
-    def held(self, active: np.ndarray) -> np.ndarray:
-        """The openings held when the pairs ``active`` are in contact: their normal openings."""
+    def held(self, active: np.ndarray, tied: np.ndarray | None = None) -> np.ndarray:
+        """The openings held when the pairs ``active`` are in contact (their normal openings) and the pairs
+        ``tied`` are joined (all their openings: that part of the seam closed, the crack shorter)."""
         mask = np.zeros(self.faces.face_z.size, bool)
+        if tied is not None:
+            dim = self.pairs.dim
+            mask[np.searchsorted(self.faces.face_z, (dim * self.pairs.plus[tied, None] + np.arange(dim)).ravel())] = True
         mask[self.normal[active]] = True
         return mask
 
@@ -135,19 +139,25 @@ class SeamSystem:
 
     def contact(self, ft: np.ndarray, r: np.ndarray, tol_mm: float | None = None) -> ContactResult:
         """``crack_contact.solve_with_contact``'s active set and thresholds, each set a dense solve of S."""
-        from strainwave.fea.solver import tail_solve
-        S, free = self.faces.factor.S, self.faces.free
         v0 = np.zeros_like(ft)
-        v0[free] = self.faces.factor.solve(ft[free])
+        v0[self.faces.free] = self.faces.factor.solve(ft[self.faces.free])
         u0 = self.T @ v0
         tol = tol_mm if tol_mm is not None else 1e-9 * float(np.abs(u0).max())
+        active, gap, force, iterations, _ = self.settle(r, tol)
+        return ContactResult(self.solution(ft, r, self.held(active)), active, gap, force, iterations, u0)
+
+    def settle(self, r: np.ndarray, tol_mm: float, tied: np.ndarray | None = None):
+        """``contact``'s active set on S alone, the pairs ``tied`` joined throughout (never in the set):
+        (active, normal openings, contact forces, set changes, every opening w), no full solution."""
+        from strainwave.fea.solver import tail_solve
+        S = self.faces.factor.S
 
         def state(active):
-            w = tail_solve(S, r, self.held(active))
+            w = tail_solve(S, r, self.held(active, tied))
             return w[self.normal], np.where(active, (S @ w - r)[self.normal], 0.0)
 
-        active, gap, force, iterations = settle_active_set(state, self.pairs.minus.size, tol)
-        return ContactResult(self.solution(ft, r, self.held(active)), active, gap, force, iterations, u0)
+        active, gap, force, iterations = settle_active_set(state, self.pairs.minus.size, tol_mm)
+        return active, gap, force, iterations, tail_solve(S, r, self.held(active, tied))
 
     def close(self) -> None:
         self.faces.factor.close()

@@ -18,7 +18,7 @@ import scipy.sparse as sp
 
 from strainwave.fea.crack_contact import CrackPairs
 
-__all__ = ["graded_nodes", "RingMesh", "ring_mesh", "RingSystem", "assemble", "seam_system", "solve_ring", "crack_work", "mesh_data", "hoop_stress"]
+__all__ = ["graded_nodes", "RingMesh", "ring_mesh", "RingSystem", "assemble", "seam_system", "bore_load", "solve_ring", "crack_work", "mesh_data", "hoop_stress"]
 
 
 # PARDISO's minimum-degree ordering for the stress projection's mass matrix: METIS costs more than the factors
@@ -185,6 +185,11 @@ def _bore_displacement(system: RingSystem, bore_radial_mm: np.ndarray | None) ->
     return up
 
 
+def bore_load(system: RingSystem, bore_radial_mm: np.ndarray | None) -> np.ndarray:
+    """The loads (nodal frames) the bore's prescribed radial displacement puts on the other dofs: -K u_p."""
+    return -(system.K @ _bore_displacement(system, bore_radial_mm))
+
+
 def solve_ring(system: RingSystem, f_global: np.ndarray, bore_radial_mm: np.ndarray | None, seam=None):
     """Displacements (global x, y interleaved) under the loads ``f_global`` with the bore's radial
     displacement prescribed (``bore_radial_mm`` per bore dof, None = 0). With a crack the faces may separate
@@ -192,7 +197,7 @@ def solve_ring(system: RingSystem, f_global: np.ndarray, bore_radial_mm: np.ndar
     ``seam``: ``seam_system``'s factorisation, made here when None). Returns (u, contact result or None)."""
     up = _bore_displacement(system, bore_radial_mm)
     fixed = _bore_fixed(system)
-    f = system.R.T @ f_global - system.K @ up
+    f = system.R.T @ f_global + bore_load(system, bore_radial_mm)
     if system.pairs is None:
         return system.R @ (up + _direct(system.K, f, fixed)), None
     res = _with_seam(system, seam, lambda sm: sm.contact(*sm.loads(f)))

@@ -73,30 +73,45 @@ def _sizer(near_mm: float, focus: float, far_mm: float, flat_mm: float = 0.0):
     return lambda x: min(far_mm, near_mm + GROWTH * max(0.0, abs(x - focus) - flat_mm))
 
 
-def _radial_nodes(s: RingSetup, far_mm: float, race_mm: float, tip_mm: float, crack_mm: float | None):
+def _tip_sizer(tip_mm: float, focus: float, far_mm: float, depth_mm: float):
+    """A crack tip's size: ``tip_mm`` within 0.5 a of ``focus`` towards the bore and within a towards the race."""
+    below, above = _sizer(tip_mm, focus, far_mm, 0.5 * depth_mm), _sizer(tip_mm, focus, far_mm, depth_mm)
+    return lambda x: below(x) if x < focus else above(x)
+
+
+def _radial_nodes(s: RingSetup, far_mm: float, race_mm: float, tips):
+    """Radial nodes with a node on each crack tip (``tips``: (depth, tip size) pairs, deepest last), each graded
+    as its own crack's mesh is; returns (nodes, the deepest tip's index or None)."""
     r_o, r_i = s.r_race_mm, s.r_bore_mm
-    if not crack_mm:
+    if not tips:
         return r_o - ring2d.graded_nodes(0.0, r_o - r_i, _sizer(race_mm, 0.0, far_mm))[::-1], None
-    r_tip = r_o - crack_mm
-    below = r_tip - ring2d.graded_nodes(0.0, r_tip - r_i, _sizer(tip_mm, 0.0, far_mm, 0.5 * crack_mm))[::-1]
-    near_tip, near_race = _sizer(tip_mm, r_tip, far_mm, crack_mm), _sizer(race_mm, r_o, far_mm)
-    above = ring2d.graded_nodes(r_tip, r_o, lambda x: min(near_tip(x), near_race(x)))
-    return np.concatenate([below[:-1], above]), len(below) - 1
+    deepest, tip_mm = tips[-1]
+    r_tip = r_o - deepest
+    # below the deepest tip, in the distance from it (the other tips lie above: their bore-side size)
+    beneath = [_sizer(tip_mm, 0.0, far_mm, 0.5 * deepest)] + [_sizer(t, d - deepest, far_mm, 0.5 * d) for d, t in tips[:-1]]
+    below = r_tip - ring2d.graded_nodes(0.0, r_tip - r_i, lambda x: min(f(x) for f in beneath))[::-1]
+    near = [_tip_sizer(t, r_o - d, far_mm, d) for d, t in tips[:-1]] + [_sizer(tip_mm, r_tip, far_mm, deepest)]
+    near.append(_sizer(race_mm, r_o, far_mm))
+    ends = [r_o - d for d, _ in tips[::-1]] + [r_o]
+    above = [ring2d.graded_nodes(a, b, lambda x: min(f(x) for f in near)) for a, b in zip(ends[:-1], ends[1:])]
+    return np.concatenate([below[:-1], *[seg[:-1] for seg in above[:-1]], above[-1]]), len(below) - 1
 
 
-def grid(s: RingSetup, h_mm: float, scale: float, crack_mm: float | None):
-    """(radial nodes, angular columns 0..2pi, tip index or None): global size h scale, race size
-    min(h, b/2) scale (b: the load-line ball's patch; 0.7 b with --quick), tip size a/8 scale over the crack's depth and
-    within a of it, graded beyond;
+def grid(s: RingSetup, h_mm: float, scale: float, crack_mm):
+    """(radial nodes, angular columns 0..2pi, the deepest tip's index or None): global size h scale, race size
+    min(h, b/2) scale (b: the load-line ball's patch; 0.7 b with --quick), tip size a/8 scale over the crack's
+    depth and within a of it, graded beyond; ``crack_mm``: one depth, several (one mesh whose seam carries every
+    tip, each graded as on its own mesh) or None;
     the loaded half (|phi| < 90 deg + 0.2 rad) keeps the race size, the rest grows to 2 h."""
     far = h_mm * scale
     race = min(h_mm, s.race_over_b * max(s.patch_half_widths_mm)) * scale
-    tip = min(race, TIP_OVER_A * crack_mm * scale) if crack_mm else race
-    r, tip_index = _radial_nodes(s, far, race, tip, crack_mm)
+    depths = sorted(np.atleast_1d(crack_mm).tolist()) if crack_mm is not None else []
+    tips = [(d, min(race, TIP_OVER_A * d * scale)) for d in depths]
+    r, tip_index = _radial_nodes(s, far, race, tips)
     r_o, edge = s.r_race_mm, s.r_race_mm * (0.5 * math.pi + 0.2)
     loaded = lambda arc: min(2.0 * far, race + GROWTH * max(0.0, arc - edge))     # noqa: E731
-    near = _sizer(tip, 0.0, far, crack_mm or 0.0)
-    quarter = ring2d.graded_nodes(0.0, 0.5 * math.pi * r_o, lambda arc: min(loaded(arc), near(arc)))
+    near = [_sizer(t, 0.0, far, d) for d, t in tips] or [_sizer(race, 0.0, far, 0.0)]
+    quarter = ring2d.graded_nodes(0.0, 0.5 * math.pi * r_o, lambda arc: min(loaded(arc), *(f(arc) for f in near)))
     second = math.pi * r_o - ring2d.graded_nodes(0.0, 0.5 * math.pi * r_o, lambda arc: loaded(math.pi * r_o - arc))
     half = np.concatenate([quarter, second[::-1][1:]]) / r_o
     phi = np.concatenate([half, 2.0 * math.pi - half[::-1][1:]])
@@ -193,31 +208,56 @@ def _ball_count(s: RingSetup) -> int:
     return s.ball_count
 
 
-def solve_crack(s: RingSetup, h_mm: float, scale: float, depth_mm: float, w0_mm: float | None = None) -> dict:
-    """One crack depth on one refinement: the compliance under the ball loads on the cracked mesh (faces in
-    contact, cam then cam + balls) minus the same mesh merged (uncracked), all three from one factorisation
-    with the Schur complement on the crack pairs' openings (``ring2d.seam_system``)."""
-    w0 = s.w0_mm if w0_mm is None else w0_mm
-    cracked = _system(s, *grid(s, h_mm, scale, depth_mm))
-    q = np.asarray(s.ball_loads_N)
-    f = ring2d.patch_load_vectors(cracked, s.r_race_mm, s.ball_angles_rad, s.patch_half_widths_mm) @ q
-    seam = ring2d.seam_system(cracked)
+def _tied_below(system, r_tip_mm: float) -> np.ndarray:
+    """The seam's pairs that lie below a crack tip at radius ``r_tip_mm`` (joined: that crack is shorter)."""
+    return np.hypot(*system.scalar.doflocs[:, system.pairs.minus]) <= r_tip_mm * (1.0 + 1e-12)
+
+
+def solve_cracks(s: RingSetup, h_mm: float, scale: float, depths_mm, *, profile: bool = False,
+                 compressed: bool = False) -> dict:
+    """Every crack depth on one refinement from one factorisation: one mesh whose seam carries every depth's
+    tip (``grid`` of all depths), factorised with its Schur complement S on the seam pairs' openings
+    (``ring2d.seam_system``). A crack of depth a is the seam opened above its tip and joined below (those
+    pairs' openings held); its faces in contact (cam, then cam + balls), each set a dense solve of S. The
+    increment over the seam joined is r_f . (w_2 - w_1) / F^2: r_f the ball loads condensed on the openings,
+    w the openings of the two states. ``profile``: the uncracked hoop stress per newton on each crack's line;
+    ``compressed``: the deepest crack with the cam reversed (w0 -> -w0) too, under key "compressed"."""
+    depths = sorted(depths_mm)
+    r, phi, tip = grid(s, h_mm, scale, depths)
+    system = _system(s, r, phi, tip)
+    f = ring2d.patch_load_vectors(system, s.r_race_mm, s.ball_angles_rad, s.patch_half_widths_mm) @ np.asarray(s.ball_loads_N)
+    seam = ring2d.seam_system(system)
     try:
-        u0 = ring2d.solve_many(cracked, f[:, None], tied=True, seam=seam)[:, 0]
-        bore = cam_displacement_mm(cracked, w0)
-        _, res1 = ring2d.solve_ring(cracked, np.zeros_like(f), bore, seam)
-        _, res2 = ring2d.solve_ring(cracked, f, bore, seam)
-        delta = ring2d.crack_work(cracked, seam, f, res1, res2) / s.force_N ** 2
+        ft_f = seam.T.T @ (system.R.T @ f)
+        ft_cam = seam.T.T @ ring2d.bore_load(system, cam_displacement_mm(system, s.w0_mm))
+        v = seam.faces.free_solution(np.column_stack([ft_f, ft_cam]))
+        r_f, r_cam = seam.faces.condensed(v).T
+        u_tied = seam.solution(ft_f, r_f, np.ones(r_f.size, bool)) if profile else None
     finally:
         seam.close()
-    c0 = float(f @ u0) / s.force_N ** 2
-    # the uncracked hoop stress per newton on the crack line, on this mesh (graded there): the closed form's input
-    x = depth_mm * np.linspace(0.0, 1.0, 65)
-    stress = ring2d.nodal_stress(cracked, u0, s.E_MPa, s.nu)
-    profile = ring2d.hoop_stress_at(cracked, stress, np.array([s.r_race_mm * (1 - 1e-9) - x, 0 * x + 1e-9])) / s.force_N
-    return {"delta": delta, "uncracked": c0, "profile": (x, profile), "closed_pairs": int(res2.active.sum()), "pairs": int(res2.active.size),
-            "mouth_opening_mm": float(res2.opening_mm[int(np.argmax(np.hypot(*cracked.scalar.doflocs[:, cracked.pairs.minus])))]),
-            "dofs": cracked.K.shape[0]}
+    radius = np.hypot(*system.scalar.doflocs[:, system.pairs.minus])
+    mouth = int(np.argmax(radius))
+    # f.u with the seam joined: f.u with it free minus the openings' share
+    c0 = float(ft_f[seam.faces.free] @ v[seam.faces.free, 0] - v[seam.faces.face_z, 0] @ r_f) / s.force_N ** 2
+
+    def crack(depth, sign):
+        tied = _tied_below(system, s.r_race_mm - depth)
+        tol = [1e-9 * float(np.abs(seam.T @ (sign * v[:, 1] + k * v[:, 0])).max()) for k in (0, 1)]
+        *_, w1 = seam.settle(sign * r_cam, tol[0], tied)
+        active, gap, _, _, w2 = seam.settle(sign * r_cam + r_f, tol[1], tied)
+        return {"delta": float(r_f @ (w2 - w1)) / s.force_N ** 2, "uncracked": c0, "closed_pairs": int(active.sum()),
+                "pairs": int((~tied).sum()), "mouth_opening_mm": float(gap[mouth]), "dofs": system.K.shape[0]}
+
+    out = {depth: crack(depth, 1.0) for depth in depths}
+    if compressed:
+        out["compressed"] = crack(depths[-1], -1.0)
+    if profile:
+        stress = ring2d.nodal_stress(system, u_tied, s.E_MPa, s.nu)
+        for depth in depths:
+            x = depth * np.linspace(0.0, 1.0, 65)
+            line = np.array([s.r_race_mm * (1 - 1e-9) - x, 0 * x + 1e-9])
+            out[depth]["profile"] = (x, ring2d.hoop_stress_at(system, stress, line) / s.force_N)
+    return out
 
 
 # Crack depths of the sweep: up to a_max = 0.1 t (the back face, held by the cam, stays a small allowance,
@@ -292,20 +332,24 @@ def _plain_quantities(s: RingSetup, h: float, sizes, progress, deepest_mm: float
 
 
 def _crack_quantities(s: RingSetup, h: float, sizes, depths, progress):
+    """Each depth's increment on three meshes (all depths of one refinement from one factorisation), its finest
+    mesh's facts, and the deepest crack under the cam reversed on the coarsest."""
+    runs = []
+    for k in (2, 1, 0):
+        progress(f"{STUDY}: cracks a = {', '.join(f'{d:g}' for d in depths)} mm, refinement {3 - k}/3")
+        runs.append(solve_cracks(s, h, DEFAULT_RATIO ** k, depths, profile=k == 0, compressed=k == 2))
+    compressed = runs[0].pop("compressed")
+    runs = runs[::-1]
     q, facts = {}, {}
     for depth in depths:
-        runs = []
-        for k in (2, 1, 0):
-            progress(f"{STUDY}: crack a = {depth:g} mm, refinement {3 - k}/3")
-            runs.append(solve_crack(s, h, DEFAULT_RATIO ** k, depth))
-        runs = runs[::-1]
         name = delta_name(depth)
-        q[name] = _converge(name, "mm/N", sizes, [r["delta"] for r in runs], CRACK_FORMAL_ORDER)
-        x, profile = runs[0]["profile"]
-        facts[f"{depth:g}"] = {"depth_mm": depth, "closed_pairs": runs[0]["closed_pairs"], "pairs": runs[0]["pairs"],
-                               "mouth_opening_mm": runs[0]["mouth_opening_mm"], "dofs": runs[0]["dofs"],
+        q[name] = _converge(name, "mm/N", sizes, [r[depth]["delta"] for r in runs], CRACK_FORMAL_ORDER)
+        finest = runs[0][depth]
+        x, profile = finest["profile"]
+        facts[f"{depth:g}"] = {"depth_mm": depth, "closed_pairs": finest["closed_pairs"], "pairs": finest["pairs"],
+                               "mouth_opening_mm": finest["mouth_opening_mm"], "dofs": finest["dofs"],
                                "profile_x_mm": x.tolist(), "hoop_stress_per_N_MPa": profile.tolist()}
-    return q, facts
+    return q, facts, compressed
 
 
 def run(params, *, force_N: float, w0_mm: float, ball_angles_rad, ball_loads_N, patch_half_widths_mm,
@@ -327,12 +371,9 @@ def run(params, *, force_N: float, w0_mm: float, ball_angles_rad, ball_loads_N, 
     t0 = time.perf_counter()
     q, finest = _plain_quantities(s, h, sizes, progress, max(depths))
     t1 = time.perf_counter()
-    qc, facts = _crack_quantities(s, h, sizes, depths, progress)
-    t2 = time.perf_counter()
     # first principles: under the cam's compression (w0 -> -w0) the crack shuts; the coarsest mesh suffices
-    compressed = solve_crack(s, h, DEFAULT_RATIO ** 2, max(depths), w0_mm=-s.w0_mm)
-    compressed.pop("profile")
-    t3 = time.perf_counter()
+    qc, facts, compressed = _crack_quantities(s, h, sizes, depths, progress)
+    t2 = time.perf_counter()
     phi, net = finest["_net_round"]
     meta = {"model": "2D plane stress (thickness = ring width B), the ring's mid-plane cross-section, P2",
             "r_bore_mm": s.r_bore_mm, "r_race_mm": s.r_race_mm, "width_mm": s.width_mm, "w0_mm": s.w0_mm,
@@ -348,8 +389,8 @@ def run(params, *, force_N: float, w0_mm: float, ball_angles_rad, ball_loads_N, 
                                                   params.material),)
     return StudyResult(STUDY, {**q, **qc}, mesh, _load(s), _supports(),
                        CrackRecord(max(depths), "2D edge crack at the major axis, frictionless face contact, "
-                                   "sweep of depths (each on three meshes)"),
-                       {"uncracked": t1 - t0, "cracks": t2 - t1, "compressed": t3 - t2}, fields, {}, meta, (mesh,) * 3)
+                                   "sweep of depths (each on three meshes, every depth's tip on each)"),
+                       {"uncracked": t1 - t0, "cracks": t2 - t1}, fields, {}, meta, (mesh,) * 3)
 
 
 def _load(s: RingSetup) -> Load:
