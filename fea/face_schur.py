@@ -123,13 +123,9 @@ class SeamSystem:
         ft = self.T.T @ f
         return ft, self.faces.face_loads(ft[:, None])[:, 0]
 
-    def held(self, active: np.ndarray, tied: np.ndarray | None = None) -> np.ndarray:
-        """The openings held when the pairs ``active`` are in contact (their normal openings) and the pairs
-        ``tied`` are joined (all their openings: that part of the seam closed, the crack shorter)."""
+    def held(self, active: np.ndarray) -> np.ndarray:
+        """The openings held when the pairs ``active`` are in contact: their normal openings."""
         mask = np.zeros(self.faces.face_z.size, bool)
-        if tied is not None:
-            dim = self.pairs.dim
-            mask[np.searchsorted(self.faces.face_z, (dim * self.pairs.plus[tied, None] + np.arange(dim)).ravel())] = True
         mask[self.normal[active]] = True
         return mask
 
@@ -146,18 +142,18 @@ class SeamSystem:
         active, gap, force, iterations, _ = self.settle(r, tol)
         return ContactResult(self.solution(ft, r, self.held(active)), active, gap, force, iterations, u0)
 
-    def settle(self, r: np.ndarray, tol_mm: float, tied: np.ndarray | None = None):
-        """``contact``'s active set on S alone, the pairs ``tied`` joined throughout (never in the set):
-        (active, normal openings, contact forces, set changes, every opening w), no full solution."""
+    def settle(self, r: np.ndarray, tol_mm: float):
+        """``contact``'s active set on S alone, without the full solution: (active, normal openings, contact
+        forces, set changes, every opening w)."""
         from strainwave.fea.solver import tail_solve
         S = self.faces.factor.S
 
         def state(active):
-            w = tail_solve(S, r, self.held(active, tied))
+            w = tail_solve(S, r, self.held(active))
             return w[self.normal], np.where(active, (S @ w - r)[self.normal], 0.0)
 
         active, gap, force, iterations = settle_active_set(state, self.pairs.minus.size, tol_mm)
-        return active, gap, force, iterations, tail_solve(S, r, self.held(active, tied))
+        return active, gap, force, iterations, tail_solve(S, r, self.held(active))
 
     def close(self) -> None:
         self.faces.factor.close()

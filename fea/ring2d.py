@@ -12,6 +12,7 @@ phi = 0 against the rigid rotation (on the symmetry line, so it carries no force
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
@@ -89,11 +90,16 @@ class RingSystem:
 
     K: sp.csr_matrix
     R: sp.csr_matrix               # u_global = R u_local
-    basis: object                  # vector P2 basis
     scalar: object                 # scalar P2 basis
     bore_dofs: np.ndarray          # scalar dofs on the bore
     pairs: CrackPairs | None       # crack dof pairs (scalar dof numbers)
     width_mm: float
+
+    @cached_property
+    def basis(self):
+        """The vector P2 basis, made when read (the stiffness comes from the scalar one)."""
+        from skfem import Basis, ElementTriP2, ElementVector
+        return Basis(self.scalar.mesh, ElementVector(ElementTriP2()))
 
 
 def _edge_dofs(mesh, scalar, a_nodes: np.ndarray, b_nodes: np.ndarray) -> np.ndarray:
@@ -112,11 +118,10 @@ def _edge_dofs(mesh, scalar, a_nodes: np.ndarray, b_nodes: np.ndarray) -> np.nda
 
 def assemble(mesh, pairs_nodes, *, E_MPa: float, nu: float, width_mm: float, r_bore_mm: float) -> RingSystem:
     """Plane stress (thickness = ring width B) P2 stiffness, rotated to (r, phi) at the bore nodes."""
-    from skfem import Basis, ElementTriP2, ElementVector
+    from skfem import Basis, ElementTriP2
 
     from strainwave.fea.assembly import Lame, elasticity_stiffness
 
-    basis = Basis(mesh, ElementVector(ElementTriP2()))
     scalar = Basis(mesh, ElementTriP2())
     K = elasticity_stiffness(scalar, Lame.from_young(E_MPa, nu, plane_stress=True), thickness_mm=width_mm)
     xy = scalar.doflocs
@@ -129,12 +134,15 @@ def assemble(mesh, pairs_nodes, *, E_MPa: float, nu: float, width_mm: float, r_b
         p_edges = _edge_dofs(mesh, scalar, np.r_[tip, plus[:-1]], plus)
         # sides: minus = phi = 0+ (y > 0 elements), plus = 2pi- (y < 0); n points from minus to plus
         pairs = CrackPairs(np.concatenate([minus, m_edges]), np.concatenate([plus, p_edges]), np.array([0.0, -1.0]))
-    return RingSystem((R.T @ K @ R).tocsr(), R, basis, scalar, bore, pairs, width_mm)
+    return RingSystem((R.T @ K @ R).tocsr(), R, scalar, bore, pairs, width_mm)
 
 
 def _bore_rotation(n: int, bore: np.ndarray, phi: np.ndarray) -> sp.csr_matrix:
     """R with u_global = R u_local: identity, and at the bore dofs (u_x, u_y) = rot(phi) (u_r, u_phi)."""
-    keep = np.setdiff1d(np.arange(n), np.concatenate([2 * bore, 2 * bore + 1]))
+    keep = np.ones(n, bool)
+    keep[2 * bore] = False
+    keep[2 * bore + 1] = False
+    keep = np.flatnonzero(keep)
     c, s = np.cos(phi), np.sin(phi)
     rows = np.concatenate([keep, 2 * bore, 2 * bore, 2 * bore + 1, 2 * bore + 1])
     cols = np.concatenate([keep, 2 * bore, 2 * bore + 1, 2 * bore, 2 * bore + 1])
@@ -204,15 +212,14 @@ def solve_ring(system: RingSystem, f_global: np.ndarray, bore_radial_mm: np.ndar
     return system.R @ (up + res.u), res
 
 
-def crack_work(system: RingSystem, seam, f_global: np.ndarray, base, loaded) -> float:
-    """f.(u(base + f) - u(base)) on the cracked mesh minus f.u on it tied, f the loads ``f_global``, ``base`` and
-    ``loaded`` the contact results (``solve_ring`` on ``seam``) of a state without and with f: from the Schur
-    complement alone, w_f . (lambda_loaded - lambda_base + r_f) with r_f the condensed f, w_f = S^-1 r_f and
-    lambda the held normal openings' reactions, without the difference of the full solutions' energies."""
+def crack_work(seam, r_f: np.ndarray, force_base: np.ndarray, force_loaded: np.ndarray) -> float:
+    """f.(u(base + f) - u(base)) on the cracked mesh minus f.u on it tied, from the Schur complement alone: r_f
+    the loads f condensed on the openings (``seam.loads``), ``force_base`` and ``force_loaded`` the held normal
+    openings' reactions (contact forces) of a state without and with f. w_f . (lambda_loaded - lambda_base + r_f)
+    with w_f = S^-1 r_f, without the difference of the full solutions' energies."""
     from strainwave.fea.solver import tail_solve
-    r = seam.loads(system.R.T @ f_global)[1]
-    w = tail_solve(seam.faces.factor.S, r, np.zeros(r.size, bool))
-    return float(r @ w + w[seam.normal] @ (loaded.contact_force_N - base.contact_force_N))
+    w = tail_solve(seam.faces.factor.S, r_f, np.zeros(r_f.size, bool))
+    return float(r_f @ w + w[seam.normal] @ (force_loaded - force_base))
 
 
 def race_facets(mesh, r_race_mm: float) -> np.ndarray:
@@ -226,12 +233,18 @@ def patch_load_vectors(system: RingSystem, r_race_mm: float, angles_rad, half_wi
     """(dofs x balls): ball j's Hertz line patch sqrt(1 - (s/b_j)^2) on the race, pressing radially inward,
     scaled to a unit radial resultant (the polygonal race and the quadrature of the sqrt edge leave it
     slightly off otherwise)."""
-    from skfem import FacetBasis, LinearForm
+    from skfem import ElementTriP2, ElementVector, FacetBasis, LinearForm
 
-    mesh = system.basis.mesh
-    fb = FacetBasis(mesh, system.basis.elem, facets=race_facets(mesh, r_race_mm), intorder=10)
+    mesh, elem = system.scalar.mesh, ElementVector(ElementTriP2())
+    race = race_facets(mesh, r_race_mm)
+    ends = mesh.p[:, mesh.facets[:, race]]
+    length = np.hypot(*(ends[:, 1] - ends[:, 0]))
     out = np.zeros((system.K.shape[0], len(angles_rad)))
     for j, (psi, b) in enumerate(zip(angles_rad, half_widths_mm)):
+        # the facets the patch touches: elsewhere its pressure is exactly zero
+        arc = r_race_mm * np.abs(np.angle(np.exp(1j * (np.arctan2(ends[1], ends[0]) - psi)))).min(axis=0)
+        fb = FacetBasis(mesh, elem, facets=race[arc < b + length], intorder=10)
+
         @LinearForm
         def patch(v, w, psi=psi, b=b):
             x, y = w.x
@@ -309,7 +322,7 @@ def mesh_data(system: RingSystem, r_bore_mm: float, r_race_mm: float):
     ``bore`` and ``race`` (3-node edges), for the field writer (fea/fields.py)."""
     from strainwave.fea.mesh_data import MeshData
 
-    mesh, scalar = system.basis.mesh, system.scalar
+    mesh, scalar = system.scalar.mesh, system.scalar
     xy = scalar.doflocs
     groups = {}
     bf = mesh.boundary_facets()

@@ -73,45 +73,30 @@ def _sizer(near_mm: float, focus: float, far_mm: float, flat_mm: float = 0.0):
     return lambda x: min(far_mm, near_mm + GROWTH * max(0.0, abs(x - focus) - flat_mm))
 
 
-def _tip_sizer(tip_mm: float, focus: float, far_mm: float, depth_mm: float):
-    """A crack tip's size: ``tip_mm`` within 0.5 a of ``focus`` towards the bore and within a towards the race."""
-    below, above = _sizer(tip_mm, focus, far_mm, 0.5 * depth_mm), _sizer(tip_mm, focus, far_mm, depth_mm)
-    return lambda x: below(x) if x < focus else above(x)
-
-
-def _radial_nodes(s: RingSetup, far_mm: float, race_mm: float, tips):
-    """Radial nodes with a node on each crack tip (``tips``: (depth, tip size) pairs, deepest last), each graded
-    as its own crack's mesh is; returns (nodes, the deepest tip's index or None)."""
+def _radial_nodes(s: RingSetup, far_mm: float, race_mm: float, tip_mm: float, crack_mm: float | None):
     r_o, r_i = s.r_race_mm, s.r_bore_mm
-    if not tips:
+    if not crack_mm:
         return r_o - ring2d.graded_nodes(0.0, r_o - r_i, _sizer(race_mm, 0.0, far_mm))[::-1], None
-    deepest, tip_mm = tips[-1]
-    r_tip = r_o - deepest
-    # below the deepest tip, in the distance from it (the other tips lie above: their bore-side size)
-    beneath = [_sizer(tip_mm, 0.0, far_mm, 0.5 * deepest)] + [_sizer(t, d - deepest, far_mm, 0.5 * d) for d, t in tips[:-1]]
-    below = r_tip - ring2d.graded_nodes(0.0, r_tip - r_i, lambda x: min(f(x) for f in beneath))[::-1]
-    near = [_tip_sizer(t, r_o - d, far_mm, d) for d, t in tips[:-1]] + [_sizer(tip_mm, r_tip, far_mm, deepest)]
-    near.append(_sizer(race_mm, r_o, far_mm))
-    ends = [r_o - d for d, _ in tips[::-1]] + [r_o]
-    above = [ring2d.graded_nodes(a, b, lambda x: min(f(x) for f in near)) for a, b in zip(ends[:-1], ends[1:])]
-    return np.concatenate([below[:-1], *[seg[:-1] for seg in above[:-1]], above[-1]]), len(below) - 1
+    r_tip = r_o - crack_mm
+    below = r_tip - ring2d.graded_nodes(0.0, r_tip - r_i, _sizer(tip_mm, 0.0, far_mm, 0.5 * crack_mm))[::-1]
+    near_tip, near_race = _sizer(tip_mm, r_tip, far_mm, crack_mm), _sizer(race_mm, r_o, far_mm)
+    above = ring2d.graded_nodes(r_tip, r_o, lambda x: min(near_tip(x), near_race(x)))
+    return np.concatenate([below[:-1], above]), len(below) - 1
 
 
-def grid(s: RingSetup, h_mm: float, scale: float, crack_mm):
-    """(radial nodes, angular columns 0..2pi, the deepest tip's index or None): global size h scale, race size
-    min(h, b/2) scale (b: the load-line ball's patch; 0.7 b with --quick), tip size a/8 scale over the crack's
-    depth and within a of it, graded beyond; ``crack_mm``: one depth, several (one mesh whose seam carries every
-    tip, each graded as on its own mesh) or None;
+def grid(s: RingSetup, h_mm: float, scale: float, crack_mm: float | None):
+    """(radial nodes, angular columns 0..2pi, tip index or None): global size h scale, race size
+    min(h, b/2) scale (b: the load-line ball's patch; 0.7 b with --quick), tip size a/8 scale over the crack's depth and
+    within a of it, graded beyond;
     the loaded half (|phi| < 90 deg + 0.2 rad) keeps the race size, the rest grows to 2 h."""
     far = h_mm * scale
     race = min(h_mm, s.race_over_b * max(s.patch_half_widths_mm)) * scale
-    depths = sorted(np.atleast_1d(crack_mm).tolist()) if crack_mm is not None else []
-    tips = [(d, min(race, TIP_OVER_A * d * scale)) for d in depths]
-    r, tip_index = _radial_nodes(s, far, race, tips)
+    tip = min(race, TIP_OVER_A * crack_mm * scale) if crack_mm else race
+    r, tip_index = _radial_nodes(s, far, race, tip, crack_mm)
     r_o, edge = s.r_race_mm, s.r_race_mm * (0.5 * math.pi + 0.2)
     loaded = lambda arc: min(2.0 * far, race + GROWTH * max(0.0, arc - edge))     # noqa: E731
-    near = [_sizer(t, 0.0, far, d) for d, t in tips] or [_sizer(race, 0.0, far, 0.0)]
-    quarter = ring2d.graded_nodes(0.0, 0.5 * math.pi * r_o, lambda arc: min(loaded(arc), *(f(arc) for f in near)))
+    near = _sizer(tip, 0.0, far, crack_mm or 0.0)
+    quarter = ring2d.graded_nodes(0.0, 0.5 * math.pi * r_o, lambda arc: min(loaded(arc), near(arc)))
     second = math.pi * r_o - ring2d.graded_nodes(0.0, 0.5 * math.pi * r_o, lambda arc: loaded(math.pi * r_o - arc))
     half = np.concatenate([quarter, second[::-1][1:]]) / r_o
     phi = np.concatenate([half, 2.0 * math.pi - half[::-1][1:]])
@@ -131,7 +116,7 @@ def cam_displacement_mm(system, w0_mm: float) -> np.ndarray:
 
 def _race_points(s: RingSetup, angles, system) -> np.ndarray:
     """Race vertices nearest the angles (the race is a polygon through them), a hair inside."""
-    p = system.basis.mesh.p
+    p = system.scalar.mesh.p
     on = np.flatnonzero(np.abs(np.hypot(*p) - s.r_race_mm) < 1e-7 * s.r_race_mm)
     ang = np.arctan2(p[1, on], p[0, on])
     pick = on[[int(np.argmin(np.abs(np.angle(np.exp(1j * (ang - a)))))) for a in angles]]
@@ -184,8 +169,8 @@ def solve_plain(s: RingSetup, h_mm: float, scale: float, profile_depth_mm: float
             "net_race_major_MPa": float(all_round[0]), "compliance": float(f @ u_f) / s.force_N ** 2,
             "ball_ratio": float(q_fea.max()) * s.ball_count / s.force_N, "radial_stiffness": s.force_N / d0,
             "_ball_loads": q_fea, "_net_round": (ring_phi, all_round), "_profile": (x, profile),
-            "_dofs": system.K.shape[0], "_elements": system.basis.mesh.t.shape[1],
-            "_nodes": system.scalar.N, "_quality": ring2d.triangle_quality(system.basis.mesh),
+            "_dofs": system.K.shape[0], "_elements": system.scalar.mesh.t.shape[1],
+            "_nodes": system.scalar.N, "_quality": ring2d.triangle_quality(system.scalar.mesh),
             "_system": system, "_u": u_cam + u_f, "_stress": st_cam + st_f}
 
 
@@ -208,55 +193,45 @@ def _ball_count(s: RingSetup) -> int:
     return s.ball_count
 
 
-def _tied_below(system, r_tip_mm: float) -> np.ndarray:
-    """The seam's pairs that lie below a crack tip at radius ``r_tip_mm`` (joined: that crack is shorter)."""
-    return np.hypot(*system.scalar.doflocs[:, system.pairs.minus]) <= r_tip_mm * (1.0 + 1e-12)
-
-
-def solve_cracks(s: RingSetup, h_mm: float, scale: float, depths_mm, *, profile: bool = False,
-                 compressed: bool = False) -> dict:
-    """Every crack depth on one refinement from one factorisation: one mesh whose seam carries every depth's
-    tip (``grid`` of all depths), factorised with its Schur complement S on the seam pairs' openings
-    (``ring2d.seam_system``). A crack of depth a is the seam opened above its tip and joined below (those
-    pairs' openings held); its faces in contact (cam, then cam + balls), each set a dense solve of S. The
-    increment over the seam joined is r_f . (w_2 - w_1) / F^2: r_f the ball loads condensed on the openings,
-    w the openings of the two states. ``profile``: the uncracked hoop stress per newton on each crack's line;
-    ``compressed``: the deepest crack with the cam reversed (w0 -> -w0) too, under key "compressed"."""
-    depths = sorted(depths_mm)
-    r, phi, tip = grid(s, h_mm, scale, depths)
-    system = _system(s, r, phi, tip)
-    f = ring2d.patch_load_vectors(system, s.r_race_mm, s.ball_angles_rad, s.patch_half_widths_mm) @ np.asarray(s.ball_loads_N)
-    seam = ring2d.seam_system(system)
+def solve_crack(s: RingSetup, h_mm: float, scale: float, depth_mm: float, *, profile: bool = True,
+                compressed: bool = False) -> dict:
+    """One crack depth on one refinement, every state from one factorisation with the Schur complement S on the
+    crack pairs' openings (``ring2d.seam_system``): the compliance under the ball loads on the cracked mesh (faces
+    in contact, cam then cam + balls, each contact set a dense solve of S) minus the same mesh merged (every pair
+    held). The cam and the balls are one back-substitution; ``profile``: the uncracked hoop stress per newton on
+    the crack line too; ``compressed``: the same crack with the cam reversed (w0 -> -w0), under "compressed"."""
+    cracked = _system(s, *grid(s, h_mm, scale, depth_mm))
+    q = np.asarray(s.ball_loads_N)
+    f = ring2d.patch_load_vectors(cracked, s.r_race_mm, s.ball_angles_rad, s.patch_half_widths_mm) @ q
+    seam = ring2d.seam_system(cracked)
     try:
-        ft_f = seam.T.T @ (system.R.T @ f)
-        ft_cam = seam.T.T @ ring2d.bore_load(system, cam_displacement_mm(system, s.w0_mm))
-        v = seam.faces.free_solution(np.column_stack([ft_f, ft_cam]))
+        ft = seam.T.T @ np.column_stack([cracked.R.T @ f, ring2d.bore_load(cracked, cam_displacement_mm(cracked, s.w0_mm))])
+        v = seam.faces.free_solution(ft)
         r_f, r_cam = seam.faces.condensed(v).T
-        u_tied = seam.solution(ft_f, r_f, np.ones(r_f.size, bool)) if profile else None
+        u0 = cracked.R @ seam.solution(ft[:, 0], r_f, np.ones(r_f.size, bool)) if profile else None
     finally:
         seam.close()
-    radius = np.hypot(*system.scalar.doflocs[:, system.pairs.minus])
-    mouth = int(np.argmax(radius))
-    # f.u with the seam joined: f.u with it free minus the openings' share
-    c0 = float(ft_f[seam.faces.free] @ v[seam.faces.free, 0] - v[seam.faces.face_z, 0] @ r_f) / s.force_N ** 2
+    free, face = seam.faces.free, seam.faces.face_z
+    # f.u with every pair held: f.u with the openings free less their share
+    c0 = float(ft[free, 0] @ v[free, 0] - v[face, 0] @ r_f) / s.force_N ** 2
+    mouth = int(np.argmax(np.hypot(*cracked.scalar.doflocs[:, cracked.pairs.minus])))
 
-    def crack(depth, sign):
-        tied = _tied_below(system, s.r_race_mm - depth)
-        tol = [1e-9 * float(np.abs(seam.T @ (sign * v[:, 1] + k * v[:, 0])).max()) for k in (0, 1)]
-        *_, w1 = seam.settle(sign * r_cam, tol[0], tied)
-        active, gap, _, _, w2 = seam.settle(sign * r_cam + r_f, tol[1], tied)
-        return {"delta": float(r_f @ (w2 - w1)) / s.force_N ** 2, "uncracked": c0, "closed_pairs": int(active.sum()),
-                "pairs": int((~tied).sum()), "mouth_opening_mm": float(gap[mouth]), "dofs": system.K.shape[0]}
+    def states(sign: float) -> dict:
+        tol = [1e-9 * float(np.abs(seam.T @ (sign * v[:, 1] + k * v[:, 0])).max()) for k in (0.0, 1.0)]
+        base = seam.settle(sign * r_cam, tol[0])
+        active, gap, force, _, _ = seam.settle(sign * r_cam + r_f, tol[1])
+        return {"delta": ring2d.crack_work(seam, r_f, base[2], force) / s.force_N ** 2, "uncracked": c0,
+                "closed_pairs": int(active.sum()), "pairs": int(active.size), "mouth_opening_mm": float(gap[mouth]),
+                "dofs": cracked.K.shape[0]}
 
-    out = {depth: crack(depth, 1.0) for depth in depths}
-    if compressed:
-        out["compressed"] = crack(depths[-1], -1.0)
+    out = states(1.0)
     if profile:
-        stress = ring2d.nodal_stress(system, u_tied, s.E_MPa, s.nu)
-        for depth in depths:
-            x = depth * np.linspace(0.0, 1.0, 65)
-            line = np.array([s.r_race_mm * (1 - 1e-9) - x, 0 * x + 1e-9])
-            out[depth]["profile"] = (x, ring2d.hoop_stress_at(system, stress, line) / s.force_N)
+        x = depth_mm * np.linspace(0.0, 1.0, 65)
+        stress = ring2d.nodal_stress(cracked, u0, s.E_MPa, s.nu)
+        line = np.array([s.r_race_mm * (1 - 1e-9) - x, 0 * x + 1e-9])
+        out["profile"] = (x, ring2d.hoop_stress_at(cracked, stress, line) / s.force_N)
+    if compressed:
+        out["compressed"] = states(-1.0)
     return out
 
 
@@ -332,22 +307,22 @@ def _plain_quantities(s: RingSetup, h: float, sizes, progress, deepest_mm: float
 
 
 def _crack_quantities(s: RingSetup, h: float, sizes, depths, progress):
-    """Each depth's increment on three meshes (all depths of one refinement from one factorisation), its finest
-    mesh's facts, and the deepest crack under the cam reversed on the coarsest."""
-    runs = []
-    for k in (2, 1, 0):
-        progress(f"{STUDY}: cracks a = {', '.join(f'{d:g}' for d in depths)} mm, refinement {3 - k}/3")
-        runs.append(solve_cracks(s, h, DEFAULT_RATIO ** k, depths, profile=k == 0, compressed=k == 2))
-    compressed = runs[0].pop("compressed")
-    runs = runs[::-1]
-    q, facts = {}, {}
+    """Each depth's increment on three meshes, its finest mesh's facts, and (first principles: under the cam's
+    compression, w0 -> -w0, the crack shuts; the coarsest mesh suffices) the deepest crack with the cam reversed."""
+    q, facts, compressed = {}, {}, None
     for depth in depths:
+        runs = []
+        for k in (2, 1, 0):
+            progress(f"{STUDY}: crack a = {depth:g} mm, refinement {3 - k}/3")
+            runs.append(solve_crack(s, h, DEFAULT_RATIO ** k, depth, profile=k == 0,
+                                    compressed=k == 2 and depth == max(depths)))
+        compressed = runs[0].pop("compressed", compressed)
+        runs = runs[::-1]
         name = delta_name(depth)
-        q[name] = _converge(name, "mm/N", sizes, [r[depth]["delta"] for r in runs], CRACK_FORMAL_ORDER)
-        finest = runs[0][depth]
-        x, profile = finest["profile"]
-        facts[f"{depth:g}"] = {"depth_mm": depth, "closed_pairs": finest["closed_pairs"], "pairs": finest["pairs"],
-                               "mouth_opening_mm": finest["mouth_opening_mm"], "dofs": finest["dofs"],
+        q[name] = _converge(name, "mm/N", sizes, [r["delta"] for r in runs], CRACK_FORMAL_ORDER)
+        x, profile = runs[0]["profile"]
+        facts[f"{depth:g}"] = {"depth_mm": depth, "closed_pairs": runs[0]["closed_pairs"], "pairs": runs[0]["pairs"],
+                               "mouth_opening_mm": runs[0]["mouth_opening_mm"], "dofs": runs[0]["dofs"],
                                "profile_x_mm": x.tolist(), "hoop_stress_per_N_MPa": profile.tolist()}
     return q, facts, compressed
 
@@ -371,7 +346,6 @@ def run(params, *, force_N: float, w0_mm: float, ball_angles_rad, ball_loads_N, 
     t0 = time.perf_counter()
     q, finest = _plain_quantities(s, h, sizes, progress, max(depths))
     t1 = time.perf_counter()
-    # first principles: under the cam's compression (w0 -> -w0) the crack shuts; the coarsest mesh suffices
     qc, facts, compressed = _crack_quantities(s, h, sizes, depths, progress)
     t2 = time.perf_counter()
     phi, net = finest["_net_round"]
@@ -389,7 +363,7 @@ def run(params, *, force_N: float, w0_mm: float, ball_angles_rad, ball_loads_N, 
                                                   params.material),)
     return StudyResult(STUDY, {**q, **qc}, mesh, _load(s), _supports(),
                        CrackRecord(max(depths), "2D edge crack at the major axis, frictionless face contact, "
-                                   "sweep of depths (each on three meshes, every depth's tip on each)"),
+                                   "sweep of depths (each on three meshes)"),
                        {"uncracked": t1 - t0, "cracks": t2 - t1}, fields, {}, meta, (mesh,) * 3)
 
 
