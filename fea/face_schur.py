@@ -109,13 +109,15 @@ class SeamSystem:
     normal: np.ndarray          # position of each pair's normal opening w_n among faces.face_z
 
     @classmethod
-    def of(cls, K, fixed, pairs: CrackPairs, study: str) -> "SeamSystem":
+    def of(cls, K, fixed, pairs: CrackPairs, study: str, frame: sp.spmatrix | None = None) -> "SeamSystem":
+        """``frame``: K is in other coordinates, u_K = frame u (one product with T instead of a rotated K)."""
         dim = pairs.dim
         opening = np.sort((dim * pairs.plus[:, None] + np.arange(dim)).ravel())
         if np.isin(np.concatenate([opening, (dim * pairs.minus[:, None] + np.arange(dim)).ravel()]), fixed).any():
             raise ValueError("SeamSystem: a Dirichlet condition on a crack pair's node; the pairs must be free")
         T = opening_transformation(K.shape[0], pairs)
-        faces = FaceSystem.of((T.T @ K.tocsr() @ T).tocsr(), np.asarray(fixed, np.int64), opening, study)
+        M = T if frame is None else (frame @ T).tocsr()
+        faces = FaceSystem.of((M.T @ K.tocsr() @ M).tocsr(), np.asarray(fixed, np.int64), opening, study)
         return cls(pairs, T, faces, np.searchsorted(opening, dim * pairs.plus))
 
     def loads(self, f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

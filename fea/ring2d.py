@@ -12,6 +12,7 @@ phi = 0 against the rigid rotation (on the symmetry line, so it carries no force
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
@@ -87,12 +88,17 @@ def ring_mesh(r_mm: np.ndarray, phi_rad: np.ndarray, crack_tip_index: int | None
 class RingSystem:
     """Assembled plane-stress system in nodal (r, phi) coordinates at the bore, global (x, y) elsewhere."""
 
-    K: sp.csr_matrix
+    K_global: sp.csr_matrix        # the stiffness in global (x, y) at every node
     R: sp.csr_matrix               # u_global = R u_local
     scalar: object                 # scalar P2 basis
     bore_dofs: np.ndarray          # scalar dofs on the bore
     pairs: CrackPairs | None       # crack dof pairs (scalar dof numbers)
     width_mm: float
+
+    @cached_property
+    def K(self) -> sp.csr_matrix:
+        """The stiffness in the nodal frames, R^T K R (made when read: the crack's seam takes R into its own)."""
+        return (self.R.T @ self.K_global @ self.R).tocsr()
 
 
 def _edge_dofs(mesh, scalar, a_nodes: np.ndarray, b_nodes: np.ndarray) -> np.ndarray:
@@ -127,7 +133,7 @@ def assemble(mesh, pairs_nodes, *, E_MPa: float, nu: float, width_mm: float, r_b
         p_edges = _edge_dofs(mesh, scalar, np.r_[tip, plus[:-1]], plus)
         # sides: minus = phi = 0+ (y > 0 elements), plus = 2pi- (y < 0); n points from minus to plus
         pairs = CrackPairs(np.concatenate([minus, m_edges]), np.concatenate([plus, p_edges]), np.array([0.0, -1.0]))
-    return RingSystem((R.T @ K @ R).tocsr(), R, scalar, bore, pairs, width_mm)
+    return RingSystem(K.tocsr(), R, scalar, bore, pairs, width_mm)
 
 
 def _bore_rotation(n: int, bore: np.ndarray, phi: np.ndarray) -> sp.csr_matrix:
@@ -164,7 +170,7 @@ def seam_system(system: "RingSystem"):
     """The cracked ring with the bore held, factorised once with its Schur complement on the crack pairs'
     openings (``face_schur.SeamSystem``): the faces tied and every contact set are dense solves on it."""
     from strainwave.fea.face_schur import SeamSystem
-    return SeamSystem.of(system.K, _bore_fixed(system), system.pairs, "wg-bearing")
+    return SeamSystem.of(system.K_global, _bore_fixed(system), system.pairs, "wg-bearing", frame=system.R)
 
 
 def _with_seam(system: "RingSystem", seam, job):
@@ -180,7 +186,7 @@ def _with_seam(system: "RingSystem", seam, job):
 
 def _bore_displacement(system: RingSystem, bore_radial_mm: np.ndarray | None) -> np.ndarray:
     """The prescribed part of u (nodal frames): the bore's radial dofs at ``bore_radial_mm`` (None = 0)."""
-    up = np.zeros(system.K.shape[0])
+    up = np.zeros(system.R.shape[0])
     if bore_radial_mm is not None:
         up[2 * system.bore_dofs] = bore_radial_mm
     return up
@@ -188,7 +194,8 @@ def _bore_displacement(system: RingSystem, bore_radial_mm: np.ndarray | None) ->
 
 def bore_load(system: RingSystem, bore_radial_mm: np.ndarray | None) -> np.ndarray:
     """The loads (nodal frames) the bore's prescribed radial displacement puts on the other dofs: -K u_p."""
-    return -(system.K @ _bore_displacement(system, bore_radial_mm))
+    R = system.R
+    return -(R.T @ (system.K_global @ (R @ _bore_displacement(system, bore_radial_mm))))
 
 
 def solve_ring(system: RingSystem, f_global: np.ndarray, bore_radial_mm: np.ndarray | None, seam=None):
@@ -237,7 +244,7 @@ def patch_load_vectors(system: RingSystem, r_race_mm: float, angles_rad, half_wi
     for psi, b in zip(angles_rad, half_widths_mm):
         touched |= r_race_mm * np.abs(np.angle(np.exp(1j * (angle - psi)))).min(axis=0) < b + length
     fb = FacetBasis(mesh, ElementVector(ElementTriP2()), facets=race[touched], intorder=10)
-    out = np.zeros((system.K.shape[0], len(angles_rad)))
+    out = np.zeros((system.R.shape[0], len(angles_rad)))
     for j, (psi, b) in enumerate(zip(angles_rad, half_widths_mm)):
         @LinearForm
         def patch(v, w, psi=psi, b=b):

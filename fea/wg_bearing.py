@@ -222,7 +222,7 @@ def solve_crack(s: RingSetup, h_mm: float, scale: float, depth_mm: float, *, pro
         active, gap, force, _, _ = seam.settle(sign * r_cam + r_f, tol[1])
         return {"delta": ring2d.crack_work(seam, r_f, base[2], force) / s.force_N ** 2, "uncracked": c0,
                 "closed_pairs": int(active.sum()), "pairs": int(active.size), "mouth_opening_mm": float(gap[mouth]),
-                "dofs": cracked.K.shape[0]}
+                "dofs": cracked.R.shape[0]}
 
     out = states(1.0)
     if profile:
