@@ -205,8 +205,9 @@ def solve_crack(s: RingSetup, h_mm: float, scale: float, depth_mm: float, *, pro
     f = ring2d.patch_load_vectors(cracked, s.r_race_mm, s.ball_angles_rad, s.patch_half_widths_mm) @ q
     seam = ring2d.seam_system(cracked)
     try:
-        ft = seam.T.T @ np.column_stack([cracked.R.T @ f, ring2d.bore_load(cracked, cam_displacement_mm(cracked, s.w0_mm))])
-        v = seam.faces.free_solution(ft)
+        cam = ring2d.bore_load(cracked, cam_displacement_mm(cracked, s.w0_mm))
+        ft = seam.T.T @ np.column_stack([cracked.R.T @ f, cam])
+        v = seam.faces.free_solution(ft)          # the balls, then the cam: the faces free
         r_f, r_cam = seam.faces.condensed(v).T
         u0 = cracked.R @ seam.solution(ft[:, 0], r_f, np.ones(r_f.size, bool)) if profile else None
     finally:
@@ -217,15 +218,16 @@ def solve_crack(s: RingSetup, h_mm: float, scale: float, depth_mm: float, *, pro
     mouth = int(np.argmax(np.hypot(*cracked.scalar.doflocs[:, cracked.pairs.minus])))
 
     def states(sign: float) -> dict:
-        tol = [1e-9 * float(np.abs(seam.T @ (sign * v[:, 1] + k * v[:, 0])).max()) for k in (0.0, 1.0)]
-        base = seam.settle(sign * r_cam, tol[0])
+        # each state's threshold from its own faces-free solution, as ``SeamSystem.contact`` takes it
+        tol = [1e-9 * float(np.abs(seam.T @ (sign * v[:, 1] + balls * v[:, 0])).max()) for balls in (0.0, 1.0)]
+        _, _, force_base, _, _ = seam.settle(sign * r_cam, tol[0])
         active, gap, force, _, _ = seam.settle(sign * r_cam + r_f, tol[1])
-        return {"delta": ring2d.crack_work(seam, r_f, base[2], force) / s.force_N ** 2, "uncracked": c0,
+        return {"delta": ring2d.crack_work(seam, r_f, force_base, force) / s.force_N ** 2, "uncracked": c0,
                 "closed_pairs": int(active.sum()), "pairs": int(active.size), "mouth_opening_mm": float(gap[mouth]),
                 "dofs": cracked.R.shape[0]}
 
     out = states(1.0)
-    if profile:
+    if profile:     # the uncracked hoop stress per newton on the crack line, on this mesh: the closed form's input
         x = depth_mm * np.linspace(0.0, 1.0, 65)
         stress = ring2d.nodal_stress(cracked, u0, s.E_MPa, s.nu)
         line = np.array([s.r_race_mm * (1 - 1e-9) - x, 0 * x + 1e-9])
@@ -267,7 +269,7 @@ class WgBearing(StudyFacts):
     study = STUDY
     # graded to the race patches and the crack tip: the cracked quick mesh at a = 1 mm, h = 1.67 mm (12)
     elements_per_cell = 12.0
-    cpu_s_per_element = (2.8e-4, 1.3e-4)   # full, --quick: validate's schedule (decision 049)
+    cpu_s_per_element = (1.9e-4, 8.0e-5)   # full, --quick: validate's schedule (decisions 049, 059)
     default_size_mm = staticmethod(default_size_mm)
     plane = True
     # solved at the rated F_r already (scale 1: the cam's share is not linear in F_r)
