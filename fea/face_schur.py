@@ -109,13 +109,15 @@ class SeamSystem:
     normal: np.ndarray          # position of each pair's normal opening w_n among faces.face_z
 
     @classmethod
-    def of(cls, K, fixed, pairs: CrackPairs, study: str) -> "SeamSystem":
+    def of(cls, K, fixed, pairs: CrackPairs, study: str, frame: sp.spmatrix | None = None) -> "SeamSystem":
+        """``frame``: K is in other coordinates, u_K = frame u (one product with T instead of a rotated K)."""
         dim = pairs.dim
         opening = np.sort((dim * pairs.plus[:, None] + np.arange(dim)).ravel())
         if np.isin(np.concatenate([opening, (dim * pairs.minus[:, None] + np.arange(dim)).ravel()]), fixed).any():
             raise ValueError("SeamSystem: a Dirichlet condition on a crack pair's node; the pairs must be free")
         T = opening_transformation(K.shape[0], pairs)
-        faces = FaceSystem.of((T.T @ K.tocsr() @ T).tocsr(), np.asarray(fixed, np.int64), opening, study)
+        M = T if frame is None else (frame @ T).tocsr()
+        faces = FaceSystem.of((M.T @ K.tocsr() @ M).tocsr(), np.asarray(fixed, np.int64), opening, study)
         return cls(pairs, T, faces, np.searchsorted(opening, dim * pairs.plus))
 
     def loads(self, f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -135,19 +137,25 @@ class SeamSystem:
 
     def contact(self, ft: np.ndarray, r: np.ndarray, tol_mm: float | None = None) -> ContactResult:
         """``crack_contact.solve_with_contact``'s active set and thresholds, each set a dense solve of S."""
-        from strainwave.fea.solver import tail_solve
-        S, free = self.faces.factor.S, self.faces.free
         v0 = np.zeros_like(ft)
-        v0[free] = self.faces.factor.solve(ft[free])
+        v0[self.faces.free] = self.faces.factor.solve(ft[self.faces.free])
         u0 = self.T @ v0
         tol = tol_mm if tol_mm is not None else 1e-9 * float(np.abs(u0).max())
+        active, gap, force, iterations, _ = self.settle(r, tol)
+        return ContactResult(self.solution(ft, r, self.held(active)), active, gap, force, iterations, u0)
+
+    def settle(self, r: np.ndarray, tol_mm: float):
+        """``contact``'s active set on S alone, without the full solution: (active, normal openings, contact
+        forces, set changes, every opening w)."""
+        from strainwave.fea.solver import tail_solve
+        S = self.faces.factor.S
 
         def state(active):
             w = tail_solve(S, r, self.held(active))
             return w[self.normal], np.where(active, (S @ w - r)[self.normal], 0.0)
 
-        active, gap, force, iterations = settle_active_set(state, self.pairs.minus.size, tol)
-        return ContactResult(self.solution(ft, r, self.held(active)), active, gap, force, iterations, u0)
+        active, gap, force, iterations = settle_active_set(state, self.pairs.minus.size, tol_mm)
+        return active, gap, force, iterations, tail_solve(S, r, self.held(active))
 
     def close(self) -> None:
         self.faces.factor.close()

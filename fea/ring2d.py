@@ -12,13 +12,14 @@ phi = 0 against the rigid rotation (on the symmetry line, so it carries no force
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
 
 from strainwave.fea.crack_contact import CrackPairs
 
-__all__ = ["graded_nodes", "RingMesh", "ring_mesh", "RingSystem", "assemble", "seam_system", "solve_ring", "crack_work", "mesh_data", "hoop_stress"]
+__all__ = ["graded_nodes", "RingMesh", "ring_mesh", "RingSystem", "assemble", "seam_system", "bore_load", "solve_ring", "crack_work", "mesh_data", "hoop_stress"]
 
 
 # PARDISO's minimum-degree ordering for the stress projection's mass matrix: METIS costs more than the factors
@@ -87,13 +88,17 @@ def ring_mesh(r_mm: np.ndarray, phi_rad: np.ndarray, crack_tip_index: int | None
 class RingSystem:
     """Assembled plane-stress system in nodal (r, phi) coordinates at the bore, global (x, y) elsewhere."""
 
-    K: sp.csr_matrix
+    K_global: sp.csr_matrix        # the stiffness in global (x, y) at every node
     R: sp.csr_matrix               # u_global = R u_local
-    basis: object                  # vector P2 basis
     scalar: object                 # scalar P2 basis
     bore_dofs: np.ndarray          # scalar dofs on the bore
     pairs: CrackPairs | None       # crack dof pairs (scalar dof numbers)
     width_mm: float
+
+    @cached_property
+    def K(self) -> sp.csr_matrix:
+        """The stiffness in the nodal frames, R^T K R (made when read: the crack's seam takes R into its own)."""
+        return (self.R.T @ self.K_global @ self.R).tocsr()
 
 
 def _edge_dofs(mesh, scalar, a_nodes: np.ndarray, b_nodes: np.ndarray) -> np.ndarray:
@@ -112,11 +117,10 @@ def _edge_dofs(mesh, scalar, a_nodes: np.ndarray, b_nodes: np.ndarray) -> np.nda
 
 def assemble(mesh, pairs_nodes, *, E_MPa: float, nu: float, width_mm: float, r_bore_mm: float) -> RingSystem:
     """Plane stress (thickness = ring width B) P2 stiffness, rotated to (r, phi) at the bore nodes."""
-    from skfem import Basis, ElementTriP2, ElementVector
+    from skfem import Basis, ElementTriP2
 
     from strainwave.fea.assembly import Lame, elasticity_stiffness
 
-    basis = Basis(mesh, ElementVector(ElementTriP2()))
     scalar = Basis(mesh, ElementTriP2())
     K = elasticity_stiffness(scalar, Lame.from_young(E_MPa, nu, plane_stress=True), thickness_mm=width_mm)
     xy = scalar.doflocs
@@ -129,12 +133,15 @@ def assemble(mesh, pairs_nodes, *, E_MPa: float, nu: float, width_mm: float, r_b
         p_edges = _edge_dofs(mesh, scalar, np.r_[tip, plus[:-1]], plus)
         # sides: minus = phi = 0+ (y > 0 elements), plus = 2pi- (y < 0); n points from minus to plus
         pairs = CrackPairs(np.concatenate([minus, m_edges]), np.concatenate([plus, p_edges]), np.array([0.0, -1.0]))
-    return RingSystem((R.T @ K @ R).tocsr(), R, basis, scalar, bore, pairs, width_mm)
+    return RingSystem(K.tocsr(), R, scalar, bore, pairs, width_mm)
 
 
 def _bore_rotation(n: int, bore: np.ndarray, phi: np.ndarray) -> sp.csr_matrix:
     """R with u_global = R u_local: identity, and at the bore dofs (u_x, u_y) = rot(phi) (u_r, u_phi)."""
-    keep = np.setdiff1d(np.arange(n), np.concatenate([2 * bore, 2 * bore + 1]))
+    keep = np.ones(n, bool)
+    keep[2 * bore] = False
+    keep[2 * bore + 1] = False
+    keep = np.flatnonzero(keep)
     c, s = np.cos(phi), np.sin(phi)
     rows = np.concatenate([keep, 2 * bore, 2 * bore, 2 * bore + 1, 2 * bore + 1])
     cols = np.concatenate([keep, 2 * bore, 2 * bore + 1, 2 * bore, 2 * bore + 1])
@@ -163,7 +170,7 @@ def seam_system(system: "RingSystem"):
     """The cracked ring with the bore held, factorised once with its Schur complement on the crack pairs'
     openings (``face_schur.SeamSystem``): the faces tied and every contact set are dense solves on it."""
     from strainwave.fea.face_schur import SeamSystem
-    return SeamSystem.of(system.K, _bore_fixed(system), system.pairs, "wg-bearing")
+    return SeamSystem.of(system.K_global, _bore_fixed(system), system.pairs, "wg-bearing", frame=system.R)
 
 
 def _with_seam(system: "RingSystem", seam, job):
@@ -179,10 +186,16 @@ def _with_seam(system: "RingSystem", seam, job):
 
 def _bore_displacement(system: RingSystem, bore_radial_mm: np.ndarray | None) -> np.ndarray:
     """The prescribed part of u (nodal frames): the bore's radial dofs at ``bore_radial_mm`` (None = 0)."""
-    up = np.zeros(system.K.shape[0])
+    up = np.zeros(system.R.shape[0])
     if bore_radial_mm is not None:
         up[2 * system.bore_dofs] = bore_radial_mm
     return up
+
+
+def bore_load(system: RingSystem, bore_radial_mm: np.ndarray | None) -> np.ndarray:
+    """The loads (nodal frames) the bore's prescribed radial displacement puts on the other dofs: -K u_p."""
+    R = system.R
+    return -(R.T @ (system.K_global @ (R @ _bore_displacement(system, bore_radial_mm))))
 
 
 def solve_ring(system: RingSystem, f_global: np.ndarray, bore_radial_mm: np.ndarray | None, seam=None):
@@ -192,22 +205,21 @@ def solve_ring(system: RingSystem, f_global: np.ndarray, bore_radial_mm: np.ndar
     ``seam``: ``seam_system``'s factorisation, made here when None). Returns (u, contact result or None)."""
     up = _bore_displacement(system, bore_radial_mm)
     fixed = _bore_fixed(system)
-    f = system.R.T @ f_global - system.K @ up
+    f = system.R.T @ f_global + bore_load(system, bore_radial_mm)
     if system.pairs is None:
         return system.R @ (up + _direct(system.K, f, fixed)), None
     res = _with_seam(system, seam, lambda sm: sm.contact(*sm.loads(f)))
     return system.R @ (up + res.u), res
 
 
-def crack_work(system: RingSystem, seam, f_global: np.ndarray, base, loaded) -> float:
-    """f.(u(base + f) - u(base)) on the cracked mesh minus f.u on it tied, f the loads ``f_global``, ``base`` and
-    ``loaded`` the contact results (``solve_ring`` on ``seam``) of a state without and with f: from the Schur
-    complement alone, w_f . (lambda_loaded - lambda_base + r_f) with r_f the condensed f, w_f = S^-1 r_f and
-    lambda the held normal openings' reactions, without the difference of the full solutions' energies."""
+def crack_work(seam, r_f: np.ndarray, force_base: np.ndarray, force_loaded: np.ndarray) -> float:
+    """f.(u(base + f) - u(base)) on the cracked mesh minus f.u on it tied, from the Schur complement alone: r_f
+    the loads f condensed on the openings (``seam.loads``), ``force_base`` and ``force_loaded`` the held normal
+    openings' reactions (contact forces) of a state without and with f. w_f . (lambda_loaded - lambda_base + r_f)
+    with w_f = S^-1 r_f, without the difference of the full solutions' energies."""
     from strainwave.fea.solver import tail_solve
-    r = seam.loads(system.R.T @ f_global)[1]
-    w = tail_solve(seam.faces.factor.S, r, np.zeros(r.size, bool))
-    return float(r @ w + w[seam.normal] @ (loaded.contact_force_N - base.contact_force_N))
+    w = tail_solve(seam.faces.factor.S, r_f, np.zeros(r_f.size, bool))
+    return float(r_f @ w + w[seam.normal] @ (force_loaded - force_base))
 
 
 def race_facets(mesh, r_race_mm: float) -> np.ndarray:
@@ -221,11 +233,18 @@ def patch_load_vectors(system: RingSystem, r_race_mm: float, angles_rad, half_wi
     """(dofs x balls): ball j's Hertz line patch sqrt(1 - (s/b_j)^2) on the race, pressing radially inward,
     scaled to a unit radial resultant (the polygonal race and the quadrature of the sqrt edge leave it
     slightly off otherwise)."""
-    from skfem import FacetBasis, LinearForm
+    from skfem import ElementTriP2, ElementVector, FacetBasis, LinearForm
 
-    mesh = system.basis.mesh
-    fb = FacetBasis(mesh, system.basis.elem, facets=race_facets(mesh, r_race_mm), intorder=10)
-    out = np.zeros((system.K.shape[0], len(angles_rad)))
+    mesh = system.scalar.mesh
+    race = race_facets(mesh, r_race_mm)
+    ends = mesh.p[:, mesh.facets[:, race]]
+    length, angle = np.hypot(*(ends[:, 1] - ends[:, 0])), np.arctan2(ends[1], ends[0])
+    # the facets a patch touches: elsewhere every pressure is exactly zero
+    touched = np.zeros(race.size, bool)
+    for psi, b in zip(angles_rad, half_widths_mm):
+        touched |= r_race_mm * np.abs(np.angle(np.exp(1j * (angle - psi)))).min(axis=0) < b + length
+    fb = FacetBasis(mesh, ElementVector(ElementTriP2()), facets=race[touched], intorder=10)
+    out = np.zeros((system.R.shape[0], len(angles_rad)))
     for j, (psi, b) in enumerate(zip(angles_rad, half_widths_mm)):
         @LinearForm
         def patch(v, w, psi=psi, b=b):
@@ -274,8 +293,8 @@ def nodal_stress(system: RingSystem, u: np.ndarray, E_MPa: float, nu: float) -> 
     rhs = LinearForm(lambda v, w: w["s"] * v)
     b = []
     for column in np.reshape(u, (u.shape[0], -1)).T:
-        g = system.basis.interpolate(column).grad
-        exx, eyy, exy = g[0, 0], g[1, 1], 0.5 * (g[0, 1] + g[1, 0])
+        gx, gy = (system.scalar.interpolate(column[k::2]).grad for k in (0, 1))
+        exx, eyy, exy = gx[0], gy[1], 0.5 * (gx[1] + gy[0])
         comps = (c * (exx + nu * eyy), c * (eyy + nu * exx), E_MPa / (1.0 + nu) * exy)
         b += [rhs.assemble(system.scalar, s=s) for s in comps]
     b = np.column_stack(b)
@@ -304,7 +323,7 @@ def mesh_data(system: RingSystem, r_bore_mm: float, r_race_mm: float):
     ``bore`` and ``race`` (3-node edges), for the field writer (fea/fields.py)."""
     from strainwave.fea.mesh_data import MeshData
 
-    mesh, scalar = system.basis.mesh, system.scalar
+    mesh, scalar = system.scalar.mesh, system.scalar
     xy = scalar.doflocs
     groups = {}
     bf = mesh.boundary_facets()

@@ -116,7 +116,7 @@ def cam_displacement_mm(system, w0_mm: float) -> np.ndarray:
 
 def _race_points(s: RingSetup, angles, system) -> np.ndarray:
     """Race vertices nearest the angles (the race is a polygon through them), a hair inside."""
-    p = system.basis.mesh.p
+    p = system.scalar.mesh.p
     on = np.flatnonzero(np.abs(np.hypot(*p) - s.r_race_mm) < 1e-7 * s.r_race_mm)
     ang = np.arctan2(p[1, on], p[0, on])
     pick = on[[int(np.argmin(np.abs(np.angle(np.exp(1j * (ang - a)))))) for a in angles]]
@@ -169,8 +169,8 @@ def solve_plain(s: RingSetup, h_mm: float, scale: float, profile_depth_mm: float
             "net_race_major_MPa": float(all_round[0]), "compliance": float(f @ u_f) / s.force_N ** 2,
             "ball_ratio": float(q_fea.max()) * s.ball_count / s.force_N, "radial_stiffness": s.force_N / d0,
             "_ball_loads": q_fea, "_net_round": (ring_phi, all_round), "_profile": (x, profile),
-            "_dofs": system.K.shape[0], "_elements": system.basis.mesh.t.shape[1],
-            "_nodes": system.scalar.N, "_quality": ring2d.triangle_quality(system.basis.mesh),
+            "_dofs": system.K.shape[0], "_elements": system.scalar.mesh.t.shape[1],
+            "_nodes": system.scalar.N, "_quality": ring2d.triangle_quality(system.scalar.mesh),
             "_system": system, "_u": u_cam + u_f, "_stress": st_cam + st_f}
 
 
@@ -193,31 +193,48 @@ def _ball_count(s: RingSetup) -> int:
     return s.ball_count
 
 
-def solve_crack(s: RingSetup, h_mm: float, scale: float, depth_mm: float, w0_mm: float | None = None) -> dict:
-    """One crack depth on one refinement: the compliance under the ball loads on the cracked mesh (faces in
-    contact, cam then cam + balls) minus the same mesh merged (uncracked), all three from one factorisation
-    with the Schur complement on the crack pairs' openings (``ring2d.seam_system``)."""
-    w0 = s.w0_mm if w0_mm is None else w0_mm
+def solve_crack(s: RingSetup, h_mm: float, scale: float, depth_mm: float, *, profile: bool = True,
+                compressed: bool = False) -> dict:
+    """One crack depth on one refinement, every state from one factorisation with the Schur complement S on the
+    crack pairs' openings (``ring2d.seam_system``): the compliance under the ball loads on the cracked mesh (faces
+    in contact, cam then cam + balls, each contact set a dense solve of S) minus the same mesh merged (every pair
+    held). The cam and the balls are one back-substitution; ``profile``: the uncracked hoop stress per newton on
+    the crack line too; ``compressed``: the same crack with the cam reversed (w0 -> -w0), under "compressed"."""
     cracked = _system(s, *grid(s, h_mm, scale, depth_mm))
     q = np.asarray(s.ball_loads_N)
     f = ring2d.patch_load_vectors(cracked, s.r_race_mm, s.ball_angles_rad, s.patch_half_widths_mm) @ q
     seam = ring2d.seam_system(cracked)
     try:
-        u0 = ring2d.solve_many(cracked, f[:, None], tied=True, seam=seam)[:, 0]
-        bore = cam_displacement_mm(cracked, w0)
-        _, res1 = ring2d.solve_ring(cracked, np.zeros_like(f), bore, seam)
-        _, res2 = ring2d.solve_ring(cracked, f, bore, seam)
-        delta = ring2d.crack_work(cracked, seam, f, res1, res2) / s.force_N ** 2
+        cam = ring2d.bore_load(cracked, cam_displacement_mm(cracked, s.w0_mm))
+        ft = seam.T.T @ np.column_stack([cracked.R.T @ f, cam])
+        v = seam.faces.free_solution(ft)          # the balls, then the cam: the faces free
+        r_f, r_cam = seam.faces.condensed(v).T
+        u0 = cracked.R @ seam.solution(ft[:, 0], r_f, np.ones(r_f.size, bool)) if profile else None
     finally:
         seam.close()
-    c0 = float(f @ u0) / s.force_N ** 2
-    # the uncracked hoop stress per newton on the crack line, on this mesh (graded there): the closed form's input
-    x = depth_mm * np.linspace(0.0, 1.0, 65)
-    stress = ring2d.nodal_stress(cracked, u0, s.E_MPa, s.nu)
-    profile = ring2d.hoop_stress_at(cracked, stress, np.array([s.r_race_mm * (1 - 1e-9) - x, 0 * x + 1e-9])) / s.force_N
-    return {"delta": delta, "uncracked": c0, "profile": (x, profile), "closed_pairs": int(res2.active.sum()), "pairs": int(res2.active.size),
-            "mouth_opening_mm": float(res2.opening_mm[int(np.argmax(np.hypot(*cracked.scalar.doflocs[:, cracked.pairs.minus])))]),
-            "dofs": cracked.K.shape[0]}
+    free, face = seam.faces.free, seam.faces.face_z
+    # f.u with every pair held: f.u with the openings free less their share
+    c0 = float(ft[free, 0] @ v[free, 0] - v[face, 0] @ r_f) / s.force_N ** 2
+    mouth = int(np.argmax(np.hypot(*cracked.scalar.doflocs[:, cracked.pairs.minus])))
+
+    def states(sign: float) -> dict:
+        # each state's threshold from its own faces-free solution, as ``SeamSystem.contact`` takes it
+        tol = [1e-9 * float(np.abs(seam.T @ (sign * v[:, 1] + balls * v[:, 0])).max()) for balls in (0.0, 1.0)]
+        _, _, force_base, _, _ = seam.settle(sign * r_cam, tol[0])
+        active, gap, force, _, _ = seam.settle(sign * r_cam + r_f, tol[1])
+        return {"delta": ring2d.crack_work(seam, r_f, force_base, force) / s.force_N ** 2, "uncracked": c0,
+                "closed_pairs": int(active.sum()), "pairs": int(active.size), "mouth_opening_mm": float(gap[mouth]),
+                "dofs": cracked.R.shape[0]}
+
+    out = states(1.0)
+    if profile:     # the uncracked hoop stress per newton on the crack line, on this mesh: the closed form's input
+        x = depth_mm * np.linspace(0.0, 1.0, 65)
+        stress = ring2d.nodal_stress(cracked, u0, s.E_MPa, s.nu)
+        line = np.array([s.r_race_mm * (1 - 1e-9) - x, 0 * x + 1e-9])
+        out["profile"] = (x, ring2d.hoop_stress_at(cracked, stress, line) / s.force_N)
+    if compressed:
+        out["compressed"] = states(-1.0)
+    return out
 
 
 # Crack depths of the sweep: up to a_max = 0.1 t (the back face, held by the cam, stays a small allowance,
@@ -252,7 +269,7 @@ class WgBearing(StudyFacts):
     study = STUDY
     # graded to the race patches and the crack tip: the cracked quick mesh at a = 1 mm, h = 1.67 mm (12)
     elements_per_cell = 12.0
-    cpu_s_per_element = (2.8e-4, 1.3e-4)   # full, --quick: validate's schedule (decision 049)
+    cpu_s_per_element = (1.9e-4, 8.0e-5)   # full, --quick: validate's schedule (decisions 049, 059)
     default_size_mm = staticmethod(default_size_mm)
     plane = True
     # solved at the rated F_r already (scale 1: the cam's share is not linear in F_r)
@@ -292,12 +309,16 @@ def _plain_quantities(s: RingSetup, h: float, sizes, progress, deepest_mm: float
 
 
 def _crack_quantities(s: RingSetup, h: float, sizes, depths, progress):
-    q, facts = {}, {}
+    """Each depth's increment on three meshes, its finest mesh's facts, and (first principles: under the cam's
+    compression, w0 -> -w0, the crack shuts; the coarsest mesh suffices) the deepest crack with the cam reversed."""
+    q, facts, compressed = {}, {}, None
     for depth in depths:
         runs = []
         for k in (2, 1, 0):
             progress(f"{STUDY}: crack a = {depth:g} mm, refinement {3 - k}/3")
-            runs.append(solve_crack(s, h, DEFAULT_RATIO ** k, depth))
+            runs.append(solve_crack(s, h, DEFAULT_RATIO ** k, depth, profile=k == 0,
+                                    compressed=k == 2 and depth == max(depths)))
+        compressed = runs[0].pop("compressed", compressed)
         runs = runs[::-1]
         name = delta_name(depth)
         q[name] = _converge(name, "mm/N", sizes, [r["delta"] for r in runs], CRACK_FORMAL_ORDER)
@@ -305,7 +326,7 @@ def _crack_quantities(s: RingSetup, h: float, sizes, depths, progress):
         facts[f"{depth:g}"] = {"depth_mm": depth, "closed_pairs": runs[0]["closed_pairs"], "pairs": runs[0]["pairs"],
                                "mouth_opening_mm": runs[0]["mouth_opening_mm"], "dofs": runs[0]["dofs"],
                                "profile_x_mm": x.tolist(), "hoop_stress_per_N_MPa": profile.tolist()}
-    return q, facts
+    return q, facts, compressed
 
 
 def run(params, *, force_N: float, w0_mm: float, ball_angles_rad, ball_loads_N, patch_half_widths_mm,
@@ -327,12 +348,8 @@ def run(params, *, force_N: float, w0_mm: float, ball_angles_rad, ball_loads_N, 
     t0 = time.perf_counter()
     q, finest = _plain_quantities(s, h, sizes, progress, max(depths))
     t1 = time.perf_counter()
-    qc, facts = _crack_quantities(s, h, sizes, depths, progress)
+    qc, facts, compressed = _crack_quantities(s, h, sizes, depths, progress)
     t2 = time.perf_counter()
-    # first principles: under the cam's compression (w0 -> -w0) the crack shuts; the coarsest mesh suffices
-    compressed = solve_crack(s, h, DEFAULT_RATIO ** 2, max(depths), w0_mm=-s.w0_mm)
-    compressed.pop("profile")
-    t3 = time.perf_counter()
     phi, net = finest["_net_round"]
     meta = {"model": "2D plane stress (thickness = ring width B), the ring's mid-plane cross-section, P2",
             "r_bore_mm": s.r_bore_mm, "r_race_mm": s.r_race_mm, "width_mm": s.width_mm, "w0_mm": s.w0_mm,
@@ -349,7 +366,7 @@ def run(params, *, force_N: float, w0_mm: float, ball_angles_rad, ball_loads_N, 
     return StudyResult(STUDY, {**q, **qc}, mesh, _load(s), _supports(),
                        CrackRecord(max(depths), "2D edge crack at the major axis, frictionless face contact, "
                                    "sweep of depths (each on three meshes)"),
-                       {"uncracked": t1 - t0, "cracks": t2 - t1, "compressed": t3 - t2}, fields, {}, meta, (mesh,) * 3)
+                       {"uncracked": t1 - t0, "cracks": t2 - t1}, fields, {}, meta, (mesh,) * 3)
 
 
 def _load(s: RingSetup) -> Load:
