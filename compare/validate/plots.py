@@ -20,20 +20,38 @@ def nice_scale(raw: float) -> float:
     return float((5.0 if mantissa >= 5 else 2.0 if mantissa >= 2 else 1.0) * 10 ** exponent)
 
 
+LEGEND_BELOW_IN = 0.5     # a legend under the axes: its top this far below the axes' bottom (ticks, x label)
+
+
 def _figure(width: float = 7.0, height: float = 4.5):
+    """A figure of fixed size laid out by constrained layout (it makes room for every label and legend)."""
     import matplotlib
 
     matplotlib.use("Agg", force=True)
     from matplotlib.figure import Figure  # a Figure without pyplot keeps no global state
 
-    fig = Figure(figsize=(width, height), dpi=110)
-    return fig
+    return Figure(figsize=(width, height), dpi=110, facecolor="white", layout="constrained")
 
 
 def _save(fig, png: Path) -> Path:
+    """One draw (constrained layout runs inside it) encoded as PNG: ``savefig`` would draw twice."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from PIL import Image
+
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
     buffer = io.BytesIO()
-    fig.savefig(buffer, format="png", bbox_inches="tight", facecolor="white")
+    Image.fromarray(np.asarray(canvas.buffer_rgba())[..., :3]).save(buffer, format="PNG")
     return atomic_write_bytes(png, buffer.getvalue())
+
+
+def _legend_below(ax, **kwargs) -> list[str]:
+    """``legend_of_shown`` under the axes, LEGEND_BELOW_IN below them whatever the axes' size."""
+    from matplotlib.transforms import ScaledTranslation
+
+    below = ax.transAxes + ScaledTranslation(0.0, -LEGEND_BELOW_IN, ax.figure.dpi_scale_trans)
+    return legend_of_shown(ax, loc="upper center", bbox_to_anchor=(0.5, 0.0), bbox_transform=below,
+                           borderaxespad=0.0, **kwargs)
 
 
 def convergence_plot(png: Path, **kwargs) -> Path:
@@ -49,7 +67,6 @@ def convergence_figure(*, title: str, unit: str, h_mm, values, extrapolated: flo
     and its difference from the FEA (a closed form far away would otherwise flatten the FEA points). ``flags``:
     why the meshes are not in the asymptotic range (gci_table.asymptotic_flags), said on the left panel."""
     fig = _figure(10.0, 4.2)
-    fig.set_layout_engine("constrained")
     ax, cmp_ax = fig.add_subplot(1, 2, 1), fig.add_subplot(1, 2, 2)
     h = np.asarray(h_mm, dtype=float)
     v = np.asarray(values, dtype=float)
@@ -132,7 +149,7 @@ def crack_sweep_figure(*, title: str, unit: str, depths_mm, fea, fea_uncertainty
     """The swept quantity against crack depth (log-log, or a linear y with ``log_y`` False): FEA points with
     error bars against each closed form's curve (marked at every depth, so a one-depth sweep shows them too).
     FEA values a log axis cannot show (<= 0) are said in a note, never as an empty legend entry."""
-    fig = _figure()
+    fig = _figure(7.0, 5.4)     # the legend below takes about 1 inch of it
     ax = fig.add_subplot(1, 1, 1)
     a = np.asarray(depths_mm, dtype=float)
     y = np.asarray(fea, dtype=float)
@@ -157,7 +174,7 @@ def crack_sweep_figure(*, title: str, unit: str, depths_mm, fea, fea_uncertainty
     ax.set_ylabel(unit)
     ax.set_title(title)
     ax.grid(True, which="both", alpha=0.3)
-    legend_of_shown(ax, fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14))   # below: hides no point
+    _legend_below(ax, fontsize=8)   # below: hides no point
     return fig
 
 
@@ -166,7 +183,7 @@ def ring_midlayer_plot(png: Path, *, r_m_mm: float, theta, u_r_fea, delta_cd_fea
     """The ring's deformed mid-layer, FEA against the thin-ring shape, radial displacements exaggerated."""
     u_max = max(np.max(np.abs(u_r_fea)), abs(delta_cd_analytic) / 2, 1e-30)
     scale = nice_scale(0.2 * r_m_mm / u_max)
-    fig = _figure(6.5, 6.5)
+    fig = _figure(6.0, 6.6)
     ax = fig.add_subplot(1, 1, 1)
     t = np.linspace(0, 2 * np.pi, 721)
     ax.plot(r_m_mm * np.cos(t), r_m_mm * np.sin(t), color="lightgray", lw=1, label="undeformed mid-layer")
@@ -192,5 +209,5 @@ def ring_midlayer_plot(png: Path, *, r_m_mm: float, theta, u_r_fea, delta_cd_fea
     ax.set_title(f"ring mid-layer r_m = {r_m_mm:.4g} mm, radial displacement x {scale:g}")
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("y (mm)")
-    legend_of_shown(ax, fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.1))
+    _legend_below(ax, fontsize=8)
     return _save(fig, png)
