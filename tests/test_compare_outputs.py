@@ -126,6 +126,41 @@ def test_sweep_legend_lists_only_what_is_drawn():
     assert len(labels) == 3 and any(label.startswith("FEA (GCI bars)") for label in labels)
 
 
+def _inside_the_picture(fig) -> bool:
+    """Whether every drawn label, title, tick label and legend of ``fig`` lies inside the figure (none clipped)."""
+    renderer = fig.canvas.get_renderer()
+    box = fig.bbox
+    parts = [ax.get_tightbbox(renderer) for ax in fig.axes]
+    parts += [fig._suptitle.get_window_extent(renderer)] if fig._suptitle is not None else []
+    return all(b.x0 >= box.x0 - 0.5 and b.y0 >= box.y0 - 0.5 and b.x1 <= box.x1 + 0.5 and b.y1 <= box.y1 + 0.5
+               for b in parts)
+
+
+def test_plots_keep_every_label_and_the_legend_inside_the_picture(tmp_path):
+    """The plots are drawn once at a fixed size (constrained layout): long closed-form names, a two-line title, a
+    legend of six entries below the axes all fit; the same sweep figure without its layout engine would clip the
+    legend, so the check sees a clipped label."""
+    from strainwave.compare.validate.plots import _save, convergence_figure
+
+    conv = convergence_figure(title="ring.delta_cd: delta_CD, a long quantity name", unit="mm", h_mm=[1.6, 0.8, 0.4],
+                              values=[1.051e-3, 1.012e-3, 1.003e-3], extrapolated=1.0e-3, gci_fine=0.004,
+                              observed_order=2.0, flags=("non-monotone", "p far from formal"),
+                              analytic={"published": 1.1e-3, "corrected": 1.0e-3, "hollow_tube_strip": 0.9e-3})
+    curves = {name: (np.array([0.5, 1.0, 2.0]), np.array([1e-9, 3e-9, 9e-9]) * (k + 1))
+              for k, name in enumerate(("published", "corrected", "hollow_tube_strip", "solid_bar_a2", "fifth"))}
+    sweep = crack_sweep_figure(title="output shaft: crack compliance vs depth", unit="rad/(N*mm)",
+                               depths_mm=[0.5, 1.0, 2.0], fea=[1.1e-9, 3.2e-9, 9.5e-9],
+                               fea_uncertainty=[1e-10, 2e-10, 4e-10], curves=curves)
+    for name, fig in (("conv", conv), ("sweep", sweep)):
+        png = _save(fig, tmp_path / f"{name}.png")
+        assert png.stat().st_size > 0 and _inside_the_picture(fig), name
+    assert len(sweep.axes[0].get_legend().get_texts()) == 6
+    sweep.set_layout_engine("none")
+    sweep.axes[0].set_position([0.125, 0.11, 0.775, 0.77])   # matplotlib's default margins: the legend runs off
+    _save(sweep, tmp_path / "clipped.png")
+    assert not _inside_the_picture(sweep)
+
+
 def test_legend_drops_a_line_that_has_no_finite_point():
     from matplotlib.figure import Figure
 
