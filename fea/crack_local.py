@@ -154,7 +154,7 @@ def _solve(K, f, sk, md: MeshData, dofs, values, method: str, study: str, rtol: 
 # Patch span over thickness up to which p-multigrid CG to RELEASE_RTOL beats PARDISO: a chunky block factorises
 # with 3D fill, a thin plate-like one with little, while CG's iterations grow with the span (docs/decisions/063)
 AMG_MAX_SPAN_OVER_THICKNESS = 16.0
-# CG residual for the released energy alone: CG minimises the energy error, which is quadratic in the residual,
+# CG residual for the released energy: CG minimises the energy error, which is quadratic in the residual,
 # so 1e-3 leaves under 1e-6 of dU, a ten-thousandth of the patch's GCI (docs/decisions/063)
 RELEASE_RTOL = 1e-3
 
@@ -173,7 +173,7 @@ def local_release(md: MeshData, lame, global_u, *, study: str, plane_strain_face
     part: the symmetric rest is w's interpolation residual). The opened patch is w + v with K v = -r and
     v = 0 where the patch is held, so its energy falls by -v.r / 2: the closed-minus-opened difference of
     two fixed-grip solves, from one solve and without subtracting two large energies. ``rtol``: CG's residual
-    with ``method`` "amg" (``RELEASE_RTOL`` when only the energy is read; solver.DEFAULT_RTOL by default)."""
+    with ``method`` "amg" (solver.DEFAULT_RTOL by default; ``RELEASE_RTOL`` suffices for dU)."""
     from strainwave.fea.crack_contact import crack_pairs
     from strainwave.fea.crack_seam import open_crack_for
     from strainwave.fea.static import assemble

@@ -222,10 +222,10 @@ class CupTorsion(TorsionVariant):
         a, mat = self.crack_depth_mm, self.params.material
         md_loc, t_loc = local_patch_mesh(part, a, self.ratio ** k)
         solver = patch_solver(2 * PATCH_HALF_OVER_A * a, self.params.flexspline_cup.wall_thickness_mm)
-        # a kept field is drawn point by point: CG to the default residual then, to RELEASE_RTOL for dU alone
+        # the kept field's stress moves by 1e-3 of its peak at RELEASE_RTOL: a picture, read by no check
         local = local_release(md_loc, Lame.from_young(mat.youngs_modulus_MPa, mat.poisson_ratio),
                               section_displacement(solved.fields["section"]), study=STUDY, method=solver,
-                              keep_field=keep_fields, rtol=None if keep_fields else RELEASE_RTOL)
+                              keep_field=keep_fields, rtol=RELEASE_RTOL)
         delta = compliance_from_release(local.released_Nmm, SECTION_TORQUE_NMM)
         progress(f"{STUDY}: local patch {local.dofs} dofs, released {local.released_Nmm:.4g} N mm")
         flex = solved.values[FLEX]
@@ -263,7 +263,7 @@ class CupTorsion(TorsionVariant):
         global_u = partial(interpolate_p2, sol.sk.doflocs, sol.sk.element_dofs, sol.u)
         solver = patch_solver(2 * PATCH_HALF_OVER_A * a, self.params.flexspline_cup.wall_thickness_mm)
         local = local_release(md_loc, sol.lame, global_u, study=STUDY, method=solver, keep_field=keep_fields,
-                              rtol=None if keep_fields else RELEASE_RTOL)
+                              rtol=RELEASE_RTOL)
         delta = compliance_from_release(local.released_Nmm, torque)
         progress(f"{STUDY}: local patch {local.dofs} dofs, released {local.released_Nmm:.4g} N mm")
         values = {FLEX: flex, CRACKED: flex + delta, DELTA: delta, "local_dofs": float(local.dofs)}
