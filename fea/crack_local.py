@@ -143,17 +143,20 @@ def _held_dofs(sk, md: MeshData, group: str, plane_strain_faces: str | None) -> 
     return np.concatenate([dofs, 3 * np.setdiff1d(group_dofs(sk, md, plane_strain_faces), nodes) + 2])
 
 
-def _solve(K, f, sk, md: MeshData, dofs, values, method: str, study: str):
-    from strainwave.fea.solver import solve_elasticity
+def _solve(K, f, sk, md: MeshData, dofs, values, method: str, study: str, rtol: float | None = None):
+    from strainwave.fea.solver import DEFAULT_RTOL, solve_elasticity
     pmg = method == "amg" and md.order == 2
     return solve_elasticity(K, f, fixed_dofs=dofs, fixed_values=values, coords=sk.doflocs, dim=3,
-                            study=study, method="amg" if pmg else "direct",
+                            study=study, method="amg" if pmg else "direct", rtol=rtol or DEFAULT_RTOL,
                             p2_element_dofs=sk.element_dofs if pmg else None)
 
 
-# Patch span over thickness up to which p-multigrid CG beats PARDISO: a chunky block factorises with 3D fill,
-# a thin plate-like one with little, while CG's iterations grow with the span (docs/decisions/031)
-AMG_MAX_SPAN_OVER_THICKNESS = 8.0
+# Patch span over thickness up to which p-multigrid CG to RELEASE_RTOL beats PARDISO: a chunky block factorises
+# with 3D fill, a thin plate-like one with little, while CG's iterations grow with the span (docs/decisions/063)
+AMG_MAX_SPAN_OVER_THICKNESS = 16.0
+# CG residual for the released energy: CG minimises the energy error, which is quadratic in the residual,
+# so 1e-3 leaves under 1e-6 of dU, a ten-thousandth of the patch's GCI (docs/decisions/063)
+RELEASE_RTOL = 1e-3
 
 
 def patch_solver(span_mm: float, thickness_mm: float) -> str:
@@ -162,14 +165,15 @@ def patch_solver(span_mm: float, thickness_mm: float) -> str:
 
 
 def local_release(md: MeshData, lame, global_u, *, study: str, plane_strain_faces: str | None = None,
-                  method: str = "direct", keep_field: bool = False) -> LocalEnergy:
+                  method: str = "direct", keep_field: bool = False, rtol: float | None = None) -> LocalEnergy:
     """The energy the crack releases in the patch, by Bueckner's superposition on the opened mesh.
 
     The uncracked field w = ``global_u`` at the nodes of the opened patch is in equilibrium except across the
     crack, where K w leaves equal and opposite forces r on the two faces' node pairs (their antisymmetric
     part: the symmetric rest is w's interpolation residual). The opened patch is w + v with K v = -r and
     v = 0 where the patch is held, so its energy falls by -v.r / 2: the closed-minus-opened difference of
-    two fixed-grip solves, from one solve and without subtracting two large energies."""
+    two fixed-grip solves, from one solve and without subtracting two large energies. ``rtol``: CG's residual
+    with ``method`` "amg" (solver.DEFAULT_RTOL by default; ``RELEASE_RTOL`` suffices for dU)."""
     from strainwave.fea.crack_contact import crack_pairs
     from strainwave.fea.crack_seam import open_crack_for
     from strainwave.fea.static import assemble
@@ -189,7 +193,7 @@ def local_release(md: MeshData, lame, global_u, *, study: str, plane_strain_face
     r = np.zeros_like(kw)
     r[pairs.plus], r[pairs.minus] = half_jump, -half_jump
     v, info = _solve(K, -r.ravel(), sk, opened, _held_dofs(sk, opened, "cut", plane_strain_faces), 0.0, method,
-                     study)
+                     study, rtol)
     field = (opened, sk, w.ravel() + v) if keep_field else ()
     return LocalEnergy(-0.5 * float(v @ r.ravel()), info.dofs, info.time_s, field)
 

@@ -161,3 +161,16 @@ def test_cup_crack_patch_is_the_wall_sector_around_the_seam_and_refuses_to_leave
     assert patch.crack_surface is part.crack_surface
     with pytest.raises(ValueError, match="leaves the smooth tube"):
         crack_patch(part, m["length_mm"])
+
+
+def test_released_energy_by_cg_to_release_rtol_equals_the_direct_solve_and_a_looser_cg_does_not(plate_mesh):
+    from strainwave.fea.crack_local import RELEASE_RTOL, patch_solver
+    lame, field = Lame.from_young(E, NU), _uniaxial_y(50.0)
+    direct = local_release(plate_mesh, lame, field, study="test").released_Nmm
+    released = {rtol: local_release(plate_mesh, lame, field, study="test", method="amg", rtol=rtol).released_Nmm
+                for rtol in (RELEASE_RTOL, 0.3)}
+    # the energy's error is quadratic in CG's residual: 1e-3 leaves under 1e-6 of it
+    assert released[RELEASE_RTOL] == pytest.approx(direct, rel=1e-6)
+    assert released[0.3] != pytest.approx(direct, rel=1e-6)
+    # the cup's patches: span / wall 11.3 (a = 0.396 mm in a 2.24 mm wall) by CG, 20 and more by PARDISO
+    assert patch_solver(64 * 0.396, 2.24) == "amg" and patch_solver(64 * 0.7, 2.24) == "direct"

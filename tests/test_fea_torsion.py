@@ -201,3 +201,21 @@ def test_cup_headline_field_is_the_3d_cup_meshed_once_at_the_finest_size(params,
     variant = cup_torsion.CupTorsion(params, 2, h, 1.4, 1.12, False, solid_field=False, section_cache=tmp_path)
     assert "solution" not in variant.solve(part, "section", 4 * cup_torsion.section_fine_mm(params, True), 2, True,
                                            lambda m: None).fields and sizes == [h]
+
+
+def test_cup_patches_release_by_cg_to_release_rtol_up_to_sixteen_walls_and_by_pardiso_beyond(params, monkeypatch,
+                                                                                              tmp_path):
+    """validate's cup patches: a = 0.1 and 0.396 mm (span 2.9 and 11.3 walls) by p-multigrid CG to RELEASE_RTOL,
+    1.12 mm (32 walls) by PARDISO; the patch itself is not solved here (crack_local's tests compare the solvers)."""
+    from strainwave.fea.crack_local import RELEASE_RTOL, LocalEnergy
+    calls = []
+    monkeypatch.setattr(cup_torsion, "local_patch_mesh", lambda part, a, scale: (None, 0.0))
+    monkeypatch.setattr(cup_torsion, "local_release",
+                        lambda md, lame, field, **kw: calls.append(kw) or LocalEnergy(1e-20, 1, 0.0))
+    h_section = 4 * cup_torsion.section_fine_mm(params, True)
+    for a in (0.1, 0.396, 1.12):
+        variant = cup_torsion.CupTorsion(params, 2, cup_torsion.default_size_mm(params, True), 1.4, a, False,
+                                         solid_field=False, section_cache=tmp_path)
+        variant.solve(None, "section", h_section, 2, False, lambda m: None)
+    assert [(c["method"], c["rtol"]) for c in calls] == [("amg", RELEASE_RTOL), ("amg", RELEASE_RTOL),
+                                                        ("direct", RELEASE_RTOL)]
