@@ -189,13 +189,17 @@ def global_ring(params, lame, *, force_N, h_mm, contact_mm, order, cache_dir=Non
     """The uncracked ring (``bearing_patch.GlobalRing``) meshed at global size ``h_mm`` and contact size
     ``contact_mm``; ``cache_dir``: kept there and read back by every later call with the same parameters but
     the crack's depth (the ring carries no crack), sizes and order."""
-    from strainwave.fea.bearing_patch import GlobalRing, read_global, write_global
+    from strainwave.cache import shared_entry
+    from strainwave.fea.bearing_patch import read_global, write_global
     path = None if cache_dir is None else _global_file(params, force_N, h_mm, contact_mm, order, cache_dir)
-    if path is not None and path.exists():
-        try:
-            return read_global(path)
-        except (OSError, KeyError, ValueError):
-            pass  # a damaged entry is solved again, never trusted
+    return shared_entry(path, read_global, lambda: _solve_global_ring(params, lame, force_N=force_N, h_mm=h_mm,
+                                                                      contact_mm=contact_mm, order=order,
+                                                                      progress=progress), write_global)
+
+
+def _solve_global_ring(params, lame, *, force_N, h_mm, contact_mm, order, progress):
+    """The uncracked ring meshed and solved (``global_ring`` without its cache)."""
+    from strainwave.fea.bearing_patch import GlobalRing
     progress(f"{STUDY}: the uncracked ring, h = {h_mm:.3g} mm")
     part = build_plain_part(params)
     t0 = time.perf_counter()
@@ -204,11 +208,8 @@ def global_ring(params, lame, *, force_N, h_mm, contact_mm, order, cache_dir=Non
     t1 = time.perf_counter()
     c0, info, (md, sk, u) = compliance_on_mesh(md, part, params, lame, force_N=force_N, keep_field=True)
     _, scale = race_load(md, sk, part, params, force_N=force_N)
-    ring = GlobalRing(md, u, c0, dict(info, load_scale=scale, size_factor=size_factor),
-                      t1 - t0, time.perf_counter() - t1)
-    if path is not None:
-        write_global(path, ring)
-    return ring
+    return GlobalRing(md, u, c0, dict(info, load_scale=scale, size_factor=size_factor), t1 - t0,
+                      time.perf_counter() - t1)
 
 
 def _global_file(params, force_N, h_mm, contact_mm, order, cache_dir) -> Path:

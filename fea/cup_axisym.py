@@ -67,15 +67,10 @@ def solve_cup_section(params, h_mm: float, *, keep_fields: bool = False,
     """lambda_f of the smooth cup on its section meshed at global size ``h_mm``; with ``keep_fields`` its
     ``SectionField`` too. ``cache_dir``: the solution is kept there and read back by every later call with the
     same parameters but the crack's depth (the smooth section carries no crack) and size."""
-    cached = None if cache_dir is None else _cache_file(params, h_mm, cache_dir)
-    if cached is not None and cached.exists():
-        try:
-            return _read_section(cached, h_mm, keep_fields)
-        except (OSError, KeyError, ValueError):
-            pass  # a damaged entry is solved again, never trusted
-    solved = _solve_section(params, h_mm, progress)
-    if cached is not None:
-        _write_section(cached, solved)
+    from strainwave.cache import shared_entry
+    solved = shared_entry(None if cache_dir is None else _cache_file(params, h_mm, cache_dir),
+                          lambda path: _read_section(path, h_mm, True), lambda: _solve_section(params, h_mm, progress),
+                          _write_section)
     return solved if keep_fields else replace(solved, fields={})
 
 
@@ -125,7 +120,6 @@ def _write_section(path: Path, solved: MeshSolve) -> None:
     f, buffer = solved.fields["section"], io.BytesIO()
     meta = {"values": dict(solved.values), "mesh": solved.mesh.to_dict()}
     np.savez(buffer, doflocs=f.doflocs, element_dofs=f.element_dofs, psi=f.psi, meta=np.array(json.dumps(meta)))
-    Path(path).parent.mkdir(parents=True, exist_ok=True)
     atomic_write_bytes(Path(path), buffer.getvalue())
 
 

@@ -5,11 +5,15 @@ the package's own source files, so editing any formula or solver invalidates eve
 """
 from __future__ import annotations
 
+import fcntl
 import hashlib
 import json
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
+from typing import Callable, TypeVar
+
+T = TypeVar("T")
 
 from strainwave.io_atomic import atomic_write_text
 
@@ -53,3 +57,25 @@ class ResultCache:
 
     def put(self, key: str, record: dict) -> None:
         atomic_write_text(self.path(key), json.dumps(record, default=str))
+
+
+def shared_entry(path: Path | None, read: Callable[[Path], T], compute: Callable[[], T],
+                 write: Callable[[Path, T], None]) -> T:
+    """What the cases of one run share: ``read(path)`` if it is there, else ``compute()`` kept by ``write``.
+
+    Two cases that run at once and need the same entry would each compute it; an exclusive lock on a file beside
+    it makes the second wait for the first's and read it (the kernel drops the lock if the first dies). A damaged
+    entry is computed again, never trusted. ``path`` None: computed, nothing kept."""
+    if path is None:
+        return compute()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with open(path.with_name(path.name + ".lock"), "a") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if path.exists():
+            try:
+                return read(path)
+            except (OSError, KeyError, ValueError):
+                pass
+        value = compute()
+        write(path, value)
+        return value
