@@ -13,6 +13,9 @@ import numpy as np
 
 from strainwave.fea.assembly import Lame
 
+__all__ = ["MidLayer", "Probes", "boundary_stress_MPa", "fibre_points", "find_cells", "hoop", "hoop_at", "mid_layer",
+           "mid_layer_points", "peak_near", "section_hoop_MPa", "signed_principal", "stress_at_points"]
+
 # Sampling a fibre exactly on the boundary could land on an element edge from outside the mesh;
 # a relative inset of 1e-7 of the wall thickness is far below any stress gradient that matters.
 _INSET = 1e-7
