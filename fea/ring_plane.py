@@ -14,12 +14,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from strainwave.fea.assembly import Lame, elasticity_stiffness, facet_vector_basis, scalar_basis, vector_basis_of
+from strainwave.fea.assembly import Lame, elasticity_stiffness, facet_vector_basis, scalar_basis
 from strainwave.fea.mesh_data import MeshData, SkfemMesh, to_skfem
 from strainwave.fea.meshing import Refine, mesh_section
 from strainwave.fea.ring_loads import ArcLoad
-from strainwave.fea.ring_sections import (MidLayer, boundary_stress_MPa, hoop_at, mid_layer, peak_near, section_hoop_MPa,
-                            signed_principal)
+from strainwave.fea.ring_sections import (MidLayer, Probes, boundary_stress_MPa, fibre_points, hoop, hoop_at,
+                                         mid_layer_points, peak_near, signed_principal)
 from strainwave.fea.session import mesh_in_child
 from strainwave.fea.solver import SolverInfo
 from strainwave.fea.surface import SurfaceQuadrature
@@ -153,7 +153,6 @@ def solve_ring_section(face, geo: RingGeometry, load: ArcLoad, lame: Lame, *, si
     sk = section_to_skfem(md)
     sb = scalar_basis(sk.mesh, sk.element, intorder=4)    # curved P2: order 4 integrates the mapping well
     K = elasticity_stiffness(sb, lame, thickness_mm=geo.width_mm)
-    vb = vector_basis_of(sb)
     t2 = time.perf_counter()
     dof = lambda name, c: 2 * sk.node_to_dof[md.group_nodes(name)] + c     # noqa: E731
     base_fixed = np.concatenate([dof("A", 1), dof("B", 1), dof("D", 0)])
@@ -172,33 +171,68 @@ def solve_ring_section(face, geo: RingGeometry, load: ArcLoad, lame: Lame, *, si
     # one factorisation serves both cases: the EWG strips hold the arcs' u_y, from the Schur complement on them
     arc_y = np.sort(np.concatenate([2 * arc_top + 1, 2 * arc_bottom + 1]))
     solutions, reaction_N = _solve_cases(K, f, base_fixed, arc_y, np.isin(arc_y, 2 * arc_top + 1), ewg_w0_mm)
-    # the inner boundary (bore or tooth flanks and roots) and the outer circle, told apart by radius
-    radius = lambda x: np.hypot(x[0], x[1])                                  # noqa: E731
-    inner = sk.mesh.facets_satisfying(lambda x: radius(x) < geo.r_m_mm, boundaries_only=True)
-    outer = sk.mesh.facets_satisfying(lambda x: radius(x) > geo.r_m_mm, boundaries_only=True)
-    fb_in = _facet_bases(sk, inner)
-    fb_out = _facet_bases(sk, outer)
     window = 0.5 * pitch_rad if pitch_rad else 0.5 * geo.thickness_mm / geo.r_root_mm
-    out = {}
     t3 = time.perf_counter()
+    read = _SectionReader.of(sk, sb, geo, window)
+    out = {}
     for name, (rhs, u, info) in solutions.items():
         te = time.perf_counter()
-        force = reaction_N if name == "ewg" else load.force_N
-        sig_in, xyz = _boundary_stress(fb_in, u, lame)
-        vals_in = signed_principal(sig_in)
-        sig_out, xyz_out = _boundary_stress(fb_out, u, lame)
-        hoop_out = hoop_at(sig_out, xyz_out)
-        out[name] = PlaneSolution(
-            h_mm=size_mm, force_N=force, mid=mid_layer(vb, u, geo.r_m_mm),
-            sigma_B=section_hoop_MPa(vb, u, 0.0, geo.r_root_mm, geo.r_outer_mm, lame),
-            sigma_D=section_hoop_MPa(vb, u, 0.5 * np.pi, geo.r_root_mm, geo.r_outer_mm, lame),
-            root_B_MPa=peak_near(vals_in, xyz, 0.0, window), root_D_MPa=peak_near(vals_in, xyz, 0.5 * np.pi, window),
-            outer_B_MPa=peak_near(hoop_out, xyz_out, 0.0, window),
-            outer_D_MPa=peak_near(hoop_out, xyz_out, 0.5 * np.pi, window),
-            mesh=md, timings_s={"mesh": t1 - t0, "assemble": t2 - t1, "solve": t3 - t2,
-                                "extract": time.perf_counter() - te},
-            solver=info.to_dict(), fields=(sk, u) if keep_fields else ())
+        out[name] = read(u, lame, size_mm, reaction_N if name == "ewg" else load.force_N, md,
+                         {"mesh": t1 - t0, "assemble": t2 - t1, "solve": t3 - t2},
+                         info.to_dict(), keep_fields, te)
     return out
+
+
+def _window_facets(mesh, facets: np.ndarray, window_rad: float) -> np.ndarray:
+    """The ``facets`` that may hold a point within ``window_rad`` of B (0) or D (pi/2): a vertex within the window
+    widened by the facet's own angular span (its curved points lie between its ends)."""
+    ang = np.arctan2(mesh.p[1, mesh.facets[:, facets]], mesh.p[0, mesh.facets[:, facets]])      # (2, n)
+    span = np.abs(np.angle(np.exp(1j * (ang[1] - ang[0]))))
+    near = np.zeros(facets.size, bool)
+    for centre in (0.0, 0.5 * np.pi):
+        d = np.abs(np.angle(np.exp(1j * (ang - centre)))).min(axis=0)
+        near |= d <= window_rad + 2.0 * span
+    return facets[near]
+
+
+@dataclass(frozen=True)
+class _SectionReader:
+    """What one mesh's solutions are read at, made once for all of them: the mid-layer points and the fibres of B
+    and D (one probe basis), and the inner and outer boundary near B and D (facet bases over those facets only)."""
+
+    sk: SkfemMesh
+    probes: Probes
+    inner: list
+    outer: list
+    window_rad: float
+
+    @classmethod
+    def of(cls, sk: SkfemMesh, sb, geo: RingGeometry, window_rad: float) -> "_SectionReader":
+        points = np.hstack([mid_layer_points(geo.r_m_mm), fibre_points(0.0, geo.r_root_mm, geo.r_outer_mm),
+                            fibre_points(0.5 * np.pi, geo.r_root_mm, geo.r_outer_mm)])
+        # the inner boundary (bore or tooth flanks and roots) and the outer circle, told apart by radius
+        radius = lambda x: np.hypot(x[0], x[1])                                  # noqa: E731
+        inner = sk.mesh.facets_satisfying(lambda x: radius(x) < geo.r_m_mm, boundaries_only=True)
+        outer = sk.mesh.facets_satisfying(lambda x: radius(x) > geo.r_m_mm, boundaries_only=True)
+        return cls(sk, Probes.at(sb, points, vector=True), _facet_bases(sk, _window_facets(sk.mesh, inner, window_rad)),
+                   _facet_bases(sk, _window_facets(sk.mesh, outer, window_rad)), window_rad)
+
+    def __call__(self, u, lame: Lame, size_mm: float, force_N: float, md: MeshData, timings_s: dict, solver: dict,
+                 keep_fields: bool, t0: float) -> PlaneSolution:
+        w = self.window_rad
+        sig_in, xyz = _boundary_stress(self.inner, u, lame)
+        vals_in = signed_principal(sig_in)
+        sig_out, xyz_out = _boundary_stress(self.outer, u, lame)
+        hoop_out = hoop_at(sig_out, xyz_out)
+        mid, fibres = self.probes.values(u)[:, :4], self.probes.stresses(u, lame)[4:]
+        h_B, h_D = hoop(fibres[:2], 0.0), hoop(fibres[2:], 0.5 * np.pi)
+        return PlaneSolution(
+            h_mm=size_mm, force_N=force_N, mid=MidLayer(*mid.T),
+            sigma_B=(float(h_B[0]), float(h_B[1])), sigma_D=(float(h_D[0]), float(h_D[1])),
+            root_B_MPa=peak_near(vals_in, xyz, 0.0, w), root_D_MPa=peak_near(vals_in, xyz, 0.5 * np.pi, w),
+            outer_B_MPa=peak_near(hoop_out, xyz_out, 0.0, w), outer_D_MPa=peak_near(hoop_out, xyz_out, 0.5 * np.pi, w),
+            mesh=md, timings_s=dict(timings_s, extract=time.perf_counter() - t0), solver=solver,
+            fields=(self.sk, u) if keep_fields else ())
 
 
 def _solve_cases(K, f: np.ndarray, base: np.ndarray, arc_y: np.ndarray, top: np.ndarray,

@@ -13,6 +13,9 @@ import numpy as np
 
 from strainwave.fea.assembly import Lame
 
+__all__ = ["MidLayer", "Probes", "boundary_stress_MPa", "fibre_points", "find_cells", "hoop", "hoop_at", "mid_layer",
+           "mid_layer_points", "peak_near", "section_hoop_MPa", "signed_principal", "stress_at_points"]
+
 # Sampling a fibre exactly on the boundary could land on an element edge from outside the mesh;
 # a relative inset of 1e-7 of the wall thickness is far below any stress gradient that matters.
 _INSET = 1e-7
@@ -53,25 +56,40 @@ def find_cells(mesh, points_mm: np.ndarray) -> np.ndarray:
     return np.array(cells)
 
 
-def _point_basis(basis, cell: int, ref: np.ndarray):
-    """``basis``' element ``cell`` at the one reference point ``ref`` (dim, 1): the global dofs shared, not made
-    again for the whole mesh, and no dof locations (a mapping of every element)."""
-    from skfem import CellBasis
-    return CellBasis(basis.mesh, basis.elem, mapping=basis.mapping, elements=np.array([cell]),
-                     quadrature=(ref, np.array([1.0])), dofs=basis.dofs, disable_doflocs=True)
+@dataclass(frozen=True)
+class Probes:
+    """A field's own element at each of n points: one CellBasis over the n containing cells with the n reference
+    points as its quadrature, read on its diagonal (cell i at point i); every solution on the mesh reads it."""
+
+    basis: object
+
+    @classmethod
+    def at(cls, basis, points_mm: np.ndarray, *, vector: bool = False) -> "Probes":
+        """Probes of ``basis``' element (``vector``: of its vector element, no vector basis of the whole mesh made)
+        at points (dim, n): the global dofs shared, no dof locations made."""
+        from skfem import CellBasis, ElementVector
+        from skfem.assembly import Dofs
+        elem = ElementVector(basis.elem) if vector else basis.elem
+        cells = find_cells(basis.mesh, points_mm)
+        ref = basis.mapping.invF(points_mm[:, :, None], tind=cells)[:, :, 0]      # (dim, n)
+        return cls(CellBasis(basis.mesh, elem, mapping=basis.mapping, elements=cells,
+                             quadrature=(ref, np.ones(cells.size)),
+                             dofs=Dofs(basis.mesh, elem) if vector else basis.dofs, disable_doflocs=True))
+
+    def values(self, u: np.ndarray) -> np.ndarray:
+        """The field at the points, (dim, n)."""
+        i = np.arange(self.basis.nelems)
+        return np.asarray(self.basis.interpolate(u))[:, i, i]
+
+    def stresses(self, u: np.ndarray, lame: Lame) -> np.ndarray:
+        """Stress tensors (n, dim, dim) at the points."""
+        i = np.arange(self.basis.nelems)
+        return np.moveaxis(_stress_from_grad(self.basis.interpolate(u).grad[:, :, i, i], lame), -1, 0)
 
 
 def stress_at_points(basis, u: np.ndarray, points_mm: np.ndarray, lame: Lame) -> np.ndarray:
     """Stress tensors (n, dim, dim) at points (dim, n), from the element containing each point."""
-    mesh, mapping = basis.mesh, basis.mapping
-    cells = find_cells(mesh, points_mm)
-    ref = mapping.invF(points_mm[:, :, None], tind=cells)        # (dim, n, 1)
-    out = []
-    for i, cell in enumerate(cells):
-        one = _point_basis(basis, cell, ref[:, i, :])
-        grad = one.interpolate(u).grad[:, :, 0, 0]
-        out.append(_stress_from_grad(grad, lame))
-    return np.array(out)
+    return Probes.at(basis, points_mm).stresses(u, lame)
 
 
 def hoop(sigma: np.ndarray, angle_rad: float) -> np.ndarray:
@@ -118,17 +136,15 @@ class MidLayer:
         return float(self.u_B_mm[0] - self.u_A_mm[0])
 
 
+def mid_layer_points(r_m_mm: float, z_mm: float | None = None) -> np.ndarray:
+    """The mid-layer points C, D, A, B (dim, 4)."""
+    xy = np.array([[0.0, 0.0, -r_m_mm, r_m_mm], [-r_m_mm, r_m_mm, 0.0, 0.0]])
+    return xy if z_mm is None else np.vstack([xy, np.full(4, z_mm)])
+
+
 def mid_layer(basis, u, r_m_mm: float, z_mm: float | None = None) -> MidLayer:
     """Displacement of the mid-layer points C, D, A, B (probes: the FE interpolant at the exact points)."""
-    xy = np.array([[0.0, 0.0, -r_m_mm, r_m_mm], [-r_m_mm, r_m_mm, 0.0, 0.0]])
-    pts = xy if z_mm is None else np.vstack([xy, np.full(4, z_mm)])
-    cells = find_cells(basis.mesh, pts)
-    ref = basis.mapping.invF(pts[:, :, None], tind=cells)
-    values = []
-    for i, cell in enumerate(cells):
-        one = _point_basis(basis, cell, ref[:, i, :])
-        values.append(np.asarray(one.interpolate(u))[:, 0, 0])
-    return MidLayer(*values)
+    return MidLayer(*Probes.at(basis, mid_layer_points(r_m_mm, z_mm)).values(u).T)
 
 
 def boundary_stress_MPa(facet_basis, u, lame: Lame) -> tuple[np.ndarray, np.ndarray]:

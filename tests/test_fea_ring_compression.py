@@ -233,3 +233,70 @@ def test_one_factorisation_serves_force_and_ewg_cases():
     assert reaction == pytest.approx(direct_reaction, rel=1e-9)
     assert abs(reaction) > 0
     assert cases["force"][2].residual < 1e-9 and cases["ewg"][2].residual < 1e-9
+
+
+def _polar_mesh(r_in=9.0, r_out=10.0, n_r=3, n_t=120):
+    """A thin ring of straight triangles, cut open at 0.01 rad (its two cut ends are boundary facets too)."""
+    from skfem import MeshTri
+    m = MeshTri.init_tensor(np.linspace(r_in, r_out, n_r), np.linspace(0.0, 2 * np.pi, n_t + 1)[:-1] + 0.01)
+    r, t = m.p
+    return MeshTri(np.array([r * np.cos(t), r * np.sin(t)]), m.t)
+
+
+def test_probes_read_each_point_in_its_own_cell():
+    """ring_sections.Probes (one basis for all points, read on its diagonal) against a closed form: P2 holds the
+    quadratic field u = (a x^2 + b y, c x y) exactly, so its value and stress at 8 points in 8 cells are known."""
+    from skfem import Basis, ElementTriP2, MeshTri
+
+    from strainwave.fea.ring_sections import Probes, hoop
+    sb = Basis(MeshTri.init_tensor(np.linspace(-2.0, 2.0, 9), np.linspace(-1.0, 1.0, 5)), ElementTriP2())
+    a, b, c = 0.002, -0.001, 0.003
+    x, y = sb.doflocs
+    u = np.zeros(2 * sb.N)
+    u[0::2], u[1::2] = a * x ** 2 + b * y, c * x * y
+    pts = np.array([[-1.9, -1.3, -0.7, -0.2, 0.3, 0.9, 1.4, 1.85], [0.9, -0.6, 0.2, -0.95, 0.55, -0.1, 0.8, -0.4]])
+    lame = Lame.from_young(E_MPA, NU, plane_stress=True)
+
+    def closed(a, b, c):
+        px, py = pts
+        grad = np.array([[2 * a * px, np.full_like(px, b)], [c * py, c * px]])     # d u_i / d x_j
+        eps = 0.5 * (grad + grad.transpose(1, 0, 2))
+        sig = lame.lam_MPa * (eps[0, 0] + eps[1, 1]) * np.eye(2)[:, :, None] + 2 * lame.mu_MPa * eps
+        return np.array([a * px ** 2 + b * py, c * px * py]), np.moveaxis(sig, -1, 0)
+
+    probes = Probes.at(sb, pts, vector=True)
+    assert np.unique(probes.basis.tind).size == pts.shape[1]          # one cell per point: the diagonal matters
+    values, stresses = probes.values(u), probes.stresses(u, lame)
+    exact_u, exact_s = closed(a, b, c)
+    assert np.abs(values - exact_u).max() < 1e-12
+    assert np.abs(stresses - exact_s).max() < 1e-8 * np.abs(exact_s).max()
+    assert np.allclose(hoop(stresses, 0.3), hoop(exact_s, 0.3), rtol=1e-10, atol=1e-9)
+    # the check can fail: a field 1 % off in one coefficient is told apart
+    wrong_u, wrong_s = closed(a, b, 1.01 * c)
+    assert np.abs(values - wrong_u).max() > 1e-9
+    assert np.abs(stresses - wrong_s).max() > 1e-3 * np.abs(exact_s).max()
+
+
+def test_window_facets_hold_every_boundary_point_near_B_and_D():
+    """ring_plane._window_facets: every boundary facet with a quadrature point within the window of B (0) or D
+    (pi/2) is kept (the peaks read there are the same), and far fewer than all are."""
+    from skfem import ElementTriP2, ElementVector, FacetBasis
+
+    from strainwave.fea.ring_plane import _window_facets
+    mesh = _polar_mesh()
+    boundary = mesh.boundary_facets()
+    window = 0.05
+    kept = _window_facets(mesh, boundary, window)
+    fb = FacetBasis(mesh, ElementVector(ElementTriP2()), facets=boundary, intorder=4)
+    x = fb.global_coordinates().value                                    # (2, nfacets, nq)
+    ang = np.arctan2(x[1], x[0])
+    near = np.zeros(boundary.size, bool)
+    for centre in (0.0, 0.5 * np.pi):
+        near |= (np.abs(np.angle(np.exp(1j * (ang - centre)))) <= window).any(axis=1)
+    assert near.sum() >= 4 and set(boundary[near]) <= set(kept)
+    assert kept.size < 0.2 * boundary.size
+    # the check can fail: a selection by the facets' first quadrature point alone loses facets at the windows' edges
+    first = np.zeros(boundary.size, bool)
+    for centre in (0.0, 0.5 * np.pi):
+        first |= np.abs(np.angle(np.exp(1j * (ang[:, 0] - centre)))) <= window
+    assert not set(boundary[near]) <= set(boundary[first])
