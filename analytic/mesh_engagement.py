@@ -1,0 +1,123 @@
+"""Kinematic engagement of a strain-wave tooth mesh: which flexspline (FS) teeth reach into the circular
+spline's (CS) spaces at one wave-generator (WG) angle, where they touch and the unloaded flank clearance.
+
+The kinematic theory used (Ivanov; the "neutral line" of J. Mech. Des. 112(1):131, 1990): the FS rim's
+neutral line is inextensible and takes the WG's shape w = w0 cos 2 phi (dual wave), so its tangential
+displacement is v = -(w0/2) sin 2 phi and its section turns by chi = (v - dw/dphi)/r_n; a tooth is a rigid
+body standing on its section, so a point at height y above the neutral line moves by (w, v + y chi). The CS
+is fixed; the WG at angle psi; the FS (output, locked with the WG in the stiffness test) has turned by
+-2 psi / Z_f (dZ = 2), so the FS tooth on the major axis sits centred in its CS space. The CS's internal
+involute has the same profile shift as the cup's teeth (so its tip clears the FS tip at the minor axis by
+the same w0 its root clears it at the major axis: geometry/involute.cup_tooth_spec), and the per-flank
+circumferential backlash at the pitch circle is ``circular_spline.backlash_mm``.
+
+A pair is engaged where the FS tip, moved by w, passes the CS tip circle; the contact point is taken at the
+middle of that radial overlap; the flank clearance is the CS space width minus the FS tooth width there,
+minus (loaded flank) or plus (other flank) the tooth's circumferential misalignment, along the flank normal.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from strainwave.geometry.involute import ToothSpec, cup_tooth_spec, half_angle_rad
+
+__all__ = ["MeshGeometry", "Engagement", "mesh_geometry", "engagement"]
+
+
+@dataclass(frozen=True)
+class MeshGeometry:
+    fs: ToothSpec                  # the cup's external teeth
+    cs_space: ToothSpec            # the CS's tooth space, as the external tooth of Z_c that fills it
+    cs_tooth: ToothSpec            # the CS's internal teeth (the complement of that space)
+    r_neutral_mm: float            # FS rim's neutral line (mid-wall under the teeth)
+    r_bore_mm: float
+    cs_tip_mm: float               # CS internal tip radius
+    w0_mm: float
+    backlash_mm: float             # per flank, circumferential, at the CS pitch circle
+    face_width_mm: float
+    cs_outer_radius_mm: float
+
+    @property
+    def z_f(self) -> int:
+        return self.fs.teeth
+
+    @property
+    def z_c(self) -> int:
+        return self.cs_space.teeth
+
+
+def mesh_geometry(params) -> MeshGeometry:
+    fc, cs, g = params.flexspline_cup, params.circular_spline, params.gear
+    fs = cup_tooth_spec(params)
+    z_c = fc.teeth + g.wave_number
+    x = fs.shift_coef
+    space = ToothSpec(z_c, fc.module_mm, cs.pressure_angle_deg, cs.addendum_coefficient, 1.35,
+                      internal=False, shift_coef=x)
+    # the CS's own teeth: the complement of that space; internal ToothSpec radii carry no shift, so it goes
+    # into the addendum and dedendum: tip r_p + (x - h_a) m, root r_p + (x + 1.35) m
+    cs_tooth = ToothSpec(z_c, fc.module_mm, cs.pressure_angle_deg, cs.addendum_coefficient - x, 1.35 + x,
+                         internal=True, shift_coef=-x)
+    cs_tip = space.pitch_radius_mm + (x - cs.addendum_coefficient) * fc.module_mm
+    r_bore = 0.5 * fc.pitch_diameter_mm - fc.wall_thickness_mm
+    return MeshGeometry(fs, space, cs_tooth, r_bore + 0.5 * fc.wall_thickness_mm, r_bore, cs_tip,
+                        g.radial_deformation_mm, cs.backlash_mm, min(cs.face_width_mm, 0.2 * fc.pitch_diameter_mm),
+                        0.5 * cs.outer_diameter_mm)
+
+
+@dataclass(frozen=True)
+class Engagement:
+    """The pairs that overlap radially at one WG angle, by FS tooth index."""
+
+    tooth: np.ndarray              # (n,) FS tooth indices
+    phi_rad: np.ndarray            # (n,) angle of the FS tooth from the WG major axis
+    contact_radius_mm: np.ndarray  # (n,) radius of the contact point on the undeformed FS tooth
+    depth_mm: np.ndarray           # (n,) radial overlap of FS and CS teeth
+    clearance_pos_mm: np.ndarray   # (n,) flank-normal gap of the flank a positive output torque closes (<0: tip interference)
+    clearance_neg_mm: np.ndarray   # (n,) of the other flank
+    pressure_angle_rad: np.ndarray   # (n,) of the CS flank at the contact radius (the load's line of action)
+    lever_mm: float                # CS base radius: a flank normal's arm about the axis
+
+
+def _fs_point(geo: MeshGeometry, phi: np.ndarray, rho: np.ndarray):
+    """Deformed (R, angle shift) of an FS point at radius rho on the tooth at phi from the major axis."""
+    w0, rn = geo.w0_mm, geo.r_neutral_mm
+    w = w0 * np.cos(2 * phi)
+    v = -0.5 * w0 * np.sin(2 * phi)
+    chi = (v + 2 * w0 * np.sin(2 * phi)) / rn
+    return rho + w, (v + (rho - rn) * chi) / rho
+
+
+def engagement(geo: MeshGeometry, psi_rad: float, *, min_depth_mm: float = 0.0) -> Engagement:
+    """The engaged pairs with the WG's major axis at ``psi_rad`` (CS frame)."""
+    z_f, z_c = geo.z_f, geo.z_c
+    j = np.arange(z_f)
+    theta = (2 * np.pi * j - (z_c - z_f) * psi_rad) / z_f            # FS tooth angles, output turned
+    phi = np.angle(np.exp(1j * (theta - psi_rad)))
+    tip_def, _ = _fs_point(geo, phi, np.full(z_f, geo.fs.tip_radius_mm))
+    depth = tip_def - geo.cs_tip_mm
+    on = depth > max(min_depth_mm, 1e-9)
+    j, phi, theta, depth = j[on], phi[on], theta[on], depth[on]
+    rho = geo.fs.tip_radius_mm - 0.5 * depth                       # middle of the overlap, FS frame
+    R, dtheta = _fs_point(geo, phi, rho)
+    ang = theta + dtheta
+    k = np.round(ang * z_c / (2 * np.pi))
+    mis = R * np.angle(np.exp(1j * (ang - 2 * np.pi * k / z_c)))   # + : ahead of the space centre
+    space = R * half_angle_rad(geo.cs_space, R) + geo.backlash_mm * R / geo.cs_space.pitch_radius_mm
+    tooth = rho * half_angle_rad(geo.fs, rho)                       # a rigid tooth keeps its width in mm
+    alpha = np.arccos(np.clip(geo.cs_space.base_radius_mm / R, -1.0, 1.0))
+    gap = space - tooth
+    # a negative gap is tip interference of rigid involute teeth (kappa = 1, entry/exit zone): the rigid-tooth
+    # kinematics cannot place that contact on the flanks, so those pairs stay negative and callers leave them out
+    pos = (gap - mis) * np.cos(alpha)
+    neg = (gap + mis) * np.cos(alpha)
+    return Engagement(j, phi, rho, depth, pos, neg, alpha, geo.cs_space.base_radius_mm)
+
+
+def engagement_zone_rad(geo: MeshGeometry) -> float:
+    """Half-width of one engagement zone (kinematic theory): the FS tip passes the CS tip while
+    w0 cos 2 phi > r_tip,CS - r_tip,FS."""
+    c = (geo.cs_tip_mm - geo.fs.tip_radius_mm) / geo.w0_mm
+    return 0.5 * math.acos(max(-1.0, min(1.0, c)))
