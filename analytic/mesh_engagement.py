@@ -24,7 +24,7 @@ import numpy as np
 
 from strainwave.geometry.involute import ToothSpec, cup_tooth_spec, half_angle_rad
 
-__all__ = ["MeshGeometry", "Engagement", "mesh_geometry", "engagement"]
+__all__ = ["MeshGeometry", "Engagement", "mesh_geometry", "engagement", "engagement_zone_rad", "study_loads"]
 
 
 @dataclass(frozen=True)
@@ -79,6 +79,8 @@ class Engagement:
     clearance_neg_mm: np.ndarray   # (n,) of the other flank
     pressure_angle_rad: np.ndarray   # (n,) of the CS flank at the contact radius (the load's line of action)
     lever_mm: float                # CS base radius: a flank normal's arm about the axis
+    cs_space: np.ndarray           # (n,) the CS space the tooth stands in
+    cs_radius_mm: np.ndarray       # (n,) the contact radius in the CS (deformed FS position)
 
 
 def _fs_point(geo: MeshGeometry, phi: np.ndarray, rho: np.ndarray):
@@ -113,7 +115,7 @@ def engagement(geo: MeshGeometry, psi_rad: float, *, min_depth_mm: float = 0.0) 
     # kinematics cannot place that contact on the flanks, so those pairs stay negative and callers leave them out
     pos = (gap - mis) * np.cos(alpha)
     neg = (gap + mis) * np.cos(alpha)
-    return Engagement(j, phi, rho, depth, pos, neg, alpha, geo.cs_space.base_radius_mm)
+    return Engagement(j, phi, rho, depth, pos, neg, alpha, geo.cs_space.base_radius_mm, k.astype(int) % z_c, R)
 
 
 def engagement_zone_rad(geo: MeshGeometry) -> float:
@@ -121,3 +123,49 @@ def engagement_zone_rad(geo: MeshGeometry) -> float:
     w0 cos 2 phi > r_tip,CS - r_tip,FS."""
     c = (geo.cs_tip_mm - geo.fs.tip_radius_mm) / geo.w0_mm
     return 0.5 * math.acos(max(-1.0, min(1.0, c)))
+
+
+# WG angles per tooth-passing period (the pattern repeats every 2 pi / Z_c of WG rotation)
+ANGLES = {False: 4, True: 3}
+# a flank pair whose gap exceeds this many modules cannot close within the rated twist: left out of the solve
+REACH_OVER_M = 0.5
+MIN_DEPTH_OVER_M = 0.25           # a radial overlap shallower than this is tip-on-tip, not flank contact
+
+
+def pairs_at(geo: MeshGeometry, psi_rad: float) -> dict:
+    """The flank pairs of one WG angle as the tooth-mesh study takes them (side +1 first, then -1)."""
+    e = engagement(geo, psi_rad, min_depth_mm=MIN_DEPTH_OVER_M * geo.fs.module_mm)
+    reach = REACH_OVER_M * geo.fs.module_mm
+    out = {k: [] for k in ("side", "tooth", "cs_space", "fs_radius_mm", "cs_radius_mm", "clearance_mm",
+                           "lever_mm", "slide_mm_per_rad", "phi_rad")}
+    slide = np.sqrt(np.maximum(e.cs_radius_mm ** 2 - e.lever_mm ** 2, 0.0))
+    for side, gap in ((1, e.clearance_pos_mm), (-1, e.clearance_neg_mm)):
+        on = (gap >= 0.0) & (gap < reach)
+        for key, val in (("side", np.full(on.sum(), side)), ("tooth", e.tooth[on]), ("cs_space", e.cs_space[on]),
+                         ("fs_radius_mm", e.contact_radius_mm[on]), ("cs_radius_mm", e.cs_radius_mm[on]),
+                         ("clearance_mm", gap[on]), ("lever_mm", np.full(on.sum(), side * e.lever_mm)),
+                         ("slide_mm_per_rad", slide[on]), ("phi_rad", e.phi_rad[on])):
+            out[key].append(val)
+    return {k: np.concatenate(v) for k, v in out.items()}
+
+
+def study_loads(params, quick: bool = False) -> dict:
+    """The tooth-mesh study's inputs as numbers: the pairs at each WG angle, the torque history and facts."""
+    from strainwave.analytic.mesh_contact import torque_history
+    geo = mesh_geometry(params)
+    n = ANGLES[bool(quick)]
+    angles = [pairs_at(geo, 2 * np.pi / geo.z_c * k / n) for k in range(n)]
+    fs_r = np.concatenate([a["fs_radius_mm"] for a in angles])
+    cs_r = np.concatenate([a["cs_radius_mm"] for a in angles])
+    major = engagement(geo, 0.0)
+    i0 = int(np.argmin(np.abs(major.phi_rad)))
+    rated = params.gear.rated_output_torque_Nmm
+    return {"mesh": {
+        "module_mm": geo.fs.module_mm, "fs_tip_mm": geo.fs.tip_radius_mm, "cs_tip_mm": geo.cs_tip_mm,
+        "z_f": geo.z_f, "z_c": geo.z_c, "friction_coefficient": params.circular_spline.flank_friction_coefficient,
+        "rim_radius_mm": geo.r_neutral_mm, "rated_torque_Nmm": rated,
+        "torque_history_Nmm": torque_history(rated),
+        "fs_radius_range_mm": (float(fs_r.min()), float(fs_r.max())),
+        "cs_radius_range_mm": (float(cs_r.min()), float(cs_r.max())),
+        "major_fs_radius_mm": float(major.contact_radius_mm[i0]), "major_cs_radius_mm": float(major.cs_radius_mm[i0]),
+        "angles": angles}}

@@ -1,0 +1,256 @@
+"""Study ``tooth-mesh``: the teeth in mesh, from the FE flank compliance to the drive's torque-twist loop.
+
+Per mesh (three, one ratio): the flexspline's toothed rim on a rigid wave generator and a sector of the
+circular spline's teeth (fea/tooth_mesh_fe.py) give the flank influence of tooth 0 on every tooth at a grid
+of contact radii; the teeth are alike, so tooth j on tooth k is the influence of k - j. At each
+wave-generator angle the kinematic engagement (analytic/mesh_engagement.py, passed in as numbers by the
+registry's ``load_inputs``) names the flank pairs, their contact radii, unloaded clearances, levers and
+slides; the compliance of those pairs (FS rim + CS teeth, in series along the line of action) and the
+frictional contact solve along 0 -> +T -> -T -> +T (analytic/mesh_contact.py, the agreed solver, not a
+closed form) give the loop. Every reported number is that chain on one mesh, so each carries its GCI.
+
+Read from the loop with compare/diagnose/catalogue_values.py's rules (the same as a recording):
+K1, K2, K3, T1, T2, lost motion at +/-4 % rated, hysteresis loss. Also: the transmission error (the twist
+at the rated torque over one tooth-passing period of the WG, which repeats Z_c times per WG revolution),
+the teeth in contact and the largest tooth's share at rated torque, and the single pair's compliance at
+the major axis (the checks' number).
+"""
+from __future__ import annotations
+
+import math
+import time
+from typing import ClassVar, Mapping
+
+import numpy as np
+
+from strainwave.fea.assembly import Lame
+from strainwave.fea.result import Load, MeshQuality, StudyResult, Support
+from strainwave.fea.skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, check_variant, run_variant
+from strainwave.fea.study_facts import TORQUE_RATED
+from strainwave.fea import tooth_mesh_fe as fe
+
+STUDY = "tooth-mesh"
+# finest element size over the module, then x1.4 twice (the project's ratio)
+H_OVER_M = {False: 0.30, True: 0.42}
+RATIO = 1.4
+N_RADII = 5                       # contact radii of the influence grid
+BAND_OVER_M = 0.2                 # half-width of a unit flank load's parabolic band, over m
+CS_NEIGHBOURS = 2                 # CS teeth either side whose coupling is kept (thick rim: it decays fast)
+QUANTITIES = (
+    ("pair_compliance_major_mm_per_N", "mm/N"), ("fs_tooth_compliance_major_mm_per_N", "mm/N"),
+    ("cs_tooth_compliance_major_mm_per_N", "mm/N"), ("fs_coupling_next_ratio", "1"),
+    ("K1_Nmm_per_rad", "N*mm/rad"), ("K2_Nmm_per_rad", "N*mm/rad"), ("K3_Nmm_per_rad", "N*mm/rad"),
+    ("T1_Nmm", "N*mm"), ("T2_Nmm", "N*mm"), ("secant_stiffness_rated_Nmm_per_rad", "N*mm/rad"),
+    ("lost_motion_arcmin", "arcmin"), ("hysteresis_loss_arcmin", "arcmin"),
+    ("transmission_error_pp_rad", "rad"), ("teeth_in_contact_rated", "1"), ("peak_tooth_share", "1"),
+    ("peak_tooth_load_N", "N"),
+)
+
+
+def refinements(module_mm: float, quick: bool) -> tuple[float, float, float]:
+    h = H_OVER_M[bool(quick)] * module_mm
+    return (h, h * RATIO, h * RATIO ** 2)
+
+
+def radii_grids(mesh: Mapping) -> tuple[np.ndarray, np.ndarray]:
+    """FS (own frame) and CS contact radii of the influence grids: the span the engagement's contact points use,
+    kept a band inside each tooth's tip."""
+    lo, hi = mesh["fs_radius_range_mm"]
+    band = BAND_OVER_M * mesh["module_mm"]
+    fs = np.linspace(lo, min(hi, mesh["fs_tip_mm"] - band), N_RADII)
+    clo, chi = mesh["cs_radius_range_mm"]
+    cs = np.linspace(max(clo, mesh["cs_tip_mm"] + band), chi, N_RADII)
+    return fs, cs
+
+
+def _interp_weights(grid: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """(n, len(grid)) linear interpolation weights (clamped at the ends)."""
+    r = np.clip(r, grid[0], grid[-1])
+    i = np.clip(np.searchsorted(grid, r) - 1, 0, len(grid) - 2)
+    t = (r - grid[i]) / (grid[i + 1] - grid[i])
+    W = np.zeros((r.size, grid.size))
+    W[np.arange(r.size), i] = 1.0 - t
+    W[np.arange(r.size), i + 1] = t
+    return W
+
+
+def pair_compliance(infl: Mapping, pairs: Mapping, z_f: int, z_c: int) -> np.ndarray:
+    """(n, n) compliance of the flank pairs (FS rim + CS teeth): side +1 pairs first, then -1.
+
+    ``infl``: fs_same[d, a, b], fs_other[d, a, b] (load on a +1 flank, measured on +1 / -1 flanks), cs[d, a, b]
+    (CS tooth d from the loaded one, same flank side); the mirror image gives the -1 loads."""
+    side, tooth, space = pairs["side"], pairs["tooth"], pairs["cs_space"]
+    Wf = _interp_weights(infl["fs_radii"], pairs["fs_radius_mm"])
+    Wc = _interp_weights(infl["cs_radii"], pairs["cs_radius_mm"])
+    d = (tooth[None, :] - tooth[:, None])
+    same = side[:, None] == side[None, :]
+    # mirror about the loaded tooth: a -1 load sees tooth -d as a +1 load sees tooth d
+    dd = np.where(side[:, None] > 0, d, -d) % z_f
+    block = np.where(same[..., None, None], infl["fs_same"][dd], infl["fs_other"][dd])
+    C = np.einsum("ja,kb,jkab->jk", Wf, Wf, block)
+    dc = np.where(side[:, None] > 0, space[None, :] - space[:, None], space[:, None] - space[None, :])
+    dc = (dc + z_c // 2) % z_c - z_c // 2
+    near = same & (np.abs(dc) <= CS_NEIGHBOURS)
+    cs = infl["cs"][np.clip(dc + CS_NEIGHBOURS, 0, 2 * CS_NEIGHBOURS)]
+    C = C + np.where(near, np.einsum("ja,kb,jkab->jk", Wc, Wc, cs), 0.0)
+    return 0.5 * (C + C.T)
+
+
+def influences(params, mesh: Mapping, h_mm: float) -> tuple[dict, dict]:
+    """The FS rim's and the CS sector's flank influences on one mesh size, and the mesh facts."""
+    from strainwave.analytic.mesh_engagement import mesh_geometry
+    geo = mesh_geometry(params)
+    m = params.material
+    lame = Lame.from_young(m.youngs_modulus_MPa, m.poisson_ratio, plane_stress=True)
+    band = BAND_OVER_M * geo.fs.module_mm
+    fs_r, cs_r = radii_grids(mesh)
+    rim = fe.rim_model(geo.fs, geo.r_bore_mm, h_mm, lame, geo.face_width_mm)
+    offs = np.arange(geo.z_f)
+    same = fe.influence(rim, geo.fs.root_radius_mm, fs_r, band, +1, offs, geo.r_bore_mm)
+    other = fe.influence(rim, geo.fs.root_radius_mm, fs_r, band, -1, offs, geo.r_bore_mm)
+    sector = fe.sector_model(geo.cs_tooth, geo.cs_outer_radius_mm, CS_NEIGHBOURS + 2, h_mm, lame, geo.face_width_mm)
+    # the FS's +1 flank presses the CS tooth's -1 flank
+    cs = fe.influence(sector, geo.cs_tooth.root_radius_mm, cs_r, band, -1,
+                      np.arange(-CS_NEIGHBOURS, CS_NEIGHBOURS + 1), None)
+    facts = {"elements": int(rim.mesh.t.shape[1] + sector.mesh.t.shape[1]),
+             "nodes": int(rim.basis.N + sector.basis.N), "dofs": int(2 * (rim.basis.N + sector.basis.N))}
+    timings = {k: rim.timings_s[k] + sector.timings_s[k] for k in rim.timings_s}
+    return {"fs_same": same, "fs_other": other, "cs": cs, "fs_radii": fs_r, "cs_radii": cs_r}, facts | timings
+
+
+def systems(infl: Mapping, mesh: Mapping) -> list:
+    """One MeshSystem per wave-generator angle."""
+    from strainwave.analytic.mesh_contact import MeshSystem
+    out = []
+    for pairs in mesh["angles"]:
+        C = pair_compliance(infl, pairs, mesh["z_f"], mesh["z_c"])
+        out.append(MeshSystem(pairs["clearance_mm"], C, pairs["lever_mm"], pairs["slide_mm_per_rad"],
+                              mesh["friction_coefficient"], mesh["rim_radius_mm"]))
+    return out
+
+
+def loop_values(paths: list, rated_Nmm: float) -> dict:
+    """Catalogue readings of the headline angle's loop and the spread over the angles (TE)."""
+    from strainwave.compare.diagnose.catalogue_values import catalogue_values
+    from strainwave.compare.diagnose.context import find_segments, reversal_threshold
+    from strainwave.compare.diagnose.effects.base import Context
+    p = paths[0]
+    T, th = p.torque_Nmm, p.twist_rad
+    X = float(np.max(np.abs(T)))
+    c0 = float(np.max(np.abs(th))) / X
+    u = T / X
+    segs = find_segments(u, reversal_threshold(u))
+    direction = np.empty(u.size)
+    for a, b, d in segs:
+        direction[a:b] = d
+    ctx = Context(u=u, y=th / (c0 * X), t=np.linspace(0, 1, u.size), X=X, Y=c0 * X, c0=c0, load_unit="N*mm",
+                  response_unit="rad", direction=direction, segments=tuple(segs))
+    cv = catalogue_values(ctx, rated_Nmm)
+    if cv is None:
+        raise RuntimeError("tooth-mesh: the loop has no reversal to read")
+    v = {k: cv.values[k][0] for k in ("K1", "K2", "K3", "T1", "T2", "lost_motion_arcmin", "hysteresis_loss_arcmin")}
+    k_peak = int(np.argmax(T))
+    at_rated = np.array([q.twist_rad[int(np.argmax(q.torque_Nmm))] for q in paths])
+    F = p.forces_N[k_peak]
+    return {"K1_Nmm_per_rad": v["K1"], "K2_Nmm_per_rad": v["K2"], "K3_Nmm_per_rad": v["K3"],
+            "T1_Nmm": v["T1"], "T2_Nmm": v["T2"], "lost_motion_arcmin": v["lost_motion_arcmin"],
+            "hysteresis_loss_arcmin": v["hysteresis_loss_arcmin"],
+            "secant_stiffness_rated_Nmm_per_rad": float(T[k_peak] / th[k_peak]),
+            "transmission_error_pp_rad": float(at_rated.max() - at_rated.min()),
+            "teeth_in_contact_rated": float(np.count_nonzero(F > 0)),
+            "peak_tooth_share": float(F.max() / F.sum()), "peak_tooth_load_N": float(F.max())}
+
+
+def major_pair(infl: Mapping, mesh: Mapping) -> dict:
+    """The single pair on the major axis at its contact radius: FS tooth, CS tooth and the two in series."""
+    r_f, r_c = mesh["major_fs_radius_mm"], mesh["major_cs_radius_mm"]
+    wf = _interp_weights(infl["fs_radii"], np.array([r_f]))[0]
+    wc = _interp_weights(infl["cs_radii"], np.array([r_c]))[0]
+    c_fs = float(wf @ infl["fs_same"][0] @ wf)
+    c_cs = float(wc @ infl["cs"][CS_NEIGHBOURS] @ wc)
+    nxt = float(wf @ infl["fs_same"][1] @ wf)
+    return {"fs_tooth_compliance_major_mm_per_N": c_fs, "cs_tooth_compliance_major_mm_per_N": c_cs,
+            "pair_compliance_major_mm_per_N": c_fs + c_cs, "fs_coupling_next_ratio": nxt / c_fs}
+
+
+class ToothMesh(StudyVariant):
+    study = STUDY
+    plane = True
+    teeth_key = "flexspline_cup.teeth"
+    elements_per_cell = 2.3
+    cpu_s_per_element = (4e-4, 4e-4)
+    title = "Teeth in mesh (plane FE compliance + frictional contact)"
+    element_text = "P2 triangles, plane stress, thickness = engaged face width"
+    outside_design = "the mesh study reports the drive's stiffness and tooth loads, not a design stress factor"
+
+    def __init__(self, params, *, mesh_size_mm=None, order=2, quick=False, mesh=None, progress=None):
+        self.params, self.quick, self.mesh_inputs = params, quick, mesh
+        self.sizes = refinements(params.flexspline_cup.module_mm, quick) if mesh_size_mm is None else \
+            (mesh_size_mm, mesh_size_mm * RATIO, mesh_size_mm * RATIO ** 2)
+        check_variant(STUDY, order=order, sizes_mm=self.sizes)
+        if order != 2:
+            raise ValueError(f"{STUDY}: P2 only")
+
+    @classmethod
+    def default_size_mm(cls, params, quick: bool) -> float:
+        return refinements(params.flexspline_cup.module_mm, quick)[0]
+
+    @classmethod
+    def volume_and_wall(cls, params) -> tuple[float, float]:
+        fc = params.flexspline_cup
+        r = 0.5 * fc.pitch_diameter_mm
+        area = math.pi * (r ** 2 - (r - fc.wall_thickness_mm) ** 2) + fc.teeth * 1.6 * fc.module_mm ** 2
+        return area, fc.module_mm
+
+    def build(self):
+        return None
+
+    def series(self) -> tuple[SeriesPlan, ...]:
+        return (SeriesPlan("rim", tuple(self.sizes)),)
+
+    def solve(self, parts, series: str, refinement: float, k: int, keep_fields: bool, progress) -> MeshSolve:
+        t0 = time.perf_counter()
+        infl, facts = influences(self.params, self.mesh_inputs, refinement)
+        t1 = time.perf_counter()
+        from strainwave.analytic.mesh_contact import solve_torque_path
+        history = np.asarray(self.mesh_inputs["torque_history_Nmm"])
+        paths = [solve_torque_path(s, history) for s in systems(infl, self.mesh_inputs)]
+        values = loop_values(paths, self.mesh_inputs["rated_torque_Nmm"]) | major_pair(infl, self.mesh_inputs)
+        t2 = time.perf_counter()
+        quality = MeshQuality(facts["elements"], facts["nodes"], facts["dofs"], 2, float("nan"), float("nan"))
+        fields = {"paths": paths, "influences": infl} if keep_fields else {}
+        return MeshSolve(refinement, values, quality,
+                         {"mesh": facts["mesh"], "assemble": facts["assemble"], "solve": facts["solve"],
+                          "contact": t2 - t1, "influence": t1 - t0 - facts["mesh"] - facts["assemble"] - facts["solve"]},
+                         fields=fields)
+
+    def quantities(self, series: Mapping[str, Series]) -> dict:
+        s = series["rim"]
+        return {name: s.converged(name, unit) for name, unit in QUANTITIES}
+
+    def load(self, parts) -> Load:
+        return Load("output torque T", float(self.mesh_inputs["rated_torque_Nmm"]), "N*mm", ("tooth_flanks",),
+                    "0 -> +T -> -T -> +T on the flank pairs in contact (wave generator and CS held)")
+
+    def supports(self) -> tuple[Support, ...]:
+        return (Support(("bore",), "u_r = 0 (rigid wave generator); torque reacted by a uniform tangential shear "
+                                   "(the cup wall); one tangential pin against the rigid rotation"),
+                Support(("cs_outer",), "circular spline sector held at its outer diameter"))
+
+    def meta(self, parts, series: Mapping[str, Series]) -> dict:
+        f = series["rim"].finest.fields
+        if not f:
+            return {}
+        p = f["paths"][0]
+        return {"loop": {"torque_Nmm": p.torque_Nmm.tolist(), "twist_rad": p.twist_rad.tolist()},
+                "forces_at_rated_N": p.forces_N[int(np.argmax(p.torque_Nmm))].tolist(),
+                "pairs": {k: np.asarray(v).tolist() for k, v in self.mesh_inputs["angles"][0].items()},
+                "te_twist_at_rated_rad": [float(q.twist_rad[int(np.argmax(q.torque_Nmm))]) for q in f["paths"]]}
+
+
+def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, progress=None, quick=False,
+        mesh=None, **_) -> StudyResult:
+    if crack_depth_mm is not None:
+        raise ValueError(f"{STUDY}: no crack")
+    variant = ToothMesh(params, mesh_size_mm=mesh_size_mm, order=order, quick=quick, mesh=mesh)
+    return run_variant(variant, vtu=vtu, progress=progress or (lambda m: None))
