@@ -43,8 +43,9 @@ QUANTITIES = (
     ("T1_Nmm", "N*mm"), ("T2_Nmm", "N*mm"), ("secant_stiffness_rated_Nmm_per_rad", "N*mm/rad"),
     ("lost_motion_arcmin", "arcmin"), ("hysteresis_loss_arcmin", "arcmin"),
     ("transmission_error_pp_rad", "rad"), ("teeth_in_contact_rated", "1"), ("peak_tooth_share", "1"),
-    ("peak_tooth_load_N", "N"),
+    ("peak_tooth_load_N", "N"), ("pair_stiffness_solid_N_per_mm_um", "N/(mm*um)"),
 )
+SOLID_DEPTH_OVER_M = 6.0          # the FS tooth's solid-body sector is held this deep below its root (ISO's body)
 
 
 def refinements(module_mm: float, quick: bool) -> tuple[float, float, float]:
@@ -96,12 +97,13 @@ def pair_compliance(infl: Mapping, pairs: Mapping, z_f: int, z_c: int) -> np.nda
     return 0.5 * (C + C.T)
 
 
-def influences(params, mesh: Mapping, h_mm: float) -> tuple[dict, dict]:
+def influences(params, mesh: Mapping, h_mm: float, *, plane_stress: bool = False) -> tuple[dict, dict]:
     """The FS rim's and the CS sector's flank influences on one mesh size, and the mesh facts."""
     from strainwave.analytic.mesh_engagement import mesh_geometry
     geo = mesh_geometry(params)
     m = params.material
-    lame = Lame.from_young(m.youngs_modulus_MPa, m.poisson_ratio, plane_stress=True)
+    # plane strain: the face width (30 mm) is 15-40x the tooth and the rim thickness (docs/decisions/064)
+    lame = Lame.from_young(m.youngs_modulus_MPa, m.poisson_ratio, plane_stress=plane_stress)
     band = BAND_OVER_M * geo.fs.module_mm
     fs_r, cs_r = radii_grids(mesh)
     rim = fe.rim_model(geo.fs, geo.r_bore_mm, h_mm, lame, geo.face_width_mm)
@@ -112,10 +114,14 @@ def influences(params, mesh: Mapping, h_mm: float) -> tuple[dict, dict]:
     # the FS's +1 flank presses the CS tooth's -1 flank
     cs = fe.influence(sector, geo.cs_tooth.root_radius_mm, cs_r, band, -1,
                       np.arange(-CS_NEIGHBOURS, CS_NEIGHBOURS + 1), None)
+    solid = fe.sector_model(geo.fs, geo.fs.root_radius_mm - SOLID_DEPTH_OVER_M * geo.fs.module_mm, 2, h_mm, lame,
+                            geo.face_width_mm)
+    fs_solid = fe.influence(solid, geo.fs.root_radius_mm, fs_r, band, +1, np.array([0]), None)
     facts = {"elements": int(rim.mesh.t.shape[1] + sector.mesh.t.shape[1]),
              "nodes": int(rim.basis.N + sector.basis.N), "dofs": int(2 * (rim.basis.N + sector.basis.N))}
     timings = {k: rim.timings_s[k] + sector.timings_s[k] for k in rim.timings_s}
-    return {"fs_same": same, "fs_other": other, "cs": cs, "fs_radii": fs_r, "cs_radii": cs_r}, facts | timings
+    return {"fs_same": same, "fs_other": other, "cs": cs, "fs_solid": fs_solid, "fs_radii": fs_r, "cs_radii": cs_r,
+            "face_width_mm": geo.face_width_mm}, facts | timings
 
 
 def systems(infl: Mapping, mesh: Mapping) -> list:
@@ -169,7 +175,9 @@ def major_pair(infl: Mapping, mesh: Mapping) -> dict:
     c_fs = float(wf @ infl["fs_same"][0] @ wf)
     c_cs = float(wc @ infl["cs"][CS_NEIGHBOURS] @ wc)
     nxt = float(wf @ infl["fs_same"][1] @ wf)
-    return {"fs_tooth_compliance_major_mm_per_N": c_fs, "cs_tooth_compliance_major_mm_per_N": c_cs,
+    c_solid = float(wf @ infl["fs_solid"][0] @ wf) + c_cs
+    return {"pair_stiffness_solid_N_per_mm_um": 1e-3 / (c_solid * infl["face_width_mm"]),
+            "fs_tooth_compliance_major_mm_per_N": c_fs, "cs_tooth_compliance_major_mm_per_N": c_cs,
             "pair_compliance_major_mm_per_N": c_fs + c_cs, "fs_coupling_next_ratio": nxt / c_fs}
 
 
@@ -180,7 +188,7 @@ class ToothMesh(StudyVariant):
     elements_per_cell = 2.3
     cpu_s_per_element = (4e-4, 4e-4)
     title = "Teeth in mesh (plane FE compliance + frictional contact)"
-    element_text = "P2 triangles, plane stress, thickness = engaged face width"
+    element_text = "P2 triangles, plane strain, thickness = engaged face width"
     outside_design = "the mesh study reports the drive's stiffness and tooth loads, not a design stress factor"
 
     def __init__(self, params, *, mesh_size_mm=None, order=2, quick=False, mesh=None, progress=None):

@@ -135,10 +135,11 @@ def rim_model(spec, r_bore_mm: float, h_mm: float, lame: Lame, thickness_mm: flo
                     {"mesh": t1 - t0, "assemble": t2 - t1, "solve": t3 - t2})
 
 
-def sector_model(spec, r_outer_mm: float, teeth_each_side: int, h_mm: float, lame: Lame,
+def sector_model(spec, r_held_mm: float, teeth_each_side: int, h_mm: float, lame: Lame,
                  thickness_mm: float) -> RimSolve:
-    """A sector of the circular spline's internal teeth (tooth 0 on +x and ``teeth_each_side`` either side),
-    held at its outer radius (the housing); the mesh coarsens away from the teeth."""
+    """A sector of teeth (tooth 0 on +x and ``teeth_each_side`` either side) on a body held at ``r_held_mm``
+    (outside the root for internal teeth: the CS housing; inside it for external: a solid gear body); the mesh
+    coarsens away from the teeth."""
     t0 = time.perf_counter()
     pitch = 2 * math.pi / spec.teeth
     a0, a1 = -(teeth_each_side + 0.5) * pitch, (teeth_each_side + 0.5) * pitch
@@ -146,22 +147,22 @@ def sector_model(spec, r_outer_mm: float, teeth_each_side: int, h_mm: float, lam
     ang = np.arctan2(teeth[:, 1], teeth[:, 0])
     keep = (ang > a0) & (ang < a1)
     inner = teeth[keep][np.argsort(ang[keep])]
-    r_in = np.hypot(*inner[0])
-    start = np.array([[r_in * math.cos(a0), r_in * math.sin(a0)]])
-    end = np.array([[np.hypot(*inner[-1]) * math.cos(a1), np.hypot(*inner[-1]) * math.sin(a1)]])
-    outer = _circle(r_outer_mm, 4 * h_mm, a1, a0)
-    loop = np.vstack([start, inner, end, outer])
     r_root = spec.root_radius_mm
-    grow = lambda x, y: h_mm * (1.0 + 0.5 * max(0.0, math.hypot(x, y) - r_root) / h_mm) if True else h_mm  # noqa: E731
+    start = np.array([[r_root * math.cos(a0), r_root * math.sin(a0)]])
+    end = np.array([[r_root * math.cos(a1), r_root * math.sin(a1)]])
+    held_arc = _circle(r_held_mm, 4 * h_mm, a1, a0)
+    loop = np.vstack([start, inner, end, held_arc])
+    grow = lambda x, y: h_mm + 0.5 * abs(math.hypot(x, y) - r_root)  # noqa: E731
     p, t = _gmsh_tri([loop], lambda x, y: min(grow(x, y), 8 * h_mm))
     t1 = time.perf_counter()
     mesh, basis, K = _assemble(p, t, lame, thickness_mm)
-    held = np.flatnonzero(np.hypot(*basis.doflocs) > r_outer_mm * (1 - 1e-6))
+    r = np.hypot(*basis.doflocs)
+    held = np.flatnonzero(r > r_held_mm * (1 - 1e-6) if spec.internal else r < r_held_mm * (1 + 1e-6))
     T = sp.identity(K.shape[0], format="csr")
     t2 = time.perf_counter()
     free, solve = _factorise(K, T, np.concatenate([2 * held, 2 * held + 1]))
     t3 = time.perf_counter()
-    return RimSolve(h_mm, mesh, basis, T, free, solve, thickness_mm, lame, 0.0, spec.teeth, True,
+    return RimSolve(h_mm, mesh, basis, T, free, solve, thickness_mm, lame, 0.0, spec.teeth, bool(spec.internal),
                     {"mesh": t1 - t0, "assemble": t2 - t1, "solve": t3 - t2})
 
 

@@ -161,6 +161,27 @@ STUDIES: dict[str, Study] = {s.name: s for s in (
         QuantitySpec("cycle_amplitude_MPa", "MPa", "outer-fibre hoop stress amplitude per revolution at rated T"),
         QuantitySpec("cycle_mean_MPa", "MPa", "outer-fibre hoop mean stress per revolution at rated T"),
     ), vtu_fields=("displacement_mm", "von_mises_MPa", "stress_cylindrical_MPa", "hoop_stress_MPa")),
+    # The teeth in mesh (issue 48): plane FE flank compliance of the cup's toothed rim and the CS's teeth, the
+    # kinematic engagement and the frictional contact solve along 0 -> +T -> -T -> +T (fea/tooth_mesh.py).
+    Study("tooth-mesh", "strainwave.fea.tooth_mesh:ToothMesh", "flexspline-cup", None, None, tuple(
+        QuantitySpec(name, unit, meaning) for name, unit, meaning in (
+            ("pair_compliance_major_mm_per_N", "mm/N", "one FS + CS tooth pair at the major axis, along the flank normal"),
+            ("fs_tooth_compliance_major_mm_per_N", "mm/N", "the FS tooth on its rim at the major axis"),
+            ("cs_tooth_compliance_major_mm_per_N", "mm/N", "the CS tooth on its rim at the major axis"),
+            ("fs_coupling_next_ratio", "1", "the next FS tooth's displacement over the loaded one's (rim coupling)"),
+            ("K1_Nmm_per_rad", "N*mm/rad", "mesh K1 (catalogue rules, compare/diagnose/catalogue_values.py)"),
+            ("K2_Nmm_per_rad", "N*mm/rad", "mesh K2"), ("K3_Nmm_per_rad", "N*mm/rad", "mesh K3"),
+            ("T1_Nmm", "N*mm", "mesh T1"), ("T2_Nmm", "N*mm", "mesh T2"),
+            ("secant_stiffness_rated_Nmm_per_rad", "N*mm/rad", "rated torque over the mesh's twist there"),
+            ("lost_motion_arcmin", "arcmin", "lost motion at +/-4 % rated torque"),
+            ("hysteresis_loss_arcmin", "arcmin", "hysteresis loss of the +/-rated loop (flank friction)"),
+            ("transmission_error_pp_rad", "rad", "peak-to-peak twist at rated torque over one tooth-passing period"),
+            ("teeth_in_contact_rated", "1", "flank pairs carrying load at rated torque"),
+            ("peak_tooth_share", "1", "largest flank load over the sum at rated torque"),
+            ("peak_tooth_load_N", "N", "largest flank normal load at rated torque"),
+            ("pair_stiffness_solid_N_per_mm_um", "N/(mm*um)",
+             "the major-axis tooth pair on solid bodies (ISO 6336-1's c' problem), per face width"))),
+          load_inputs="strainwave.analytic.mesh_engagement:study_loads", vtu_fields=("displacement_mm",)),
     # The tooth-root crack as a semi-elliptical surface crack in a block of the band wall, its own sweep of depths;
     # its quantities are named per state and depth (fea.surface_crack.delta_name).
     Study("cup-surface-crack", "strainwave.fea.surface_crack:SurfaceCrack", "flexspline-cup", None, None, (),

@@ -15,6 +15,7 @@ from typing import Callable
 from strainwave.analytic.reference import Reference
 from strainwave.compare.validate import (ring_checks, surface_crack_checks, torsion_checks, wg_bearing_checks,
                                         wg_cup_checks)
+from strainwave.compare.validate import tooth_mesh_checks
 from strainwave.compare.validate.checks import Check
 from strainwave.compare.validate.crack_checks import cup_crack, shaft_crack, shaft_range_note
 
@@ -194,6 +195,10 @@ CHECKS: tuple[CheckSpec, ...] = (
               surface_crack_checks.reference_at("between"), NEWMAN_RAJU),
     CheckSpec("cup.surface_crack_minor", "cup", _pick(_surface_crack, "cup.surface_crack_minor"),
               surface_crack_checks.reference_at("minor"), NEWMAN_RAJU),
+    CheckSpec("mesh.pair_stiffness", "mesh",
+              lambda ctx: tooth_mesh_checks.pair_check(ctx.book, ctx.label(tooth_mesh_checks.STUDY), ctx.params),
+              lambda params, at: tooth_mesh_checks.pair_reference(params),
+              f"{GCI} + ISO's q' fit + the unit load's band", ((tooth_mesh_checks.STUDY, tooth_mesh_checks.PAIR),)),
 )
 
 REQUIRED_IDS = tuple(spec.id for spec in CHECKS)
@@ -201,7 +206,7 @@ REQUIRED_IDS = tuple(spec.id for spec in CHECKS)
 # The report's section title of each component, in the report's order (a component without one is titled by its name).
 SECTIONS = {"shaft": "Output shaft (seed 000)", "cup": "Flexspline cup (seed 000)",
             "bearing": "Wave-generator bearing inner ring (seed 000)", "ring": "EWG flexspline ring (seed 003)",
-            "gear": "Drive stiffness (seed 000)"}
+            "gear": "Drive stiffness (seed 000)", "mesh": "Teeth in mesh (issue 48)"}
 
 
 def current() -> tuple[CheckSpec, ...]:
