@@ -129,6 +129,8 @@ def engagement_zone_rad(geo: MeshGeometry) -> float:
 ANGLES = {False: 4, True: 3}
 # a flank pair whose gap exceeds this many modules cannot close within the rated twist: left out of the solve
 REACH_OVER_M = 0.5
+# positions of the cracked tooth 0 through the loaded zone of a positive torque (its +theta flank), rad
+CRACK_PHI = np.radians(np.linspace(-30.0, 75.0, 15))
 MIN_DEPTH_OVER_M = 0.25           # a radial overlap shallower than this is tip-on-tip, not flank contact
 
 
@@ -151,6 +153,7 @@ def pairs_at(geo: MeshGeometry, psi_rad: float) -> dict:
 
 def study_loads(params, quick: bool = False) -> dict:
     """The tooth-mesh study's inputs as numbers: the pairs at each WG angle, the torque history and facts."""
+    from strainwave.analytic.catalogue_power_law import catalogue_curve_Nm
     from strainwave.analytic.mesh_contact import torque_history
     geo = mesh_geometry(params)
     n = ANGLES[bool(quick)]
@@ -168,4 +171,9 @@ def study_loads(params, quick: bool = False) -> dict:
         "fs_radius_range_mm": (float(fs_r.min()), float(fs_r.max())),
         "cs_radius_range_mm": (float(cs_r.min()), float(cs_r.max())),
         "major_fs_radius_mm": float(major.contact_radius_mm[i0]), "major_cs_radius_mm": float(major.cs_radius_mm[i0]),
-        "angles": angles}}
+        "angles": angles, "catalogue_curve": catalogue_curve_Nm(params),
+        "crack_depth_mm": params.flexspline_cup.root_crack_depth_mm,
+        "slot_width_mm": params.crack_geometry.slot_width_mm,
+        "crack_phi_rad": CRACK_PHI.tolist(),
+        # tooth 0 at phi from the major axis: psi = -phi / (1 + dZ/Z_f) (the output turned with the WG)
+        "crack_angles": [pairs_at(geo, -p / (1 + (geo.z_c - geo.z_f) / geo.z_f)) for p in CRACK_PHI]}}

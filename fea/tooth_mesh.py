@@ -44,7 +44,9 @@ QUANTITIES = (
     ("lost_motion_arcmin", "arcmin"), ("hysteresis_loss_arcmin", "arcmin"),
     ("transmission_error_pp_rad", "rad"), ("teeth_in_contact_rated", "1"), ("peak_tooth_share", "1"),
     ("peak_tooth_load_N", "N"), ("pair_stiffness_solid_N_per_mm_um", "N/(mm*um)"),
+    ("crack_tooth_compliance_ratio", "1"), ("crack_te_peak_rad", "rad"),
 )
+SECTOR_H_RATIO = 0.5              # the sectors' element size over the rim's
 SOLID_DEPTH_OVER_M = 6.0          # the FS tooth's solid-body sector is held this deep below its root (ISO's body)
 
 
@@ -110,18 +112,23 @@ def influences(params, mesh: Mapping, h_mm: float, *, plane_stress: bool = False
     offs = np.arange(geo.z_f)
     same = fe.influence(rim, geo.fs.root_radius_mm, fs_r, band, +1, offs, geo.r_bore_mm)
     other = fe.influence(rim, geo.fs.root_radius_mm, fs_r, band, -1, offs, geo.r_bore_mm)
-    sector = fe.sector_model(geo.cs_tooth, geo.cs_outer_radius_mm, CS_NEIGHBOURS + 2, h_mm, lame, geo.face_width_mm)
+    hs = SECTOR_H_RATIO * h_mm        # a sector holds a few teeth: finer costs little and keeps its GCI small
+    sector = fe.sector_model(geo.cs_tooth, geo.cs_outer_radius_mm, CS_NEIGHBOURS + 2, hs, lame, geo.face_width_mm)
     # the FS's +1 flank presses the CS tooth's -1 flank
     cs = fe.influence(sector, geo.cs_tooth.root_radius_mm, cs_r, band, -1,
                       np.arange(-CS_NEIGHBOURS, CS_NEIGHBOURS + 1), None)
-    solid = fe.sector_model(geo.fs, geo.fs.root_radius_mm - SOLID_DEPTH_OVER_M * geo.fs.module_mm, 2, h_mm, lame,
+    solid = fe.sector_model(geo.fs, geo.fs.root_radius_mm - SOLID_DEPTH_OVER_M * geo.fs.module_mm, 2, hs, lame,
                             geo.face_width_mm)
     fs_solid = fe.influence(solid, geo.fs.root_radius_mm, fs_r, band, +1, np.array([0]), None)
+    cracked = fe.sector_model(geo.fs, geo.fs.root_radius_mm - SOLID_DEPTH_OVER_M * geo.fs.module_mm, 2, hs, lame,
+                              geo.face_width_mm, crack=(mesh["crack_depth_mm"], mesh["slot_width_mm"]))
+    fs_cracked = fe.influence(cracked, geo.fs.root_radius_mm, fs_r, band, +1, np.array([0]), None)
     facts = {"elements": int(rim.mesh.t.shape[1] + sector.mesh.t.shape[1]),
              "nodes": int(rim.basis.N + sector.basis.N), "dofs": int(2 * (rim.basis.N + sector.basis.N))}
     timings = {k: rim.timings_s[k] + sector.timings_s[k] for k in rim.timings_s}
     return {"fs_same": same, "fs_other": other, "cs": cs, "fs_solid": fs_solid, "fs_radii": fs_r, "cs_radii": cs_r,
-            "face_width_mm": geo.face_width_mm}, facts | timings
+            "face_width_mm": geo.face_width_mm, "rim": rim, "r_bore_mm": geo.r_bore_mm,
+            "crack_delta": fs_cracked[0] - fs_solid[0]}, facts | timings
 
 
 def systems(infl: Mapping, mesh: Mapping) -> list:
@@ -167,6 +174,44 @@ def loop_values(paths: list, rated_Nmm: float) -> dict:
             "peak_tooth_share": float(F.max() / F.sum()), "peak_tooth_load_N": float(F.max())}
 
 
+def crack_signature(infl: Mapping, mesh: Mapping) -> tuple[dict, np.ndarray]:
+    """The root crack of tooth 0 (its +theta flank's root) as tooth 0 passes the loaded zone: the crack's added
+    compliance (solid-body sector, cracked minus uncracked, same mesh size) on tooth 0's +flank pair; the
+    -flank load closes the crack, so it is left uncracked (the FE's slot would stay open). Returns the readings
+    and the twist change at rated torque against tooth 0's angle from the major axis."""
+    from strainwave.analytic.mesh_contact import solve_torque_path
+    ramp = np.linspace(0.0, mesh["rated_torque_Nmm"], 21)
+    change = []
+    for pairs in mesh["crack_angles"]:
+        C = pair_compliance(infl, pairs, mesh["z_f"], mesh["z_c"])
+        hit = np.flatnonzero((pairs["tooth"] == 0) & (pairs["side"] == 1))
+        twists = []
+        for cracked in (False, True):
+            Ck = C.copy()
+            if cracked and hit.size:
+                w = _interp_weights(infl["fs_radii"], pairs["fs_radius_mm"][hit])[0]
+                Ck[hit[0], hit[0]] += float(w @ infl["crack_delta"] @ w)
+            from strainwave.analytic.mesh_contact import MeshSystem
+            sys_ = MeshSystem(pairs["clearance_mm"], Ck, pairs["lever_mm"], pairs["slide_mm_per_rad"], 0.0,
+                              mesh["rim_radius_mm"])
+            twists.append(solve_torque_path(sys_, ramp).twist_rad[-1])
+        change.append(twists[1] - twists[0])
+    change = np.asarray(change)
+    r_f = mesh["major_fs_radius_mm"]
+    wf = _interp_weights(infl["fs_radii"], np.array([r_f]))[0]
+    base = float(wf @ infl["fs_solid"][0] @ wf)
+    return {"crack_tooth_compliance_ratio": (base + float(wf @ infl["crack_delta"] @ wf)) / base,
+            "crack_te_peak_rad": float(change.max())}, change
+
+
+def crack_orders(mesh: Mapping) -> dict:
+    """How often the cracked tooth passes an engagement zone: the WG's lobes sweep the FS at (1 + dZ/Z_f) of
+    the WG's speed relative to it, twice per relative turn (dual wave)."""
+    zf, zc = mesh["z_f"], mesh["z_c"]
+    per_input = 2.0 * (1.0 + (zc - zf) / zf)
+    return {"per_input_revolution": per_input, "per_output_revolution": per_input * zf / (zc - zf)}
+
+
 def major_pair(infl: Mapping, mesh: Mapping) -> dict:
     """The single pair on the major axis at its contact radius: FS tooth, CS tooth and the two in series."""
     r_f, r_c = mesh["major_fs_radius_mm"], mesh["major_cs_radius_mm"]
@@ -179,6 +224,65 @@ def major_pair(infl: Mapping, mesh: Mapping) -> dict:
     return {"pair_stiffness_solid_N_per_mm_um": 1e-3 / (c_solid * infl["face_width_mm"]),
             "fs_tooth_compliance_major_mm_per_N": c_fs, "cs_tooth_compliance_major_mm_per_N": c_cs,
             "pair_compliance_major_mm_per_N": c_fs + c_cs, "fs_coupling_next_ratio": nxt / c_fs}
+
+
+def rated_field(infl: Mapping, mesh: Mapping, path) -> tuple:
+    """(mesh, vertex displacement (Nv, 2)) of the FS rim under the headline angle's flank loads at rated torque."""
+    rim, pairs = infl["rim"], mesh["angles"][0]
+    F = path.forces_N[int(np.argmax(path.torque_Nmm))]
+    band = BAND_OVER_M * mesh["module_mm"]
+    total = np.zeros(rim.T.shape[0])
+    shear = fe.bore_shear(rim, infl["r_bore_mm"])
+    for side in (1, -1):
+        on = (pairs["side"] == side) & (F > 0)
+        if on.any():
+            L, M = fe.flank_loads(rim, pairs["tooth"][on], pairs["fs_radius_mm"][on], band, side)
+            total += (L - shear[:, None] * M[None, :]) @ F[on]
+    u = rim.T @ fe.displacements(rim, total[:, None])[:, 0]
+    nv = rim.mesh.p.shape[1]
+    return rim.mesh, np.column_stack([u[0:2 * nv:2], u[1:2 * nv:2]])
+
+
+def write_pictures(folder, meta: Mapping, mesh: Mapping, catalogue: tuple | None) -> list:
+    """The loop (beside the catalogue's curve when given) and the load per tooth around the circumference."""
+    import matplotlib
+    matplotlib.use("Agg", force=True)
+    import matplotlib.pyplot as plt
+    from strainwave.io_atomic import atomic_path
+    out = []
+    fig, ax = plt.subplots(figsize=(6, 4))
+    T = np.asarray(meta["loop"]["torque_Nmm"]) * 1e-3
+    th = np.asarray(meta["loop"]["twist_rad"]) * 60 * 180 / np.pi
+    ax.plot(th, T, "-", lw=1.2, label="tooth mesh alone (FE + contact), +/-rated")
+    if catalogue is not None:
+        K1, K2, K3, T1, T2 = catalogue                     # N m/rad, N m
+        t = np.linspace(0, T.max(), 50)
+        phi = np.where(t <= T1, t / K1, np.where(t <= T2, T1 / K1 + (t - T1) / K2, T1 / K1 + (T2 - T1) / K2 + (t - T2) / K3))
+        ax.plot(phi * 60 * 180 / np.pi, t, "k--", lw=1, label="catalogue unit (CHA, power law at this size)")
+    ax.set_xlabel("output twist (arcmin)")
+    ax.set_ylabel("output torque (N m)")
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+    for name, figure in (("tooth_mesh_loop.png", fig),):
+        with atomic_path(folder / name) as tmp:
+            figure.savefig(tmp, dpi=120, format="png")
+        out.append(folder / name)
+    plt.close(fig)
+    fig, ax = plt.subplots(figsize=(6, 3))
+    pairs = meta["pairs"]
+    F = np.asarray(meta["forces_at_rated_N"])
+    phi = np.degrees(np.asarray(pairs["phi_rad"]))
+    side = np.asarray(pairs["side"])
+    for s, c in ((1, "C0"), (-1, "C3")):
+        on = side == s
+        ax.bar(phi[on], F[on], width=1.2, color=c, label=f"flank {'+' if s > 0 else '-'}")
+    ax.set_xlabel("FS tooth angle from the WG major axis (deg)")
+    ax.set_ylabel("flank normal load at rated (N)")
+    ax.legend(fontsize=7)
+    with atomic_path(folder / "tooth_mesh_load_per_tooth.png") as tmp:
+        fig.savefig(tmp, dpi=120, format="png")
+    plt.close(fig)
+    return out + [folder / "tooth_mesh_load_per_tooth.png"]
 
 
 class ToothMesh(StudyVariant):
@@ -223,10 +327,14 @@ class ToothMesh(StudyVariant):
         from strainwave.analytic.mesh_contact import solve_torque_path
         history = np.asarray(self.mesh_inputs["torque_history_Nmm"])
         paths = [solve_torque_path(s, history) for s in systems(infl, self.mesh_inputs)]
-        values = loop_values(paths, self.mesh_inputs["rated_torque_Nmm"]) | major_pair(infl, self.mesh_inputs)
+        crack, change = crack_signature(infl, self.mesh_inputs)
+        values = loop_values(paths, self.mesh_inputs["rated_torque_Nmm"]) | major_pair(infl, self.mesh_inputs) | crack
         t2 = time.perf_counter()
         quality = MeshQuality(facts["elements"], facts["nodes"], facts["dofs"], 2, float("nan"), float("nan"))
-        fields = {"paths": paths, "influences": infl} if keep_fields else {}
+        fields = {"paths": paths, "rated_u": rated_field(infl, self.mesh_inputs, paths[0]),
+                  "r_bore_mm": infl["r_bore_mm"],
+                  "crack_change": change} if keep_fields else {}
+        infl.pop("rim")
         return MeshSolve(refinement, values, quality,
                          {"mesh": facts["mesh"], "assemble": facts["assemble"], "solve": facts["solve"],
                           "contact": t2 - t1, "influence": t1 - t0 - facts["mesh"] - facts["assemble"] - facts["solve"]},
@@ -245,6 +353,24 @@ class ToothMesh(StudyVariant):
                                    "(the cup wall); one tangential pin against the rigid rotation"),
                 Support(("cs_outer",), "circular spline sector held at its outer diameter"))
 
+    def write_fields(self, series: Mapping[str, Series], vtu, load: Load) -> tuple:
+        from pathlib import Path
+        from strainwave.fea.fields import field_info, write_vtu
+        from strainwave.fea.mesh_data import MeshData
+        f = series["rim"].finest.fields
+        mesh, u = f["rated_u"]
+        bf = mesh.boundary_facets()
+        r_mid = np.hypot(*mesh.p[:, mesh.facets[:, bf]].mean(axis=1))
+        bore = r_mid < f["r_bore_mm"] + 1e-3
+        md = MeshData(np.column_stack([mesh.p.T, np.zeros(mesh.p.shape[1])]), mesh.t.T.copy(), 2, 1,
+                      groups={"bore": mesh.facets[:, bf[bore]].T.copy(), "teeth": mesh.facets[:, bf[~bore]].T.copy()})
+        info = field_info(STUDY, "flank loads of the headline WG angle at rated torque; " + load.describe(),
+                          self.params.material)
+        vtu = Path(vtu)
+        files = [write_vtu(vtu, md, {"displacement_mm": np.column_stack([u, np.zeros(len(u))])}, info=info)]
+        return tuple(files) + tuple(write_pictures(vtu.parent, self.meta(None, series), self.mesh_inputs,
+                                                   self.mesh_inputs.get("catalogue_curve")))
+
     def meta(self, parts, series: Mapping[str, Series]) -> dict:
         f = series["rim"].finest.fields
         if not f:
@@ -253,7 +379,10 @@ class ToothMesh(StudyVariant):
         return {"loop": {"torque_Nmm": p.torque_Nmm.tolist(), "twist_rad": p.twist_rad.tolist()},
                 "forces_at_rated_N": p.forces_N[int(np.argmax(p.torque_Nmm))].tolist(),
                 "pairs": {k: np.asarray(v).tolist() for k, v in self.mesh_inputs["angles"][0].items()},
-                "te_twist_at_rated_rad": [float(q.twist_rad[int(np.argmax(q.torque_Nmm))]) for q in f["paths"]]}
+                "te_twist_at_rated_rad": [float(q.twist_rad[int(np.argmax(q.torque_Nmm))]) for q in f["paths"]],
+                "crack": {"tooth_phi_rad": list(self.mesh_inputs["crack_phi_rad"]),
+                          "twist_change_at_rated_rad": np.asarray(f["crack_change"]).tolist(),
+                          "orders": crack_orders(self.mesh_inputs)}}
 
 
 def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, progress=None, quick=False,

@@ -135,8 +135,29 @@ def rim_model(spec, r_bore_mm: float, h_mm: float, lame: Lame, thickness_mm: flo
                     {"mesh": t1 - t0, "assemble": t2 - t1, "solve": t3 - t2})
 
 
+def root_slot(outline: np.ndarray, spec, depth_mm: float, width_mm: float) -> tuple[np.ndarray, np.ndarray]:
+    """``outline`` with a radial slot (width ``width_mm``, depth ``depth_mm``) cut into the root circle where tooth 0's
+    +theta flank meets it (its tension side under a +theta-flank load), and the slot's tip point."""
+    from strainwave.geometry.involute import half_angle_rad
+    r_f = spec.root_radius_mm
+    ang = np.arctan2(outline[:, 1], outline[:, 0])
+    r = np.hypot(outline[:, 0], outline[:, 1])
+    corner = float(half_angle_rad(spec, r_f)) + 0.5 * width_mm / r_f + 0.05 * spec.module_mm / r_f
+    on_root = np.abs(r - r_f) < 1e-6 * r_f
+    after = np.flatnonzero(on_root & (ang > corner) & (ang < math.pi / spec.teeth + corner))
+    k = int(after[np.argmin(ang[after])])            # the slot is cut before this root point
+    s = -1.0 if spec.internal else 1.0               # into the body: inward for external teeth
+    tip_r = r_f - s * depth_mm
+    half = 0.5 * width_mm / r_f
+    cut = np.array([[r_f * math.cos(corner - half), r_f * math.sin(corner - half)],
+                    [tip_r * math.cos(corner - half), tip_r * math.sin(corner - half)],
+                    [tip_r * math.cos(corner + half), tip_r * math.sin(corner + half)],
+                    [r_f * math.cos(corner + half), r_f * math.sin(corner + half)]])
+    return np.vstack([outline[:k], cut, outline[k:]]), np.array([tip_r * math.cos(corner), tip_r * math.sin(corner)])
+
+
 def sector_model(spec, r_held_mm: float, teeth_each_side: int, h_mm: float, lame: Lame,
-                 thickness_mm: float) -> RimSolve:
+                 thickness_mm: float, crack: tuple[float, float] | None = None) -> RimSolve:
     """A sector of teeth (tooth 0 on +x and ``teeth_each_side`` either side) on a body held at ``r_held_mm``
     (outside the root for internal teeth: the CS housing; inside it for external: a solid gear body); the mesh
     coarsens away from the teeth."""
@@ -147,13 +168,20 @@ def sector_model(spec, r_held_mm: float, teeth_each_side: int, h_mm: float, lame
     ang = np.arctan2(teeth[:, 1], teeth[:, 0])
     keep = (ang > a0) & (ang < a1)
     inner = teeth[keep][np.argsort(ang[keep])]
+    tip = None
+    if crack is not None:                            # (depth, slot width): a root crack at tooth 0
+        inner, tip = root_slot(inner, spec, *crack)
     r_root = spec.root_radius_mm
     start = np.array([[r_root * math.cos(a0), r_root * math.sin(a0)]])
     end = np.array([[r_root * math.cos(a1), r_root * math.sin(a1)]])
     held_arc = _circle(r_held_mm, 4 * h_mm, a1, a0)
     loop = np.vstack([start, inner, end, held_arc])
     grow = lambda x, y: h_mm + 0.5 * abs(math.hypot(x, y) - r_root)  # noqa: E731
-    p, t = _gmsh_tri([loop], lambda x, y: min(grow(x, y), 8 * h_mm))
+    if tip is not None:                              # resolve the slot: h/8 at its tip (one ratio for all three meshes)
+        near = lambda x, y: min(h_mm / 8 + 0.5 * math.hypot(x - tip[0], y - tip[1]), h_mm)  # noqa: E731
+        p, t = _gmsh_tri([loop], lambda x, y: min(grow(x, y), 8 * h_mm, near(x, y)))
+    else:
+        p, t = _gmsh_tri([loop], lambda x, y: min(grow(x, y), 8 * h_mm))
     t1 = time.perf_counter()
     mesh, basis, K = _assemble(p, t, lame, thickness_mm)
     r = np.hypot(*basis.doflocs)

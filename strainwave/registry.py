@@ -180,7 +180,9 @@ STUDIES: dict[str, Study] = {s.name: s for s in (
             ("peak_tooth_share", "1", "largest flank load over the sum at rated torque"),
             ("peak_tooth_load_N", "N", "largest flank normal load at rated torque"),
             ("pair_stiffness_solid_N_per_mm_um", "N/(mm*um)",
-             "the major-axis tooth pair on solid bodies (ISO 6336-1's c' problem), per face width"))),
+             "the major-axis tooth pair on solid bodies (ISO 6336-1's c' problem), per face width"),
+            ("crack_tooth_compliance_ratio", "1", "cracked over uncracked FS tooth compliance (root crack, solid body)"),
+            ("crack_te_peak_rad", "rad", "largest twist change at rated torque as the cracked tooth passes the mesh"))),
           load_inputs="strainwave.analytic.mesh_engagement:study_loads", vtu_fields=("displacement_mm",)),
     # The tooth-root crack as a semi-elliptical surface crack in a block of the band wall, its own sweep of depths;
     # its quantities are named per state and depth (fea.surface_crack.delta_name).

@@ -1,0 +1,80 @@
+"""The drive as it carries torque (issue 48, item 4): the tooth mesh, the flexspline cup and the wave generator
+in series, each from the FEA, against Harmonic Drive's catalogue (check ``gear.catalogue_stiffness``).
+
+- Members: the mesh's K3 (study tooth-mesh: the loop's high-torque slope, read by the catalogue's rules), the
+  cup's torsional flexibility (cup-torsion), the wave generator's lambda_H from the FEA's radial stiffness K_G
+  (wg-bearing, seed 000's form). The output shaft is a member of K_HD but no part of a catalogue unit (the
+  catalogue twists the output flange against the circular spline): it is reported, not compared.
+- Reference: the CHA table's K3 of the gear's ratio column (``analytic/catalogue.py``: ">50" holds i > 50),
+  as the table's own power law in size (least squares of log K3 on log size over every row of that column,
+  size = d1 / 2.54 mm), at this gear's size. Beyond the table's sizes the value is extrapolated and says so.
+- Tolerance = 3 x the members' propagated GCI + the catalogue's scatter about its own power law (the fit's
+  rms residual, in log) + 10 % (the catalogue calls its values averages of many tests: Harmonic Drive AG,
+  CHA manual 1018854). K1 and T1/T2 of the chain are recorded beside it, not asserted.
+"""
+from __future__ import annotations
+
+from strainwave.compare.validate.checks import Check, evaluate, fea_tolerance, not_evaluated
+
+STUDY = "tooth-mesh"
+CATALOGUE_SCATTER = 0.10
+
+
+def catalogue_power_law(params, name: str = "K3_Nm_per_rad") -> tuple[float, float, str, bool]:
+    """(value in N mm/rad at this gear's size, rms log residual, column label, extrapolated)."""
+    from strainwave.analytic.catalogue_power_law import power_law_at
+    v, scatter, label, outside = power_law_at(params, name)
+    return 1e3 * v, scatter, label, outside
+
+
+def chain(book, labels: dict, wg_label: str, mesh_label: str | None, params) -> tuple[dict | None, str]:
+    """The series members and the chain's K1/K3 (N mm/rad) with their uncertainty, or None and why."""
+    from strainwave.analytic import torsion
+    from strainwave.compare.validate.torsion_checks import CUP_FLEX, SHAFT_FLEX
+    if mesh_label is None:
+        return None, f"no {STUDY} case"
+    got = {k: book.quantity(*a) for k, a in {
+        "cup": (labels["cup"], CUP_FLEX), "shaft": (labels["shaft"], SHAFT_FLEX),
+        "kg": (wg_label, "radial_stiffness_N_per_mm"), "K3": (mesh_label, "K3_Nmm_per_rad"),
+        "K1": (mesh_label, "K1_Nmm_per_rad")}.items()}
+    why = "; ".join(w for q, w in got.values() if q is None)
+    if why:
+        return None, why
+    q = {k: v[0] for k, v in got.items()}
+    g, cup = params.gear, params.flexspline_cup
+    lam_H = torsion.wave_generator_flexibility(g.force_coefficient, q["kg"].value, cup.pitch_diameter_mm,
+                                               g.wave_number, g.radial_deformation_mm, g.gear_ratio)
+    rel = lambda x: (x.uncertainty or 0.0) / abs(x.value)  # noqa: E731
+    rest = lam_H + q["cup"].value
+    out = {"lambda_H_rad_per_Nmm": lam_H, "lambda_cup_rad_per_Nmm": q["cup"].value,
+           "lambda_shaft_rad_per_Nmm": q["shaft"].value}
+    for k in ("K1", "K3"):
+        lam_m = 1.0 / q[k].value
+        total = lam_m + rest
+        out[f"lambda_mesh_{k}_rad_per_Nmm"] = lam_m
+        out[f"{k}_chain_Nmm_per_rad"] = 1.0 / total
+        out[f"{k}_chain_rel_unc"] = (lam_m * rel(q[k]) + lam_H * rel(q["kg"]) + q["cup"].value * rel(q["cup"])) / total
+        out[f"{k}_with_shaft_Nmm_per_rad"] = 1.0 / (total + q["shaft"].value)
+    return out, ""
+
+
+def catalogue_check(book, labels: dict, wg_label: str, mesh_label: str | None, params) -> Check:
+    cid, quantity, unit = "gear.catalogue_stiffness", "drive K3: tooth mesh + cup + wave generator in series", \
+        "N*mm/rad"
+    ref, scatter, label, extrapolated = catalogue_power_law(params)
+    analytic = {"corrected": ref}
+    c, why = chain(book, labels, wg_label, mesh_label, params)
+    if c is None:
+        return not_evaluated(cid, quantity, unit, why, analytic=analytic)
+    K = c["K3_chain_Nmm_per_rad"]
+    tol = fea_tolerance(K, c["K3_chain_rel_unc"] * K, allowances={
+        f"the CHA table's scatter about its power law in size (rms, column {label})": scatter,
+        "the catalogue's values are averages of many tests (CHA manual 1018854)": CATALOGUE_SCATTER})
+    note = (f"CHA column {label}, K3 at size {params.flexspline_cup.pitch_diameter_mm / 2.54:.3g}"
+            f"{' (EXTRAPOLATED beyond sizes 14-58)' if extrapolated else ''}; members (rad/(N mm)): mesh "
+            f"{c['lambda_mesh_K3_rad_per_Nmm']:.3g}, cup {c['lambda_cup_rad_per_Nmm']:.3g}, WG "
+            f"{c['lambda_H_rad_per_Nmm']:.3g}; shaft {c['lambda_shaft_rad_per_Nmm']:.3g} (not in a catalogue unit); "
+            f"chain K1 {c['K1_chain_Nmm_per_rad']:.3g} N mm/rad beside catalogue K1 "
+            f"{catalogue_power_law(params, 'K1_Nm_per_rad')[0]:.3g} (recorded, not asserted)")
+    return evaluate(Check(cid, quantity, unit, K, c["K3_chain_rel_unc"] * K, analytic, "corrected", tol, note=note,
+                          sources={"fea": "FEA tooth-mesh + cup-torsion + wg-bearing", "analytic": "CHA table"}))
