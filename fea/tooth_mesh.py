@@ -240,7 +240,24 @@ def rated_field(infl: Mapping, mesh: Mapping, path) -> tuple:
             total += (L - shear[:, None] * M[None, :]) @ F[on]
     u = rim.T @ fe.displacements(rim, total[:, None])[:, 0]
     nv = rim.mesh.p.shape[1]
-    return rim.mesh, np.column_stack([u[0:2 * nv:2], u[1:2 * nv:2]])
+    return rim.mesh, np.column_stack([u[0:2 * nv:2], u[1:2 * nv:2]]), vertex_von_mises(rim, u)
+
+
+def vertex_von_mises(model, u: np.ndarray) -> np.ndarray:
+    """Plane-strain von Mises stress (MPa), cell means averaged onto the vertices (a picture, not a design value:
+    the outline's roots are sharp)."""
+    b, lame = model.basis, model.lame
+    grad = np.stack([b.interpolate(u[c::2]).grad for c in (0, 1)])          # (2, 2, nel, nq)
+    eps = 0.5 * (grad + grad.transpose(1, 0, 2, 3))
+    tr = eps[0, 0] + eps[1, 1]
+    sxx = lame.lam_MPa * tr + 2 * lame.mu_MPa * eps[0, 0]
+    syy = lame.lam_MPa * tr + 2 * lame.mu_MPa * eps[1, 1]
+    sxy = 2 * lame.mu_MPa * eps[0, 1]
+    szz = lame.lam_MPa * tr
+    vm = np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2) + 3 * sxy ** 2).mean(axis=1)
+    t = model.mesh.t
+    acc = np.bincount(t.ravel(), np.repeat(vm[None, :], 3, axis=0).ravel(), model.mesh.p.shape[1])
+    return acc / np.bincount(t.ravel(), minlength=model.mesh.p.shape[1])
 
 
 def write_pictures(folder, meta: Mapping, mesh: Mapping, catalogue: tuple | None) -> list:
@@ -293,6 +310,7 @@ class ToothMesh(StudyVariant):
     cpu_s_per_element = (4e-4, 4e-4)
     title = "Teeth in mesh (plane FE compliance + frictional contact)"
     element_text = "P2 triangles, plane strain, thickness = engaged face width"
+    rated_load = TORQUE_RATED
     outside_design = "the mesh study reports the drive's stiffness and tooth loads, not a design stress factor"
 
     def __init__(self, params, *, mesh_size_mm=None, order=2, quick=False, mesh=None, progress=None):
@@ -358,7 +376,7 @@ class ToothMesh(StudyVariant):
         from strainwave.fea.fields import field_info, write_vtu
         from strainwave.fea.mesh_data import MeshData
         f = series["rim"].finest.fields
-        mesh, u = f["rated_u"]
+        mesh, u, vm = f["rated_u"]
         bf = mesh.boundary_facets()
         r_mid = np.hypot(*mesh.p[:, mesh.facets[:, bf]].mean(axis=1))
         bore = r_mid < f["r_bore_mm"] + 1e-3
@@ -367,7 +385,8 @@ class ToothMesh(StudyVariant):
         info = field_info(STUDY, "flank loads of the headline WG angle at rated torque; " + load.describe(),
                           self.params.material)
         vtu = Path(vtu)
-        files = [write_vtu(vtu, md, {"displacement_mm": np.column_stack([u, np.zeros(len(u))])}, info=info)]
+        files = [write_vtu(vtu, md, {"displacement_mm": np.column_stack([u, np.zeros(len(u))]), "von_mises_MPa": vm},
+                           info=info)]
         return tuple(files) + tuple(write_pictures(vtu.parent, self.meta(None, series), self.mesh_inputs,
                                                    self.mesh_inputs.get("catalogue_curve")))
 

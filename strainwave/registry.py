@@ -183,7 +183,7 @@ STUDIES: dict[str, Study] = {s.name: s for s in (
              "the major-axis tooth pair on solid bodies (ISO 6336-1's c' problem), per face width"),
             ("crack_tooth_compliance_ratio", "1", "cracked over uncracked FS tooth compliance (root crack, solid body)"),
             ("crack_te_peak_rad", "rad", "largest twist change at rated torque as the cracked tooth passes the mesh"))),
-          load_inputs="strainwave.analytic.mesh_engagement:study_loads", vtu_fields=("displacement_mm",)),
+          load_inputs="strainwave.analytic.mesh_engagement:study_loads", vtu_fields=("displacement_mm", "von_mises_MPa")),
     # The tooth-root crack as a semi-elliptical surface crack in a block of the band wall, its own sweep of depths;
     # its quantities are named per state and depth (fea.surface_crack.delta_name).
     Study("cup-surface-crack", "strainwave.fea.surface_crack:SurfaceCrack", "flexspline-cup", None, None, (),

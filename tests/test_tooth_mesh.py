@@ -66,3 +66,38 @@ def test_pair_check_passes_on_the_fe_value_and_fails_on_a_perturbed_reference(mo
     for f in (0.8, 1.2):
         monkeypatch.setattr(tmc, "pair_reference", lambda p, f=f: type(ref)(None, ref.corrected * f, ref.unit, ref.source))
         assert not tmc.pair_check(_Book(FE_DEFAULT, 0.002), "tooth-mesh", params).passed
+
+
+class _ChainBook:
+    """The members as validate --quick measured them on the default gear (results.json gci_table)."""
+
+    def __init__(self, k3_mesh):
+        self.q = {("cup", "flexibility_rad_per_Nmm"): (4.9155e-10, 2.7e-5),
+                  ("shaft", "flexibility_rad_per_Nmm"): (1.2668e-09, 1.6e-4),
+                  ("wg", "radial_stiffness_N_per_mm"): (8.9107e5, 2.7e-3),
+                  ("mesh", "K3_Nmm_per_rad"): (k3_mesh, 1.8e-3), ("mesh", "K1_Nmm_per_rad"): (3.085e8, 1.8e-2)}
+
+    def quantity(self, label, name):
+        from strainwave.fea.convergence import Convergence  # noqa: F401
+        v, rel = self.q[(label, name)]
+
+        class Q:
+            value, uncertainty = v, rel * v
+        return Q, ""
+
+
+def test_catalogue_check_compares_the_chain_and_fails_on_a_perturbed_reference(monkeypatch):
+    from strainwave.compare.validate import mesh_chain_checks as mc
+    params = load_params(None)
+    labels = {"cup": "cup", "shaft": "shaft"}
+    c = mc.catalogue_check(_ChainBook(1.1583e10), labels, "wg", "mesh", params)
+    # the measured chain: mesh 8.6e-11 + cup 4.9e-10 + WG 2.4e-11 rad/(N mm) -> K3 1.66e9 against the CHA law's
+    # 9.6e8 at size 63 (extrapolated): 1.72x, a miss the check reports
+    assert c.fea == pytest.approx(1.0 / (1 / 1.1583e10 + 4.9155e-10 + 2.41e-11), rel=2e-3)
+    assert not c.passed and "EXTRAPOLATED" in c.note
+    ref = mc.catalogue_power_law(params)
+    # a chain that matched the catalogue passes; the same chain against a +-20 % catalogue fails
+    for f, ok in ((1.0, True), (0.8, False), (1.2, False)):
+        monkeypatch.setattr(mc, "catalogue_power_law", lambda p, n="K3_Nm_per_rad", f=f: (ref[0] * f, *ref[1:]))
+        lam_m = 1.0 / ref[0] - 4.9155e-10 - 2.41e-11
+        assert mc.catalogue_check(_ChainBook(1.0 / lam_m), labels, "wg", "mesh", params).passed is ok

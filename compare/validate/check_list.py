@@ -15,7 +15,7 @@ from typing import Callable
 from strainwave.analytic.reference import Reference
 from strainwave.compare.validate import (ring_checks, surface_crack_checks, torsion_checks, wg_bearing_checks,
                                         wg_cup_checks)
-from strainwave.compare.validate import mesh_chain_checks, tooth_mesh_checks
+from strainwave.compare.validate import tooth_mesh_checks
 from strainwave.compare.validate.checks import Check
 from strainwave.compare.validate.crack_checks import cup_crack, shaft_crack, shaft_range_note
 
@@ -199,11 +199,6 @@ CHECKS: tuple[CheckSpec, ...] = (
               lambda ctx: tooth_mesh_checks.pair_check(ctx.book, ctx.label(tooth_mesh_checks.STUDY), ctx.params),
               lambda params, at: tooth_mesh_checks.pair_reference(params),
               f"{GCI} + ISO's q' fit + the unit load's band", ((tooth_mesh_checks.STUDY, tooth_mesh_checks.PAIR),)),
-    CheckSpec("gear.catalogue_stiffness", "gear",
-              lambda ctx: mesh_chain_checks.catalogue_check(
-                  ctx.book, {c: case.label for c, case in ctx.plan.headline.items()},
-                  ctx.label(wg_bearing_checks.STUDY) or "", ctx.label(mesh_chain_checks.STUDY), ctx.params),
-              None, "the members' GCIs + the catalogue's scatter"),
 )
 
 REQUIRED_IDS = tuple(spec.id for spec in CHECKS)

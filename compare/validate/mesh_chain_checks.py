@@ -9,15 +9,15 @@ in series, each from the FEA, against Harmonic Drive's catalogue (check ``gear.c
   as the table's own power law in size (least squares of log K3 on log size over every row of that column,
   size = d1 / 2.54 mm), at this gear's size. Beyond the table's sizes the value is extrapolated and says so.
 - Tolerance = 3 x the members' propagated GCI + the catalogue's scatter about its own power law (the fit's
-  rms residual, in log) + 10 % (the catalogue calls its values averages of many tests: Harmonic Drive AG,
-  CHA manual 1018854). K1 and T1/T2 of the chain are recorded beside it, not asserted.
+  rms residual, in log). K1 of the chain is recorded beside it, not asserted.
+- Not in validate's required list: on both shipped gears the chain misses (docs/tooth_mesh.md); it stays a
+  comparison that can fail, for the lead to list once the missing compliance is modelled.
 """
 from __future__ import annotations
 
 from strainwave.compare.validate.checks import Check, evaluate, fea_tolerance, not_evaluated
 
 STUDY = "tooth-mesh"
-CATALOGUE_SCATTER = 0.10
 
 
 def catalogue_power_law(params, name: str = "K3_Nm_per_rad") -> tuple[float, float, str, bool]:
@@ -68,8 +68,7 @@ def catalogue_check(book, labels: dict, wg_label: str, mesh_label: str | None, p
         return not_evaluated(cid, quantity, unit, why, analytic=analytic)
     K = c["K3_chain_Nmm_per_rad"]
     tol = fea_tolerance(K, c["K3_chain_rel_unc"] * K, allowances={
-        f"the CHA table's scatter about its power law in size (rms, column {label})": scatter,
-        "the catalogue's values are averages of many tests (CHA manual 1018854)": CATALOGUE_SCATTER})
+        f"the CHA table's scatter about its power law in size (rms, column {label})": scatter})
     note = (f"CHA column {label}, K3 at size {params.flexspline_cup.pitch_diameter_mm / 2.54:.3g}"
             f"{' (EXTRAPOLATED beyond sizes 14-58)' if extrapolated else ''}; members (rad/(N mm)): mesh "
             f"{c['lambda_mesh_K3_rad_per_Nmm']:.3g}, cup {c['lambda_cup_rad_per_Nmm']:.3g}, WG "
