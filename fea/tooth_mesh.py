@@ -41,7 +41,7 @@ QUANTITIES = (
     ("cs_tooth_compliance_major_mm_per_N", "mm/N"), ("fs_coupling_next_ratio", "1"),
     ("K1_Nmm_per_rad", "N*mm/rad"), ("K2_Nmm_per_rad", "N*mm/rad"), ("K3_Nmm_per_rad", "N*mm/rad"),
     ("T1_Nmm", "N*mm"), ("T2_Nmm", "N*mm"), ("secant_stiffness_rated_Nmm_per_rad", "N*mm/rad"),
-    ("lost_motion_arcmin", "arcmin"), ("hysteresis_loss_arcmin", "arcmin"),
+    ("lost_motion_arcmin", "arcmin"), ("hysteresis_loss_arcmin", "arcmin"), ("friction_loss_per_cycle_Nmm", "N*mm"),
     ("transmission_error_pp_rad", "rad"), ("teeth_in_contact_rated", "1"), ("peak_tooth_share", "1"),
     ("peak_tooth_load_N", "N"), ("pair_stiffness_solid_N_per_mm_um", "N/(mm*um)"),
     ("crack_tooth_compliance_ratio", "1"), ("crack_te_peak_rad", "rad"),
@@ -142,6 +142,21 @@ def systems(infl: Mapping, mesh: Mapping) -> list:
     return out
 
 
+ARCMIN = 60.0 * 180.0 / math.pi
+LOST_MOTION_FRACTION = 0.04       # Harmonic Drive's lost-motion torque, of the rated (catalogue_values.py)
+
+
+def _branch_twist(path, torque_Nmm: float, direction: int) -> float:
+    """The twist at ``torque_Nmm`` on the steady unloading (-1: +T -> -T) or reloading (+1: -T -> +T) branch."""
+    T = path.torque_Nmm
+    k1 = int(np.argmax(T))
+    k2 = k1 + int(np.argmin(T[k1:]))
+    seg = slice(k1, k2 + 1) if direction < 0 else slice(k2, None)
+    t, th = T[seg], path.twist_rad[seg]
+    order = np.argsort(t)
+    return float(np.interp(torque_Nmm, t[order], th[order]))
+
+
 def loop_values(paths: list, rated_Nmm: float) -> dict:
     """Catalogue readings of the headline angle's loop and the spread over the angles (TE)."""
     from strainwave.compare.diagnose.catalogue_values import catalogue_values
@@ -161,13 +176,19 @@ def loop_values(paths: list, rated_Nmm: float) -> dict:
     cv = catalogue_values(ctx, rated_Nmm)
     if cv is None:
         raise RuntimeError("tooth-mesh: the loop has no reversal to read")
-    v = {k: cv.values[k][0] for k in ("K1", "K2", "K3", "T1", "T2", "lost_motion_arcmin", "hysteresis_loss_arcmin")}
+    v = {k: cv.values[k][0] for k in ("K1", "K2", "K3", "T1", "T2")}
+    # the loop's own widths, read on the solved branches (the catalogue's definitions; no fitted curve between)
+    v["hysteresis_loss_arcmin"] = ARCMIN * (_branch_twist(p, 0.0, -1) - _branch_twist(p, 0.0, +1))
+    lm = LOST_MOTION_FRACTION * rated_Nmm
+    v["lost_motion_arcmin"] = ARCMIN * (_branch_twist(p, lm, -1) - _branch_twist(p, -lm, +1))
+    from strainwave.analytic.mesh_contact import loop_area_Nmm_rad
+    v["friction_loss"] = loop_area_Nmm_rad(p)       # the work flank friction takes per +/-rated cycle
     k_peak = int(np.argmax(T))
     at_rated = np.array([q.twist_rad[int(np.argmax(q.torque_Nmm))] for q in paths])
     F = p.forces_N[k_peak]
     return {"K1_Nmm_per_rad": v["K1"], "K2_Nmm_per_rad": v["K2"], "K3_Nmm_per_rad": v["K3"],
             "T1_Nmm": v["T1"], "T2_Nmm": v["T2"], "lost_motion_arcmin": v["lost_motion_arcmin"],
-            "hysteresis_loss_arcmin": v["hysteresis_loss_arcmin"],
+            "hysteresis_loss_arcmin": v["hysteresis_loss_arcmin"], "friction_loss_per_cycle_Nmm": v["friction_loss"],
             "secant_stiffness_rated_Nmm_per_rad": float(T[k_peak] / th[k_peak]),
             "transmission_error_pp_rad": float(at_rated.max() - at_rated.min()),
             "teeth_in_contact_rated": float(np.count_nonzero(F > 0)),
