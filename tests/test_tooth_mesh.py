@@ -54,8 +54,8 @@ class _Book:
         return self.q, ""
 
 
-# the FE's pair stiffness of the default gear (make validate: 18.04 N/(mm um), GCI ~0.2 %)
-FE_DEFAULT = 18.04
+# the FE mirror pair of the default gear (2 x 5.32 / (E b) per unit width: 19.7 N/(mm um))
+FE_DEFAULT = 19.7
 
 
 def test_pair_check_passes_on_the_fe_value_and_fails_on_a_perturbed_reference(monkeypatch):
@@ -64,7 +64,7 @@ def test_pair_check_passes_on_the_fe_value_and_fails_on_a_perturbed_reference(mo
     assert c.passed, c
     ref = tmc.pair_reference(params)
     for f in (0.8, 1.2):
-        monkeypatch.setattr(tmc, "pair_reference", lambda p, f=f: type(ref)(None, ref.corrected * f, ref.unit, ref.source))
+        monkeypatch.setattr(tmc, "pair_reference", lambda p, f=f: type(ref)(None, ref.corrected * f, ref.unit, ref.source, ref.beside))
         assert not tmc.pair_check(_Book(FE_DEFAULT, 0.002), "tooth-mesh", params).passed
 
 

@@ -1,8 +1,11 @@
 """Checks of the tooth-mesh study (issue 48).
 
-- ``mesh.pair_stiffness``: the FE's single tooth pair at the major axis, both teeth on solid bodies (the cup's
-  tooth on a sector held 6 m below its root, the CS's on its own rim held at its outer diameter), plane strain,
-  per face width, against ISO 6336-1's c'_th C_B of the SAME pair (z, x, rack, E; analytic/iso_mesh_stiffness.py).
+- ``mesh.pair_stiffness``: the FE's single tooth pair, the cup's tooth (on a solid sector held 6 m below its
+  root, loaded at the major axis's contact radius) meshing with its own mirror image, plane strain, per face
+  width, against ISO 6336-1's c'_th C_B of the SAME pair (z1 = z2 = Z_f, x1 = x2, the cup's rack, E;
+  analytic/iso_mesh_stiffness.py). x1 + x2 lies beyond ISO's -0.5..2: the note says so. The strain-wave pair
+  itself (the CS's internal tooth, near-conformal) is shown beside ISO's internal reading (zn2 = infinity),
+  not asserted: ISO treats the internal mate as a rack, the concave CS flank is stiffer in contact.
   Tolerance = 3 x GCI + ISO's fit of the theoretical single stiffness (a regression of Schmidt's solid-gear
   results: 5 %) + the unit flank load's band (a parabolic pressure 0.4 m wide instead of the contact strip; its
   effect measured on the FE by halving the band, 4.3 %: see docs/decisions/064-meshfe-plane-vs-3d.md).
@@ -27,12 +30,14 @@ def pair_reference(params) -> Reference:
     fs = cup_tooth_spec(params)
     cs = params.circular_spline
     x1 = fs.shift_coef
-    x2 = -x1 if in_range(x1, -x1) else x1
-    c = single_stiffness_N_per_mm_um(fs.teeth, x1, None, x2, dedendum_coef=fs.dedendum_coef,
-                                     pressure_angle_deg=cs.pressure_angle_deg,
-                                     youngs_modulus_MPa=params.material.youngs_modulus_MPa)
-    return Reference(None, c, "N/(mm*um)", f"ISO 6336-1 c'_th C_B, z1 = {fs.teeth}, x1 = {x1:.3g}, internal z2, "
-                                           f"x2 = {x2:.3g} (analytic/iso_mesh_stiffness.py)")
+    kw = dict(dedendum_coef=fs.dedendum_coef, pressure_angle_deg=cs.pressure_angle_deg,
+              youngs_modulus_MPa=params.material.youngs_modulus_MPa)
+    mirror = single_stiffness_N_per_mm_um(fs.teeth, x1, fs.teeth, x1, **kw)
+    internal = single_stiffness_N_per_mm_um(fs.teeth, x1, None, -x1, **kw)
+    return Reference(None, mirror, "N/(mm*um)",
+                     f"ISO 6336-1 c'_th C_B, z1 = z2 = {fs.teeth}, x1 = x2 = {x1:.3g}"
+                     f"{'' if in_range(x1, x1) else ' (x1 + x2 beyond ISO range -0.5..2)'} (analytic/iso_mesh_stiffness.py)",
+                     (("iso_internal_zn2_inf", internal),))
 
 
 def allowances() -> dict[str, float]:
@@ -48,7 +53,11 @@ def pair_check(book: FeaBook, label: str | None, params) -> Check:
     if q is None:
         return not_evaluated(check_id, quantity, unit, why, analytic=ref.variants())
     tol = fea_tolerance(q.value, q.uncertainty, allowances=allowances())
-    note = ("FE: the major-axis pair (cup tooth on a solid sector, CS tooth on its rim), plane strain, unit flank "
-            "load at the contact radius; ISO: c'_th C_B (C_M, the theory-to-test factor, left out: both are theory)")
+    internal, _ = book.quantity(label, "pair_stiffness_internal_N_per_mm_um")
+    note = ("FE: the cup's tooth on a solid sector and its mirror image, plane strain, unit flank load at the major "
+            "axis's contact radius; ISO: c'_th C_B (C_M, the theory-to-test factor, left out: both are theory); "
+            f"{ref.source}; beside, not asserted: the FE's strain-wave pair (CS tooth on its rim) "
+            f"{'n/a' if internal is None else format(internal.value, '.4g')} against ISO's internal reading "
+            f"{ref.beside[0][1]:.4g} N/(mm um)")
     return evaluate(Check(check_id, quantity, unit, q.value, q.uncertainty, ref.variants(), "corrected", tol,
                           note=note, sources={"fea": f"FEA {label}", "analytic": "analytic/iso_mesh_stiffness.py"}))
