@@ -10,7 +10,7 @@ frictional contact solve along 0 -> +T -> -T -> +T (analytic/mesh_contact.py, th
 closed form) give the loop. Every reported number is that chain on one mesh, so each carries its GCI.
 
 Read from the loop with compare/diagnose/catalogue_values.py's rules (the same as a recording):
-K1, K2, K3, T1, T2, lost motion at +/-4 % rated, hysteresis loss. Also: the transmission error (the twist
+K1, K2, K3, T1, T2, lost motion at +/-4 % rated, flank friction's work per cycle. Also: the transmission error (the twist
 at the rated torque over one tooth-passing period of the WG, which repeats Z_c times per WG revolution),
 the teeth in contact and the largest tooth's share at rated torque, and the single pair's compliance at
 the major axis (the checks' number).
@@ -41,7 +41,7 @@ QUANTITIES = (
     ("cs_tooth_compliance_major_mm_per_N", "mm/N"), ("fs_coupling_next_ratio", "1"),
     ("K1_Nmm_per_rad", "N*mm/rad"), ("K2_Nmm_per_rad", "N*mm/rad"), ("K3_Nmm_per_rad", "N*mm/rad"),
     ("T1_Nmm", "N*mm"), ("T2_Nmm", "N*mm"), ("secant_stiffness_rated_Nmm_per_rad", "N*mm/rad"),
-    ("lost_motion_arcmin", "arcmin"), ("hysteresis_loss_arcmin", "arcmin"), ("friction_loss_per_cycle_Nmm", "N*mm"),
+    ("lost_motion_arcmin", "arcmin"), ("friction_loss_per_cycle_Nmm", "N*mm"),
     ("transmission_error_pp_rad", "rad"), ("teeth_in_contact_rated", "1"), ("peak_tooth_share", "1"),
     ("peak_tooth_load_N", "N"), ("pair_stiffness_solid_N_per_mm_um", "N/(mm*um)"),
     ("pair_stiffness_internal_N_per_mm_um", "N/(mm*um)"),
@@ -182,8 +182,9 @@ def loop_values(paths: list, rated_Nmm: float) -> dict:
     if cv is None:
         raise RuntimeError("tooth-mesh: the loop has no reversal to read")
     v = {k: cv.values[k][0] for k in ("K1", "K2", "K3", "T1", "T2")}
-    # the loop's own widths, read on the solved branches (the catalogue's definitions; no fitted curve between)
-    v["hysteresis_loss_arcmin"] = ARCMIN * (_branch_twist(p, 0.0, -1) - _branch_twist(p, 0.0, +1))
+    # the lost motion read on the solved branches (the catalogue's definition; no fitted curve between). The
+    # hysteresis loss at zero torque is not reported: zero torque lies inside the backlash's dead band, where the
+    # twist is undetermined (it read 0 and -0.99 arcmin on the two gears); friction's loss is its work per cycle
     lm = LOST_MOTION_FRACTION * rated_Nmm
     v["lost_motion_arcmin"] = ARCMIN * (_branch_twist(p, lm, -1) - _branch_twist(p, -lm, +1))
     from strainwave.analytic.mesh_contact import loop_area_Nmm_rad
@@ -193,7 +194,7 @@ def loop_values(paths: list, rated_Nmm: float) -> dict:
     F = p.forces_N[k_peak]
     return {"K1_Nmm_per_rad": v["K1"], "K2_Nmm_per_rad": v["K2"], "K3_Nmm_per_rad": v["K3"],
             "T1_Nmm": v["T1"], "T2_Nmm": v["T2"], "lost_motion_arcmin": v["lost_motion_arcmin"],
-            "hysteresis_loss_arcmin": v["hysteresis_loss_arcmin"], "friction_loss_per_cycle_Nmm": v["friction_loss"],
+            "friction_loss_per_cycle_Nmm": v["friction_loss"],
             "secant_stiffness_rated_Nmm_per_rad": float(T[k_peak] / th[k_peak]),
             "transmission_error_pp_rad": float(at_rated.max() - at_rated.min()),
             "teeth_in_contact_rated": float(np.count_nonzero(F > 0)),

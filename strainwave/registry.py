@@ -174,7 +174,6 @@ STUDIES: dict[str, Study] = {s.name: s for s in (
             ("T1_Nmm", "N*mm", "mesh T1"), ("T2_Nmm", "N*mm", "mesh T2"),
             ("secant_stiffness_rated_Nmm_per_rad", "N*mm/rad", "rated torque over the mesh's twist there"),
             ("lost_motion_arcmin", "arcmin", "lost motion at +/-4 % rated torque"),
-            ("hysteresis_loss_arcmin", "arcmin", "hysteresis loss of the +/-rated loop at zero torque (clearance + friction)"),
             ("friction_loss_per_cycle_Nmm", "N*mm", "work flank friction dissipates per +/-rated cycle (loop area)"),
             ("transmission_error_pp_rad", "rad", "peak-to-peak twist at rated torque over one tooth-passing period"),
             ("teeth_in_contact_rated", "1", "flank pairs carrying load at rated torque"),

@@ -101,3 +101,22 @@ def test_catalogue_check_compares_the_chain_and_fails_on_a_perturbed_reference(m
         monkeypatch.setattr(mc, "catalogue_power_law", lambda p, n="K3_Nm_per_rad", f=f: (ref[0] * f, *ref[1:]))
         lam_m = 1.0 / ref[0] - 4.9155e-10 - 2.41e-11
         assert mc.catalogue_check(_ChainBook(1.0 / lam_m), labels, "wg", "mesh", params).passed is ok
+
+
+@pytest.mark.heavy
+def test_study_on_quick_meshes_obeys_first_principles():
+    """The study end to end (about a minute): friction dissipates, the crack softens its tooth, the backlash
+    shows as lost motion, the loads carry the torque."""
+    from strainwave.fea.studies import run_study
+    params = load_params(None)
+    r = run_study("tooth-mesh", params, quick=True)
+    q = {k: v.value for k, v in r.quantities.items()}
+    assert q["friction_loss_per_cycle_Nmm"] > 0.0                       # a friction loop dissipates
+    assert q["crack_tooth_compliance_ratio"] > 1.0                      # a crack softens its tooth
+    # the dead band of +/- backlash at the pitch circle, seen as a twist, is inside the lost motion
+    geo = mesh_geometry(params)
+    dead = 2 * geo.backlash_mm / geo.cs_space.pitch_radius_mm * 60 * 180 / math.pi
+    assert q["lost_motion_arcmin"] > 0.5 * dead
+    assert q["K3_Nmm_per_rad"] > q["K1_Nmm_per_rad"] > 0.0             # clearance closes: the mesh stiffens
+    # the flank loads balance the rated torque: the peak tooth's share times the lever can't exceed it
+    assert q["peak_tooth_load_N"] * geo.cs_space.base_radius_mm <= params.gear.rated_output_torque_Nmm
