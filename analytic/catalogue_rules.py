@@ -1,0 +1,82 @@
+"""One set of design rules that turns a catalogue size and ratio into a drive (decision 065).
+
+Fixed before any comparison; no per-size or per-ratio factor. Every proportion is the shipped gear's
+(defaults.toml, d1 = 160 mm) made dimensionless, or a standard's value. The one coefficient fitted to the
+catalogue is ``foundation_coefficient`` (fitted on sizes 14-25 only; sizes 32-58 confirm it).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from strainwave.analytic.mesh_drive import MeshDesign
+from strainwave.analytic.mesh_kinematics import MeshGeometry
+
+__all__ = ["MeshRules", "RATIO_OF_LABEL", "ratio_of_label"]
+
+# ">50" rows hold for 80..160 (the CHA table's own footnote); 100, the middle of that band, is the rule
+RATIO_OF_LABEL = {">50": 100.0}
+
+
+def ratio_of_label(label: str) -> float:
+    """A ratio column's number: a plain number, or a label the rules map (``>50`` -> 100)."""
+    text = label.strip()
+    if text in RATIO_OF_LABEL:
+        return RATIO_OF_LABEL[text]
+    value = float(text)
+    if not value > 1.0:
+        raise ValueError(text)
+    return value
+
+
+@dataclass(frozen=True)
+class MeshRules:
+    """How a catalogue size becomes a tooth mesh (lengths over the pitch diameter d)."""
+
+    pitch_diameter_per_size_mm: float = 2.54    # size = pitch diameter in tenths of an inch (RT1-H-CS table)
+    tooth_difference: int = 2                   # dual wave: Z_f = 2 i
+    kappa: float = 1.0                          # w0 = kappa m, the standard (HDS patents' kappa = 1)
+    pressure_angle_deg: float = 20.0            # ISO 53 rack, the shipped profile
+    addendum_coefficient: float = 1.0
+    rim_over_d: float = 2.24 / 160.0            # seed 000 example: delta / d1
+    face_width_over_d: float = 30.0 / 160.0     # shipped circular spline: b / d1 (~0.19, catalogue cup drives)
+    backlash_over_d: float = 0.01 / 160.0       # shipped circular spline: backlash per flank / d1
+    outer_ring_over_d: float = 2.5 / 160.0      # shipped WG bearing's outer ring / d1
+    K_G_per_d_N_per_mm2: float = 6.303e4 / 160.0    # seed 000's implied K_G0 at d1 = 160, similar bodies
+    length_over_d: float = 1.0                  # seed 000 example: cup length / d1
+    face_slices: int = 1                        # the face cut in 6 for the coning (clearance varies along z)
+    E_MPa: float = 2.1e5
+    shear_modulus_MPa: float = 8.0e4
+    friction_coefficient: float = 0.08          # shipped flank mu (0.05-0.12 band, references section 4)
+    # the bearing's radial foundation modulus k = eta E b / d (N/mm per mm of rim); eta fitted, see decision 065
+    foundation_coefficient: float = 0.02
+    rated_torque_per_d3_MPa: float = 1.0e6 / 160.0 ** 3   # shipped gear's rated torque / d1^3
+
+    def foundation_N_per_mm2(self, E_MPa: float, face_width_mm: float, d_mm: float) -> float:
+        return self.foundation_coefficient * E_MPa * face_width_mm / d_mm
+
+    def pitch_diameter_mm(self, size: float) -> float:
+        return self.pitch_diameter_per_size_mm * size
+
+    def design(self, size: float, ratio: float) -> MeshDesign:
+        """The drive of catalogue ``size`` at gear ratio ``ratio``: only the rules above."""
+        d = self.pitch_diameter_mm(size)
+        teeth = int(round(self.tooth_difference * ratio))
+        m = d / teeth
+        b = self.face_width_over_d * d
+        geom = MeshGeometry(teeth, m, self.kappa * m, self.pressure_angle_deg, self.addendum_coefficient,
+                            self.backlash_over_d * d, self.rim_over_d * d, b, self.tooth_difference,
+                            self.length_over_d * d, self.face_slices)
+        return MeshDesign(geom, self.E_MPa, self.friction_coefficient, self.outer_ring_over_d * d,
+                          self.foundation_N_per_mm2(self.E_MPa, b, d), self.K_G_per_d_N_per_mm2 * d)
+
+    def rated_torque_Nm(self, size: float) -> float:
+        return 1e-3 * self.rated_torque_per_d3_MPa * self.pitch_diameter_mm(size) ** 3
+
+    def cup_flexibility_rad_per_Nmm(self, size: float) -> float:
+        """The cup's tube in torsion (seed 000's lambda_f0, corrected pi/32, cup k_G = 0.83)."""
+        from strainwave.analytic import torsion
+        from strainwave.analytic.variant import Variant
+        d = self.pitch_diameter_mm(size)
+        return torsion.flexspline_flexibility(d, self.rim_over_d * d, self.length_over_d * d,
+                                              self.shear_modulus_MPa, 1.0, torsion.structure_coefficient(True),
+                                              Variant.CORRECTED)
