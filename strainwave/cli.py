@@ -225,6 +225,13 @@ def _cmd_diagnose(args) -> int:
     return 0
 
 
+def _cmd_catalogue(args) -> int:
+    from strainwave.analytic.catalogue_predict import predict_table
+    prediction = predict_table(Path(args.table))
+    _emit(args, prediction.summary(), prediction.to_dict)
+    return 0
+
+
 def _cmd_size_crack(args) -> int:
     from strainwave.compare.diagnose.crack_life import LifeOptions, size_and_life
     if not 1.0 <= args.paris_m <= 10.0:
@@ -537,8 +544,16 @@ def _add_sweep(add) -> None:
 
 
 # the subcommands in the order --help lists them; each adds its parser through ``add`` (build_parser)
+def _add_catalogue(add) -> None:
+    p = add("catalogue", _cmd_catalogue,
+            "predict every row of a stiffness table (columns size, ratio, T1_Nm, T2_Nm, K1_e3, K2_e3, K3_e3) from the "
+            "tooth-mesh model under one set of design rules; print predicted/catalogue and the log-slopes",
+            material=False)
+    p.add_argument("table", metavar="TABLE.csv", help="the table (blank cells skipped; ratio '>50' means 100)")
+
+
 _COMMANDS = (_add_analytic, _add_params, _add_export_step, _add_solve, _add_validate, _add_compare, _add_diagnose,
-             _add_size_crack, _add_benchmark_diagnose, _add_sweep)
+             _add_size_crack, _add_benchmark_diagnose, _add_sweep, _add_catalogue)
 
 
 class _StderrFormat(logging.Formatter):
