@@ -48,7 +48,7 @@ class MeshRules:
     shear_modulus_MPa: float = 8.0e4
     friction_coefficient: float = 0.08          # shipped flank mu (0.05-0.12 band, references section 4)
     # the bearing's radial foundation modulus k = eta E b / d (N/mm per mm of rim); eta fitted, see decision 065
-    foundation_coefficient: float = 0.002
+    foundation_coefficient: float = 0.0025
     rated_torque_per_d3_MPa: float = 1.0e6 / 160.0 ** 3   # shipped gear's rated torque / d1^3
 
     def foundation_N_per_mm2(self, E_MPa: float, face_width_mm: float, d_mm: float) -> float:

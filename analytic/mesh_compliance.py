@@ -26,7 +26,7 @@ import math
 import numpy as np
 
 __all__ = ["iso6336_single_pair_stiffness_N_per_mm_um", "tooth_pair_compliance_mm_per_N",
-           "rim_on_foundation_green_mm_per_N", "rim_moment_green_rad_per_Nmm", "wave_generator_lobe_compliance_mm_per_N", "mesh_compliance_matrix"]
+           "rim_on_foundation_green_mm_per_N", "rim_moment_green_rad_per_Nmm", "thin_rim_tilt_compliance_mm_per_N", "wave_generator_lobe_compliance_mm_per_N", "mesh_compliance_matrix"]
 
 _ISO_C = (0.04723, 0.15551, 0.25791, -0.00635, -0.11654, -0.00193, -0.24188, 0.00529, 0.00182)
 ISO_SOURCE = "ISO 6336-1:2019, 9.3 (Method B): q', c'_th, C_M = 0.8, C_B"
@@ -64,6 +64,16 @@ def rim_moment_green_rad_per_Nmm(arc_mm: np.ndarray, E_MPa: float, I_mm4: float,
     beta = (k_N_per_mm2 / (4.0 * E_MPa * I_mm4)) ** 0.25
     x = np.abs(arc_mm)
     return beta ** 3 / k_N_per_mm2 * np.exp(-beta * x) * np.cos(beta * x)
+
+
+def thin_rim_tilt_compliance_mm_per_N(height_mm: float, pitch_mm: float, rim_mm: float, face_width_mm: float,
+                                      E_MPa: float, alpha_deg: float) -> float:
+    """A tooth standing on a thin rim: its tangential load F cos(alpha) at height h bends the rim under its root
+    (one pitch p long, thickness t) by the moment F cos(alpha) h; the root turns by M p / (E I), I = b t^3/12,
+    and the load point moves h times that: 12 h^2 p cos^2(alpha) / (E b t^3) along the line of action.
+    Small against ISO's c' when t >> m; it grows as (m/t)^3 when the module approaches the rim (low ratios)."""
+    ca = math.cos(math.radians(alpha_deg))
+    return 12.0 * height_mm ** 2 * pitch_mm * ca * ca / (E_MPa * face_width_mm * rim_mm ** 3)
 
 
 def wave_generator_lobe_compliance_mm_per_N(K_G_N_per_mm: float) -> float:

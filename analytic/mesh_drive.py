@@ -41,10 +41,14 @@ class MeshDesign:
 
 
 def pair_compliance_mm_per_N(design: MeshDesign) -> float:
-    """ISO 6336-1 single-pair compliance of this mesh (flexspline z1 = Z_f against internal teeth)."""
+    """One flank pair's own compliance: ISO 6336-1's c' (flexspline z1 = Z_f against internal teeth) plus the
+    tooth's tilt on its thin rim."""
     g = design.geometry
     c = mc.iso6336_single_pair_stiffness_N_per_mm_um(g.teeth_flexspline, None, alpha_deg=g.pressure_angle_deg)
-    return mc.tooth_pair_compliance_mm_per_N(c, g.face_width_mm / g.face_slices)
+    b = g.face_width_mm / g.face_slices
+    tilt = mc.thin_rim_tilt_compliance_mm_per_N(g.pitch_radius_mm - g.neutral_radius_mm, math.pi * g.module_mm,
+                                                g.rim_thickness_mm, b, design.E_MPa, g.pressure_angle_deg)
+    return mc.tooth_pair_compliance_mm_per_N(c, b) + tilt
 
 
 def design_from_params(params) -> MeshDesign:

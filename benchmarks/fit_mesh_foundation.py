@@ -16,7 +16,7 @@ from strainwave.analytic.catalogue_rules import MeshRules, ratio_of_label
 from strainwave.analytic.drive_curve import predict_curve
 
 FIT_SIZES = (14, 17, 20, 25)
-GRID = np.geomspace(0.002, 0.02, 9)
+GRID = np.geomspace(0.001, 0.004, 7)      # 0.00252 chosen (decision 065)
 
 
 def k3_log_ratios(rules: MeshRules, rows) -> np.ndarray:
