@@ -89,9 +89,11 @@ def read_catalogue_numbers(T_Nm: np.ndarray, twist_rad: np.ndarray, rated_Nm: fl
 
 
 def transmission_error_rad(design: MeshDesign, series_rad_per_Nmm: float, torque_Nm: float,
-                           n_angles: int = 48) -> tuple[np.ndarray, np.ndarray]:
+                           n_angles: int | None = None) -> tuple[np.ndarray, np.ndarray]:
     """(wave-generator angles over one revolution, output twist at ``torque_Nm`` minus its mean there):
-    the loaded transmission error the discrete teeth make as they pass through the engagement zone."""
+    the loaded transmission error the discrete teeth make as they pass through the engagement zone.
+    Default: 4 angles per tooth passing (Z_f passings per revolution), so the mesh order is not aliased."""
+    n_angles = 4 * design.geometry.teeth_flexspline if n_angles is None else n_angles
     psi = np.linspace(0.0, 2.0 * math.pi, n_angles, endpoint=False)
     T = 1e3 * torque_Nm * np.linspace(0.0, 1.0, 6)
     tw = np.array([solve_torque_path(mesh_system(design, p)[0], T).twist_rad[-1] for p in psi])
