@@ -485,7 +485,8 @@ def _add_diagnose(add) -> None:
     p = add("diagnose", _cmd_diagnose, "locate, name and model the mismatch between a recording and the model")
     p.add_argument("recording", metavar="RECORDING.csv", help="self-describing recording (docs/recordings.md)")
     p.add_argument("--baseline", choices=("analytic", "fea"), default="analytic",
-                   help="model the recording is compared with")
+                   help="model the recording is compared with (fea on specimen gear: the tooth-mesh drive's "
+                        "predicted curve, its stiffening and loop)")
     p.add_argument("--plot", metavar="OUT.png", help="also plot the recording, the baseline and the fit")
     p.add_argument("--kind", help="[test] kind, for a recording without a header (or over its header's)")
     p.add_argument("--specimen", help="[test] specimen, for a recording without a header (or over its header's)")
