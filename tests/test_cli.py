@@ -120,7 +120,7 @@ def test_common_flags_before_or_after_the_subcommand(sub, flags, after):
         flags = [f for f in flags if f != "-v"]
     required = {"export-step": ["--part", "ewg", "-o", "x.step"], "solve": ["shaft-torsion"],
                 "diagnose": ["r.csv"], "size-crack": ["r.csv"], "sweep": ["shaft-torsion"],
-                "compare": ["run-a", "run-b"]}.get(sub, [])
+                "compare": ["run-a", "run-b"], "catalogue": ["t.csv"]}.get(sub, [])
     before = [f for f, a in zip(flags, after) if not a]
     behind = [f for f, a in zip(flags, after) if a]
     args = build_parser().parse_args([*before, sub, *required, *behind])
