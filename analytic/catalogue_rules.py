@@ -8,8 +8,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from strainwave.analytic.mesh_drive import MeshDesign
+from strainwave.analytic.mesh_drive import MeshDesign, bearing_foundation
 from strainwave.analytic.mesh_kinematics import MeshGeometry
+from strainwave.analytic.wg_bearing import BallBearing
 
 __all__ = ["MeshRules", "RATIO_OF_LABEL", "ratio_of_label"]
 
@@ -39,20 +40,27 @@ class MeshRules:
     addendum_coefficient: float = 1.0
     rim_over_d: float = 2.24 / 160.0            # seed 000 example: delta / d1
     face_width_over_d: float = 30.0 / 160.0     # shipped circular spline: b / d1 (~0.19, catalogue cup drives)
-    backlash_over_d: float = 0.01 / 160.0       # shipped circular spline: backlash per flank / d1
+    backlash_over_d: float = 0.0                # catalogue units are zero-backlash designs (decision 065)
     outer_ring_over_d: float = 2.5 / 160.0      # shipped WG bearing's outer ring / d1
     K_G_per_d_N_per_mm2: float = 6.303e4 / 160.0    # seed 000's implied K_G0 at d1 = 160, similar bodies
     length_over_d: float = 1.0                  # seed 000 example: cup length / d1
-    face_slices: int = 1                        # the face cut in 6 for the coning (clearance varies along z)
+    face_slices: int = 1                        # coning slices: 1 (the slice count did not converge, decision 065)
     E_MPa: float = 2.1e5
     shear_modulus_MPa: float = 8.0e4
     friction_coefficient: float = 0.08          # shipped flank mu (0.05-0.12 band, references section 4)
-    # the bearing's radial foundation modulus k = eta E b / d (N/mm per mm of rim); eta fitted, see decision 065
-    foundation_coefficient: float = 0.0025
+    # a lumped radial foundation k = eta E b / d (N/mm per mm of rim) in series with the balls; eta fitted on
+    # sizes 14-25 (decision 065: the compliance the model leaves out); None: the balls alone
+    foundation_coefficient: float | None = 0.0025
     rated_torque_per_d3_MPa: float = 1.0e6 / 160.0 ** 3   # shipped gear's rated torque / d1^3
+    ball_diameter_over_d: float = 9.525 / 160.0  # shipped WG bearing: D_w / d1 (3/8 in at d1 = 160)
+    ball_count: int = 24                        # shipped WG bearing (similar bodies keep the count)
+    rim_ratio_exponent: float = 0.0             # rim = rim_over_d d (i/100)^p: 0 one blank per size (decision 065)
 
     def foundation_N_per_mm2(self, E_MPa: float, face_width_mm: float, d_mm: float) -> float:
-        return self.foundation_coefficient * E_MPa * face_width_mm / d_mm
+        return (self.foundation_coefficient or 0.0) * E_MPa * face_width_mm / d_mm
+
+    def lumped_foundation_N_per_mm2(self, E_MPa: float, face_width_mm: float, d_mm: float) -> float | None:
+        return None if self.foundation_coefficient is None else self.foundation_N_per_mm2(E_MPa, face_width_mm, d_mm)
 
     def pitch_diameter_mm(self, size: float) -> float:
         return self.pitch_diameter_per_size_mm * size
@@ -63,11 +71,17 @@ class MeshRules:
         teeth = int(round(self.tooth_difference * ratio))
         m = d / teeth
         b = self.face_width_over_d * d
+        rim = self.rim_over_d * d * (ratio / 100.0) ** self.rim_ratio_exponent
         geom = MeshGeometry(teeth, m, self.kappa * m, self.pressure_angle_deg, self.addendum_coefficient,
-                            self.backlash_over_d * d, self.rim_over_d * d, b, self.tooth_difference,
+                            self.backlash_over_d * d, rim, b, self.tooth_difference,
                             self.length_over_d * d, self.face_slices)
-        return MeshDesign(geom, self.E_MPa, self.friction_coefficient, self.outer_ring_over_d * d,
-                          self.foundation_N_per_mm2(self.E_MPa, b, d), self.K_G_per_d_N_per_mm2 * d)
+        ring, ball = self.outer_ring_over_d * d, self.ball_diameter_over_d * d
+        # the ball set fills the envelope: under the cup's bore and the outer ring
+        balls = BallBearing(ball, self.ball_count, d - 2.0 * (1.25 * m + rim) - 2.0 * ring - ball)
+        k, ref = bearing_foundation(geom, balls, ring, self.E_MPa, 1e3 * self.rated_torque_Nm(size),
+                                    self.lumped_foundation_N_per_mm2(self.E_MPa, b, d))
+        return MeshDesign(geom, self.E_MPa, self.friction_coefficient, ring, k, self.K_G_per_d_N_per_mm2 * d,
+                          balls, ref)
 
     def rated_torque_Nm(self, size: float) -> float:
         return 1e-3 * self.rated_torque_per_d3_MPa * self.pitch_diameter_mm(size) ** 3

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from strainwave.analytic.mesh_contact import MeshPath, solve_torque_path, torque_history
-from strainwave.analytic.mesh_drive import MeshDesign, mesh_system
+from strainwave.analytic.mesh_drive import MeshDesign, bearing_twist_rad, mesh_system
 
 __all__ = ["DriveCurve", "predict_curve", "read_catalogue_numbers", "transmission_error_rad",
            "ratcheting_torque_Nm", "LOOP_STEPS_PER_LEG"]
@@ -64,7 +64,7 @@ def _loop(design: MeshDesign, series_rad_per_Nmm: float, rated_Nm: float, psi_ra
     system, _ = mesh_system(design, psi_rad)
     T = torque_history(1e3 * rated_Nm, LOOP_STEPS_PER_LEG)
     path = solve_torque_path(system, T)
-    return 1e-3 * T, path.twist_rad + T * series_rad_per_Nmm, path
+    return 1e-3 * T, path.twist_rad + T * series_rad_per_Nmm + bearing_twist_rad(design, T), path
 
 
 def read_catalogue_numbers(T_Nm: np.ndarray, twist_rad: np.ndarray, rated_Nm: float) -> dict:

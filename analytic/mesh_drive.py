@@ -15,8 +15,10 @@ import numpy as np
 from strainwave.analytic import mesh_compliance as mc
 from strainwave.analytic.mesh_contact import MeshSystem
 from strainwave.analytic.mesh_kinematics import MeshGeometry, sliced_clearances
+from strainwave.analytic.wg_bearing import BallBearing, hertz_remainder_twist_rad, linearised_foundation
 
-__all__ = ["MeshDesign", "design_from_params", "mesh_system", "pair_compliance_mm_per_N"]
+__all__ = ["MeshDesign", "design_from_params", "mesh_system", "pair_compliance_mm_per_N", "bearing_foundation",
+           "bearing_twist_rad"]
 
 
 @dataclass(frozen=True)
@@ -29,6 +31,10 @@ class MeshDesign:
     bearing_outer_ring_mm: float        # the WG bearing's outer ring bends with the rim (second beam layer)
     foundation_N_per_mm2: float         # the WG bearing's radial foundation modulus per unit rim length
     K_G_N_per_mm: float                 # one wave-generator lobe's radial stiffness (cam and inner ring)
+    # the balls (Hertz): the foundation above holds their tangent stiffness at the ball load Q_ref of the torque
+    # T_ref; bearing_twist_rad adds the rest of their nonlinear approach in series. None: a linear foundation only
+    bearing: BallBearing | None = None
+    bearing_reference: tuple[float, float] | None = None     # (Q_ref N, T_ref N mm)
 
     @property
     def rim_I_mm4(self) -> float:
@@ -51,6 +57,29 @@ def pair_compliance_mm_per_N(design: MeshDesign) -> float:
     return mc.tooth_pair_compliance_mm_per_N(c, b) + tilt
 
 
+def bearing_foundation(geom: MeshGeometry, bearing: BallBearing, outer_ring_mm: float, E_MPa: float,
+                       torque_Nmm: float, lumped_N_per_mm2: float | None) -> tuple[float, tuple[float, float]]:
+    """(foundation modulus for the linear mesh model, (Q_ref, T_ref)): the balls' tangent stiffness at the load
+    ``torque_Nmm`` puts on the most loaded ball (radial load per lobe T tan(alpha) / (2 r_p)), in series with an
+    optional lumped foundation."""
+    r = geom.pitch_radius_mm
+    R = torque_Nmm * math.tan(math.radians(geom.pressure_angle_deg)) / (2.0 * r)
+    EI = E_MPa * geom.face_width_mm * (geom.rim_thickness_mm ** 3 + outer_ring_mm ** 3) / 12.0
+    k, Q = linearised_foundation(bearing, R, EI, lumped_N_per_mm2)
+    return k, (Q, torque_Nmm)
+
+
+def bearing_twist_rad(design: MeshDesign, torque_Nmm) -> np.ndarray:
+    """The balls' nonlinear twist in series with the linear mesh model (zero without a bearing)."""
+    T = np.asarray(torque_Nmm, float)
+    if design.bearing is None or design.bearing_reference is None:
+        return np.zeros_like(T)
+    Q_ref, T_ref = design.bearing_reference
+    g = design.geometry
+    return hertz_remainder_twist_rad(T, bearing=design.bearing, Q_at_reference_N=Q_ref, reference_torque_Nmm=T_ref,
+                                     pitch_radius_mm=g.pitch_radius_mm, alpha_deg=g.pressure_angle_deg)
+
+
 def design_from_params(params) -> MeshDesign:
     """The shipped gear's mesh: cup, circular spline and wave generator as the parameter file gives them."""
     cup, cs, g, wg = params.flexspline_cup, params.circular_spline, params.gear, params.wave_generator
@@ -60,9 +89,14 @@ def design_from_params(params) -> MeshDesign:
                         cs.addendum_coefficient, cs.backlash_mm, cup.wall_thickness_mm, cs.face_width_mm,
                         g.wave_number, cup.length_mm, rules.face_slices)
     E = params.material.youngs_modulus_MPa
-    return MeshDesign(geom, E, cs.flank_friction_coefficient, wg.outer_ring_thickness_mm,
-                      rules.foundation_N_per_mm2(E, cs.face_width_mm, cup.pitch_diameter_mm),
-                      wg.uncracked_radial_stiffness_N_per_mm)
+    # the ball set sits under the cup's bore and the outer ring: its pitch circle one ball radius further in
+    bore = cup.pitch_diameter_mm - 2.0 * (1.25 * cup.module_mm + cup.wall_thickness_mm)
+    balls = BallBearing(wg.ball_diameter_mm, wg.ball_count,
+                        bore - 2.0 * wg.outer_ring_thickness_mm - wg.ball_diameter_mm)
+    lumped = rules.lumped_foundation_N_per_mm2(E, cs.face_width_mm, cup.pitch_diameter_mm)
+    k, ref = bearing_foundation(geom, balls, wg.outer_ring_thickness_mm, E, g.rated_output_torque_Nmm, lumped)
+    return MeshDesign(geom, E, cs.flank_friction_coefficient, wg.outer_ring_thickness_mm, k,
+                      wg.uncracked_radial_stiffness_N_per_mm, balls, ref)
 
 
 def mesh_system(design: MeshDesign, psi_rad: float = 0.0,
