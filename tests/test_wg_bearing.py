@@ -49,3 +49,30 @@ def test_hertz_remainder_is_odd_and_tangent_at_the_reference():
     assert abs(slope) < 1e-6 * th[-1] / 1e6
     delta = wb.ball_contact_deflection_mm(500.0, 9.525)
     assert th[-1] == pytest.approx(delta / 3.0 * math.tan(math.radians(20.0)) / 80.0, rel=1e-9)
+
+
+def test_the_fitted_support_lies_between_a_free_ring_and_the_ball_bed():
+    """Decision 065's one coefficient is physically bounded: above the rim's own n = 2 ring stiffness (9 E I / R^4,
+    checked here by hand) and below the Hertz ball bed; the catalogue drive's foundation is softer than the balls."""
+    from strainwave.analytic.catalogue_rules import MeshRules
+    rules = MeshRules()
+    for size, ratio in ((14, 30), (58, 100)):
+        lo, hi = rules.foundation_bounds(size, ratio)
+        g = rules.design(size, ratio).geometry
+        d = rules.pitch_diameter_mm(size)
+        ring = 9.0 * rules.E_MPa * g.face_width_mm * g.rim_thickness_mm ** 3 / 12.0 / g.neutral_radius_mm ** 4
+        assert lo == pytest.approx(ring * d / (rules.E_MPa * g.face_width_mm), rel=1e-12)
+        assert lo < rules.foundation_coefficient < hi
+
+
+def test_the_balls_twist_rides_on_the_drive_loop():
+    """The drive's loop is the linear mesh model's plus the balls' series remainder, exactly."""
+    from dataclasses import replace
+    from strainwave.analytic.catalogue_rules import MeshRules
+    from strainwave.analytic.drive_curve import _loop
+    from strainwave.analytic.mesh_drive import bearing_twist_rad
+    design = MeshRules().design(14, 30)
+    T, tw, _ = _loop(design, 0.0, 10.0, 0.0)
+    T0, tw0, _ = _loop(replace(design, bearing=None), 0.0, 10.0, 0.0)
+    assert tw - tw0 == pytest.approx(bearing_twist_rad(design, 1e3 * T), abs=1e-15)
+    assert np.max(np.abs(bearing_twist_rad(design, 1e3 * T))) > 0.0
