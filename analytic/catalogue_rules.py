@@ -52,7 +52,7 @@ class MeshRules:
     # wraps the bearing only near the major axis and lifts off beyond (CJME 2021 wrap angle), so eta lies between
     # a free ring's n = 2 stiffness and the Hertz ball bed (foundation_bounds); fitted on sizes 14-25 (decision 065,
     # benchmarks/fit_mesh_foundation.py); None: the balls alone
-    foundation_coefficient: float | None = 0.00111
+    foundation_coefficient: float | None = None
     rated_torque_per_d3_MPa: float = 1.0e6 / 160.0 ** 3   # shipped gear's rated torque / d1^3
     ball_diameter_over_d: float = 9.525 / 160.0  # shipped WG bearing: D_w / d1 (3/8 in at d1 = 160)
     ball_count: int = 24                        # shipped WG bearing (similar bodies keep the count)

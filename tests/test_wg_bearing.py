@@ -51,18 +51,21 @@ def test_hertz_remainder_is_odd_and_tangent_at_the_reference():
     assert th[-1] == pytest.approx(delta / 3.0 * math.tan(math.radians(20.0)) / 80.0, rel=1e-9)
 
 
-def test_the_fitted_support_lies_between_a_free_ring_and_the_ball_bed():
-    """Decision 065's one coefficient is physically bounded: above the rim's own n = 2 ring stiffness (9 E I / R^4,
-    checked here by hand) and below the Hertz ball bed; the catalogue drive's foundation is softer than the balls."""
+def test_the_support_bounds_a_free_ring_and_the_ball_bed():
+    """The physical range of a lumped rim support (decision 065): the rim's own n = 2 ring stiffness
+    (9 E I / R^4, checked here by hand) below the Hertz ball bed, which is the rules' own support (balls alone)."""
     from strainwave.analytic.catalogue_rules import MeshRules
     rules = MeshRules()
+    assert rules.foundation_coefficient is None
     for size, ratio in ((14, 30), (58, 100)):
         lo, hi = rules.foundation_bounds(size, ratio)
-        g = rules.design(size, ratio).geometry
+        design = rules.design(size, ratio)
+        g = design.geometry
         d = rules.pitch_diameter_mm(size)
         ring = 9.0 * rules.E_MPa * g.face_width_mm * g.rim_thickness_mm ** 3 / 12.0 / g.neutral_radius_mm ** 4
         assert lo == pytest.approx(ring * d / (rules.E_MPa * g.face_width_mm), rel=1e-12)
-        assert lo < rules.foundation_coefficient < hi
+        assert hi == pytest.approx(design.foundation_N_per_mm2 * d / (rules.E_MPa * g.face_width_mm), rel=1e-12)
+        assert 100.0 * lo < hi
 
 
 def test_the_balls_twist_rides_on_the_drive_loop():
