@@ -1,7 +1,8 @@
-"""Fit the ONE coefficient of the tooth-mesh design rules (decision 065) on catalogue sizes 14-25 only: the rim's
-effective radial support k = eta E b / d in series with the WG bearing's Hertz balls, eta chosen to make the
-geometric mean of predicted/catalogue K3 over the fit rows 1 (bisection in log eta); sizes 32-58 confirm it.
-It also prints the physical bounds of eta (free ring .. ball bed) and the ratio trend it leaves.
+"""The trial of decision 065 that was NOT adopted: a lumped rim support k = eta E b / d in series with the WG
+bearing's Hertz balls, eta fitted on catalogue sizes 14-25 only (geometric mean of predicted/catalogue K3 = 1,
+bisection in log eta), sizes 32-58 the confirmation; it prints eta's physical bounds (free ring .. ball bed) and
+the ratio trend. Its K3 agreement is the reader's knee on the friction stick band (decision 065), which
+tests/test_wg_bearing.py::test_the_readers_k3_is_the_curves_own_slope guards the rules against.
 Run: .venv/bin/python benchmarks/fit_mesh_foundation.py
 """
 from __future__ import annotations

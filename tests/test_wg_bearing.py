@@ -79,3 +79,19 @@ def test_the_balls_twist_rides_on_the_drive_loop():
     T0, tw0, _ = _loop(replace(design, bearing=None), 0.0, 10.0, 0.0)
     assert tw - tw0 == pytest.approx(bearing_twist_rad(design, 1e3 * T), abs=1e-15)
     assert np.max(np.abs(bearing_twist_rad(design, 1e3 * T))) > 0.0
+
+
+@pytest.mark.parametrize("ratio", [30, 100])
+def test_the_readers_k3_is_the_curves_own_slope(ratio):
+    """Under the rules the reader's K3 is the first loading's secant from its T2 to the rated torque, not the
+    friction stick band at the loop's tip (the artefact that made a fitted support look right, decision 065)."""
+    from strainwave.analytic.catalogue_rules import MeshRules
+    from strainwave.analytic.drive_curve import predict_curve
+    rules = MeshRules()
+    c = predict_curve(rules.design(14, ratio), rules.cup_flexibility_rad_per_Nmm(14), rules.rated_torque_Nm(14),
+                      with_te=False)
+    T, tw = c.loop_torque_Nm, c.loop_twist_rad
+    k0 = int(np.argmax(T))
+    sel = T[:k0 + 1] >= min(c.T2_Nm, 0.7 * T[k0])
+    secant = np.polyfit(tw[:k0 + 1][sel], T[:k0 + 1][sel], 1)[0]
+    assert c.K3_Nm_per_rad == pytest.approx(secant, rel=0.1)
