@@ -31,20 +31,16 @@ TREND_GOAL = 0.25
 # what the closed-form mesh leaves out, by the number that misses and the side it misses on
 LEFT_OUT = {
     ("K1_Nm_per_rad", "high"): "a mesh compliance proportional to the module, about 3x the model's own (the misses "
-                                "are uniform in ratio, decision 065): the real profile's wider clearance spread "
-                                "(rigid teeth on an inextensible neutral line over-place them, CJME 2021), the "
-                                "thin rim's local give under each tooth beyond ISO's solid blank, the rim's "
-                                "lift-off from the bearing beyond the wrap angle, the cup shell under the two-lobe "
-                                "load (the FE study)",
+                                "are uniform in ratio, decision 065): the rim's lift-off from the bearing beyond the "
+                                "wrap angle, the thin rim's local give under each tooth beyond ISO's solid blank, "
+                                "the cup shell under the two-lobe load (the FE study)",
     ("K1_Nm_per_rad", "low"): "the radial support is one linear foundation: the rim lifted off the bearing beyond "
                                "the wrap angle is pressed back onto the balls as the torque grows (a support that "
                                "stiffens with load), and real units' preload (kappa > 1) is not modelled",
     ("K3_Nm_per_rad", "high"): "a mesh compliance proportional to the module, about 3x the model's own (the misses "
-                                "are uniform in ratio, decision 065): the real profile's wider clearance spread "
-                                "(rigid teeth on an inextensible neutral line over-place them, CJME 2021), the "
-                                "thin rim's local give under each tooth beyond ISO's solid blank, the rim's "
-                                "lift-off from the bearing beyond the wrap angle, the cup shell under the two-lobe "
-                                "load (the FE study)",
+                                "are uniform in ratio, decision 065): the rim's lift-off from the bearing beyond the "
+                                "wrap angle, the thin rim's local give under each tooth beyond ISO's solid blank, "
+                                "the cup shell under the two-lobe load (the FE study)",
     ("K3_Nm_per_rad", "low"): "load spreading over more teeth than the ideal rack engages (the wider, "
                                "conjugate S-tooth zone of real profiles)",
     ("T1_Nm", "low"): "the contact set grows smoothly from zero torque (zero backlash), so the reader's first knee "
