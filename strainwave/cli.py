@@ -46,7 +46,8 @@ class _Help(argparse.RawDescriptionHelpFormatter):
 
     def _get_help_string(self, action):
         text = action.help or ""
-        if action.default not in (None, False, argparse.SUPPRESS) and "%(default)" not in text \
+        # a help that names its default already ("(default 3)") is not given a second one
+        if action.default not in (None, False, argparse.SUPPRESS) and "(default" not in text \
                 and action.option_strings and not isinstance(action.default, list):
             text += " (default: %(default)s)"
         return text
@@ -193,7 +194,7 @@ def _cmd_validate(args) -> int:
         check_budget(study, params, None, args.quick, flag="--params")
     check_cad_teeth(params, list(TOOTHED_PARTS))   # validate exports every part as designed, teeth on
     outcome = run_validate(params, Path(args.out), quick=args.quick, progress=_progress,
-                           step=True if args.step else None)
+                           step=True if args.step else None, params_file=args.params)
     _emit(args, outcome.summary(), lambda: {
         "passed": outcome.passed, "design": None if outcome.design is None else outcome.design.to_dict(),
         "out_dir": str(outcome.out_dir), "timings_s": outcome.timings_s,
@@ -501,10 +502,10 @@ def _add_size_crack(add) -> None:
     p.add_argument("--cache", metavar="DIR", help="keep the FEA curves solved on demand (the shaft's crack, the "
                    "flexspline's breathing ripple) here for the next run")
     p.add_argument("--paris-c", type=_positive_float, default=5.21e-13, metavar="C",
-                   help="Paris law da/dN = C dK^m, mm/cycle and N/mm^1.5 (default: BS 7910 steel in air)")
-    p.add_argument("--paris-m", type=float, default=3.0, metavar="M", help="Paris exponent (default 3)")
+                   help="Paris law da/dN = C dK^m, mm/cycle and N/mm^1.5 (default: %(default)s, BS 7910 steel in air)")
+    p.add_argument("--paris-m", type=float, default=3.0, metavar="M", help="Paris exponent")
     p.add_argument("--stiffness-loss", type=_positive_float, default=0.1, metavar="FRACTION",
-                   help="stop where the specimen's stiffness has fallen by this fraction (default 0.1)")
+                   help="stop where the specimen's stiffness has fallen by this fraction")
     p.add_argument("--torque-history", metavar="FILE.csv",
                    help="torque history in N mm, rainflow-counted (default: 0 -> rated torque, constant amplitude)")
     p.add_argument("--cycles-per-hour", type=_positive_float, default=None, metavar="N",

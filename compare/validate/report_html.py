@@ -18,6 +18,7 @@ from strainwave.compare.validate import report_text as rt
 from strainwave.compare.validate.catalogue_table import CATALOGUE_COLUMNS, catalogue_rows, slope_line
 from strainwave.compare.validate.report_md import CATALOGUE_INTRO
 from strainwave.compare.validate.wg_cup_checks import wg_lines
+from strainwave.compare.validate.run_record import PARAM_COLUMNS, param_rows, report_title, run_lines
 
 CSS = """
 body{font-family:system-ui,-apple-system,"Segoe UI",sans-serif;margin:2em auto;max-width:1200px;color:#222;
@@ -95,6 +96,22 @@ def _verdicts(doc: dict) -> list[str]:
             f"{escape(rt.VALIDATION_QUESTION)}</span>{escape(rt.headline(doc))}</div>",
             f'<div class="verdict {"pass" if design else "fail"}" id="design-verdict"><span class="q">'
             f"{escape(rt.DESIGN_QUESTION)}</span>{escape(rt.design_headline(doc))}</div>"]
+
+
+def _run_section(doc: dict) -> list[str]:
+    """The run's identity, its parameters that differ from the default, and the designer headline's table."""
+    parts = ['<ul id="run">' + "".join(f"<li>{escape(line)}</li>" for line in run_lines(doc)) + "</ul>"]
+    if param_rows(doc):
+        parts.append("<h3>Parameters that differ from the embedded default</h3>")
+        parts.append(_table(PARAM_COLUMNS, param_rows(doc), table_id="params-diff"))
+    table = doc.get("designer_table")
+    if table and table["rows"]:
+        parts.append('<h2 id="designer-headline">Designer headline</h2>')
+        parts.append(_table(table["columns"], table["rows"], table_id="designer-table"))
+    if doc.get("designer"):
+        parts.append('<details><summary>The headline in full</summary><pre id="designer">'
+                     + escape("\n".join(doc["designer"])) + "</pre></details>")
+    return parts
 
 
 def _toc(entries: list[tuple[str, str]]) -> str:
@@ -202,10 +219,9 @@ def render_html(doc: dict, views: dict[str, str] | None = None, root: Path | Non
     toc += [("cases", "FEA cases and timings"), ("files", "Files"), ("versions", "Versions")]
     parts = ["<!DOCTYPE html>", '<html lang="en"><head><meta charset="utf-8">',
              '<meta name="viewport" content="width=device-width, initial-scale=1">',
-             "<title>strainwave validation report</title>", f"<style>{CSS}</style></head><body>",
-             "<h1>strainwave validation report</h1>", *_verdicts(doc), f"<p>{escape(rt.run_line(doc))}</p>"]
-    if doc.get("designer"):
-        parts.append('<pre id="designer">' + escape("\n".join(doc["designer"])) + "</pre>")
+             f"<title>{escape(report_title(doc))}</title>", f"<style>{CSS}</style></head><body>",
+             f"<h1>{escape(report_title(doc))}</h1>", *_verdicts(doc), f"<p>{escape(rt.run_line(doc))}</p>"]
+    parts += _run_section(doc)
     parts.append(_toc(toc))
     parts += _design_section(doc)
     if failing:
