@@ -179,11 +179,24 @@ def _cmd_solve(args) -> int:
         rated = None if found is None else stress_at_rated(args.study, params, result, found[0], cracked=found[1])
         if args.vtu and rated is not None:   # the file a user opens is at the load this command reports
             write_at_rated(result.fields, rated.load)
+        _export_mesh(args, vtu, params, result)
     if not args.vtu:
         result = dataclasses.replace(result, fields=())
     text = result.summary() + ("" if rated is None else "\n" + "\n".join(rated.lines()))
     _emit(args, text, lambda: {**result.to_dict(), "stress_at_rated": None if rated is None else rated.to_dict()})
     return 0
+
+
+def _export_mesh(args, vtu: Path, params, result) -> None:
+    """--msh / --inp: the finest mesh the study solved, with its named sets, for gmsh and CalculiX."""
+    if not (args.msh or args.inp):
+        return
+    from strainwave.fea.mesh_export import mesh_of_vtu, write_inp, write_msh
+    md = mesh_of_vtu(vtu)
+    if args.msh:
+        write_msh(md, Path(args.msh))
+    if args.inp:
+        write_inp(md, Path(args.inp), study=args.study, params=params, load_text=result.load.describe())
 
 
 def _cmd_validate(args) -> int:
@@ -272,7 +285,8 @@ def _cmd_sweep(args) -> int:
     return 0 if outcome.n_ok else 1
 
 
-_FILE_OUTPUTS = (("json", "--json"), ("plot", "--plot"), ("vtu", "--vtu"), ("png", "--png"), ("output", "-o"))
+_FILE_OUTPUTS = (("json", "--json"), ("plot", "--plot"), ("vtu", "--vtu"), ("png", "--png"), ("output", "-o"),
+                 ("msh", "--msh"), ("inp", "--inp"))
 _INPUTS = (("params", "--params"), ("recording", "recording"), ("samples", "--samples"), ("curves", "--curves"),
            ("torque_history", "--torque-history"))
 
@@ -317,7 +331,7 @@ def _output_folder(args) -> Path | None:
     """The folder the command writes into (--out, else the parent of its first output file), if any."""
     if getattr(args, "out", None):
         return Path(args.out)
-    for name in ("json", "vtu", "output", "plot", "png"):
+    for name in ("json", "vtu", "output", "plot", "png", "msh", "inp"):
         target = getattr(args, name, None)
         if target not in (None, "-"):
             return Path(target).resolve().parent
@@ -453,6 +467,10 @@ def _add_solve(add) -> None:
                         "output_shaft.crack_depth_mm); ring-compression carries none (default: uncracked)")
     p.add_argument("--vtu", metavar="FILE.vtu",
                    help="write the finest mesh's fields (and FILE.boundary.vtu with the named faces)")
+    p.add_argument("--msh", metavar="FILE.msh", help="write the finest mesh as gmsh .msh (2.2), each named face a "
+                   "physical group")
+    p.add_argument("--inp", metavar="FILE.inp", help="write the finest mesh as a CalculiX/Abaqus deck: a node set "
+                   "per named face, the material, and for the torsion studies the clamp, the loads and a static step")
 
 
 def _add_validate(add) -> None:
