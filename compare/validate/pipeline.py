@@ -239,7 +239,8 @@ def _write_reports(out_dir: Path, doc: dict, views: dict[str, str], progress) ->
     write_html(out_dir / "report.html", doc, views=views)
     write_tables(out_dir, doc)
     if doc["files"]["report_pdf"] is None:
-        progress("  report.pdf: not printed (no Chromium found; Debian: apt-get install chromium)")
+        progress("  report.pdf: not printed: it needs Chromium (Debian/Ubuntu: sudo apt-get install chromium), then "
+                 "rerun; report.html and report.md are complete without it")
         return
     try:
         try:

@@ -196,7 +196,8 @@ def _appendix(doc: dict) -> list[str]:
         (n, n) for n in ("results.json", *files.get("tables", ()), files.get("report_pdf", ""), "report.md") if n]
     parts.append('<h2 id="files">Files</h2><p>Beside this page in its folder (relative links):</p><ul>' + "".join(
         f'<li><a href="{escape(p, quote=True)}">{escape(n)}</a></li>' for n, p in links)
-        + ("" if files["step"] else f"<li>STEP: {escape(rt.no_step_line(doc))}</li>") + "</ul>")
+        + ("" if files["step"] else f"<li>STEP: {escape(rt.no_step_line(doc))}</li>")
+        + ("" if files.get("report_pdf") else f'<li id="no-pdf">{escape(rt.NO_PDF)}</li>') + "</ul>")
     parts.append('<h2 id="versions">Versions</h2>' + _table(("package", "version"), list(meta["versions"].items())))
     return parts
 

@@ -104,7 +104,8 @@ def render_markdown(doc: dict) -> str:
     lines += [f"- STEP: [{Path(p).name}]({p})" for p in doc["files"]["step"]] or [f"- STEP: {rt.no_step_line(doc)}"]
     lines += [f"- VTU: [{Path(p).name}]({p})" for p in doc["files"]["fields"]]
     lines += ["- [results.json](results.json)"] + [f"- [{n}]({n})" for n in doc["files"].get("tables", ())]
-    lines += [f"- [{doc['files']['report_pdf']}]({doc['files']['report_pdf']})"] if doc["files"].get("report_pdf") else []
+    lines += [f"- [{doc['files']['report_pdf']}]({doc['files']['report_pdf']})"] if doc["files"].get("report_pdf") \
+        else [f"- {rt.NO_PDF}"]
     lines += [""]
     lines += ["## Versions", ""] + [f"- {k}: {v}" for k, v in meta["versions"].items()] + [""]
     return "\n".join(lines)

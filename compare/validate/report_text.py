@@ -108,6 +108,11 @@ def no_step_line(doc: dict) -> str:
     return "no part could be built (see the STEP errors in results.json metadata.steps)"
 
 
+NO_PDF = ("report.pdf: not printed: the PDF is this page printed by headless Chromium, which is not installed "
+          "(Debian/Ubuntu: sudo apt-get install chromium; then rerun the same command: finished cases are reused). "
+          "Your browser's Print > Save as PDF of report.html gives the same pages.")
+
+
 def check_row(c: dict) -> tuple[str, ...]:
     fea = "not evaluated" if c["fea"] is None else (
         f"{num(c['fea'])} +/- {num(c['fea_uncertainty'], 2)}" if c["fea_uncertainty"] is not None else num(c["fea"]))
