@@ -146,9 +146,11 @@ def _cmd_export_step(args) -> int:
     params = _params(args)
     if not args.no_teeth:
         check_cad_teeth(params, list(TOOTHED_PARTS) if args.part == "assembly" else [args.part])
+    from strainwave.progress import ticking
     try:
-        written = export_part(args.part, params, Path(args.output), crack_depth_mm=args.crack_depth_mm,
-                              teeth=not args.no_teeth, png=Path(args.png) if args.png else None)
+        with ticking(f"export-step {args.part}: building and writing", _progress):
+            written = export_part(args.part, params, Path(args.output), crack_depth_mm=args.crack_depth_mm,
+                                  teeth=not args.no_teeth, png=Path(args.png) if args.png else None)
     except (StrainwaveError, OSError):
         raise
     except Exception as exc:   # noqa: BLE001 - OCC's own failures ("Could not create line", "No geometry")
@@ -233,8 +235,10 @@ def _cmd_diagnose(args) -> int:
     from strainwave.compare.diagnose.pipeline import diagnose_file
     from strainwave.compare.diagnose.recording import TestFlags
     flags = TestFlags(args.kind, args.specimen, args.stiffness, args.rated_torque, args.columns)
-    diagnosis = diagnose_file(Path(args.recording), params_path=args.params, baseline=args.baseline,
-                              plot_out=Path(args.plot) if args.plot else None, flags=flags)
+    from strainwave.progress import ticking
+    with ticking(f"diagnose {Path(args.recording).name} (baseline {args.baseline})", _progress):
+        diagnosis = diagnose_file(Path(args.recording), params_path=args.params, baseline=args.baseline,
+                                  plot_out=Path(args.plot) if args.plot else None, flags=flags)
     _emit(args, diagnosis.summary(), diagnosis.to_dict)
     return 0
 
@@ -258,6 +262,15 @@ def _cmd_size_crack(args) -> int:
 MAX_BENCHMARK_N = 1000
 
 
+def _benchmark_counter(n: int, families: tuple[int, ...]):
+    """k/N of the recordings benchmark-diagnose makes: n of every class, then each CHA row with and without a loop."""
+    from strainwave.compare.diagnose.generators.benchmark import CLASSES
+    from strainwave.compare.diagnose.generators.cha import cha_rows
+    from strainwave.progress import Counter
+    total = sum(n * len(CLASSES[f]) + 2 * len(cha_rows()) for f in families)
+    return Counter("benchmark-diagnose", total, _progress)
+
+
 def _cmd_benchmark_diagnose(args) -> int:
     from strainwave.compare.diagnose.generators.benchmark import run_benchmark
     if not 1 <= args.n <= MAX_BENCHMARK_N:
@@ -265,8 +278,9 @@ def _cmd_benchmark_diagnose(args) -> int:
     if not 0 <= args.seed < 2 ** 32:   # numpy's seeds
         raise InputError("--seed", args.seed, "must be an integer from 0 to 2**32 - 1")
     families = (1, 2) if args.family == "both" else (int(args.family),)
+    counter = _benchmark_counter(args.n, families)
     report = run_benchmark(n_per_class=args.n, seed=args.seed, out_dir=Path(args.out) if args.out else None,
-                           families=families)
+                           families=families, progress=lambda o: counter.step(f"{o.name}: {o.verdict}"))
     _emit(args, report.summary(), report.to_dict)
     return 0 if report.meets_targets else 1
 
