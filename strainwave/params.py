@@ -514,9 +514,6 @@ def load_params(path: Path | str | None = None, overrides: dict | None = None) -
         if overrides:
             data = merge_overrides(data, overrides)
         params = params_from_dict(data)
-    for w in held:   # through a registry: a script loading parameters in a loop sees each warning once
-        warnings.warn_explicit(w.message, w.category, w.filename, w.lineno, registry=_WARNED)
+    for w in held:
+        warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     return params
-
-
-_WARNED: dict = {}   # warnings.warn_explicit's registry of the warnings load_params has shown
