@@ -60,3 +60,12 @@ def main() -> None:""")
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, proc.stderr
     assert proc.stderr.count("MaterialWarning") == 1
+
+
+def test_catalogue_units_stand_beside_the_models():
+    from strainwave.analytic.rated_load import RatedLoad
+    from strainwave.catalogue_units import beside, in_catalogue_units
+    assert beside(1e6, "N*mm") == " (1000 N m)" and beside(5.376e8, "N*mm/rad") == " (5.376e+05 N m/rad)"
+    assert in_catalogue_units(1e-3, "rad")[0] == np.degrees(1e-3) * 60 and beside(3.0, "MPa") == ""
+    load = RatedLoad("shaft-torsion", "output torque T", "N*mm", 1e3, 7.8e3, "chosen")
+    assert load.describe() == "output torque T = 7800 N*mm (7.8 N m) (chosen)"
