@@ -61,7 +61,8 @@ def run_lines(doc: dict) -> list[str]:
     run = doc.get("metadata", {}).get("run")
     if not run:
         return []
-    source = f"parameter file {run['params_file']}" if run["params_file"] else "the embedded default parameters"
     changed = len(run["changed_from_default"])
-    return [f"Gear: {run['gear']} ({source}; {changed} parameter(s) differ from the embedded default"
-            + (", listed below)" if changed else ")"), f"Command line: {run['command_line']}"]
+    source = f" (parameter file {run['params_file']})" if run["params_file"] else ""
+    diff = (f"{changed} parameter(s) differ from the embedded default, listed below" if changed
+            else "every parameter is the embedded default's")
+    return [f"Gear: {run['gear']}{source}; {diff}", f"Command line: {run['command_line']}"]
