@@ -170,6 +170,12 @@ def _cmd_solve(args) -> int:
     # Refusable before any CAD or meshing: a crack through the wall, a mesh beyond the element budget.
     with_crack(args.study, params, args.crack_depth_mm)
     check_budget(args.study, params, args.mesh_size_mm)
+    if args.inp:
+        from strainwave.registry import STUDIES as REGISTRY
+        if REGISTRY[args.study].facts().plane:   # a CalculiX solid deck needs the 3D mesh
+            from strainwave.output_guard import unstage_text
+            raise InputError("--inp", unstage_text(args.inp), f"a 3D study; {args.study} is meshed as a plane "
+                             "section (use --msh)")
     # The field is always written (to a scratch folder without --vtu): the rated-load peaks are read from it.
     from strainwave.output_guard import remove_stale
     remove_stale(tempfile.gettempdir())   # killed solves' folders, when the scratch is the system's

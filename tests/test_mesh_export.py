@@ -89,3 +89,10 @@ def test_a_study_without_a_nodal_load_gets_its_mesh_sets_and_material_and_says_w
     write_inp(md, tmp_path / "y.inp", study="wg-bearing", params=load_params(), load_text="ball loads")
     text = (tmp_path / "y.inp").read_text()
     assert "*MATERIAL" in text and "*STEP" not in text and "** load of wg-bearing: ball loads" in text
+
+
+def test_inp_of_a_plane_study_is_refused_before_any_work(tmp_path, capsys):
+    from strainwave.cli import main
+    assert main(["solve", "ring-compression", "--inp", str(tmp_path / "r.inp")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err[-1].startswith(f"error: --inp = '{tmp_path / 'r.inp'}': a 3D study") and not (tmp_path / "r.inp").exists()
