@@ -22,12 +22,12 @@ from strainwave.io_atomic import atomic_path
 __all__ = ["mesh_of_vtu", "write_msh", "write_inp", "TRACTION_DECKS"]
 
 # VTK order -> gmsh order of the cells (VTK tet10 = Abaqus C3D10: edges 01 12 20 03 13 23; gmsh's last two swap)
-_VTK_TO_GMSH = {10: np.array([0, 1, 2, 3, 4, 5, 6, 7, 9, 8]), 4: None, 6: None, 3: None}
+_VTK_TO_GMSH = {10: np.array([0, 1, 2, 3, 4, 5, 6, 7, 9, 8])}
 _VOLUME_TYPES = {24: 10, 10: 4, 22: 6, 5: 3}         # VTK cell type -> nodes per cell (3D tets, 2D triangles)
 _MESHIO_CELL = {(3, 10): "tetra10", (3, 4): "tetra", (2, 6): "triangle6", (2, 3): "triangle"}
 _MESHIO_FACET = {(3, 6): "triangle6", (3, 3): "triangle", (2, 3): "line3", (2, 2): "line", (3, 1): "vertex",
                  (2, 1): "vertex"}
-# CalculiX prints at most 20 characters a number: 14 significant digits (benchmarks/calculix_job.py)
+# CalculiX reads at most 20 characters a number: 14 significant digits (benchmarks/calculix_job.py)
 REAL = "%.13e"
 
 

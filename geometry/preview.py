@@ -100,11 +100,10 @@ def render_preview(part: Part, png_path: Path | str, size: tuple[int, int] = (14
         if crack is not None:  # a 0.02 mm slot is seen edge-on: draw its edges too, unlit pure red
             plotter.add_mesh(crack, color="red", lighting=False)
             plotter.add_mesh(crack.extract_feature_edges(), color="red", line_width=4, lighting=False)
-        # unlit: the marked faces show their colour from every side, not a shade the body's light gives it
         if loads is not None:
-            plotter.add_mesh(loads, color=LOAD_COLOUR, lighting=False)
+            plotter.add_mesh(loads, color=LOAD_COLOUR)
         if supports is not None:
-            plotter.add_mesh(supports, color=SUPPORT_COLOUR, lighting=False)
+            plotter.add_mesh(supports, color=SUPPORT_COLOUR)
     plotter.subplot(0, 0)
     plotter.add_text(f"{part.name.value}", font_size=14, color="black")
     plotter.add_axes(color="black", line_width=3)

@@ -1,6 +1,6 @@
 """Progress of long commands, on stderr through the CLI's logger: counted work says k/N and the time left (with a
 rich bar on a terminal, as validate's cases do), work that cannot be counted says every few seconds that it is
-still going and for how long, so no command sits silent for more than ``TICK_S``."""
+still going and for how long, so no command sits silent for more than ``TICK_S``; work done sooner says nothing."""
 from __future__ import annotations
 
 import io
@@ -45,14 +45,15 @@ class Counter:
 
 @contextmanager
 def ticking(what: str, progress: Callable[[str], None], *, every_s: float = TICK_S) -> Iterator[None]:
-    """'WHAT ...' at the start, 'WHAT: still working, N s' every ``every_s`` seconds, 'WHAT done in N s' at the end."""
-    start, stop = time.perf_counter(), threading.Event()
+    """'WHAT: still working, N s' every ``every_s`` seconds, and 'WHAT done in N s' at the end of work that ticked:
+    work done sooner (or refused at once, whose error is its one line) prints nothing."""
+    start, stop, ticked = time.perf_counter(), threading.Event(), []
 
     def tick():
         while not stop.wait(every_s):
+            ticked.append(True)
             progress(f"{what}: still working, {time.perf_counter() - start:.0f} s")
 
-    progress(f"{what} ...")
     thread = threading.Thread(target=tick, name="strainwave-progress", daemon=True)
     thread.start()
     try:
@@ -60,4 +61,5 @@ def ticking(what: str, progress: Callable[[str], None], *, every_s: float = TICK
     finally:
         stop.set()
         thread.join()
-    progress(f"{what} done in {time.perf_counter() - start:.1f} s")
+    if ticked:
+        progress(f"{what} done in {time.perf_counter() - start:.1f} s")

@@ -25,8 +25,12 @@ def test_ticking_says_it_is_still_working_and_when_it_is_done():
     lines = []
     with ticking("export", lines.append, every_s=0.05):
         time.sleep(0.18)
-    assert lines[0] == "export ..." and lines[-1].startswith("export done in ")
+    assert lines[0].startswith("export: still working, ") and lines[-1].startswith("export done in ")
     assert sum("still working" in line for line in lines) >= 2
+    quick = []
+    with ticking("export", quick.append, every_s=5.0):   # done (or refused) before the first tick: silent
+        pass
+    assert quick == []
 
 
 def test_benchmark_diagnose_reports_each_recording(monkeypatch, capsys):
