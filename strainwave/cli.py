@@ -148,7 +148,7 @@ def _cmd_export_step(args) -> int:
         check_cad_teeth(params, list(TOOTHED_PARTS) if args.part == "assembly" else [args.part])
     from strainwave.progress import ticking
     try:
-        with ticking(f"export-step {args.part}: building and writing", _progress):
+        with ticking(f"export-step {args.part}: building and writing", _progress, first_s=EXPORT_FIRST_TICK_S):
             written = export_part(args.part, params, Path(args.output), crack_depth_mm=args.crack_depth_mm,
                                   teeth=not args.no_teeth, png=Path(args.png) if args.png else None)
     except (StrainwaveError, OSError):
@@ -158,6 +158,11 @@ def _cmd_export_step(args) -> int:
         raise StageError("CAD", args.part, f"{type(exc).__name__}: {exc}") from exc
     _emit(args, "\n".join(f"wrote {path}" for path in written), {"written": [str(p) for p in written]})
     return 0
+
+
+# the export's first "still working" line: past the seconds a refused crack depth takes to be said on a loaded
+# machine (CAD imports), so a refusal stays one line; then every 5 s
+EXPORT_FIRST_TICK_S = 10.0
 
 
 def _cmd_solve(args) -> int:
@@ -241,10 +246,8 @@ def _cmd_diagnose(args) -> int:
     from strainwave.compare.diagnose.pipeline import diagnose_file
     from strainwave.compare.diagnose.recording import TestFlags
     flags = TestFlags(args.kind, args.specimen, args.stiffness, args.rated_torque, args.columns)
-    from strainwave.progress import ticking
-    with ticking(f"diagnose {Path(args.recording).name} (baseline {args.baseline})", _progress):
-        diagnosis = diagnose_file(Path(args.recording), params_path=args.params, baseline=args.baseline,
-                                  plot_out=Path(args.plot) if args.plot else None, flags=flags)
+    diagnosis = diagnose_file(Path(args.recording), params_path=args.params, baseline=args.baseline,
+                              plot_out=Path(args.plot) if args.plot else None, flags=flags)
     _emit(args, diagnosis.summary(), diagnosis.to_dict)
     return 0
 

@@ -44,13 +44,17 @@ class Counter:
 
 
 @contextmanager
-def ticking(what: str, progress: Callable[[str], None], *, every_s: float = TICK_S) -> Iterator[None]:
-    """'WHAT: still working, N s' every ``every_s`` seconds, and 'WHAT done in N s' at the end of work that ticked:
-    work done sooner (or refused at once, whose error is its one line) prints nothing."""
+def ticking(what: str, progress: Callable[[str], None], *, every_s: float = TICK_S,
+            first_s: float | None = None) -> Iterator[None]:
+    """'WHAT: still working, N s' after ``first_s`` (default ``every_s``) and then every ``every_s`` seconds, and
+    'WHAT done in N s' at the end of work that ticked: work done sooner prints nothing, so an input refused at
+    once (imports and checks take seconds on a loaded machine) stays its one error line."""
     start, stop, ticked = time.perf_counter(), threading.Event(), []
 
     def tick():
-        while not stop.wait(every_s):
+        wait = every_s if first_s is None else first_s
+        while not stop.wait(wait):
+            wait = every_s
             ticked.append(True)
             progress(f"{what}: still working, {time.perf_counter() - start:.0f} s")
 

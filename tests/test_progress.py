@@ -31,6 +31,10 @@ def test_ticking_says_it_is_still_working_and_when_it_is_done():
     with ticking("export", quick.append, every_s=5.0):   # done (or refused) before the first tick: silent
         pass
     assert quick == []
+    late = []
+    with ticking("export", late.append, every_s=0.05, first_s=0.3):   # the first line waits first_s
+        time.sleep(0.2)
+    assert late == []
 
 
 def test_benchmark_diagnose_reports_each_recording(monkeypatch, capsys):
