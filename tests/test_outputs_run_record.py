@@ -2,7 +2,6 @@
 embedded default), its designer headline is a table, and `compare` warns when two runs measure different things."""
 from __future__ import annotations
 
-import copy
 import json
 import subprocess
 

@@ -7,7 +7,7 @@ import shlex
 import sys
 from pathlib import Path
 
-__all__ = ["DEFAULT_GEAR", "params_diff", "run_record", "report_title", "PARAM_COLUMNS", "param_rows"]
+__all__ = ["DEFAULT_GEAR", "params_diff", "run_record", "report_title", "PARAM_COLUMNS", "param_rows", "run_lines"]
 
 DEFAULT_GEAR = "embedded default gear (seed examples)"
 PARAM_COLUMNS = ("parameter", "this run", "embedded default")
