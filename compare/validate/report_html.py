@@ -210,7 +210,8 @@ def render_html(doc: dict, views: dict[str, str] | None = None, root: Path | Non
     if views:
         from strainwave.compare.validate.view3d import colorbar_css
         ramp = colorbar_css()
-    toc = [("design", "Design verdict: safety factors")] if doc.get("design") else []
+    toc = [("designer-headline", "Designer headline")] if (doc.get("designer_table") or {}).get("rows") else []
+    toc += [("design", "Design verdict: safety factors")] if doc.get("design") else []
     failing = [c for c in doc["checks"] if not c["passed"]]
     toc += [("failing", "Failing checks")] if failing else []
     toc += [("rated", "Stress at the rated load")] if doc.get("stress_at_rated") else []
