@@ -398,8 +398,9 @@ def _label_name(label) -> str:
     return attribute.Get().ToExtString() if label.FindAttribute(TDataStd_Name.GetID_s(), attribute) else ""
 
 
-def _sub_face_names(shape_tool, label, out: dict) -> None:
-    """name -> [TopoDS_Face] of the named sub-shape labels under ``label`` and its components' prototypes."""
+def _sub_face_names(shape_tool, label, out: dict, prefix: str = "") -> None:
+    """name -> [TopoDS_Face] of the named sub-shape labels under ``label``; an assembly's components' faces are
+    named 'PART/name' (its parts share face names: each has a 'bore')."""
     from build123d.importers import Sequence_TDF_Label
     from OCP.TDF import TDF_Label
     from OCP.TopAbs import TopAbs_FACE
@@ -409,13 +410,13 @@ def _sub_face_names(shape_tool, label, out: dict) -> None:
         shape, name = shape_tool.GetShape_s(subs.Value(i)), _label_name(subs.Value(i))
         if name and shape.ShapeType() == TopAbs_FACE:
             for part in name.split("+"):   # a face in two named sets carries both (named_refs)
-                out.setdefault(part, []).append(shape)
+                out.setdefault(prefix + part, []).append(shape)
     components = Sequence_TDF_Label()
     shape_tool.GetComponents_s(label, components)
     for i in range(1, components.Length() + 1):
         prototype = TDF_Label()
         if shape_tool.GetReferredShape_s(components.Value(i), prototype):
-            _sub_face_names(shape_tool, prototype, out)
+            _sub_face_names(shape_tool, prototype, out, f"{prefix}{_label_name(prototype)}/")
 
 
 def import_step_named(path: Path | str):
@@ -426,7 +427,7 @@ def import_step_named(path: Path | str):
     gmsh 4.15 reads no face names either; OCC's XCAF reader returns the ADVANCED_FACE names this module writes as
     named sub-shape labels once ``read.stepcaf.subshapes.name`` is on, which is what this reads. The shape is
     build123d's own ``import_step`` of the same file (names, colours, placement as build123d gives them); a
-    face of a part placed in an assembly is returned in its part's own frame."""
+    face of a part placed in an assembly is named 'PART/name' and returned in its part's own frame."""
     from build123d import Face, import_step
     from OCP.IFSelect import IFSelect_ReturnStatus
     from OCP.Interface import Interface_Static
