@@ -139,7 +139,9 @@ def test_every_option_has_help_with_units_and_default(sub):
         if action.dest.endswith("_mm"):
             assert " mm" in action.help, (sub, action.dest)
         if action.option_strings and action.default not in (None, False, argparse.SUPPRESS, []):
-            assert f"(default: {action.default})" in " ".join(text.split()), (sub, action.dest)
+            assert f"(default: {action.default}" in " ".join(text.split()), (sub, action.dest)
+        # each default said once (issue 52: "(default: ...) (default: 5.21e-13)")
+        assert parser._get_formatter()._expand_help(action).count("(default") <= 1, (sub, action.dest)
     if sub == "solve":
         assert "FINEST of the three meshes" in " ".join(text.split())
 
