@@ -10,6 +10,9 @@ Three springs, each a named pure function so the FE study can replace one and co
 2. the flexspline rim with the wave-generator bearing's outer ring, a beam on an elastic foundation
    (Hetenyi): a radial load P at s deflects the rim at s' by P beta/(2 k) e^{-beta|x|} (cos beta x + sin beta|x|),
    x = s' - s, beta = (k / (4 E I))^(1/4), k the bearing's radial foundation modulus per unit length;
+   the flank's tangential component F cos(alpha), applied h above the neutral line, is a moment F cos(alpha) h
+   that turns the rim by beta^3/k e^{-beta|x|} cos(beta x) per unit moment and tilts the teeth it carries
+   (the radial-moment cross terms, odd in x, are left out: they cancel over a zone symmetric about a tooth);
 3. the wave generator as one radial spring per lobe (its cam and inner ring), K_G.
 
 A flank's normal force F has a radial component F sin(alpha) that pushes the flexspline tooth inward, which
@@ -23,7 +26,7 @@ import math
 import numpy as np
 
 __all__ = ["iso6336_single_pair_stiffness_N_per_mm_um", "tooth_pair_compliance_mm_per_N",
-           "rim_on_foundation_green_mm_per_N", "wave_generator_lobe_compliance_mm_per_N", "mesh_compliance_matrix"]
+           "rim_on_foundation_green_mm_per_N", "rim_moment_green_rad_per_Nmm", "thin_rim_tilt_compliance_mm_per_N", "wave_generator_lobe_compliance_mm_per_N", "mesh_compliance_matrix"]
 
 _ISO_C = (0.04723, 0.15551, 0.25791, -0.00635, -0.11654, -0.00193, -0.24188, 0.00529, 0.00182)
 ISO_SOURCE = "ISO 6336-1:2019, 9.3 (Method B): q', c'_th, C_M = 0.8, C_B"
@@ -54,6 +57,25 @@ def rim_on_foundation_green_mm_per_N(arc_mm: np.ndarray, E_MPa: float, I_mm4: fl
     return beta / (2.0 * k_N_per_mm2) * np.exp(-beta * x) * (np.cos(beta * x) + np.sin(beta * x))
 
 
+def rim_moment_green_rad_per_Nmm(arc_mm: np.ndarray, E_MPa: float, I_mm4: float,
+                                 k_N_per_mm2: float) -> np.ndarray:
+    """Rotation of the rim at arc distance ``arc_mm`` from a unit moment on the same beam on an elastic
+    foundation (Hetenyi 1946): beta^3/k e^{-beta|x|} cos(beta x)."""
+    beta = (k_N_per_mm2 / (4.0 * E_MPa * I_mm4)) ** 0.25
+    x = np.abs(arc_mm)
+    return beta ** 3 / k_N_per_mm2 * np.exp(-beta * x) * np.cos(beta * x)
+
+
+def thin_rim_tilt_compliance_mm_per_N(height_mm: float, pitch_mm: float, rim_mm: float, face_width_mm: float,
+                                      E_MPa: float, alpha_deg: float) -> float:
+    """A tooth standing on a thin rim: its tangential load F cos(alpha) at height h bends the rim under its root
+    (one pitch p long, thickness t) by the moment F cos(alpha) h; the root turns by M p / (E I), I = b t^3/12,
+    and the load point moves h times that: 12 h^2 p cos^2(alpha) / (E b t^3) along the line of action.
+    Small against ISO's c' when t >> m; it grows as (m/t)^3 when the module approaches the rim (low ratios)."""
+    ca = math.cos(math.radians(alpha_deg))
+    return 12.0 * height_mm ** 2 * pitch_mm * ca * ca / (E_MPa * face_width_mm * rim_mm ** 3)
+
+
 def wave_generator_lobe_compliance_mm_per_N(K_G_N_per_mm: float) -> float:
     """One lobe of the wave generator (cam and inner ring) as a radial spring: 1/K_G."""
     return 1.0 / K_G_N_per_mm
@@ -68,7 +90,7 @@ def _lobe(angle_rad: np.ndarray, psi_rad: float, wave_number: int) -> np.ndarray
 def mesh_compliance_matrix(angle_rad: np.ndarray, tooth_index: np.ndarray, *, psi_rad: float, wave_number: int,
                            radius_mm: float, alpha_deg: float, pair_compliance_mm_per_N: float,
                            E_MPa: float, rim_I_mm4: float, foundation_N_per_mm2: float,
-                           K_G_N_per_mm: float) -> np.ndarray:
+                           K_G_N_per_mm: float, tooth_height_mm: float, flank_sign: np.ndarray) -> np.ndarray:
     """(n, n) flexibility along the lines of action of the n flank pairs (teeth at ``angle_rad[tooth_index]``)."""
     ang = angle_rad[tooth_index]
     sa = math.sin(math.radians(alpha_deg))
@@ -78,5 +100,10 @@ def mesh_compliance_matrix(angle_rad: np.ndarray, tooth_index: np.ndarray, *, ps
     lobes = _lobe(ang, psi_rad, wave_number)
     G = G + wave_generator_lobe_compliance_mm_per_N(K_G_N_per_mm) * (lobes[:, None] == lobes[None, :])
     C = sa * sa * G
-    # a pair's own tooth bending acts on that flank only (both flanks of a tooth never carry load at once)
+    # the tangential component F cos(alpha) acts at the pitch point, ``tooth_height_mm`` above the neutral line:
+    # a moment on the rim whose rotation tilts every loaded tooth (driving flanks +, reverse flanks -)
+    hc = tooth_height_mm * math.cos(math.radians(alpha_deg))
+    M = rim_moment_green_rad_per_Nmm(arc, E_MPa, rim_I_mm4, foundation_N_per_mm2)
+    C = C + hc * hc * (flank_sign[:, None] * flank_sign[None, :]) * M
+    # a slice's own tooth bending acts on that slice and flank only (both flanks never carry load at once)
     return C + pair_compliance_mm_per_N * np.eye(len(ang))

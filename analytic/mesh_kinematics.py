@@ -28,7 +28,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["MeshGeometry", "TeethOnNeutralLine", "teeth_on_neutral_line", "flank_clearances"]
+__all__ = ["MeshGeometry", "TeethOnNeutralLine", "coning_factors", "teeth_on_neutral_line", "flank_clearances",
+           "sliced_clearances"]
 
 
 @dataclass(frozen=True)
@@ -44,6 +45,8 @@ class MeshGeometry:
     rim_thickness_mm: float        # rim under the teeth (its mid-surface is the neutral line)
     face_width_mm: float
     wave_number: int = 2
+    cup_length_mm: float = 0.0     # diaphragm to rim; > 0 cones the flexure along the face (w ~ z), 0: a ring
+    face_slices: int = 1           # the face width cut into this many slices, each with its own clearance
 
     @property
     def teeth_circular(self) -> int:
@@ -60,8 +63,8 @@ class MeshGeometry:
 
     @property
     def min_overlap_mm(self) -> float:
-        # below a quarter module of tip overlap the contact is on the tip rounding: not a working flank
-        return 0.25 * self.module_mm
+        # the rack model's flank contact needs the pitch point inside the space: overlap >= one addendum
+        return self.addendum_coefficient * self.module_mm
 
 
 @dataclass(frozen=True)
@@ -75,22 +78,35 @@ class TeethOnNeutralLine:
     radial_mm: np.ndarray        # w_j
 
 
-def teeth_on_neutral_line(g: MeshGeometry, psi_rad: float) -> TeethOnNeutralLine:
-    """Every flexspline tooth's place against the circular spline at wave-generator angle ``psi_rad``."""
+def coning_factors(g: MeshGeometry) -> np.ndarray:
+    """w0(z)/w0 at the middle of each face slice: the cup flexes in proportion to the distance z from its
+    diaphragm (references section 2, coning), w0 being the design value at the open end, where the teeth
+    meet at full depth (a slice nearer the diaphragm sits shallower, never in interference)."""
+    n = g.face_slices
+    if g.cup_length_mm <= 0.0 or n == 1:
+        return np.ones(n)
+    z = g.cup_length_mm - g.face_width_mm * (np.arange(n) + 0.5) / n
+    return z / g.cup_length_mm
+
+
+def teeth_on_neutral_line(g: MeshGeometry, psi_rad: float, scale: float = 1.0) -> TeethOnNeutralLine:
+    """Every flexspline tooth's place against the circular spline at wave-generator angle ``psi_rad``
+    (``scale``: the flexure there over the design w0, a face slice of a coned cup)."""
     zf, zc = g.teeth_flexspline, g.teeth_circular
     r_p, r_n = g.pitch_radius_mm, g.neutral_radius_mm
     phi = 2.0 * np.pi * np.arange(zf) / zf - g.wave_number * psi_rad / zf
     u = g.wave_number
     x = u * (phi - psi_rad)
-    w = g.w0_mm * np.cos(x)
-    v = -g.w0_mm / u * np.sin(x)                      # inextensible: v' = -w
-    gamma = g.w0_mm * (u - 1.0 / u) / r_n * np.sin(x)   # (v - w') / r_n
+    w0 = scale * g.w0_mm
+    w = w0 * np.cos(x)
+    v = -w0 / u * np.sin(x)                      # inextensible: v' = -w
+    gamma = w0 * (u - 1.0 / u) / r_n * np.sin(x)   # (v - w') / r_n
     ang = phi + v / r_n + gamma * (r_p - r_n) / r_p
     pitch_c = 2.0 * np.pi / zc
     # the tooth space of the circular spline each tooth's pitch point falls in (spaces centred on k pitch_c)
     k = np.round(ang / pitch_c)
     offset = r_p * (ang - k * pitch_c)
-    delta = g.w0_mm - w
+    delta = g.w0_mm - w                          # depth lost against the full depth of the design section
     overlap = 2.0 * g.addendum_coefficient * g.module_mm - delta
     return TeethOnNeutralLine(ang, offset, delta, overlap, w)
 
@@ -107,3 +123,15 @@ def flank_clearances(g: MeshGeometry, teeth: TeethOnNeutralLine) -> tuple[np.nda
         signs.append(np.full(len(live), sgn))
         index.append(live)
     return np.concatenate(gaps), np.concatenate(signs), np.concatenate(index)
+
+
+def sliced_clearances(g: MeshGeometry, psi_rad: float):
+    """``flank_clearances`` of every face slice: (gap, sign, tooth, slice, tooth angles of the design section)."""
+    out = [], [], [], []
+    angles = teeth_on_neutral_line(g, psi_rad).angle_rad
+    for k, f in enumerate(coning_factors(g)):
+        gap, sign, tooth = flank_clearances(g, teeth_on_neutral_line(g, psi_rad, f))
+        for lst, arr in zip(out, (gap, sign, tooth, np.full(len(gap), k))):
+            lst.append(arr)
+    gap, sign, tooth, sl = (np.concatenate(a) for a in out)
+    return gap, sign, tooth, sl, angles
