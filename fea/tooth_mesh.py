@@ -309,6 +309,7 @@ def write_pictures(folder, meta: Mapping, mesh: Mapping, catalogue: tuple | None
     ax.set_ylabel("output torque (N m)")
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
+    fig.tight_layout()
     for name, figure in (("tooth_mesh_loop.png", fig),):
         with atomic_path(folder / name) as tmp:
             figure.savefig(tmp, dpi=120, format="png")
@@ -325,6 +326,7 @@ def write_pictures(folder, meta: Mapping, mesh: Mapping, catalogue: tuple | None
     ax.set_xlabel("FS tooth angle from the WG major axis (deg)")
     ax.set_ylabel("flank normal load at rated (N)")
     ax.legend(fontsize=7)
+    fig.tight_layout()
     with atomic_path(folder / "tooth_mesh_load_per_tooth.png") as tmp:
         fig.savefig(tmp, dpi=120, format="png")
     plt.close(fig)
