@@ -107,7 +107,7 @@ def _diagnose(rec: Recording, base: Baseline, workers: int) -> tuple[Diagnosis, 
     fit_rec = subsample(rec)
     ctx = build_context(fit_rec, base)
     noise = read_noise(rec, fit_rec, base, ctx, workers)                          # 1
-    cands = fit_candidates(noise)                                                  # 2
+    cands = fit_candidates(noise, rec.specimen)                                    # 2
     answer = decide(noise, select(noise, cands, rec.specimen))                     # 3, 4
     reading = read_quantities(noise, cands, answer)                                # 5
     location = locate_answer(noise, answer)                                        # 6

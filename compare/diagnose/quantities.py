@@ -40,7 +40,7 @@ def read_quantities(noise: Noise, cands: Candidates, answer: Answer) -> Reading:
     weights = weights / weights.sum() if len(bics) else weights
     effects = tuple(_ranked(ctx, f, base_fit, n, float(w), detail=i < 3)
                     for i, (f, w) in enumerate(zip(answer.ranked, weights)))
-    same_set = [f for f in list(noise.singles) + list(cands.pairs) if f is not best and f.id == best.id]
+    same_set = [f for f in list(noise.singles) + list(cands.pairs) + list(cands.triples) if f is not best and f.id == best.id]
     quantities = _quantities(ctx, best, noise.judge.sigma, same_set) \
         if answer.mismatch and best is not base_fit else {}
     if "hysteresis_loss_arcmin" in quantities and effects:
