@@ -18,6 +18,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from strainwave.errors import InputError
 from strainwave.registry import STUDIES
 from strainwave.compare.diagnose.recording import Recording, RecordingKind
@@ -46,14 +48,32 @@ def analytic_baseline(rec: Recording, params) -> Baseline:
     geometry = ring_geometry(params) if rec.kind is RecordingKind.RING_COMPRESSION else {}
     if rec.baseline_stiffness is not None:
         unit = "rad/(N*mm)" if rec.kind is RecordingKind.TORSION else "mm/N"
-        return Baseline(1.0 / rec.baseline_stiffness, unit, rec.baseline_uncertainty,
-                        f"given linear stiffness {rec.baseline_stiffness:.6g} ({'N*mm/rad' if unit[0] == 'r' else 'N/mm'})",
-                        geometry)
+        source = f"given linear stiffness {rec.baseline_stiffness:.6g} ({'N*mm/rad' if unit[0] == 'r' else 'N/mm'})"
+        first = rec.baseline_stiffness
+        reading = given_slope(rec)
+        if reading is not None:
+            first = reading.first_slope
+            source = f"{source}; {reading.sentence()}"
+        return Baseline(1.0 / first, unit, rec.baseline_uncertainty, source, geometry)
     if rec.kind is RecordingKind.RING_COMPRESSION:
         return Baseline(geometry["thin_compliance_mm_per_N"], "mm/N", rec.baseline_uncertainty,
                         "thin ring, seed 003 eq 3 (delta_CD = 0.148778 F r_m^3/EI)", geometry)
     compliance, source = torsion_compliance(rec.specimen, params)
     return Baseline(compliance, "rad/(N*mm)", rec.baseline_uncertainty, source, geometry)
+
+
+def given_slope(rec: Recording):
+    """For a gear, which of its slopes the given stiffness is (drive_slope.py); None for another specimen or a
+    curve that does not stiffen."""
+    if rec.kind is not RecordingKind.TORSION or rec.specimen != "gear" or rec.baseline_stiffness is None:
+        return None
+    from strainwave.compare.diagnose.context import find_segments, reversal_threshold
+    from strainwave.compare.diagnose.drive_slope import read_slope
+    u = rec.load / float(np.max(np.abs(rec.load)))
+    direction = np.ones(rec.n)
+    for start, stop, d in find_segments(u, reversal_threshold(u)):
+        direction[start:stop] = d
+    return read_slope(rec.load, rec.response, direction, rec.baseline_stiffness)
 
 
 def torsion_compliance(specimen: str, params) -> tuple[float, str]:
