@@ -98,21 +98,33 @@ def flank_friction_twist(T: np.ndarray, loss_rad: float, n_contacts: int = 25, l
     return out * (loss_rad / width) if width > 0 else out
 
 
+def _branch_at(T: np.ndarray, twist: np.ndarray, level: float, direction: int) -> float:
+    """Twist where the LAST stretch moving in ``direction`` crosses torque ``level`` (linear interpolation)."""
+    d = np.sign(np.diff(T))
+    cross = np.nonzero((d == direction) & ((T[:-1] - level) * (T[1:] - level) <= 0.0) & (T[:-1] != T[1:]))[0]
+    if len(cross) == 0:
+        return math.nan
+    k = int(cross[-1])
+    f = (level - T[k]) / (T[k + 1] - T[k])
+    return float(twist[k] + f * (twist[k + 1] - twist[k]))
+
+
 def _zero_width(T: np.ndarray, twist: np.ndarray) -> float:
-    """Loop width at zero torque on the last full cycle: unloading-branch twist minus loading-branch twist."""
-    d = np.sign(np.gradient(T))
-    half = len(T) // 2
-    T2, y2, d2 = T[half:], twist[half:], d[half:]
-    up = d2 > 0
-    down = d2 < 0
-    y_up = np.interp(0.0, *_sorted(T2[up], y2[up]))
-    y_down = np.interp(0.0, *_sorted(T2[down], y2[down]))
-    return float(y_down - y_up)
+    """Loop width at zero torque, last crossings: unloading-branch twist minus loading-branch twist."""
+    return _branch_at(T, twist, 0.0, -1) - _branch_at(T, twist, 0.0, 1)
 
 
-def _sorted(x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    order = np.argsort(x)
-    return x[order], y[order]
+def truth_readings(d: DriveTruth, T_amp: float, T_rated: float, cycles: int = 2) -> dict:
+    """Harmonic Drive's loss and lost motion of the noiseless simulated drive on its own +/- ``T_amp`` cycles
+    (rad): loss = unloading minus loading branch at zero torque; lost motion = unloading branch at +4 % of the
+    rated torque minus loading branch at -4 % (last crossings, a dense history)."""
+    knots = [0.0] + [1.0, -1.0] * cycles + [0.0]
+    T = np.interp(np.linspace(0.0, len(knots) - 1, 40001), np.arange(len(knots)), knots) * T_amp
+    tw = mesh_twist(T, d) + coupling_twist(T, d.clearance_rad, T_rated) + \
+        flank_friction_twist(T, d.loss_rad, load_share=d.friction_load_share)
+    a = 0.04 * T_rated
+    return {"loss_rad": _zero_width(T, tw),
+            "lost_motion_rad": _branch_at(T, tw, a, -1) - _branch_at(T, tw, -a, 1)}
 
 
 def drive_test(d: DriveTruth, T_amp: float, *, T_rated: float, n: int = 3000, cycles: int = 2, seed: int = 0,
@@ -142,4 +154,5 @@ def rig_file(time: np.ndarray, T_Nm: np.ndarray, twist_rad: np.ndarray, unit: st
     return "\n".join(lines) + "\n"
 
 
-__all__ = ["ARCMIN", "DriveTruth", "coupling_twist", "drive_test", "flank_friction_twist", "mesh_twist", "rig_file"]
+__all__ = ["ARCMIN", "DriveTruth", "coupling_twist", "drive_test", "flank_friction_twist", "mesh_twist", "rig_file",
+           "truth_readings"]
