@@ -152,6 +152,7 @@ def fit_candidates(noise: Noise, specimen: str = "") -> Candidates:
 
 # pairs a third effect is tried beside (best BIC first, one per set of effects), and forms of the third effect
 TRIPLE_FORMS = 2
+TRIPLE_LOOP_FORMS = 3    # a loop's law shapes the curve's ends as well (a Dahl exponent moved K3 by 3.5 %)
 
 
 def _triples(noise: Noise, pairs: list[Fit], specimen: str) -> list[Fit]:
@@ -167,7 +168,8 @@ def _triples(noise: Noise, pairs: list[Fit], specimen: str) -> list[Fit]:
     sets: list[tuple[Fit, ...]] = []
     for model in _normal_models(noise, specimen):
         if all(i in by_id for i in model):
-            forms = [pair_forms([f for f in by_id[i] if f.effects[0].in_normal_model], TRIPLE_FORMS) for i in model]
+            forms = [pair_forms([f for f in by_id[i] if f.effects[0].in_normal_model],
+                                TRIPLE_LOOP_FORMS if by_id[i][0].effects[0].loop else TRIPLE_FORMS) for i in model]
             sets += list(itertools.product(*forms))
     top = next((p for p in sorted(pairs, key=lambda f: f.bic) if not p.at_bound), None)
     if top is not None:
