@@ -66,6 +66,9 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
     if baseline not in ("analytic", "fea"):
         raise InputError("--baseline", baseline, "must be analytic or fea")
     base = analytic_baseline(rec, params) if baseline == "analytic" else fea_baseline(rec, params)
+    if base.curve is not None:
+        # the baseline is the drive's curve: its bend above T1 is taken out of the twist, its first slope stays
+        rec = dataclasses.replace(rec, response=rec.response - base.curve.departure_rad(rec.load * 1e-3))
     check_baseline_scale(rec, base)
     from threadpoolctl import threadpool_limits
     # Tiny (N x 4) linear-algebra calls: BLAS threads only add overhead (docs/decisions/019-diagnose-speed.md).
