@@ -176,3 +176,35 @@ def test_a_cha20_rig_file_is_the_drives_normal_model_given_K1_or_K3(tmp_path, gi
     loss, se, _ = v["hysteresis_loss_arcmin"]
     assert abs(loss - truth["loss_rad"] / ARCMIN) < 3 * se
     assert math.isfinite(se) and se > 0
+
+
+def _ratcheted(sign=1.0):
+    t, T, phi = drive_rig.drive_test(CHA20, 37.5, T_rated=RATED_NM, n=3000, seed=1)
+    k = int(np.argmax(T[:1500]))
+    phi = phi.copy()
+    phi[k - 40:] += sign * math.pi / 100                       # one tooth pitch of a ratio-100 drive, near the peak
+    return T, phi
+
+
+def test_a_tooth_pitch_jump_at_high_torque_is_ratcheting_and_another_is_a_slip():
+    from strainwave.compare.diagnose.events import find_jump
+    T, phi = _ratcheted()
+    jump = find_jump(T * 1e3, phi, 100.0)
+    assert jump.ratchet and jump.step == pytest.approx(math.pi / 100, rel=0.02) and jump.load > 0.8 * 37.5e3
+    assert "tooth ratcheting" in jump.sentence("torque", 100.0) and "N*m" in jump.sentence("torque", 100.0)
+    assert not find_jump(T * 1e3, phi, 50.0).ratchet           # another ratio: not one tooth pitch, a slip
+    _, clean = drive_rig.drive_test(CHA20, 37.5, T_rated=RATED_NM, n=3000, seed=1)[1:]
+    assert find_jump(T * 1e3, clean, 100.0) is None
+
+
+def test_a_refusal_names_the_jump_not_the_sign():
+    from strainwave.compare.diagnose.pipeline import check_baseline_scale
+    T = np.linspace(-37.5, 37.5, 400)                          # one ramp, N*m
+    phi = drive_rig.mesh_twist(T, CHA20) + 1e-6 * np.random.default_rng(0).standard_normal(T.size)
+    phi[380:] -= math.pi / 100                                 # a slip back by one tooth pitch near the top
+    text = "torque_Nmm,twist_rad\n" + "\n".join(f"{a * 1e3:.6g},{b:.9g}" for a, b in zip(T, phi)) + "\n"
+    rec = parse_text(text, "r.csv", Flags("torsion", "output_shaft", "16e3 Nm/rad"))
+    assert np.polyfit(rec.load, rec.response, 1)[0] < 0              # the jump turns the secant negative
+    with pytest.raises(InputError) as err:
+        check_baseline_scale(rec, analytic_baseline(rec, load_params()))
+    assert "jumps by" in str(err.value) and "check the sign" not in str(err.value)

@@ -59,12 +59,22 @@ def analytic_baseline(rec: Recording, params) -> Baseline:
         if reading is not None:
             first = reading.first_slope
             source = f"{source}; {reading.sentence()}"
-        return Baseline(1.0 / first, unit, rec.baseline_uncertainty, source, geometry)
+        return Baseline(1.0 / first, unit, rec.baseline_uncertainty, source,
+                        geometry or (_gear_facts(rec, params) if unit[0] == "r" else {}))
     if rec.kind is RecordingKind.RING_COMPRESSION:
         return Baseline(geometry["thin_compliance_mm_per_N"], "mm/N", rec.baseline_uncertainty,
                         "thin ring, seed 003 eq 3 (delta_CD = 0.148778 F r_m^3/EI)", geometry)
     compliance, source = torsion_compliance(rec.specimen, params)
-    return Baseline(compliance, "rad/(N*mm)", rec.baseline_uncertainty, source, geometry)
+    return Baseline(compliance, "rad/(N*mm)", rec.baseline_uncertainty, source, _gear_facts(rec, params))
+
+
+def _gear_facts(rec: Recording, params) -> dict:
+    """A gear's ratio (its tooth pitch of output twist is pi/i: events.py); the unit's where one is named."""
+    if rec.specimen != "gear":
+        return {}
+    if rec.unit is not None:
+        return {"gear_ratio": float(rec.unit.rsplit("-", 1)[1])}
+    return {"gear_ratio": float(params.gear.gear_ratio)}
 
 
 def unit_baseline(rec: Recording) -> Baseline:
@@ -73,7 +83,8 @@ def unit_baseline(rec: Recording) -> Baseline:
     curve = unit_curve(rec.unit)
     source = (f"catalogue curve of {rec.unit} (K1 {curve.K1_Nm_per_rad:.4g}, K2 {curve.K2_Nm_per_rad:.4g}, "
               f"K3 {curve.K3_Nm_per_rad:.4g} N*m/rad; T1 {curve.T1_Nm:.4g}, T2 {curve.T2_Nm:.4g} N*m; {curve.source})")
-    return Baseline(1.0 / (curve.K1_Nm_per_rad * 1e3), "rad/(N*mm)", rec.baseline_uncertainty, source, {}, curve)
+    return Baseline(1.0 / (curve.K1_Nm_per_rad * 1e3), "rad/(N*mm)", rec.baseline_uncertainty, source,
+                    _gear_facts(rec, None), curve)
 
 
 def given_slope(rec: Recording):

@@ -42,6 +42,7 @@ from strainwave.compare.diagnose.baseline import Baseline, analytic_baseline, fe
 from strainwave.compare.diagnose.candidates import REREAD_PRIOR_SIGMAS, Noise, fit_candidates, read_noise, select
 from strainwave.compare.diagnose.context import build_context
 from strainwave.compare.diagnose.diagnosis import Diagnosis, RankedEffect, Verdict
+from strainwave.compare.diagnose.events import find_jump, without_jump
 from strainwave.compare.diagnose.explain import explain
 from strainwave.compare.diagnose.judge import AMBIGUOUS_BIC, BIC_THRESHOLD, MIN_COMPONENT_SIGMAS
 from strainwave.compare.diagnose.locate import Located, locate, locate_effect
@@ -69,11 +70,25 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
     if base.curve is not None:
         # the baseline is the drive's curve: its bend above T1 is taken out of the twist, its first slope stays
         rec = dataclasses.replace(rec, response=rec.response - base.curve.departure_rad(rec.load * 1e-3))
+    rec, events = _without_events(rec, base)
     check_baseline_scale(rec, base)
     from threadpoolctl import threadpool_limits
     # Tiny (N x 4) linear-algebra calls: BLAS threads only add overhead (docs/decisions/019-diagnose-speed.md).
     with threadpool_limits(limits=1):
-        return _diagnose(rec, base, usable_workers() if workers is None else workers)
+        diag, arrays = _diagnose(rec, base, usable_workers() if workers is None else workers)
+    return (dataclasses.replace(diag, events=events) if events else diag), arrays
+
+
+def _without_events(rec: Recording, base: Baseline) -> tuple[Recording, tuple[str, ...]]:
+    """A drive's tooth ratcheting (events.py: a jump of one tooth pitch at high torque) taken out of the twist
+    before any fit, and named: it is the drive's own failure, not a property any catalogue effect should bend to."""
+    ratio = base.geometry.get("gear_ratio")
+    if rec.kind.value != "torsion" or not ratio:
+        return rec, ()
+    jump = find_jump(rec.load, rec.response, ratio)
+    if jump is None or not jump.ratchet:
+        return rec, ()
+    return dataclasses.replace(rec, response=without_jump(rec.response, jump)), (jump.sentence(rec.load_name, ratio),)
 
 
 def check_baseline_scale(rec: Recording, base: Baseline) -> None:
@@ -91,6 +106,9 @@ def check_baseline_scale(rec: Recording, base: Baseline) -> None:
     if slope == 0.0:
         what = (f"the {rec.response_name} does not move with the {rec.load_name} (a stuck or disconnected "
                 f"channel)")
+    elif (jump := _secant_jump(rec, base)) is not None:
+        what = (f"{jump.sentence(rec.load_name)}; it sets the secant ({1.0 / slope:.4g} {unit}), without it the "
+                f"recording is within the baseline's range: the jump, not the channels' sign, is the departure")
     elif ratio < 0.0:
         what = (f"the {rec.response_name} falls as the {rec.load_name} rises (secant {1.0 / slope:.4g} {unit}): "
                 f"check the sign of one channel")
@@ -104,6 +122,16 @@ def check_baseline_scale(rec: Recording, base: Baseline) -> None:
     raise InputError(f"{rec.source}: [test] {key}", rec.baseline_stiffness if given else "not set",
                      f"{what}; {fix}")
 
+
+
+def _secant_jump(rec: Recording, base: Baseline):
+    """A jump of the response without which the secant would be within BASELINE_OFF of the baseline (None if
+    there is no such jump): a refusal then names the jump, never the channels' sign."""
+    jump = find_jump(rec.load, rec.response, base.geometry.get("gear_ratio"))
+    if jump is None:
+        return None
+    ratio = float(np.polyfit(rec.load, without_jump(rec.response, jump), 1)[0]) / base.compliance
+    return jump if 1.0 / BASELINE_OFF <= ratio <= BASELINE_OFF else None
 
 
 def _diagnose(rec: Recording, base: Baseline, workers: int) -> tuple[Diagnosis, dict]:
