@@ -147,7 +147,17 @@ def fit_candidates(noise: Noise, specimen: str = "") -> Candidates:
     if not noise.mismatch or best_single is None:
         return Candidates((), ())
     pairs = _pairs(noise)
-    return Candidates(tuple(pairs), tuple(_offset_pairs(noise)), tuple(_triples(noise, pairs, specimen)))
+    return Candidates(tuple(pairs), tuple(_offset_pairs(noise)),
+                      tuple(_triples(noise, pairs, specimen)) if _needs_three(noise, pairs) else ())
+
+
+def _needs_three(noise: Noise, pairs: list[Fit]) -> bool:
+    """Three effects are fitted only where the best model of one or two does not already explain the recording
+    (its residual is structured, or its values are implausible or unresolved): a third effect must take
+    something the others leave, and this saves their fits on most recordings (speed)."""
+    j = noise.judge
+    best = min(list(noise.singles) + pairs, key=lambda f: f.bic)
+    return bool(j.gof(best).structured or j.implausible(best) or j.unresolved(best))
 
 
 # pairs a third effect is tried beside (best BIC first, one per set of effects), and forms of the third effect
