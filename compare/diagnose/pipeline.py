@@ -12,7 +12,8 @@ The diagnosis runs in steps, each a function that hands the next a small record:
    own profiled filter (the most generous noise), or where a channel is stuck;
 2. candidate fits (candidates.fit_candidates -> `Candidates`): pairs of the four best singles, and the best
    single beside a series compliance (Effect.series_compliance) where only its stiffness is off; degenerate
-   pairs (Effect.degenerate_with) are not fitted;
+   pairs (Effect.degenerate_with) are not fitted; where no single or pair explains the recording, models of
+   three effects (the specimen's normal model, Effect.normal_model, and the best pair beside a third);
 3. selection (candidates.select -> `Selection`): a second effect joins only if it is significant given the
    first (its own delta BIC > 10 against the single) AND removes a structure the first leaves, unless the pair
    is the specimen's normal model (Effect.normal_with);
