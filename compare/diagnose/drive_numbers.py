@@ -28,18 +28,24 @@ def pm_cycle(ctx: Context) -> bool:
 
 
 def drive_numbers(ctx: Context, fit: Fit | None, ranked, quantities: dict,
-                  rated_torque: float | None) -> CatalogueValues | None:
+                  rated_torque: float | None, curve=None) -> CatalogueValues | None:
     """The catalogue's numbers (see the module doc); ``ranked`` the named model's RankedEffect, ``quantities``
-    its loop quantities; ``fit`` None where nothing is named."""
+    its loop quantities; ``fit`` None where nothing is named; ``curve`` the baseline's DriveCurve (a catalogue
+    unit's), whose bend was taken out of the twist before the fit."""
     if ctx.response_unit != "rad" or not pm_cycle(ctx):
         return None
     if fit is None or not any(e.loop for e in fit.effects):
+        if curve is not None:
+            return None                        # the model-free reading would read the curve with its bend removed
         free = catalogue_values(ctx, rated_torque)
         return None if free is None else _non_negative(free.values, list(free.warnings), free.source)
     values: dict = {}
     multi = len(fit.effects) > 1
     inv = f"{ctx.load_unit}/{ctx.response_unit}"
-    if any(e.id == "nonlinear_stiffness" for e in fit.effects):
+    warnings = []
+    if curve is not None:
+        values.update(_unit_slopes(ctx, fit, curve, warnings))
+    elif any(e.id == "nonlinear_stiffness" for e in fit.effects):
         for name in _STIFFENING:
             key = f"nonlinear_stiffness.{name}" if multi else name
             if key in ranked.parameters:
@@ -57,10 +63,28 @@ def drive_numbers(ctx: Context, fit: Fit | None, ranked, quantities: dict,
         values["lost_motion_arcmin"] = _lost_motion(ctx, fit, rated_torque)
     amplitude = float(np.max(np.abs(ctx.u))) * ctx.X
     values["loop_amplitude"] = (amplitude, 0.0, ctx.load_unit)
-    warnings = []
     if rated_torque is not None and LOST_MOTION_FRACTION * rated_torque > amplitude:
         warnings.append("the lost-motion torque lies beyond the recorded range: the lost motion is extrapolated")
     return _non_negative(values, warnings, f"{SOURCE}; read from the named model {fit.label}")
+
+
+def _unit_slopes(ctx: Context, fit: Fit, curve, warnings: list[str]) -> dict:
+    """A catalogue unit's slopes as the recording scales them (K_i / s; T1, T2 the unit's), where no stiffening
+    departs from its curve; beside a named stiffening the slopes are that departure's (its parameters)."""
+    if any(e.id == "nonlinear_stiffness" for e in fit.effects):
+        warnings.append("the named stiffening departs from the unit's curve: K1..T2 are not read (see its "
+                        "parameters)")
+        return {}
+    inv = f"{ctx.load_unit}/{ctx.response_unit}"
+    rel = float(np.sqrt(max(fit.cov[-1, -1], 0.0))) / fit.scale if fit.cov is not None else 0.0
+    out = {}
+    for name in ("K1", "K2", "K3"):
+        k = getattr(curve, f"{name}_Nm_per_rad") * 1e3 / fit.scale          # N*mm/rad
+        out[name] = (k, k * rel, inv)
+    out["T1"] = (curve.T1_Nm * 1e3, 0.0, ctx.load_unit)
+    out["T2"] = (curve.T2_Nm * 1e3, 0.0, ctx.load_unit)
+    warnings.append("T1, T2 are the unit's: the recording follows its curve, scaled by the fitted stiffness")
+    return out
 
 
 def _lost_motion(ctx: Context, fit: Fit, rated: float) -> tuple[float, float, str]:

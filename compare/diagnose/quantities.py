@@ -57,7 +57,8 @@ def read_quantities(noise: Noise, cands: Candidates, answer: Answer) -> Reading:
         named = answer.verdict is Verdict.EXPLAINED
         if named or not any(e.loop for e in best.effects):
             ranked = next((e for e in effects if e.model == best.label), None)
-            catalogue = drive_numbers(ctx, best if named else None, ranked, quantities, rec.rated_torque)
+            catalogue = drive_numbers(ctx, best if named else None, ranked, quantities, rec.rated_torque,
+                                      noise.judge.base.curve)
     return Reading(effects, quantities, catalogue)
 
 
