@@ -227,3 +227,20 @@ def test_a_mains_line_is_sized_against_the_noise_without_it(amplitude_sigmas, ve
     assert diag.verdict is verdict
     if verdict is Verdict.UNEXPLAINED:
         assert "periodic in time" in diag.structure and "0.02 s" in diag.structure
+
+
+@pytest.mark.heavy
+def test_a_drive_on_its_unit_curve_reads_its_loop_against_the_catalogue_curve(tmp_path):
+    from strainwave.compare.diagnose.pipeline import diagnose_file
+    drive = drive_rig.DriveTruth(16e3, 25e3, 29e3, 7.0, 25.0, clearance_rad=0.0, loss_rad=0.5 * ARCMIN,
+                                 knee_spread=0.0)
+    t, T, phi = drive_rig.drive_test(drive, RATED_NM, T_rated=RATED_NM, n=2000, seed=2)
+    path = tmp_path / "unit.csv"
+    path.write_text(drive_rig.rig_file(t, T, phi), encoding="utf-8")
+    diag = diagnose_file(path, flags=Flags(unit="CHA-20A-100", rated_torque=f"{RATED_NM} Nm"))
+    assert "catalogue curve of CHA-20A-100" in diag.baseline.source
+    assert diag.verdict is Verdict.EXPLAINED and "hysteresis" in diag.named
+    assert "lost_motion" not in diag.named                     # no clearance in this drive
+    truth = drive_rig.truth_readings(drive, RATED_NM, RATED_NM)
+    loss = diag.catalogue.values["hysteresis_loss_arcmin"][0]
+    assert loss == pytest.approx(truth["loss_rad"] / ARCMIN, rel=0.10)
