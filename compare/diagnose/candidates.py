@@ -6,7 +6,8 @@
 2. candidate fits: pairs of the four best singles (each in its best forms), and the best single beside a
    series compliance where only its stiffness is off (`Candidates`);
 3. selection: a pair joins only where its second effect is significant given the first and takes a structure
-   the first leaves, or where the pair is the specimen's normal model (`Effect.normal_with`) (`Selection`).
+   the first leaves, or where the pair is the specimen's normal model (`Effect.normal_with`); a triple (fitted
+   where no single or pair explains) where each effect is significant given the other two (`Selection`).
 """
 from __future__ import annotations
 
@@ -160,7 +161,7 @@ def _needs_three(noise: Noise, pairs: list[Fit]) -> bool:
     return bool(j.gof(best).structured or j.implausible(best) or j.unresolved(best))
 
 
-# pairs a third effect is tried beside (best BIC first, one per set of effects), and forms of the third effect
+# forms of each effect of a normal model of three (the best of each law class first, pair_forms)
 TRIPLE_FORMS = 2
 TRIPLE_LOOP_FORMS = 3    # a loop's law shapes the curve's ends as well (a Dahl exponent moved K3 by 3.5 %)
 
