@@ -122,11 +122,15 @@ def _answer():
     return Answer(Verdict.EXPLAINED, ("hysteresis",), False, 30.0, "x", "", None, None, (), True)
 
 
-@pytest.mark.parametrize("decisive", [True, False])
-def test_a_rival_better_by_more_than_10_leaves_the_answer_unexplained(decisive):
-    out = _answer().judged_by_rival(RivalReading(-64.5, decisive, "rate-dependent", "a rate-dependent loop"))
-    assert out.verdict is Verdict.UNEXPLAINED and out.named == ()
-    assert "64" in out.note or out.note == "rate-dependent"
+def test_a_rival_better_by_more_than_10_that_the_recording_can_decide_leaves_it_unexplained():
+    out = _answer().judged_by_rival(RivalReading(-64.5, True, "rate-dependent", "a rate-dependent loop"))
+    assert out.verdict is Verdict.UNEXPLAINED and out.named == () and out.note == "rate-dependent"
+
+
+def test_a_better_rival_the_recording_cannot_decide_is_ambiguous_with_its_margin():
+    out = _answer().judged_by_rival(RivalReading(-64.5, False, "", "a rate-dependent loop, at one loading rate"))
+    assert out.verdict is Verdict.EXPLAINED and out.ambiguous and out.margin == -64.5
+    assert "one loading rate" in out.runner_up
 
 
 def test_a_rival_within_6_is_ambiguous_and_a_worse_one_is_not():
