@@ -108,8 +108,11 @@ def check_baseline_scale(rec: Recording, base: Baseline) -> None:
         what = (f"the {rec.response_name} does not move with the {rec.load_name} (a stuck or disconnected "
                 f"channel)")
     elif (jump := _secant_jump(rec, base)) is not None:
-        what = (f"{jump.sentence(rec.load_name)}; it sets the secant ({1.0 / slope:.4g} {unit}), without it the "
-                f"recording is within the baseline's range: the jump, not the channels' sign, is the departure")
+        raise InputError(f"{rec.source}:{jump.row + 2}", f"{jump.step:.4g} rad",
+                         f"{jump.sentence(rec.load_name)}; it sets the secant ({1.0 / slope:.4g} {unit}), without "
+                         f"it the recording is within the baseline's range: the jump, not a channel's sign, is the "
+                         f"departure; diagnose the rows before it, or as specimen gear where one tooth pitch is "
+                         f"named and kept out of the fit")
     elif ratio < 0.0:
         what = (f"the {rec.response_name} falls as the {rec.load_name} rises (secant {1.0 / slope:.4g} {unit}): "
                 f"check the sign of one channel")
