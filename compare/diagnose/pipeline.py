@@ -108,7 +108,7 @@ def check_baseline_scale(rec: Recording, base: Baseline) -> None:
         what = (f"the {rec.response_name} does not move with the {rec.load_name} (a stuck or disconnected "
                 f"channel)")
     elif (jump := _secant_jump(rec, base)) is not None:
-        raise InputError(f"{rec.source}:{jump.row + 2}", f"{jump.step:.4g} rad",
+        raise InputError(f"{rec.source}: data row {jump.row + 2}", f"{jump.step:.4g} rad",
                          f"{jump.sentence(rec.load_name)}; it sets the secant ({1.0 / slope:.4g} {unit}), without "
                          f"it the recording is within the baseline's range: the jump, not a channel's sign, is the "
                          f"departure; diagnose the rows before it, or as specimen gear where one tooth pitch is "
