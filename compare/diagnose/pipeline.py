@@ -67,7 +67,11 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
     number); None takes what the machine safely offers (parallel.usable_workers)."""
     if baseline not in ("analytic", "fea"):
         raise InputError("--baseline", baseline, "must be analytic or fea")
-    base = analytic_baseline(rec, params) if baseline == "analytic" else fea_baseline(rec, params)
+    if baseline == "fea" and rec.specimen == "gear" and rec.baseline_stiffness is None and rec.unit is None:
+        from strainwave.compare.diagnose.drive_baseline import curve_baseline
+        base, rec = curve_baseline(rec, params)      # the tooth-mesh drive curve (issue 48, item 6)
+    else:
+        base = analytic_baseline(rec, params) if baseline == "analytic" else fea_baseline(rec, params)
     if base.curve is not None:
         # the baseline is the drive's curve: its bend above T1 is taken out of the twist, its first slope stays
         rec = dataclasses.replace(rec, response=rec.response - base.curve.departure_rad(rec.load * 1e-3))
