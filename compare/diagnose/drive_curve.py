@@ -94,7 +94,8 @@ _UNIT = re.compile(r"^(CHA)-(\d+)A?-(\d+)$", re.IGNORECASE)
 _CHA_RATIOS = (30, 50, 80, 100, 120, 160)
 CHA_HYSTERESIS_LIMIT_ARCMIN = {"30": 3.0, "50": 1.0, ">50": 1.0}    # CHA manual 1018854 Table 50.1-50.2
 CHA_LOST_MOTION_LIMIT_ARCMIN = 1.0
-CHA_SOURCE = "Harmonic Drive AG, CHA manual 1018854 (Tables 50.1-50.4: T1, T2, K1, K2, K3; hysteresis loss, lost motion limits)"
+CHA_SOURCE = ("Harmonic Drive AG, CHA manual 1018854 (Tables 50.1-50.4: T1, T2, K1, K2, K3; hysteresis loss, "
+              "lost motion limits)")
 
 
 def known_units() -> list[str]:

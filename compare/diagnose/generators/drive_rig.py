@@ -134,7 +134,8 @@ def drive_test(d: DriveTruth, T_amp: float, *, T_rated: float, n: int = 3000, cy
     knots = [0.0] + [1.0, -1.0] * cycles + [0.0]
     s = np.linspace(0.0, len(knots) - 1, n)
     T = np.interp(s, np.arange(len(knots)), knots) * T_amp
-    twist = mesh_twist(T, d) + coupling_twist(T, d.clearance_rad, T_rated) + flank_friction_twist(T, d.loss_rad, load_share=d.friction_load_share)
+    twist = mesh_twist(T, d) + coupling_twist(T, d.clearance_rad, T_rated) \
+        + flank_friction_twist(T, d.loss_rad, load_share=d.friction_load_share)
     time = np.linspace(0.0, 2.0 * n / 100.0, n)
     twist = twist + drift_rad * time / time[-1] + 2.0 * ENCODER_STEP_RAD
     twist = twist + 0.5 * ENCODER_STEP_RAD * rng.standard_normal(n)
