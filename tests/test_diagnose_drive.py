@@ -52,6 +52,14 @@ def test_the_drive_loop_dissipates_is_passive_and_has_its_loss():
     assert truth["lost_motion_rad"] > CHA20.clearance_rad + 2 * 0.04 * RATED_NM / 16e3
 
 
+def test_an_active_loop_is_refused_by_the_generator():
+    # 0.4' of loss on a +/-10 N m cycle: the stuck contacts would need more compliance than the drive has
+    small = drive_rig.DriveTruth(16e3, 25e3, 29e3, 7.0, 25.0, clearance_rad=0.6 * ARCMIN, loss_rad=0.4 * ARCMIN)
+    with pytest.raises(ValueError, match="not passive"):
+        drive_rig.drive_test(small, 10.0, T_rated=RATED_NM, n=600)
+    drive_rig.drive_test(small, 37.5, T_rated=RATED_NM, n=600)      # the full cycle is passive
+
+
 def test_the_unit_curve_is_the_manuals_worked_example():
     # CHA manual 1018854, section 4.2: T = 60 Nm on K1 6.7e4, T1 29, K2 1.1e5, T2 108 gives 7.15e-4 rad (2.5')
     curve = unit_curve("CHA-32A-100")

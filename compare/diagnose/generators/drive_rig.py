@@ -136,6 +136,12 @@ def drive_test(d: DriveTruth, T_amp: float, *, T_rated: float, n: int = 3000, cy
     T = np.interp(s, np.arange(len(knots)), knots) * T_amp
     twist = mesh_twist(T, d) + coupling_twist(T, d.clearance_rad, T_rated) \
         + flank_friction_twist(T, d.loss_rad, load_share=d.friction_load_share)
+    dT = np.diff(T)
+    moving = np.abs(dT) > 1e-9 * T_amp
+    if np.any(np.diff(twist)[moving] / dT[moving] <= 0.0):
+        # the stuck contacts would take away more compliance than the drive has: an active, unphysical loop
+        raise ValueError(f"loss {d.loss_rad:.3g} rad on a +/-{T_amp:g} N m cycle is not passive with these "
+                         f"contacts: the twist would turn back after a reversal")
     time = np.linspace(0.0, 2.0 * n / 100.0, n)
     twist = twist + drift_rad * time / time[-1] + 2.0 * ENCODER_STEP_RAD
     twist = twist + 0.5 * ENCODER_STEP_RAD * rng.standard_normal(n)
