@@ -25,19 +25,27 @@ class Tolerance:
 
 
 def fea_tolerance(fea: float | None, fea_uncertainty: float | None, *, allowances: dict[str, float],
-                  gci_factor: float = 3.0) -> Tolerance:
-    """Tolerance = ``gci_factor`` x relative FEA uncertainty + named modelling allowances.
+                  basis: str = "") -> Tolerance:
+    """Tolerance = the FEA's GCI + named modelling allowances (docs/verification.md, "Check tolerances").
 
-    Each allowance is a relative size with the reason as its key, e.g.
-    ``{"mu = 8e4 vs E/2(1+nu) = 80769 (seed 000, audit 18)": 0.0096}``.
+    The GCI is Roache's Fs |e_ext| (``fea.convergence``): it already holds its safety factor (1.25 where three
+    meshes show the asymptotic range, 3 otherwise), so it is added once, never multiplied again. ``basis``: the
+    GCI's order and Fs in words (``Convergence.basis``), quoted in the reason. Each allowance is a relative size
+    with the reason as its key, e.g. ``{"mu = 8e4 vs E/2(1+nu) = 80769 (seed 000, audit 18)": 0.0096}``.
     """
     rel_u = 0.0
     if fea not in (None, 0.0) and fea_uncertainty is not None and math.isfinite(fea_uncertainty):
         rel_u = abs(fea_uncertainty / fea)
-    total = gci_factor * rel_u + sum(allowances.values())
-    parts = [f"{gci_factor:g} x GCI ({100 * rel_u:.3g} %)"]
+    total = rel_u + sum(allowances.values())
+    parts = [f"GCI {100 * rel_u:.3g} % ({basis or 'Fs inside'})"]
     parts += [f"{100 * v:.3g} % {why}" for why, v in allowances.items()]
     return Tolerance(total, " + ".join(parts))
+
+
+def gci_basis(quantity) -> str:
+    """The GCI's order and safety factor in words (``Convergence.basis``), "" when the quantity carries none."""
+    conv = getattr(quantity, "convergence", None)
+    return "" if conv is None else conv.basis
 
 
 RELATIONS = ("equal", "at_most")

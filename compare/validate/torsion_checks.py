@@ -18,7 +18,7 @@ from strainwave.analytic import cracks, tube_crack
 from strainwave.analytic.reference import Reference
 from strainwave.analytic.variant import Variant
 from strainwave.registry import FLEX_UNIT, study_of_component
-from strainwave.compare.validate.checks import Check, evaluate, fea_tolerance, not_evaluated
+from strainwave.compare.validate.checks import Check, evaluate, fea_tolerance, gci_basis, not_evaluated
 from strainwave.compare.validate.fea_book import FeaBook, Sweep
 
 # the uncracked flexibility each torsion study reports (registry)
@@ -44,7 +44,8 @@ def _from_quantity(check_id: str, quantity: str, unit: str, book: FeaBook, label
     q, why = book.quantity(label, name)
     if q is None:
         return not_evaluated(check_id, quantity, unit, why, analytic=analytic)
-    tol = fea_tolerance(q.value, q.uncertainty, allowances=allowances)
+    tol = fea_tolerance(q.value, q.uncertainty, allowances=allowances,
+                        basis=gci_basis(q))
     return evaluate(Check(check_id, quantity, unit, q.value, q.uncertainty, analytic, "corrected", tol,
                           note=note, sources=sources))
 
