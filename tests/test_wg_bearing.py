@@ -8,6 +8,7 @@ import warnings
 import numpy as np
 import pytest
 
+from strainwave.analytic import michell_ring as michell
 from strainwave.analytic import wg_bearing as wgb
 
 
@@ -49,7 +50,7 @@ def test_cam_bends_the_race_into_tension_at_the_major_axis(ring):
     from strainwave.fea.wg_bearing import solve_plain
     params, s = ring
     d = solve_plain(s, 5.0, 1.96, 1.0)
-    ref = wgb.curved_beam_race_stress_MPa(s.E_MPa, s.r_bore_mm, s.r_race_mm, s.w0_mm)
+    ref = michell.cam_ring_hoop_stress_MPa(s.E_MPa, s.nu, s.r_bore_mm, s.r_race_mm, s.w0_mm)
     assert d["race_major_MPa"] == pytest.approx(ref, rel=0.05)
     assert d["race_minor_MPa"] == pytest.approx(-ref, rel=0.05)
     assert d["ball_ratio"] == pytest.approx(24 * max(s.ball_loads_N) / s.force_N, rel=0.05)
@@ -92,15 +93,35 @@ def test_checks_pass_on_their_closed_forms_and_fail_on_perturbed_ones(ring):
     sig = -0.003 + 0.001 * x
     meta = {"crack_depths_mm": [1.0], "cracks": {"1": {"profile_x_mm": x.tolist(), "hoop_stress_per_N_MPa": sig.tolist()}}}
     delta = wgb.edge_crack_compliance_mm_per_N(lambda xx: np.interp(xx, x, sig), 1.0, s.E_MPa, s.width_mm)
-    stress = wgb.curved_beam_race_stress_MPa(s.E_MPa, s.r_bore_mm, s.r_race_mm, s.w0_mm)
+    stress = michell.cam_ring_hoop_stress_MPa(s.E_MPa, s.nu, s.r_bore_mm, s.r_race_mm, s.w0_mm)
     book = _book({delta_name(1.0): delta, "race_stress_major_MPa": stress, "net_race_stress_major_MPa": stress}, meta)
     assert wc.bearing_crack_check(book, "wg-bearing", params).passed
     assert wc.race_stress_check(book, "wg-bearing", params, "major").passed
     bad = lambda a: {"corrected": 1.3 * delta}      # noqa: E731
     assert not wc.bearing_crack_check(book, "wg-bearing", params, curve=bad).passed
-    thin = _book({"race_stress_major_MPa": wgb.thin_ring_race_stress_MPa(
-        s.E_MPa, s.thickness_mm, 0.5 * (s.r_bore_mm + s.r_race_mm), s.w0_mm)}, meta)
-    assert not wc.race_stress_check(thin, "wg-bearing", params, "major").passed
+    # the exact solution is asserted: the thin ring (-10 %), the curved beam (+2.4 %), plane strain (+10 %) and a
+    # +-20 % stress all fail
+    r_m = 0.5 * (s.r_bore_mm + s.r_race_mm)
+    for wrong in (wgb.thin_ring_race_stress_MPa(s.E_MPa, s.thickness_mm, r_m, s.w0_mm),
+                  wgb.curved_beam_race_stress_MPa(s.E_MPa, s.r_bore_mm, s.r_race_mm, s.w0_mm),
+                  michell.cam_ring_hoop_stress_MPa(s.E_MPa, s.nu, s.r_bore_mm, s.r_race_mm, s.w0_mm,
+                                                   plane=michell.Plane.STRAIN), 0.8 * stress, 1.2 * stress):
+        assert not wc.race_stress_check(_book({"race_stress_major_MPa": wrong}, meta), "wg-bearing", params,
+                                        "major").passed
+
+
+def test_ball_load_check_tells_hertz_from_linear_springs(ring):
+    """Stribeck's Hertz distribution passes; linear springs (Q ~ delta, Z Q_max/F_r = 4.00 against 4.37) fail,
+    as do +-20 % and +-10 % errors."""
+    from strainwave.analytic import hertz_ball_loads as hb
+    from strainwave.compare.validate import wg_bearing_checks as wc
+    params, _ = ring
+    Z = params.wave_generator.ball_count
+    hertz = hb.hertz_load_ratio(Z)
+    check = wc.ball_load_check(_book({"ball_load_ratio": hertz}, {}), "wg-bearing", params)
+    assert check.passed and check.tolerance.relative < 0.02
+    for wrong in (hb.linear_spring_load_ratio(Z), 0.8 * hertz, 0.9 * hertz, 1.1 * hertz, 1.2 * hertz):
+        assert not wc.ball_load_check(_book({"ball_load_ratio": wrong}, {}), "wg-bearing", params).passed
 
 
 def test_drive_stiffness_takes_the_wave_generator_from_the_fea_and_fails_on_the_seeds_K_G0(ring):
