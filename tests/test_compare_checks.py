@@ -272,3 +272,20 @@ def test_shaft_check_fails_on_a_reference_perturbed_by_the_material_gap():
     # an FEA that matched the mu = 80000 form (the old check's 0.96 % allowance absorbed this) now fails
     c, params = _shaft_check(1.2790352e-09, 0.000164 * 1.2790352e-09)
     assert not c.passed
+
+
+def test_quick_reports_a_check_its_coarse_meshes_do_not_resolve():
+    """--quick: a GCI above the named allowances (and 1 %) is not resolved, never a pass on a ballooned tolerance."""
+    from strainwave.compare.validate.checks import quick_resolution
+
+    def check(gci, allowance):
+        tol = fea_tolerance(1.0, gci, allowances={"plane stress vs plane strain": allowance} if allowance else {})
+        return evaluate(Check("ring.sigma_max", "q", "MPa", 1.0, gci, {"corrected": 1.0}, "corrected", tol))
+
+    resolved = check(0.04, 0.05)
+    assert resolved.tolerance.gci == pytest.approx(0.04) and resolved.tolerance.allowances == pytest.approx(0.05)
+    assert quick_resolution(resolved) is resolved and resolved.passed
+    assert quick_resolution(check(0.005, 0.0)).passed            # below the 1 % floor: resolved
+    coarse = quick_resolution(check(0.276, 0.035))                 # ring.stress_concentration's quick series
+    assert not coarse.passed and coarse.verdict == "not evaluated"
+    assert coarse.reason_not_evaluated.startswith("not resolved at --quick") and "27.6 %" in coarse.reason_not_evaluated

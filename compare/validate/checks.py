@@ -19,9 +19,14 @@ class Tolerance:
 
     relative: float
     reason: str
+    gci: float = math.nan          # the GCI's share of ``relative`` (the rest: named allowances); NaN: not split
+
+    @property
+    def allowances(self) -> float:
+        return self.relative - (self.gci if math.isfinite(self.gci) else 0.0)
 
     def to_dict(self) -> dict:
-        return {"relative": _finite_or_none(self.relative), "reason": self.reason}
+        return {"relative": _finite_or_none(self.relative), "reason": self.reason, "gci": _finite_or_none(self.gci)}
 
 
 def fea_tolerance(fea: float | None, fea_uncertainty: float | None, *, allowances: dict[str, float],
@@ -39,7 +44,7 @@ def fea_tolerance(fea: float | None, fea_uncertainty: float | None, *, allowance
     total = rel_u + sum(allowances.values())
     parts = [f"GCI {100 * rel_u:.3g} % ({basis or 'Fs inside'})"]
     parts += [f"{100 * v:.3g} % {why}" for why, v in allowances.items()]
-    return Tolerance(total, " + ".join(parts))
+    return Tolerance(total, " + ".join(parts), rel_u)
 
 
 def gci_basis(quantity) -> str:
@@ -115,6 +120,25 @@ def verdict_of(rel_error: dict[str, float], tolerance: float, relation: str = "e
     if len(inside) == 2:
         return "both"
     return inside[0] if inside else "neither"
+
+
+# --quick: a check whose GCI is larger than its named allowances (and than this floor) is not resolved by the coarse
+# meshes: its tolerance would be more than twice its allowances, so it is reported as not resolved, never passed
+QUICK_GCI_FLOOR = 0.01
+NOT_RESOLVED_AT_QUICK = "not resolved at --quick"
+
+
+def quick_resolution(check: Check) -> Check:
+    """``check`` as --quick reports it: unchanged when its GCI is at most max(its named allowances, 1 %), so its
+    tolerance is at most twice the allowances (or allowances + 1 %), which the full run's tolerance is never
+    below; otherwise not resolved at --quick (not passed), with the numbers."""
+    tol = check.tolerance
+    if check.verdict == "not evaluated" or not math.isfinite(tol.gci) or tol.gci <= max(tol.allowances, QUICK_GCI_FLOOR):
+        return check
+    why = (f"{NOT_RESOLVED_AT_QUICK}: GCI {100 * tol.gci:.3g} % on the coarse meshes exceeds the named allowances "
+           f"({100 * tol.allowances:.3g} %) and {100 * QUICK_GCI_FLOOR:g} %, so its tolerance "
+           f"({100 * tol.relative:.3g} %) would pass errors the full run fails; run without --quick")
+    return replace(check, verdict="not evaluated", passed=False, reason_not_evaluated=why)
 
 
 def evaluate(check: Check) -> Check:
