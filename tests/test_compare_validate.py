@@ -361,10 +361,15 @@ def test_quick_checks_reproduce_the_reference_or_are_listed_as_deliberate(result
 FULL_VERDICTS = Path(__file__).parent / "data" / "validate_full_verdicts.json"
 # Verdicts --quick may reach apart from the recorded full run, by check id, with the reason: only where quick
 # still PASSES and only the published side moves. A full `make validate` re-records FULL_VERDICTS and empties this.
-QUICK_VERDICT_EXCEPTIONS: dict[str, str] = {
-    "ring.stress_concentration": "issue 37: quick's toothed-ring series diverges (observed p -6.4), so its GCI by "
-                                 "the book is Fs 3 with p 0.5 (27.6 %); the tolerance then also holds the seed's "
-                                 "1.9 ('both', still passing); the full run, under the same rule, gives 'corrected'",
+QUICK_VERDICT_EXCEPTIONS: dict[str, str] = {}
+# Checks --quick reports "not resolved at --quick" (issue 50: their coarse-mesh GCI exceeds their named allowances
+# by more than 1 %, so a pass would rest on a tolerance more than twice the full run's), with the numbers measured.
+QUICK_NOT_RESOLVED: dict[str, str] = {
+    "ring.stress_concentration": "quick's toothed-ring series diverges (observed p -6.4): GCI 27.6 % against the "
+                                 "fit residual's 3.5 % (tolerance 31 %, full run 4.2 %)",
+    "bearing.crack_compliance": "quick's one crack depth: GCI 23 % against 2.5 % of allowances (tolerance 25.6 %, "
+                                "full run 4.2 %)",
+    "cup.wg_bending_major": "GCI 5.2 % against 3.3 % of allowances (tolerance 8.6 %, full run 4.5 %)",
 }
 
 
@@ -374,8 +379,12 @@ def test_quick_verdicts_are_those_of_the_full_run(results):
     full = json.loads(FULL_VERDICTS.read_text(encoding="utf-8"))["verdicts"]
     quick = {c["id"]: {"verdict": c["verdict"], "passed": c["passed"]} for c in results["checks"]}
     assert set(full) <= set(quick), sorted(set(full) - set(quick))
-    differ = {k: (quick[k], v) for k, v in full.items() if quick[k] != v and k not in QUICK_VERDICT_EXCEPTIONS}
+    differ = {k: (quick[k], v) for k, v in full.items()
+              if quick[k] != v and k not in QUICK_VERDICT_EXCEPTIONS and k not in QUICK_NOT_RESOLVED}
     assert not differ, f"quick vs full verdicts: {differ}"
+    reasons = {c["id"]: c["reason_not_evaluated"] for c in results["checks"]}
+    unresolved = {k for k, r in reasons.items() if r.startswith("not resolved at --quick")}
+    assert unresolved == set(QUICK_NOT_RESOLVED), (unresolved, sorted(QUICK_NOT_RESOLVED))
     for k in QUICK_VERDICT_EXCEPTIONS:      # an exception never hides a failure or a lost corrected verdict
         assert quick[k]["passed"] and quick[k]["verdict"] in (full[k]["verdict"], "both"), (k, quick[k], full[k])
 
