@@ -6,11 +6,11 @@
   against eqs 8 / 9 (thin) and Winkler-Bach (corrected), all at the prescribed deformation W0.
 - The FEA spreads each force over a small arc; the thin-ring effect of that (``analytic/ring_arc_load.py``
   for the arc the study states in its typed ``Load``) is one modelling allowance, the second-order thick-ring terms (delta/r_m)^2 the other; the rest of the
-  tolerance is 3 x GCI.
+  tolerance is the GCI (Fs inside, counted once).
 - ``ring.tooth_influence`` / ``ring.stress_concentration``: the FEA's K_delta and K_sigma (in the seed's
   terms: K_sigma = root-fillet peak / (K_delta x smooth inner fibre), the factor eq 13 applies to sigma_a,
   which already holds K_delta) against the seed's assumed constants (published) and the tooth-factor model
-  of analytic/tooth_factors.py (corrected), fitted on other rims; tolerance = 3 x GCI + the model's largest
+  of analytic/tooth_factors.py (corrected), fitted on other rims; tolerance = GCI + the model's largest
   residual on its own fitting set (fixed before this geometry is solved).
 """
 from __future__ import annotations

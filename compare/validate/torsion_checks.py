@@ -2,7 +2,7 @@
 
 What each check asserts (and why):
 - ``*.flexibility``: agreement with the CORRECTED closed form within
-  3 x GCI plus the stated modelling allowances (for the cup, "corrected" is strainwave's series shell
+  the GCI (Fs inside, once) plus the stated modelling allowances (for the cup, "corrected" is strainwave's series shell
   model, tube + diaphragm + hub: seed 000 has no diaphragm term). The published form being off (e.g. the
   solid-shaft formula for a hollow shaft) is the audit's finding, reported with its error, not a failure.
 - ``*.crack_compliance``: agreement with the CORRECTED closed form at the sweep depth the FEA resolves
@@ -62,7 +62,7 @@ def shaft_flexibility_reference(params, s000: dict | None = None) -> Reference:
 
 def shaft_flexibility(book: FeaBook, label: str, s000: dict, params) -> Check:
     """The FEA against the closed form of the SAME problem, 32 L/(pi G (d^4 - d_i^4)) with G = E/2(1+nu), within
-    3 x GCI and no allowance (issue 37); the seed's mu (audit 18) is a material gap reported apart, not absorbed."""
+    its GCI and no allowance (issue 37); the seed's mu (audit 18) is a material gap reported apart, not absorbed."""
     reason, gap = mu_gap(params)
     lso = s000.get("lambda_so0", {})
     analytic = shaft_flexibility_reference(params, s000).variants()

@@ -5,7 +5,7 @@
   (analytic/ring_prescribed.py): corrected = the band of a long shell (E/(1 - nu^2), no anticlastic
   curvature where w is prescribed along the band), published = seed 003's two-point-load ring (eqs 8, 9) at
   the same W0 (what the seed would give; not the same problem, so not asserted).
-- Tolerance = 3 x GCI + two allowances fixed here, from the geometry alone: the thin ring's neglected
+- Tolerance = GCI (Fs inside) + two allowances fixed here, from the geometry alone: the thin ring's neglected
   t/(2 r_m) (curved beam), and the edge zones: plane strain holds away from the band's rim and its junction
   with the coned wall; within them the shell relaxes toward plane stress (the nu^2 of E') with the shell's
   edge decay exp(-beta s), beta = [3(1 - nu^2)]^(1/4)/sqrt(r_m t) (Timoshenko), s = b/2 from either edge.
