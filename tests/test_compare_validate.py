@@ -361,7 +361,11 @@ def test_quick_checks_reproduce_the_reference_or_are_listed_as_deliberate(result
 FULL_VERDICTS = Path(__file__).parent / "data" / "validate_full_verdicts.json"
 # Verdicts --quick may reach apart from the recorded full run, by check id, with the reason: only where quick
 # still PASSES and only the published side moves. A full `make validate` re-records FULL_VERDICTS and empties this.
-QUICK_VERDICT_EXCEPTIONS: dict[str, str] = {}
+QUICK_VERDICT_EXCEPTIONS: dict[str, str] = {
+    "cup.crack_compliance": "issue 50: the midpoint of plane stress and plane strain is asserted; quick's best-resolved "
+                            "depth is a = 1.12 mm (full: 0.14 mm), where the FEA lies nearer plane stress (-2.8 % of it), "
+                            "so the published (plane-stress) form is inside too ('both', passing)",
+}
 # Checks --quick reports "not resolved at --quick" (issue 50: their coarse-mesh GCI exceeds their named allowances
 # by more than 1 %, so a pass would rest on a tolerance more than twice the full run's), with the numbers measured.
 QUICK_NOT_RESOLVED: dict[str, str] = {
