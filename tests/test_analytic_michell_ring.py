@@ -53,3 +53,18 @@ def test_thin_ring_limit_and_bounds():
     with pytest.raises(ValueError):
         m.cam_ring_constants(E, NU, RO, RI, W0)
     assert np.isfinite(m.kappa(NU, m.Plane.STRAIN))
+
+
+def test_held_bore_series_under_an_even_pressure_is_lames_ring():
+    """360 equal balls press the race nearly evenly: inside the wall the series is Lame's ring with its bore held
+    (u_r(a) = 0, plane stress); the patches' ripple (n = 360, 720, ...) has died out there (1e-5)."""
+    Z, a, b, B, nu, Q = 360, 52.76, 62.76, 20.0, 0.3, 10.0
+    psi = 2 * np.pi * np.arange(Z) / Z
+    p0 = Z * Q / (2 * np.pi * b * B)
+    r = np.array([55.0, 57.76, 60.0])
+    series = m.held_bore_hoop_stress_MPa(nu, a, b, B, psi, np.full(Z, Q), np.full(Z, 0.4), r, harmonics=4000)
+    k = m.kappa(nu, m.Plane.STRESS)
+    A0 = -p0 / (1 + 0.5 * (k - 1) * a ** 2 / b ** 2)      # u_r(a) = 0: (1 - nu) A a = (1 + nu) C / a
+    lame = A0 - 0.5 * (k - 1) * A0 * a ** 2 / r ** 2
+    assert series == pytest.approx(lame, rel=1e-5)
+    assert np.all(series < 0)        # the race pressed, the bore held: hoop compression

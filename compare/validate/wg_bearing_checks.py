@@ -9,9 +9,10 @@
   (zero clearance, rigid rings, the exact sum over the Z balls; ``published``: Stribeck's 4.37); linear springs
   (``linear_springs``, 8.5 % lower for Z = 24) are shown and lie outside the tolerance.
 - ``bearing.crack_compliance``: the race crack's added radial compliance at the major axis, where the cam's
-  bending holds it open, against the edge-crack weight function integrated by seed 000's eq 4 at the FEA's own
-  uncracked hoop stress on the crack line (``corrected``); ``published``: seed 000's K = 1.95 sigma sqrt(a/Q) at
-  the FEA's stress at the mouth. Never the FEA's own uncracked compliance.
+  bending holds it open, against the edge-crack weight function integrated by seed 000's eq 4 at the exact
+  uncracked hoop stress on the crack line (Michell's series for the ring under the Stribeck Hertz patches with
+  its bore held by the cam, ``analytic.michell_ring``; ``corrected``); ``published``: seed 000's
+  K = 1.95 sigma sqrt(a/Q) at that stress at the mouth. Neither side reads the FEA.
 """
 from __future__ import annotations
 
@@ -133,15 +134,25 @@ def crack_sweep(book: FeaBook, label: str) -> Sweep | None:
     return Sweep("bearing", "delta_radial_compliance_mm_per_N", "mm/N", d, v, u)
 
 
-def crack_curve(params, result):
-    """depth -> {corrected: weight function at the FEA's uncracked hoop stress on the crack line,
-    published: seed 000's form at the FEA's hoop stress at the mouth}."""
+def exact_hoop_profile(params, depth_mm: float, points: int = 241):
+    """(x, hoop stress per newton of F_r) on the crack line (phi = 0) from the race down to ``depth_mm``: the exact
+    plane-stress ring under the Stribeck Hertz patches with its bore held by the cam (``michell_ring.
+    held_bore_hoop_stress_MPa``), a function of the parameters alone (never of the FEA)."""
     s = _ring(params)
-    cracks = result.meta["cracks"]
+    x = depth_mm * np.linspace(0.0, 1.0, points) ** 2      # dense at the race, where the patch acts
+    stress = michell.held_bore_hoop_stress_MPa(s.nu, s.r_bore_mm, s.r_race_mm, s.width_mm, s.ball_angles_rad,
+                                               s.ball_loads_N, s.patch_half_widths_mm, s.r_race_mm - x)
+    return x, stress / s.force_N
+
+
+def crack_curve(params, result=None):
+    """depth -> {corrected: Tada's weight function at the exact uncracked hoop stress on the crack line (Michell's
+    series, ``exact_hoop_profile``), published: seed 000's form at that stress at the mouth}. ``result`` is not read:
+    the closed form is a function of the parameters alone."""
+    s = _ring(params)
 
     def curve(depth: float) -> dict[str, float]:
-        fact = cracks[f"{depth:g}"]
-        x, sig = np.asarray(fact["profile_x_mm"]), np.asarray(fact["hoop_stress_per_N_MPa"])
+        x, sig = exact_hoop_profile(params, depth)
         return {"corrected": wgb.edge_crack_compliance_mm_per_N(lambda xx: np.interp(xx, x, sig), depth, s.E_MPa,
                                                                  s.width_mm),
                 "published": wgb.seed_form_compliance_mm_per_N(float(sig[0]), depth, s.E_MPa, s.width_mm)}
@@ -171,10 +182,11 @@ def bearing_crack_check(book: FeaBook, label: str, params, curve=None) -> Check:
             f"(w0 -> -w0) the a = {comp.get('depth_mm', float('nan')):g} mm crack closes "
             f"({comp.get('closed_pairs', '?')} of {comp.get('pairs', '?')} face pairs in contact, delta C = "
             f"{comp.get('delta', float('nan')):.2g} mm/N). corrected: Tada's half-plane edge-crack weight function at "
-            "the FEA's uncracked hoop stress on the crack line, seed 000 eq 4 with dA = B da; published: seed 000's "
-            "1.95 sigma sqrt(a/Q), Q = 1 (straight front), sigma = the FEA's stress at the mouth")
+            "the exact uncracked hoop stress on the crack line (Michell's series: the plane-stress ring under the "
+            "Stribeck Hertz patches, its bore held by the cam; not the FEA's), seed 000 eq 4 with dA = B da; "
+            "published: seed 000's 1.95 sigma sqrt(a/Q), Q = 1 (straight front), sigma = that stress at the mouth")
     return crack_check(check_id, quantity, unit, sweep, curve, allowances, note,
-                       {"fea": f"FEA {label}", "analytic": "edge-crack weight function (Tada) at the FEA's stress"},
+                       {"fea": f"FEA {label}", "analytic": "edge-crack weight function (Tada) at the exact ring's stress (Michell)"},
                        params.wave_generator.bearing_crack_depth_mm)
 
 
