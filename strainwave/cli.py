@@ -170,7 +170,9 @@ def _cmd_solve(args) -> int:
     # The field is always written (to a scratch folder without --vtu): the rated-load peaks are read from it.
     from strainwave.output_guard import remove_stale
     remove_stale(tempfile.gettempdir())   # killed solves' folders, when the scratch is the system's
-    with tempfile.TemporaryDirectory(prefix=f"strainwave-solve-{os.getpid()}-") as scratch:   # under the run's scratch
+    from strainwave.output_guard import make_owned_dir
+    scratch = make_owned_dir(f"strainwave-solve-{os.getpid()}-")   # under the run's scratch, its owner recorded
+    try:
         vtu = Path(args.vtu) if args.vtu else Path(scratch) / f"{args.study}.vtu"
         result = run_study(args.study, params, mesh_size_mm=args.mesh_size_mm, order=args.order,
                            crack_depth_mm=args.crack_depth_mm, vtu=vtu, progress=_progress)
@@ -178,6 +180,9 @@ def _cmd_solve(args) -> int:
         rated = None if found is None else stress_at_rated(args.study, params, result, found[0], cracked=found[1])
         if args.vtu and rated is not None:   # the file a user opens is at the load this command reports
             write_at_rated(result.fields, rated.load)
+    finally:
+        import shutil
+        shutil.rmtree(scratch, ignore_errors=True)
     if not args.vtu:
         result = dataclasses.replace(result, fields=())
     text = result.summary() + ("" if rated is None else "\n" + "\n".join(rated.lines()))
@@ -294,8 +299,14 @@ def _planned_outputs(args) -> list:
                          else [])
         planned += [Planned("-o", str(sidecar_path(step)), derived=True) for step in steps]
     if getattr(args, "out", None) is not None:
-        planned.append(Planned("--out", args.out, directory=True))
+        planned.append(Planned("--out", args.out, directory=True, writes=_OUT_INDEX.get(args.command, ())))
     return planned
+
+
+# the index files each --out command writes (renamed into place last: their presence marks a complete run)
+_OUT_INDEX = {"validate": ("results.json", "report.md", "report.html", "report.pdf"),
+              "sweep": ("points.json", "summary.md", "sweep.csv", "sweep.parquet"),
+              "benchmark-diagnose": ("benchmark_diagnose.json", "benchmark_diagnose.txt")}
 
 
 def _check_outputs(args) -> None:
@@ -339,15 +350,23 @@ def _scratch_under_outputs(args):
         return
     created = [p for p in (folder, *folder.parents) if not p.exists()]   # deepest first
     folder.mkdir(parents=True, exist_ok=True)
-    from strainwave.output_guard import remove_stale
-    remove_stale(folder)   # scratch and staged files of runs killed with -9 before this one
+    from strainwave.output_guard import folder_lock, make_owned_dir, remove_stale
+    lock = folder_lock(folder, wait=False) if getattr(args, "out", None) else contextlib.nullcontext()
+    try:
+        lock.__enter__()   # one run at a time in an --out folder; a second is refused in one line
+    except BaseException:
+        for made in created:
+            with contextlib.suppress(OSError):
+                made.rmdir()
+        raise
+    remove_stale(folder)   # scratch and staged files of runs killed with -9 before this one (by their record)
     # multiprocessing keeps its AF_UNIX sockets (fork server) in a temporary folder of its own that it removes
     # itself at exit, after this block has ended; its path must fit the kernel's 108 bytes. So it is made
     # now, in the system's short temporary directory, before TMPDIR points into the scratch: inside the
     # scratch it would be removed under multiprocessing's feet (a traceback at exit) or be too long.
     import multiprocessing.util
     multiprocessing.util.get_temp_dir()
-    scratch = tempfile.mkdtemp(prefix=f".strainwave-scratch-{os.getpid()}-", dir=folder)
+    scratch = str(make_owned_dir(f".strainwave-scratch-{os.getpid()}-", folder))
     saved_env, saved_dir = os.environ.get("TMPDIR"), tempfile.tempdir
     os.environ["TMPDIR"], tempfile.tempdir = scratch, scratch   # children inherit TMPDIR
     try:
@@ -359,6 +378,7 @@ def _scratch_under_outputs(args):
         else:
             os.environ["TMPDIR"] = saved_env
         shutil.rmtree(scratch, ignore_errors=True)
+        lock.__exit__(None, None, None)
         for made in created:   # a refused command leaves no empty output folder behind
             try:
                 made.rmdir()
@@ -662,10 +682,14 @@ def _sigterm_unwinds():
 
 def _run(args) -> int:
     """The command inside its scratch folder, its --out folder marked as strainwave's, its files staged."""
-    from strainwave.output_guard import marked_folder, staged_outputs
+    from strainwave.output_guard import marked_folder, staged_outputs, staged_run
     out = getattr(args, "out", None)
+    force = getattr(args, "force", False)
     with _scratch_under_outputs(args), marked_folder(Path(out)) if out is not None else contextlib.nullcontext():
-        with staged_outputs(args, tuple(name for name, _ in _FILE_OUTPUTS)):
+        # an --out run is staged whole and renamed into place at the end (output_guard.staged_run)
+        whole = staged_run(args, force=force, index=_OUT_INDEX.get(args.command, ())) if out is not None \
+            else contextlib.nullcontext()
+        with whole, staged_outputs(args, tuple(name for name, _ in _FILE_OUTPUTS)):
             return args.func(args)
 
 

@@ -18,7 +18,7 @@ from hypothesis import HealthCheck, given, settings, strategies as st
 from strainwave.cli import main
 from strainwave.compare.diagnose.recording import RecordingKind, format_recording
 from strainwave.errors import InputError
-from strainwave.output_guard import MANIFEST, Planned, check_outputs, remove_stale
+from strainwave.output_guard import MANIFEST, OWNER, Planned, check_outputs, make_owned_dir, remove_stale
 
 _LOAD = np.linspace(0.0, 1000.0, 40)
 _GOOD = format_recording(RecordingKind.TORSION, "output_shaft", _LOAD, _LOAD / 4.0e8 + 1e-10 * np.sin(np.arange(40)))
@@ -187,10 +187,12 @@ def test_stale_scratch_of_killed_runs_is_removed(tmp_path):
     for folder in stale:
         folder.mkdir()
         (folder / "half.vtu").write_text("x")
-    mine = tmp_path / f".strainwave-scratch-{os.getpid()}-abc"
-    mine.mkdir()
+        (folder / OWNER).write_text(json.dumps({"written_by": "strainwave", "pid": pid, "start": None}))
+    mine = make_owned_dir(f".strainwave-scratch-{os.getpid()}-", tmp_path)
+    named_alike = tmp_path / f".strainwave-scratch-{pid}-user"   # the same name pattern, but no owner record
+    named_alike.mkdir()
     assert remove_stale(tmp_path) == 2
-    assert not any(p.exists() for p in stale) and mine.exists()
+    assert not any(p.exists() for p in stale) and mine.exists() and named_alike.exists()
 
 
 # ---- options ---------------------------------------------------------------------------------------------

@@ -199,7 +199,7 @@ def shaft_curve_fea(params, cache_dir: Path | None = None,
     """The output shaft's FEA crack curve (full circumferential crack, the exact axisymmetric section),
     solved on demand at SHAFT_DEPTH_FRACTIONS of the wall on sections SHAFT_CURVE_DENSITY times finer than the
     full run's, and cached per point under ``cache_dir``."""
-    from strainwave.cache import ResultCache, case_key
+    from strainwave.cache import NUMBER, ResultCache, case_key
 
     shaft = params.output_shaft
     wall = 0.5 * (shaft.outer_diameter_mm - shaft.inner_diameter_mm)
@@ -208,7 +208,8 @@ def shaft_curve_fea(params, cache_dir: Path | None = None,
     depths = [round(frac * wall, 6) for frac in SHAFT_DEPTH_FRACTIONS]
     keys = [case_key("shaft-crack-curve", {"params": params.to_dict(), "a_mm": a, "density": SHAFT_CURVE_DENSITY})
             for a in depths]
-    records = {a: cache.get(key) if cache else None for a, key in zip(depths, keys)}
+    records = {a: cache.get(key, {"value": NUMBER, "uncertainty": NUMBER}) if cache else None
+               for a, key in zip(depths, keys)}
     missing = [a for a in depths if records[a] is None]
     for a, rec in zip(missing, _solve_points(params, missing, progress)):
         records[a] = rec

@@ -29,7 +29,8 @@ from strainwave.cache import ResultCache
 from strainwave.registry import study as registered
 from strainwave.compare.sweep.grid import build_points
 from strainwave.compare.sweep.reach import CONNECT_TIMEOUT_S, check_scheduler
-from strainwave.compare.sweep.task import PointSpec, TaskFn, point_key, run_point, task_name, warm_modules
+from strainwave.compare.sweep.task import (PointSpec, TaskFn, point_key, point_record_ok, run_point, task_name,
+                                          warm_modules)
 
 POLL_S = 0.1          # how often the driver looks for finished points
 HEARTBEAT_S = 30.0    # longest silence on the terminal while points are running
@@ -302,7 +303,7 @@ def run_sweep(study: str, *, vary: list[str], params_path: str | Path | None = N
 
     by_key: dict[str, dict] = {}
     for key in keys:
-        hit = cache.get(key)
+        hit = cache.get(key, lambda r: point_record_ok(r, key))
         if hit is not None:
             by_key[key] = {**hit, "cached": True}
     # Most elements first: no worker idles at the end (docs/decisions/013-sweep-worker-start-up.md).

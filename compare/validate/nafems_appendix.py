@@ -76,7 +76,7 @@ class NafemsJob:
         self.key = case_key(self.KEY_KIND, {"level": "coarse", "sizes_mm": nafems.COARSE_SIZES_MM})
         self.started = time.perf_counter()
         self.process = None
-        hit = cache.get(self.key)
+        hit = cache.get(self.key, {"cases": list})
         self.coarse = (hit["cases"], None) if hit is not None and isinstance(hit.get("cases"), list) else None
         if self.coarse is not None:
             progress(f"  nafems: reusing the cached coarse cases ({hit.get('seconds', 0.0):.1f} s originally)")
