@@ -105,7 +105,7 @@ def size_and_life(recording: Path, options: LifeOptions, *, params_path=None, ba
     if options.torque_history is not None:
         spectrum = spectrum_from_history(read_torque_history(options.torque_history))
     rec = parse_recording(recording)
-    params = load_params(params_path, overrides=rec.param_overrides or None)
+    params = load_params(params_path, overrides=rec.param_overrides or None, origin=f"{recording} [params]")
     diag, _ = diagnose(rec, params, baseline)
     sizing = size_diagnosis(diag, params, rec.load, rec.response, results=options.curves, cache_dir=options.cache_dir, progress=progress)
     lives = [] if sizing is None else life_of_sizing(

@@ -24,6 +24,7 @@ from typing import Callable, Iterator
 
 from strainwave.errors import InputError, RangeWarning, StageError
 from strainwave.fea.budget import check_budget
+from strainwave.drive_guard import check_drive
 from strainwave.params import default_dict, load_params, params_from_dict
 from strainwave.cache import ResultCache
 from strainwave.registry import study as registered
@@ -75,8 +76,9 @@ def refuse_impossible(specs: list[PointSpec], where: str) -> list[int]:
         warnings.simplefilter("ignore", RangeWarning)   # possible-but-unusual points warn in their worker
         for index, spec in enumerate(specs):
             try:
-                elements.append(check_budget(spec.study, params_from_dict(spec.merged()), None, spec.quick,
-                                             flag="mesh").elements)
+                point = params_from_dict(spec.merged())
+                check_drive(point)   # the parts inside each other at this point (strainwave/drive_guard.py)
+                elements.append(check_budget(spec.study, point, None, spec.quick, flag="mesh").elements)
             except InputError as exc:
                 values = ", ".join(f"{k}={v}" for k, v in spec.values)
                 bad.append(f"point {index} ({values}): {exc}")
