@@ -270,7 +270,8 @@ def _cmd_sweep(args) -> int:
         check_scheduler(args.scheduler)
     outcome = run_sweep(args.study, vary=args.vary, params_path=args.params, sample_file=args.samples,
                         scheduler=args.scheduler, workers=args.workers, out_dir=Path(args.out),
-                        quick=args.quick, tolerance=args.tolerance, progress=_progress)
+                        quick=args.quick, tolerance=args.tolerance, progress=_progress,
+                        dashboard=args.dashboard)
     _emit(args, outcome.summary(), lambda: _plain(outcome))
     # Failed points are results (recorded with their error); only a sweep with no good point at all fails.
     return 0 if outcome.n_ok else 1
@@ -554,6 +555,8 @@ def _add_sweep(add) -> None:
     p.add_argument("--quick", action="store_true", help="coarse meshes")
     p.add_argument("--tolerance", type=float, default=0.05, metavar="REL",
                    help="relative departure from the closed form (dimensionless, 0.05 = 5 %%) named in the summary")
+    p.add_argument("--dashboard", action="store_true", help="serve the local cluster's Dask dashboard on 127.0.0.1 "
+                   "(this machine only, no login; its address is printed). Without it no HTTP server listens")
 
 
 # the subcommands in the order --help lists them; each adds its parser through ``add`` (build_parser)

@@ -411,6 +411,8 @@ def test_the_local_scheduler_refuses_a_client_without_credentials(tmp_path):
         address = client.scheduler.address
         assert address.startswith("tls://") and n == 1
         assert client.submit(sum, [1, 2]).result(timeout=60) == 3
+        from tests.test_reliability_dask_http import _http_ports, _listening
+        assert not [p for p in _http_ports(client) if _listening(p)], "no HTTP server without --dashboard (issue 53)"
         # Another local user is another process: a failed Client left to the garbage collector in this one
         # can deadlock distributed's shared loop runner.
         for intruder in (address, address.replace("tls://", "tcp://")):
