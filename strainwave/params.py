@@ -36,6 +36,11 @@ class EwgGenerator(enum.Enum):
     CAM_RING = "cam_ring"
 
 
+class ToothProfile(enum.Enum):
+    """The flank form of the flexspline/circular-spline pair (one vocabulary; a new profile is a new member)."""
+    INVOLUTE = "involute"
+
+
 def _positive(key: str, value: float) -> None:
     if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
         raise InputError(key, value, "must be a finite number > 0")
@@ -181,9 +186,16 @@ class WaveGenerator:
     uncracked_radial_stiffness_N_per_mm: float
     bearing_crack_depth_mm: float   # depth of the inner ring's race crack (seed 000's a, for the bearing)
     ball_count: int                 # Z: balls of the wave generator bearing (chosen; the seed gives none)
+    ball_diameter_mm: float         # D_w of the flexible bearing's balls
+    outer_ring_thickness_mm: float  # radial thickness of the flexible outer ring (under the flexspline)
+    groove_radius_ratio: float      # f = groove radius / D_w (Harris: 0.515..0.53 for deep-groove raceways)
 
     def __post_init__(self):
         _positive("wave_generator.bearing_inner_ring_thickness_mm", self.bearing_inner_ring_thickness_mm)
+        _positive("wave_generator.ball_diameter_mm", self.ball_diameter_mm)
+        _positive("wave_generator.outer_ring_thickness_mm", self.outer_ring_thickness_mm)
+        _in_open("wave_generator.groove_radius_ratio", self.groove_radius_ratio, 0.5, 1.0,
+                 ": a groove wider than the ball (> 0.5) that still conforms (< 1)")
         if len(self.contact_semi_axes_mm) != 2:
             raise InputError("wave_generator.contact_semi_axes_mm", list(self.contact_semi_axes_mm),
                              "must be two numbers [a', b'] > 0")
@@ -197,6 +209,33 @@ class WaveGenerator:
         if not isinstance(self.ball_count, int) or self.ball_count < 3:
             raise InputError("wave_generator.ball_count", self.ball_count, "must be an integer >= 3")
         check_bounds("wave_generator", self)   # after the checks above, whose messages are more specific
+
+
+@dataclass(frozen=True)
+class CircularSpline:
+    """The rigid internal gear: Z_c = flexspline_cup.teeth + gear.wave_number teeth (a dual wave: Z_f + 2)."""
+
+    profile: ToothProfile            # flank form of both toothed parts
+    profile_source: str              # where the profile comes from (a standard, a patent, a drawing)
+    pressure_angle_deg: float        # alpha of the basic rack (both parts)
+    addendum_coefficient: float      # h_a / m of the circular spline's teeth
+    backlash_mm: float               # circumferential clearance per flank pair at the pitch circle, unloaded
+    outer_diameter_mm: float         # the spline's rim
+    face_width_mm: float             # b: the teeth's axial length (the flexspline's toothed rim is as wide)
+    flank_friction_coefficient: float   # mu of the flanks (boundary lubrication)
+    flank_friction_source: str       # where mu comes from
+
+    def __post_init__(self):
+        _in_open("circular_spline.pressure_angle_deg", self.pressure_angle_deg, 0.0, 45.0)
+        _in_open("circular_spline.addendum_coefficient", self.addendum_coefficient, 0.0, 2.0)
+        if not (math.isfinite(self.backlash_mm) and self.backlash_mm >= 0.0):
+            raise InputError("circular_spline.backlash_mm", self.backlash_mm, "must be a finite number >= 0")
+        for name in ("outer_diameter_mm", "face_width_mm"):
+            _positive(f"circular_spline.{name}", getattr(self, name))
+        if not (math.isfinite(self.flank_friction_coefficient) and 0.0 <= self.flank_friction_coefficient < 1.0):
+            raise InputError("circular_spline.flank_friction_coefficient", self.flank_friction_coefficient,
+                             "must lie in [0, 1): a lubricated steel flank")
+        check_bounds("circular_spline", self)
 
 
 @dataclass(frozen=True)
@@ -294,6 +333,7 @@ class Params:
     flexspline_cup: FlexsplineCup
     output_shaft: OutputShaft
     wave_generator: WaveGenerator
+    circular_spline: CircularSpline
     cracks: Cracks
     ewg_drive: EwgDrive
     crack_geometry: CrackGeometry
@@ -422,6 +462,11 @@ def _coerce(key: str, value: object, annotation: object):
         if not isinstance(value, (list, tuple)):
             raise InputError(key, value, "must be a list of numbers")
         return tuple(_coerce(key, v, float) for v in value)
+    if annotation is str:
+        if not isinstance(value, str) or len(value) > 500 or not value.isprintable():
+            raise InputError(key, value if isinstance(value, str) else type(value).__name__,
+                             "must be one line of text (<= 500 characters)")
+        return value
     raise TypeError(f"no coercion for {annotation!r}")  # a schema bug, not user input
 
 
