@@ -12,7 +12,10 @@ from the parameters alone and with the parts' own construction rules (geometry/*
   w0 < r / (U^2 - 1) (linear ring theory: kappa = 1/r - (U^2 - 1) w0 cos(U phi) / r^2);
 - the contact patch on its ring: narrower than the ring's thickness (the Hertz half-space the patch
   comes from), one patch per ball pitch 2 pi R / Z, and the ring (4 a' wide) inside the cup's length;
+- the balls and the flexible outer ring between the inner ring's race and the cup's bore, the balls around
+  their circle;
 - the bearing's race crack (half length c from Q) inside the ring's width;
+- the cup, bent to its major axis, inside the circular spline's rim, and the spline's teeth on the cup;
 - the EWG drive: its generator's W0 = m dZ / 2 against the ring's radii.
 
 A refusal names the user's own key (one line, exit 2) and, when the limit is derived, the keys it comes from.
@@ -30,10 +33,12 @@ def check_drive(params) -> None:
     """Refuse (InputError naming the key) a parameter set whose parts cannot sit in each other."""
     _cup(params)
     _bearing_in_cup(params)
+    _balls_and_outer_ring(params)
     _w0_against_rings(params)
     _contact_patch(params)
     _bearing_crack(params)
     _ewg(params)
+    _cup_in_circular_spline(params)
 
 
 def _cup(params) -> None:
@@ -69,6 +74,24 @@ def _bearing_in_cup(params) -> None:
         raise InputError("wave_generator.bearing_inner_ring_thickness_mm", t_i,
                          f"the bearing ring would close its bore inside the cup: need 2.5 t_i < d1/2 - delta = "
                          f"{r['cup_bore']:g} mm (from flexspline_cup.pitch_diameter_mm and wall_thickness_mm)")
+
+
+def _balls_and_outer_ring(params) -> None:
+    """The balls and the flexible outer ring in the room the inner ring leaves under the cup's bore, and the
+    balls around the race's pitch circle."""
+    wg = params.wave_generator
+    r = _radii(params)
+    room = r["cup_bore"] - r["race"]
+    if wg.ball_diameter_mm + wg.outer_ring_thickness_mm >= room:
+        raise InputError("wave_generator.ball_diameter_mm", wg.ball_diameter_mm,
+                         f"the ball and the outer ring (wave_generator.outer_ring_thickness_mm = "
+                         f"{wg.outer_ring_thickness_mm:g} mm) must fit the {room:g} mm between the inner ring's race and "
+                         f"the cup's bore (1.5 wave_generator.bearing_inner_ring_thickness_mm)")
+    circle = 2 * math.pi * (r["race"] + wg.ball_diameter_mm / 2)
+    if wg.ball_count * wg.ball_diameter_mm >= circle:
+        raise InputError("wave_generator.ball_count", wg.ball_count,
+                         f"{wg.ball_count} balls of wave_generator.ball_diameter_mm = {wg.ball_diameter_mm:g} mm do not "
+                         f"fit around the ball circle of {circle:g} mm")
 
 
 def _w0_against_rings(params) -> None:
@@ -120,6 +143,23 @@ def _bearing_crack(params) -> None:
                          f"its surface length 2c = {2 * c:g} mm (c from cracks.surface_crack_shape_factor = "
                          f"{params.cracks.surface_crack_shape_factor:g}) must fit the ring's width {width:g} mm "
                          f"(4 a', wave_generator.contact_semi_axes_mm)")
+
+
+def _cup_in_circular_spline(params) -> None:
+    """The cup, bent to its major axis (tooth tips at r_tip + w0), inside the circular spline's rim; its toothed rim
+    (as wide as the spline's teeth) on the cup."""
+    from strainwave.geometry.involute import cup_tooth_spec
+
+    cs, fc = params.circular_spline, params.flexspline_cup
+    reach = cup_tooth_spec(params).tip_radius_mm + params.gear.radial_deformation_mm
+    if cs.outer_diameter_mm / 2 <= reach:
+        raise InputError("circular_spline.outer_diameter_mm", cs.outer_diameter_mm,
+                         f"must exceed the cup's tooth tips at the major axis, 2 (r_tip + w0) = {2 * reach:g} mm "
+                         f"(from flexspline_cup.pitch_diameter_mm, module_mm, teeth and gear.radial_deformation_mm)")
+    if cs.face_width_mm >= fc.length_mm:
+        raise InputError("circular_spline.face_width_mm", cs.face_width_mm,
+                         f"the teeth (and the cup's toothed rim, as wide) must be shorter than the cup, "
+                         f"flexspline_cup.length_mm = {fc.length_mm:g} mm")
 
 
 def _ewg(params) -> None:

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import errno
 import fcntl
+import glob
 import hashlib
 import json
 import os
@@ -147,9 +148,13 @@ def _write_manifest(folder: Path, files: dict) -> None:
     atomic_write_text(folder / MANIFEST, json.dumps({"written_by": "strainwave", "files": files}, indent=1) + "\n")
 
 
+_WRITTEN: set[Path] = set()   # every file this process renamed into place: never a previous run's to remove
+
+
 def record_written(paths: list[Path]) -> None:
     """Add ``paths`` (just written) to their folders' manifests, each under its folder's lock."""
     by_folder: dict[Path, list[Path]] = {}
+    _WRITTEN.update(paths)
     for p in paths:
         by_folder.setdefault(p.parent, []).append(p)
     for folder, members in by_folder.items():
@@ -387,11 +392,11 @@ def _staged_files(stage: Path) -> list[Path]:
     return out
 
 
-def _commit_run(stage: Path, final: Path, index: tuple[str, ...], force: bool, flag: str) -> None:
+def _commit_run(stage: Path, final: Path, index: tuple[str, ...], force: bool, flag: str, old: dict) -> None:
     """Rename the run's files from ``stage`` into ``final`` (its index files last), remove the previous run's
-    files this one did not write (those still as written), and record the new set in the manifest."""
+    files (``old``, the manifest as the run found it) this one did not write while they are still as written, and
+    record the new set in the manifest, beside what the run's single-file outputs added to it meanwhile."""
     new = _staged_files(stage)
-    old = _manifest(final)
     for rel in new:   # refused before anything moves: the previous set stays complete
         dest = final / rel
         if dest.is_file() and dest.stat().st_size > 0 and not force and not _matches(old.get(rel.as_posix()), dest):
@@ -406,10 +411,12 @@ def _commit_run(stage: Path, final: Path, index: tuple[str, ...], force: bool, f
             os.replace(stage / rel, final / rel)
         for name, entry in old.items():   # the previous run's files, unless the user changed them since
             path = final / name
-            if name not in records and _matches(entry, path):
+            if name not in records and path not in _WRITTEN and _matches(entry, path):
                 path.unlink()
                 _prune_empty(path.parent, final)
-        _write_manifest(final, records)
+        added = {k: v for k, v in _manifest(final).items()   # the run's --json FILE, written beside it meanwhile
+                 if k not in records and (k not in old or final / k in _WRITTEN)}
+        _write_manifest(final, {**added, **records})
 
 
 @contextmanager
@@ -455,13 +462,14 @@ def staged_run(args, *, force: bool, index: tuple[str, ...] = (), flag: str = "-
     made_cache = not cache.exists()
     cache.mkdir(exist_ok=True)
     stage = make_owned_dir(f"{STAGE_PREFIX}{os.getpid()}-", final)
+    before = _manifest(final)
     os.symlink(os.path.join("..", "cache"), stage / "cache")   # finished cases are kept even if the run stops
     _STAGED[str(stage)] = str(final)
     saved = args.out
     args.out = str(stage)
     try:
         yield
-        _commit_run(stage, final, index, force, flag)
+        _commit_run(stage, final, index, force, flag, before)
     finally:
         args.out = saved
         _STAGED.pop(str(stage), None)
@@ -476,7 +484,8 @@ def staged_run(args, *, force: bool, index: tuple[str, ...] = (), flag: str = "-
 def reuse_output(recorded: str | Path) -> Path | None:
     """A file an earlier run wrote (its path as that run recorded it, perhaps inside its since-removed
     staging folder) made available where this run writes it: linked into this run's staging folder when it
-    is still strainwave's and unchanged. None when it is gone or was changed."""
+    is still strainwave's and unchanged, with the files written beside it (NAME.* : NAME.boundary.vtu).
+    None when it is gone or was changed."""
     path = Path(recorded)
     final = Path(*[part for part in path.parts if not part.startswith(STAGE_PREFIX)])
     for stage, final_dir in sorted(_STAGED.items(), key=lambda kv: -len(kv[1])):
@@ -489,10 +498,18 @@ def reuse_output(recorded: str | Path) -> Path | None:
             return target
         if not (final.is_file() and is_ours(final)):
             return None
-        target.parent.mkdir(parents=True, exist_ok=True)
-        try:
-            os.link(final, target)
-        except OSError:
-            shutil.copy2(final, target)
+        for companion in [final, *final.parent.glob(f"{glob.escape(final.stem)}.*")]:
+            if companion == final or (companion.is_file() and is_ours(companion)):
+                _link(companion, Path(stage) / companion.relative_to(final_dir))
         return target
     return path if path.is_file() else None
+
+
+def _link(source: Path, target: Path) -> None:
+    target.parent.mkdir(parents=True, exist_ok=True)
+    if target.exists():
+        return
+    try:
+        os.link(source, target)
+    except OSError:   # another file system, or one without hard links
+        shutil.copy2(source, target)

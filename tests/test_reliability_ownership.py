@@ -59,7 +59,7 @@ def _sweep(out: Path, *extra) -> int:
     return main(["sweep", "shaft-torsion", "--vary", "output_shaft.length_mm=100,120", "--out", str(out), *extra])
 
 
-RUN_1 = {"points.json": "[1]", "summary.md": "one", "plots/a.png": "a1", "plots/b.png": "b1"}
+RUN_1 = {"points.json": "[1]", "summary.md": "one", "plots/a.png": "a1", "plots/b.png": "b1", "plots/a.boundary.vtu": "ab"}
 RUN_2 = {"points.json": "[2]", "summary.md": "two", "plots/a.png": "a2"}
 
 
@@ -187,6 +187,16 @@ def test_a_file_of_an_earlier_run_is_reused_only_while_unchanged(tmp_path, monke
     monkeypatch.setattr(pipeline, "run_sweep", run_sweep)
     assert _sweep(out) == 0
     assert seen["reused"][1] == "a1" and ".strainwave-stage-" in seen["reused"][0], "linked into this run's stage"
+    assert (out / "plots" / "a.boundary.vtu").read_text() == "ab", "with the file written beside it"
     assert seen["changed"] is None
     assert (out / "plots" / "a.png").read_text() == "a1" and (out / "plots" / "b.png").read_text() == "edited"
-    assert set(json.loads((out / MANIFEST).read_text())["files"]) == {"plots/a.png"}
+    assert set(json.loads((out / MANIFEST).read_text())["files"]) == {"plots/a.png", "plots/a.boundary.vtu"}
+
+
+def test_a_json_summary_written_into_the_out_folder_is_kept_and_listed(tmp_path, monkeypatch):
+    out = tmp_path / "s"
+    _fake_sweep(monkeypatch, RUN_1)
+    assert _sweep(out, "--json", str(out / "summary.json")) == 0
+    assert _sweep(out, "--json", str(out / "summary.json")) == 0, "its own summary is strainwave's on the rerun"
+    assert json.loads((out / "summary.json").read_text()) is not None
+    assert "summary.json" in json.loads((out / MANIFEST).read_text())["files"]
