@@ -709,9 +709,9 @@ def _unexpected(exc: Exception, args, debug: bool) -> int:
         return _terminated()
     full = _disk_full(exc)
     if full is not None:   # a genuine failure, not bad input
-        from strainwave.output_guard import unstage_text
+        from strainwave.output_guard import target_of
         where = full.filename or (args is not None and _output_folder(args)) or "the output folder"
-        print(f"error: disk full: {printable(unstage_text(str(where)))}", file=sys.stderr)
+        print(f"error: disk full: {printable(target_of(str(where)))}", file=sys.stderr)
         return 1
     print(f"error: internal error ({type(exc).__name__}: {printable(str(exc))}); rerun with --debug", file=sys.stderr)
     if debug:

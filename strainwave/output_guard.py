@@ -337,14 +337,25 @@ def check_outputs(planned: list[Planned], inputs: dict[str, str | None], *, forc
 
 # ---- staging ---------------------------------------------------------------------------------------------
 
-# staging folder -> the folder its files go to, for the paths a command prints while it is staged
+# staging folder -> the folder its files go to, while it is staged; _NAMES keeps every pair of the process, so a
+# message printed after a failure removed the stage (a full disk) still names where the files were going
 _STAGED: dict[str, str] = {}
+_NAMES: dict[str, str] = {}
 _TEMP = re.compile(r"^\..+\.[0-9a-f]{12}(\.[^.]*)?\.tmp$")
+
+
+def target_of(path: str) -> str:
+    """The output a staged or temporary path stands for: its staging folder replaced by the folder its files go
+    to, a writer's temporary name (``.NAME.<12 hex>.SUFFIX.tmp``, io_atomic) by NAME."""
+    text = unstage_text(str(path))
+    head, _, name = text.rpartition("/")
+    m = re.match(r"^\.(.+)\.[0-9a-f]{12}(\.[^.]*)?\.tmp$", name)
+    return f"{head}/{m.group(1)}" if m and head else (m.group(1) if m else text)
 
 
 def unstage_text(text: str) -> str:
     """``text`` with each staging folder replaced by the folder its files go to."""
-    for stage, final in _STAGED.items():
+    for stage, final in {**_NAMES, **_STAGED}.items():
         text = text.replace(stage, final)   # its random name occurs nowhere else
     return text
 
@@ -362,7 +373,7 @@ def staged_outputs(args, names: tuple[str, ...]) -> Iterator[None]:
         if final.parent not in stages:
             final.parent.mkdir(parents=True, exist_ok=True)
             stages[final.parent] = make_owned_dir(f"{STAGE_PREFIX}{os.getpid()}-", final.parent)
-            _STAGED[str(stages[final.parent])] = str(final.parent)
+            _STAGED[str(stages[final.parent])] = _NAMES[str(stages[final.parent])] = str(final.parent)
         setattr(args, name, str(stages[final.parent] / final.name))
     try:
         yield
@@ -464,7 +475,7 @@ def staged_run(args, *, force: bool, index: tuple[str, ...] = (), flag: str = "-
     stage = make_owned_dir(f"{STAGE_PREFIX}{os.getpid()}-", final)
     before = _manifest(final)
     os.symlink(os.path.join("..", "cache"), stage / "cache")   # finished cases are kept even if the run stops
-    _STAGED[str(stage)] = str(final)
+    _STAGED[str(stage)] = _NAMES[str(stage)] = str(final)
     saved = args.out
     args.out = str(stage)
     try:

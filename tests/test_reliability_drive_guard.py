@@ -117,3 +117,16 @@ def test_every_drawn_drive_passes_and_solves_or_is_refused_in_one_line(factors, 
         summary = analytic_summary(params)
     numbers = _finite_numbers(summary)
     assert numbers and all(math.isfinite(x) for x in numbers), [x for x in numbers if not math.isfinite(x)][:5]
+
+
+def test_a_part_too_fine_for_its_wall_is_refused_naming_its_keys_not_a_flag(tmp_path, capsys):
+    """The issue: refusals named --params or --mesh-size-mm (never given) for what the parameters themselves do."""
+    params = tmp_path / "p.toml"
+    params.write_text("[flexspline_cup]\nwall_thickness_mm = 0.05\nroot_crack_depth_mm = 0.03\n"
+                      "[crack_geometry]\nslot_width_mm = 0.005\n")
+    for argv in (["validate", "--quick", "--out", str(tmp_path / "v")], ["solve", "cup-torsion"]):
+        err = _refusal(capsys, main([*argv, "--params", str(params)]))
+        assert "flexspline_cup.pitch_diameter_mm, wall_thickness_mm, length_mm" in err, err
+        assert "--params" not in err and "--mesh-size-mm" not in err, err
+    err = _refusal(capsys, main(["solve", "cup-torsion", "--mesh-size-mm", "0.01"]))
+    assert err.startswith("error: --mesh-size-mm = 0.01: "), "a size the user gave is named as given"

@@ -177,7 +177,14 @@ def test_a_failed_command_leaves_none_of_its_outputs(tmp_path, capsys, monkeypat
     status = main(["diagnose", str(rec), "--json", str(tmp_path / "d.json"), "--plot", str(tmp_path / "d.png")])
     err = capsys.readouterr().err
     assert status == 1 and err.startswith("error: disk full: ") and err.count("\n") == 1, err
+    assert err == f"error: disk full: {tmp_path / 'd.json'}\n", "the target, not its staging folder (issue 53)"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["r.csv"]
+
+
+def test_a_full_disk_under_a_temporary_name_names_the_target():
+    from strainwave.output_guard import target_of
+    assert target_of("/x/out/.results.json.0123456789ab.json.tmp") == "/x/out/results.json"
+    assert target_of("/x/out/report.md") == "/x/out/report.md"
 
 
 def test_stale_scratch_of_killed_runs_is_removed(tmp_path):
@@ -255,7 +262,8 @@ def test_the_bearing_budget_counts_the_contact_patch():
     from strainwave.fea.budget import MAX_ELEMENTS, estimate
     from strainwave.params import load_params
     base = load_params()
-    long_patch = load_params(overrides={"wave_generator": {"contact_semi_axes_mm": [1e3, 3.0]}})
+    # an impossible drive (the guard refuses it: the ring would be 4 m wide), built past the guard: the budget alone
+    long_patch = base.with_value("wave_generator.contact_semi_axes_mm", [1e3, 3.0])
     assert estimate("bearing-ring", base, None).elements < MAX_ELEMENTS
     assert estimate("bearing-ring", long_patch, 20.0).elements > MAX_ELEMENTS
 
@@ -269,7 +277,7 @@ def test_diagnose_fea_baseline_is_budgeted(tmp_path, capsys):
     start = time.perf_counter()
     status = main(["diagnose", str(rec), "--baseline", "fea"])
     assert time.perf_counter() - start < 10
-    assert "would need about" in _one_line_refusal(capsys, status)
+    assert "would need that many" in _one_line_refusal(capsys, status)
 
 
 # ---- meshing guard --------------------------------------------------------------------------------------

@@ -200,3 +200,14 @@ def test_a_json_summary_written_into_the_out_folder_is_kept_and_listed(tmp_path,
     assert _sweep(out, "--json", str(out / "summary.json")) == 0, "its own summary is strainwave's on the rerun"
     assert json.loads((out / "summary.json").read_text()) is not None
     assert "summary.json" in json.loads((out / MANIFEST).read_text())["files"]
+
+
+def test_size_crack_reads_its_curves_file_before_any_work(tmp_path, capsys):
+    """Minor item: `size-crack ... --curves garbage.bin` exited 0 without reading it."""
+    from tests.test_reliability_guards import _GOOD
+    (tmp_path / "r.csv").write_text(_GOOD)
+    (tmp_path / "garbage.bin").write_bytes(bytes(range(256)) * 8)
+    (tmp_path / "other.json").write_text('{"checks": []}')
+    for name in ("garbage.bin", "other.json"):
+        err = _refusal(capsys, main(["size-crack", str(tmp_path / "r.csv"), "--curves", str(tmp_path / name)]))
+        assert err.startswith(f"error: --curves = '{tmp_path / name}': a validate results.json"), err

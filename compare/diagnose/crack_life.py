@@ -104,6 +104,9 @@ def size_and_life(recording: Path, options: LifeOptions, *, params_path=None, ba
     spectrum = None
     if options.torque_history is not None:
         spectrum = spectrum_from_history(read_torque_history(options.torque_history))
+    if options.curves is not None:   # read before any work (issue 53: a wrong file was never read)
+        from strainwave.compare.diagnose.crack_sizing import read_results
+        read_results(options.curves)
     rec = parse_recording(recording)
     params = load_params(params_path, overrides=rec.param_overrides or None, origin=f"{recording} [params]")
     diag, _ = diagnose(rec, params, baseline)
