@@ -30,8 +30,9 @@ def sw(cwd: Path, *argv, timeout: float = 900, env: dict | None = None) -> subpr
 
 
 def one_line(done, status=2) -> bool:
-    errors = [ln for ln in done.stderr.splitlines() if ln.strip() and not ln.startswith("warning: ")]
-    return done.returncode == status and len(errors) == (1 if status == 2 else 0) and "Traceback" not in done.stderr
+    errors = [ln for ln in done.stderr.splitlines() if ln.startswith("error: ") or "Traceback" in ln]
+    return done.returncode == status and len(errors) == (1 if status == 2 else 0) and \
+        (status != 2 or len([ln for ln in done.stderr.splitlines() if ln.strip() and not ln.startswith("warning: ")]) == 1)
 
 
 def digest(path: Path) -> str:

@@ -44,7 +44,9 @@ def nafems_appendix(out_dir: Path, progress: Callable[[str], None] = lambda m: N
     cases = list(cases)
     if error:
         notes.append(error)
-    record = (Path(out_dir) / BENCH_RECORD).resolve()
+    from strainwave.output_guard import unstage_text
+    # from the folder the run's files go to, not its staging folder inside it
+    record = (Path(unstage_text(str(Path(out_dir).resolve()))) / BENCH_RECORD).resolve()
     if record.exists():
         fine = json.loads(record.read_text())
         cases += fine["cases"]
