@@ -352,39 +352,37 @@ def _scratch_under_outputs(args):
     created = [p for p in (folder, *folder.parents) if not p.exists()]   # deepest first
     folder.mkdir(parents=True, exist_ok=True)
     from strainwave.output_guard import folder_lock, make_owned_dir, remove_stale
-    lock = folder_lock(folder, wait=False) if getattr(args, "out", None) else contextlib.nullcontext()
-    try:
-        lock.__enter__()   # one run at a time in an --out folder; a second is refused in one line
-    except BaseException:
-        for made in created:
-            with contextlib.suppress(OSError):
-                made.rmdir()
-        raise
-    remove_stale(folder)   # scratch and staged files of runs killed with -9 before this one (by their record)
-    # multiprocessing keeps its AF_UNIX sockets (fork server) in a temporary folder of its own that it removes
-    # itself at exit, after this block has ended; its path must fit the kernel's 108 bytes. So it is made
-    # now, in the system's short temporary directory, before TMPDIR points into the scratch: inside the
-    # scratch it would be removed under multiprocessing's feet (a traceback at exit) or be too long.
-    import multiprocessing.util
-    multiprocessing.util.get_temp_dir()
-    scratch = str(make_owned_dir(f".strainwave-scratch-{os.getpid()}-", folder))
-    saved_env, saved_dir = os.environ.get("TMPDIR"), tempfile.tempdir
-    os.environ["TMPDIR"], tempfile.tempdir = scratch, scratch   # children inherit TMPDIR
-    try:
-        yield
-    finally:
-        tempfile.tempdir = saved_dir
-        if saved_env is None:
-            os.environ.pop("TMPDIR", None)
-        else:
-            os.environ["TMPDIR"] = saved_env
-        shutil.rmtree(scratch, ignore_errors=True)
-        lock.__exit__(None, None, None)
-        for made in created:   # a refused command leaves no empty output folder behind
-            try:
-                made.rmdir()
-            except OSError:
-                break   # not empty: the command wrote its outputs there
+    with contextlib.ExitStack() as stack:
+        stack.callback(_remove_empty, created)   # a refused command leaves no empty output folder behind
+        if getattr(args, "out", None):   # one run at a time in an --out folder; a second is refused in one line
+            stack.enter_context(folder_lock(folder, wait=False))
+        remove_stale(folder)   # scratch and staged files of runs killed with -9 before this one (by their record)
+        # multiprocessing keeps its AF_UNIX sockets (fork server) in a temporary folder of its own that it removes
+        # itself at exit, after this block has ended; its path must fit the kernel's 108 bytes. So it is made
+        # now, in the system's short temporary directory, before TMPDIR points into the scratch: inside the
+        # scratch it would be removed under multiprocessing's feet (a traceback at exit) or be too long.
+        import multiprocessing.util
+        multiprocessing.util.get_temp_dir()
+        scratch = str(make_owned_dir(f".strainwave-scratch-{os.getpid()}-", folder))
+        stack.callback(shutil.rmtree, scratch, ignore_errors=True)
+        saved_env, saved_dir = os.environ.get("TMPDIR"), tempfile.tempdir
+        os.environ["TMPDIR"], tempfile.tempdir = scratch, scratch   # children inherit TMPDIR
+        try:
+            yield
+        finally:
+            tempfile.tempdir = saved_dir
+            if saved_env is None:
+                os.environ.pop("TMPDIR", None)
+            else:
+                os.environ["TMPDIR"] = saved_env
+
+
+def _remove_empty(created: list[Path]) -> None:
+    for made in created:   # deepest first; one not empty holds the command's outputs
+        try:
+            made.rmdir()
+        except OSError:
+            break
 
 
 # ---- parser ------------------------------------------------------------------------------------
