@@ -139,6 +139,23 @@ def _cmd_params(args) -> int:
     return 0
 
 
+@contextlib.contextmanager
+def _crack_flag(depth_mm: float | None):
+    """A refusal of the crack a user gave as --crack-depth-mm names that flag, not the parameter key or the
+    geometry's argument it was passed on as (issue 53: refusals name what the user gave)."""
+    try:
+        yield
+    except InputError as exc:
+        if depth_mm is None:
+            raise
+        if str(exc.key).endswith("crack_depth_mm") and exc.value == depth_mm:
+            raise InputError("--crack-depth-mm", depth_mm, exc.allowed) from None
+        if exc.key == "crack_geometry.slot_width_mm":   # the parameters' own cracks passed this: the flag's is too shallow
+            raise InputError("--crack-depth-mm", depth_mm, f"must be >= 5 x crack_geometry.slot_width_mm = "
+                                                           f"{5 * exc.value:g} mm (a slot, not a notch)") from None
+        raise
+
+
 def _cmd_export_step(args) -> int:
     from strainwave.fea.budget import TOOTHED_PARTS, check_cad_teeth
     from strainwave.geometry.export import export_part
@@ -146,8 +163,9 @@ def _cmd_export_step(args) -> int:
     if not args.no_teeth:
         check_cad_teeth(params, list(TOOTHED_PARTS) if args.part == "assembly" else [args.part])
     try:
-        written = export_part(args.part, params, Path(args.output), crack_depth_mm=args.crack_depth_mm,
-                              teeth=not args.no_teeth, png=Path(args.png) if args.png else None)
+        with _crack_flag(args.crack_depth_mm):
+            written = export_part(args.part, params, Path(args.output), crack_depth_mm=args.crack_depth_mm,
+                                  teeth=not args.no_teeth, png=Path(args.png) if args.png else None)
     except (StrainwaveError, OSError):
         raise
     except Exception as exc:   # noqa: BLE001 - OCC's own failures ("Could not create line", "No geometry")
@@ -158,7 +176,11 @@ def _cmd_export_step(args) -> int:
 
 
 def _cmd_solve(args) -> int:
-    import tempfile
+    with _crack_flag(args.crack_depth_mm):
+        return _solve(args)
+
+
+def _solve(args) -> int:
 
     from strainwave.fea.budget import check_budget
     from strainwave.fea.studies import run_study, with_crack

@@ -130,3 +130,17 @@ def test_a_part_too_fine_for_its_wall_is_refused_naming_its_keys_not_a_flag(tmp_
         assert "--params" not in err and "--mesh-size-mm" not in err, err
     err = _refusal(capsys, main(["solve", "cup-torsion", "--mesh-size-mm", "0.01"]))
     assert err.startswith("error: --mesh-size-mm = 0.01: "), "a size the user gave is named as given"
+
+
+@pytest.mark.parametrize("argv", [["solve", "shaft-torsion", "--crack-depth-mm", "50"],
+                                  ["solve", "bearing-ring", "--crack-depth-mm", "20"],
+                                  ["export-step", "--part", "output-shaft", "--crack-depth-mm", "50", "-o", "{d}/a.step"],
+                                  ["export-step", "--part", "assembly", "--crack-depth-mm", "5", "-o", "{d}/a.step"],
+                                  ["export-step", "--part", "wg-bearing-ring", "--crack-depth-mm", "0.01", "-o",
+                                   "{d}/a.step"]])
+def test_a_crack_given_on_the_command_line_is_refused_as_given(tmp_path, capsys, argv):
+    """It was named as the parameter key (output_shaft.crack_depth_mm), the geometry's argument (crack_depth_mm) or
+    the slot width the user never changed."""
+    err = _refusal(capsys, main([a.format(d=tmp_path) for a in argv]))
+    assert err.startswith(f"error: --crack-depth-mm = {float(argv[argv.index('--crack-depth-mm') + 1])}: "), err
+    assert not list(tmp_path.iterdir())
