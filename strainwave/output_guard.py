@@ -308,8 +308,9 @@ def _check_folder(out: Planned, target: Path, inputs: dict[str, Path], force: bo
     for name in out.writes:   # a file the user put where the run writes its index
         path = target / name
         if path.is_file() and name not in files and path.stat().st_size > 0:
-            raise InputError(out.flag, out.path, f"holds {name}, which strainwave did not write; the run "
-                                                 f"would replace it: move it away or pass --force")
+            raise InputError(out.flag, out.path, f"holds {name}, which strainwave did not write (or an earlier "
+                                                 f"version wrote without listing it); the run would replace it: "
+                                                 f"move it away or pass --force")
 
 
 def check_outputs(planned: list[Planned], inputs: dict[str, str | None], *, force: bool) -> dict[str, Path]:
