@@ -135,7 +135,6 @@ def test_a_part_too_fine_for_its_wall_is_refused_naming_its_keys_not_a_flag(tmp_
 @pytest.mark.parametrize("argv", [["solve", "shaft-torsion", "--crack-depth-mm", "50"],
                                   ["solve", "bearing-ring", "--crack-depth-mm", "20"],
                                   ["export-step", "--part", "output-shaft", "--crack-depth-mm", "50", "-o", "{d}/a.step"],
-                                  ["export-step", "--part", "assembly", "--crack-depth-mm", "5", "-o", "{d}/a.step"],
                                   ["export-step", "--part", "wg-bearing-ring", "--crack-depth-mm", "0.01", "-o",
                                    "{d}/a.step"]])
 def test_a_crack_given_on_the_command_line_is_refused_as_given(tmp_path, capsys, argv):
