@@ -181,6 +181,7 @@ def _cmd_solve(args) -> int:
 
 
 def _solve(args) -> int:
+    import tempfile
 
     from strainwave.fea.budget import check_budget
     from strainwave.fea.studies import run_study, with_crack
@@ -190,9 +191,8 @@ def _solve(args) -> int:
     with_crack(args.study, params, args.crack_depth_mm)
     check_budget(args.study, params, args.mesh_size_mm)
     # The field is always written (to a scratch folder without --vtu): the rated-load peaks are read from it.
-    from strainwave.output_guard import remove_stale
+    from strainwave.output_guard import make_owned_dir, remove_stale
     remove_stale(tempfile.gettempdir())   # killed solves' folders, when the scratch is the system's
-    from strainwave.output_guard import make_owned_dir
     scratch = make_owned_dir(f"strainwave-solve-{os.getpid()}-")   # under the run's scratch, its owner recorded
     try:
         vtu = Path(args.vtu) if args.vtu else Path(scratch) / f"{args.study}.vtu"
