@@ -60,18 +60,18 @@ def folder_beside_json(cwd):
 
 def folder_in_out(cwd):
     (cwd / "o").mkdir()
-    (cwd / "o" / "strainwave-scratch-1-old").mkdir()
-    (cwd / "o" / "strainwave-scratch-1-old" / "notes.txt").write_text("mine")
+    (cwd / "o" / "strainwave-scratch-99999999-old").mkdir()
+    (cwd / "o" / "strainwave-scratch-99999999-old" / "notes.txt").write_text("mine")
     done = sw(cwd, "params", "--json", "o/p.json")
-    return one_line(done, 0) and (cwd / "o" / "strainwave-scratch-1-old" / "notes.txt").exists(), done.stderr[-200:]
+    return one_line(done, 0) and (cwd / "o" / "strainwave-scratch-99999999-old" / "notes.txt").exists(), done.stderr[-200:]
 
 
 def folder_in_tmp_on_solve(cwd):
     tmp = cwd / "tmp"
-    (tmp / "strainwave-solve-1-results").mkdir(parents=True)
-    (tmp / "strainwave-solve-1-results" / "a.vtu").write_text("mine")
+    (tmp / "strainwave-solve-99999999-results").mkdir(parents=True)
+    (tmp / "strainwave-solve-99999999-results" / "a.vtu").write_text("mine")
     done = sw(cwd, "solve", "shaft-torsion", "--mesh-size-mm", "12", env={**ENV, "TMPDIR": str(tmp)})
-    return one_line(done, 0) and (tmp / "strainwave-solve-1-results" / "a.vtu").exists(), done.stderr[-200:]
+    return one_line(done, 0) and (tmp / "strainwave-solve-99999999-results" / "a.vtu").exists(), done.stderr[-200:]
 
 
 # ---- 2. user files replaced --------------------------------------------------------------------------------
