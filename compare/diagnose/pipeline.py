@@ -222,7 +222,7 @@ def diagnose_file(path: Path, *, params_path=None, baseline: str = "analytic", j
     diagnose, write JSON/plot atomically."""
     from strainwave.params import load_params
     rec = parse_recording(path, flags)
-    params = load_params(params_path, overrides=rec.param_overrides or None)
+    params = load_params(params_path, overrides=rec.param_overrides or None, origin=f"{path} [params]")
     diag, arrays = diagnose(rec, params, baseline)
     if json_out is not None:
         atomic_write_text(Path(json_out), json.dumps(json_ready(diag.to_dict()), indent=2, allow_nan=False) + "\n")
