@@ -13,10 +13,10 @@ eps(r) = (w + w'')/r + C' = -3 w0 cos 2phi / r + C'. The cam presses radially on
 gives N' = -M'/r_m, i.e. a membrane force N = -M/r_m (compressive where the race is in tension), which fixes
 C'; with r_n = t/ln(r_o/r_i) (Winkler's neutral radius)
 
-    sigma(r) = 3 E w0 cos 2phi [ (r - r_n)/(r r_n) - (r_m - r_n)/(r_n r_m) ]       (curved beam, asserted)
+    sigma(r) = 3 E w0 cos 2phi [ (r - r_n)/(r r_n) - (r_m - r_n)/(r_n r_m) ]       (curved beam, shown)
 
-What it leaves out (radial stress between cam and race, through-thickness strain) is second order in t/r_m:
-the check's allowance (``race_stress_allowances``).
+What it leaves out (radial stress between cam and race, through-thickness strain) is second order in t/r_m;
+the check asserts the exact plane-stress solution instead (``analytic.michell_ring``) and shows this beside it.
 
 Ball loads (Stribeck, zero clearance, rigid rings): ball i at psi_i = 2 pi i/Z is pressed by
 delta_0 cos psi_i, Hertz Q = K_n delta^(3/2), so Q_i = Q_max cos^(3/2) psi_i over |psi_i| < 90 deg, and
@@ -31,6 +31,21 @@ half-plane (Tada, Paris & Irwin, The Stress Analysis of Cracks Handbook, 3rd ed.
 and seed 000's eq 4 with dA = B da gives the added compliance dlambda = int_0^a 2/E (K/F)^2 B da. The back
 face is the bore held by the cam, between a half-plane (the form) and a free strip (Tada's F_t(a/t)), whose
 amplification of the compliance is the allowance (``back_face_allowance``).
+
+The flexible bearing as a radial spring (issue 48; merged into this module, both halves kept):
+
+A ball pressed between its two raceways by the load Q approaches them by (Palmgren 1959, "Ball and Roller
+Bearing Engineering", 3rd ed., eq. for point contact of steel balls; Harris & Kotzalas, "Rolling Bearing
+Analysis", 5th ed., 2006, the ball bearing's load-deflection constant)
+
+    delta = 4.36e-4 Q^(2/3) / D_w^(1/3)          (mm, N, mm; both raceways, steel on steel)
+
+so its tangent stiffness dQ/d(delta) = 1.5 Q / delta grows as Q^(1/3): the bearing stiffens with the load, one
+source of K1 < K3. Under the flexspline's rim, balls a pitch s apart are a foundation of modulus k_ball / s per
+unit rim length; the rim and the outer ring bend over it as a beam on an elastic foundation (Hetenyi), so a radial
+load R on the rim presses the nearest ball with Q = R beta s / 2 (the foundation's peak pressure R beta / 2 times
+the pitch; one ball at most carries R). A flank's radial push F sin(alpha) moves the tooth inward and opens the
+flank circumferentially by tan(alpha) per unit travel: the output turns by delta tan(alpha) / r_p.
 """
 from __future__ import annotations
 
@@ -40,10 +55,10 @@ from typing import Callable
 
 import numpy as np
 
-__all__ = ["thin_ring_race_stress_MPa", "curved_beam_race_stress_MPa", "race_stress_allowances",
+__all__ = ["thin_ring_race_stress_MPa", "curved_beam_race_stress_MPa",
            "stribeck_ball_loads", "hertz_ball_constant", "ring_local_compliance_mm_per_N",
-           "stribeck_allowance", "edge_crack_K", "edge_crack_compliance_mm_per_N",
-           "seed_form_compliance_mm_per_N", "tada_strip_tension_factor", "back_face_allowance",
+           "edge_crack_K", "edge_crack_compliance_mm_per_N", "seed_form_compliance_mm_per_N",
+           "tada_strip_tension_factor", "back_face_allowance",
            "PALMGREN_SOURCE", "ball_contact_deflection_mm", "ball_contact_stiffness_N_per_mm", "BallBearing",
            "peak_ball_load_N", "linearised_foundation", "hertz_remainder_twist_rad"]
 
@@ -68,14 +83,6 @@ def curved_beam_race_stress_MPa(E_MPa: float, r_i_mm: float, r_o_mm: float, w0_m
     r = r_o_mm if fibre_mm is None else fibre_mm
     r_m, r_n = 0.5 * (r_o_mm + r_i_mm), _neutral_radius_mm(r_i_mm, r_o_mm)
     return 3.0 * E_MPa * w0_mm * math.cos(2.0 * phi_rad) * ((r - r_n) / (r * r_n) - (r_m - r_n) / (r_n * r_m))
-
-
-def race_stress_allowances(r_i_mm: float, r_o_mm: float) -> dict[str, float]:
-    """What the curved-beam form leaves out, at its order: the radial stress between cam and race and the
-    through-thickness strain (second order in t/r_m)."""
-    t, r_m = r_o_mm - r_i_mm, 0.5 * (r_o_mm + r_i_mm)
-    return {f"second-order thick-ring terms (radial stress, through-thickness strain), (t/r_m)^2, "
-            f"t/r_m = {t / r_m:.3g}": (t / r_m) ** 2}
 
 
 def ball_angles_rad(ball_count: int) -> np.ndarray:
@@ -107,13 +114,6 @@ def ring_local_compliance_mm_per_N(E_MPa: float, t_mm: float, width_mm: float, b
     """The ring's radial compliance under one ball: the load spreading at 45 deg through the thickness t onto
     the cam, ln((b + t)/b)/(2 E B), doubled for the indentation under the patch (an upper estimate)."""
     return math.log((b_mm + t_mm) / b_mm) / (E_MPa * width_mm)
-
-
-def stribeck_allowance(q_max_N: float, K_n: float, ring_compliance_mm_per_N: float) -> float:
-    """How far a compliant ring moves the ball loads off Stribeck's rigid-ring law, first order: ball i's
-    approach loses g Q_i of delta_0 cos psi_i, which changes Q_i by (3/2) g Q_i/delta_i, largest at Q_max."""
-    delta_max = (q_max_N / K_n) ** (2.0 / 3.0)
-    return 1.5 * ring_compliance_mm_per_N * q_max_N / delta_max
 
 
 # ---- race crack ----
@@ -163,22 +163,7 @@ def back_face_allowance(a_mm: float, t_mm: float) -> float:
     return float(np.sum(ws * f2 * xs) / (f0 ** 2 * a_mm ** 2 / 2.0) - 1.0)
 
 
-# ---- the WG bearing's balls as a Hertz spring (meshcat, 4250f10); kept beside the inner ring's forms above,
-# which 4250f10 had replaced although validate's wg-bearing checks and study loads still use them
-# The wave generator's flexible ball bearing as a radial spring from its own geometry (Hertz, Palmgren).
-#
-# A ball pressed between its two raceways by the load Q approaches them by (Palmgren 1959, "Ball and Roller
-# Bearing Engineering", 3rd ed., eq. for point contact of steel balls; Harris & Kotzalas, "Rolling Bearing
-# Analysis", 5th ed., 2006, the ball bearing's load-deflection constant)
-#
-#     delta = 4.36e-4 Q^(2/3) / D_w^(1/3)          (mm, N, mm; both raceways, steel on steel)
-#
-# so its tangent stiffness dQ/d(delta) = 1.5 Q / delta grows as Q^(1/3): the bearing stiffens with the load, one
-# source of K1 < K3. Under the flexspline's rim, balls a pitch s apart are a foundation of modulus k_ball / s per
-# unit rim length; the rim and the outer ring bend over it as a beam on an elastic foundation (Hetenyi), so a radial
-# load R on the rim presses the nearest ball with Q = R beta s / 2 (the foundation's peak pressure R beta / 2 times
-# the pitch; one ball at most carries R). A flank's radial push F sin(alpha) moves the tooth inward and opens the
-# flank circumferentially by tan(alpha) per unit travel: the output turns by delta tan(alpha) / r_p.
+# ---- the flexible bearing as a radial spring (Palmgren; issue 48) ----
 
 PALMGREN_SOURCE = ("Palmgren 1959 / Harris & Kotzalas 2006: delta = 4.36e-4 Q^(2/3) D_w^(-1/3) mm "
                    "(ball between both raceways, steel)")

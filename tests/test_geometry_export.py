@@ -253,7 +253,7 @@ def test_cli_bad_crack_is_one_line_exit_2(strainwave_cmd, tmp_path):
     run = _cli(strainwave_cmd, tmp_path, "--part", "output-shaft", "--crack-depth-mm", "20", "-o", str(out))
     assert run.returncode == 2
     lines = run.stderr.strip().splitlines()
-    assert len(lines) == 1 and "crack_depth_mm" in lines[0] and "Traceback" not in run.stderr
+    assert len(lines) == 1 and "--crack-depth-mm = 20.0" in lines[0] and "Traceback" not in run.stderr   # as given
     assert not out.exists()
 
 
