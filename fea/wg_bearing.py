@@ -56,14 +56,11 @@ class RingSetup:
 
 def setup_from(params, *, force_N, w0_mm, ball_angles_rad, ball_loads_N, patch_half_widths_mm,
                hertz_constant, ball_count) -> RingSetup:
-    from strainwave.geometry.bearing_ring import RACE_GAP_OVER_T, WIDTH_OVER_A
+    from strainwave.geometry.bearing_ring import check_ring_fits
 
-    wg, fc, mat = params.wave_generator, params.flexspline_cup, params.material
-    t = wg.bearing_inner_ring_thickness_mm
-    r_race = fc.pitch_diameter_mm / 2 - fc.wall_thickness_mm - RACE_GAP_OVER_T * t
-    if r_race - t <= 0:
-        raise InputError("wave_generator.bearing_inner_ring_thickness_mm", t, "the ring would close its bore")
-    return RingSetup(r_race - t, r_race, WIDTH_OVER_A * wg.contact_semi_axes_mm[0], mat.youngs_modulus_MPa,
+    wg, mat = params.wave_generator, params.material
+    r_race, r_bore = check_ring_fits(params)
+    return RingSetup(r_bore, r_race, wg.bearing_width_mm, mat.youngs_modulus_MPa,
                      mat.poisson_ratio, float(w0_mm), float(force_N), tuple(ball_angles_rad), tuple(ball_loads_N),
                      tuple(patch_half_widths_mm), float(hertz_constant), int(ball_count))
 
