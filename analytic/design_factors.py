@@ -61,13 +61,27 @@ def ring_cycle(params) -> dict:
             "mean_smooth_MPa": -fatigue.mean_stress_coefficient() * x}   # inner fibre: the mean is tensile
 
 
+def fit_margin() -> float:
+    """The fitted K_delta K_sigma's largest unconservative error where the toothed-ring FEA was solved at a rim
+    it was not fitted on (tooth_number.FEA_AT_MINIMUM: FEA product / model product - 1, at least 0): Z_R,min is
+    found at [n] (1 + this), so that the FEA's own root cycle at that Z_R still meets [n]."""
+    worst = 0.0
+    for (z, _), fea in tooth_number.FEA_AT_MINIMUM.items():
+        hd, md = tooth_number.rim_ratios(z, fatigue.ToothDesign())
+        model = tooth_factors.root_product(hd, md, tooth_factors.FITTED)
+        worst = max(worst, fea["tooth_influence"] * fea["stress_concentration"] / model - 1.0)
+    return worst
+
+
 def minimal_teeth(params, tooth_difference: int | None = None) -> tooth_number.ToothNumberResult:
-    """Z_R,min by Goodman (eq 14 with psi_sigma = sigma_-1/R_m), tooth factors at each Z_R (the ring factor's line)."""
+    """Z_R,min by Goodman (eq 14 with psi_sigma = sigma_-1/R_m), tooth factors at each Z_R (the ring factor's
+    line), at [n] (1 + fit_margin())."""
     from strainwave.analytic.seed003 import design_from_params
 
     e, m = params.ewg_drive, params.material
     design = replace(design_from_params(params), mean_stress_influence=m.fatigue_limit_MPa / m.ultimate_strength_MPa)
-    return tooth_number.minimal_teeth_with_model(tooth_difference or e.tooth_difference, e.permissible_safety,
+    return tooth_number.minimal_teeth_with_model(tooth_difference or e.tooth_difference,
+                                                 e.permissible_safety * (1.0 + fit_margin()),
                                                  m.fatigue_limit_MPa, m.youngs_modulus_MPa, design)
 
 
@@ -89,7 +103,8 @@ def ring_factor(params, fea: dict | None = None) -> FatigueFactor:
     if goodman(amp, mean, notch, flexspline_steel(params)) < n_req:
         z = minimal_teeth(params).Z_R_min
         advice = Advice("ewg_drive.flexspline_teeth", float(z), ">=", (2.0, 5000.0),
-                        "Goodman's eq 14 with the fitted tooth factors at each Z_R")
+                        f"Goodman's eq 14, the fitted tooth factors at each Z_R, [n] x (1 + {fit_margin():.3f}): "
+                        "the fit's error where the FEA checked it")
     return FatigueFactor("ring", TITLES["ring"], amp, mean, a_src, m_src, notch, n_src, flexspline_steel(params),
                          n_req, load, band=band, advice=advice, extra={"closed_form": c})
 

@@ -138,8 +138,16 @@ def solve_for(key: str, factor_of: Callable[[float], float], target: float, curr
               note: str = "") -> Advice:
     """The value of ``key`` in [lo, hi] where ``factor_of(value) = target``, on the side of ``current``'s
     root that meets it (Brent's method between the two nearest samples that bracket the root)."""
+    import warnings
+
     from scipy.optimize import brentq
 
+    with warnings.catch_warnings():     # the search passes values outside the recommended ranges on purpose
+        warnings.simplefilter("ignore")
+        return _solve(key, factor_of, target, current, lo, hi, note, brentq)
+
+
+def _solve(key, factor_of, target, current, lo, hi, note, brentq) -> Advice:
     grid = [lo + (hi - lo) * i / 40 for i in range(41)]
     values = []
     for x in grid:

@@ -104,6 +104,20 @@ def crack_sweep(book: FeaBook, label: str) -> Sweep | None:
     return Sweep("bearing", "delta_radial_compliance_mm_per_N", "mm/N", d, v, u)
 
 
+def profile_for(cracks: dict, depth: float) -> dict:
+    """The solved crack's facts whose uncracked hoop-stress profile covers ``depth``: its own when that depth was
+    solved, else the shallowest solved one reaching that deep, else the deepest (np.interp holds its last value
+    beyond it). The profile is the uncracked ring's stress on the crack line: any solved depth's serves, as far as
+    it reaches. (A depth the sweep did not solve, e.g. the seed's a when a_max = 0.1 t is shallower, asked a
+    missing key before issue 49.)"""
+    if f"{depth:g}" in cracks:
+        return cracks[f"{depth:g}"]
+    solved = sorted(cracks.values(), key=lambda f: f["depth_mm"])
+    if not solved:
+        raise ValueError("no crack depth was solved")
+    return next((f for f in solved if max(f["profile_x_mm"]) >= depth), solved[-1])
+
+
 def crack_curve(params, result):
     """depth -> {corrected: weight function at the FEA's uncracked hoop stress on the crack line,
     published: seed 000's form at the FEA's hoop stress at the mouth}."""
@@ -111,7 +125,7 @@ def crack_curve(params, result):
     cracks = result.meta["cracks"]
 
     def curve(depth: float) -> dict[str, float]:
-        fact = cracks[f"{depth:g}"]
+        fact = profile_for(cracks, depth)
         x, sig = np.asarray(fact["profile_x_mm"]), np.asarray(fact["hoop_stress_per_N_MPa"])
         return {"corrected": wgb.edge_crack_compliance_mm_per_N(lambda xx: np.interp(xx, x, sig), depth, s.E_MPa,
                                                                  s.width_mm),
@@ -213,43 +227,3 @@ def gear_stiffness(book: FeaBook, labels: dict[str, str], wg_label: str, s000: d
     return evaluate(Check("gear.stiffness", quantity, unit, K, unc, analytic, "corrected", tol, note=note,
                           sources={"lambda_H": f"FEA {wg_label} (K_G)", "lambda_f0": f"FEA {labels['cup']}",
                                    "lambda_so0": f"FEA {labels['shaft']}"}))
-
-
-
-
-def contact_pressure_MPa(params) -> float:
-    """Hertz peak pressure 3 Q / (2 pi a b) of the most loaded ball, its contact ellipse the seed's at F_r
-    scaled by (Q / F_r)^(1/3) as the FEA's patches are: the race's hoop stress under the ball's centre is about
-    -p0, a point the ring mesh, which spreads the ball over the ring's width, does not resolve."""
-    loads = wg_bearing_load(params)
-    q = max(loads["ball_loads_N"])
-    scale = (q / loads["force_N"]) ** (1.0 / 3.0)
-    a, b = (scale * x for x in params.wave_generator.contact_semi_axes_mm)
-    return 3.0 * q / (2.0 * math.pi * a * b)
-
-
-def fatigue_factor(book: FeaBook, label: str | None, params):
-    """The design verdict's entry for the inner ring on the cam at the race's major axis. The ring turns with
-    the cam, so the cam's hoop stress (FEA) is a mean; each passing ball takes the race from it to it - p0
-    (Hertz at the surface under the most loaded ball). Goodman on that cycle, no notch (a smooth race)."""
-    from strainwave.analytic.cup_fatigue import goodman_safety_factor
-    from strainwave.compare.validate.design import ComponentFactor, factor_band
-
-    title, definition = "Wave generator bearing inner ring on the cam", "Goodman on the ball-pass cycle at the race"
-    cam = book.quantity(label, "race_stress_major_MPa")[0] if label else None
-    if cam is None:
-        return ComponentFactor("wg_bearing", title, None, definition, None, None, "",
-                               "its FEA case did not run or failed (see the cases table)")
-    m, p0 = params.material, contact_pressure_MPa(params)
-    amplitude, mean = 0.5 * p0, cam.value - 0.5 * p0
-    def goodman(hoop: float) -> float:
-        return goodman_safety_factor(m.fatigue_limit_MPa, m.ultimate_strength_MPa, 1.0, amplitude, hoop - 0.5 * p0)
-    band = factor_band(goodman, (cam.value, cam.uncertainty))
-    gci = ("no band: the hoop stress carries no GCI" if band is None else
-           f"band {band[0]:.3g}..{band[1]:.3g} over the hoop stress's GCI +-{abs(cam.uncertainty):.2g} MPa")
-    return ComponentFactor("wg_bearing", title, goodman(cam.value),
-                           f"{definition}: hoop stress {cam.value:.4g} MPa (FEA, cam alone: a mean, the ring turns "
-                           f"with the cam) down by p0 = {p0:.4g} MPa under each passing ball: amplitude "
-                           f"{amplitude:.4g} about {mean:.4g} MPa; 1 / (sigma_a / sigma_-1 + sigma_m / R_m); {gci}",
-                           amplitude, m.fatigue_limit_MPa, "wave generator insertion (w0) + rated radial load F_r",
-                           band=band)

@@ -134,30 +134,3 @@ def wg_lines(record: dict) -> list[tuple[str, str]]:
         rows.append(("revolution cycle at rated T: amplitude / mean", f"{f['amplitude_MPa']:.4g} / {f['mean_MPa']:.4g} MPa"))
         rows.append(("safety: seed 003 eq 13 / Goodman", f"{f['n_eq13']:.3g} / {f['n_goodman']:.3g}"))
     return rows
-
-
-def fatigue_factor(record: dict):
-    """The design verdict's entry for the cup as it cycles on the wave generator: the smaller of seed 003's
-    eq 13 and Goodman's factor on the FEA's revolution cycle (None when the case did not run)."""
-    from strainwave.compare.validate.design import ComponentFactor
-
-    f = record.get("fatigue")
-    if not f:
-        return ComponentFactor("cup_wave_generator", "Flexspline cup on the wave generator", None,
-                               "min(seed 003 eq 13, Goodman) on the revolution cycle", None, None, "",
-                               "its FEA case did not run or failed (see the cases table)")
-    n = min(f["n_eq13"], f["n_goodman"])
-    which = "seed 003 eq 13" if f["n_eq13"] <= f["n_goodman"] else "Goodman"
-    return ComponentFactor("cup_wave_generator", "Flexspline cup on the wave generator", n,
-                           f"min(seed 003 eq 13 = {f['n_eq13']:.3g}, Goodman = {f['n_goodman']:.3g}), {which} "
-                           f"governs: stress amplitude {f['amplitude_MPa']:.4g} MPa about a mean of {f['mean_MPa']:.4g} "
-                           f"MPa over one input revolution ({f['where']}; {f['notch']}){_band_words(f)}",
-                           f["amplitude_MPa"], None, "wave generator insertion + rated output torque",
-                           band=tuple(f["band"]) if f.get("band") else None)
-
-
-def _band_words(f: dict) -> str:
-    if not f.get("band"):
-        return "; no band: the cycle's stresses carry no GCI"
-    return (f"; band {f['band'][0]:.3g}..{f['band'][1]:.3g} over the amplitude's GCI +-{abs(f['amplitude_gci_MPa']):.2g} "
-            f"MPa and the mean's +-{abs(f['mean_gci_MPa']):.2g} MPa")
