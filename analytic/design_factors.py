@@ -129,7 +129,7 @@ def cup_cycle(params) -> dict:
             "K_delta": kd, "K_sigma": ks, "r_m_mm": r_m}
 
 
-def cup_tooth_root_factor(params, fea: dict | None = None) -> FatigueFactor:
+def cup_tooth_root_factor(params, fea: dict | None = None, advise: bool = True) -> FatigueFactor:
     """The cup's tooth-root factor; ``fea`` = {amplitude_MPa, mean_MPa, band}: the smooth band's cycle from the
     FEA of the cup on the wave generator (replacing the wave's bending and its mean), the tooth factors kept."""
     c = cup_cycle(params)
@@ -149,6 +149,8 @@ def cup_tooth_root_factor(params, fea: dict | None = None) -> FatigueFactor:
                            flexspline_steel(params), params.ewg_drive.permissible_safety,
                            f"wave generator insertion w0 + {RATED}", band=None if fea is None else fea.get("band"),
                            extra={"closed_form": c})
+    if not advise:
+        return factor
     return _with_advice(factor, params, "flexspline_cup.wall_thickness_mm", cup_tooth_root_factor, fea,
                         (0.1, 0.5 * params.flexspline_cup.pitch_diameter_mm * 0.2))
 
@@ -159,7 +161,7 @@ def inner_ring_radii(params) -> tuple[float, float]:
     return check_ring_fits(params)
 
 
-def wg_inner_ring_factor(params, fea: dict | None = None) -> FatigueFactor:
+def wg_inner_ring_factor(params, fea: dict | None = None, advise: bool = True) -> FatigueFactor:
     """The inner ring at the race (module docstring); ``fea`` = {mean_MPa, amplitude_MPa, band, source}."""
     r_race, r_bore = inner_ring_radii(params)
     E = params.material.youngs_modulus_MPa
@@ -177,11 +179,13 @@ def wg_inner_ring_factor(params, fea: dict | None = None) -> FatigueFactor:
                            bearing_steel(params), params.ewg_drive.permissible_safety,
                            "wave generator insertion w0 + rated radial force F_r", band=band,
                            extra={"closed_form_cam_MPa": cam})
+    if not advise:
+        return factor
     return _with_advice(factor, params, "wave_generator.bearing_inner_ring_thickness_mm", wg_inner_ring_factor, fea,
                         (0.1, 0.95 * r_race))
 
 
-def wg_outer_ring_factor(params) -> FatigueFactor:
+def wg_outer_ring_factor(params, fea: dict | None = None, advise: bool = True) -> FatigueFactor:
     wg, fc = params.wave_generator, params.flexspline_cup
     r_o = 0.5 * fc.pitch_diameter_mm - fc.wall_thickness_mm - 0.5 * wg.outer_ring_thickness_mm
     amp = wg_contact.outer_ring_bending_MPa(params.material.youngs_modulus_MPa, wg.outer_ring_thickness_mm, r_o,
@@ -191,8 +195,10 @@ def wg_outer_ring_factor(params) -> FatigueFactor:
                            "0: fully reversed, the wave passes the ring twice per input revolution", 1.0,
                            "1: a smooth ground ring", bearing_steel(params), params.ewg_drive.permissible_safety,
                            "wave generator insertion w0")
-    return _with_advice(factor, params, "wave_generator.outer_ring_thickness_mm", lambda p, _f: wg_outer_ring_factor(p),
-                        None, (0.1, 0.5 * r_o))
+    if not advise:
+        return factor
+    return _with_advice(factor, params, "wave_generator.outer_ring_thickness_mm", wg_outer_ring_factor, None,
+                        (0.1, 0.5 * r_o))
 
 
 def bearing_ratings(params) -> dict:
@@ -233,11 +239,11 @@ def _with_advice(factor: FatigueFactor, params, key: str, build, fea, span: tupl
     if factor.n >= factor.required and factor.static_n >= 1.0:
         return factor
     current = _get(params, key)
-    closed = build(params, None) if fea is not None else factor
+    closed = build(params, None, False) if fea is not None else factor
     ratio = factor.n / closed.n if math.isfinite(closed.n) and closed.n > 0 else 1.0
 
     def n_at(x: float) -> float:
-        f = build(params.with_value(key, x), None)
+        f = build(params.with_value(key, x), None, False)
         return min(f.n * ratio, f.static_n * f.required)   # the static check must hold too
     advice = solve_for(key, n_at, factor.required, current, *span,
                        note="closed-form dependence" + ("" if fea is None else ", scaled to the FEA's factor"))

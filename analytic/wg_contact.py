@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["HertzContact", "hertz_point_contact", "iso281_fc", "dynamic_load_rating_N", "l10_hours",
+__all__ = ["HertzContact", "hertz_point_contact", "hertz_from_radii", "iso281_fc", "dynamic_load_rating_N", "l10_hours",
            "outer_ring_bending_MPa", "ISO281_FC_TABLE"]
 
 # ISO 281:2007 table 2, single-row radial deep-groove ball bearings: (D_w cos alpha / D_pw, f_c), N and mm
@@ -59,8 +59,12 @@ def hertz_point_contact(load_N: float, ball_diameter_mm: float, groove_radius_ra
         raise ValueError("load >= 0, ball and race > 0 and 0.5 < f < 1 needed")
     inv_rx = 2.0 / ball_diameter_mm + (1.0 if inner else -1.0) / race_radius_mm
     inv_ry = 2.0 / ball_diameter_mm - 1.0 / (groove_radius_ratio * ball_diameter_mm)
-    Rx, Ry = 1.0 / inv_rx, 1.0 / inv_ry
-    R = 1.0 / (inv_rx + inv_ry)
+    return hertz_from_radii(load_N, 1.0 / inv_rx, 1.0 / inv_ry, E_MPa, nu)
+
+
+def hertz_from_radii(load_N: float, Rx: float, Ry: float, E_MPa: float, nu: float) -> HertzContact:
+    """Hertz point contact of two equal steels with effective radii Rx <= Ry (Hamrock & Brewe's k, E_k)."""
+    R = 1.0 / (1.0 / Rx + 1.0 / Ry)
     E_eff = E_MPa / (1.0 - nu ** 2)
     k = 1.0339 * (Ry / Rx) ** 0.636
     e_k = 1.0003 + 0.5968 * Rx / Ry

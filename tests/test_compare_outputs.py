@@ -185,7 +185,7 @@ def _doc() -> dict:
               "peak_von_mises_MPa": 31.3, "peak_location_mm": [35.0, 0.0, 0.0], "peak_on": ["fixed"],
               "peak_displacement_mm": 0.044, "fatigue_limit_MPa": 625.0, "safety_factor": 625 / 31.3,
               "field_file": "shaft.vtu", "note": "material-only", "tip_radius_mm": None, "tip_peak_von_mises_MPa": None}
-    design = {"factors": [{"component": "shaft", "required": 1.4, "passed": True}]}
+    design = {"factors": [{"component": "shaft", "required": 1.4, "passed": True, "safety_factor": 625 / 31.3}]}
     return {"checks": [check], "gci_table": [gci], "stress_at_rated": {"shaft": stress}, "design": design}
 
 

@@ -91,10 +91,10 @@ def design_rows(doc: dict) -> list[dict]:
     for f in (doc.get("design") or {}).get("factors", []):
         fat = f.get("fatigue")
         if fat:
-            rows.append({k: fat.get(k) for k in DESIGN_FIELDS} | {"verdict": f["verdict"]})
+            rows.append({k: fat.get(k) for k in DESIGN_FIELDS} | {"verdict": f.get("verdict", fat.get("verdict"))})
         else:
-            rows.append({"component": f["component"], "title": f["title"], "verdict": f["verdict"],
-                         "required_n": f.get("required"), "advice": f.get("reason", "")})
+            rows.append({"component": f["component"], "title": f.get("title"), "verdict": f.get("verdict"),
+                         "n": f.get("safety_factor"), "required_n": f.get("required"), "advice": f.get("reason", "")})
     return rows
 
 
