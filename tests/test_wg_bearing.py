@@ -88,12 +88,14 @@ def test_checks_pass_on_their_closed_forms_and_fail_on_perturbed_ones(ring):
     from strainwave.compare.validate import wg_bearing_checks as wc
     from strainwave.fea.wg_bearing import delta_name
     params, s = ring
-    x = np.linspace(0.0, 1.0, 65)
-    sig = -0.003 + 0.001 * x
-    meta = {"crack_depths_mm": [1.0], "cracks": {"1": {"profile_x_mm": x.tolist(), "hoop_stress_per_N_MPa": sig.tolist()}}}
-    delta = wgb.edge_crack_compliance_mm_per_N(lambda xx: np.interp(xx, x, sig), 1.0, s.E_MPa, s.width_mm)
+    a = 0.1 * s.thickness_mm      # the sweep's deepest crack, a_max = 0.1 t (fea/wg_bearing.SWEEP_OVER_T)
+    x = np.linspace(0.0, a, 65)
+    sig = -0.003 + 0.001 * x / a
+    meta = {"crack_depths_mm": [a], "cracks": {f"{a:g}": {"depth_mm": a, "profile_x_mm": x.tolist(),
+                                                         "hoop_stress_per_N_MPa": sig.tolist()}}}
+    delta = wgb.edge_crack_compliance_mm_per_N(lambda xx: np.interp(xx, x, sig), a, s.E_MPa, s.width_mm)
     stress = wgb.curved_beam_race_stress_MPa(s.E_MPa, s.r_bore_mm, s.r_race_mm, s.w0_mm)
-    book = _book({delta_name(1.0): delta, "race_stress_major_MPa": stress, "net_race_stress_major_MPa": stress}, meta)
+    book = _book({delta_name(a): delta, "race_stress_major_MPa": stress, "net_race_stress_major_MPa": stress}, meta)
     assert wc.bearing_crack_check(book, "wg-bearing", params).passed
     assert wc.race_stress_check(book, "wg-bearing", params, "major").passed
     bad = lambda a: {"corrected": 1.3 * delta}      # noqa: E731
