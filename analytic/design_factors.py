@@ -85,7 +85,7 @@ def minimal_teeth(params, tooth_difference: int | None = None) -> tooth_number.T
                                                  m.fatigue_limit_MPa, m.youngs_modulus_MPa, design)
 
 
-def ring_factor(params, fea: dict | None = None) -> FatigueFactor:
+def ring_factor(params, fea: dict | None = None, advise: bool = True) -> FatigueFactor:
     """The ring's factor; ``fea`` = {amplitude_MPa, mean_MPa, band, source}: the FEA's own root cycle (notch 1)."""
     c = ring_cycle(params)
     n_req = params.ewg_drive.permissible_safety
@@ -100,7 +100,7 @@ def ring_factor(params, fea: dict | None = None) -> FatigueFactor:
         amp, mean, notch, band = fea["amplitude_MPa"], fea["mean_MPa"], 1.0, fea.get("band")
         a_src, m_src, n_src, load = fea["amplitude_source"], fea["mean_source"], fea["notch_source"], fea["load"]
     advice = None
-    if goodman(amp, mean, notch, flexspline_steel(params)) < n_req:
+    if advise and goodman(amp, mean, notch, flexspline_steel(params)) < n_req:
         z = minimal_teeth(params).Z_R_min
         advice = Advice("ewg_drive.flexspline_teeth", float(z), ">=", (2.0, 5000.0),
                         f"Goodman's eq 14, the fitted tooth factors at each Z_R, [n] x (1 + {fit_margin():.3f}): "

@@ -186,3 +186,15 @@ def test_a_sweep_depth_not_solved_takes_a_solved_profile_not_a_key_error():
     assert profile_for(cracks, 0.9) is cracks["0.5"]      # the deepest, held beyond its end
     with pytest.raises(ValueError):
         profile_for({}, 0.1)
+
+
+def test_sweep_table_has_an_n_column_per_factor(gear):
+    from strainwave.compare.sweep.outputs import N_COLUMNS, records_frame
+    from strainwave.compare.sweep.task import design_n
+    n = design_n(gear)
+    assert set(n) == set(N_COLUMNS)
+    assert n["wg_outer_ring"] == pytest.approx(df.wg_outer_ring_factor(gear).n, rel=1e-12)
+    rec = {"index": 0, "status": "ok", "inputs": {"gear.gear_ratio": 100}, "design_n": n,
+           "fea": {"q": {"value": 1.0, "unit": "1"}}, "analytic": {}}
+    frame = records_frame([rec], ["gear.gear_ratio"])
+    assert [frame.loc[0, f"n_{c}"] for c in N_COLUMNS] == pytest.approx([n[c] for c in N_COLUMNS])

@@ -41,7 +41,7 @@ def _params(path, over):
         return load_params(path).with_values(over)
 
 
-@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(drive=drives())
 def test_every_valid_drive_gets_finite_design_factors_or_a_one_line_refusal(drive):
     try:
