@@ -86,6 +86,8 @@ def design_notes(design: dict) -> list[str]:
         out.append(f"Wave generator bearing: Hertz p0 = {r['p0_max_MPa']:.4g} MPa on the most loaded ball (Q = "
                    f"{r['max_ball_load_N']:.4g} N), static n = {r['static_contact_n']:.3g} ({r['static_contact_source']}); "
                    f"C_r = {r['C_r_N']:.4g} N, L10 = {r['L10_h']:.4g} h ({r['L10_note']})")
+    out.append("No factor: the flexspline's diaphragm (no study resolves it: the wave generator study holds the closed "
+               "end round); the buckling torque and the ratcheting torque (not yet computed)")
     return out
 
 
