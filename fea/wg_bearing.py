@@ -275,9 +275,9 @@ class WgBearing(StudyFacts):
     title = "bearing inner ring on the cam"
     image_marks = (("bore",), None, "F_r")     # the ball patches are too small to mark at the ring's scale
     signed_stress = ("hoop_stress_MPa", "hoop stress")     # the cam's bending: tension or compression
-    outside_design = ("the ring on the cam has its own design factor, Goodman on the race's ball-pass cycle about the "
-                      "cam's hoop stress (a mean: the ring turns with the cam); a peak von Mises taken as fully "
-                      "reversed would count that mean as an amplitude")
+    outside_design = ("the ring on the cam has its own design factor (compare/validate/design_fea.py): Goodman on the "
+                      "cam's steady hoop stress at the race and the swing the passing balls add; its contact is rated "
+                      "by ISO 281/76; a peak von Mises taken as fully reversed would count the cam's mean as an amplitude")
     element_text = ("P2 triangles on a graded polar grid, 2D plane stress, thickness = ring width B; race crack as "
                     "two coincident faces with frictionless contact")
 
