@@ -198,3 +198,18 @@ def test_sweep_table_has_an_n_column_per_factor(gear):
            "fea": {"q": {"value": 1.0, "unit": "1"}}, "analytic": {}}
     frame = records_frame([rec], ["gear.gear_ratio"])
     assert [frame.loc[0, f"n_{c}"] for c in N_COLUMNS] == pytest.approx([n[c] for c in N_COLUMNS])
+
+
+@pytest.mark.parametrize("key, value, words", [
+    ("material.yield_strength_MPa", 2000.0, "must be <= ultimate_strength_MPa"),
+    ("bearing_material.fatigue_limit_MPa", 2500.0, "must be < ultimate_strength_MPa"),
+    ("wave_generator.input_speed_rpm", 0.0, "must be a finite number > 0"),
+    ("wave_generator.bearing_inner_ring_thickness_mm", 70.0, "the ring would close its bore")])
+def test_bad_design_inputs_are_refused_naming_the_key(key, value, words):
+    from strainwave.errors import InputError
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        with pytest.raises(InputError) as err:
+            p = load_params().with_value(key, value)
+            df.closed_form_factors(p)      # the bearing's fit is checked where its geometry is first built
+    assert err.value.key == key and words in str(err.value)
