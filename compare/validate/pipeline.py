@@ -88,7 +88,7 @@ class Outcome:
         lines.append(f"validation (do the closed forms hold?): {'PASS' if self.passed else 'FAIL'}")
         if self.design is not None:
             lines.append(f"design (does the drive meet [n] at the rated load?): {self.design.headline()}")
-        beside = [n for n in ("report.pdf", "checks.csv", "gci.csv", "stress.csv") if (self.out_dir / n).exists()]
+        beside = [n for n in ("report.pdf", "checks.csv", "gci.csv", "stress.csv", "design.csv") if (self.out_dir / n).exists()]
         lines.append(f"report: {self.out_dir / 'report.html'}" + (f" (beside it: {', '.join(beside)})" if beside else ""))
         return "\n".join(lines)
 
