@@ -40,12 +40,12 @@ def test_a_factor_whose_gci_band_straddles_n_is_undecided_and_not_met(params):
     """The band is the factor's range over the corners of its stresses' GCI bands: Goodman on (amplitude, mean)
     +- their GCIs. A band wholly above [n] passes, wholly below fails; one that straddles [n] is UNDECIDED,
     counted as failing and named with its band; moving the GCI shrinks it back to a PASS."""
-    from strainwave.analytic.cup_fatigue import goodman_safety_factor
+    from strainwave.analytic.design_method import Strength, goodman as goodman_line
     from strainwave.compare.validate.design import factor_band
     required = params.ewg_drive.permissible_safety
 
     def goodman(a, m):
-        return goodman_safety_factor(625.0, 1000.0, 1.0, a, m)
+        return goodman_line(a, m, 1.0, Strength("steel", 625.0, 800.0, 1000.0, "test"))
     band = factor_band(goodman, (370.0, 30.0), (100.0, 20.0))
     assert band == pytest.approx((goodman(400.0, 120.0), goodman(340.0, 80.0)))
     assert factor_band(goodman, (370.0, 30.0), (100.0, None)) is None       # no GCI, no band
