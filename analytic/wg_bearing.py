@@ -40,7 +40,7 @@ from typing import Callable
 import numpy as np
 
 __all__ = ["thin_ring_race_stress_MPa", "curved_beam_race_stress_MPa", "race_stress_allowances",
-           "stribeck_ball_loads", "hertz_ball_constant", "ring_local_compliance_mm_per_N",
+           "stribeck_ball_loads", "ring_local_compliance_mm_per_N",
            "stribeck_allowance", "edge_crack_K", "edge_crack_compliance_mm_per_N", "seed_form_compliance_mm_per_N",
            "tada_strip_tension_factor", "back_face_allowance"]
 
@@ -88,16 +88,6 @@ def stribeck_ball_loads(force_N: float, ball_count: int) -> tuple[np.ndarray, np
     c = np.cos(psi)
     q_max = force_N / float(np.sum(c ** 2.5))
     return psi, q_max * c ** 1.5
-
-
-def hertz_ball_constant(force_N: float, semi_axes_mm: tuple[float, float], E_MPa: float, nu: float) -> float:
-    """K_n of Q = K_n delta^(3/2) for one ball between two races (two equal contacts in series), from the
-    seed's contact ellipse taken at ``force_N``: delta_contact = 3 F/(2 k), k = pi a E*/K(e) (Johnson)."""
-    from strainwave.analytic.bearing_stiffness import hertz_contact_stiffness_N_per_mm
-
-    k = hertz_contact_stiffness_N_per_mm(*semi_axes_mm, E_MPa, nu)
-    delta_pair = 2.0 * 1.5 * force_N / k
-    return force_N / delta_pair ** 1.5
 
 
 def ring_local_compliance_mm_per_N(E_MPa: float, t_mm: float, width_mm: float, b_mm: float) -> float:

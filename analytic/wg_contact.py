@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["HertzContact", "hertz_point_contact", "hertz_from_radii", "iso281_fc", "dynamic_load_rating_N", "l10_hours",
+__all__ = ["HertzContact", "hertz_point_contact", "hertz_from_radii", "contact_spring_constant", "ball_spring_constant", "iso281_fc", "dynamic_load_rating_N", "l10_hours",
            "outer_ring_bending_MPa", "ISO281_FC_TABLE"]
 
 # ISO 281:2007 table 2, single-row radial deep-groove ball bearings: (D_w cos alpha / D_pw, f_c), N and mm
@@ -72,6 +72,27 @@ def hertz_from_radii(load_N: float, Rx: float, Ry: float, E_MPa: float, nu: floa
     b = (6.0 * e_k * load_N * R / (math.pi * k * E_eff)) ** (1.0 / 3.0)
     p0 = 0.0 if load_N == 0 else 3.0 * load_N / (2.0 * math.pi * a * b)
     return HertzContact(load_N, a, b, p0, Rx, Ry)
+
+
+def contact_spring_constant(Rx: float, Ry: float, E_MPa: float, nu: float) -> float:
+    """K of Q = K delta^(3/2) for one Hertz point contact (Hamrock & Brewe: delta = F_k [9/(2 E_k R) (Q/(pi k E'))^2]^(1/3),
+    F_k = 1.5277 + 0.6023 ln(Ry/Rx)): K = pi k E' sqrt(2 E_k R / 9) / F_k^(3/2)."""
+    R = 1.0 / (1.0 / Rx + 1.0 / Ry)
+    k = 1.0339 * (Ry / Rx) ** 0.636
+    e_k = 1.0003 + 0.5968 * Rx / Ry
+    f_k = 1.5277 + 0.6023 * math.log(Ry / Rx)
+    return math.pi * k * E_MPa / (1.0 - nu ** 2) * math.sqrt(2.0 * e_k * R / 9.0) / f_k ** 1.5
+
+
+def ball_spring_constant(ball_diameter_mm: float, groove_radius_ratio: float, race_radius_mm: float, E_MPa: float,
+                         nu: float) -> float:
+    """K_n of one ball between the inner race (radius ``race_radius_mm``) and the outer race one ball further out,
+    both contacts in series: K_n = (K_i^(-2/3) + K_o^(-2/3))^(-3/2) (Harris & Kotzalas, ch. 7)."""
+    out = []
+    for inner, r in ((True, race_radius_mm), (False, race_radius_mm + ball_diameter_mm)):
+        h = hertz_point_contact(1.0, ball_diameter_mm, groove_radius_ratio, r, E_MPa, nu, inner=inner)
+        out.append(contact_spring_constant(h.Rx_mm, h.Ry_mm, E_MPa, nu))
+    return (out[0] ** (-2.0 / 3.0) + out[1] ** (-2.0 / 3.0)) ** -1.5
 
 
 def iso281_fc(dw_over_dpw: float) -> float:

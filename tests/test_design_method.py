@@ -213,3 +213,24 @@ def test_bad_design_inputs_are_refused_naming_the_key(key, value, words):
             p = load_params().with_value(key, value)
             df.closed_form_factors(p)      # the bearing's fit is checked where its geometry is first built
     assert err.value.key == key and words in str(err.value)
+
+
+def test_ball_spring_constant_is_hertz_and_the_series_of_its_two_contacts():
+    # sphere on a flat, two equal steels: Q = (4/3) E* sqrt(r) delta^1.5 = (2/3) E' sqrt(r) delta^1.5
+    E, nu, r = 2.1e5, 0.3, 5.0
+    exact = 2.0 / 3.0 * E / (1 - nu ** 2) * math.sqrt(r)
+    assert wg_contact.contact_spring_constant(r, r, E, nu) == pytest.approx(exact, rel=0.09)  # Hamrock-Brewe at Ry/Rx = 1
+    # two contacts in series: delta = (Q/K_i)^(2/3) + (Q/K_o)^(2/3)
+    kn = wg_contact.ball_spring_constant(9.525, 0.52, 65.7, E, nu)
+    ki = wg_contact.contact_spring_constant(*_radii(9.525, 0.52, 65.7, True), E, nu)
+    ko = wg_contact.contact_spring_constant(*_radii(9.525, 0.52, 65.7 + 9.525, False), E, nu)
+    q = 400.0
+    assert (q / kn) ** (2 / 3) == pytest.approx((q / ki) ** (2 / 3) + (q / ko) ** (2 / 3), rel=1e-12)
+    assert ko > ki      # the concave outer race conforms: a larger Rx, a larger and stiffer contact
+    # a real ball is far softer than the seed's 5 x 3 mm ellipse: issue 49
+    assert 1e5 < kn < 1e6
+
+
+def _radii(D, f, r, inner):
+    rx = 1.0 / (2.0 / D + (1.0 if inner else -1.0) / r)
+    return rx, 1.0 / (2.0 / D - 1.0 / (f * D))
