@@ -13,10 +13,10 @@ eps(r) = (w + w'')/r + C' = -3 w0 cos 2phi / r + C'. The cam presses radially on
 gives N' = -M'/r_m, i.e. a membrane force N = -M/r_m (compressive where the race is in tension), which fixes
 C'; with r_n = t/ln(r_o/r_i) (Winkler's neutral radius)
 
-    sigma(r) = 3 E w0 cos 2phi [ (r - r_n)/(r r_n) - (r_m - r_n)/(r_n r_m) ]       (curved beam, asserted)
+    sigma(r) = 3 E w0 cos 2phi [ (r - r_n)/(r r_n) - (r_m - r_n)/(r_n r_m) ]       (curved beam, shown)
 
-What it leaves out (radial stress between cam and race, through-thickness strain) is second order in t/r_m:
-the check's allowance (``race_stress_allowances``).
+What it leaves out (radial stress between cam and race, through-thickness strain) is second order in t/r_m;
+the check asserts the exact plane-stress solution instead (``analytic.michell_ring``) and shows this beside it.
 
 Ball loads (Stribeck, zero clearance, rigid rings): ball i at psi_i = 2 pi i/Z is pressed by
 delta_0 cos psi_i, Hertz Q = K_n delta^(3/2), so Q_i = Q_max cos^(3/2) psi_i over |psi_i| < 90 deg, and
@@ -32,8 +32,7 @@ and seed 000's eq 4 with dA = B da gives the added compliance dlambda = int_0^a 
 face is the bore held by the cam, between a half-plane (the form) and a free strip (Tada's F_t(a/t)), whose
 amplification of the compliance is the allowance (``back_face_allowance``).
 
-The balls as a radial spring under the flexspline's rim (the tooth-mesh model, analytic/mesh_drive.py):
-The wave generator's flexible ball bearing as a radial spring from its own geometry (Hertz, Palmgren).
+The flexible bearing as a radial spring (issue 48; merged into this module, both halves kept):
 
 A ball pressed between its two raceways by the load Q approaches them by (Palmgren 1959, "Ball and Roller
 Bearing Engineering", 3rd ed., eq. for point contact of steel balls; Harris & Kotzalas, "Rolling Bearing
@@ -56,9 +55,9 @@ from typing import Callable
 
 import numpy as np
 
-__all__ = ["thin_ring_race_stress_MPa", "curved_beam_race_stress_MPa", "race_stress_allowances",
-           "stribeck_ball_loads", "ring_local_compliance_mm_per_N",
-           "stribeck_allowance", "edge_crack_K", "edge_crack_compliance_mm_per_N", "seed_form_compliance_mm_per_N",
+__all__ = ["thin_ring_race_stress_MPa", "curved_beam_race_stress_MPa",
+           "stribeck_ball_loads", "hertz_ball_constant", "ring_local_compliance_mm_per_N",
+           "edge_crack_K", "edge_crack_compliance_mm_per_N", "seed_form_compliance_mm_per_N",
            "tada_strip_tension_factor", "back_face_allowance",
            "PALMGREN_SOURCE", "ball_contact_deflection_mm", "ball_contact_stiffness_N_per_mm", "BallBearing",
            "peak_ball_load_N", "linearised_foundation", "hertz_remainder_twist_rad"]
@@ -86,14 +85,6 @@ def curved_beam_race_stress_MPa(E_MPa: float, r_i_mm: float, r_o_mm: float, w0_m
     return 3.0 * E_MPa * w0_mm * math.cos(2.0 * phi_rad) * ((r - r_n) / (r * r_n) - (r_m - r_n) / (r_n * r_m))
 
 
-def race_stress_allowances(r_i_mm: float, r_o_mm: float) -> dict[str, float]:
-    """What the curved-beam form leaves out, at its order: the radial stress between cam and race and the
-    through-thickness strain (second order in t/r_m)."""
-    t, r_m = r_o_mm - r_i_mm, 0.5 * (r_o_mm + r_i_mm)
-    return {f"second-order thick-ring terms (radial stress, through-thickness strain), (t/r_m)^2, "
-            f"t/r_m = {t / r_m:.3g}": (t / r_m) ** 2}
-
-
 def ball_angles_rad(ball_count: int) -> np.ndarray:
     """Angles of the balls that the load direction (psi = 0, a ball on it) can press: |psi| < 90 deg."""
     psi = 2.0 * np.pi * np.arange(ball_count) / ball_count
@@ -109,17 +100,20 @@ def stribeck_ball_loads(force_N: float, ball_count: int) -> tuple[np.ndarray, np
     return psi, q_max * c ** 1.5
 
 
+def hertz_ball_constant(force_N: float, semi_axes_mm: tuple[float, float], E_MPa: float, nu: float) -> float:
+    """K_n of Q = K_n delta^(3/2) for one ball between two races (two equal contacts in series), from the
+    seed's contact ellipse taken at ``force_N``: delta_contact = 3 F/(2 k), k = pi a E*/K(e) (Johnson)."""
+    from strainwave.analytic.bearing_stiffness import hertz_contact_stiffness_N_per_mm
+
+    k = hertz_contact_stiffness_N_per_mm(*semi_axes_mm, E_MPa, nu)
+    delta_pair = 2.0 * 1.5 * force_N / k
+    return force_N / delta_pair ** 1.5
+
+
 def ring_local_compliance_mm_per_N(E_MPa: float, t_mm: float, width_mm: float, b_mm: float) -> float:
     """The ring's radial compliance under one ball: the load spreading at 45 deg through the thickness t onto
     the cam, ln((b + t)/b)/(2 E B), doubled for the indentation under the patch (an upper estimate)."""
     return math.log((b_mm + t_mm) / b_mm) / (E_MPa * width_mm)
-
-
-def stribeck_allowance(q_max_N: float, K_n: float, ring_compliance_mm_per_N: float) -> float:
-    """How far a compliant ring moves the ball loads off Stribeck's rigid-ring law, first order: ball i's
-    approach loses g Q_i of delta_0 cos psi_i, which changes Q_i by (3/2) g Q_i/delta_i, largest at Q_max."""
-    delta_max = (q_max_N / K_n) ** (2.0 / 3.0)
-    return 1.5 * ring_compliance_mm_per_N * q_max_N / delta_max
 
 
 # ---- race crack ----
@@ -169,7 +163,7 @@ def back_face_allowance(a_mm: float, t_mm: float) -> float:
     return float(np.sum(ws * f2 * xs) / (f0 ** 2 * a_mm ** 2 / 2.0) - 1.0)
 
 
-# ---- the balls as a radial spring (Palmgren) under the rim ----
+# ---- the flexible bearing as a radial spring (Palmgren; issue 48) ----
 
 PALMGREN_SOURCE = ("Palmgren 1959 / Harris & Kotzalas 2006: delta = 4.36e-4 Q^(2/3) D_w^(-1/3) mm "
                    "(ball between both raceways, steel)")

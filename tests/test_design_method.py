@@ -179,13 +179,15 @@ def test_design_csv_has_one_row_per_factor_and_stress_csv_agrees(tmp_path, gear)
     assert by["ring"]["design_passed"] == str(ring_row["verdict"] == "PASS")
 
 
-def test_a_sweep_depth_not_solved_takes_a_solved_profile_not_a_key_error():
-    from strainwave.compare.validate.wg_bearing_checks import profile_for
-    cracks = {"0.5": {"depth_mm": 0.5, "profile_x_mm": [0.0, 0.5], "hoop_stress_per_N_MPa": [1.0, 0.5]}}
-    assert profile_for(cracks, 0.1) is cracks["0.5"]
-    assert profile_for(cracks, 0.9) is cracks["0.5"]      # the deepest, held beyond its end
-    with pytest.raises(ValueError):
-        profile_for({}, 0.1)
+def test_the_crack_curve_at_a_depth_the_sweep_did_not_solve_is_no_key_error():
+    """Issue 49 item 7: the second gear with a 5 mm ring asked the curve at the seed's a = 0.1 mm, which --quick had
+    not solved (KeyError '0.1'); the closed form is now a function of the parameters alone (Michell's ring)."""
+    from strainwave.compare.validate.wg_bearing_checks import crack_curve
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        p = load_params(SECOND).with_value("wave_generator.bearing_inner_ring_thickness_mm", 5.0)
+    c = crack_curve(p)(p.wave_generator.bearing_crack_depth_mm)
+    assert c["corrected"] > 0 and c["published"] > 0
 
 
 def test_sweep_table_has_an_n_column_per_factor(gear):
