@@ -28,6 +28,11 @@ from strainwave.geometry.part import Part, PartName
 from strainwave.geometry.step_xcaf import Placed
 from strainwave.geometry.wg_bearing import BearingLayout, bearing_layout, contour_edge, contour_points
 
+# The cam stands out of the bearing by this many ball diameters towards the diaphragm (its hub, for the input's
+# coupling; chosen): a cam exactly as wide as the ring would give its contact face the ring bore's centre and area,
+# which the STEP face names (matched by centre and area, step_xcaf) cannot tell apart.
+CAM_HUB_OVER_D = 0.5
+
 __all__ = ["bearing_parts", "build_balls", "build_outer_ring", "deformed_cup", "cup_gear_assembly"]
 
 
@@ -81,15 +86,16 @@ def _cam(r: BearingLayout) -> Part:
 
     a, b = r.cam_semi_axes_mm
     hub = r.hub_bore_radius_mm
-    face = Face(Wire([contour_edge(a, b, 0.0)]), [Wire([contour_edge(hub, hub, 0.0)])])
-    cam = extrude(face, amount=r.width_mm, dir=(0, 0, 1)).solids()[0]
+    hub_mm = CAM_HUB_OVER_D * r.ball_diameter_mm
+    face = Face(Wire([contour_edge(a, b, 0.0, -hub_mm)]), [Wire([contour_edge(hub, hub, 0.0, -hub_mm)])])
+    cam = extrude(face, amount=r.width_mm + hub_mm, dir=(0, 0, 1)).solids()[0]
     infos = F.face_infos(cam)
     curved = [fi for fi in infos if fi.kind != "plane"]
     named = {"contact": F.refs(fi for fi in curved if fi.bbox_max[0] > hub + 1e-6),
              "bore": F.refs(fi for fi in curved if fi.bbox_max[0] <= hub + 1e-6),
              "sides": F.refs(fi for fi in infos if fi.kind == "plane")}
     return Part(PartName.WG_CAM, cam, named, (), None, {**_meta(r), "cam_semi_axes_mm": (a, b),
-                                                       "volume_closed_form_mm3": (math.pi * a * b - math.pi * hub ** 2) * r.width_mm})
+                                                       "volume_closed_form_mm3": (math.pi * a * b - math.pi * hub ** 2) * (r.width_mm + hub_mm)})
 
 
 def _inner_ring(r: BearingLayout) -> Part:
@@ -100,11 +106,12 @@ def _inner_ring(r: BearingLayout) -> Part:
 
 
 def _balls(r: BearingLayout) -> Part:
-    from build123d import Compound, Location, Solid
+    from build123d import Compound, Plane, Solid
 
     a, b = r.cam_semi_axes_mm
     centres, _ = contour_points(a, b, r.offset_mm(r.pitch_radius_mm), np.arange(r.ball_count) / r.ball_count)
-    balls = Compound([Solid.make_sphere(0.5 * r.ball_diameter_mm).moved(Location((float(x), float(y), 0.5 * r.width_mm)))
+    # one sphere made per ball, not moved copies of one: STEP names faces by their own shapes (step_xcaf)
+    balls = Compound([Solid.make_sphere(0.5 * r.ball_diameter_mm, plane=Plane((float(x), float(y), 0.5 * r.width_mm)))
                       for x, y in centres])
     return Part(PartName.WG_BEARING_BALLS, balls, {"ball": F.refs(F.face_infos(balls))}, (), None,
                 {**_meta(r), "centres_mm": [(float(x), float(y), 0.5 * r.width_mm) for x, y in centres],
@@ -181,8 +188,9 @@ def _cone_start_mm(fc) -> float:
 
 
 def deformed_cup(params, *, teeth: bool = True) -> Part:
-    """The cup as the wave generator holds it (see the module docstring), uncracked: two solids, the round hub and
-    diaphragm with the coned wall, and the toothed band on it, touching at the band's start z_b."""
+    """The cup as the wave generator holds it (see the module docstring), uncracked. With teeth two solids, the round
+    hub and diaphragm with the coned wall, and the toothed band on it, touching at the band's start z_b; without,
+    one."""
     from build123d import Axis, Compound, Edge, Face, Solid, Wire, extrude, revolve
 
     from strainwave.geometry.flexspline_cup import BAND_RATIO, _profile
@@ -192,19 +200,23 @@ def deformed_cup(params, *, teeth: bool = True) -> Part:
     a, b = layout.cam_semi_axes_mm
     r_o, r_i, length = fc.pitch_diameter_mm / 2, fc.pitch_diameter_mm / 2 - fc.wall_thickness_mm, fc.length_mm
     z_b, z_c = length - BAND_RATIO * fc.pitch_diameter_mm, _cone_start_mm(fc)
-    bore = Wire([contour_edge(a, b, layout.offset_mm(r_i), z_b)])
-    outline = _deformed_teeth_wire(params, layout) if teeth else Wire([contour_edge(a, b, layout.offset_mm(r_o))])
-    band = extrude(Face(outline.moved(_at_z(z_b)), [bore]), amount=length - z_b, dir=(0, 0, 1)).solids()[0]
+    z_top = z_b if teeth else length      # without teeth the band is the wall's prismatic top: one ruled loft
 
     def loft(radius_mm: float):
         low = Wire([Edge.make_circle(radius_mm).moved(_at_z(z_c))])
-        return Solid.make_loft([low, Wire([contour_edge(a, b, layout.offset_mm(radius_mm), z_b)])], ruled=True)
-    cone = loft(r_o).cut(loft(r_i)).solids()[0]
+        d = layout.offset_mm(radius_mm)
+        tops = [Wire([contour_edge(a, b, d, z)]) for z in ((z_b, length) if z_top > z_b else (z_b,))]
+        return Solid.make_loft([low, *tops], ruled=True)
+    solid = loft(r_o).cut(loft(r_i)).solids()[0]
     if fc.cup:
-        cone = fuse(revolve(_profile(fc, z_c, None), Axis.Z).solids()[0], cone, touching=True)
-    # two solids touching at z_b: OCC's glue fuse drops a 200-tooth band whose root arcs only approximate the
-    # cone's top contour (measured: the default cup lost its band after 83 s), and a full fuse takes minutes
-    solid = Compound([cone, band])
+        solid = fuse(revolve(_profile(fc, z_c, None), Axis.Z).solids()[0], solid, touching=True)
+    if teeth:
+        bore = Wire([contour_edge(a, b, layout.offset_mm(r_i), z_b)])
+        outline = _deformed_teeth_wire(params, layout).moved(_at_z(z_b))
+        band = extrude(Face(outline, [bore]), amount=length - z_b, dir=(0, 0, 1)).solids()[0]
+        # two solids touching at z_b: OCC's glue fuse drops a 200-tooth band whose root arcs only approximate the
+        # cone's top contour (measured: the default cup lost its band after 83 s), and a full fuse takes minutes
+        solid = Compound([solid, band])
     meta = {"outer_radius_mm": r_o, "bore_radius_mm": r_i, "length_mm": length, "band_z_mm": (z_b, length),
             "cone_z_mm": (z_c, z_b), "w0_mm": layout.w0_mm, "teeth": fc.teeth if teeth else 0,
             "tip_radius_mm": cup_tooth_spec(params).tip_radius_mm, "root_radius_mm": cup_tooth_spec(params).root_radius_mm}
@@ -226,8 +238,8 @@ def _deformed_cup_faces(solid, meta: dict, wall_mm: float) -> dict:
     inside = meta["bore_radius_mm"] + w0 + 0.5 * wall_mm      # a face reaching beyond this is on the outside
     fixed, rim = F.select(infos, F.is_zplane(0.0, tol)), F.select(infos, F.is_zplane(length, tol))
     tooth_end = F.select(infos, F.is_zplane(z_b, tol))
-    curved_above = lambda lo: lambda fi: fi.kind != "plane" or abs(fi.normal[2]) < 1e-9 and fi.bbox_min[2] >= lo - tol  # noqa: E731
-    above_c = F.select(infos, lambda fi: fi.bbox_min[2] >= z_c - tol and curved_above(z_c)(fi))
+    # the wall's faces from the cone's start up: every face there but the z planes
+    above_c = F.select(infos, lambda fi: fi.bbox_min[2] >= z_c - tol and (fi.kind != "plane" or abs(fi.normal[2]) < 1e-9))
     bore = tuple(fi for fi in above_c if fi.bbox_max[0] < inside)
     loaded = tuple(fi for fi in above_c if fi.bbox_max[0] >= inside and fi.bbox_min[2] >= z_b - tol)
     outer = tuple(fi for fi in above_c if fi.bbox_max[0] >= inside and fi.bbox_min[2] < z_b - tol)

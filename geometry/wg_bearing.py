@@ -25,6 +25,7 @@ __all__ = ["GROOVE_DEPTH_OVER_D", "BearingLayout", "bearing_layout", "contour_ed
 
 GROOVE_DEPTH_OVER_D = 0.18     # land height over the groove bottom / D_w (chosen: deep-groove rings 0.15..0.22)
 HUB_BORE_OVER_MINOR = 0.4      # the cam's input-shaft bore over its minor semi-axis (as geometry.wg_cam)
+APPROX_TOL_MM = 1e-7          # B-spline of a parallel curve: within OCC's own precision (1e-7)
 _SAMPLES = 20001               # points along a contour for arc length (error ~ (2 pi R / N)^2 / R: far below 1e-6 mm)
 
 
@@ -104,15 +105,22 @@ def contour_points(a: float, b: float, d: float, s_fraction: np.ndarray, at_d: f
 
 def contour_edge(a: float, b: float, d: float, z_mm: float = 0.0):
     """The parallel curve at ``d`` of the ellipse (a, b) in the plane z (a circle of radius a + d when a == b), as a
-    build123d Edge: OCC's exact offset curve, so contours of one ellipse are exactly parallel."""
+    build123d Edge: OCC's offset curve approximated by a B-spline within ``APPROX_TOL_MM`` (STEP writes B-splines
+    exactly, an offset curve it re-approximates, and booleans on B-splines are faster)."""
     from build123d import Edge
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
     from OCP.Geom import Geom_Circle, Geom_Ellipse, Geom_OffsetCurve
+    from OCP.GeomAbs import GeomAbs_C2
+    from OCP.GeomConvert import GeomConvert_ApproxCurve
     from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
 
     axes = gp_Ax2(gp_Pnt(0.0, 0.0, z_mm), gp_Dir(0.0, 0.0, 1.0), gp_Dir(1.0, 0.0, 0.0))
     if a - b < 1e-12 * a:
         return Edge(BRepBuilderAPI_MakeEdge(Geom_Circle(axes, a + d)).Edge())
     base = Geom_Ellipse(axes, a, b)
-    curve = base if d == 0.0 else Geom_OffsetCurve(base, d, gp_Dir(0.0, 0.0, 1.0))
-    return Edge(BRepBuilderAPI_MakeEdge(curve).Edge())
+    if d == 0.0:
+        return Edge(BRepBuilderAPI_MakeEdge(base).Edge())
+    approx = GeomConvert_ApproxCurve(Geom_OffsetCurve(base, d, gp_Dir(0.0, 0.0, 1.0)), APPROX_TOL_MM, GeomAbs_C2, 64, 8)
+    if not approx.IsDone():
+        raise RuntimeError(f"B-spline of the parallel curve at {d:g} mm of the ellipse ({a:g}, {b:g}) failed")
+    return Edge(BRepBuilderAPI_MakeEdge(approx.Curve()).Edge())
