@@ -242,3 +242,34 @@ def test_balls_that_do_not_fit_are_refused(small):
 
     with pytest.raises(InputError, match="wave_generator.ball_count"):
         bearing_layout(small.with_value("wave_generator.ball_count", 60))
+
+
+@pytest.mark.heavy
+def test_cli_exports_the_full_size_drive(strainwave_cmd, tmp_path):
+    """`export-step --part assembly` on the default gear: the drive's seven parts (24 balls) in one STEP assembly,
+    every ball on both races of the default's bearing (its layout from the keys)."""
+    import subprocess
+
+    from build123d import Vertex, import_step
+
+    out = tmp_path / "drive.step"
+    run = subprocess.run([*strainwave_cmd, "export-step", "--part", "assembly", "-o", str(out)],
+                         capture_output=True, text=True, timeout=900)
+    assert run.returncode == 0, run.stderr
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        params = load_params()
+    back = import_step(out)
+    text = out.read_text(errors="ignore")
+    assert all(name in text for name in ("circular-spline", "wg-bearing-balls", "wg-bearing-outer-ring", "wg-cam"))
+    # cup (wall and toothed band), spline, cam, inner ring, balls, outer ring, shaft
+    assert len(back.solids()) == 7 + params.wave_generator.ball_count
+    from strainwave.geometry.drive_assembly import cup_gear_assembly
+    from strainwave.geometry.wg_bearing import bearing_layout
+
+    drive = {item.part.name.value: item for item in cup_gear_assembly(params)}
+    d_w = bearing_layout(params).ball_diameter_mm
+    balls = drive["wg-bearing-balls"]
+    for race in ("wg-bearing-ring", "wg-bearing-outer-ring"):
+        gaps = [_distance_mm(Vertex(*balls.point_mm(c)), drive[race].shape) for c in balls.part.meta["centres_mm"]]
+        assert max(abs(g - 0.5 * d_w) for g in gaps) < CONTACT_MM, race
