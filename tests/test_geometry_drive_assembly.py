@@ -273,3 +273,10 @@ def test_cli_exports_the_full_size_drive(strainwave_cmd, tmp_path):
     for race in ("wg-bearing-ring", "wg-bearing-outer-ring"):
         gaps = [_distance_mm(Vertex(*balls.point_mm(c)), drive[race].shape) for c in balls.part.meta["centres_mm"]]
         assert max(abs(g - 0.5 * d_w) for g in gaps) < CONTACT_MM, race
+
+
+def test_a_rim_inside_the_tooth_roots_is_refused(small):
+    from strainwave.geometry.parts import build_part
+
+    with pytest.raises(InputError, match="circular_spline.outer_diameter_mm"):
+        build_part("circular-spline", small.with_value("circular_spline.outer_diameter_mm", 51.0))
