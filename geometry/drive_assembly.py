@@ -23,7 +23,7 @@ from strainwave.errors import InputError
 from strainwave.geometry import faces as F
 from strainwave.geometry import tooth_profiles
 from strainwave.geometry.involute import cup_tooth_spec
-from strainwave.geometry.occ import fuse
+from strainwave.geometry.occ import fuse, single_solid
 from strainwave.geometry.part import Part, PartName
 from strainwave.geometry.step_xcaf import Placed
 from strainwave.geometry.wg_bearing import BearingLayout, bearing_layout, contour_edge, contour_points
@@ -32,6 +32,7 @@ from strainwave.geometry.wg_bearing import BearingLayout, bearing_layout, contou
 # coupling; chosen): a cam exactly as wide as the ring would give its contact face the ring bore's centre and area,
 # which the STEP face names (matched by centre and area, step_xcaf) cannot tell apart.
 CAM_HUB_OVER_D = 0.5
+GROOVE_TOL_MM = 1e-7        # the swept groove's approximation (OCC's default, 1e-4, puts a ball 2e-5 mm off its race)
 
 __all__ = ["bearing_parts", "build_balls", "build_outer_ring", "deformed_cup", "cup_gear_assembly"]
 
@@ -53,23 +54,62 @@ def _ring(layout: BearingLayout, r_in_mm: float, r_out_mm: float):
 
 
 def _ring_faces(solid, layout: BearingLayout, inner: str, outer: str) -> dict:
-    """Names of a ring's faces: its two z planes and the inner/outer contour surfaces (told apart by reach)."""
+    """Names of a grooved ring's faces: its z planes, the groove (``race``: the only curved face clear of both
+    planes), the lands beside it (``land``) and the plain contour surface on the other side (``inner``/``outer``,
+    whichever the groove is not on; told apart from the lands by reach)."""
     infos = F.face_infos(solid)
     tol = 1e-6 * layout.outer_radius_mm
-    sides = {"side_bottom": F.select(infos, F.is_zplane(0.0, tol)),
-             "side_top": F.select(infos, F.is_zplane(layout.width_mm, tol))}
+    w = layout.width_mm
     curved = [fi for fi in infos if fi.kind != "plane"]
-    reach = max(fi.bbox_max[0] for fi in curved)
-    return {inner: F.refs(fi for fi in curved if fi.bbox_max[0] < reach - tol),
-            outer: F.refs(fi for fi in curved if fi.bbox_max[0] >= reach - tol),
-            **{k: F.refs(v) for k, v in sides.items()}}
+    race = [fi for fi in curved if fi.bbox_min[2] > tol and fi.bbox_max[2] < w - tol]
+    sides = [fi for fi in curved if fi not in race]
+    reach = max(fi.bbox_max[0] for fi in sides)
+    far = [fi for fi in sides if fi.bbox_max[0] >= reach - tol]
+    near = [fi for fi in sides if fi.bbox_max[0] < reach - tol]
+    plain, lands = (near, far) if outer == "race" else (far, near)     # the groove is on the lands' side
+    return {inner if outer == "race" else outer: F.refs(plain), "race": F.refs(race), "land": F.refs(lands),
+            "side_bottom": F.refs(F.select(infos, F.is_zplane(0.0, tol))),
+            "side_top": F.refs(F.select(infos, F.is_zplane(w, tol)))}
+
+
+def _perimeter_mm(layout: BearingLayout, radius_mm: float) -> float:
+    """Perimeter of the contour a round circle of ``radius_mm`` becomes."""
+    q, _ = contour_points(*layout.cam_semi_axes_mm, layout.offset_mm(radius_mm), np.linspace(0.0, 1.0, 20001))
+    return float(np.hypot(*np.diff(q, axis=0).T).sum())
 
 
 def _area_between_mm2(layout: BearingLayout, r_in_mm: float, r_out_mm: float) -> float:
     """Area between two parallel curves of a convex curve: P_in w + pi w^2 (Steiner), P_in the inner perimeter."""
-    q, _ = contour_points(*layout.cam_semi_axes_mm, layout.offset_mm(r_in_mm), np.linspace(0.0, 1.0, 20001))
     w = r_out_mm - r_in_mm
-    return float(np.hypot(*np.diff(q, axis=0).T).sum()) * w + math.pi * w * w
+    return _perimeter_mm(layout, r_in_mm) * w + math.pi * w * w
+
+
+def _groove(layout: BearingLayout, centre_radius_mm: float):
+    """The ball groove's cutter: a circle of the groove radius swept along the contour of its centre (mid-width)."""
+    from build123d import Edge, Plane, Solid, Wire
+    from OCP.BRepOffsetAPI import BRepOffsetAPI_MakePipeShell
+    from OCP.gp import gp_Dir
+
+    path = Wire([contour_edge(*layout.cam_semi_axes_mm, layout.offset_mm(centre_radius_mm), 0.5 * layout.width_mm)])
+    circle = Edge.make_circle(layout.groove_radius_mm, Plane(origin=path.position_at(0), z_dir=path.tangent_at(0)))
+    pipe = BRepOffsetAPI_MakePipeShell(path.wrapped)
+    pipe.SetMode(gp_Dir(0.0, 0.0, 1.0))                  # the section stays upright: a parallel-curve tube
+    pipe.SetTolerance(GROOVE_TOL_MM, GROOVE_TOL_MM, 1e-6)
+    pipe.Add(Wire([circle]).wrapped)
+    pipe.Build()
+    if not pipe.IsDone() or not pipe.MakeSolid():
+        raise RuntimeError("the bearing's groove could not be swept")
+    return Solid(pipe.Shape())
+
+
+def _groove_volume_mm3(layout: BearingLayout, centre_radius_mm: float, inward: bool) -> float:
+    """What the groove takes from a ring: the circle's segment of height = groove depth (Pappus along the parallel
+    curve through the segment's centroid), the segment towards the axis (``inward``, inner ring) or away."""
+    r, h = layout.groove_radius_mm, layout.groove_depth_mm
+    theta = 2 * math.acos((r - h) / r)
+    area = 0.5 * r * r * (theta - math.sin(theta))
+    centroid = 4 * r * math.sin(0.5 * theta) ** 3 / (3 * (theta - math.sin(theta)))
+    return area * _perimeter_mm(layout, centre_radius_mm + (-centroid if inward else centroid))
 
 
 def _layout(params, deformed: bool) -> BearingLayout:
@@ -98,9 +138,19 @@ def _cam(r: BearingLayout) -> Part:
                                                        "volume_closed_form_mm3": (math.pi * a * b - math.pi * hub ** 2) * (r.width_mm + hub_mm)})
 
 
+def _groove_centres_mm(r: BearingLayout) -> tuple[float, float]:
+    """Round radii of the inner and outer grooves' centres: r_g - D_w/2 beyond the balls' pitch circle, so each
+    groove's bottom is the race and the ball touches it there only."""
+    e = r.groove_radius_mm - 0.5 * r.ball_diameter_mm
+    return r.pitch_radius_mm + e, r.pitch_radius_mm - e
+
+
 def _inner_ring(r: BearingLayout) -> Part:
-    solid = _ring(r, r.bore_radius_mm, r.inner_race_radius_mm)
-    volume = _area_between_mm2(r, r.bore_radius_mm, r.inner_race_radius_mm) * r.width_mm
+    centre = _groove_centres_mm(r)[0]
+    land = r.inner_race_radius_mm + r.groove_depth_mm
+    solid = single_solid(_ring(r, r.bore_radius_mm, land).cut(_groove(r, centre)))
+    volume = (_area_between_mm2(r, r.bore_radius_mm, land) * r.width_mm
+              - _groove_volume_mm3(r, centre, inward=True))
     return Part(PartName.WG_BEARING_RING, solid, _ring_faces(solid, r, "bore", "race"), (), None,
                 {**_meta(r), "volume_closed_form_mm3": volume})
 
@@ -119,8 +169,11 @@ def _balls(r: BearingLayout) -> Part:
 
 
 def _outer_ring(r: BearingLayout) -> Part:
-    solid = _ring(r, r.outer_race_radius_mm, r.outer_radius_mm)
-    volume = _area_between_mm2(r, r.outer_race_radius_mm, r.outer_radius_mm) * r.width_mm
+    centre = _groove_centres_mm(r)[1]
+    land = r.outer_race_radius_mm - r.groove_depth_mm
+    solid = single_solid(_ring(r, land, r.outer_radius_mm).cut(_groove(r, centre)))
+    volume = (_area_between_mm2(r, land, r.outer_radius_mm) * r.width_mm
+              - _groove_volume_mm3(r, centre, inward=False))
     return Part(PartName.WG_BEARING_OUTER_RING, solid, _ring_faces(solid, r, "race", "outer"), (), None,
                 {**_meta(r), "volume_closed_form_mm3": volume})
 

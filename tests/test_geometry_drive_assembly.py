@@ -23,6 +23,7 @@ SMALL = {"flexspline_cup.pitch_diameter_mm": 48.0, "flexspline_cup.teeth": 60, "
          "circular_spline.outer_diameter_mm": 60.0, "circular_spline.face_width_mm": 9.0,
          "circular_spline.addendum_coefficient": 0.6, "circular_spline.backlash_mm": 0.03}
 CONTACT_MM = 1e-6      # two parts in contact: OCC's distance between their surfaces (its precision ~1e-7 mm)
+RACE_CONTACT_MM = 1e-5  # a ball on its groove: the groove is OCC's sweep, approximated to ~1e-5 mm
 OVERLAP = 1e-6         # no overlap: common volume below this share of the smaller part's volume
 
 
@@ -141,7 +142,8 @@ def test_outer_ring_sits_in_the_cups_bore(drive):
 
 @pytest.mark.parametrize("race", ["wg-bearing-ring", "wg-bearing-outer-ring"])
 def test_each_ball_touches_its_race_without_overlap(drive, race):
-    """Every ball, not only the nearest: its centre lies D_w/2 from the race and outside the ring."""
+    """Every ball, not only the nearest: its centre lies D_w/2 from the race (the groove's bottom: the groove is
+    wider than the ball, f > 0.5) and outside the ring."""
     from build123d import Vertex
 
     d_w = SMALL["wave_generator.ball_diameter_mm"]
@@ -150,7 +152,7 @@ def test_each_ball_touches_its_race_without_overlap(drive, race):
     assert len(centres) == SMALL["wave_generator.ball_count"]
     ring = drive[race].shape
     gaps = [_distance_mm(Vertex(*c), ring) for c in centres]
-    assert max(abs(g - 0.5 * d_w) for g in gaps) < CONTACT_MM
+    assert max(abs(g - 0.5 * d_w) for g in gaps) < RACE_CONTACT_MM
     assert not any(ring.is_inside(c) for c in centres)
 
 
@@ -200,10 +202,12 @@ def test_flank_gap_at_the_major_axis_is_the_backlash(drive):
 
 
 def test_bearing_volumes_match_closed_forms(drive):
-    """Rings as parallel curves of the cam's ellipse: area P_in w + pi w^2 (Steiner); balls pi D^3/6 each."""
+    """Rings as parallel curves of the cam's ellipse: area P_in w + pi w^2 (Steiner) less the groove's circular
+    segment swept along its centroid's curve (Pappus); balls pi D^3/6 each. 1e-5: OCC's volume of the swept groove
+    (1.7e-6 off); a groove 1 % too deep moves the ring's volume by ~7e-4."""
     for name in ("wg-bearing-ring", "wg-bearing-outer-ring", "wg-bearing-balls", "wg-cam"):
         part = drive[name].part
-        assert part.volume_mm3 == pytest.approx(part.meta["volume_closed_form_mm3"], rel=1e-6), name
+        assert part.volume_mm3 == pytest.approx(part.meta["volume_closed_form_mm3"], rel=1e-5), name
 
 
 def test_circular_spline_part_named_faces_and_step(small, tmp_path):
@@ -272,7 +276,7 @@ def test_cli_exports_the_full_size_drive(strainwave_cmd, tmp_path):
     balls = drive["wg-bearing-balls"]
     for race in ("wg-bearing-ring", "wg-bearing-outer-ring"):
         gaps = [_distance_mm(Vertex(*balls.point_mm(c)), drive[race].shape) for c in balls.part.meta["centres_mm"]]
-        assert max(abs(g - 0.5 * d_w) for g in gaps) < CONTACT_MM, race
+        assert max(abs(g - 0.5 * d_w) for g in gaps) < RACE_CONTACT_MM, race
 
 
 def test_a_rim_inside_the_tooth_roots_is_refused(small):
