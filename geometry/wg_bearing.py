@@ -4,7 +4,8 @@ Layout (every radius from the keys, so it follows the parameters; round, before 
 - the outer ring's outside is the cup's bore r_cb = d1/2 - delta; its race (groove bottom) r_cb - t_o;
 - the balls (D_w, ``ball_count`` of them, equally spaced) on the pitch circle r_cb - t_o - D_w/2;
 - the inner ring's race (groove bottom) r_cb - t_o - D_w, its bore that minus t_i: the cam's mean radius;
-- grooves of radius f D_w (``groove_radius_ratio``) cut GROOVE_DEPTH_OVER_D D_w deep into both rings' lands;
+- grooves of radius f D_w (``groove_radius_ratio``), centred (f - 1/2) D_w beyond the pitch circle, their bottoms the
+  races; the lands stand GROOVE_DEPTH_OVER_D D_w above them (``drive_assembly`` cuts them);
 - width (all three and the cam) 4 a', as ``geometry.bearing_ring``'s ring.
 Deformed (the assembly): the cam is the ellipse of semi-axes r_bore +- w0; every other circle of radius R is drawn
 as the parallel curve of that ellipse at distance R - r_bore (``contour``), the shape of a ring of constant
