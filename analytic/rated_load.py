@@ -38,7 +38,8 @@ class RatedLoad:
         return self.rated / self.solved
 
     def describe(self) -> str:
-        return f"{self.name} = {self.rated:.4g} {self.unit} ({self.source})"
+        from strainwave.catalogue_units import beside
+        return f"{self.name} = {self.rated:.4g} {self.unit}{beside(self.rated, self.unit)} ({self.source})"
 
     def to_dict(self) -> dict:
         return {"study": self.study, "name": self.name, "unit": self.unit, "solved": self.solved,

@@ -102,13 +102,22 @@ def designer_headline(s3: dict) -> list[str]:
 def crack_headline_lines(h: dict) -> list[str]:
     """Seed 000's headline (analytic/crack_headline.py) from its JSON form."""
     out = [f"DESIGNER HEADLINE (seed 000): cracks of the seed's depth (a = {h['seed_depth_mm']:g} mm) in all three "
-           f"components together lower K_HD = {h['K_HD_uncracked_Nmm_per_rad']:.4g} N mm/rad by "
+           f"components together lower K_HD = {h['K_HD_uncracked_Nmm_per_rad']:.4g} N mm/rad "
+           f"({h['K_HD_uncracked_Nmm_per_rad'] / 1e3:.4g} N m/rad) by "
            f"{100 * h['drop_all_three']:.2g} % (seed: {h['seed_claim_percent']:g} %), from the FEA-confirmed crack forms"]
     for c in h["components"]:
         depth = "none" if c["depth_for_target_mm"] is None else f"a = {c['depth_for_target_mm']:.3g} mm"
         out.append(f"  {c['component']}: {c['form']}; a = {c['depth_mm']:g} mm: K_HD -{100 * c['drop_at_seed_depth']:.2g} %; "
                    f"{100 * h['target_drop']:g} % of K_HD costs {depth} ({c['depth_note']})")
     return out
+
+
+def _catalogue(path: tuple, s0: dict, unit: str) -> str:
+    """The corrected value in the catalogue's unit (N m/rad for K_HD), where it has one."""
+    from strainwave.catalogue_units import beside
+    value = _get(s0, path)
+    return beside(value, unit.replace(" ", "*", 1)).replace(" (", "  (corrected: ", 1) \
+        if unit == "N mm/rad" and isinstance(value, float) else ""
 
 
 def format_summary(summary: dict) -> str:
@@ -118,7 +127,7 @@ def format_summary(summary: dict) -> str:
         _fmt(s0["r_m_mm"]["chosen"]), s0["r_m_mm"]["choice"]),
         f"{'quantity':<24}{'published':>16}{'corrected':>16}  unit"]
     for name, p, c, unit in _ROWS_000:
-        lines.append(f"{name:<24}{_fmt(_get(s0, p)):>16}{_fmt(_get(s0, c)):>16}  {unit}")
+        lines.append(f"{name:<24}{_fmt(_get(s0, p)):>16}{_fmt(_get(s0, c)):>16}  {unit}" + _catalogue(c, s0, unit))
     lines.append(f"{'F_r':<24}{_fmt(s0['F_r_N']):>16}{'':>16}  N")
     pr = s0["K_HD"]["printed_by_seed"]
     lines.append(f"seed prints K_HD = {_fmt(pr['uncracked'])} / {_fmt(pr['cracked'])}; 1/lambda_sum of its table = "

@@ -201,10 +201,11 @@ class StudyResult:
         if self.crack is not None:
             lines.append(f"  crack: a = {self.crack.depth_mm:g} mm, {self.crack.model}")
         for q in self.quantities.values():
-            err = "" if q.convergence is None else (
-                f"  +/- {q.convergence.gci_fine * 100:.3g} % (GCI, {q.convergence.basis}, "
-                f"observed p = {q.convergence.observed_order:.2f}, "
-                f"extrapolated {q.convergence.extrapolated:.6g})")
+            c = q.convergence
+            # the basis names the observed p when it rests on it: said once
+            observed = "" if c is None or "observed p" in c.basis else f"observed p = {c.observed_order:.2f}, "
+            err = "" if c is None else (
+                f"  +/- {c.gci_fine * 100:.3g} % (GCI, {c.basis}, {observed}extrapolated {c.extrapolated:.6g})")
             lines.append(f"  {q.name:<40s} {q.value:.6g} {q.unit}{err}")
         if self.timings_s:
             lines.append("  time: " + ", ".join(f"{k} {v:.2f} s" for k, v in self.timings_s.items()))

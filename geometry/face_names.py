@@ -136,6 +136,7 @@ def apply_face_names(gmsh, sidecar: Path) -> dict[str, list[int]]:
                 abs(mass - face["area_mm2"]) > REL_TOL * max(face["area_mm2"], 1e-12) + 1e-12:
             raise ValueError(f"{sidecar}: surface {tag} no longer matches its face {face['name']!r} "
                              "(centre or area moved): the STEP file changed since the index was written")
+        gmsh.model.setEntityName(2, tag, face["name"])   # gmsh.model.getEntityName reads it, as for its own labels
         for name in face["name"].split("+"):     # a face in two named sets carries both (step_xcaf)
             groups.setdefault(name, []).append(tag)
     for name, tags in groups.items():

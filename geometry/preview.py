@@ -1,6 +1,6 @@
 """Off-screen PNG preview of a part (pyvista/VTK through ``strainwave.render``: no display, no global state).
 
-Left: the whole part (grey), with the crack faces in red and contact/load faces in blue.
+Left: the whole part (grey), with the crack faces in red, contact/load faces in blue and fixed faces in green.
 Right: a close-up on the crack front (or, for an uncracked part, on the contact or loaded faces).
 """
 from __future__ import annotations
@@ -47,6 +47,25 @@ def _polydata(shapes, tol_mm: float):
     return mesh if mesh.n_cells else None
 
 
+LOAD_FACES = ("contact", "loaded")    # where a load or a contact acts: blue
+SUPPORT_FACES = ("fixed",)            # where the part is held: green
+LOAD_COLOUR, SUPPORT_COLOUR = "royalblue", "forestgreen"
+
+
+def _refs(part: Part, names: tuple[str, ...]) -> list:
+    return [ref for name in names for ref in part.named_faces.get(name, ())]
+
+
+def _lifted(mesh, middle: np.ndarray, span: float):
+    """``mesh`` moved 0.2 % of the part's size away from its middle, off the body's surface (no z-fighting),
+    on a cylinder and on an end face alike."""
+    if mesh is None:
+        return None
+    away = mesh.points - middle
+    mesh.points = mesh.points + 2e-3 * span * away / np.maximum(np.linalg.norm(away, axis=1, keepdims=True), 1e-12)
+    return mesh
+
+
 def _focus(part: Part):
     """Centre and size of the region the close-up shows."""
     if part.crack_front_mm:
@@ -69,11 +88,9 @@ def render_preview(part: Part, png_path: Path | str, size: tuple[int, int] = (14
     body = _polydata([part.solid], 2e-3 * span)
     crack = _polydata(find_faces(part.solid, part.named_faces.get("crack_face", ())
                                  + part.named_faces.get("crack_front", ())), 1e-3)
-    loads = _polydata(find_faces(part.solid, part.named_faces.get("contact", ())), 1e-3 * span)
-    if loads is not None:  # lift the patch off the body surface so that it does not z-fight
-        radial = loads.points * np.array([1.0, 1.0, 0.0])
-        norm = np.linalg.norm(radial, axis=1, keepdims=True)
-        loads.points = loads.points + 2e-3 * span * radial / np.maximum(norm, 1e-12)
+    middle = np.array([bb.center().X, bb.center().Y, bb.center().Z])
+    loads = _lifted(_polydata(find_faces(part.solid, _refs(part, LOAD_FACES)), 1e-3 * span), middle, span)
+    supports = _lifted(_polydata(find_faces(part.solid, _refs(part, SUPPORT_FACES)), 1e-3 * span), middle, span)
     centre, extent = _focus(part)
 
     plotter = off_screen_plotter(RenderSettings(size, shape=(1, 2)))
@@ -84,7 +101,9 @@ def render_preview(part: Part, png_path: Path | str, size: tuple[int, int] = (14
             plotter.add_mesh(crack, color="red", lighting=False)
             plotter.add_mesh(crack.extract_feature_edges(), color="red", line_width=4, lighting=False)
         if loads is not None:
-            plotter.add_mesh(loads, color="royalblue")
+            plotter.add_mesh(loads, color=LOAD_COLOUR)
+        if supports is not None:
+            plotter.add_mesh(supports, color=SUPPORT_COLOUR)
     plotter.subplot(0, 0)
     plotter.add_text(f"{part.name.value}", font_size=14, color="black")
     plotter.add_axes(color="black", line_width=3)

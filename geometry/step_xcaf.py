@@ -12,7 +12,8 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
-__all__ = ["Placed", "PART_COLOURS_RGB", "named_refs", "write_named_step", "read_step_face_names"]
+__all__ = ["Placed", "PART_COLOURS_RGB", "named_refs", "write_named_step", "read_step_face_names",
+           "import_step_named"]
 
 # One colour per part so an assembly reads at a glance (sRGB 0..1; steel greys with a hue per role).
 PART_COLOURS_RGB: dict[str, tuple[float, float, float]] = {
@@ -392,3 +393,73 @@ def read_step_face_names(path: Path | str) -> list[tuple[str, tuple[float, float
     OCC's own STEP reader (the name of the ADVANCED_FACE entity each face was transferred from).
     Lets a test (or a user's script) check that a file carries the names other tools will see."""
     return [(name, centre, area) for _, name, centre, area in _faces_read_back(Path(path)) if name]
+
+
+def _label_name(label) -> str:
+    from OCP.TDataStd import TDataStd_Name
+    attribute = TDataStd_Name()
+    return attribute.Get().ToExtString() if label.FindAttribute(TDataStd_Name.GetID_s(), attribute) else ""
+
+
+def _sub_face_names(shape_tool, label, out: dict, prefix: str = "") -> None:
+    """name -> [TopoDS_Face] of the named sub-shape labels under ``label``; an assembly's components' faces are
+    named 'PART/name' (its parts share face names: each has a 'bore')."""
+    from build123d.importers import Sequence_TDF_Label
+    from OCP.TDF import TDF_Label
+    from OCP.TopAbs import TopAbs_FACE
+    subs = Sequence_TDF_Label()
+    shape_tool.GetSubShapes_s(label, subs)
+    for i in range(1, subs.Length() + 1):
+        shape, name = shape_tool.GetShape_s(subs.Value(i)), _label_name(subs.Value(i))
+        if name and shape.ShapeType() == TopAbs_FACE:
+            for part in name.split("+"):   # a face in two named sets carries both (named_refs)
+                out.setdefault(prefix + part, []).append(shape)
+    components = Sequence_TDF_Label()
+    shape_tool.GetComponents_s(label, components)
+    for i in range(1, components.Length() + 1):
+        prototype = TDF_Label()
+        if shape_tool.GetReferredShape_s(components.Value(i), prototype):
+            _sub_face_names(shape_tool, prototype, out, f"{prefix}{_label_name(prototype)}/")
+
+
+def import_step_named(path: Path | str):
+    """``(shape, {name: [Face]})``: a STEP file as build123d shapes, with the named faces as build123d ``Face``s
+    whose ``label`` is their name.
+
+    build123d's ``import_step`` labels products and assembly components only (its faces come back unnamed), and
+    gmsh 4.15 reads no face names either; OCC's XCAF reader returns the ADVANCED_FACE names this module writes as
+    named sub-shape labels once ``read.stepcaf.subshapes.name`` is on, which is what this reads. The shape is
+    build123d's own ``import_step`` of the same file (names, colours, placement as build123d gives them); a
+    face of a part placed in an assembly is named 'PART/name' and returned in its part's own frame."""
+    from build123d import Face, import_step
+    from OCP.IFSelect import IFSelect_ReturnStatus
+    from OCP.Interface import Interface_Static
+    from OCP.STEPCAFControl import STEPCAFControl_Reader
+    from OCP.TCollection import TCollection_ExtendedString
+    from OCP.TDocStd import TDocStd_Document
+    from OCP.XCAFDoc import XCAFDoc_DocumentTool
+    from build123d.importers import Sequence_TDF_Label
+
+    reader = STEPCAFControl_Reader()   # its constructor registers the static set next
+    saved = Interface_Static.IVal_s("read.stepcaf.subshapes.name")
+    Interface_Static.SetIVal_s("read.stepcaf.subshapes.name", 1)
+    try:
+        reader.SetNameMode(True)
+        with _quiet_occ():
+            if reader.ReadFile(str(path)) != IFSelect_ReturnStatus.IFSelect_RetDone:
+                raise RuntimeError(f"OCC could not read {path}")
+            doc = TDocStd_Document(TCollection_ExtendedString("XCAF"))
+            reader.Transfer(doc)
+    finally:
+        Interface_Static.SetIVal_s("read.stepcaf.subshapes.name", saved)
+    shape_tool = XCAFDoc_DocumentTool.ShapeTool_s(doc.Main())
+    free, found = Sequence_TDF_Label(), {}
+    shape_tool.GetFreeShapes(free)
+    for i in range(1, free.Length() + 1):
+        _sub_face_names(shape_tool, free.Value(i), found)
+    named = {}
+    for name, faces in found.items():
+        named[name] = [Face(f) for f in faces]
+        for face in named[name]:
+            face.label = name
+    return import_step(str(path)), named

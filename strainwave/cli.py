@@ -46,7 +46,8 @@ class _Help(argparse.RawDescriptionHelpFormatter):
 
     def _get_help_string(self, action):
         text = action.help or ""
-        if action.default not in (None, False, argparse.SUPPRESS) and "%(default)" not in text \
+        # a help that names its default already ("(default 3)") is not given a second one
+        if action.default not in (None, False, argparse.SUPPRESS) and "(default" not in text \
                 and action.option_strings and not isinstance(action.default, list):
             text += " (default: %(default)s)"
         return text
@@ -145,9 +146,11 @@ def _cmd_export_step(args) -> int:
     params = _params(args)
     if not args.no_teeth:
         check_cad_teeth(params, list(TOOTHED_PARTS) if args.part == "assembly" else [args.part])
+    from strainwave.progress import ticking
     try:
-        written = export_part(args.part, params, Path(args.output), crack_depth_mm=args.crack_depth_mm,
-                              teeth=not args.no_teeth, png=Path(args.png) if args.png else None)
+        with ticking(f"export-step {args.part}: building and writing", _progress, first_s=EXPORT_FIRST_TICK_S):
+            written = export_part(args.part, params, Path(args.output), crack_depth_mm=args.crack_depth_mm,
+                                  teeth=not args.no_teeth, png=Path(args.png) if args.png else None)
     except (StrainwaveError, OSError):
         raise
     except Exception as exc:   # noqa: BLE001 - OCC's own failures ("Could not create line", "No geometry")
@@ -155,6 +158,11 @@ def _cmd_export_step(args) -> int:
         raise StageError("CAD", args.part, f"{type(exc).__name__}: {exc}") from exc
     _emit(args, "\n".join(f"wrote {path}" for path in written), {"written": [str(p) for p in written]})
     return 0
+
+
+# the export's first "still working" line: past the seconds a refused crack depth takes to be said on a loaded
+# machine (CAD imports), so a refusal stays one line; then every 5 s
+EXPORT_FIRST_TICK_S = 10.0
 
 
 def _cmd_solve(args) -> int:
@@ -167,6 +175,12 @@ def _cmd_solve(args) -> int:
     # Refusable before any CAD or meshing: a crack through the wall, a mesh beyond the element budget.
     with_crack(args.study, params, args.crack_depth_mm)
     check_budget(args.study, params, args.mesh_size_mm)
+    if args.inp:
+        from strainwave.registry import STUDIES as REGISTRY
+        if REGISTRY[args.study].facts().plane:   # a CalculiX solid deck needs the 3D mesh
+            from strainwave.output_guard import unstage_text
+            raise InputError("--inp", unstage_text(args.inp), f"a 3D study; {args.study} is meshed as a plane "
+                             "section (use --msh)")
     # The field is always written (to a scratch folder without --vtu): the rated-load peaks are read from it.
     from strainwave.output_guard import remove_stale
     remove_stale(tempfile.gettempdir())   # killed solves' folders, when the scratch is the system's
@@ -178,11 +192,24 @@ def _cmd_solve(args) -> int:
         rated = None if found is None else stress_at_rated(args.study, params, result, found[0], cracked=found[1])
         if args.vtu and rated is not None:   # the file a user opens is at the load this command reports
             write_at_rated(result.fields, rated.load)
+        _export_mesh(args, vtu, params, result)
     if not args.vtu:
         result = dataclasses.replace(result, fields=())
     text = result.summary() + ("" if rated is None else "\n" + "\n".join(rated.lines()))
     _emit(args, text, lambda: {**result.to_dict(), "stress_at_rated": None if rated is None else rated.to_dict()})
     return 0
+
+
+def _export_mesh(args, vtu: Path, params, result) -> None:
+    """--msh / --inp: the finest mesh the study solved, with its named sets, for gmsh and CalculiX."""
+    if not (args.msh or args.inp):
+        return
+    from strainwave.fea.mesh_export import mesh_of_vtu, write_inp, write_msh
+    md = mesh_of_vtu(vtu)
+    if args.msh:
+        write_msh(md, Path(args.msh))
+    if args.inp:
+        write_inp(md, Path(args.inp), study=args.study, params=params, load_text=result.load.describe())
 
 
 def _cmd_validate(args) -> int:
@@ -193,7 +220,7 @@ def _cmd_validate(args) -> int:
         check_budget(study, params, None, args.quick, flag="--params")
     check_cad_teeth(params, list(TOOTHED_PARTS))   # validate exports every part as designed, teeth on
     outcome = run_validate(params, Path(args.out), quick=args.quick, progress=_progress,
-                           step=True if args.step else None)
+                           step=True if args.step else None, params_file=args.params)
     _emit(args, outcome.summary(), lambda: {
         "passed": outcome.passed, "design": None if outcome.design is None else outcome.design.to_dict(),
         "out_dir": str(outcome.out_dir), "timings_s": outcome.timings_s,
@@ -225,6 +252,13 @@ def _cmd_diagnose(args) -> int:
     return 0
 
 
+def _cmd_catalogue(args) -> int:
+    from strainwave.analytic.catalogue_predict import predict_table
+    prediction = predict_table(Path(args.table))
+    _emit(args, prediction.summary(), prediction.to_dict)
+    return 0
+
+
 def _cmd_size_crack(args) -> int:
     from strainwave.compare.diagnose.crack_life import LifeOptions, size_and_life
     if not 1.0 <= args.paris_m <= 10.0:
@@ -244,6 +278,15 @@ def _cmd_size_crack(args) -> int:
 MAX_BENCHMARK_N = 1000
 
 
+def _benchmark_counter(n: int, families: tuple[int, ...]):
+    """k/N of the recordings benchmark-diagnose makes: n of every class, then each CHA row with and without a loop."""
+    from strainwave.compare.diagnose.generators.benchmark import CLASSES
+    from strainwave.compare.diagnose.generators.cha import cha_rows
+    from strainwave.progress import Counter
+    total = sum(n * len(CLASSES[f]) + 2 * len(cha_rows()) for f in families)
+    return Counter("benchmark-diagnose", total, _progress)
+
+
 def _cmd_benchmark_diagnose(args) -> int:
     from strainwave.compare.diagnose.generators.benchmark import run_benchmark
     if not 1 <= args.n <= MAX_BENCHMARK_N:
@@ -251,8 +294,9 @@ def _cmd_benchmark_diagnose(args) -> int:
     if not 0 <= args.seed < 2 ** 32:   # numpy's seeds
         raise InputError("--seed", args.seed, "must be an integer from 0 to 2**32 - 1")
     families = (1, 2) if args.family == "both" else (int(args.family),)
+    counter = _benchmark_counter(args.n, families)
     report = run_benchmark(n_per_class=args.n, seed=args.seed, out_dir=Path(args.out) if args.out else None,
-                           families=families)
+                           families=families, progress=lambda o: counter.step(f"{o.name}: {o.verdict}"))
     _emit(args, report.summary(), report.to_dict)
     return 0 if report.meets_targets else 1
 
@@ -271,7 +315,8 @@ def _cmd_sweep(args) -> int:
     return 0 if outcome.n_ok else 1
 
 
-_FILE_OUTPUTS = (("json", "--json"), ("plot", "--plot"), ("vtu", "--vtu"), ("png", "--png"), ("output", "-o"))
+_FILE_OUTPUTS = (("json", "--json"), ("plot", "--plot"), ("vtu", "--vtu"), ("png", "--png"), ("output", "-o"),
+                 ("msh", "--msh"), ("inp", "--inp"))
 _INPUTS = (("params", "--params"), ("recording", "recording"), ("samples", "--samples"), ("curves", "--curves"),
            ("torque_history", "--torque-history"))
 
@@ -316,7 +361,7 @@ def _output_folder(args) -> Path | None:
     """The folder the command writes into (--out, else the parent of its first output file), if any."""
     if getattr(args, "out", None):
         return Path(args.out)
-    for name in ("json", "vtu", "output", "plot", "png"):
+    for name in ("json", "vtu", "output", "plot", "png", "msh", "inp"):
         target = getattr(args, name, None)
         if target not in (None, "-"):
             return Path(target).resolve().parent
@@ -452,6 +497,10 @@ def _add_solve(add) -> None:
                         "output_shaft.crack_depth_mm); ring-compression carries none (default: uncracked)")
     p.add_argument("--vtu", metavar="FILE.vtu",
                    help="write the finest mesh's fields (and FILE.boundary.vtu with the named faces)")
+    p.add_argument("--msh", metavar="FILE.msh", help="write the finest mesh as gmsh .msh (2.2), each named face a "
+                   "physical group")
+    p.add_argument("--inp", metavar="FILE.inp", help="write the finest mesh as a CalculiX/Abaqus deck: a node set "
+                   "per named face, the material, and for the torsion studies the clamp, the loads and a static step")
 
 
 def _add_validate(add) -> None:
@@ -478,7 +527,8 @@ def _add_diagnose(add) -> None:
     p = add("diagnose", _cmd_diagnose, "locate, name and model the mismatch between a recording and the model")
     p.add_argument("recording", metavar="RECORDING.csv", help="self-describing recording (docs/recordings.md)")
     p.add_argument("--baseline", choices=("analytic", "fea"), default="analytic",
-                   help="model the recording is compared with")
+                   help="model the recording is compared with (fea on specimen gear: the tooth-mesh drive's "
+                        "predicted curve, its stiffening and loop)")
     p.add_argument("--plot", metavar="OUT.png", help="also plot the recording, the baseline and the fit")
     p.add_argument("--kind", help="[test] kind, for a recording without a header (or over its header's)")
     p.add_argument("--specimen", help="[test] specimen, for a recording without a header (or over its header's)")
@@ -501,10 +551,10 @@ def _add_size_crack(add) -> None:
     p.add_argument("--cache", metavar="DIR", help="keep the FEA curves solved on demand (the shaft's crack, the "
                    "flexspline's breathing ripple) here for the next run")
     p.add_argument("--paris-c", type=_positive_float, default=5.21e-13, metavar="C",
-                   help="Paris law da/dN = C dK^m, mm/cycle and N/mm^1.5 (default: BS 7910 steel in air)")
-    p.add_argument("--paris-m", type=float, default=3.0, metavar="M", help="Paris exponent (default 3)")
+                   help="Paris law da/dN = C dK^m, mm/cycle and N/mm^1.5 (default: %(default)s, BS 7910 steel in air)")
+    p.add_argument("--paris-m", type=float, default=3.0, metavar="M", help="Paris exponent")
     p.add_argument("--stiffness-loss", type=_positive_float, default=0.1, metavar="FRACTION",
-                   help="stop where the specimen's stiffness has fallen by this fraction (default 0.1)")
+                   help="stop where the specimen's stiffness has fallen by this fraction")
     p.add_argument("--torque-history", metavar="FILE.csv",
                    help="torque history in N mm, rainflow-counted (default: 0 -> rated torque, constant amplitude)")
     p.add_argument("--cycles-per-hour", type=_positive_float, default=None, metavar="N",
@@ -537,8 +587,16 @@ def _add_sweep(add) -> None:
 
 
 # the subcommands in the order --help lists them; each adds its parser through ``add`` (build_parser)
+def _add_catalogue(add) -> None:
+    p = add("catalogue", _cmd_catalogue,
+            "predict every row of a stiffness table (columns size, ratio, T1_Nm, T2_Nm, K1_e3, K2_e3, K3_e3) from the "
+            "tooth-mesh model under one set of design rules; print predicted/catalogue and the log-slopes",
+            material=False)
+    p.add_argument("table", metavar="TABLE.csv", help="the table (blank cells skipped; ratio '>50' means 100)")
+
+
 _COMMANDS = (_add_analytic, _add_params, _add_export_step, _add_solve, _add_validate, _add_compare, _add_diagnose,
-             _add_size_crack, _add_benchmark_diagnose, _add_sweep)
+             _add_size_crack, _add_benchmark_diagnose, _add_sweep, _add_catalogue)
 
 
 class _StderrFormat(logging.Formatter):

@@ -120,7 +120,7 @@ def test_common_flags_before_or_after_the_subcommand(sub, flags, after):
         flags = [f for f in flags if f != "-v"]
     required = {"export-step": ["--part", "ewg", "-o", "x.step"], "solve": ["shaft-torsion"],
                 "diagnose": ["r.csv"], "size-crack": ["r.csv"], "sweep": ["shaft-torsion"],
-                "compare": ["run-a", "run-b"]}.get(sub, [])
+                "compare": ["run-a", "run-b"], "catalogue": ["t.csv"]}.get(sub, [])
     before = [f for f, a in zip(flags, after) if not a]
     behind = [f for f, a in zip(flags, after) if a]
     args = build_parser().parse_args([*before, sub, *required, *behind])
@@ -139,7 +139,9 @@ def test_every_option_has_help_with_units_and_default(sub):
         if action.dest.endswith("_mm"):
             assert " mm" in action.help, (sub, action.dest)
         if action.option_strings and action.default not in (None, False, argparse.SUPPRESS, []):
-            assert f"(default: {action.default})" in " ".join(text.split()), (sub, action.dest)
+            assert f"(default: {action.default}" in " ".join(text.split()), (sub, action.dest)
+        # each default said once (issue 52: "(default: ...) (default: 5.21e-13)")
+        assert parser._get_formatter()._expand_help(action).count("(default") <= 1, (sub, action.dest)
     if sub == "solve":
         assert "FINEST of the three meshes" in " ".join(text.split())
 

@@ -220,7 +220,7 @@ def test_compare_lists_changed_checks_side_by_side(tmp_path):
                           text=True, timeout=60)
     assert proc.returncode == 0
     row = next(line for line in proc.stdout.splitlines() if line.startswith("shaft.flexibility"))
-    assert row.split()[1:] == ["fea", "1.26678e-09", "1.26678e-09"]
+    assert row.split()[1:] == ["fea", "1.26678e-09", "1.26678e-09", "+0.0001", "%"]
     assert "corrected" in proc.stdout and "neither" in proc.stdout and "added: fea" in proc.stdout
     bad = subprocess.run([STRAINWAVE, "compare", str(tmp_path / "a"), str(tmp_path / "nowhere")], capture_output=True,
                          text=True, timeout=60)

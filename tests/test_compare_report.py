@@ -180,7 +180,7 @@ def test_rated_stress_sentence_and_row_name_every_number():
          "peak_location_mm": [35.0, -8.6e-15, 0.0], "peak_on": ["fixed"], "peak_displacement_mm": 0.0443,
          "fatigue_limit_MPa": 625.0,
          "safety_factor": 19.94, "note": "material only"}
-    assert rated_sentence(s) == ("at output torque T = 1e+06 N*mm: peak von Mises 31.34 MPa at (35, 0, 0) mm on "
+    assert rated_sentence(s) == ("at output torque T = 1e+06 N*mm (1000 N m): peak von Mises 31.34 MPa at (35, 0, 0) mm on "
                                  "'fixed', peak displacement 0.0443 mm, safety factor 19.9 against sigma_-1 = 625 MPa")
     row = rated_row("shaft", s)
     assert row[3] == "(35, 0, 0) on fixed" and row[6] == "19.9" and "fields x 1000" in row[1]

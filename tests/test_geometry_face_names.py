@@ -34,6 +34,7 @@ def test_gmsh_physical_groups_carry_the_step_face_names(shaft_step):
             assert gmsh.model.occ.getCenterOfMass(2, tag)[2] == pytest.approx(z, abs=1e-6)
             phys = [t for d, t in gmsh.model.getPhysicalGroups(2) if gmsh.model.getPhysicalName(d, t) == name]
             assert list(gmsh.model.getEntitiesForPhysicalGroup(2, phys[0])) == [tag]
+            assert gmsh.model.getEntityName(2, tag) == name   # gmsh's own lookup of an entity's name (issue 52)
     finally:
         gmsh.finalize()
 
@@ -55,3 +56,23 @@ def test_a_sidecar_that_no_longer_matches_is_refused(shaft_step, tmp_path):
             apply_face_names(gmsh, moved)
     finally:
         gmsh.finalize()
+
+
+def test_build123d_reimport_gives_every_named_face_its_name(shaft_step, params):
+    """Issue 52: the STEP file read back into build123d: the part's label, and each named face a build123d Face
+    labelled with its name, of the area and place the part gave it."""
+    from strainwave.geometry.parts import build_part
+    from build123d import CenterOf
+
+    from strainwave.geometry.step_xcaf import import_step_named
+
+    shape, named = import_step_named(shaft_step)
+    part = build_part("output-shaft", params)
+    assert shape.label == "output-shaft" and shape.volume == pytest.approx(part.volume_mm3, rel=1e-9)
+    assert set(named) == set(part.named_faces)
+    for name, refs in part.named_faces.items():
+        faces = named[name]
+        assert [f.label for f in faces] == [name] * len(refs)
+        assert sorted(f.area for f in faces) == pytest.approx(sorted(r.area_mm2 for r in refs), rel=1e-9)
+        centres = sorted(tuple(f.center(CenterOf.MASS)) for f in faces)
+        assert np.allclose(centres, sorted(r.center_mm for r in refs), atol=1e-6)

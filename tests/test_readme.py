@@ -47,3 +47,22 @@ def test_worked_parameter_file_loads():
         warnings.simplefilter("ignore")
         params = load_params(overrides=overrides)
     assert params.output_shaft.length_mm == 60.0 and params.output_shaft.inner_diameter_mm == 50.0
+
+
+def test_every_readme_command_parses_and_names_files_that_ship():
+    """Issue 52: each `strainwave ...` line of the Commands block is a valid command line as written, and the
+    inputs it reads that no earlier line makes (the sample recording) ship with the repository."""
+    import shlex
+
+    from strainwave.cli import build_parser
+
+    root = Path(__file__).resolve().parents[1]
+    block = README.split("## Commands", 1)[1].split("```sh", 1)[1].split("```", 1)[0]
+    commands = [shlex.split(line.split("#")[0]) for line in block.splitlines() if line.startswith("strainwave ")]
+    assert len(commands) >= 10
+    for argv in commands:
+        args = build_parser().parse_args(argv[1:argv.index(">")] if ">" in argv else argv[1:])
+        recording = getattr(args, "recording", None)
+        if recording is not None:
+            assert (root / recording).is_file(), recording
+    assert any(getattr(build_parser().parse_args(a[1:]), "inp", None) for a in commands if ">" not in a)

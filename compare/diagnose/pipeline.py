@@ -65,7 +65,11 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
     number); None takes what the machine safely offers (parallel.usable_workers)."""
     if baseline not in ("analytic", "fea"):
         raise InputError("--baseline", baseline, "must be analytic or fea")
-    base = analytic_baseline(rec, params) if baseline == "analytic" else fea_baseline(rec, params)
+    if baseline == "fea" and rec.specimen == "gear" and rec.baseline_stiffness is None:
+        from strainwave.compare.diagnose.drive_baseline import curve_baseline
+        base, rec = curve_baseline(rec, params)      # the tooth-mesh drive curve (issue 48, item 6)
+    else:
+        base = analytic_baseline(rec, params) if baseline == "analytic" else fea_baseline(rec, params)
     check_baseline_scale(rec, base)
     from threadpoolctl import threadpool_limits
     # Tiny (N x 4) linear-algebra calls: BLAS threads only add overhead (docs/decisions/019-diagnose-speed.md).

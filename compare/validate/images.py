@@ -174,6 +174,17 @@ def _load_arrows(loaded, disp: str | None, model_center: np.ndarray) -> list[tup
     return arrows
 
 
+# characters a title line of TITLE_PT keeps inside one WINDOW-wide panel (a longer one was cut at the edge:
+# "leave the body c"); tests/test_outputs_small.py renders the longest title and finds it inside the picture
+TITLE_CHARS = 80
+
+
+def title_text(lines: list[str], width: int = TITLE_CHARS) -> str:
+    """The title lines, each wrapped at ``width`` characters (continuations indented), one text block."""
+    import textwrap
+    return "\n".join(w for line in lines for w in textwrap.wrap(line, width, subsequent_indent="  ") or [""])
+
+
 SPIKE_PERCENTILE = 99.5    # a peak above SPIKE_RATIO x this percentile of the nodes is a local spike
 SPIKE_RATIO = 1.5
 
@@ -250,7 +261,7 @@ def render_stress(vtu: Path, png: Path, *, label: str, at: StressAtRated, marks:
                 plotter.add_text(f"{z.title} ({2 * z.radius_mm:.3g} mm box)" + (f"\n{section}" if section else ""),
                                  font_size=TITLE_PT, color="black")
             else:
-                plotter.add_text("\n".join(lines), font_size=TITLE_PT, color="black")
+                plotter.add_text(title_text(lines), font_size=TITLE_PT, color="black")
         image = plotter.screenshot(None, return_img=True)
         plotter.close()
     atomic_write_bytes(png, _png_bytes(image))

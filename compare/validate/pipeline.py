@@ -20,6 +20,8 @@ from strainwave.compare.validate.audit_evidence import audit_with_evidence, expo
 from strainwave.cache import ResultCache
 from strainwave.compare.validate.check_set import CheckSet, build_checks
 from strainwave.compare.validate.checks import Check
+from strainwave.compare.validate.designer_table import designer_table
+from strainwave.compare.validate.run_record import run_record
 from strainwave.compare.validate.design import DesignVerdict, design_verdict, stress_factors
 from strainwave.compare.validate.fea_book import FeaBook
 from strainwave.compare.validate.gci_table import gci_rows
@@ -211,7 +213,7 @@ def _previews(steps, out_dir: Path) -> list:
 
     preview_of = _preview_of()
     return [Image(Path(_relative(s.preview, out_dir)), f"{s.part}: the part as designed (uncracked), contact/load "
-                  "faces in blue; right: close-up", preview_of[s.part], "preview")
+                  "faces in blue, fixed faces in green; right: close-up", preview_of[s.part], "preview")
             for s in steps if s.preview is not None and s.part in preview_of and Path(s.preview).exists()]
 
 
@@ -237,7 +239,8 @@ def _write_reports(out_dir: Path, doc: dict, views: dict[str, str], progress) ->
     write_html(out_dir / "report.html", doc, views=views)
     write_tables(out_dir, doc)
     if doc["files"]["report_pdf"] is None:
-        progress("  report.pdf: not printed (no Chromium found; Debian: apt-get install chromium)")
+        progress("  report.pdf: not printed: it needs Chromium (Debian/Ubuntu: sudo apt-get install chromium), then "
+                 "rerun; report.html and report.md are complete without it")
         return
     try:
         try:
@@ -317,10 +320,11 @@ def _files(out_dir: Path, outcomes, steps) -> dict:
 
 
 def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str], None],
-                 step: bool | None = None) -> Outcome:
+                 step: bool | None = None, params_file: str | Path | None = None) -> Outcome:
     """Run the whole validation into ``out_dir``; returns the checks and timings (see module docstring).
     ``step`` (default: not ``quick``) exports every part as STEP with its preview; --quick leaves the CAD
-    out unless asked, since the STEP export alone costs more CPU than all of --quick's FEA cases."""
+    out unless asked, since the STEP export alone costs more CPU than all of --quick's FEA cases.
+    ``params_file`` (the --params file, None for the embedded default) names the gear in the reports."""
     from strainwave.analytic.summary import analytic_summary
     from strainwave.interrupt import deferred_interrupt
     from strainwave.compare.validate.artifacts import make_images
@@ -374,6 +378,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
                         "not_evaluated": [c["id"] for c in checks if c["verdict"] == "not evaluated"]},
             "metadata": _metadata(params, quick, step, plan, outcomes, steps, timings, out_dir),
             "designer": _designer_lines(summary),
+            "designer_table": designer_table(summary),
             "design": design.to_dict(),
             "inputs": _inputs(plan, book, params),
             "stress_at_rated": {c: s.to_dict() for c, s in stresses.items()},
@@ -388,6 +393,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
             "files": _files(out_dir, outcomes, steps),
         }
         doc["metadata"]["total_s"] = time.perf_counter() - start
+        doc["metadata"]["run"] = run_record(params, params_file)
         doc = plain(doc)
         # The reports are written before results.json so that results.json appearing marks a complete run.
         _write_reports(out_dir, doc, {c: v.payload for c, v in made.views.items()}, progress)

@@ -18,6 +18,7 @@ from strainwave.compare.validate import report_text as rt
 from strainwave.compare.validate.catalogue_table import CATALOGUE_COLUMNS, catalogue_rows, slope_line
 from strainwave.compare.validate.report_md import CATALOGUE_INTRO
 from strainwave.compare.validate.wg_cup_checks import wg_lines
+from strainwave.compare.validate.run_record import PARAM_COLUMNS, param_rows, report_title, run_lines
 
 CSS = """
 body{font-family:system-ui,-apple-system,"Segoe UI",sans-serif;margin:2em auto;max-width:1200px;color:#222;
@@ -95,6 +96,22 @@ def _verdicts(doc: dict) -> list[str]:
             f"{escape(rt.VALIDATION_QUESTION)}</span>{escape(rt.headline(doc))}</div>",
             f'<div class="verdict {"pass" if design else "fail"}" id="design-verdict"><span class="q">'
             f"{escape(rt.DESIGN_QUESTION)}</span>{escape(rt.design_headline(doc))}</div>"]
+
+
+def _run_section(doc: dict) -> list[str]:
+    """The run's identity, its parameters that differ from the default, and the designer headline's table."""
+    parts = ['<ul id="run">' + "".join(f"<li>{escape(line)}</li>" for line in run_lines(doc)) + "</ul>"]
+    if param_rows(doc):
+        parts.append("<h3>Parameters that differ from the embedded default</h3>")
+        parts.append(_table(PARAM_COLUMNS, param_rows(doc), table_id="params-diff"))
+    table = doc.get("designer_table")
+    if table and table["rows"]:
+        parts.append('<h2 id="designer-headline">Designer headline</h2>')
+        parts.append(_table(table["columns"], table["rows"], table_id="designer-table"))
+    if doc.get("designer"):
+        parts.append('<details><summary>The headline in full</summary><pre id="designer">'
+                     + escape("\n".join(doc["designer"])) + "</pre></details>")
+    return parts
 
 
 def _toc(entries: list[tuple[str, str]]) -> str:
@@ -179,7 +196,8 @@ def _appendix(doc: dict) -> list[str]:
         (n, n) for n in ("results.json", *files.get("tables", ()), files.get("report_pdf", ""), "report.md") if n]
     parts.append('<h2 id="files">Files</h2><p>Beside this page in its folder (relative links):</p><ul>' + "".join(
         f'<li><a href="{escape(p, quote=True)}">{escape(n)}</a></li>' for n, p in links)
-        + ("" if files["step"] else f"<li>STEP: {escape(rt.no_step_line(doc))}</li>") + "</ul>")
+        + ("" if files["step"] else f"<li>STEP: {escape(rt.no_step_line(doc))}</li>")
+        + ("" if files.get("report_pdf") else f'<li id="no-pdf">{escape(rt.NO_PDF)}</li>') + "</ul>")
     parts.append('<h2 id="versions">Versions</h2>' + _table(("package", "version"), list(meta["versions"].items())))
     return parts
 
@@ -192,7 +210,8 @@ def render_html(doc: dict, views: dict[str, str] | None = None, root: Path | Non
     if views:
         from strainwave.compare.validate.view3d import colorbar_css
         ramp = colorbar_css()
-    toc = [("design", "Design verdict: safety factors")] if doc.get("design") else []
+    toc = [("designer-headline", "Designer headline")] if (doc.get("designer_table") or {}).get("rows") else []
+    toc += [("design", "Design verdict: safety factors")] if doc.get("design") else []
     failing = [c for c in doc["checks"] if not c["passed"]]
     toc += [("failing", "Failing checks")] if failing else []
     toc += [("rated", "Stress at the rated load")] if doc.get("stress_at_rated") else []
@@ -202,10 +221,9 @@ def render_html(doc: dict, views: dict[str, str] | None = None, root: Path | Non
     toc += [("cases", "FEA cases and timings"), ("files", "Files"), ("versions", "Versions")]
     parts = ["<!DOCTYPE html>", '<html lang="en"><head><meta charset="utf-8">',
              '<meta name="viewport" content="width=device-width, initial-scale=1">',
-             "<title>strainwave validation report</title>", f"<style>{CSS}</style></head><body>",
-             "<h1>strainwave validation report</h1>", *_verdicts(doc), f"<p>{escape(rt.run_line(doc))}</p>"]
-    if doc.get("designer"):
-        parts.append('<pre id="designer">' + escape("\n".join(doc["designer"])) + "</pre>")
+             f"<title>{escape(report_title(doc))}</title>", f"<style>{CSS}</style></head><body>",
+             f"<h1>{escape(report_title(doc))}</h1>", *_verdicts(doc), f"<p>{escape(rt.run_line(doc))}</p>"]
+    parts += _run_section(doc)
     parts.append(_toc(toc))
     parts += _design_section(doc)
     if failing:

@@ -6,6 +6,7 @@ from pathlib import Path
 from strainwave.io_atomic import atomic_write_text
 from strainwave.compare.validate import report_text as rt
 from strainwave.compare.validate.wg_cup_checks import wg_lines
+from strainwave.compare.validate.run_record import PARAM_COLUMNS, param_rows, report_title, run_lines
 from strainwave.compare.validate.catalogue_table import CATALOGUE_COLUMNS, catalogue_rows, slope_line
 
 CATALOGUE_INTRO = ("Each size is a drive built by one set of design rules (d1 = 2.54 mm x size; wall, length, "
@@ -23,9 +24,16 @@ def _table(columns, rows) -> list[str]:
 
 
 def render_markdown(doc: dict) -> str:
-    lines = ["# strainwave validation report", "", f"**{rt.VALIDATION_QUESTION}** {rt.headline(doc)}", "",
+    lines = [f"# {report_title(doc)}", "", f"**{rt.VALIDATION_QUESTION}** {rt.headline(doc)}", "",
              f"**{rt.DESIGN_QUESTION}** {rt.design_headline(doc)}", "", rt.run_line(doc), ""]
-    if doc.get("designer"):
+    lines += [f"- {line}" for line in run_lines(doc)] + ([""] if run_lines(doc) else [])
+    if param_rows(doc):
+        lines += ["### Parameters that differ from the embedded default", ""]
+        lines += _table(PARAM_COLUMNS, param_rows(doc)) + [""]
+    table = doc.get("designer_table")
+    if table and table["rows"]:
+        lines += ["## Designer headline", ""] + _table(table["columns"], table["rows"]) + [""]
+    elif doc.get("designer"):
         lines += ["```", *doc["designer"], "```", ""]
     design = doc.get("design")
     if design:
@@ -96,7 +104,8 @@ def render_markdown(doc: dict) -> str:
     lines += [f"- STEP: [{Path(p).name}]({p})" for p in doc["files"]["step"]] or [f"- STEP: {rt.no_step_line(doc)}"]
     lines += [f"- VTU: [{Path(p).name}]({p})" for p in doc["files"]["fields"]]
     lines += ["- [results.json](results.json)"] + [f"- [{n}]({n})" for n in doc["files"].get("tables", ())]
-    lines += [f"- [{doc['files']['report_pdf']}]({doc['files']['report_pdf']})"] if doc["files"].get("report_pdf") else []
+    lines += [f"- [{doc['files']['report_pdf']}]({doc['files']['report_pdf']})"] if doc["files"].get("report_pdf") \
+        else [f"- {rt.NO_PDF}"]
     lines += [""]
     lines += ["## Versions", ""] + [f"- {k}: {v}" for k, v in meta["versions"].items()] + [""]
     return "\n".join(lines)

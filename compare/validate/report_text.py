@@ -5,6 +5,7 @@ never show a number the JSON does not have.
 """
 from __future__ import annotations
 
+from strainwave.catalogue_units import beside
 from strainwave.compare.validate.gci_table import GCI_COLUMNS, gci_cells  # noqa: F401 - the GCI table's layout, for both writers
 
 
@@ -106,6 +107,11 @@ def no_step_line(doc: dict) -> str:
     if not doc["metadata"]["settings"].get("step", True):
         return "not exported (--quick; run without --quick, or add --step)"
     return "no part could be built (see the STEP errors in results.json metadata.steps)"
+
+
+NO_PDF = ("report.pdf: not printed: the PDF is this page printed by headless Chromium, which is not installed "
+          "(Debian/Ubuntu: sudo apt-get install chromium; then rerun the same command: finished cases are reused). "
+          "Your browser's Print > Save as PDF of report.html gives the same pages.")
 
 
 def check_row(c: dict) -> tuple[str, ...]:
@@ -233,7 +239,7 @@ def rated_row(component: str, s: dict) -> tuple[str, ...]:
 def rated_sentence(s: dict) -> str:
     load = s["load"]
     on = f" on {', '.join(repr(g) for g in s['peak_on'])}" if s["peak_on"] else ""
-    return (f"at {load['name']} = {load['rated']:.4g} {load['unit']}: peak von Mises {s['peak_von_mises_MPa']:.4g} MPa "
+    return (f"at {load['name']} = {load['rated']:.4g} {load['unit']}{beside(load['rated'], load['unit'])}: peak von Mises {s['peak_von_mises_MPa']:.4g} MPa "
             f"at {point(s['peak_location_mm'])} mm{on}, peak displacement {s['peak_displacement_mm']:.3g} mm, safety "
             f"factor {s['safety_factor']:.3g} against sigma_-1 = {s['fatigue_limit_MPa']:g} MPa")
 

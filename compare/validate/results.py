@@ -13,7 +13,8 @@ from strainwave.io_atomic import atomic_write_text
 from strainwave.cache import code_version
 
 SCHEMA_PATH = Path(__file__).with_name("results_schema.json")
-LIBRARIES = ("numpy", "scipy", "scikit-fem", "gmsh", "pyamg", "pyvista", "vtk", "build123d", "matplotlib")
+LIBRARIES = ("numpy", "scipy", "scikit-fem", "gmsh", "pyamg", "pyvista", "vtk", "build123d", "matplotlib", "meshio",
+             "rich")
 
 
 def versions() -> dict[str, str | None]:

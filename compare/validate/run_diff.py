@@ -13,7 +13,7 @@ from pathlib import Path
 
 from strainwave.errors import InputError
 
-__all__ = ["CheckChange", "RunDiff", "load_run", "diff_runs"]
+__all__ = ["CheckChange", "RunDiff", "load_run", "diff_runs", "run_warnings"]
 
 FIELDS = ("fea", "fea_uncertainty", "tolerance", "verdict", "passed")
 
@@ -57,6 +57,50 @@ class CheckChange:
         return {"id": self.check_id, "status": self.status, "changed": list(self.fields), "a": self.a, "b": self.b}
 
 
+def _mode(doc: dict) -> str | None:
+    quick = ((doc.get("metadata") or {}).get("settings") or {}).get("quick")
+    return None if quick is None else ("--quick" if quick else "full")
+
+
+def _depths(doc: dict) -> dict:
+    return ((doc.get("metadata") or {}).get("settings") or {}).get("sweep_depths_mm") or {}
+
+
+def run_warnings(a: dict, b: dict, param_changes: list[dict]) -> list[str]:
+    """One line per reason the two runs' checks do not measure the same thing: another mode (meshes and crack
+    depths), other crack-depth sweeps, other parameters (another gear)."""
+    out = []
+    if _mode(a) and _mode(b) and _mode(a) != _mode(b):
+        out.append(f"A is a {_mode(a)} run and B a {_mode(b)} run: their meshes and crack depths differ, so a changed "
+                   "value is not a regression (compare runs of the same mode)")
+    elif _depths(a) != _depths(b) and _depths(a) and _depths(b):
+        out.append("the runs swept other crack depths: the crack checks measure different cracks")
+    if param_changes:
+        keys = ", ".join(d["key"] for d in param_changes[:4]) + (", ..." if len(param_changes) > 4 else "")
+        out.append(f"the runs differ in {len(param_changes)} parameter(s) ({keys}): their checks measure "
+                   "different gears")
+    return out
+
+
+def _params_of(doc: dict) -> dict:
+    return (doc.get("metadata") or {}).get("params") or {}
+
+
+def _design_of(doc: dict) -> str:
+    design = doc.get("design")
+    if not design:
+        return "not evaluated"
+    return design.get("headline") or ("PASS" if design.get("passed") else "FAIL")
+
+
+def percent_change(a, b) -> float | None:
+    """100 (b - a) / |a| for two numbers, None where it means nothing (a missing value, a = 0)."""
+    if isinstance(a, bool) or isinstance(b, bool) or not isinstance(a, (int, float)) \
+            or not isinstance(b, (int, float)) or a == 0:
+        return None
+    return 100.0 * (b - a) / abs(a)
+
+
 def _cell(value) -> str:
     if value is None:
         return "-"
@@ -73,26 +117,44 @@ class RunDiff:
     run_b: str
     changes: tuple[CheckChange, ...]
     unchanged: int
+    warnings: tuple[str, ...] = ()
+    params: tuple[dict, ...] = ()          # {key, a, b} of every parameter the runs differ in
+    designs: tuple[str, str] = ("not evaluated", "not evaluated")
+
+    def _head(self) -> list[str]:
+        lines = [f"warning: {w}" for w in self.warnings] + [f"A = {self.run_a}", f"B = {self.run_b}",
+                                                            f"design A: {self.designs[0]}", f"design B: {self.designs[1]}"]
+        if self.params:
+            width = max(len(p["key"]) for p in self.params)
+            lines.append(f"{'parameter':<{width}}  {'A':>14}  {'B':>14}")
+            lines += [f"{p['key']:<{width}}  {_cell(p['a']):>14}  {_cell(p['b']):>14}" for p in self.params]
+        return lines
 
     def summary(self) -> str:
-        lines = [f"A = {self.run_a}", f"B = {self.run_b}"]
+        lines = self._head()
         if not self.changes:
             return "\n".join(lines + [f"no check changed value, verdict or tolerance ({self.unchanged} compared)"])
         width = max(len(c.check_id) for c in self.changes)
-        lines.append(f"{'check':<{width}}  {'what':<24} {'A':>14}  {'B':>14}")
+        lines.append(f"{'check':<{width}}  {'what':<24} {'A':>14}  {'B':>14}  {'change':>9}")
         for c in self.changes:
             for k, name in enumerate(c.fields or ("(whole check)",)):
                 label = c.check_id if k == 0 else ""
                 what = name if c.status == "changed" else f"{c.status}: {name}"
-                a = _cell(c.a.get(name)) if c.a else "-"
-                b = _cell(c.b.get(name)) if c.b else "-"
-                lines.append(f"{label:<{width}}  {what:<24} {a:>14}  {b:>14}")
+                a = c.a.get(name) if c.a else None
+                b = c.b.get(name) if c.b else None
+                pct = percent_change(a, b)
+                change = "-" if pct is None else f"{pct:+.3g} %"
+                lines.append(f"{label:<{width}}  {what:<24} {_cell(a):>14}  {_cell(b):>14}  {change:>9}")
         lines.append(f"{len(self.changes)} check(s) changed, {self.unchanged} unchanged")
         return "\n".join(lines)
 
     def to_dict(self) -> dict:
         return {"run_a": self.run_a, "run_b": self.run_b, "unchanged": self.unchanged,
-                "changes": [c.to_dict() for c in self.changes]}
+                "warnings": list(self.warnings), "params": list(self.params),
+                "design": {"a": self.designs[0], "b": self.designs[1]},
+                "changes": [{**c.to_dict(), "percent_change": {f: percent_change(c.a.get(f), c.b.get(f))
+                                                               for f in c.fields if c.a and c.b}}
+                            for c in self.changes]}
 
 
 def diff_runs(a: dict, b: dict, *, names: tuple[str, str] = ("A", "B"), rtol: float = 1e-9) -> RunDiff:
@@ -111,4 +173,8 @@ def diff_runs(a: dict, b: dict, *, names: tuple[str, str] = ("A", "B"), rtol: fl
             changes.append(CheckChange(check_id, "changed", fields, va, vb))
         else:
             unchanged += 1
-    return RunDiff(names[0], names[1], tuple(changes), unchanged)
+    from strainwave.compare.validate.run_record import params_diff
+    diff = params_diff(_params_of(b), _params_of(a))   # value = B's, default = A's
+    params = tuple({"key": d["key"], "a": d["default"], "b": d["value"]} for d in diff)
+    return RunDiff(names[0], names[1], tuple(changes), unchanged, tuple(run_warnings(a, b, diff)), params,
+                   (_design_of(a), _design_of(b)))

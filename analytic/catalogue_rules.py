@@ -1,0 +1,109 @@
+"""One set of design rules that turns a catalogue size and ratio into a drive (decision 065).
+
+Fixed before any comparison; no per-size or per-ratio factor. Every proportion is the shipped gear's
+(defaults.toml, d1 = 160 mm) made dimensionless, or a standard's value. The one coefficient fitted to the
+catalogue is ``foundation_coefficient`` (fitted on sizes 14-25 only; sizes 32-58 confirm it).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from strainwave.analytic.mesh_drive import MeshDesign, bearing_foundation
+from strainwave.analytic.mesh_kinematics import MeshGeometry
+from strainwave.analytic.wg_bearing import BallBearing
+
+__all__ = ["MeshRules", "RATIO_OF_LABEL", "ratio_of_label"]
+
+# ">50" rows hold for 80..160 (the CHA table's own footnote); 100, the middle of that band, is the rule
+RATIO_OF_LABEL = {">50": 100.0}
+
+
+def ratio_of_label(label: str) -> float:
+    """A ratio column's number: a plain number, or a label the rules map (``>50`` -> 100)."""
+    text = label.strip()
+    if text in RATIO_OF_LABEL:
+        return RATIO_OF_LABEL[text]
+    value = float(text)
+    if not value > 1.0:
+        raise ValueError(text)
+    return value
+
+
+@dataclass(frozen=True)
+class MeshRules:
+    """How a catalogue size becomes a tooth mesh (lengths over the pitch diameter d)."""
+
+    pitch_diameter_per_size_mm: float = 2.54    # size = pitch diameter in tenths of an inch (RT1-H-CS table)
+    tooth_difference: int = 2                   # dual wave: Z_f = 2 i
+    kappa: float = 1.0                          # w0 = kappa m, the standard (HDS patents' kappa = 1)
+    pressure_angle_deg: float = 20.0            # ISO 53 rack, the shipped profile
+    addendum_coefficient: float = 1.0
+    rim_over_d: float = 2.24 / 160.0            # seed 000 example: delta / d1
+    face_width_over_d: float = 30.0 / 160.0     # shipped circular spline: b / d1 (~0.19, catalogue cup drives)
+    backlash_over_d: float = 0.0                # catalogue units are zero-backlash designs (decision 065)
+    outer_ring_over_d: float = 2.5 / 160.0      # shipped WG bearing's outer ring / d1
+    K_G_per_d_N_per_mm2: float = 6.303e4 / 160.0    # seed 000's implied K_G0 at d1 = 160, similar bodies
+    length_over_d: float = 1.0                  # seed 000 example: cup length / d1
+    face_slices: int = 1                        # coning slices: 1 (the slice count did not converge, decision 065)
+    E_MPa: float = 2.1e5
+    shear_modulus_MPa: float = 8.0e4
+    friction_coefficient: float = 0.08          # shipped flank mu (0.05-0.12 band, references section 4)
+    # the rim's effective radial support k = eta E b / d (N/mm per mm of rim) in series with the balls: the rim
+    # wraps the bearing only near the major axis and lifts off beyond (CJME 2021 wrap angle), so eta lies between
+    # a free ring's n = 2 stiffness and the Hertz ball bed (foundation_bounds); fitted on sizes 14-25 (decision 065,
+    # benchmarks/fit_mesh_foundation.py); None: the balls alone
+    foundation_coefficient: float | None = None
+    rated_torque_per_d3_MPa: float = 1.0e6 / 160.0 ** 3   # shipped gear's rated torque / d1^3
+    ball_diameter_over_d: float = 9.525 / 160.0  # shipped WG bearing: D_w / d1 (3/8 in at d1 = 160)
+    ball_count: int = 24                        # shipped WG bearing (similar bodies keep the count)
+    rim_ratio_exponent: float = 0.0             # rim = rim_over_d d (i/100)^p: 0 one blank per size (decision 065)
+
+    def foundation_N_per_mm2(self, E_MPa: float, face_width_mm: float, d_mm: float) -> float:
+        return (self.foundation_coefficient or 0.0) * E_MPa * face_width_mm / d_mm
+
+    def lumped_foundation_N_per_mm2(self, E_MPa: float, face_width_mm: float, d_mm: float) -> float | None:
+        return None if self.foundation_coefficient is None else self.foundation_N_per_mm2(E_MPa, face_width_mm, d_mm)
+
+    def foundation_bounds(self, size: float, ratio: float) -> tuple[float, float]:
+        """(eta of the rim alone as a free ring in its n = 2 mode, 9 E I / R^4; eta of the Hertz ball bed at the
+        rated torque): the physical range of the lumped support (lift-off to full wrap)."""
+        dd = self.design(size, ratio)
+        g, d = dd.geometry, self.pitch_diameter_mm(size)
+        I_rim = g.face_width_mm * g.rim_thickness_mm ** 3 / 12.0
+        k_ring = 9.0 * self.E_MPa * I_rim / g.neutral_radius_mm ** 4
+        k_balls = replace(self, foundation_coefficient=None).design(size, ratio).foundation_N_per_mm2
+        scale = d / (self.E_MPa * g.face_width_mm)
+        return k_ring * scale, k_balls * scale
+
+    def pitch_diameter_mm(self, size: float) -> float:
+        return self.pitch_diameter_per_size_mm * size
+
+    def design(self, size: float, ratio: float) -> MeshDesign:
+        """The drive of catalogue ``size`` at gear ratio ``ratio``: only the rules above."""
+        d = self.pitch_diameter_mm(size)
+        teeth = int(round(self.tooth_difference * ratio))
+        m = d / teeth
+        b = self.face_width_over_d * d
+        rim = self.rim_over_d * d * (ratio / 100.0) ** self.rim_ratio_exponent
+        geom = MeshGeometry(teeth, m, self.kappa * m, self.pressure_angle_deg, self.addendum_coefficient,
+                            self.backlash_over_d * d, rim, b, self.tooth_difference,
+                            self.length_over_d * d, self.face_slices)
+        ring, ball = self.outer_ring_over_d * d, self.ball_diameter_over_d * d
+        # the ball set fills the envelope: under the cup's bore and the outer ring
+        balls = BallBearing(ball, self.ball_count, d - 2.0 * (1.25 * m + rim) - 2.0 * ring - ball)
+        k, ref = bearing_foundation(geom, balls, ring, self.E_MPa, 1e3 * self.rated_torque_Nm(size),
+                                    self.lumped_foundation_N_per_mm2(self.E_MPa, b, d))
+        return MeshDesign(geom, self.E_MPa, self.friction_coefficient, ring, k, self.K_G_per_d_N_per_mm2 * d,
+                          balls, ref)
+
+    def rated_torque_Nm(self, size: float) -> float:
+        return 1e-3 * self.rated_torque_per_d3_MPa * self.pitch_diameter_mm(size) ** 3
+
+    def cup_flexibility_rad_per_Nmm(self, size: float) -> float:
+        """The cup's tube in torsion (seed 000's lambda_f0, corrected pi/32, cup k_G = 0.83)."""
+        from strainwave.analytic import torsion
+        from strainwave.analytic.variant import Variant
+        d = self.pitch_diameter_mm(size)
+        return torsion.flexspline_flexibility(d, self.rim_over_d * d, self.length_over_d * d,
+                                              self.shear_modulus_MPa, 1.0, torsion.structure_coefficient(True),
+                                              Variant.CORRECTED)

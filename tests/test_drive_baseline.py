@@ -1,0 +1,61 @@
+"""`diagnose --baseline fea` on a drive uses the tooth-mesh curve: a recording of that curve agrees; the same
+curve with twice the lost motion is explained by lost_motion (issue 48, item 6)."""
+import numpy as np
+import pytest
+
+from strainwave.compare.diagnose.drive_baseline import predicted_drive_curve
+from strainwave.compare.diagnose.pipeline import diagnose
+from strainwave.compare.diagnose.recording import RecordingKind, format_recording, parse_text
+from strainwave.params import load_params
+
+
+@pytest.fixture(scope="module")
+def params_and_curve():
+    params = load_params()
+    return params, predicted_drive_curve(params)
+
+
+def _recording(curve, extra_lost_motion_rad: float, seed: int = 1):
+    """Two cycles +/- rated of the predicted loop, a 1e-4-of-span encoder noise, optional extra clearance."""
+    rng = np.random.default_rng(seed)
+    R = curve.rated_torque_Nm
+    knots = np.array([0.0, 1.0, -1.0, 1.0, -1.0, 0.0]) * R
+    T = np.interp(np.linspace(0, 5, 1500), np.arange(6), knots)
+    d = np.sign(np.gradient(T))
+    d[d == 0] = 1.0
+    twist = curve.twist_rad(T, d)
+    # a wider clearance: the flanks part by extra/2 either side of zero torque (the twist jumps as T changes sign)
+    twist = twist + 0.5 * extra_lost_motion_rad * np.tanh(T / (0.01 * R))
+    twist = twist + 1e-4 * np.ptp(twist) * rng.standard_normal(len(T))
+    text = format_recording(RecordingKind.TORSION, "gear", 1e3 * T, twist)
+    return parse_text(text)
+
+
+def test_the_curve_is_taken_out_of_a_recording_of_it(params_and_curve):
+    """Cheap: the corrected recording of the predicted loop is its secant line (to the noise), while the raw
+    recording departs from any line by the stiffening and the loop."""
+    from strainwave.compare.diagnose.drive_baseline import curve_baseline
+    params, curve = params_and_curve
+    rec = _recording(curve, 0.0)
+    base, corrected = curve_baseline(rec, params)
+    line = base.compliance * rec.load
+    noise = 1e-4 * np.ptp(rec.response)
+    assert np.sqrt(np.mean((corrected.response - line) ** 2)) < 3.0 * noise
+    raw = rec.response - np.polyval(np.polyfit(rec.load, rec.response, 1), rec.load)
+    assert np.sqrt(np.mean(raw ** 2)) > 30.0 * noise
+
+
+@pytest.mark.heavy
+def test_the_predicted_curve_agrees(params_and_curve):
+    params, curve = params_and_curve
+    diag, _ = diagnose(_recording(curve, 0.0), params, "fea", workers=1)
+    assert diag.verdict.value == "agrees", diag.summary()
+
+
+@pytest.mark.heavy
+def test_twice_the_lost_motion_is_explained_as_lost_motion(params_and_curve):
+    params, curve = params_and_curve
+    assert curve.lost_motion_rad > 0.0
+    diag, _ = diagnose(_recording(curve, curve.lost_motion_rad), params, "fea", workers=1)
+    assert diag.verdict.value == "explained", diag.summary()
+    assert diag.summary().split("verdict: explained (")[1].startswith("lost_motion")
