@@ -245,7 +245,7 @@ def _cmd_compare(args) -> int:
 def _cmd_diagnose(args) -> int:
     from strainwave.compare.diagnose.pipeline import diagnose_file
     from strainwave.compare.diagnose.recording import TestFlags
-    flags = TestFlags(args.kind, args.specimen, args.stiffness, args.rated_torque, args.columns)
+    flags = TestFlags(args.kind, args.specimen, args.stiffness, args.rated_torque, args.columns, args.unit)
     diagnosis = diagnose_file(Path(args.recording), params_path=args.params, baseline=args.baseline,
                               plot_out=Path(args.plot) if args.plot else None, flags=flags)
     _emit(args, diagnosis.summary(), diagnosis.to_dict)
@@ -539,6 +539,8 @@ def _add_diagnose(add) -> None:
     p.add_argument("--columns", metavar="MAP", help="which columns to read, by 1-based position, with a unit where "
                    "the column row names none: e.g. 'torque=2:Nm,twist=3:deg' (quantities: torque, twist, time, "
                    "input_angle; ring: force, delta_cd, delta_ab, time); the other columns are not read")
+    p.add_argument("--unit", metavar="NAME", help="a catalogue drive, e.g. CHA-20A-100: its three-slope curve "
+                   "(K1, K2, K3, T1, T2) is the baseline instead of a linear stiffness")
 
 
 def _add_size_crack(add) -> None:

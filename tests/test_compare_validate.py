@@ -279,6 +279,9 @@ _CUP_SEAM_MESH = ("cracks (issue 13): the uncracked cup is solved on the seam me
 _GCI_BOOK = "issue 37: GCI by the book (observed p with Fs 1.25 within 10 % of the formal order, else formal p with Fs 3)"
 _CUP_CALIBRATED = ("issue 37: the cup's junction bias is a calibrated correction (+4.86 %, fitted on two other cups) "
                    "with its 0.41 % scatter as the only allowance (was the bare series model + 6 %)")
+# issue 50: every check's tolerance is its GCI once (Fs 1.25 / 3 already inside it) + named allowances, no longer
+# 3 x that GCI: every tolerance_relative moves, no FEA value does
+_GCI_ONCE = "issue 50: tolerance = GCI once + named allowances (was 3 x a GCI that already holds Fs)"
 DELIBERATE_CHANGES: dict[str, str] = {
     "shaft.flexibility": "issue 37: corrected = the G = E/2(1+nu) form of the problem the FEA solves, tolerance "
                          "3 x GCI without the 0.96 % mu allowance (the material gap is reported apart); " + _GCI_BOOK,
@@ -316,6 +319,11 @@ DELIBERATE_CHANGES: dict[str, str] = {
     "ring.stress_concentration": "01f8eec (ring): K_sigma compared like with like (root factor / K_delta) "
                                  "against the tooth-factor model (was the seed's 1.9)" + _RATIO + "; " + _GCI_BOOK,
 }
+for _id in ("shaft.flexibility", "shaft.crack_compliance", "cup.flexibility", "cup.crack_compliance",
+            "bearing.crack_compliance", "ring.delta_cd", "ring.delta_ab", "ring.sigma_max", "ring.sigma_min",
+            "ring.tooth_influence", "ring.stress_concentration", "gear.stiffness", "cup.surface_crack_major",
+            "cup.surface_crack_between", "cup.surface_crack_minor"):
+    DELIBERATE_CHANGES[_id] = DELIBERATE_CHANGES.get(_id, "") + ("; " if _id in DELIBERATE_CHANGES else "") + _GCI_ONCE
 # Checks removed on purpose, with the reason (a removed check is listed, never silently gone).
 DELIBERATE_REMOVALS: dict[str, str] = {
     "bearing.radial_compliance": "ring (issue 13): passed vacuously (ring FEA 31x below 1/K_G0 back-computed from "
@@ -354,9 +362,18 @@ FULL_VERDICTS = Path(__file__).parent / "data" / "validate_full_verdicts.json"
 # Verdicts --quick may reach apart from the recorded full run, by check id, with the reason: only where quick
 # still PASSES and only the published side moves. A full `make validate` re-records FULL_VERDICTS and empties this.
 QUICK_VERDICT_EXCEPTIONS: dict[str, str] = {
-    "ring.stress_concentration": "issue 37: quick's toothed-ring series diverges (observed p -6.4), so its GCI by "
-                                 "the book is Fs 3 with p 0.5 (27.6 %); the tolerance then also holds the seed's "
-                                 "1.9 ('both', still passing); the full run, under the same rule, gives 'corrected'",
+    "cup.crack_compliance": "issue 50: the midpoint of plane stress and plane strain is asserted; quick's best-resolved "
+                            "depth is a = 1.12 mm (full: 0.14 mm), where the FEA lies nearer plane stress (-2.8 % of it), "
+                            "so the published (plane-stress) form is inside too ('both', passing)",
+}
+# Checks --quick reports "not resolved at --quick" (issue 50: their coarse-mesh GCI exceeds their named allowances
+# by more than 1 %, so a pass would rest on a tolerance more than twice the full run's), with the numbers measured.
+QUICK_NOT_RESOLVED: dict[str, str] = {
+    "ring.stress_concentration": "quick's toothed-ring series diverges (observed p -6.4): GCI 27.6 % against the "
+                                 "fit residual's 3.5 % (tolerance 31 %, full run 4.2 %)",
+    "bearing.crack_compliance": "quick's one crack depth (a = 1 mm): GCI 16.1 % against 9.6 % of allowances "
+                                "(tolerance 25.6 %; the full run's best-resolved depth 4.2 %)",
+    "cup.wg_bending_major": "GCI 5.2 % against 3.3 % of allowances (tolerance 8.6 %, full run 4.5 %)",
 }
 
 
@@ -366,8 +383,12 @@ def test_quick_verdicts_are_those_of_the_full_run(results):
     full = json.loads(FULL_VERDICTS.read_text(encoding="utf-8"))["verdicts"]
     quick = {c["id"]: {"verdict": c["verdict"], "passed": c["passed"]} for c in results["checks"]}
     assert set(full) <= set(quick), sorted(set(full) - set(quick))
-    differ = {k: (quick[k], v) for k, v in full.items() if quick[k] != v and k not in QUICK_VERDICT_EXCEPTIONS}
+    differ = {k: (quick[k], v) for k, v in full.items()
+              if quick[k] != v and k not in QUICK_VERDICT_EXCEPTIONS and k not in QUICK_NOT_RESOLVED}
     assert not differ, f"quick vs full verdicts: {differ}"
+    reasons = {c["id"]: c["reason_not_evaluated"] for c in results["checks"]}
+    unresolved = {k for k, r in reasons.items() if r.startswith("not resolved at --quick")}
+    assert unresolved == set(QUICK_NOT_RESOLVED), (unresolved, sorted(QUICK_NOT_RESOLVED))
     for k in QUICK_VERDICT_EXCEPTIONS:      # an exception never hides a failure or a lost corrected verdict
         assert quick[k]["passed"] and quick[k]["verdict"] in (full[k]["verdict"], "both"), (k, quick[k], full[k])
 

@@ -335,7 +335,7 @@ def _sweep(target: Path, report, component: str) -> str:
 
 def _bearing_sweep(target: Path, book: FeaBook, label: str, params) -> str:
     """What bearing.crack_compliance tests: the race crack's added radial compliance of the ring on the cam
-    (wg-bearing case) at each depth, against the edge-crack weight function at the FEA's stress (corrected)
+    (wg-bearing case) at each depth, against the edge-crack weight function at the exact ring's stress (corrected)
     and seed 000's form (published), the curves the check itself evaluates."""
     from strainwave.compare.validate.wg_bearing_checks import crack_curve, crack_sweep
 
@@ -350,7 +350,7 @@ def _bearing_sweep(target: Path, book: FeaBook, label: str, params) -> str:
                            unit=sweep.unit, depths_mm=depths, fea=sweep.values, fea_uncertainty=sweep.uncertainties,
                            curves=curves)
     return (f"{COMPONENT_TITLES['bearing']}: the quantity bearing.crack_compliance tests, the race crack's added "
-            f"radial compliance (FEA {label}, GCI bars) against the edge-crack weight function at the FEA's stress "
+            f"radial compliance (FEA {label}, GCI bars) against the edge-crack weight function at the exact ring's stress "
             "(corrected) and seed 000's form (published)")
 
 

@@ -127,7 +127,7 @@ def _surface_crack_record(ctx) -> dict:
 
 
 SHAFT, CUP, BEARING, RING = "shaft-torsion", "cup-torsion", "bearing-ring", "ring-compression"
-GCI = "3 x GCI"
+GCI = "GCI (Roache Fs 1.25 / 3 inside, added once)"
 ARC = f"{GCI} + the ring's arc-load and (delta/r_m)^2 allowances"
 NEWMAN_RAJU = f"{GCI} + Newman-Raju's K^2 (10 %) + the block's far face (c/L)^3"
 
@@ -154,13 +154,13 @@ CHECKS: tuple[CheckSpec, ...] = (
               f"{GCI} + back face + Tada's weight function", ((BEARING, "delta_radial_compliance_mm_per_N"),)),
     CheckSpec("bearing.race_stress_major", "bearing", _pick(_wg_bearing, "bearing.race_stress_major"),
               lambda params, at: wg_bearing_checks.race_stress_reference(params, "major"),
-              f"{GCI} + curved-beam allowances", ((wg_bearing_checks.STUDY, "race_stress_major_MPa"),)),
+              f"{GCI} + surface stress recovery (exact Michell reference)", ((wg_bearing_checks.STUDY, "race_stress_major_MPa"),)),
     CheckSpec("bearing.race_stress_minor", "bearing", _pick(_wg_bearing, "bearing.race_stress_minor"),
               lambda params, at: wg_bearing_checks.race_stress_reference(params, "minor"),
-              f"{GCI} + curved-beam allowances", ((wg_bearing_checks.STUDY, "race_stress_minor_MPa"),)),
+              f"{GCI} + surface stress recovery (exact Michell reference)", ((wg_bearing_checks.STUDY, "race_stress_minor_MPa"),)),
     CheckSpec("bearing.ball_loads", "bearing", _pick(_wg_bearing, "bearing.ball_loads"),
               lambda params, at: wg_bearing_checks.ball_load_reference(params),
-              f"{GCI} + the ring's own compliance under a ball", ((wg_bearing_checks.STUDY, "ball_load_ratio"),)),
+              f"{GCI} + the ring's compliance under a ball, in series with Hertz", ((wg_bearing_checks.STUDY, "ball_load_ratio"),)),
     CheckSpec("ring.delta_cd", "ring", _pick(_ring, "ring.delta_cd"), summary_reference("ring.delta_cd"), ARC,
               ((RING, "delta_cd_mm"),), (RING, "delta_cd_mm")),
     CheckSpec("ring.delta_ab", "ring", _pick(_ring, "ring.delta_ab"), summary_reference("ring.delta_ab"), ARC,

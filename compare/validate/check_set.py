@@ -7,7 +7,7 @@ import numpy as np
 
 from strainwave.registry import STUDIES
 from strainwave.compare.validate.check_list import At, CheckContext, CheckSpec, beside, current
-from strainwave.compare.validate.checks import Check, not_evaluated
+from strainwave.compare.validate.checks import Check, not_evaluated, quick_resolution
 from strainwave.compare.validate.crack_scaling import PowerFit, fit_power_law
 from strainwave.compare.validate.fea_book import FeaBook, Sweep
 from strainwave.compare.validate.plan import COMPONENT_STUDY, Plan
@@ -77,14 +77,15 @@ def _sweeps(ctx: CheckContext, checks: tuple[CheckSpec, ...]) -> dict[str, Sweep
 
 
 def build_checks(book: FeaBook, plan: Plan, summary: dict, params,
-                 checks: tuple[CheckSpec, ...] | None = None) -> CheckSet:
+                 checks: tuple[CheckSpec, ...] | None = None, *, quick: bool = False) -> CheckSet:
     """Every check of ``checks`` (the check list), in their order; one whose builder made none is listed as not
-    evaluated."""
+    evaluated. ``quick``: a check the coarse meshes do not resolve is reported so (``checks.quick_resolution``)."""
     checks = checks or current()
     ctx = CheckContext(book, plan, summary, params)
     built = []
     for spec in checks:
         check = spec.builder(ctx)
-        built.append(check if check is not None else not_evaluated(spec.id, spec.id, "", "no builder produced this check"))
+        check = check if check is not None else not_evaluated(spec.id, spec.id, "", "no builder produced this check")
+        built.append(quick_resolution(check) if quick else check)
     records = {spec.id: spec.record(ctx) for spec in checks if spec.record is not None}
     return CheckSet(tuple(built), _sweeps(ctx, checks), {k: r for k, r in records.items() if r})

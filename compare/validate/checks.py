@@ -19,25 +19,38 @@ class Tolerance:
 
     relative: float
     reason: str
+    gci: float = math.nan          # the GCI's share of ``relative`` (the rest: named allowances); NaN: not split
+
+    @property
+    def allowances(self) -> float:
+        return self.relative - (self.gci if math.isfinite(self.gci) else 0.0)
 
     def to_dict(self) -> dict:
-        return {"relative": _finite_or_none(self.relative), "reason": self.reason}
+        return {"relative": _finite_or_none(self.relative), "reason": self.reason, "gci": _finite_or_none(self.gci)}
 
 
 def fea_tolerance(fea: float | None, fea_uncertainty: float | None, *, allowances: dict[str, float],
-                  gci_factor: float = 3.0) -> Tolerance:
-    """Tolerance = ``gci_factor`` x relative FEA uncertainty + named modelling allowances.
+                  basis: str = "") -> Tolerance:
+    """Tolerance = the FEA's GCI + named modelling allowances (docs/verification.md, "Check tolerances").
 
-    Each allowance is a relative size with the reason as its key, e.g.
-    ``{"mu = 8e4 vs E/2(1+nu) = 80769 (seed 000, audit 18)": 0.0096}``.
+    The GCI is Roache's Fs |e_ext| (``fea.convergence``): it already holds its safety factor (1.25 where three
+    meshes show the asymptotic range, 3 otherwise), so it is added once, never multiplied again. ``basis``: the
+    GCI's order and Fs in words (``Convergence.basis``), quoted in the reason. Each allowance is a relative size
+    with the reason as its key, e.g. ``{"mu = 8e4 vs E/2(1+nu) = 80769 (seed 000, audit 18)": 0.0096}``.
     """
     rel_u = 0.0
     if fea not in (None, 0.0) and fea_uncertainty is not None and math.isfinite(fea_uncertainty):
         rel_u = abs(fea_uncertainty / fea)
-    total = gci_factor * rel_u + sum(allowances.values())
-    parts = [f"{gci_factor:g} x GCI ({100 * rel_u:.3g} %)"]
+    total = rel_u + sum(allowances.values())
+    parts = [f"GCI {100 * rel_u:.3g} % ({basis or 'Fs inside'})"]
     parts += [f"{100 * v:.3g} % {why}" for why, v in allowances.items()]
-    return Tolerance(total, " + ".join(parts))
+    return Tolerance(total, " + ".join(parts), rel_u)
+
+
+def gci_basis(quantity) -> str:
+    """The GCI's order and safety factor in words (``Convergence.basis``), "" when the quantity carries none."""
+    conv = getattr(quantity, "convergence", None)
+    return "" if conv is None else conv.basis
 
 
 RELATIONS = ("equal", "at_most")
@@ -107,6 +120,26 @@ def verdict_of(rel_error: dict[str, float], tolerance: float, relation: str = "e
     if len(inside) == 2:
         return "both"
     return inside[0] if inside else "neither"
+
+
+# --quick: a check whose coarse-mesh GCI exceeds its named allowances by more than this is not resolved there. A
+# resolved one has tolerance <= 2 x allowances + 1 %, and the full run's tolerance is never below its allowances,
+# so --quick never allows more than twice the full run's tolerance plus one point.
+QUICK_GCI_FLOOR = 0.01
+NOT_RESOLVED_AT_QUICK = "not resolved at --quick"
+
+
+def quick_resolution(check: Check) -> Check:
+    """``check`` as --quick reports it: unchanged when its GCI is at most its named allowances + 1 %; otherwise
+    not resolved at --quick (not evaluated, so not passed), with the numbers."""
+    tol = check.tolerance
+    if (check.verdict == "not evaluated" or not math.isfinite(tol.gci)
+            or tol.gci <= tol.allowances + QUICK_GCI_FLOOR):
+        return check
+    why = (f"{NOT_RESOLVED_AT_QUICK}: GCI {100 * tol.gci:.3g} % on the coarse meshes exceeds the named allowances "
+           f"({100 * tol.allowances:.3g} %) by more than {100 * QUICK_GCI_FLOOR:g} %: its tolerance "
+           f"({100 * tol.relative:.3g} %) could be more than twice the full run's; run without --quick")
+    return replace(check, verdict="not evaluated", passed=False, reason_not_evaluated=why)
 
 
 def evaluate(check: Check) -> Check:

@@ -17,7 +17,8 @@ SHAFT_NOTE = ("published 512 M_M^2 a^3/(3 mu d_e^6) (seed 000: penny-crack area,
 CUP_NOTE = ("the crack seed 000 describes: through the wall, half-length a, 45 deg to the axis (pure mode I, "
             "K_I = tau sqrt(pi a)), in the fully loaded tube between diaphragm and tooth band (not in the band, "
             "where the torque enters as surface shear and the section carries less than T). Asserted "
-            "(corrected): both tips, a^2/(2 pi E r_m^4 delta); the seed's published K_u K_d a^2/(2 pi ...) is "
+            "(corrected): both tips, a^2/(2 pi E r_m^4 delta) x (1 - nu^2/2), midway between plane stress and "
+            "plane strain (both shown); the seed's published K_u K_d a^2/(2 pi ...) is "
             "that form (its 2 pi is right for a through crack), evaluated at K_u = K_d = 1 (static uniform load, "
             "audit 17); audit_one_tip = the audit's a^2/(4 pi ...), which integrates one tip only")
 

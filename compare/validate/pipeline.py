@@ -348,7 +348,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
         nafems = nafems_job.appendix(out_dir)
         timings["nafems"] = time.perf_counter() - nafems_start   # the wait after the FEA
         with _stage("checks", timings, progress, 4, total):
-            check_set = build_checks(book, plan, summary, params)
+            check_set = build_checks(book, plan, summary, params, quick=quick)
             audit = audit_with_evidence(summary.get("audit", []), check_set.by_id(),
                                         shaft_exponent=_shaft_exponent(check_set),
                                         crack_headline=summary.get("crack_headline"))

@@ -8,7 +8,7 @@
 - ``cup.surface_crack_minor``: the share of the open crack's compliance that the faces' contact removes at the
   minor axis, 1 - delta(minor)/delta(major), FEA against the Newman-Raju rule (combined K < 0 -> shut);
   published = the seed's crack, which never shuts (0).
-- Tolerance = 3 x GCI + allowances fixed here, before any result, from the equations' own statement and the
+- Tolerance = GCI (Fs inside) + allowances fixed here, before any result, from the equations' own statement and the
   block's geometry alone:
   * Newman and Raju state their equations within +-5 % of their 3D finite elements for a/t <= 0.8, so K^2
     (the compliance) within 10 %;
@@ -23,7 +23,7 @@ import math
 
 from strainwave.analytic import surface_crack as sc
 from strainwave.analytic.reference import Reference
-from strainwave.compare.validate.checks import Check, evaluate, fea_tolerance, not_evaluated
+from strainwave.compare.validate.checks import Check, evaluate, fea_tolerance, gci_basis, not_evaluated
 from strainwave.compare.validate.fea_book import FeaBook
 from strainwave.fea.surface_crack import ASPECT, STUDY, Block, block_for, delta_name, sweep_depths_mm
 
@@ -105,16 +105,17 @@ def surface_crack_checks(book: FeaBook, label: str | None, params, *, reference=
         if state == "minor":
             quantity = f"share of the open crack's compliance shut by face contact at the minor axis, a = {depth:g} mm"
             value, u, analytic = _shut_share(book, label or "", params, depth, reference(params, depth, "major")["corrected"])
-            unit = "1"
+            unit, basis = "1", "GCIs of both states, propagated"
         else:
             quantity = f"delta lambda_f of the tooth-root surface crack at the {state} state, a = {depth:g} mm"
             q, why = book.quantity(label or "", delta_name(state, depth)) if label else (None, "study not run")
             value, u, unit = (None, None, "rad/(N*mm)") if q is None else (q.value, q.uncertainty, "rad/(N*mm)")
+            basis = gci_basis(q)
         if value is None:
             out.append(not_evaluated(check_id, quantity, unit, f"{STUDY}: no FEA value (case missing or failed)",
                                      analytic=analytic))
             continue
-        tol = fea_tolerance(value, u, allowances=tol_allow)
+        tol = fea_tolerance(value, u, allowances=tol_allow, basis=basis)
         note = (f"a/c = {ASPECT:g}, a = {depth:g} mm in t = {block.t_mm:g} mm; wave generator + rated torque, "
                 "crack-face normal stresses by analytic/surface_crack.py's map; corrected = Newman-Raju integrated "
                 "as seed 000 eq 4 (K < 0 -> shut); published = the seed's through-wall crack")

@@ -1,13 +1,18 @@
 """Checks of the wave generator bearing's inner ring on the elliptical cam (study wg-bearing, issue 34 item 3).
 
-- ``bearing.race_stress_major`` / ``_minor``: the race hoop stress under the cam against the curved-beam form
-  (asserted, ``corrected``) with the thin-ring 3 E t w0/(2 r_m^2) beside it (``published``: the issue's form).
+- ``bearing.race_stress_major`` / ``_minor``: the race hoop stress under the cam against the exact plane-stress
+  solution of the same problem (Michell n = 2, ``analytic.michell_ring``: bore at w0 cos 2phi, shear-free, race
+  free; ``corrected``, asserted) with the thin ring 3 E t w0/(2 r_m^2) beside it (``published``), and the exact
+  plane-strain solution (``plane_strain``) and the curved beam (``curved_beam``) shown: a ring of finite width
+  lies between plane stress and plane strain.
 - ``bearing.ball_loads``: Z Q_max/F_r with the balls as Hertz springs on the FEA ring against Stribeck's law
-  (zero clearance, rigid rings, the exact sum over the Z balls; ``published``: Stribeck's 4.37).
+  (zero clearance, rigid rings, the exact sum over the Z balls; ``published``: Stribeck's 4.37); linear springs
+  (``linear_springs``, 8.5 % lower for Z = 24) are shown and lie outside the tolerance.
 - ``bearing.crack_compliance``: the race crack's added radial compliance at the major axis, where the cam's
-  bending holds it open, against the edge-crack weight function integrated by seed 000's eq 4 at the FEA's own
-  uncracked hoop stress on the crack line (``corrected``); ``published``: seed 000's K = 1.95 sigma sqrt(a/Q) at
-  the FEA's stress at the mouth. Never the FEA's own uncracked compliance.
+  bending holds it open, against the edge-crack weight function integrated by seed 000's eq 4 at the exact
+  uncracked hoop stress on the crack line (Michell's series for the ring under the Stribeck Hertz patches with
+  its bore held by the cam, ``analytic.michell_ring``; ``corrected``); ``published``: seed 000's
+  K = 1.95 sigma sqrt(a/Q) at that stress at the mouth. Neither side reads the FEA.
 """
 from __future__ import annotations
 
@@ -15,10 +20,12 @@ import math
 
 import numpy as np
 
+from strainwave.analytic import hertz_ball_loads as hertz
+from strainwave.analytic import michell_ring as michell
 from strainwave.analytic import wg_bearing as wgb
 from strainwave.analytic.reference import Reference
 from strainwave.analytic.study_loads import wg_bearing_load
-from strainwave.compare.validate.checks import Check, evaluate, fea_tolerance, not_evaluated
+from strainwave.compare.validate.checks import Check, evaluate, fea_tolerance, gci_basis, not_evaluated
 from strainwave.compare.validate.fea_book import FeaBook, Sweep
 from strainwave.compare.validate.torsion_checks import crack_check
 
@@ -32,13 +39,24 @@ def _ring(params):
 
 
 def race_stress_reference(params, axis: str, s=None) -> Reference:
-    """corrected: curved beam with the membrane force; published: thin ring 3 E t w0/(2 r_m^2)."""
+    """corrected: the exact plane-stress solution (Michell n = 2); published: thin ring 3 E t w0/(2 r_m^2);
+    beside them the exact plane-strain solution and the curved beam."""
     s = s or _ring(params)
     phi = 0.0 if axis == "major" else 0.5 * math.pi
     E, t, r_m = s.E_MPa, s.thickness_mm, 0.5 * (s.r_bore_mm + s.r_race_mm)
-    return Reference(wgb.thin_ring_race_stress_MPa(E, t, r_m, s.w0_mm, phi),
-                     wgb.curved_beam_race_stress_MPa(E, s.r_bore_mm, s.r_race_mm, s.w0_mm, phi), "MPa",
-                     "analytic.wg_bearing: thin ring (published), curved beam + membrane force (corrected)")
+    exact = {plane: michell.cam_ring_hoop_stress_MPa(E, s.nu, s.r_bore_mm, s.r_race_mm, s.w0_mm, phi, plane=plane)
+             for plane in michell.Plane}
+    return Reference(wgb.thin_ring_race_stress_MPa(E, t, r_m, s.w0_mm, phi), exact[michell.Plane.STRESS], "MPa",
+                     "analytic.michell_ring: exact plane stress (corrected); thin ring (published)",
+                     (("plane_strain", exact[michell.Plane.STRAIN]),
+                      ("curved_beam", wgb.curved_beam_race_stress_MPa(E, s.r_bore_mm, s.r_race_mm, s.w0_mm, phi))))
+
+
+# The FEA and the exact solution are the same plane-stress problem, so no modelling allowance: only what the
+# three meshes' GCI cannot see, the nodal-averaged stress read at a surface vertex. This solver's recovery reads
+# NAFEMS LE1's surface stress 0.073 % low on its fine mesh (docs/verification.md): taken as 0.1 %.
+RECOVERY_ALLOWANCE = 0.001
+RECOVERY_REASON = "surface stress by nodal averaging (this solver on NAFEMS LE1, fine mesh: -0.073 %)"
 
 
 def race_stress_check(book: FeaBook, label: str, params, axis: str) -> Check:
@@ -49,39 +67,51 @@ def race_stress_check(book: FeaBook, label: str, params, axis: str) -> Check:
     q, why = book.quantity(label, name)
     if q is None:
         return not_evaluated(check_id, quantity, "MPa", why, analytic=analytic)
-    tol = fea_tolerance(q.value, q.uncertainty, allowances=wgb.race_stress_allowances(s.r_bore_mm, s.r_race_mm))
+    tol = fea_tolerance(q.value, q.uncertainty, allowances={RECOVERY_REASON: RECOVERY_ALLOWANCE},
+                        basis=gci_basis(q))
+    spread = analytic["plane_strain"] / analytic["corrected"] - 1.0
     note = (f"w0 = {s.w0_mm:g} mm (gear.radial_deformation_mm), ring r = {s.r_bore_mm:g}..{s.r_race_mm:g} mm; "
-            "corrected: curved beam (Winkler neutral radius) with the membrane force N = -M/r_m of a ring under "
-            "radial cam pressure; published: thin ring 3 E t w0/(2 r_m^2), tension at the major axis")
+            "corrected: the exact plane-stress solution of the FEA's problem (Michell n = 2: bore at w0 cos 2phi, "
+            "shear-free; race free); published: thin ring 3 E t w0/(2 r_m^2); the real ring of width "
+            f"{s.width_mm:g} mm lies between plane stress and plane strain ({100 * spread:+.1f} %), the curved beam "
+            f"is {100 * (analytic['curved_beam'] / analytic['corrected'] - 1.0):+.1f} % off the exact")
     return evaluate(Check(check_id, quantity, "MPa", q.value, q.uncertainty, analytic, "corrected", tol, note=note,
-                          sources={"fea": f"FEA {label}", "analytic": "analytic.wg_bearing"}))
+                          sources={"fea": f"FEA {label}", "analytic": "analytic.michell_ring (exact, plane stress)"}))
 
 
 def ball_load_reference(params) -> Reference:
-    """corrected: Z Q_max / F_r, the exact Stribeck sum over the Z balls; published: Stribeck's 4.37."""
-    loads = wg_bearing_load(params)
-    _, q = wgb.stribeck_ball_loads(loads["force_N"], params.wave_generator.ball_count)
-    return Reference(4.37, params.wave_generator.ball_count * float(q.max()) / loads["force_N"], "1", "Stribeck")
+    """corrected: Z Q_max / F_r, the exact Stribeck sum over the Z balls (Hertz, rigid rings); published:
+    Stribeck's 4.37; beside them linear springs (Q ~ delta)."""
+    Z = params.wave_generator.ball_count
+    return Reference(4.37, hertz.hertz_load_ratio(Z), "1", "Stribeck (Hertz balls, rigid rings)",
+                     (("linear_springs", hertz.linear_spring_load_ratio(Z)),))
+
+
+def ball_load_allowance(params) -> tuple[str, float]:
+    """(reason, size): how far the ring's compliance under a ball (an upper estimate: 45 deg spreading, doubled),
+    in series with each Hertz ball, moves Z Q_max/F_r off the rigid rings' (``hertz_ball_loads``), exactly."""
+    loads, s = wg_bearing_load(params), _ring(params)
+    g = wgb.ring_local_compliance_mm_per_N(s.E_MPa, s.thickness_mm, s.width_mm, max(s.patch_half_widths_mm))
+    shift = hertz.ring_compliance_shift(loads["force_N"], params.wave_generator.ball_count, loads["hertz_constant"], g)
+    return (f"the ring's compliance under each ball ({g:.3g} mm/N: 45 deg spreading, doubled) in series with the "
+            "Hertz ball, exact", shift)
 
 
 def ball_load_check(book: FeaBook, label: str, params) -> Check:
     check_id, unit = "bearing.ball_loads", "1"
     loads = wg_bearing_load(params)
-    psi, q = wgb.stribeck_ball_loads(loads["force_N"], params.wave_generator.ball_count)
     Z, F = params.wave_generator.ball_count, loads["force_N"]
     analytic = ball_load_reference(params).variants()
     quantity = f"Z Q_max / F_r, Z = {Z} balls (Hertz Q = K_n delta^1.5) between the FEA ring and a rigid outer race"
     fea, why = book.quantity(label, "ball_load_ratio")
     if fea is None:
         return not_evaluated(check_id, quantity, unit, why, analytic=analytic)
-    s = _ring(params)
-    g = wgb.ring_local_compliance_mm_per_N(s.E_MPa, s.thickness_mm, s.width_mm, max(s.patch_half_widths_mm))
-    allowance = wgb.stribeck_allowance(float(q.max()), loads["hertz_constant"], g)
-    tol = fea_tolerance(fea.value, fea.uncertainty, allowances={
-        f"the ring's own compliance under a ball ({g:.3g} mm/N, 45 deg spreading, doubled) against the Hertz "
-        "ball's, first order": allowance})
+    reason, allowance = ball_load_allowance(params)
+    tol = fea_tolerance(fea.value, fea.uncertainty, allowances={reason: allowance}, basis=gci_basis(fea))
+    linear = analytic["linear_springs"] / analytic["corrected"] - 1.0
     note = ("Stribeck's law Q_i = Q_max cos^1.5 psi_i (zero clearance, rigid rings); corrected = the exact sum "
-            f"F_r / sum cos^2.5 psi_i over the Z balls; published = Stribeck's 4.37 (Z -> infinity); F_r = {F:.4g} N")
+            f"F_r / sum cos^2.5 psi_i over the Z balls; published = Stribeck's 4.37 (Z -> infinity); F_r = {F:.4g} N; "
+            f"linear springs (Q ~ delta) would read {100 * linear:+.1f} %, outside the tolerance")
     return evaluate(Check(check_id, quantity, unit, fea.value, fea.uncertainty, analytic, "corrected", tol,
                           note=note, sources={"fea": f"FEA {label} + Hertz balls", "analytic": "Stribeck"}))
 
@@ -104,15 +134,25 @@ def crack_sweep(book: FeaBook, label: str) -> Sweep | None:
     return Sweep("bearing", "delta_radial_compliance_mm_per_N", "mm/N", d, v, u)
 
 
-def crack_curve(params, result):
-    """depth -> {corrected: weight function at the FEA's uncracked hoop stress on the crack line,
-    published: seed 000's form at the FEA's hoop stress at the mouth}."""
+def exact_hoop_profile(params, depth_mm: float, points: int = 241):
+    """(x, hoop stress per newton of F_r) on the crack line (phi = 0) from the race down to ``depth_mm``: the exact
+    plane-stress ring under the Stribeck Hertz patches with its bore held by the cam (``michell_ring.
+    held_bore_hoop_stress_MPa``), a function of the parameters alone (never of the FEA)."""
     s = _ring(params)
-    cracks = result.meta["cracks"]
+    x = depth_mm * np.linspace(0.0, 1.0, points) ** 2      # dense at the race, where the patch acts
+    stress = michell.held_bore_hoop_stress_MPa(s.nu, s.r_bore_mm, s.r_race_mm, s.width_mm, s.ball_angles_rad,
+                                               s.ball_loads_N, s.patch_half_widths_mm, s.r_race_mm - x)
+    return x, stress / s.force_N
+
+
+def crack_curve(params, result=None):
+    """depth -> {corrected: Tada's weight function at the exact uncracked hoop stress on the crack line (Michell's
+    series, ``exact_hoop_profile``), published: seed 000's form at that stress at the mouth}. ``result`` is not read:
+    the closed form is a function of the parameters alone."""
+    s = _ring(params)
 
     def curve(depth: float) -> dict[str, float]:
-        fact = cracks[f"{depth:g}"]
-        x, sig = np.asarray(fact["profile_x_mm"]), np.asarray(fact["hoop_stress_per_N_MPa"])
+        x, sig = exact_hoop_profile(params, depth)
         return {"corrected": wgb.edge_crack_compliance_mm_per_N(lambda xx: np.interp(xx, x, sig), depth, s.E_MPa,
                                                                  s.width_mm),
                 "published": wgb.seed_form_compliance_mm_per_N(float(sig[0]), depth, s.E_MPa, s.width_mm)}
@@ -142,10 +182,11 @@ def bearing_crack_check(book: FeaBook, label: str, params, curve=None) -> Check:
             f"(w0 -> -w0) the a = {comp.get('depth_mm', float('nan')):g} mm crack closes "
             f"({comp.get('closed_pairs', '?')} of {comp.get('pairs', '?')} face pairs in contact, delta C = "
             f"{comp.get('delta', float('nan')):.2g} mm/N). corrected: Tada's half-plane edge-crack weight function at "
-            "the FEA's uncracked hoop stress on the crack line, seed 000 eq 4 with dA = B da; published: seed 000's "
-            "1.95 sigma sqrt(a/Q), Q = 1 (straight front), sigma = the FEA's stress at the mouth")
+            "the exact uncracked hoop stress on the crack line (Michell's series: the plane-stress ring under the "
+            "Stribeck Hertz patches, its bore held by the cam; not the FEA's), seed 000 eq 4 with dA = B da; "
+            "published: seed 000's 1.95 sigma sqrt(a/Q), Q = 1 (straight front), sigma = that stress at the mouth")
     return crack_check(check_id, quantity, unit, sweep, curve, allowances, note,
-                       {"fea": f"FEA {label}", "analytic": "edge-crack weight function (Tada) at the FEA's stress"},
+                       {"fea": f"FEA {label}", "analytic": "edge-crack weight function (Tada) at the exact ring's stress (Michell)"},
                        params.wave_generator.bearing_crack_depth_mm)
 
 
