@@ -37,6 +37,11 @@ class DesignRules:
     K_G0_default_N_per_mm: float = 6.303e4      # seed 000's implied K_G0 at its d1 = 160 mm ...
     K_G0_default_d1_mm: float = 160.0           # ... scaled with d1: similar bodies of one material
     force_coefficient: float = 0.35             # seed 000's k_r
+    bearing_ring_over_d1: float = 10.0 / 160.0  # seed 000 example: t_i / d1 (the bearing scales with its cup)
+    contact_over_d1: tuple[float, float] = (5.0 / 160.0, 3.0 / 160.0)   # seed 000 example: (a', b') / d1
+    ball_over_d1: float = 9.525 / 160.0         # the default drive's D_w / d1
+    outer_ring_over_d1: float = 2.5 / 160.0     # the default drive's outer ring / d1
+    spline_over_d1: tuple[float, float] = (200.0 / 160.0, 30.0 / 160.0)   # circular spline (outer diameter, b) / d1
 
     def K_G0_N_per_mm(self, d1_mm: float) -> float:
         """Geometric similitude: a radial stiffness scales with the linear size (E L)."""
@@ -93,7 +98,13 @@ def overrides_for(row: CatalogueRow, rules: DesignRules = DesignRules()) -> dict
                      "force_coefficient": rules.force_coefficient},
             "flexspline_cup": {"pitch_diameter_mm": d1, "wall_thickness_mm": rules.wall_over_d1 * d1,
                                "length_mm": rules.length_over_d1 * d1, "teeth": teeth, "module_mm": module},
-            "wave_generator": {"uncracked_radial_stiffness_N_per_mm": rules.K_G0_N_per_mm(d1)}}
+            "wave_generator": {"uncracked_radial_stiffness_N_per_mm": rules.K_G0_N_per_mm(d1),
+                               "bearing_inner_ring_thickness_mm": rules.bearing_ring_over_d1 * d1,
+                               "contact_semi_axes_mm": [c * d1 for c in rules.contact_over_d1],
+                               "ball_diameter_mm": rules.ball_over_d1 * d1,
+                               "outer_ring_thickness_mm": rules.outer_ring_over_d1 * d1},
+            "circular_spline": {"outer_diameter_mm": rules.spline_over_d1[0] * d1,
+                                "face_width_mm": rules.spline_over_d1[1] * d1}}
 
 
 def _lambda_H(params) -> float:

@@ -29,7 +29,15 @@ MAX_ELEMENTS = 300_000
 MAX_CAD_TEETH = 400
 # The toothed parts and the tooth-count key each is cut from (the cup study meshes a smooth shell).
 TOOTHED_PARTS = {"flexspline-cup": "flexspline_cup.teeth", "ewg-flexspline-ring": "ewg_drive.flexspline_teeth",
-                 "ewg": "ewg_drive.flexspline_teeth"}
+                 "ewg": "ewg_drive.flexspline_teeth", "circular-spline": "flexspline_cup.teeth"}
+
+
+# The keys each meshed part's size and wall come from, for a budget refusal of the parameters themselves.
+PART_KEYS = {"flexspline-cup": "flexspline_cup.pitch_diameter_mm, wall_thickness_mm, length_mm",
+             "output-shaft": "output_shaft.outer_diameter_mm, inner_diameter_mm, length_mm",
+             "wg-bearing-ring": "wave_generator.bearing_inner_ring_thickness_mm, contact_semi_axes_mm and "
+                                "flexspline_cup.pitch_diameter_mm, wall_thickness_mm",
+             "ewg-flexspline-ring": "ewg_drive.flexspline_teeth, module_mm, rim_thickness_ratio"}
 
 
 def check_cad_teeth(params, parts, flag: str = "--params") -> None:
@@ -85,8 +93,15 @@ def check_budget(study: str, params, mesh_size_mm: float | None, quick: bool = F
     if teeth is not None:
         check_cad_teeth(params, [p for p, k in TOOTHED_PARTS.items() if k == teeth][:1], flag)
     est = estimate(study, params, mesh_size_mm, quick)
+    if est.elements > MAX_ELEMENTS and not mesh_size_mm:   # the parameters alone: name them, not a flag not given
+        from strainwave.registry import study as registered
+        part = registered(study).part
+        raise InputError(f"the {part} ({PART_KEYS.get(part, 'its parameters')})", f"{est.elements:.3g} elements",
+                         f"{study} would need that many on its finest mesh at its default size h = {est.h_mm:.3g} mm "
+                         f"(part volume {est.volume_mm3:.3g} mm^3, wall {est.wall_mm:.3g} mm); the budget is "
+                         f"{MAX_ELEMENTS:,}: the part is too large for its wall to mesh")
     if est.elements > MAX_ELEMENTS:
-        raise InputError(flag, mesh_size_mm if mesh_size_mm else f"default h = {est.h_mm:.3g} mm",
+        raise InputError(flag, mesh_size_mm,
                          f"{study} would need about {est.elements:.3g} elements on its finest mesh (part volume "
                          f"{est.volume_mm3:.3g} mm^3, h = {est.h_mm:.3g} mm, wall {est.wall_mm:.3g} mm); the budget "
                          f"is {MAX_ELEMENTS:,}: " + ("choose a larger --mesh-size-mm or a smaller part" if flag == "--mesh-size-mm"

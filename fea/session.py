@@ -169,7 +169,8 @@ def mesh_in_child(build: Callable[[object], T], *, what: str = "gmsh") -> T:
 
     limits = mesh_limits()
     parent = os.getpid()
-    scratch = tempfile.mkdtemp(prefix=f"strainwave-mesh-{parent}-")
+    from strainwave.output_guard import make_owned_dir
+    scratch = str(make_owned_dir(f"strainwave-mesh-{parent}-"))   # its owner recorded: removable once we are gone
     read_fd, write_fd = os.pipe()
     pid = os.fork()
     if pid == 0:   # pragma: no cover - the child

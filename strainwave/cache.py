@@ -1,17 +1,20 @@
 """On-disk result cache keyed by the parameters and the code version.
 
 A rerun of ``validate`` or a resumed ``sweep`` reuses finished cases. The code version is a hash of
-the package's own source files, so editing any formula or solver invalidates every cached case.
+the package's own source files, so editing any formula or solver invalidates every cached case. Each
+reader states the schema of its entries (``ResultCache.get(key, schema)``): an entry that is not a JSON
+object meeting it (damaged, truncated, hand-edited, of another layout) is recomputed, never trusted.
 """
 from __future__ import annotations
 
 import fcntl
 import hashlib
 import json
+import math
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
-from typing import Callable, TypeVar
+from typing import Callable, Mapping, TypeVar, Union
 
 T = TypeVar("T")
 
@@ -39,6 +42,35 @@ def case_key(kind: str, payload: dict) -> str:
     return hashlib.sha256(text.encode()).hexdigest()[:24]
 
 
+# An entry's schema: each required key and the type(s) its value must have, or a predicate over the entry.
+Schema = Union[Mapping[str, Union[type, tuple]], Callable[[dict], bool]]
+NUMBER = (int, float)
+
+
+def meets(record, schema: Schema | None) -> bool:
+    """True if ``record`` is a JSON object meeting ``schema`` (numbers finite, bools not numbers)."""
+    if not isinstance(record, dict):
+        return False
+    if schema is None:
+        return True
+    if callable(schema):
+        try:
+            return bool(schema(record))
+        except (KeyError, TypeError, ValueError, AttributeError):
+            return False
+    for name, kind in schema.items():
+        value = record.get(name)
+        if not isinstance(value, kind) or (isinstance(value, bool) and bool not in _types(kind)):
+            return False
+        if isinstance(value, float) and not math.isfinite(value):
+            return False
+    return True
+
+
+def _types(kind) -> tuple:
+    return kind if isinstance(kind, tuple) else (kind,)
+
+
 @dataclass(frozen=True)
 class ResultCache:
     root: Path
@@ -46,14 +78,16 @@ class ResultCache:
     def path(self, key: str) -> Path:
         return Path(self.root) / f"{key}.json"
 
-    def get(self, key: str) -> dict | None:
+    def get(self, key: str, schema: Schema | None = None) -> dict | None:
+        """The entry under ``key`` if it is a JSON object that meets ``schema``; None (recomputed) otherwise."""
         path = self.path(key)
         if not path.exists():
             return None
         try:
-            return json.loads(path.read_text(encoding="utf-8"))
-        except (OSError, json.JSONDecodeError):
+            record = json.loads(path.read_text(encoding="utf-8"))
+        except (OSError, ValueError):
             return None  # a damaged entry is recomputed, never trusted
+        return record if meets(record, schema) else None
 
     def put(self, key: str, record: dict) -> None:
         atomic_write_text(self.path(key), json.dumps(record, default=str))

@@ -140,6 +140,23 @@ def _cmd_params(args) -> int:
     return 0
 
 
+@contextlib.contextmanager
+def _crack_flag(depth_mm: float | None):
+    """A refusal of the crack a user gave as --crack-depth-mm names that flag, not the parameter key or the
+    geometry's argument it was passed on as (issue 53: refusals name what the user gave)."""
+    try:
+        yield
+    except InputError as exc:
+        if depth_mm is None:
+            raise
+        if str(exc.key).endswith("crack_depth_mm") and exc.value == depth_mm:
+            raise InputError("--crack-depth-mm", depth_mm, exc.allowed) from None
+        if exc.key == "crack_geometry.slot_width_mm":   # the parameters' own cracks passed this: the flag's is too shallow
+            raise InputError("--crack-depth-mm", depth_mm, f"must be >= 5 x crack_geometry.slot_width_mm = "
+                                                           f"{5 * exc.value:g} mm (a slot, not a notch)") from None
+        raise
+
+
 def _cmd_export_step(args) -> int:
     from strainwave.fea.budget import TOOTHED_PARTS, check_cad_teeth
     from strainwave.geometry.export import export_part
@@ -148,7 +165,8 @@ def _cmd_export_step(args) -> int:
         check_cad_teeth(params, list(TOOTHED_PARTS) if args.part == "assembly" else [args.part])
     from strainwave.progress import ticking
     try:
-        with ticking(f"export-step {args.part}: building and writing", _progress, first_s=EXPORT_FIRST_TICK_S):
+        with _crack_flag(args.crack_depth_mm), \
+                ticking(f"export-step {args.part}: building and writing", _progress, first_s=EXPORT_FIRST_TICK_S):
             written = export_part(args.part, params, Path(args.output), crack_depth_mm=args.crack_depth_mm,
                                   teeth=not args.no_teeth, png=Path(args.png) if args.png else None)
     except (StrainwaveError, OSError):
@@ -166,6 +184,11 @@ EXPORT_FIRST_TICK_S = 10.0
 
 
 def _cmd_solve(args) -> int:
+    with _crack_flag(args.crack_depth_mm):
+        return _solve(args)
+
+
+def _solve(args) -> int:
     import tempfile
 
     from strainwave.fea.budget import check_budget
@@ -182,9 +205,10 @@ def _cmd_solve(args) -> int:
             raise InputError("--inp", unstage_text(args.inp), f"a 3D study; {args.study} is meshed as a plane "
                              "section (use --msh)")
     # The field is always written (to a scratch folder without --vtu): the rated-load peaks are read from it.
-    from strainwave.output_guard import remove_stale
+    from strainwave.output_guard import make_owned_dir, remove_stale
     remove_stale(tempfile.gettempdir())   # killed solves' folders, when the scratch is the system's
-    with tempfile.TemporaryDirectory(prefix=f"strainwave-solve-{os.getpid()}-") as scratch:   # under the run's scratch
+    scratch = make_owned_dir(f"strainwave-solve-{os.getpid()}-")   # under the run's scratch, its owner recorded
+    try:
         vtu = Path(args.vtu) if args.vtu else Path(scratch) / f"{args.study}.vtu"
         result = run_study(args.study, params, mesh_size_mm=args.mesh_size_mm, order=args.order,
                            crack_depth_mm=args.crack_depth_mm, vtu=vtu, progress=_progress)
@@ -193,6 +217,9 @@ def _cmd_solve(args) -> int:
         if args.vtu and rated is not None:   # the file a user opens is at the load this command reports
             write_at_rated(result.fields, rated.load)
         _export_mesh(args, vtu, params, result)
+    finally:
+        import shutil
+        shutil.rmtree(scratch, ignore_errors=True)
     if not args.vtu:
         result = dataclasses.replace(result, fields=())
     text = result.summary() + ("" if rated is None else "\n" + "\n".join(rated.lines()))
@@ -245,7 +272,7 @@ def _cmd_compare(args) -> int:
 def _cmd_diagnose(args) -> int:
     from strainwave.compare.diagnose.pipeline import diagnose_file
     from strainwave.compare.diagnose.recording import TestFlags
-    flags = TestFlags(args.kind, args.specimen, args.stiffness, args.rated_torque, args.columns)
+    flags = TestFlags(args.kind, args.specimen, args.stiffness, args.rated_torque, args.columns, args.unit)
     diagnosis = diagnose_file(Path(args.recording), params_path=args.params, baseline=args.baseline,
                               plot_out=Path(args.plot) if args.plot else None, flags=flags)
     _emit(args, diagnosis.summary(), diagnosis.to_dict)
@@ -309,7 +336,8 @@ def _cmd_sweep(args) -> int:
         check_scheduler(args.scheduler)
     outcome = run_sweep(args.study, vary=args.vary, params_path=args.params, sample_file=args.samples,
                         scheduler=args.scheduler, workers=args.workers, out_dir=Path(args.out),
-                        quick=args.quick, tolerance=args.tolerance, progress=_progress)
+                        quick=args.quick, tolerance=args.tolerance, progress=_progress,
+                        dashboard=args.dashboard)
     _emit(args, outcome.summary(), lambda: _plain(outcome))
     # Failed points are results (recorded with their error); only a sweep with no good point at all fails.
     return 0 if outcome.n_ok else 1
@@ -339,8 +367,14 @@ def _planned_outputs(args) -> list:
                          else [])
         planned += [Planned("-o", str(sidecar_path(step)), derived=True) for step in steps]
     if getattr(args, "out", None) is not None:
-        planned.append(Planned("--out", args.out, directory=True))
+        planned.append(Planned("--out", args.out, directory=True, writes=_OUT_INDEX.get(args.command, ())))
     return planned
+
+
+# the index files each --out command writes (renamed into place last: their presence marks a complete run)
+_OUT_INDEX = {"validate": ("results.json", "report.md", "report.html", "report.pdf"),
+              "sweep": ("points.json", "summary.md", "sweep.csv", "sweep.parquet"),
+              "benchmark-diagnose": ("benchmark_diagnose.json", "benchmark_diagnose.txt")}
 
 
 def _check_outputs(args) -> None:
@@ -384,31 +418,38 @@ def _scratch_under_outputs(args):
         return
     created = [p for p in (folder, *folder.parents) if not p.exists()]   # deepest first
     folder.mkdir(parents=True, exist_ok=True)
-    from strainwave.output_guard import remove_stale
-    remove_stale(folder)   # scratch and staged files of runs killed with -9 before this one
-    # multiprocessing keeps its AF_UNIX sockets (fork server) in a temporary folder of its own that it removes
-    # itself at exit, after this block has ended; its path must fit the kernel's 108 bytes. So it is made
-    # now, in the system's short temporary directory, before TMPDIR points into the scratch: inside the
-    # scratch it would be removed under multiprocessing's feet (a traceback at exit) or be too long.
-    import multiprocessing.util
-    multiprocessing.util.get_temp_dir()
-    scratch = tempfile.mkdtemp(prefix=f".strainwave-scratch-{os.getpid()}-", dir=folder)
-    saved_env, saved_dir = os.environ.get("TMPDIR"), tempfile.tempdir
-    os.environ["TMPDIR"], tempfile.tempdir = scratch, scratch   # children inherit TMPDIR
-    try:
-        yield
-    finally:
-        tempfile.tempdir = saved_dir
-        if saved_env is None:
-            os.environ.pop("TMPDIR", None)
-        else:
-            os.environ["TMPDIR"] = saved_env
-        shutil.rmtree(scratch, ignore_errors=True)
-        for made in created:   # a refused command leaves no empty output folder behind
-            try:
-                made.rmdir()
-            except OSError:
-                break   # not empty: the command wrote its outputs there
+    from strainwave.output_guard import folder_lock, make_owned_dir, remove_stale
+    with contextlib.ExitStack() as stack:
+        stack.callback(_remove_empty, created)   # a refused command leaves no empty output folder behind
+        if getattr(args, "out", None):   # one run at a time in an --out folder; a second is refused in one line
+            stack.enter_context(folder_lock(folder, wait=False))
+        remove_stale(folder)   # scratch and staged files of runs killed with -9 before this one (by their record)
+        # multiprocessing keeps its AF_UNIX sockets (fork server) in a temporary folder of its own that it removes
+        # itself at exit, after this block has ended; its path must fit the kernel's 108 bytes. So it is made
+        # now, in the system's short temporary directory, before TMPDIR points into the scratch: inside the
+        # scratch it would be removed under multiprocessing's feet (a traceback at exit) or be too long.
+        import multiprocessing.util
+        multiprocessing.util.get_temp_dir()
+        scratch = str(make_owned_dir(f".strainwave-scratch-{os.getpid()}-", folder))
+        stack.callback(shutil.rmtree, scratch, ignore_errors=True)
+        saved_env, saved_dir = os.environ.get("TMPDIR"), tempfile.tempdir
+        os.environ["TMPDIR"], tempfile.tempdir = scratch, scratch   # children inherit TMPDIR
+        try:
+            yield
+        finally:
+            tempfile.tempdir = saved_dir
+            if saved_env is None:
+                os.environ.pop("TMPDIR", None)
+            else:
+                os.environ["TMPDIR"] = saved_env
+
+
+def _remove_empty(created: list[Path]) -> None:
+    for made in created:   # deepest first; one not empty holds the command's outputs
+        try:
+            made.rmdir()
+        except OSError:
+            break
 
 
 # ---- parser ------------------------------------------------------------------------------------
@@ -429,9 +470,9 @@ def _common(top: bool) -> argparse.ArgumentParser:
 
 
 _JSON_HELP = "write the result as JSON to FILE; without FILE (or with -) print it on stdout instead of the text"
-_CRACK_HELP = ("crack depth a in mm, from the surface the crack starts at. --part assembly cracks every part "
-               "that carries a crack (flexspline cup, wave generator bearing ring, output shaft) to this same "
-               "depth; the EWG drive carries none (default: uncracked)")
+_CRACK_HELP = ("crack depth a in mm, from the surface the crack starts at. --part assembly cracks the output shaft "
+               "to this depth (the cup and the bearing are drawn as assembled on the cam, uncracked: crack them "
+               "with --part); the EWG drive carries none (default: uncracked)")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -475,8 +516,8 @@ def _add_params(add) -> None:
 def _add_export_step(add) -> None:
     p = add("export-step", _cmd_export_step,
             "build a part and write it as STEP (mm, named faces, coloured parts). --part assembly writes "
-            "two files: the cup-type gear (flexspline cup, wave generator bearing ring, output shaft) to "
-            "FILE.step and the EWG drive (flexspline ring and external wave generator) to "
+            "two files: the cup-type gear as a drive (the flexspline cup on the wave generator's cam and ball "
+            "bearing, in mesh with the circular spline, and the output shaft) to FILE.step and the EWG drive (flexspline ring and external wave generator) to "
             "FILE-ewg-drive.step", material=False)
     p.add_argument("--part", required=True, choices=PARTS, help="part to build")
     p.add_argument("--crack-depth-mm", type=_positive_float, default=None, metavar="A_MM", help=_CRACK_HELP)
@@ -539,6 +580,8 @@ def _add_diagnose(add) -> None:
     p.add_argument("--columns", metavar="MAP", help="which columns to read, by 1-based position, with a unit where "
                    "the column row names none: e.g. 'torque=2:Nm,twist=3:deg' (quantities: torque, twist, time, "
                    "input_angle; ring: force, delta_cd, delta_ab, time); the other columns are not read")
+    p.add_argument("--unit", metavar="NAME", help="a catalogue drive, e.g. CHA-20A-100: its three-slope curve "
+                   "(K1, K2, K3, T1, T2) is the baseline instead of a linear stiffness")
 
 
 def _add_size_crack(add) -> None:
@@ -584,6 +627,8 @@ def _add_sweep(add) -> None:
     p.add_argument("--quick", action="store_true", help="coarse meshes")
     p.add_argument("--tolerance", type=float, default=0.05, metavar="REL",
                    help="relative departure from the closed form (dimensionless, 0.05 = 5 %%) named in the summary")
+    p.add_argument("--dashboard", action="store_true", help="serve the local cluster's Dask dashboard on 127.0.0.1 "
+                   "(this machine only, no login; its address is printed). Without it no HTTP server listens")
 
 
 # the subcommands in the order --help lists them; each adds its parser through ``add`` (build_parser)
@@ -720,10 +765,14 @@ def _sigterm_unwinds():
 
 def _run(args) -> int:
     """The command inside its scratch folder, its --out folder marked as strainwave's, its files staged."""
-    from strainwave.output_guard import marked_folder, staged_outputs
+    from strainwave.output_guard import marked_folder, staged_outputs, staged_run
     out = getattr(args, "out", None)
+    force = getattr(args, "force", False)
     with _scratch_under_outputs(args), marked_folder(Path(out)) if out is not None else contextlib.nullcontext():
-        with staged_outputs(args, tuple(name for name, _ in _FILE_OUTPUTS)):
+        # an --out run is staged whole and renamed into place at the end (output_guard.staged_run)
+        whole = staged_run(args, force=force, index=_OUT_INDEX.get(args.command, ())) if out is not None \
+            else contextlib.nullcontext()
+        with whole, staged_outputs(args, tuple(name for name, _ in _FILE_OUTPUTS)):
             return args.func(args)
 
 
@@ -740,9 +789,9 @@ def _unexpected(exc: Exception, args, debug: bool) -> int:
         return _terminated()
     full = _disk_full(exc)
     if full is not None:   # a genuine failure, not bad input
-        from strainwave.output_guard import unstage_text
+        from strainwave.output_guard import target_of
         where = full.filename or (args is not None and _output_folder(args)) or "the output folder"
-        print(f"error: disk full: {printable(unstage_text(str(where)))}", file=sys.stderr)
+        print(f"error: disk full: {printable(target_of(str(where)))}", file=sys.stderr)
         return 1
     print(f"error: internal error ({type(exc).__name__}: {printable(str(exc))}); rerun with --debug", file=sys.stderr)
     if debug:

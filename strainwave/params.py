@@ -581,19 +581,33 @@ def read_toml(path: Path) -> dict:
     return parse_toml_text(text, f"{path}")
 
 
-def load_params(path: Path | str | None = None, overrides: dict | None = None) -> Params:
+def _given(key: str, overrides: dict) -> bool:
+    """True if ``key`` (dotted, or a [section]) is set by ``overrides``."""
+    section, _, name = str(key).strip("[]").partition(".")
+    table = overrides.get(section)
+    return isinstance(table, dict) and (not name or name in table) or (not name and section in overrides)
+
+
+def load_params(path: Path | str | None = None, overrides: dict | None = None, origin: str = "params") -> Params:
     """The embedded default, updated by an optional partial TOML file and an optional dict.
 
     Range warnings are held back until every key has passed: a refused file gets its one error line,
     not a warning about another key printed before it."""
+    from strainwave.drive_guard import check_drive
     data = default_dict()
     with warnings.catch_warnings(record=True) as held:
         warnings.simplefilter("always")
         if path is not None:
             data = merge_overrides(data, read_toml(Path(path)), str(path))
-        if overrides:
-            data = merge_overrides(data, overrides)
-        params = params_from_dict(data)
+        try:
+            if overrides:
+                data = merge_overrides(data, overrides, origin)
+            params = params_from_dict(data)
+            check_drive(params)   # the parts inside each other, before any command works on them
+        except InputError as exc:   # the key as the user gave it: in the recording's header, not --params
+            if overrides and origin != "params" and _given(exc.key, overrides):
+                raise InputError(f"{origin} {exc.key}", exc.value, exc.allowed) from None
+            raise
     for w in held:
         warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     return params

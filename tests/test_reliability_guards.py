@@ -18,7 +18,7 @@ from hypothesis import HealthCheck, given, settings, strategies as st
 from strainwave.cli import main
 from strainwave.compare.diagnose.recording import RecordingKind, format_recording
 from strainwave.errors import InputError
-from strainwave.output_guard import MANIFEST, Planned, check_outputs, remove_stale
+from strainwave.output_guard import MANIFEST, OWNER, Planned, check_outputs, make_owned_dir, remove_stale
 
 _LOAD = np.linspace(0.0, 1000.0, 40)
 _GOOD = format_recording(RecordingKind.TORSION, "output_shaft", _LOAD, _LOAD / 4.0e8 + 1e-10 * np.sin(np.arange(40)))
@@ -177,7 +177,14 @@ def test_a_failed_command_leaves_none_of_its_outputs(tmp_path, capsys, monkeypat
     status = main(["diagnose", str(rec), "--json", str(tmp_path / "d.json"), "--plot", str(tmp_path / "d.png")])
     err = capsys.readouterr().err
     assert status == 1 and err.startswith("error: disk full: ") and err.count("\n") == 1, err
+    assert err == f"error: disk full: {tmp_path / 'd.json'}\n", "the target, not its staging folder (issue 53)"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["r.csv"]
+
+
+def test_a_full_disk_under_a_temporary_name_names_the_target():
+    from strainwave.output_guard import target_of
+    assert target_of("/x/out/.results.json.0123456789ab.json.tmp") == "/x/out/results.json"
+    assert target_of("/x/out/report.md") == "/x/out/report.md"
 
 
 def test_stale_scratch_of_killed_runs_is_removed(tmp_path):
@@ -187,10 +194,12 @@ def test_stale_scratch_of_killed_runs_is_removed(tmp_path):
     for folder in stale:
         folder.mkdir()
         (folder / "half.vtu").write_text("x")
-    mine = tmp_path / f".strainwave-scratch-{os.getpid()}-abc"
-    mine.mkdir()
+        (folder / OWNER).write_text(json.dumps({"written_by": "strainwave", "pid": pid, "start": None}))
+    mine = make_owned_dir(f".strainwave-scratch-{os.getpid()}-", tmp_path)
+    named_alike = tmp_path / f".strainwave-scratch-{pid}-user"   # the same name pattern, but no owner record
+    named_alike.mkdir()
     assert remove_stale(tmp_path) == 2
-    assert not any(p.exists() for p in stale) and mine.exists()
+    assert not any(p.exists() for p in stale) and mine.exists() and named_alike.exists()
 
 
 # ---- options ---------------------------------------------------------------------------------------------
@@ -253,7 +262,8 @@ def test_the_bearing_budget_counts_the_contact_patch():
     from strainwave.fea.budget import MAX_ELEMENTS, estimate
     from strainwave.params import load_params
     base = load_params()
-    long_patch = load_params(overrides={"wave_generator": {"contact_semi_axes_mm": [1e3, 3.0]}})
+    # an impossible drive (the guard refuses it: the ring would be 4 m wide), built past the guard: the budget alone
+    long_patch = base.with_value("wave_generator.contact_semi_axes_mm", [1e3, 3.0])
     assert estimate("bearing-ring", base, None).elements < MAX_ELEMENTS
     assert estimate("bearing-ring", long_patch, 20.0).elements > MAX_ELEMENTS
 
@@ -267,7 +277,7 @@ def test_diagnose_fea_baseline_is_budgeted(tmp_path, capsys):
     start = time.perf_counter()
     status = main(["diagnose", str(rec), "--baseline", "fea"])
     assert time.perf_counter() - start < 10
-    assert "would need about" in _one_line_refusal(capsys, status)
+    assert "would need that many" in _one_line_refusal(capsys, status)
 
 
 # ---- meshing guard --------------------------------------------------------------------------------------
@@ -409,6 +419,8 @@ def test_the_local_scheduler_refuses_a_client_without_credentials(tmp_path):
         address = client.scheduler.address
         assert address.startswith("tls://") and n == 1
         assert client.submit(sum, [1, 2]).result(timeout=60) == 3
+        from tests.test_reliability_dask_http import _http_ports, _listening
+        assert not [p for p in _http_ports(client) if _listening(p)], "no HTTP server without --dashboard (issue 53)"
         # Another local user is another process: a failed Client left to the garbage collector in this one
         # can deadlock distributed's shared loop runner.
         for intruder in (address, address.replace("tls://", "tcp://")):

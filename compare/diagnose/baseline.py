@@ -18,6 +18,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from strainwave.errors import InputError
 from strainwave.registry import STUDIES
 from strainwave.compare.diagnose.recording import Recording, RecordingKind
@@ -35,6 +37,9 @@ class Baseline:
     uncertainty: float          # relative (1 sigma)
     source: str                 # what produced it, quoted in the report
     geometry: dict              # specimen facts an effect model may need (r_m_mm, thick-ring factor, ...)
+    # a drive's curve (a catalogue unit's, drive_curve.py): the baseline is that curve, its first slope the line
+    # above and its bend (DriveCurve.departure_rad) taken out of the twist before the fit (pipeline.diagnose)
+    curve: object | None = None
 
     @property
     def stiffness(self) -> float:
@@ -44,16 +49,56 @@ class Baseline:
 def analytic_baseline(rec: Recording, params) -> Baseline:
     """Closed-form baseline for the recording's specimen (see module docstring for the formulas)."""
     geometry = ring_geometry(params) if rec.kind is RecordingKind.RING_COMPRESSION else {}
+    if rec.unit is not None:
+        return unit_baseline(rec)
     if rec.baseline_stiffness is not None:
         unit = "rad/(N*mm)" if rec.kind is RecordingKind.TORSION else "mm/N"
-        return Baseline(1.0 / rec.baseline_stiffness, unit, rec.baseline_uncertainty,
-                        f"given linear stiffness {rec.baseline_stiffness:.6g} ({'N*mm/rad' if unit[0] == 'r' else 'N/mm'})",
-                        geometry)
+        source = f"given linear stiffness {rec.baseline_stiffness:.6g} ({'N*mm/rad' if unit[0] == 'r' else 'N/mm'})"
+        first = rec.baseline_stiffness
+        reading = given_slope(rec)
+        if reading is not None:
+            first = reading.first_slope
+            source = f"{source}; {reading.sentence()}"
+        return Baseline(1.0 / first, unit, rec.baseline_uncertainty, source,
+                        geometry or (_gear_facts(rec, params) if unit[0] == "r" else {}))
     if rec.kind is RecordingKind.RING_COMPRESSION:
         return Baseline(geometry["thin_compliance_mm_per_N"], "mm/N", rec.baseline_uncertainty,
                         "thin ring, seed 003 eq 3 (delta_CD = 0.148778 F r_m^3/EI)", geometry)
     compliance, source = torsion_compliance(rec.specimen, params)
-    return Baseline(compliance, "rad/(N*mm)", rec.baseline_uncertainty, source, geometry)
+    return Baseline(compliance, "rad/(N*mm)", rec.baseline_uncertainty, source, _gear_facts(rec, params))
+
+
+def _gear_facts(rec: Recording, params) -> dict:
+    """A gear's ratio (its tooth pitch of output twist is pi/i: events.py); the unit's where one is named."""
+    if rec.specimen != "gear":
+        return {}
+    if rec.unit is not None:
+        return {"gear_ratio": float(rec.unit.rsplit("-", 1)[1])}
+    return {"gear_ratio": float(params.gear.gear_ratio)}
+
+
+def unit_baseline(rec: Recording) -> Baseline:
+    """A catalogue unit's piecewise curve (K1 to T1, K2 to T2, K3 above) as the baseline."""
+    from strainwave.compare.diagnose.drive_curve import unit_curve
+    curve = unit_curve(rec.unit)
+    source = (f"catalogue curve of {rec.unit} (K1 {curve.K1_Nm_per_rad:.4g}, K2 {curve.K2_Nm_per_rad:.4g}, "
+              f"K3 {curve.K3_Nm_per_rad:.4g} N*m/rad; T1 {curve.T1_Nm:.4g}, T2 {curve.T2_Nm:.4g} N*m; {curve.source})")
+    return Baseline(1.0 / (curve.K1_Nm_per_rad * 1e3), "rad/(N*mm)", rec.baseline_uncertainty, source,
+                    _gear_facts(rec, None), curve)
+
+
+def given_slope(rec: Recording):
+    """For a gear, which of its slopes the given stiffness is (drive_slope.py); None for another specimen or a
+    curve that does not stiffen."""
+    if rec.kind is not RecordingKind.TORSION or rec.specimen != "gear" or rec.baseline_stiffness is None:
+        return None
+    from strainwave.compare.diagnose.context import find_segments, reversal_threshold
+    from strainwave.compare.diagnose.drive_slope import read_slope
+    u = rec.load / float(np.max(np.abs(rec.load)))
+    direction = np.ones(rec.n)
+    for start, stop, d in find_segments(u, reversal_threshold(u)):
+        direction[start:stop] = d
+    return read_slope(rec.load, rec.response, direction, rec.baseline_stiffness)
 
 
 def torsion_compliance(specimen: str, params) -> tuple[float, str]:
@@ -93,7 +138,7 @@ def ring_geometry(params) -> dict:
 
 def fea_baseline(rec: Recording, params) -> Baseline:
     """Compliance from the FEA study with quick meshes; InputError when no study models the specimen."""
-    if rec.baseline_stiffness is not None:
+    if rec.baseline_stiffness is not None or rec.unit is not None:
         return analytic_baseline(rec, params)
     study = FEA_STUDY.get(rec.specimen)
     if study is None:

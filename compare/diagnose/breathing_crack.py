@@ -87,13 +87,13 @@ def ripple_curve_fea(params, cache_dir: Path | None = None,
     """The flexspline's breathing-ripple curve from study cup-surface-crack (every depth of its sweep, three meshes
     each), solved on demand and cached under ``cache_dir``."""
     from strainwave.analytic.seed000 import seed000_summary
-    from strainwave.cache import ResultCache, case_key
+    from strainwave.cache import NUMBER, ResultCache, case_key
     from strainwave.fea.studies import run_study
     from strainwave.fea.surface_crack import STUDY, delta_name
 
     cache = ResultCache(Path(cache_dir)) if cache_dir is not None else None
     key = case_key("cup-ripple-curve", {"params": params.to_dict()})
-    rec = cache.get(key) if cache else None
+    rec = cache.get(key, {"depths_mm": list, "wall_mm": NUMBER, OPEN_STATE: list, SHUT_STATE: list}) if cache else None
     if rec is None:
         progress(f"flexspline ripple curve: study {STUDY} (every depth of its sweep)")
         result = run_study(STUDY, params, progress=progress)

@@ -6,7 +6,8 @@
 2. candidate fits: pairs of the four best singles (each in its best forms), and the best single beside a
    series compliance where only its stiffness is off (`Candidates`);
 3. selection: a pair joins only where its second effect is significant given the first and takes a structure
-   the first leaves, or where the pair is the specimen's normal model (`Effect.normal_with`) (`Selection`).
+   the first leaves, or where the pair is the specimen's normal model (`Effect.normal_with`); a triple (fitted
+   where no single or pair explains) where each effect is significant given the other two (`Selection`).
 """
 from __future__ import annotations
 
@@ -61,6 +62,7 @@ class Candidates:
 
     pairs: tuple[Fit, ...]           # pairs of the best singles, every form combination of the best pair
     offset_pairs: tuple[Fit, ...]    # the best single beside a series compliance
+    triples: tuple[Fit, ...] = ()    # the best pairs beside a third effect (at most three effects at once)
 
 
 @dataclass(frozen=True)
@@ -140,12 +142,121 @@ def pair_forms(forms: list[Fit], k: int) -> list[Fit]:
     return picked[:k]
 
 
-def fit_candidates(noise: Noise) -> Candidates:
+def fit_candidates(noise: Noise, specimen: str = "") -> Candidates:
     """Step 2 (see the module doc); nothing beyond the singles where there is no mismatch."""
     best_single = noise.best_single
     if not noise.mismatch or best_single is None:
         return Candidates((), ())
-    return Candidates(tuple(_pairs(noise)), tuple(_offset_pairs(noise)))
+    pairs = _pairs(noise)
+    return Candidates(tuple(pairs), tuple(_offset_pairs(noise)),
+                      tuple(_triples(noise, pairs, specimen)) if _needs_three(noise, pairs) else ())
+
+
+def _needs_three(noise: Noise, pairs: list[Fit]) -> bool:
+    """Three effects are fitted only where the best model of one or two does not already explain the recording
+    (its residual is structured, or its values are implausible or unresolved): a third effect must take
+    something the others leave, and this saves their fits on most recordings (speed)."""
+    j = noise.judge
+    best = min(list(noise.singles) + pairs, key=lambda f: f.bic)
+    return bool(j.gof(best).structured or j.implausible(best) or j.unresolved(best))
+
+
+# forms of each effect of a normal model of three (the best of each law class first, pair_forms)
+TRIPLE_FORMS = 2
+TRIPLE_LOOP_FORMS = 3    # a loop's law shapes the curve's ends as well (a Dahl exponent moved K3 by 3.5 %)
+
+
+def _triples(noise: Noise, pairs: list[Fit], specimen: str) -> list[Fit]:
+    """Models of three effects: the specimen's normal model (Effect.normal_model: a drive's stiffening, lost
+    motion and loop, which no pair draws at once) in the two best forms of each effect that may stand in it, and
+    the best pair beside a third effect of the four best singles in its best form. Started from each fitted
+    pair of two of the three beside the third's single fit (alone, the third draws part of what the others draw)."""
+    j = noise.judge
+    pairable = sorted((f for f in noise.singles if all(e.pairs for e in f.effects)), key=lambda f: f.bic)
+    by_id: dict[str, list[Fit]] = {}
+    for f in pairable:
+        by_id.setdefault(f.id, []).append(f)
+    sets: list[tuple[Fit, ...]] = []
+    for model in _normal_models(noise, specimen):
+        if all(i in by_id for i in model):
+            forms = [pair_forms([f for f in by_id[i] if f.effects[0].in_normal_model],
+                                TRIPLE_LOOP_FORMS if by_id[i][0].effects[0].loop else TRIPLE_FORMS) for i in model]
+            sets += list(itertools.product(*forms))
+    top = next((p for p in sorted(pairs, key=lambda f: f.bic) if not p.at_bound), None)
+    if top is not None:
+        ids = {e.id for e in top.effects}
+        for single in noise.ranked_singles[:4]:
+            third = single.effects[0]
+            # a series compliance is the partner of a stiffness off its prior (_offset_pairs), not a third effect
+            if third.id in ids or single.id not in by_id or third.series_compliance \
+                    or any(e.series_compliance or third.degenerate(e) for e in top.effects):
+                continue
+            sets.append((_single_of(top, 0, noise), _single_of(top, 1, noise), by_id[single.id][0]))
+    tasks, done = [], set()
+    for parts in sets:
+        if any(p is None for p in parts):
+            continue
+        key = frozenset(p.effects[0].label for p in parts)
+        if key not in done:
+            done.add(key)
+            tasks.append(FitTask(tuple(p.effects[0] for p in parts), _triple_starts(parts, pairs), j.noise))
+    return [with_loop_prior(j.ctx, f) for f in fit_all(j.ctx, tasks, j.sigma, j.uncertainty, j.workers)]
+
+
+def _normal_models(noise: Noise, specimen: str) -> list[tuple[str, ...]]:
+    """The three-effect normal models the catalogue declares for ``specimen`` (Effect.normal_model)."""
+    out: list[tuple[str, ...]] = []
+    for f in noise.singles:
+        for sp, model in f.effects[0].normal_model:
+            if sp == specimen and len(model) == 3 and tuple(model) not in out:
+                out.append(tuple(model))
+    return out
+
+
+def _single_of(pair: Fit, k: int, noise: Noise) -> Fit | None:
+    """The single fit of the form the pair's ``k``-th effect is in."""
+    label = pair.effects[k].label
+    return next((f for f in noise.singles if f.label == label), None)
+
+
+def _triple_starts(parts: tuple[Fit, ...], pairs: list[Fit]) -> tuple[np.ndarray, ...]:
+    """Starting points of a triple of the single fits ``parts``: every fitted pair of two of its forms beside the
+    third's single fit, best pair first, then the three single fits side by side."""
+    labels = [p.effects[0].label for p in parts]
+    starts = []
+    for q in sorted(pairs, key=lambda f: f.bic):
+        ql = [e.label for e in q.effects]
+        if len(ql) == 2 and all(x in labels for x in ql):
+            thetas = dict(zip(ql, q.split_theta()))
+            starts.append(np.concatenate([thetas.get(lab, p.theta) for lab, p in zip(labels, parts)]))
+    starts.append(np.concatenate([p.theta for p in parts]))
+    return tuple(starts[:3])
+
+
+def _third_earns_place(j: Judge, t: Fit, pairs: tuple[Fit, ...], specimen: str) -> bool:
+    """A triple is a candidate where EACH of its effects is significant given the other two (the pair of them, in
+    its best fitted form, loses more than BIC_THRESHOLD against the triple: the pairs' own rule), no effect ends
+    on a bound or stays below the noise; and, unless the three are the specimen's normal model
+    (Effect.normal_model), the third takes a structure its best pair leaves."""
+    if t.at_bound or j.unresolved(t):
+        return False
+    ids = [e.id for e in t.effects]
+    best_pair = {}
+    for p in pairs:
+        key = frozenset(e.id for e in p.effects)
+        if key not in best_pair or p.bic < best_pair[key].bic:
+            best_pair[key] = p
+    subs = [best_pair.get(frozenset(ids[:k] + ids[k + 1:])) for k in range(3)]
+    if any(p is not None and p.bic - t.bic <= BIC_THRESHOLD for p in subs):
+        return False
+    known = [p for p in subs if p is not None]
+    if not known:
+        return False
+    if t.effects[0].normal_among(t.effects[1:], specimen):
+        return True
+    before, after = j.gof(min(known, key=lambda f: f.bic)), j.gof(t)
+    return any(s.delta_bic - (after.get(s.name).delta_bic if after.get(s.name) else min(s.delta_bic, 0.0))
+               > BIC_THRESHOLD for s in before.structures)
 
 
 def _pairs(noise: Noise) -> list[Fit]:
@@ -237,6 +348,7 @@ def select(noise: Noise, cands: Candidates, specimen: str) -> Selection:
     candidates = list(noise.ranked_singles) + list(cands.offset_pairs)
     plausible_first = best_plausible_per_effect(j.ctx, list(noise.singles))
     candidates += [p for p in cands.pairs if _earns_place(j, p, plausible_first[p.effects[0].id], specimen)]
+    candidates += [t for t in cands.triples if _third_earns_place(j, t, cands.pairs, specimen)]
     candidates.sort(key=lambda f: f.bic)
     # one model reached twice (a pair and the series compliance beside the best single) is listed once
     return Selection(tuple(f for i, f in enumerate(candidates)

@@ -104,8 +104,11 @@ def size_and_life(recording: Path, options: LifeOptions, *, params_path=None, ba
     spectrum = None
     if options.torque_history is not None:
         spectrum = spectrum_from_history(read_torque_history(options.torque_history))
+    if options.curves is not None:   # read before any work (issue 53: a wrong file was never read)
+        from strainwave.compare.diagnose.crack_sizing import read_results
+        read_results(options.curves)
     rec = parse_recording(recording)
-    params = load_params(params_path, overrides=rec.param_overrides or None)
+    params = load_params(params_path, overrides=rec.param_overrides or None, origin=f"{recording} [params]")
     diag, _ = diagnose(rec, params, baseline)
     sizing = size_diagnosis(diag, params, rec.load, rec.response, results=options.curves, cache_dir=options.cache_dir, progress=progress)
     lives = [] if sizing is None else life_of_sizing(

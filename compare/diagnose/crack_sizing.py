@@ -169,12 +169,24 @@ def size_crack(delta: float, sigma: float, curves: list[DeltaCurve]) -> tuple[Cr
     return tuple(_one(c, delta, sigma) for c in curves)
 
 
-def curve_from_results(path: Path, component: str) -> DeltaCurve:
-    """A component's crack curve from a validate run's results.json (its crack-depth sweep, resolved points)."""
+def read_results(path: Path) -> dict:
+    """A validate run's results.json (a JSON object with its crack sweeps), refused in one line naming --curves
+    otherwise: read before any work, so a wrong file is never silently left unread."""
     from strainwave.input_guard import read_regular
     raw = read_regular(path, 64 << 20, "--curves")   # a regular file, bounded (a validate results.json is ~1 MB)
     try:
         doc = json.loads(raw.decode("utf-8"))
+    except (ValueError, RecursionError) as exc:
+        raise InputError("--curves", str(path), f"a validate results.json ({type(exc).__name__})") from None
+    if not isinstance(doc, dict) or not isinstance(doc.get("crack_sweeps"), dict):
+        raise InputError("--curves", str(path), "a validate results.json with its 'crack_sweeps'")
+    return doc
+
+
+def curve_from_results(path: Path, component: str) -> DeltaCurve:
+    """A component's crack curve from a validate run's results.json (its crack-depth sweep, resolved points)."""
+    doc = read_results(path)
+    try:
         sweep = doc["crack_sweeps"][component]
     except (OSError, ValueError, KeyError, TypeError, RecursionError) as exc:
         raise InputError("--curves", str(path), f"a validate results.json with a '{component}' crack sweep "
@@ -199,7 +211,7 @@ def shaft_curve_fea(params, cache_dir: Path | None = None,
     """The output shaft's FEA crack curve (full circumferential crack, the exact axisymmetric section),
     solved on demand at SHAFT_DEPTH_FRACTIONS of the wall on sections SHAFT_CURVE_DENSITY times finer than the
     full run's, and cached per point under ``cache_dir``."""
-    from strainwave.cache import ResultCache, case_key
+    from strainwave.cache import NUMBER, ResultCache, case_key
 
     shaft = params.output_shaft
     wall = 0.5 * (shaft.outer_diameter_mm - shaft.inner_diameter_mm)
@@ -208,7 +220,8 @@ def shaft_curve_fea(params, cache_dir: Path | None = None,
     depths = [round(frac * wall, 6) for frac in SHAFT_DEPTH_FRACTIONS]
     keys = [case_key("shaft-crack-curve", {"params": params.to_dict(), "a_mm": a, "density": SHAFT_CURVE_DENSITY})
             for a in depths]
-    records = {a: cache.get(key) if cache else None for a, key in zip(depths, keys)}
+    records = {a: cache.get(key, {"value": NUMBER, "uncertainty": NUMBER}) if cache else None
+               for a, key in zip(depths, keys)}
     missing = [a for a in depths if records[a] is None]
     for a, rec in zip(missing, _solve_points(params, missing, progress)):
         records[a] = rec

@@ -67,6 +67,7 @@ class Diagnosis:
     fitted_rows: int = 0
     noise_model: str = ""                      # the recording's noise model the structures were judged against
     catalogue: CatalogueValues | None = None   # K1..T2 on the loop's mean curve, loss, lost motion (torsion)
+    events: tuple[str, ...] = ()               # events taken out of the fit (tooth ratcheting), in words
     display: Display = Display()               # the recording's own units for text and JSON (values stay canonical)
 
     def __post_init__(self):
@@ -111,7 +112,7 @@ class Diagnosis:
                 "confidence": {"runner_up": self.runner_up, "margin_bic": self.margin_bic,
                                "bic_weight": self.effects[0].weight if self.effects else None},
                 "quantities": {k: _shown(self.display, v, u) for k, (v, u) in self.quantities.items()},
-                "catalogue": self._catalogue_dict(),
+                "catalogue": self._catalogue_dict(), "events": list(self.events),
                 "units": self.display.to_dict(),
                 "suggestion": self.suggestion.to_dict(self.display) if self.suggestion else None,
                 "structure": self.structure,
@@ -133,6 +134,7 @@ class Diagnosis:
                  f"BIC {self.bic_before:.1f} -> {self.bic_after:.1f}",
                  f"  verdict: {self.verdict.value}" + (f" ({' + '.join(self.named)})" if self.named else "")
                  + (" - AMBIGUOUS with " + str(self.runner_up) if self.ambiguous else "")]
+        lines.extend(f"  event (kept out of the fit): {e}" for e in self.events)
         if self.mismatch:
             lines.append(f"  located: {self.located.description}")
             if self.structure and self.verdict is Verdict.UNEXPLAINED:

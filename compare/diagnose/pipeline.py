@@ -12,7 +12,8 @@ The diagnosis runs in steps, each a function that hands the next a small record:
    own profiled filter (the most generous noise), or where a channel is stuck;
 2. candidate fits (candidates.fit_candidates -> `Candidates`): pairs of the four best singles, and the best
    single beside a series compliance (Effect.series_compliance) where only its stiffness is off; degenerate
-   pairs (Effect.degenerate_with) are not fitted;
+   pairs (Effect.degenerate_with) are not fitted; where no single or pair explains the recording, models of
+   three effects (the specimen's normal model, Effect.normal_model, and the best pair beside a third);
 3. selection (candidates.select -> `Selection`): a second effect joins only if it is significant given the
    first (its own delta BIC > 10 against the single) AND removes a structure the first leaves, unless the pair
    is the specimen's normal model (Effect.normal_with);
@@ -42,6 +43,7 @@ from strainwave.compare.diagnose.baseline import Baseline, analytic_baseline, fe
 from strainwave.compare.diagnose.candidates import REREAD_PRIOR_SIGMAS, Noise, fit_candidates, read_noise, select
 from strainwave.compare.diagnose.context import build_context
 from strainwave.compare.diagnose.diagnosis import Diagnosis, RankedEffect, Verdict
+from strainwave.compare.diagnose.events import find_jump, without_jump
 from strainwave.compare.diagnose.explain import explain
 from strainwave.compare.diagnose.judge import AMBIGUOUS_BIC, BIC_THRESHOLD, MIN_COMPONENT_SIGMAS
 from strainwave.compare.diagnose.locate import Located, locate, locate_effect
@@ -65,16 +67,33 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
     number); None takes what the machine safely offers (parallel.usable_workers)."""
     if baseline not in ("analytic", "fea"):
         raise InputError("--baseline", baseline, "must be analytic or fea")
-    if baseline == "fea" and rec.specimen == "gear" and rec.baseline_stiffness is None:
+    if baseline == "fea" and rec.specimen == "gear" and rec.baseline_stiffness is None and rec.unit is None:
         from strainwave.compare.diagnose.drive_baseline import curve_baseline
         base, rec = curve_baseline(rec, params)      # the tooth-mesh drive curve (issue 48, item 6)
     else:
         base = analytic_baseline(rec, params) if baseline == "analytic" else fea_baseline(rec, params)
+    if base.curve is not None:
+        # the baseline is the drive's curve: its bend above T1 is taken out of the twist, its first slope stays
+        rec = dataclasses.replace(rec, response=rec.response - base.curve.departure_rad(rec.load * 1e-3))
+    rec, events = _without_events(rec, base)
     check_baseline_scale(rec, base)
     from threadpoolctl import threadpool_limits
     # Tiny (N x 4) linear-algebra calls: BLAS threads only add overhead (docs/decisions/019-diagnose-speed.md).
     with threadpool_limits(limits=1):
-        return _diagnose(rec, base, usable_workers() if workers is None else workers)
+        diag, arrays = _diagnose(rec, base, usable_workers() if workers is None else workers)
+    return (dataclasses.replace(diag, events=events) if events else diag), arrays
+
+
+def _without_events(rec: Recording, base: Baseline) -> tuple[Recording, tuple[str, ...]]:
+    """A drive's tooth ratcheting (events.py: a jump of one tooth pitch at high torque) taken out of the twist
+    before any fit, and named: it is the drive's own failure, not a property any catalogue effect should bend to."""
+    ratio = base.geometry.get("gear_ratio")
+    if rec.kind.value != "torsion" or not ratio:
+        return rec, ()
+    jump = find_jump(rec.load, rec.response, ratio)
+    if jump is None or not jump.ratchet:
+        return rec, ()
+    return dataclasses.replace(rec, response=without_jump(rec.response, jump)), (jump.sentence(rec.load_name, ratio),)
 
 
 def check_baseline_scale(rec: Recording, base: Baseline) -> None:
@@ -92,6 +111,12 @@ def check_baseline_scale(rec: Recording, base: Baseline) -> None:
     if slope == 0.0:
         what = (f"the {rec.response_name} does not move with the {rec.load_name} (a stuck or disconnected "
                 f"channel)")
+    elif (jump := _secant_jump(rec, base)) is not None:
+        raise InputError(f"{rec.source}: data row {jump.row + 2}", f"{jump.step:.4g} rad",
+                         f"{jump.sentence(rec.load_name)}; it sets the secant ({1.0 / slope:.4g} {unit}), without "
+                         f"it the recording is within the baseline's range: the jump, not a channel's sign, is the "
+                         f"departure; diagnose the rows before it, or as specimen gear where one tooth pitch is "
+                         f"named and kept out of the fit")
     elif ratio < 0.0:
         what = (f"the {rec.response_name} falls as the {rec.load_name} rises (secant {1.0 / slope:.4g} {unit}): "
                 f"check the sign of one channel")
@@ -107,12 +132,25 @@ def check_baseline_scale(rec: Recording, base: Baseline) -> None:
 
 
 
+def _secant_jump(rec: Recording, base: Baseline):
+    """A jump of the response without which the secant would be within BASELINE_OFF of the baseline (None if
+    there is no such jump): a refusal then names the jump, never the channels' sign."""
+    jump = find_jump(rec.load, rec.response, base.geometry.get("gear_ratio"))
+    if jump is None:
+        return None
+    ratio = float(np.polyfit(rec.load, without_jump(rec.response, jump), 1)[0]) / base.compliance
+    return jump if 1.0 / BASELINE_OFF <= ratio <= BASELINE_OFF else None
+
+
 def _diagnose(rec: Recording, base: Baseline, workers: int) -> tuple[Diagnosis, dict]:
     fit_rec = subsample(rec)
     ctx = build_context(fit_rec, base)
     noise = read_noise(rec, fit_rec, base, ctx, workers)                          # 1
-    cands = fit_candidates(noise)                                                  # 2
-    answer = decide(noise, select(noise, cands, rec.specimen))                     # 3, 4
+    # beside a drive's own curve as the baseline, its stiffening is no longer part of a normal model to expect:
+    # every effect earns its place by the general rule
+    normal = rec.specimen if base.curve is None else ""
+    cands = fit_candidates(noise, normal)                                          # 2
+    answer = decide(noise, select(noise, cands, normal))                           # 3, 4
     reading = read_quantities(noise, cands, answer)                                # 5
     location = locate_answer(noise, answer)                                        # 6
     diag = explained(noise, answer, reading, location)                             # 7
@@ -184,7 +222,7 @@ def diagnose_file(path: Path, *, params_path=None, baseline: str = "analytic", j
     diagnose, write JSON/plot atomically."""
     from strainwave.params import load_params
     rec = parse_recording(path, flags)
-    params = load_params(params_path, overrides=rec.param_overrides or None)
+    params = load_params(params_path, overrides=rec.param_overrides or None, origin=f"{path} [params]")
     diag, arrays = diagnose(rec, params, baseline)
     if json_out is not None:
         atomic_write_text(Path(json_out), json.dumps(json_ready(diag.to_dict()), indent=2, allow_nan=False) + "\n")

@@ -12,7 +12,9 @@ import numpy as np
 
 from strainwave.compare.diagnose import loop_stiffness
 from strainwave.compare.diagnose.candidates import Candidates, Noise
-from strainwave.compare.diagnose.catalogue_values import CatalogueValues, catalogue_values
+from strainwave.compare.diagnose.catalogue_values import CatalogueValues
+from strainwave.compare.diagnose.diagnosis import Verdict
+from strainwave.compare.diagnose.drive_numbers import drive_numbers
 from strainwave.compare.diagnose.diagnosis import RankedEffect
 from strainwave.compare.diagnose.effects.loop import ARCMIN_PER_RAD, load_path_model, loop_quantities, width_load
 from strainwave.compare.diagnose.fit import Fit, lag1
@@ -40,15 +42,23 @@ def read_quantities(noise: Noise, cands: Candidates, answer: Answer) -> Reading:
     weights = weights / weights.sum() if len(bics) else weights
     effects = tuple(_ranked(ctx, f, base_fit, n, float(w), detail=i < 3)
                     for i, (f, w) in enumerate(zip(answer.ranked, weights)))
-    same_set = [f for f in list(noise.singles) + list(cands.pairs) if f is not best and f.id == best.id]
+    same_set = [f for f in list(noise.singles) + list(cands.pairs) + list(cands.triples)
+                if f is not best and f.id == best.id]
     quantities = _quantities(ctx, best, noise.judge.sigma, same_set) \
         if answer.mismatch and best is not base_fit else {}
     if "hysteresis_loss_arcmin" in quantities and effects:
         quantities = _with_loss_error(ctx, best, quantities, next((e for e in effects if e.model == best.label),
                                                                    effects[0]))
     rec = noise.judge.rec
-    # a gear's catalogue numbers, or any torsion specimen's where the user states the rated torque
-    catalogue = catalogue_values(ctx, rec.rated_torque) if rec.specimen == "gear" or rec.rated_torque else None
+    # a gear's catalogue numbers, or any torsion specimen's where the user states the rated torque: the named
+    # model's; model-free only where no loop is fitted (drive_numbers.py)
+    catalogue = None
+    if rec.specimen == "gear" or rec.rated_torque:
+        named = answer.verdict is Verdict.EXPLAINED
+        if named or not any(e.loop for e in best.effects):
+            ranked = next((e for e in effects if e.model == best.label), None)
+            catalogue = drive_numbers(ctx, best if named else None, ranked, quantities, rec.rated_torque,
+                                      noise.judge.base.curve)
     return Reading(effects, quantities, catalogue)
 
 

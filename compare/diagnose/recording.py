@@ -61,7 +61,9 @@ SPECIMENS = {RecordingKind.TORSION: ("output_shaft", "flexspline_cup", "gear"),
 COLUMNS = {RecordingKind.TORSION: (("torque_Nmm", "twist_rad"), ("time_s", "input_angle_rad")),
            RecordingKind.RING_COMPRESSION: (("force_N", "delta_cd_mm"), ("delta_ab_mm", "time_s"))}
 TEST_KEYS = {"kind", "specimen", "baseline_uncertainty", "baseline_stiffness_Nmm_per_rad",
-             "baseline_stiffness_N_per_mm", "description", "rated_torque_Nmm"}
+             "baseline_stiffness_N_per_mm", "description", "rated_torque_Nmm", "unit"}
+# a catalogue unit's table gives average values: the whole gear's uncertainty (docs/recordings.md) unless stated
+UNIT_UNCERTAINTY = 0.3
 TOP_TABLES = {"test", "params", "meta"}
 
 
@@ -84,6 +86,7 @@ class Recording:
     description: str = ""
     rated_torque: float | None = None           # N*mm (torsion): the catalogue's loss and lost motion are read at it
     units: dict = field(default_factory=dict)   # canonical column -> the unit the file wrote it in ("" canonical)
+    unit: str | None = None                     # a catalogue unit (CHA-20A-100): its curve is the baseline
 
     @property
     def n(self) -> int:
@@ -108,6 +111,7 @@ class TestFlags:
     stiffness: str | None = None       # a number with an optional unit (units.flag_value)
     rated_torque: str | None = None
     columns: str | None = None         # ``torque=2,twist=3:deg``: columns read by position (units.read_columns)
+    unit: str | None = None            # a catalogue unit, e.g. CHA-20A-100 (drive_curve.unit_curve)
 
     def __bool__(self) -> bool:
         return any(v is not None for v in dataclasses.astuple(self))
@@ -134,6 +138,8 @@ class TestFlags:
             if kind is not RecordingKind.TORSION:
                 raise InputError("--rated-torque", self.rated_torque, "only for a torsion recording")
             out["rated_torque_Nmm"] = flag_value("--rated-torque", self.rated_torque, "torque")
+        if self.unit is not None:
+            out["unit"] = _unit_value("--unit", self.unit, kind)
         return out
 
 
@@ -217,7 +223,7 @@ def parse_text(text: str, name: str = "recording.csv", flags: TestFlags | None =
                      param_overrides=header.get("params", {}),
                      extra={c: v for c, v in col.items() if c not in (load_col, resp_col, "time_s")},
                      description=str(test.get("description", "")), rated_torque=test.get("rated_torque"),
-                     units={c: unit for _, c, _, unit in columns})
+                     units={c: unit for _, c, _, unit in columns}, unit=test.get("unit"))
 
 
 def _hash_block(lines: list[str]) -> tuple[list[tuple[int, str]], int]:
@@ -394,7 +400,27 @@ def _parse_test(header: dict, header_lines, name: str):
             raise InputError(f"{name}:{_find(header_lines, 'rated_torque_Nmm')}", t,
                              f"test.rated_torque_Nmm (torsion only) must be a torque in (0, {MAX_ABS['torque_Nmm']:g}]")
         out["rated_torque"] = float(t)
+    if "unit" in test:
+        where = f"{name}:{_find(header_lines, 'unit')}"
+        out["unit"] = _unit_value(where, test["unit"], kind)
+        if stiff_key in test:
+            raise InputError(where, test["unit"], f"a catalogue unit's curve is the baseline: give test.unit or "
+                             f"test.{stiff_key} (--stiffness), not both")
+        if "baseline_uncertainty" not in test:
+            out["baseline_uncertainty"] = UNIT_UNCERTAINTY
     return kind, test["specimen"], out
+
+
+def _unit_value(where: str, value, kind: RecordingKind) -> str:
+    """A catalogue unit the shipped tables hold (drive_curve.unit_curve), for a torsion test; else InputError."""
+    from strainwave.compare.diagnose.drive_curve import known_units, unit_curve
+    if kind is not RecordingKind.TORSION:
+        raise InputError(where, value, "a catalogue unit is a drive: only for a torsion recording")
+    if not isinstance(value, str) or unit_curve(value) is None:
+        units = known_units()
+        raise InputError(where, value, f"a catalogue unit of the shipped table, CHA-<size>A-<ratio>: "
+                         f"{units[0]} ... {units[-1]} ({len(units)} units)")
+    return value.strip().upper()
 
 
 def _find(header_lines, key: str) -> int:

@@ -615,6 +615,7 @@ def structure_test(ctx: Context, r: np.ndarray, sigma_white: float, prior_chi2: 
     alone = {}
     size = {}
     drawns = {}
+    white = {}
     for name, (G, extra, detail) in groups.items():
         key = kept((name,))
         B, rank = _projected(ctx, key, lambda G=G: G)
@@ -623,7 +624,10 @@ def structure_test(ctx: Context, r: np.ndarray, sigma_white: float, prior_chi2: 
         penalty = (rank + extra) * ln_n
         drawns[name] = drawn
         alone[name] = noise.deflate(base_score - score, drawn) - penalty
-        size[name] = (math.sqrt(float(np.mean(drawn ** 2))) / sigma_white, _wander(drawn)) if rank else (0.0, 0.0)
+        # a line in time is sized against the noise WITHOUT it: a mains line 3 white sigmas high inflates the
+        # second differences it is read from, and was hidden below its own visibility floor
+        white[name] = min(sigma_white, noise_std(r - drawn)) if name in UNTIED_TO_LOAD and rank else sigma_white
+        size[name] = (math.sqrt(float(np.mean(drawn ** 2))) / white[name], _wander(drawn)) if rank else (0.0, 0.0)
 
     def joint_of(names: tuple[str, ...]) -> float:
         key = kept(names)
@@ -639,7 +643,7 @@ def structure_test(ctx: Context, r: np.ndarray, sigma_white: float, prior_chi2: 
         others = tuple(nm for nm in bases if nm != name)
         without = joint_of(others) if others else base_score
         unique = noise.deflate(without - joint, drawns[name]) - (rank + extra) * ln_n
-        visible = name not in UNTIED_TO_LOAD or float(np.ptp(drawns[name])) >= MIN_COMPONENT_SIGMAS * sigma_white
+        visible = name not in UNTIED_TO_LOAD or float(np.ptp(drawns[name])) >= MIN_COMPONENT_SIGMAS * white[name]
         structures.append(Structure(name, float(alone[name]), float(unique), detail,
                                     size=size[name][0], wander=size[name][1], visible=visible))
     # a stiffness outside its prior is judged as the prior states it: beyond 2.6 sigma (p < 0.01)

@@ -45,7 +45,10 @@ class Answer:
 
     def judged_by_rival(self, rival: RivalReading) -> "Answer":
         """A rival fitting better by more than BIC_THRESHOLD, where the recording can decide between them, makes
-        the answer unexplained; within AMBIGUOUS_BIC (or better) and closer than the runner-up, ambiguous."""
+        the answer unexplained; within AMBIGUOUS_BIC (or better) and closer than the runner-up, ambiguous. A
+        rival better by more than BIC_THRESHOLD that the recording cannot tell apart (one loading rate) stays
+        ambiguous with its margin shown: made unexplained, 2 of 6 family-2 CHA gears with their (rate-independent)
+        loops lost their named set (docs/decisions/064-diag51-drive-normal-model.md)."""
         if rival.margin_bic < -BIC_THRESHOLD and rival.decisive:
             return dataclasses.replace(self, verdict=Verdict.UNEXPLAINED, named=(), ambiguous=False,
                                        note=rival.unexplained_note)

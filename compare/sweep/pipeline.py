@@ -24,12 +24,14 @@ from typing import Callable, Iterator
 
 from strainwave.errors import InputError, RangeWarning, StageError
 from strainwave.fea.budget import check_budget
+from strainwave.drive_guard import check_drive
 from strainwave.params import default_dict, load_params, params_from_dict
 from strainwave.cache import ResultCache
 from strainwave.registry import study as registered
 from strainwave.compare.sweep.grid import build_points
 from strainwave.compare.sweep.reach import CONNECT_TIMEOUT_S, check_scheduler
-from strainwave.compare.sweep.task import PointSpec, TaskFn, point_key, run_point, task_name, warm_modules
+from strainwave.compare.sweep.task import (PointSpec, TaskFn, point_key, point_record_ok, run_point, task_name,
+                                          warm_modules)
 
 POLL_S = 0.1          # how often the driver looks for finished points
 HEARTBEAT_S = 30.0    # longest silence on the terminal while points are running
@@ -74,8 +76,9 @@ def refuse_impossible(specs: list[PointSpec], where: str) -> list[int]:
         warnings.simplefilter("ignore", RangeWarning)   # possible-but-unusual points warn in their worker
         for index, spec in enumerate(specs):
             try:
-                elements.append(check_budget(spec.study, params_from_dict(spec.merged()), None, spec.quick,
-                                             flag="mesh").elements)
+                point = params_from_dict(spec.merged())
+                check_drive(point)   # the parts inside each other at this point (strainwave/drive_guard.py)
+                elements.append(check_budget(spec.study, point, None, spec.quick, flag="mesh").elements)
             except InputError as exc:
                 values = ", ".join(f"{k}={v}" for k, v in spec.values)
                 bad.append(f"point {index} ({values}): {exc}")
@@ -88,7 +91,8 @@ def refuse_impossible(specs: list[PointSpec], where: str) -> list[int]:
 
 @contextmanager
 def dask_client(scheduler: str | None, workers: int | None, scratch: Path | None = None,
-                warm: tuple[str, ...] = (), forked: bool = False) -> Iterator[tuple[object, int]]:
+                warm: tuple[str, ...] = (), forked: bool = False, dashboard: bool = False
+                ) -> Iterator[tuple[object, int]]:
     """A connected ``distributed.Client`` and its worker count; whatever it started is closed on exit.
 
     ``scheduler``: checked first (``reach.check_scheduler``: bounded connect and handshake), then
@@ -97,7 +101,9 @@ def dask_client(scheduler: str | None, workers: int | None, scratch: Path | None
     LocalCluster whose workers keep their scratch space under ``scratch`` (not /tmp/dask-scratch-space) and
     import the modules ``warm`` as they start (``worker.SweepWorker``); a cluster reached by address is
     someone else's and is left as it is. ``forked``: the workers are forked from this process's fork server
-    (``prefork.start``, which the caller started with their libraries) instead of spawned.
+    (``prefork.start``, which the caller started with their libraries) instead of spawned. ``dashboard``: the
+    local scheduler's HTTP server (dashboard, /metrics, /info) on 127.0.0.1 only; without it every HTTP server of
+    the local cluster serves no route and stops listening once the cluster is up (``_http_off``).
     """
     import dask
     from distributed import Client
@@ -120,8 +126,10 @@ def dask_client(scheduler: str | None, workers: int | None, scratch: Path | None
     config = {"temporary-directory": str(scratch)} if scratch else {}   # the scheduler's space too
     if forked:
         config["distributed.worker.multiprocessing-method"] = "forkserver"
+    if not dashboard:   # Dask starts its HTTP servers whatever dashboard_address says: no route on them
+        config.update({"distributed.scheduler.http.routes": [], "distributed.worker.http.routes": []})
     with dask.config.set(config):
-        yield from _local(n, scratch, warm)
+        yield from _local(n, scratch, warm, dashboard)
 
 
 def local_security():
@@ -147,7 +155,18 @@ def check_workers(workers: int | None) -> None:
         raise InputError("--workers", workers, f"must be an integer from 1 to {cap} ({MAX_WORKERS_PER_CPU} per core)")
 
 
-def _local(n: int, scratch: Path | None, warm: tuple[str, ...]) -> Iterator[tuple[object, int]]:
+def _http_off(client) -> None:
+    """Stop the scheduler's and each worker's HTTP listener (Dask has no switch for them: a dashboard_address of
+    None still serves /metrics, /info and the scratch paths on 8787 and one port per worker to any local user)."""
+    def stop(dask_scheduler=None, dask_worker=None):
+        (dask_scheduler or dask_worker).http_server.stop()
+
+    client.run_on_scheduler(stop)
+    client.run(stop)
+
+
+def _local(n: int, scratch: Path | None, warm: tuple[str, ...], dashboard: bool = False
+           ) -> Iterator[tuple[object, int]]:
     from distributed import Client, LocalCluster
 
     from strainwave.interrupt import children_ignore_sigint
@@ -156,7 +175,8 @@ def _local(n: int, scratch: Path | None, warm: tuple[str, ...]) -> Iterator[tupl
     security = local_security()
     try:
         with children_ignore_sigint():   # Ctrl-C stops the sweep here; the workers are closed by it
-            cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+            cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                                   dashboard_address="127.0.0.1:0" if dashboard else None,
                                    silence_logs=logging.ERROR, env=WORKER_ENV, security=security,
                                    protocol="tls://", local_directory=str(scratch) if scratch else None,
                                    plugins=[SweepWorker(warm)])
@@ -165,6 +185,8 @@ def _local(n: int, scratch: Path | None, warm: tuple[str, ...]) -> Iterator[tupl
     try:
         client = Client(cluster, security=security)
         try:
+            if not dashboard:
+                _http_off(client)
             yield client, n
         except KeyboardInterrupt:   # Ctrl-C or SIGTERM: the workers go at once, so the closing waits on none
             from strainwave.compare.sweep.prefork import stop_now
@@ -275,7 +297,8 @@ def _compute(client, specs: dict[str, PointSpec], cache_root: Path, task: TaskFn
 def run_sweep(study: str, *, vary: list[str], params_path: str | Path | None = None,
               sample_file: str | Path | None = None, scheduler: str | None = None, workers: int | None = None,
               out_dir: Path = Path("reports/sweep"), quick: bool = False, tolerance: float = 0.05,
-              progress: Callable[[str], None] | None = None, task: TaskFn | None = None) -> Outcome:
+              progress: Callable[[str], None] | None = None, task: TaskFn | None = None,
+              dashboard: bool = False) -> Outcome:
     """Sweep ``study`` over a grid (``vary``) or sample rows (``sample_file``) of dotted parameter keys.
 
     ``task`` replaces the FEA study by another module-level function ``(study, params, quick) -> dict``
@@ -302,7 +325,7 @@ def run_sweep(study: str, *, vary: list[str], params_path: str | Path | None = N
 
     by_key: dict[str, dict] = {}
     for key in keys:
-        hit = cache.get(key)
+        hit = cache.get(key, lambda r: point_record_ok(r, key))
         if hit is not None:
             by_key[key] = {**hit, "cached": True}
     # Most elements first: no worker idles at the end (docs/decisions/013-sweep-worker-start-up.md).
@@ -318,8 +341,11 @@ def run_sweep(study: str, *, vary: list[str], params_path: str | Path | None = N
         forked = scheduler is None and _start_fork_server(warm)
         try:
             _import_driver_libraries()   # while the fork server imports the workers' libraries
-            with dask_client(scheduler, workers, scratch, warm, forked) as (client, n_workers):
+            with dask_client(scheduler, workers, scratch, warm, forked, dashboard) as (client, n_workers):
                 progress(f"sweep: {n_workers} Dask workers at {client.scheduler.address}")
+                if dashboard and not scheduler:
+                    progress(f"sweep: Dask dashboard at {client.dashboard_link} (127.0.0.1: this machine only, "
+                             f"no login)")
                 by_key.update(_compute(client, todo, out_dir / "cache", task, n_workers, progress, len(by_key),
                                        len(points), counts))
         except KeyboardInterrupt:

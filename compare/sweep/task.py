@@ -186,6 +186,18 @@ def _unit(text: str) -> str:
     return "".join(c for c in text if c not in " *·")
 
 
+def point_record_ok(record: dict, key: str) -> bool:
+    """A cached point is one this code wrote under ``key``: a status, and an ok point's every quantity a number
+    with its unit (a hand-made ``{"status": "ok"}`` is no finished point)."""
+    if record.get("key") != key or record.get("status") not in ("ok", "failed") \
+            or not isinstance(record.get("fea"), dict) or not isinstance(record.get("analytic"), dict):
+        return False
+    if record["status"] == "failed":
+        return isinstance(record.get("error"), str)
+    return bool(record["fea"]) and all(isinstance(q, dict) and isinstance(q.get("value"), (int, float))
+                                       and isinstance(q.get("unit"), str) for q in record["fea"].values())
+
+
 def run_point(spec: PointSpec, key: str, cache_root: str, task: TaskFn | None = None) -> dict:
     """Solve one point (or read it back from the cache under ``key``); never raises for a bad point.
 
@@ -195,7 +207,7 @@ def run_point(spec: PointSpec, key: str, cache_root: str, task: TaskFn | None = 
     # One BLAS/OpenMP thread per worker process; a remote cluster should also start its workers so.
     os.environ.setdefault("OMP_NUM_THREADS", "1")
     cache = ResultCache(Path(cache_root))
-    cached = cache.get(key)
+    cached = cache.get(key, lambda r: point_record_ok(r, key))
     if cached is not None:
         return {**cached, "cached": True}
     started = time.perf_counter()

@@ -44,7 +44,9 @@ def nafems_appendix(out_dir: Path, progress: Callable[[str], None] = lambda m: N
     cases = list(cases)
     if error:
         notes.append(error)
-    record = (Path(out_dir) / BENCH_RECORD).resolve()
+    from strainwave.output_guard import unstage_text
+    # from the folder the run's files go to, not its staging folder inside it
+    record = (Path(unstage_text(str(Path(out_dir).resolve()))) / BENCH_RECORD).resolve()
     if record.exists():
         fine = json.loads(record.read_text())
         cases += fine["cases"]
@@ -76,7 +78,7 @@ class NafemsJob:
         self.key = case_key(self.KEY_KIND, {"level": "coarse", "sizes_mm": nafems.COARSE_SIZES_MM})
         self.started = time.perf_counter()
         self.process = None
-        hit = cache.get(self.key)
+        hit = cache.get(self.key, {"cases": list})
         self.coarse = (hit["cases"], None) if hit is not None and isinstance(hit.get("cases"), list) else None
         if self.coarse is not None:
             progress(f"  nafems: reusing the cached coarse cases ({hit.get('seconds', 0.0):.1f} s originally)")

@@ -7,12 +7,14 @@ and message, never dropped: the checks that needed it say why they were not eval
 """
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
 from strainwave.fea.result import StudyResult
-from strainwave.cache import ResultCache, case_key
+from strainwave.cache import NUMBER, ResultCache, case_key
+from strainwave.output_guard import reuse_output
 from strainwave.rated_stress import rated_load_of, write_at_rated
 
 
@@ -63,11 +65,13 @@ def run_case(case: Case, params, *, fields_dir: Path, cache: ResultCache, quick:
     from strainwave.compare.validate.isolated import run_isolated
 
     key = case_key("validate-case", case.payload(params, quick, order))
-    hit = cache.get(key)
+    hit = cache.get(key, {"result": dict, "seconds": NUMBER})
     if hit is not None:
         try:
             result = StudyResult.from_dict(hit["result"])
-            if all(Path(p).exists() for p in result.fields):
+            fields = [reuse_output(p) for p in result.fields]   # the previous run's files, into this run's set
+            if all(f is not None for f in fields):
+                result = dataclasses.replace(result, fields=tuple(fields))
                 progress(f"  {case.label}: reusing cached {_describe(case)} (computed in {hit['seconds']:.1f} s)")
                 cpu = hit.get("cpu_s")
                 return CaseOutcome(case, result, float(hit["seconds"]), True, cpu_s=None if cpu is None else float(cpu))

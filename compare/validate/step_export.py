@@ -13,8 +13,9 @@ from pathlib import Path
 from typing import Callable
 
 from strainwave.geometry.part import PartName
-from strainwave.cache import ResultCache, case_key
+from strainwave.cache import NUMBER, ResultCache, case_key
 from strainwave.io_atomic import remove_stale_temps
+from strainwave.output_guard import reuse_output
 
 
 @dataclass(frozen=True)
@@ -79,10 +80,12 @@ class StepJob:
             png = Path(preview_dir) / f"{part.value}_preview.png" if preview_dir and part.value in PREVIEWED else None
             key = case_key("validate-step", {"part": part.value, "params": params.to_dict(),
                                              "preview": png is not None})
-            hit = cache.get(key)
-            if hit is not None and hit.get("files") and all(Path(p).exists() for p in hit["files"]):
+            hit = cache.get(key, lambda r: isinstance(r["seconds"], NUMBER) and all(isinstance(p, str)
+                                                                                    for p in r["files"]))
+            reused = [reuse_output(p) for p in hit["files"]] if hit is not None and hit.get("files") else [None]
+            if all(p is not None for p in reused):   # the previous run's files, into this run's set
                 progress(f"  {part.value}: reusing cached STEP ({hit['seconds']:.1f} s originally)")
-                self.done.append(_outcome(part.value, hit["files"], hit["seconds"], True))
+                self.done.append(_outcome(part.value, [str(p) for p in reused], hit["seconds"], True))
                 continue
             self.keys[part.value] = key
             jobs.append((part.value, Path(step_dir) / f"{part.value}.step", png))

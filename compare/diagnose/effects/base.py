@@ -109,6 +109,12 @@ class Effect:
     degenerate_with: tuple[str, ...] = ()
     # (specimen, effect id) pairs that are the normal model of that specimen, not a second effect to earn its place
     normal_with: tuple[tuple[str, str], ...] = ()
+    # (specimen, every effect id of the model) for a model of three effects that is that specimen's normal model:
+    # a real drive's stiffening, lost motion and loop; each effect still earns its place by BIC
+    normal_model: tuple[tuple[str, tuple[str, ...]], ...] = ()
+    # False for a form that draws another member of the normal model as well (a backlash's Hertzian flanks: a
+    # stiffening), so beside that member the two would draw one curve twice: left out of the normal model's fits
+    in_normal_model: bool = True
     # a model outside the catalogue that draws what this effect draws, heard whenever it is named:
     # (ctx, kept effects, their thetas, BIC of the named model, sigma, uncertainty, noise, stride) -> RivalReading
     rival: Callable[..., RivalReading] | None = None
@@ -131,3 +137,9 @@ class Effect:
     def normal_beside(self, other: "Effect", specimen: str) -> bool:
         """The pair is the specimen's normal model (declared on either)."""
         return (specimen, other.id) in self.normal_with or (specimen, self.id) in other.normal_with
+
+    def normal_among(self, others: tuple["Effect", ...], specimen: str) -> bool:
+        """The model of this effect and ``others`` is the specimen's normal model (declared on any of them)."""
+        ids = frozenset((self.id,) + tuple(e.id for e in others))
+        return any(sp == specimen and frozenset(model) == ids
+                   for e in (self,) + tuple(others) for sp, model in e.normal_model)

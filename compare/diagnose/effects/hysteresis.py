@@ -412,6 +412,9 @@ EFFECT = Effect(
     # a real drive's recording always shows its stiffening and its loop together: for a gear that pair is the
     # normal model, not a second effect that must earn its place by more than 10 BIC units and by a structure
     normal_with=(("gear", "nonlinear_stiffness"),),
+    # ... and at small torque its lost motion as well (Harmonic Drive's loop: the curve, the loss and the lost
+    # motion are one measurement)
+    normal_model=(("gear", ("nonlinear_stiffness", "lost_motion", "hysteresis")),),
     rival=_rate_rival,
 )
 

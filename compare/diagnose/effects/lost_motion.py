@@ -155,6 +155,8 @@ SHAPE = dataclasses.replace(EFFECT, params=(Param("log10_w", -3.0, LOG10_W_MAX, 
 FLANK = dataclasses.replace(EFFECT, params=(*EFFECT.params, Param("a", 0.0, 2.0, (0.05,)),
                                             Param("log10_xh", -2.5, -0.3, (-1.5,))),
                             contribution=_contribution_flank, report=_report_flank, variant="flank",
+                            # beside the drive's own stiffening its flanks' contact stiffening draws that twice
+                            in_normal_model=False,
                             # with no clearance resolved, the flanks' contact alone is a smooth stiffening
                             # (heldout4: a contact-spread stiffening named lost_motion[flank], clearance 0.05
                             # arcmin at 0.1 arcmin noise)
