@@ -66,7 +66,7 @@ def bearing_layout(params) -> BearingLayout:
     r_pitch = r_cb - t_o - 0.5 * d_w
     r_bore = r_cb - t_o - d_w - t_i
     w0 = params.gear.radial_deformation_mm
-    width = 4.0 * wg.contact_semi_axes_mm[0]      # geometry.bearing_ring.WIDTH_OVER_A
+    width = wg.bearing_width_mm      # the rings' axial width (geometry/bearing_ring.py builds the inner ring so)
     if r_bore - w0 <= 0:
         raise InputError("wave_generator.bearing_inner_ring_thickness_mm", t_i,
                          f"the cup's bore {r_cb:g} mm leaves no cam inside outer ring ({t_o:g} mm), balls ({d_w:g} mm), "
@@ -79,8 +79,8 @@ def bearing_layout(params) -> BearingLayout:
     r_g = wg.groove_radius_ratio * d_w
     half = math.sqrt(r_g ** 2 - (r_g - depth) ** 2)          # the groove's half width at the land
     if 2 * half >= width:
-        raise InputError("wave_generator.contact_semi_axes_mm", list(wg.contact_semi_axes_mm),
-                         f"the bearing's width 4 a' = {width:g} mm is narrower than its ball groove ({2 * half:.3g} mm)")
+        raise InputError("wave_generator.bearing_width_mm", width,
+                         f"the bearing's width {width:g} mm is narrower than its ball groove ({2 * half:.3g} mm)")
     return BearingLayout(r_bore, r_bore + t_i, r_pitch, r_cb - t_o, r_cb, d_w, wg.ball_count, r_g, depth, width, w0)
 
 

@@ -18,7 +18,7 @@ SMALL = {"flexspline_cup.pitch_diameter_mm": 48.0, "flexspline_cup.teeth": 60, "
          "flexspline_cup.length_mm": 48.0, "flexspline_cup.wall_thickness_mm": 0.8,
          "wave_generator.bearing_inner_ring_thickness_mm": 2.0, "wave_generator.ball_diameter_mm": 3.0,
          "wave_generator.outer_ring_thickness_mm": 0.8, "wave_generator.contact_semi_axes_mm": [2.0, 1.0],
-         "wave_generator.ball_count": 20, "output_shaft.outer_diameter_mm": 20.0,
+         "wave_generator.bearing_width_mm": 8.0, "wave_generator.ball_count": 20, "output_shaft.outer_diameter_mm": 20.0,
          "output_shaft.inner_diameter_mm": 12.0, "output_shaft.length_mm": 40.0,
          "circular_spline.outer_diameter_mm": 60.0, "circular_spline.face_width_mm": 9.0,
          "circular_spline.addendum_coefficient": 0.6, "circular_spline.backlash_mm": 0.03}
