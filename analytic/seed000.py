@@ -81,7 +81,7 @@ def _seed000_terms(params) -> SimpleNamespace:
                                              g.radial_deformation_mm, g.gear_ratio)
     F_r = torsion.radial_force_N(g.force_coefficient, g.output_torque_Nmm, cup.pitch_diameter_mm)
 
-    bearing = dict(radial_force_N=F_r, ring_thickness_mm=wg.bearing_inner_ring_thickness_mm, beta=wg.beta,
+    bearing = dict(radial_force_N=F_r, ring_thickness_mm=wg.bearing_width_mm, beta=wg.beta,
                    semi_axes_mm=wg.contact_semi_axes_mm, a_mm=a_bearing, E_MPa=E, Q=cr.surface_crack_shape_factor)
     du = {v: cracks.bearing_displacement_mm(variant=v, **bearing) for v in Variant}
     dK = {v: cracks.bearing_crack_stiffness(variant=v, **bearing) for v in Variant}

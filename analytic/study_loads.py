@@ -32,8 +32,11 @@ def wg_bearing_load(params) -> dict:
     """The wave generator bearing on its cam (study wg-bearing): the rated F_r = 1.15 k_r T_rated / d1 (seed 000),
     the cam's radial amplitude w0 = gear.radial_deformation_mm, Stribeck's ball loads (zero clearance) over
     ``wave_generator.ball_count`` balls, each ball's patch half-width b' (Q/F_r)^(1/3) (Hertz, the seed's
-    ellipse taken at F_r) and the Hertz constant K_n of one ball between two races."""
-    from strainwave.analytic import wg_bearing
+    ellipse taken at F_r: the patches spread each ball's load on the race, whose bending does not see their width)
+    and the Hertz constant K_n of one ball between its two grooves as built (analytic/wg_contact.py: ball diameter,
+    groove radius, race radii; issue 49)."""
+    from strainwave.analytic import wg_bearing, wg_contact
+    from strainwave.geometry.bearing_ring import check_ring_fits
 
     g, wg, mat = params.gear, params.wave_generator, params.material
     force = torsion.radial_force_N(g.force_coefficient, g.rated_output_torque_Nmm, params.flexspline_cup.pitch_diameter_mm)
@@ -41,5 +44,6 @@ def wg_bearing_load(params) -> dict:
     b = wg.contact_semi_axes_mm[1] * (q / force) ** (1.0 / 3.0)
     return {"force_N": force, "w0_mm": g.radial_deformation_mm, "ball_angles_rad": tuple(psi.tolist()),
             "ball_loads_N": tuple(q.tolist()), "patch_half_widths_mm": tuple(b.tolist()), "ball_count": wg.ball_count,
-            "hertz_constant": wg_bearing.hertz_ball_constant(force, wg.contact_semi_axes_mm, mat.youngs_modulus_MPa,
-                                                             mat.poisson_ratio)}
+            "hertz_constant": wg_contact.ball_spring_constant(wg.ball_diameter_mm, wg.groove_radius_ratio,
+                                                              check_ring_fits(params)[0], mat.youngs_modulus_MPa,
+                                                              mat.poisson_ratio)}

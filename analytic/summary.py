@@ -27,7 +27,65 @@ def analytic_summary(params) -> dict:
         "crack_headline": crack_headline(params).to_dict(),
         "checks": reference_values(params, s000, s003),
         "audit": audit_as_dicts(params, s000, s003),
+        "design": design_summary(params),
     }
+
+
+def design_summary(params) -> dict:
+    """The design factors in closed form (analytic/design_factors.py), the bearing's ratings, the materials and
+    Z_R,min by the same Goodman line the validate verdict uses."""
+    from strainwave.analytic import design_factors as df
+
+    zmin = {}
+    for dz in (2, 4):
+        try:
+            r = df.minimal_teeth(params, dz)
+            zmin[f"dZ{dz}"] = {"Z_R_min": r.Z_R_min, "n": r.n_sigma, "K_delta": r.tooth_influence,
+                               "K_sigma": r.stress_concentration}
+        except ValueError as exc:
+            zmin[f"dZ{dz}"] = {"Z_R_min": None, "reason": str(exc)}
+    try:
+        ratings = df.bearing_ratings(params)
+    except ValueError as exc:   # ISO 281's table ends at D_w/D_pw = 0.4 and D_w = 25.4 mm: outside, no rating
+        ratings = {"reason": str(exc)}
+    return _finite({"factors": [f.to_dict() for f in df.closed_form_factors(params)], "ratings": ratings,
+                    "materials": df.materials_table(params), "Z_R_min_goodman": zmin,
+                    "required": params.ewg_drive.permissible_safety, "fit_margin": df.fit_margin()})
+
+
+def _finite(value):
+    """The JSON form: an infinite factor (no stress demand) becomes None, as an unevaluated one."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    if isinstance(value, dict):
+        return {k: _finite(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_finite(v) for v in value]
+    return value
+
+
+def _n3(v) -> str:
+    return "inf (no demand)" if v is None else f"{v:.3g}"
+
+
+def design_lines(d: dict) -> list[str]:
+    """The design verdict in closed form: one line per factor, Z_R,min by the same method, the bearing's ratings."""
+    z = d["Z_R_min_goodman"]
+    out = [f"DESIGN FACTORS (closed form; Goodman n = 1/(K sigma_a/sigma_-1 + sigma_m+/R_m) and static n = "
+           f"R_p0.2/(|sigma_m| + K sigma_a), [n] = {d['required']:g}; validate's verdict uses the same line on the FEA)",
+           f"  Z_R,min by this line (tooth factors fitted at each Z_R, at [n] x (1 + {d['fit_margin']:.3f}), the fit's "
+           "error where the toothed-ring FEA checked it): " + ", ".join(f"dZ = {k[2:]}: {v['Z_R_min']}" for k, v in z.items())]
+    for f in d["factors"]:
+        out.append(f"  {f['title']}: n = {_n3(f['n'])}, static {_n3(f['static_n'])}, {f['verdict']}; sigma_a = "
+                   f"{f['amplitude_MPa']:.4g}, sigma_m = {f['mean_MPa']:.4g} MPa, K = {f['notch_K']:.3g}, {f['material']}"
+                   + (f"; advice: {f['advice']}" if f["advice"] else ""))
+    r = d["ratings"]
+    if "reason" in r:
+        return out + [f"  WG bearing ratings: not evaluated ({r['reason']})"]
+    out.append(f"  WG bearing: Hertz p0 = {r['p0_max_MPa']:.4g} MPa (most loaded ball, Q = {r['max_ball_load_N']:.4g} N), "
+               f"ISO 76 static n = {r['static_contact_n']:.3g}; C_r = {r['C_r_N']:.4g} N, L10 = {r['L10_h']:.4g} h "
+               f"(ISO 281, F_r = {r['radial_force_N']:.4g} N)")
+    return out
 
 
 def _fmt(v) -> str:
@@ -74,8 +132,8 @@ def designer_headline(s3: dict) -> list[str]:
     a = zm["assumptions"]
     seed_design = (a["rim_thickness_ratio"], a["dedendum_coefficient"], a["psi_sigma"], a["permissible_safety"],
                    a["fatigue_limit_MPa"]) == (0.012, 1.35, 0.12, 1.4, 625.0)
-    out = ["DESIGNER HEADLINE (seed 003, eq 14 with the fitted tooth factors, analytic/tooth_factors.py, and the "
-           "toothed-ring FEA where it was solved)"]
+    out = ["SEED 003'S OWN LINE (eq 14, psi_sigma, shown beside the design method above; the fitted tooth factors, "
+           "analytic/tooth_factors.py, and the toothed-ring FEA where it was solved)"]
     for dz in (2, 4):
         r = zm[f"dZ{dz}"]
         z, basis = supported_minimum(dz, r["Z_R_min"], a["permissible_safety"], seed_design)
@@ -135,7 +193,8 @@ def format_summary(summary: dict) -> str:
     lines.append("material: " + s0["material"]["note"])
 
     co, tn, ge, stv = s3["coefficients"], s3["tooth_number_min"], s3["geometry"], s3["stresses_MPa"]
-    lines = designer_headline(s3) + crack_headline_lines(summary["crack_headline"]) + [""] + lines
+    lines = (design_lines(summary["design"]) + designer_headline(s3) + crack_headline_lines(summary["crack_headline"])
+             + [""] + lines)
     lines += ["", "SEED 003: HGD with external wave generator",
               f"Z_R = {s3['inputs']['Z_R']}, dZ = {s3['inputs']['tooth_difference']}, Z_G = {s3['inputs']['Z_G']}, "
               f"r_m = {_fmt(ge['r_m_mm'])} mm, delta = {_fmt(s3['inputs']['rim_thickness_mm'])} mm, "
@@ -146,8 +205,9 @@ def format_summary(summary: dict) -> str:
     for k in ("sigma_max", "sigma_min", "sigma_m", "sigma_a"):
         lines.append(f"  stress {k:<33}{stv[k]:>12.3f} MPa")
     sf = s3["safety"]
-    lines.append(f"  n_sigma = {sf['n_sigma_abs_mean']:.4f} (|sigma_m|), {sf['n_sigma_signed_mean']:.4f} (signed); "
-                 f"[n] = {sf['permissible']}: {'OK' if sf['ok'] else 'NOT OK'}")
+    lines.append(f"  n_sigma (seed 003 eq 13, the seed's constants; not the design method) = {sf['n_sigma_abs_mean']:.4f} "
+                 f"(|sigma_m|), {sf['n_sigma_signed_mean']:.4f} (signed); [n] = {sf['permissible']}: "
+                 f"{'OK' if sf['ok'] else 'NOT OK'} by eq 13")
     lines.append(f"  eq 14: C = {tn['constant']:.6f} (signed {tn['constant_signed_mean']:.6f}), c = {tn['offset']:.6f}")
     sg = tn["signed_mean_stress"]
     lines.append(f"  minimal Z_R roots: dZ=2 {_fmt(tn['dZ2'])} (signed {_fmt(sg['dZ2'])}), "

@@ -9,16 +9,18 @@ from pathlib import Path
 import numpy as np
 
 import strainwave as sw
+from strainwave.analytic.torsion import shaft_flexibility
+from strainwave.analytic.variant import Variant
 
 
 def write_recording(path: Path) -> Path:
     """Two load cycles of +/-1e6 N*mm on the output shaft, its linear twist plus a keyed coupling's clearance of
     2e-4 rad (its flanks' Hertzian contact takes it up as torque^(2/3) within 3 % of the peak torque), noise."""
     params = sw.load_params()
-    shaft, material = params.output_shaft, params.material
-    shear_MPa = material.youngs_modulus_MPa / (2 * (1 + material.poisson_ratio))
-    compliance = 32 * shaft.length_mm / (np.pi * shear_MPa * (shaft.outer_diameter_mm ** 4
-                                                              - shaft.inner_diameter_mm ** 4))
+    shaft = params.output_shaft
+    # the hollow shaft's Saint-Venant flexibility at the FEA's own shear modulus E/(2(1+nu))
+    compliance = shaft_flexibility(shaft.length_mm, shaft.outer_diameter_mm, shaft.inner_diameter_mm,
+                                  params.material.implied_shear_modulus_MPa, Variant.CORRECTED)
     t = np.linspace(0.0, 2.0, 800)
     torque = 1e6 * np.sin(2 * np.pi * t)
     take_up = np.minimum(np.abs(torque) / 3e4, 1.0) ** (2.0 / 3.0)

@@ -271,10 +271,11 @@ def default_size_mm(params, quick: bool) -> float:
 
 def race_section_mm2(params) -> tuple[float, float]:
     """The inner ring's cross-section area in the plane (the element estimate's volume per mm of width) and
-    its thickness t_i: geometry/bearing_ring.py's race radius d1/2 - delta - 1.5 t_i, bore 1 t_i inside."""
-    wg, c = params.wave_generator, params.flexspline_cup
-    t = wg.bearing_inner_ring_thickness_mm
-    r_race = max(c.pitch_diameter_mm / 2 - c.wall_thickness_mm - 1.5 * t, t)
+    its thickness t_i: geometry/bearing_ring.py's race radius d1/2 - delta - t_o - D_w, bore t_i inside."""
+    from strainwave.geometry.bearing_ring import race_radius_mm
+
+    t = params.wave_generator.bearing_inner_ring_thickness_mm
+    r_race = max(race_radius_mm(params), t)
     return math.pi * (r_race ** 2 - max(r_race - t, 0.0) ** 2), t
 
 

@@ -29,7 +29,7 @@ MAX_ELEMENTS = 300_000
 MAX_CAD_TEETH = 400
 # The toothed parts and the tooth-count key each is cut from (the cup study meshes a smooth shell).
 TOOTHED_PARTS = {"flexspline-cup": "flexspline_cup.teeth", "ewg-flexspline-ring": "ewg_drive.flexspline_teeth",
-                 "ewg": "ewg_drive.flexspline_teeth"}
+                 "ewg": "ewg_drive.flexspline_teeth", "circular-spline": "flexspline_cup.teeth"}
 
 
 # The keys each meshed part's size and wall come from, for a budget refusal of the parameters themselves.

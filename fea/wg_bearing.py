@@ -56,14 +56,11 @@ class RingSetup:
 
 def setup_from(params, *, force_N, w0_mm, ball_angles_rad, ball_loads_N, patch_half_widths_mm,
                hertz_constant, ball_count) -> RingSetup:
-    from strainwave.geometry.bearing_ring import RACE_GAP_OVER_T, WIDTH_OVER_A
+    from strainwave.geometry.bearing_ring import check_ring_fits
 
-    wg, fc, mat = params.wave_generator, params.flexspline_cup, params.material
-    t = wg.bearing_inner_ring_thickness_mm
-    r_race = fc.pitch_diameter_mm / 2 - fc.wall_thickness_mm - RACE_GAP_OVER_T * t
-    if r_race - t <= 0:
-        raise InputError("wave_generator.bearing_inner_ring_thickness_mm", t, "the ring would close its bore")
-    return RingSetup(r_race - t, r_race, WIDTH_OVER_A * wg.contact_semi_axes_mm[0], mat.youngs_modulus_MPa,
+    wg, mat = params.wave_generator, params.material
+    r_race, r_bore = check_ring_fits(params)
+    return RingSetup(r_bore, r_race, wg.bearing_width_mm, mat.youngs_modulus_MPa,
                      mat.poisson_ratio, float(w0_mm), float(force_N), tuple(ball_angles_rad), tuple(ball_loads_N),
                      tuple(patch_half_widths_mm), float(hertz_constant), int(ball_count))
 
@@ -278,9 +275,9 @@ class WgBearing(StudyFacts):
     title = "bearing inner ring on the cam"
     image_marks = (("bore",), None, "F_r")     # the ball patches are too small to mark at the ring's scale
     signed_stress = ("hoop_stress_MPa", "hoop stress")     # the cam's bending: tension or compression
-    outside_design = ("the ring on the cam has its own design factor, Goodman on the race's ball-pass cycle about the "
-                      "cam's hoop stress (a mean: the ring turns with the cam); a peak von Mises taken as fully "
-                      "reversed would count that mean as an amplitude")
+    outside_design = ("the ring on the cam has its own design factor (compare/validate/design_fea.py): Goodman on the "
+                      "cam's steady hoop stress at the race and the swing the passing balls add; its contact is rated "
+                      "by ISO 281/76; a peak von Mises taken as fully reversed would count the cam's mean as an amplitude")
     element_text = ("P2 triangles on a graded polar grid, 2D plane stress, thickness = ring width B; race crack as "
                     "two coincident faces with frictionless contact")
 

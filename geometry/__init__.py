@@ -21,6 +21,10 @@ Coordinate conventions (FEA relies on them). Every part's axis is z; lengths in 
   ``contact`` the imprinted patch at +x (area of the contact ellipse pi a' b'). Crack at +x, plane y = 0.
 - ``ewg``: rollers at +/- y (two solids) or an elliptical cam ring, in the ring's frame, touching the
   ring's outer radius minus W0 = 0.5 m dZ on the minor axis (``meta['W0_mm']``); ``contact``.
+- ``circular-spline``: z = 0 (``side_bottom``) to b (``side_top``), a tooth space on +x; ``rim`` (outer cylinder),
+  ``tooth_flank``, ``tooth_tip``, ``tooth_root``, ``root_fillet``.
+- ``wg-bearing-balls``, ``wg-bearing-outer-ring``: the wave generator's bearing as made (round), z = 0..width;
+  ``assembly`` draws them, the cam and an inner ring from the same layout on the cam (``drive_assembly``).
 - Crack faces: ``crack_face`` (slot walls), ``crack_front`` (slot floor and ends);
   ``Part.crack_front_mm`` samples points along the front for mesh size fields.
 - ``Part.meta``: key dimensions (radii, r_m, rim thickness, W0_mm, teeth, closed-form volumes, ...).

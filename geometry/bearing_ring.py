@@ -1,8 +1,9 @@
 """Wave-generator bearing inner ring (seed 000): thickness t_i, raceway, contact patch, surface crack.
 
 Geometry choices (the seed gives t_i and the contact ellipse a' x b' only):
-- the ring sits inside the flexspline bore: race (outer) radius R = d1/2 - delta - 1.5 t_i (room for
-  balls and outer ring), bore R - t_i, width 4 a' (the contact ellipse's major semi-axis a' lies along z);
+- the ring sits inside the flexspline bore as built: race (outer) radius R = d1/2 - delta - t_o - D_w (the
+  outer ring's thickness and the ball between), bore R - t_i (t_i the RADIAL thickness), width B =
+  ``wave_generator.bearing_width_mm`` (seed 000's t_i: the race crack's front runs across it);
 - the raceway is the outer cylinder (a roller-type race; a ball groove would only change the contact
   geometry, which the FEA prescribes as a pressure patch anyway);
 - ``contact``: a patch imprinted on the race at +x, the rectangle of the contact ellipse's area
@@ -23,8 +24,22 @@ from strainwave.geometry.cracks import check_crack, half_length_from_q, semi_ell
 from strainwave.geometry.occ import cut, imprint
 from strainwave.geometry.part import CrackModel, Part, PartName
 
-WIDTH_OVER_A = 4.0
-RACE_GAP_OVER_T = 1.5
+
+
+def race_radius_mm(params) -> float:
+    """The inner race's radius as built: the flexspline's bore less the outer ring and one ball."""
+    wg, fc = params.wave_generator, params.flexspline_cup
+    return fc.pitch_diameter_mm / 2 - fc.wall_thickness_mm - wg.outer_ring_thickness_mm - wg.ball_diameter_mm
+
+
+def check_ring_fits(params) -> tuple[float, float]:
+    """(race, bore) radii of the inner ring, refused (exit 2) when the ring would close its bore."""
+    wg = params.wave_generator
+    r_race = race_radius_mm(params)
+    if r_race - wg.bearing_inner_ring_thickness_mm <= 0:
+        raise InputError("wave_generator.bearing_inner_ring_thickness_mm", wg.bearing_inner_ring_thickness_mm,
+                         f"the ring would close its bore: must be < d1/2 - delta - t_o - D_w = {r_race:g} mm")
+    return r_race, r_race - wg.bearing_inner_ring_thickness_mm
 
 
 def _patch_face(r_mm: float, half_theta_rad: float, z0_mm: float, z1_mm: float):
@@ -43,13 +58,8 @@ def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True,
     wg, fc, cg = params.wave_generator, params.flexspline_cup, params.crack_geometry
     t_i = wg.bearing_inner_ring_thickness_mm
     a_c, b_c = wg.contact_semi_axes_mm
-    r_race = fc.pitch_diameter_mm / 2 - fc.wall_thickness_mm - RACE_GAP_OVER_T * t_i
-    r_bore = r_race - t_i
-    if r_bore <= 0:
-        raise InputError("wave_generator.bearing_inner_ring_thickness_mm", t_i,
-                         f"the ring would close its bore: need 2.5 t_i < d1/2 - delta = "
-                         f"{fc.pitch_diameter_mm / 2 - fc.wall_thickness_mm:g} mm")
-    width = WIDTH_OVER_A * a_c
+    r_race, r_bore = check_ring_fits(params)
+    width = wg.bearing_width_mm
     hz, hs = 0.5 * math.sqrt(math.pi) * a_c, 0.5 * math.sqrt(math.pi) * b_c
     if hs >= 0.5 * math.pi * r_race:
         raise InputError("wave_generator.contact_semi_axes_mm", list(wg.contact_semi_axes_mm),

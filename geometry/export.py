@@ -2,9 +2,9 @@
 
 A part is written as one STEP product named after the part (unit mm, coloured), its named faces
 (fixed, loaded, bore, contact, crack_face, crack_front, ...) as STEP face names (``step_xcaf``).
-``assembly`` writes two STEP assemblies: the cup-type gear (flexspline cup, bearing inner ring, output
-shaft) to the given path and the EWG drive (flexspline ring and EWG) next to it as
-``<stem>-ewg-drive.step``.
+``assembly`` writes two STEP assemblies: the cup-type gear as a drive (``drive_assembly``: the cup on the wave
+generator's cam and bearing, in mesh with the circular spline, the output shaft) to the given path and the EWG
+drive (flexspline ring and EWG) next to it as ``<stem>-ewg-drive.step``.
 """
 from __future__ import annotations
 
@@ -12,6 +12,7 @@ from pathlib import Path
 
 from strainwave.io_atomic import atomic_path
 
+from strainwave.geometry.drive_assembly import cup_gear_assembly
 from strainwave.geometry.parts import build_part, part_name
 from strainwave.geometry.part import Part, PartName
 from strainwave.geometry.face_names import write_face_index
@@ -56,20 +57,6 @@ def write_brep(part_or_shape, path: Path | str) -> Path:
         if not export_brep(shape, str(tmp)):
             raise RuntimeError(f"BREP export of {path.name} failed")
     return path
-
-
-def cup_gear_assembly(params, *, crack_depth_mm: float | None = None, teeth: bool = True) -> list[Placed]:
-    """Cup, bearing inner ring (centred on the tooth band) and output shaft below the hub, placed.
-    ``crack_depth_mm`` cracks every part of it that carries a crack."""
-    from build123d import Location
-
-    cup = build_part(PartName.FLEXSPLINE_CUP, params, crack_depth_mm=crack_depth_mm, teeth=teeth)
-    ring = build_part(PartName.WG_BEARING_RING, params, crack_depth_mm=crack_depth_mm)
-    shaft = build_part(PartName.OUTPUT_SHAFT, params, crack_depth_mm=crack_depth_mm)
-    z_band = 0.5 * sum(cup.meta["band_z_mm"])
-    return [Placed(cup),
-            Placed(ring, Location((0, 0, z_band - 0.5 * ring.meta["width_mm"]))),
-            Placed(shaft, Location((0, 0, -shaft.meta["length_mm"])))]
 
 
 def ewg_drive_assembly(params, *, teeth: bool = True) -> list[Placed]:

@@ -29,7 +29,8 @@ class ToothSpec:
     dedendum_coef: float = 1.35
     internal: bool = False
     root_fillet_coef: float = 0.25      # fillet radius / module; 0.25 fits the 1.35 m dedendum space
-    shift_coef: float = 0.0             # profile shift x (external teeth): root and tip move out by x m
+    shift_coef: float = 0.0             # profile shift x: root and tip move radially outward by x m
+    thinning_mm: float = 0.0            # tooth thickness taken off at the pitch circle (backlash), arc length
 
     @property
     def pitch_radius_mm(self) -> float:
@@ -43,13 +44,14 @@ class ToothSpec:
     def tip_radius_mm(self) -> float:
         if self.internal:
             # An internal tooth tip inside the base circle has no involute; clamp it to the base circle.
-            return max(self.pitch_radius_mm - self.addendum_coef * self.module_mm, self.base_radius_mm * 1.0005)
+            return max(self.pitch_radius_mm + (self.shift_coef - self.addendum_coef) * self.module_mm,
+                       self.base_radius_mm * 1.0005)
         return self.pitch_radius_mm + (self.addendum_coef + self.shift_coef) * self.module_mm
 
     @property
     def root_radius_mm(self) -> float:
         if self.internal:
-            return self.pitch_radius_mm + self.dedendum_coef * self.module_mm
+            return self.pitch_radius_mm + (self.dedendum_coef + self.shift_coef) * self.module_mm
         return self.pitch_radius_mm - (self.dedendum_coef - self.shift_coef) * self.module_mm
 
     @property
@@ -71,9 +73,12 @@ def half_angle_rad(spec: ToothSpec, r_mm: np.ndarray | float):
     r = np.maximum(np.asarray(r_mm, dtype=float), spec.base_radius_mm)
     alpha_p = math.radians(spec.pressure_angle_deg)
     alpha_r = np.arccos(spec.base_radius_mm / r)
-    # a profile shift x thickens the tooth on the pitch circle by 2 x m tan(alpha)
-    psi_p = (math.pi / 2 + 2 * spec.shift_coef * math.tan(alpha_p)) / spec.teeth
-    if spec.internal:  # an internal tooth is the space of an external one: it widens outwards
+    # an outward profile shift x thickens an external tooth on the pitch circle by 2 x m tan(alpha) and thins an
+    # internal one as much (the internal tooth is the space of an external one: the rack moves towards its tip)
+    sign = -1.0 if spec.internal else 1.0
+    psi_p = ((math.pi / 2 + sign * 2 * spec.shift_coef * math.tan(alpha_p)) * spec.module_mm
+             - spec.thinning_mm) / (2 * spec.pitch_radius_mm)
+    if spec.internal:  # an internal tooth widens outwards
         return psi_p - _inv(alpha_p) + _inv(alpha_r)
     return psi_p + _inv(alpha_p) - _inv(alpha_r)
 
@@ -282,12 +287,53 @@ def check_teeth(spec: ToothSpec, key: str, value: object, part: str) -> None:
                                      f"dedendum {spec.dedendum_coef:g} m leave a tooth space of {space:.3g} mm")
 
 
+CUP_ADDENDUM_COEF = 1.0        # h_a / m of the flexspline's teeth (the basic rack's)
+DEDENDUM_COEF = 1.35           # h_f / m of both toothed parts (seed 003's basic rack)
+
+
 def cup_tooth_spec(params) -> ToothSpec:
-    """The flexspline cup's external teeth: 20 deg, h_f = 1.35 m, shifted so the root circle is d1/2."""
+    """The flexspline cup's external teeth: the design's basic rack (circular_spline.pressure_angle_deg, 20 deg by
+    default), h_a = 1.0 m, h_f = 1.35 m, shifted so the root circle is d1/2."""
     fc = params.flexspline_cup
     r_p = 0.5 * fc.module_mm * fc.teeth
-    shift = (0.5 * fc.pitch_diameter_mm - r_p) / fc.module_mm + 1.35
-    return ToothSpec(fc.teeth, fc.module_mm, 20.0, 1.0, 1.35, internal=False, shift_coef=shift)
+    shift = (0.5 * fc.pitch_diameter_mm - r_p) / fc.module_mm + DEDENDUM_COEF
+    return ToothSpec(fc.teeth, fc.module_mm, params.circular_spline.pressure_angle_deg, CUP_ADDENDUM_COEF,
+                     DEDENDUM_COEF, internal=False, shift_coef=shift)
+
+
+def circular_spline_tooth_spec(params) -> ToothSpec:
+    """The circular spline's internal teeth: Z_c = Z_f + U, the cup's module and basic rack, the addendum the
+    design gives, thinned by twice ``circular_spline.backlash_mm`` (each flank pair's gap at the pitch circle).
+
+    Its profile shift puts its rack where the cup's rack is at the major axis (the cup's tooth moved out by w0):
+    x_c = x_f + (w0 - m U / 2) / m, so the pair meets there as a gear and its rack would, with radial
+    clearance (h_f - h_a) m at both tips (``mesh_clearances_mm``)."""
+    fc, cs, U = params.flexspline_cup, params.circular_spline, params.gear.wave_number
+    cup = cup_tooth_spec(params)
+    shift = cup.shift_coef + (params.gear.radial_deformation_mm - 0.5 * fc.module_mm * U) / fc.module_mm
+    return ToothSpec(fc.teeth + U, fc.module_mm, cs.pressure_angle_deg, cs.addendum_coefficient, DEDENDUM_COEF,
+                     internal=True, shift_coef=shift, thinning_mm=2.0 * cs.backlash_mm)
+
+
+@dataclass(frozen=True)
+class MeshClearances:
+    """The design's clearances between the deformed cup's teeth and the circular spline's (mm, radial unless said)."""
+    root_major_mm: float     # each part's tip to the other's root circle at the major axis, (h_f - h_a) m
+    tip_minor_mm: float      # cup tip circle to spline tip circle at the minor axis: 2 w0 - (h_a,f + h_a,c) m
+    flank_mm: float          # circumferential gap per flank pair at the pitch circle (the backlash)
+    working_depth_mm: float  # radial overlap of the two tooth rings at the major axis
+
+
+def mesh_clearances_mm(params) -> MeshClearances:
+    """Closed-form clearances of the pair as ``circular_spline_tooth_spec`` draws it on a cup deformed by w0
+    (tooth tips and roots are circles; the cup's tooth moves radially by +-w0 at the axes)."""
+    cup, cs = cup_tooth_spec(params), circular_spline_tooth_spec(params)
+    w0 = params.gear.radial_deformation_mm
+    return MeshClearances(root_major_mm=min(cs.tip_radius_mm - (cup.root_radius_mm + w0),
+                                            cs.root_radius_mm - (cup.tip_radius_mm + w0)),
+                          tip_minor_mm=cs.tip_radius_mm - (cup.tip_radius_mm - w0),
+                          flank_mm=params.circular_spline.backlash_mm,
+                          working_depth_mm=cup.tip_radius_mm + w0 - cs.tip_radius_mm)
 
 
 def ewg_tooth_spec(params) -> ToothSpec:

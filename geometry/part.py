@@ -16,6 +16,9 @@ class PartName(enum.Enum):
     OUTPUT_SHAFT = "output-shaft"
     WG_BEARING_RING = "wg-bearing-ring"
     WG_CAM = "wg-cam"
+    CIRCULAR_SPLINE = "circular-spline"
+    WG_BEARING_BALLS = "wg-bearing-balls"
+    WG_BEARING_OUTER_RING = "wg-bearing-outer-ring"
 
 
 class CrackModel(enum.Enum):

@@ -5,7 +5,8 @@ import dataclasses
 
 from strainwave.errors import InputError
 
-from strainwave.geometry import bearing_ring, ewg, ewg_ring, flexspline_cup, output_shaft, wg_cam
+from strainwave.geometry import (bearing_ring, circular_spline, drive_assembly, ewg, ewg_ring, flexspline_cup,
+                                 output_shaft, wg_cam)
 from strainwave.geometry.part import CrackModel, Part, PartName
 
 _BUILDERS = {
@@ -15,6 +16,9 @@ _BUILDERS = {
     PartName.OUTPUT_SHAFT: output_shaft.build,
     PartName.WG_BEARING_RING: bearing_ring.build,
     PartName.WG_CAM: wg_cam.build,
+    PartName.CIRCULAR_SPLINE: circular_spline.build,
+    PartName.WG_BEARING_BALLS: drive_assembly.build_balls,
+    PartName.WG_BEARING_OUTER_RING: drive_assembly.build_outer_ring,
 }
 CRACKABLE = (PartName.FLEXSPLINE_CUP, PartName.OUTPUT_SHAFT, PartName.WG_BEARING_RING)
 

@@ -23,6 +23,9 @@ PART_COLOURS_RGB: dict[str, tuple[float, float, float]] = {
     "output-shaft": (0.45, 0.55, 0.70),
     "ewg": (0.55, 0.75, 0.50),
     "wg-cam": (0.55, 0.75, 0.50),     # a wave generator, like the EWG
+    "circular-spline": (0.50, 0.50, 0.55),
+    "wg-bearing-balls": (0.80, 0.80, 0.82),
+    "wg-bearing-outer-ring": (0.85, 0.62, 0.30),   # a bearing ring, like the inner one
 }
 
 

@@ -23,11 +23,9 @@ HUB_BORE_OVER_MINOR = 0.4     # input-shaft bore over the minor semi-axis (chose
 
 def cam_semi_axes_mm(params) -> tuple[float, float]:
     """(major, minor) semi-axes: the bearing ring's bore radius +- w0."""
-    from strainwave.geometry.bearing_ring import RACE_GAP_OVER_T
+    from strainwave.geometry.bearing_ring import check_ring_fits
 
-    fc, wg = params.flexspline_cup, params.wave_generator
-    t_i = wg.bearing_inner_ring_thickness_mm
-    r_bore = fc.pitch_diameter_mm / 2 - fc.wall_thickness_mm - RACE_GAP_OVER_T * t_i - t_i
+    _, r_bore = check_ring_fits(params)
     w0 = params.gear.radial_deformation_mm
     if r_bore - w0 <= 0:
         raise InputError("gear.radial_deformation_mm", w0, f"must be < the bearing ring's bore radius {r_bore:g} mm")
@@ -37,11 +35,10 @@ def cam_semi_axes_mm(params) -> tuple[float, float]:
 def build(params, *, crack_depth_mm: float | None = None, teeth: bool = True) -> Part:
     from build123d import Edge, Face, Plane, Wire, extrude
 
-    from strainwave.geometry.bearing_ring import WIDTH_OVER_A
 
     a, b = cam_semi_axes_mm(params)
     r_hub = HUB_BORE_OVER_MINOR * b
-    width = WIDTH_OVER_A * params.wave_generator.contact_semi_axes_mm[0]     # the ring's width
+    width = params.wave_generator.bearing_width_mm     # the ring's width
     outline = Wire([Edge.make_ellipse(a, b, Plane.XY)])
     face = Face(outline, [Wire([Edge.make_circle(r_hub)])])
     solid = extrude(face, amount=width).solids()[0]

@@ -470,9 +470,9 @@ def _common(top: bool) -> argparse.ArgumentParser:
 
 
 _JSON_HELP = "write the result as JSON to FILE; without FILE (or with -) print it on stdout instead of the text"
-_CRACK_HELP = ("crack depth a in mm, from the surface the crack starts at. --part assembly cracks every part "
-               "that carries a crack (flexspline cup, wave generator bearing ring, output shaft) to this same "
-               "depth; the EWG drive carries none (default: uncracked)")
+_CRACK_HELP = ("crack depth a in mm, from the surface the crack starts at. --part assembly cracks the output shaft "
+               "to this depth (the cup and the bearing are drawn as assembled on the cam, uncracked: crack them "
+               "with --part); the EWG drive carries none (default: uncracked)")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -516,8 +516,8 @@ def _add_params(add) -> None:
 def _add_export_step(add) -> None:
     p = add("export-step", _cmd_export_step,
             "build a part and write it as STEP (mm, named faces, coloured parts). --part assembly writes "
-            "two files: the cup-type gear (flexspline cup, wave generator bearing ring, output shaft) to "
-            "FILE.step and the EWG drive (flexspline ring and external wave generator) to "
+            "two files: the cup-type gear as a drive (the flexspline cup on the wave generator's cam and ball "
+            "bearing, in mesh with the circular spline, and the output shaft) to FILE.step and the EWG drive (flexspline ring and external wave generator) to "
             "FILE-ewg-drive.step", material=False)
     p.add_argument("--part", required=True, choices=PARTS, help="part to build")
     p.add_argument("--crack-depth-mm", type=_positive_float, default=None, metavar="A_MM", help=_CRACK_HELP)

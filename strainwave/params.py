@@ -84,9 +84,16 @@ class Material:
     poisson_ratio: float
     fatigue_limit_MPa: float
     ultimate_strength_MPa: float    # Goodman's mean-stress line ends at it
+    yield_strength_MPa: float       # R_p0.2: the static check beside every fatigue factor
+    name: str                       # the flexspline's (and shaft's) steel, as the materials table shows it
+    source: str                     # where its strengths come from
 
     def __post_init__(self):
         _positive("material.youngs_modulus_MPa", self.youngs_modulus_MPa)
+        _positive("material.yield_strength_MPa", self.yield_strength_MPa)
+        if self.yield_strength_MPa > self.ultimate_strength_MPa:
+            raise InputError("material.yield_strength_MPa", self.yield_strength_MPa,
+                             f"must be <= ultimate_strength_MPa = {self.ultimate_strength_MPa:g}")
         _positive("material.shear_modulus_MPa", self.shear_modulus_MPa)
         _positive("material.fatigue_limit_MPa", self.fatigue_limit_MPa)
         _positive("material.ultimate_strength_MPa", self.ultimate_strength_MPa)
@@ -189,8 +196,12 @@ class WaveGenerator:
     ball_diameter_mm: float         # D_w of the flexible bearing's balls
     outer_ring_thickness_mm: float  # radial thickness of the flexible outer ring (under the flexspline)
     groove_radius_ratio: float      # f = groove radius / D_w (Harris: 0.515..0.53 for deep-groove raceways)
+    bearing_width_mm: float         # B: the rings' axial width, seed 000's t_i (the race crack's front runs across it)
+    input_speed_rpm: float          # the wave generator's speed for the bearing's L10 life in hours
 
     def __post_init__(self):
+        _positive("wave_generator.bearing_width_mm", self.bearing_width_mm)
+        _positive("wave_generator.input_speed_rpm", self.input_speed_rpm)
         _positive("wave_generator.bearing_inner_ring_thickness_mm", self.bearing_inner_ring_thickness_mm)
         _positive("wave_generator.ball_diameter_mm", self.ball_diameter_mm)
         _positive("wave_generator.outer_ring_thickness_mm", self.outer_ring_thickness_mm)
@@ -236,6 +247,29 @@ class CircularSpline:
             raise InputError("circular_spline.flank_friction_coefficient", self.flank_friction_coefficient,
                              "must lie in [0, 1): a lubricated steel flank")
         check_bounds("circular_spline", self)
+
+
+@dataclass(frozen=True)
+class BearingMaterial:
+    """The wave generator bearing's steel (rings and balls): its own strengths, not the flexspline's."""
+
+    name: str
+    fatigue_limit_MPa: float        # sigma_-1, fully reversed bending
+    yield_strength_MPa: float       # R_p0.2
+    ultimate_strength_MPa: float    # R_m
+    static_contact_limit_MPa: float  # Hertz p0 at which ISO 76 sets the static load rating C0 (balls: 4200)
+    source: str
+
+    def __post_init__(self):
+        for key in ("fatigue_limit_MPa", "yield_strength_MPa", "ultimate_strength_MPa", "static_contact_limit_MPa"):
+            _positive(f"bearing_material.{key}", getattr(self, key))
+        if not self.fatigue_limit_MPa < self.ultimate_strength_MPa:
+            raise InputError("bearing_material.fatigue_limit_MPa", self.fatigue_limit_MPa,
+                             f"must be < ultimate_strength_MPa = {self.ultimate_strength_MPa:g}")
+        if self.yield_strength_MPa > self.ultimate_strength_MPa:
+            raise InputError("bearing_material.yield_strength_MPa", self.yield_strength_MPa,
+                             f"must be <= ultimate_strength_MPa = {self.ultimate_strength_MPa:g}")
+        check_bounds("bearing_material", self)
 
 
 @dataclass(frozen=True)
@@ -337,6 +371,7 @@ class Params:
     cracks: Cracks
     ewg_drive: EwgDrive
     crack_geometry: CrackGeometry
+    bearing_material: BearingMaterial
 
     def __post_init__(self):
         # Checks that need two sections (each crack against its own wall is checked in its section).

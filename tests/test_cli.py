@@ -219,4 +219,4 @@ def test_crack_on_a_study_without_a_crack_is_refused(strainwave_cmd):
 def test_export_step_help_says_what_assembly_writes_and_cracks():
     text = " ".join(_subparsers()["export-step"].format_help().split())
     assert "FILE-ewg-drive.step" in text and "EWG drive" in text
-    assert "--part assembly cracks every part that carries a crack" in text
+    assert "--part assembly cracks the output shaft" in text and "circular spline" in text

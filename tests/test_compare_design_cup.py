@@ -1,51 +1,56 @@
-"""The design verdict takes the flexspline's fatigue on the wave generator (the governing, smaller factor) and the
-bearing inner ring's on the cam."""
+"""The design verdict's factors come from design_fea on the FEA's cycles (issue 49): the cup's tooth root on the
+wave generator, the bearing's rings; a case that did not run is NOT EVALUATED and fails the design."""
+import warnings
+from types import SimpleNamespace
+
 import pytest
+
 from strainwave.compare.validate.design import DesignVerdict
-from strainwave.compare.validate.wg_cup_checks import fatigue_factor
+from strainwave.compare.validate.design_fea import design_factors_from_fea
+from strainwave.params import load_params
 
-RECORD = {"fatigue": {"n_eq13": 1.95, "n_goodman": 1.80, "amplitude_MPa": 164.8, "mean_MPa": 59.1,
-                      "where": "band outer fibre", "notch": "K_sigma 1.9"}}
-
-
-def test_the_smaller_of_eq13_and_goodman_governs_and_can_fail_the_design():
-    f = fatigue_factor(RECORD)
-    assert f.safety_factor == 1.80 and "Goodman governs" in f.definition
-    assert DesignVerdict(1.4, (f,)).passed and not DesignVerdict(1.9, (f,)).passed
+RECORD = {"case": "wg", "fatigue": {"amplitude_MPa": 164.8, "mean_MPa": 59.1, "amplitude_gci_MPa": 2.0,
+                                    "mean_gci_MPa": 1.0}}
 
 
-def test_a_missing_case_is_not_evaluated_and_fails_the_design():
-    f = fatigue_factor({})
-    assert f.safety_factor is None and f.reason
-    assert not DesignVerdict(1.4, (f,)).passed
+@pytest.fixture(scope="module")
+def params():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return load_params()
 
 
-def _ring_book(cam_MPa):
-    from types import SimpleNamespace
-
+def _book(q: dict):
     from strainwave.compare.validate.fea_book import FeaBook
-    q = {"race_stress_major_MPa": SimpleNamespace(value=cam_MPa, uncertainty=1.0)}
-    return FeaBook({"wg-bearing": SimpleNamespace(result=SimpleNamespace(quantities=q), error=None,
-                                                  case=SimpleNamespace(study="wg-bearing"))})
+    quantities = {k: SimpleNamespace(value=v, uncertainty=1.0) for k, v in q.items()}
+    return FeaBook({"B": SimpleNamespace(result=SimpleNamespace(quantities=quantities), error=None,
+                                         case=SimpleNamespace(study="wg-bearing"))})
 
 
-def test_the_bearing_ring_on_the_cam_is_goodman_on_its_ball_pass_cycle():
-    from strainwave.compare.validate.wg_bearing_checks import _ring, contact_pressure_MPa
-    from strainwave.compare.validate.wg_bearing_checks import fatigue_factor as ring_factor
-    from strainwave.params import load_params
-    params = load_params()
-    s = _ring(params)
-    p0 = contact_pressure_MPa(params)
-    # Hertz point contact of the most loaded ball: p0 = 3 Q / (2 pi a b) on the seed's ellipse scaled to Q
-    q, force = max(s.ball_loads_N), s.force_N
-    a, b = (x * (q / force) ** (1 / 3) for x in params.wave_generator.contact_semi_axes_mm)
-    assert p0 == pytest.approx(3 * q / (2 * 3.141592653589793 * a * b), rel=1e-12)
-    # cam alone 800 MPa (a mean in the ring's frame), each ball takes the race down by p0
-    f = ring_factor(_ring_book(800.0), "wg-bearing", params)
-    assert f.safety_factor == 1.0 / (0.5 * p0 / 625.0 + (800.0 - 0.5 * p0) / 1080.0)
-    # the cam's mean stress alone takes the ring below [n] = 1.4, which the bonded-bore ring never showed
-    assert not DesignVerdict(1.4, (f,)).passed
-    # a ring the cam barely bends passes
-    assert DesignVerdict(1.4, (ring_factor(_ring_book(60.0), "wg-bearing", params),)).passed
-    missing = ring_factor(_ring_book(800.0), None, params)
-    assert missing.safety_factor is None and missing.reason
+def test_cup_tooth_root_takes_the_feas_cycle_and_a_band(params):
+    factors = design_factors_from_fea(params, _book({}), {}, {}, {}, (), RECORD)
+    cup = next(f for f in factors if f.component == "cup_tooth_root")
+    fat = cup.fatigue
+    assert "FEA wg" in fat["amplitude_source"] and cup.band is not None and cup.band[0] <= cup.safety_factor <= cup.band[1]
+    # the FEA's 164.8 MPa swing times K_delta plus half the mesh root stress is the amplitude the row states
+    assert fat["amplitude_MPa"] > 164.8
+
+
+def test_a_missing_case_is_not_evaluated_and_fails_the_design(params):
+    factors = design_factors_from_fea(params, _book({}), {}, {}, {}, (), {})
+    missing = {f.component for f in factors if f.safety_factor is None}
+    assert {"ring", "cup_tooth_root", "cup_band_edge", "wg_inner_ring"} <= missing
+    assert not DesignVerdict(1.4, tuple(factors)).passed
+    # the outer ring is closed form: always there
+    assert next(f for f in factors if f.component == "wg_outer_ring").safety_factor > 0
+
+
+def test_the_bearing_ring_on_the_cam_fails_when_the_cam_bends_it_past_the_steel(params):
+    labels = {"wg-bearing": "B"}
+    hot = design_factors_from_fea(params, _book({"race_stress_major_MPa": 1900.0, "net_race_stress_major_MPa": 1800.0}),
+                                  labels, {}, {}, (), {})
+    ring = next(f for f in hot if f.component == "wg_inner_ring")
+    assert ring.verdict(1.4) == "FAIL" and "bearing_inner_ring_thickness_mm <=" in ring.fatigue["advice"]
+    cool = design_factors_from_fea(params, _book({"race_stress_major_MPa": 200.0, "net_race_stress_major_MPa": 150.0}),
+                                   labels, {}, {}, (), {})
+    assert next(f for f in cool if f.component == "wg_inner_ring").verdict(1.4) == "PASS"

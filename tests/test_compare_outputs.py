@@ -40,12 +40,12 @@ def test_a_factor_whose_gci_band_straddles_n_is_undecided_and_not_met(params):
     """The band is the factor's range over the corners of its stresses' GCI bands: Goodman on (amplitude, mean)
     +- their GCIs. A band wholly above [n] passes, wholly below fails; one that straddles [n] is UNDECIDED,
     counted as failing and named with its band; moving the GCI shrinks it back to a PASS."""
-    from strainwave.analytic.cup_fatigue import goodman_safety_factor
+    from strainwave.analytic.design_method import Strength, goodman as goodman_line
     from strainwave.compare.validate.design import factor_band
     required = params.ewg_drive.permissible_safety
 
     def goodman(a, m):
-        return goodman_safety_factor(625.0, 1000.0, 1.0, a, m)
+        return goodman_line(a, m, 1.0, Strength("steel", 625.0, 800.0, 1000.0, "test"))
     band = factor_band(goodman, (370.0, 30.0), (100.0, 20.0))
     assert band == pytest.approx((goodman(400.0, 120.0), goodman(340.0, 80.0)))
     assert factor_band(goodman, (370.0, 30.0), (100.0, None)) is None       # no GCI, no band
@@ -185,7 +185,7 @@ def _doc() -> dict:
               "peak_von_mises_MPa": 31.3, "peak_location_mm": [35.0, 0.0, 0.0], "peak_on": ["fixed"],
               "peak_displacement_mm": 0.044, "fatigue_limit_MPa": 625.0, "safety_factor": 625 / 31.3,
               "field_file": "shaft.vtu", "note": "material-only", "tip_radius_mm": None, "tip_peak_von_mises_MPa": None}
-    design = {"factors": [{"component": "shaft", "required": 1.4, "passed": True}]}
+    design = {"factors": [{"component": "shaft", "required": 1.4, "passed": True, "safety_factor": 625 / 31.3}]}
     return {"checks": [check], "gci_table": [gci], "stress_at_rated": {"shaft": stress}, "design": design}
 
 

@@ -5,6 +5,7 @@ folder checks that finished cases are reused from the cache.
 """
 from __future__ import annotations
 
+import csv
 import json
 import os
 import shutil
@@ -448,25 +449,29 @@ def test_both_verdicts_open_the_report_and_a_failing_design_is_red(quick_run, re
     box = html.split('id="design-verdict"')[0].rsplit("<div", 1)[1]
     assert ("verdict pass" in box) == design["passed"] and ("verdict fail" in box) == (not design["passed"])
     assert html.index('id="verdict"') < html.index('id="design-verdict"') < html.index('id="contents"')
-    # one factor per component, each with its definition, and the verdict is exactly theirs against [n]
-    assert {f["component"] for f in design["factors"]} == {"shaft", "cup", "bearing", "ring", "cup_wave_generator",
-                                                           "wg_bearing"}
+    # one factor per component and point of it (issue 49), each recomputed from the inputs it states (design.csv's
+    # row): Goodman on its amplitude and mean, the static check beside it; the verdict is exactly theirs
+    assert {f["component"] for f in design["factors"]} == {"shaft", "cup", "ring", "cup_tooth_root", "cup_band_edge",
+                                                           "wg_inner_ring", "wg_outer_ring"}
     for f in design["factors"]:
         assert f["definition"] and f["required"] == design["required_safety_factor"]
-        assert f["passed"] == (f["safety_factor"] is not None and f["safety_factor"] >= f["required"])
-        if f["safety_factor"] is None:
-            continue
-        if f["component"] == "cup_wave_generator":   # the cup's fatigue factor on its revolution cycle
-            fatigue = results["cup_wave_generator"]["fatigue"]
-            assert f["safety_factor"] == pytest.approx(min(fatigue["n_eq13"], fatigue["n_goodman"]))
-        elif f["component"] == "wg_bearing":         # Goodman about the cam's race stress, swing p0 / 2
-            case = next(c for c in results["metadata"]["cases"] if c["study"] == "wg-bearing")
-            cam = case["result"]["quantities"]["race_stress_major_MPa"]["value"]
-            amplitude, m = f["stress_MPa"], results["metadata"]["params"]["material"]
-            assert f["safety_factor"] == pytest.approx(
-                1.0 / (amplitude / m["fatigue_limit_MPa"] + (cam - amplitude) / m["ultimate_strength_MPa"]))
-        else:
+        row = f["fatigue"]
+        demand = (row["notch_K"] * row["amplitude_MPa"] / row["fatigue_limit_MPa"]
+                  + max(row["mean_MPa"], 0.0) / row["ultimate_strength_MPa"])
+        assert f["safety_factor"] == pytest.approx(1.0 / demand, rel=1e-12)
+        assert f["static_n"] == pytest.approx(row["yield_strength_MPa"] / (abs(row["mean_MPa"])
+                                                                          + row["notch_K"] * row["amplitude_MPa"]))
+        assert f["passed"] == (f["verdict"] == "PASS")
+        if f["component"] in ("shaft", "cup"):     # the FEA's own peak, fully reversed: sigma_-1 / peak
             assert f["safety_factor"] == pytest.approx(results["stress_at_rated"][f["component"]]["safety_factor"])
+        if f["component"] == "wg_inner_ring":      # the cam's race stress, swung by the balls (FEA wg-bearing)
+            case = next(c for c in results["metadata"]["cases"] if c["study"] == "wg-bearing")
+            q = case["result"]["quantities"]
+            cam, net = q["race_stress_major_MPa"]["value"], q["net_race_stress_major_MPa"]["value"]
+            assert row["mean_MPa"] == pytest.approx(0.5 * (cam + net)) and row["amplitude_MPa"] == pytest.approx(
+                0.5 * abs(net - cam))
+    rows = list(csv.DictReader((out / "design.csv").open()))
+    assert [r["component"] for r in rows] == [f["component"] for f in design["factors"]]
     assert design["passed"] == all(f["passed"] for f in design["factors"])
     assert ("design (does the drive meet [n] at the rated load?): " + design["headline"]) in proc.stdout
 

@@ -101,7 +101,10 @@ def test_the_surface_crack_block_is_drawn_but_stays_out_of_the_design_verdict(pa
     made = make_images(out, book, plan, CheckSet((), {}), {}, progress=lambda m: None, params=params)
     assert set(made.stresses) == {"cup"} and made.stresses["cup"].study == "cup-torsion"
     _, verdict = _design(params, book, plan, made.stresses)
-    assert [f.stress_MPa for f in verdict.factors] == [made.stresses["cup"].peaks.peak_von_mises_MPa]
+    # the cup's factor is its own field's peak; the block gives none (the method's other factors, issue 49, are
+    # not evaluated here: their cases did not run)
+    assert [f.stress_MPa for f in verdict.factors if f.component == "cup"] == [made.stresses["cup"].peaks.peak_von_mises_MPa]
+    assert not any("surface" in f.component or "crack" in f.component for f in verdict.factors)
     shown = {i.path.name: i for i in made.images}
     for name, kind in (("cup-surface-crack_von_mises.png", "stress"), ("cup-surface-crack_opening.png",
                                                                        "crack-opening")):

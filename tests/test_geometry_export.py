@@ -187,9 +187,11 @@ def test_assembly_exports_both_drives_with_part_names(params, tmp_path):
                                          "gear-ewg-drive.faces.json"]
     written = [p for p in written if p.suffix == ".step"]
     cup_gear, ewg_drive = (import_step(p) for p in written)
-    assert len(cup_gear.solids()) == 3 and len(ewg_drive.solids()) == 3   # cup, ring, shaft | ring, 2 rollers
+    # cup, circular spline, cam, inner ring, balls, outer ring, shaft | ring, 2 rollers
+    assert len(cup_gear.solids()) == 6 + params.wave_generator.ball_count and len(ewg_drive.solids()) == 3
     text = written[0].read_text(errors="ignore")
-    for label in ("flexspline-cup", "wg-bearing-ring", "output-shaft"):
+    for label in ("flexspline-cup", "circular-spline", "wg-cam", "wg-bearing-ring", "wg-bearing-balls",
+                  "wg-bearing-outer-ring", "output-shaft"):
         assert label in text
     assert "MILLI" in text                                                # length unit mm
     # every part's named faces are named in its drive's file (a face in two sets counts in both)
@@ -258,8 +260,8 @@ def test_cli_bad_crack_is_one_line_exit_2(strainwave_cmd, tmp_path):
 
 
 def test_assembly_png_draws_every_part_of_both_drives(params, tmp_path):
-    """The preview of ``--part assembly`` shows the whole assembly, not only the cup: the bearing ring
-    (orange), the shaft (blue) in the left panel and the EWG rollers (green) in the right one."""
+    """The preview of ``--part assembly`` shows the whole assembly, not only the cup: the bearing rings
+    (orange), the shaft (blue) and the cam (green) in the left panel and the EWG rollers (green) in the right one."""
     import matplotlib.image as mpimg
     import numpy as np
 
@@ -273,5 +275,5 @@ def test_assembly_png_draws_every_part_of_both_drives(params, tmp_path):
     blue = (b - r > 0.08) & (b > g)                   # output-shaft (0.45, 0.55, 0.70), shaded darker
     green = (g - r > 0.1) & (g - b > 0.1)             # ewg (0.55, 0.75, 0.50)
     assert orange[:, : w // 2].sum() > 500 and blue[:, : w // 2].sum() > 500
-    assert green[:, w // 2:].sum() > 500 and green[:, : w // 2].sum() == 0
+    assert green[:, w // 2:].sum() > 500 and green[:, : w // 2].sum() > 500    # the EWG | the cup gear's cam
     assert np.mean(img.min(axis=2)[:, w // 2:] < 0.95) > 0.03   # the EWG drive panel is not blank

@@ -45,7 +45,7 @@ def test_each_crack_is_bounded_by_its_own_wall_only():
     p = load_params().with_value("output_shaft.crack_depth_mm", 5.0)
     assert p.output_shaft.crack_depth_mm == 5.0 and p.flexspline_cup.root_crack_depth_mm == 0.1
     for key, depth, wall in (("flexspline_cup.root_crack_depth_mm", 2.24, "wall_thickness_mm = 2.24"),
-                             ("wave_generator.bearing_crack_depth_mm", 10.0, "bearing_inner_ring_thickness_mm = 10")):
+                             ("wave_generator.bearing_crack_depth_mm", 3.0, "bearing_inner_ring_thickness_mm = 3")):
         with pytest.raises(InputError) as err:
             p.with_value(key, depth)
         assert err.value.key == key and wall in str(err.value)

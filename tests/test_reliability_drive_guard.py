@@ -18,9 +18,9 @@ IMPOSSIBLE = [
     ("[wave_generator]\ncontact_semi_axes_mm = [900.0, 900.0]\n", "wave_generator.contact_semi_axes_mm"),
     ("[wave_generator]\nbearing_inner_ring_thickness_mm = 90\n", "wave_generator.bearing_inner_ring_thickness_mm"),
     ("[flexspline_cup]\nlength_mm = 1\n", "flexspline_cup.length_mm"),                  # blamed --mesh-size-mm
-    ("[gear]\nradial_deformation_mm = 20\n", "gear.radial_deformation_mm"),             # the ring turns inside out
-    ("[wave_generator]\ncontact_semi_axes_mm = [5.0, 9.5]\n", "wave_generator.contact_semi_axes_mm"),  # > ball pitch
-    ("[wave_generator]\ncontact_semi_axes_mm = [0.3, 3.0]\nbearing_crack_depth_mm = 1.0\n",
+    ("[gear]\nradial_deformation_mm = 22\n", "gear.radial_deformation_mm"),             # the ring turns inside out
+    ("[wave_generator]\ncontact_semi_axes_mm = [5.0, 9.8]\n", "wave_generator.contact_semi_axes_mm"),  # > ball pitch
+    ("[wave_generator]\ncontact_semi_axes_mm = [0.3, 3.0]\nbearing_crack_depth_mm = 2.8\n",
      "wave_generator.bearing_crack_depth_mm"),                                          # crack longer than the ring
     ("[ewg_drive]\ntooth_difference = 16\nflexspline_teeth = 40\n", "ewg_drive.tooth_difference"),
 ]

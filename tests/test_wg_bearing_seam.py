@@ -18,7 +18,9 @@ def ring(params):
     from strainwave.analytic.study_loads import wg_bearing_load
     from strainwave.fea import ring2d
     from strainwave.fea.wg_bearing import _system, grid, setup_from
-    s = setup_from(params, **wg_bearing_load(params))
+    # the 10 mm ring these cam shares and loads were chosen on (the default is 3 mm since issue 49): a solver test
+    thick = params.with_value("wave_generator.bearing_inner_ring_thickness_mm", 10.0)
+    s = setup_from(thick, **wg_bearing_load(thick))
     r, phi, tip = grid(s, 5.0, 1.96, 1.0)
     cracked = _system(s, r, phi, tip)
     balls = ring2d.patch_load_vectors(cracked, s.r_race_mm, s.ball_angles_rad, s.patch_half_widths_mm)
@@ -44,7 +46,7 @@ def _refactorising(system, f_global, bore_radial_mm, key):
 
 
 # (cam w0 as a share of the study's, ball loads as a multiple of Stribeck's): partly shut cracks
-MIXED = ((0.005, 1.0), (0.02, 3.0))
+MIXED = ((0.01, 1.0), (0.04, 3.0))   # retuned for the ring as built (issue 49: race radius, width)
 
 
 @pytest.mark.parametrize("cam, load", MIXED)

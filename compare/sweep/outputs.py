@@ -28,6 +28,10 @@ def _rel(analytic, fea) -> float:
     return (fea - float(analytic)) / abs(float(analytic))
 
 
+# each design factor's closed-form n at the point (compare/sweep/task.design_n)
+N_COLUMNS = ("ring", "cup_tooth_root", "wg_inner_ring", "wg_outer_ring")
+
+
 def records_frame(records: list[dict], varied: list[str]) -> pd.DataFrame:
     """The tidy table of a sweep, one row per (point, quantity), in point order."""
     rows = []
@@ -35,6 +39,7 @@ def records_frame(records: list[dict], varied: list[str]) -> pd.DataFrame:
         head = {"point": rec["index"], "status": rec["status"], "error": rec.get("error"),
                 "cached": rec.get("cached", False), "elapsed_s": rec.get("elapsed_s"), "dofs": rec.get("dofs")}
         head.update({key: rec["inputs"].get(key) for key in varied})
+        head.update({f"n_{name}": (rec.get("design_n") or {}).get(name) for name in N_COLUMNS})
         if rec["status"] != "ok" or not rec.get("fea"):
             rows.append({**head, "quantity": None})
             continue
@@ -46,10 +51,11 @@ def records_frame(records: list[dict], varied: list[str]) -> pd.DataFrame:
                 row[variant] = beside.get(variant)
                 row[f"{variant}_rel_error"] = _rel(beside.get(variant), q["value"])
             rows.append(row)
-    columns = (["point", "status", "error", "cached", "elapsed_s", "dofs", *varied, "quantity", "unit", "fea",
+    columns = (["point", "status", "error", "cached", "elapsed_s", "dofs", *varied,
+                *(f"n_{name}" for name in N_COLUMNS), "quantity", "unit", "fea",
                 "fea_uncertainty", "analytic_key"] + [c for v in VARIANTS for c in (v, f"{v}_rel_error")])
     frame = pd.DataFrame(rows, columns=columns)
-    for col in ("fea", "fea_uncertainty", "elapsed_s", *VARIANTS, *(f"{v}_rel_error" for v in VARIANTS)):
+    for col in ("fea", "fea_uncertainty", "elapsed_s", *(f"n_{n}" for n in N_COLUMNS), *VARIANTS, *(f"{v}_rel_error" for v in VARIANTS)):
         frame[col] = pd.to_numeric(frame[col], errors="coerce")
     return frame
 

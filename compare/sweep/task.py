@@ -161,7 +161,24 @@ def _compute(spec: PointSpec, task: TaskFn | None) -> dict:
             entry["published"] = entry["corrected"] = None
     mesh = result.get("mesh") or {}
     return {"status": "ok", "error": None, "fea": fea, "analytic": analytic, "dofs": mesh.get("dofs"),
-            "warnings": sorted(notes)}
+            "warnings": sorted(notes), "design_n": design_n(params)}
+
+
+def design_n(params) -> dict[str, float | None]:
+    """Each design factor's n at this point, closed form (analytic/design_factors.py): the sweep's n columns."""
+    from strainwave.analytic import design_factors as df
+    out = {}
+    for name, build in DESIGN_BUILDERS.items():
+        try:
+            n = getattr(df, build)(params, None, False).n
+        except ValueError:      # a point the factor's closed form cannot take (the bearing does not fit)
+            n = None
+        out[name] = n if n is None or math.isfinite(n) else None
+    return out
+
+
+DESIGN_BUILDERS = {"ring": "ring_factor", "cup_tooth_root": "cup_tooth_root_factor", "wg_inner_ring": "wg_inner_ring_factor",
+                   "wg_outer_ring": "wg_outer_ring_factor"}
 
 
 def _unit(text: str) -> str:

@@ -16,7 +16,7 @@ import math
 from dataclasses import dataclass
 from typing import Callable
 
-__all__ = ["ComponentFactor", "DesignVerdict", "design_verdict", "stress_factors", "factor_band", "REQUIRED_SOURCE"]
+__all__ = ["ComponentFactor", "DesignVerdict", "design_verdict", "factor_band", "REQUIRED_SOURCE"]
 
 REQUIRED_SOURCE = "ewg_drive.permissible_safety, seed 003 eq 12 (the seed's [n], 1.3..1.5)"
 
@@ -33,12 +33,26 @@ class ComponentFactor:
     load: str                 # the load it is at
     reason: str = ""          # why it is not evaluated
     band: tuple[float, float] | None = None   # the factor's lowest and highest over its stresses' GCI bands
+    static_n: float | None = None             # R_p0.2 over the cycle's peak (analytic/design_method.py)
+    fatigue: dict | None = None               # the factor's inputs (design.csv's row, FatigueFactor.to_dict)
+
+    @classmethod
+    def of(cls, factor) -> "ComponentFactor":
+        """The verdict's entry for an ``analytic.design_method.FatigueFactor``."""
+        return cls(factor.component, factor.title, factor.n,
+                   f"{factor.criterion}: sigma_a {factor.amplitude_MPa:.4g} MPa ({factor.amplitude_source}), sigma_m "
+                   f"{factor.mean_MPa:.4g} MPa ({factor.mean_source}), K = {factor.notch:.3g} ({factor.notch_source}); "
+                   f"{factor.strength.name}", factor.notch * factor.amplitude_MPa, factor.strength.fatigue_limit_MPa,
+                   factor.load, band=factor.band, static_n=factor.static_n, fatigue=factor.to_dict())
 
     def verdict(self, required: float) -> str:
-        """PASS or FAIL against [n]; UNDECIDED where its band straddles [n]; NOT EVALUATED without a factor."""
+        """PASS or FAIL against [n] (and, where it is given, the static check n_static >= 1); UNDECIDED where its
+        band straddles [n]; NOT EVALUATED without a factor."""
         n = self.safety_factor
-        if n is None or not math.isfinite(n):
+        if n is None or math.isnan(n):   # inf: no demand (a compressive mean, no amplitude): passes
             return "NOT EVALUATED"
+        if self.static_n is not None and self.static_n < 1.0:
+            return "FAIL"
         low, high = self.band or (n, n)
         if min(low, n) >= required:
             return "PASS"
@@ -52,7 +66,7 @@ class ComponentFactor:
                 "required": required, "passed": self.passed(required), "verdict": self.verdict(required),
                 "band": None if self.band is None else list(self.band), "definition": self.definition,
                 "stress_MPa": self.stress_MPa, "limit_MPa": self.limit_MPa, "load": self.load,
-                "reason": self.reason}
+                "reason": self.reason, "static_n": self.static_n, "fatigue": self.fatigue}
 
 
 @dataclass(frozen=True)
@@ -89,23 +103,6 @@ class DesignVerdict:
         return {"passed": self.passed, "headline": self.headline(), "required_safety_factor": self.required,
                 "required_source": REQUIRED_SOURCE, "factors": [f.to_dict(self.required) for f in self.factors],
                 "failing": [f.component for f in self.failing]}
-
-
-def stress_factors(stresses: dict, titles: dict[str, str], components: tuple[str, ...]) -> list[ComponentFactor]:
-    """The material fatigue factor of every component's stress field at the rated load (rated_stress); a
-    component without a field is listed as not evaluated."""
-    out = []
-    for component in components:
-        at = stresses.get(component)
-        if at is None:
-            out.append(ComponentFactor(component, titles[component], None, "material-only factor sigma_-1 / "
-                                       "sigma_vM,peak", None, None,
-                                       "", "its FEA case or stress field failed (see the cases table)"))
-            continue
-        out.append(ComponentFactor(component, titles[component], at.safety_factor,
-                                   at.note, at.peaks.peak_von_mises_MPa,
-                                   at.fatigue_limit_MPa, at.load.describe()))
-    return out
 
 
 def factor_band(factor: Callable[..., float], *stresses: tuple[float, float | None]) -> tuple[float, float] | None:

@@ -22,7 +22,7 @@ from strainwave.compare.validate.check_set import CheckSet, build_checks
 from strainwave.compare.validate.checks import Check
 from strainwave.compare.validate.designer_table import designer_table
 from strainwave.compare.validate.run_record import run_record
-from strainwave.compare.validate.design import DesignVerdict, design_verdict, stress_factors
+from strainwave.compare.validate.design import DesignVerdict, design_verdict
 from strainwave.compare.validate.fea_book import FeaBook
 from strainwave.compare.validate.gci_table import gci_rows
 from strainwave.compare.validate.isolated import stop_descendants
@@ -37,8 +37,8 @@ from strainwave.compare.validate.report_md import write_markdown
 from strainwave.compare.validate.results import now_utc, plain, versions, write_results
 from strainwave.compare.validate.case_progress import CaseProgress
 from strainwave.compare.validate.runner import CaseOutcome, run_case
-from strainwave.compare.validate.wg_bearing_checks import STUDY as WG_BEARING_STUDY, fatigue_factor as bearing_fatigue_factor
-from strainwave.compare.validate.wg_cup_checks import STUDY as WG_CUP_STUDY, fatigue_factor, wg_record
+from strainwave.compare.validate.wg_bearing_checks import STUDY as WG_BEARING_STUDY
+from strainwave.compare.validate.wg_cup_checks import STUDY as WG_CUP_STUDY, wg_record
 
 ORDER = 2   # quadratic elements, the fea/ default (curved P2)
 
@@ -90,7 +90,7 @@ class Outcome:
         lines.append(f"validation (do the closed forms hold?): {'PASS' if self.passed else 'FAIL'}")
         if self.design is not None:
             lines.append(f"design (does the drive meet [n] at the rated load?): {self.design.headline()}")
-        beside = [n for n in ("report.pdf", "checks.csv", "gci.csv", "stress.csv") if (self.out_dir / n).exists()]
+        beside = [n for n in ("report.pdf", "checks.csv", "gci.csv", "stress.csv", "design.csv") if (self.out_dir / n).exists()]
         lines.append(f"report: {self.out_dir / 'report.html'}" + (f" (beside it: {', '.join(beside)})" if beside else ""))
         return "\n".join(lines)
 
@@ -274,23 +274,31 @@ def _metadata(params, quick: bool, step: bool, plan, outcomes, steps, timings: d
 
 def _designer_lines(summary: dict) -> list[str]:
     """The report's opening lines: seed 003's Z_R,min and seed 000's crack headline, both from FEA-confirmed forms."""
-    from strainwave.analytic.summary import crack_headline_lines, designer_headline
-    return ((designer_headline(summary["seed003"]) if "seed003" in summary else [])
+    from strainwave.analytic.summary import crack_headline_lines, design_lines, designer_headline
+    return ((design_lines(summary["design"]) if "design" in summary else [])
+            + (designer_headline(summary["seed003"]) if "seed003" in summary else [])
             + (crack_headline_lines(summary["crack_headline"]) if "crack_headline" in summary else []))
 
 
 def _design(params, book, plan, stresses) -> tuple[dict, object]:
-    """(the cup-on-the-wave-generator record, the design verdict): every reported component's stress factor,
-    the cup's fatigue factor on its revolution cycle and the bearing ring's on the cam when those cases ran."""
+    """(the cup-on-the-wave-generator record, the design verdict): every factor by the one method of
+    analytic/design_method.py on the FEA's cycles where the studies ran (compare/validate/design_fea.py)."""
     from strainwave.compare.validate.artifacts import COMPONENT_TITLES
+    from strainwave.compare.validate.design_fea import design_factors_from_fea
+    from strainwave.fea.ring_compression import STUDY as RING_STUDY
 
     wg_cup = wg_record(book, plan.label_of(WG_CUP_STUDY) or "", params)
-    factors = stress_factors(stresses, COMPONENT_TITLES, tuple(c for c, _ in plan.reported()))
-    if plan.label_of(WG_CUP_STUDY):
-        factors.append(fatigue_factor(wg_cup))
-    if plan.label_of(WG_BEARING_STUDY):
-        factors.append(bearing_fatigue_factor(book, plan.label_of(WG_BEARING_STUDY), params))
+    labels = {s: plan.label_of(s) for s in (RING_STUDY, WG_CUP_STUDY, WG_BEARING_STUDY)}
+    factors = design_factors_from_fea(params, book, labels, stresses, COMPONENT_TITLES,
+                                      tuple(c for c, _ in plan.reported()), wg_cup)
     return wg_cup, design_verdict(params, factors)
+
+
+def _design_extras(params) -> dict:
+    """The materials table and the wave generator bearing's ratings (Hertz p0, ISO 76, ISO 281 L10) beside the
+    factors (analytic/design_factors.py)."""
+    from strainwave.analytic import design_factors as df
+    return {"materials": df.materials_table(params), "ratings": df.bearing_ratings(params)}
 
 
 def _prepare(out_dir: Path) -> ResultCache:
@@ -379,7 +387,7 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
             "metadata": _metadata(params, quick, step, plan, outcomes, steps, timings, out_dir),
             "designer": _designer_lines(summary),
             "designer_table": designer_table(summary),
-            "design": design.to_dict(),
+            "design": {**design.to_dict(), **_design_extras(params)},
             "inputs": _inputs(plan, book, params),
             "stress_at_rated": {c: s.to_dict() for c, s in stresses.items()},
             "cup_wave_generator": wg_cup,

@@ -127,7 +127,8 @@ def _design_section(doc: dict) -> list[str]:
              f"<p>Each component's factor against [n] = {design['required_safety_factor']:g} "
              f"({escape(design['required_source'])}). {escape(rt.DESIGN_BAND_NOTE)}</p>",
              _table(rt.DESIGN_COLUMNS, [rt.design_row(f) for f in design["factors"]], result_col=5,
-                    table_id="design-table")]
+                    table_id="design-table"),
+             '<ul class="design-notes">' + "".join(f"<li>{escape(t)}</li>" for t in rt.design_notes(design)) + "</ul>"]
     tips = [t for t in (rt.singular_line(c, s) for c, s in doc.get("stress_at_rated", {}).items()) if t]
     if tips:
         parts.append('<ul class="tip">' + "".join(f"<li>{escape(t)}</li>" for t in tips) + "</ul>")

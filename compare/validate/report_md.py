@@ -41,6 +41,7 @@ def render_markdown(doc: dict) -> str:
                   f"Each component's factor against [n] = {design['required_safety_factor']:g} "
                   f"({design['required_source']}). {rt.DESIGN_BAND_NOTE}", ""]
         lines += _table(rt.DESIGN_COLUMNS, [rt.design_row(f) for f in design["factors"]]) + [""]
+        lines += [f"- {t}" for t in rt.design_notes(design)] + [""]
         lines += [f"- {t}" for t in (rt.singular_line(c, s) for c, s in doc.get("stress_at_rated", {}).items()) if t]
         lines += [""]
     failing = [c for c in doc["checks"] if not c["passed"]]

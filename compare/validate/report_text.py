@@ -70,9 +70,26 @@ def design_row(f: dict) -> tuple[str, ...]:
     result = f.get("verdict") or ("PASS" if f["passed"] else ("NOT EVALUATED" if f["safety_factor"] is None else "FAIL"))
     band = f.get("band")
     factor = num(f["safety_factor"], 3) + (f" ({band[0]:.3g}..{band[1]:.3g})" if band else "")
+    fat = f.get("fatigue") or {}
+    extra = "".join([f"; static n = {fat['static_n']:.3g} (R_p0.2)" if fat.get("static_n") is not None else "",
+                     f"; advice: {fat['advice']}" if fat.get("advice") else ""])
     return (f["title"], factor, num(f["required"], 3), num(f["stress_MPa"], 4),
-            num(f["limit_MPa"], 4), result, f["load"] or "-", f["definition"] + (f"; {f['reason']}" if f["reason"]
-                                                                                  else ""))
+            num(f["limit_MPa"], 4), result, f["load"] or "-", f["definition"] + extra + (f"; {f['reason']}" if f["reason"]
+                                                                                          else ""))
+
+
+def design_notes(design: dict) -> list[str]:
+    """The materials table and the wave generator bearing's ratings, as sentences under the design table."""
+    out = [f"Material of {part}: {m['name']}: sigma_-1 {m['fatigue_limit_MPa']:g}, R_p0.2 {m['yield_strength_MPa']:g}, "
+           f"R_m {m['ultimate_strength_MPa']:g} MPa ({m['source']})" for part, m in design.get("materials", {}).items()]
+    r = design.get("ratings")
+    if r:
+        out.append(f"Wave generator bearing: Hertz p0 = {r['p0_max_MPa']:.4g} MPa on the most loaded ball (Q = "
+                   f"{r['max_ball_load_N']:.4g} N), static n = {r['static_contact_n']:.3g} ({r['static_contact_source']}); "
+                   f"C_r = {r['C_r_N']:.4g} N, L10 = {r['L10_h']:.4g} h ({r['L10_note']})")
+    out.append("No factor: the flexspline's diaphragm (no study resolves it: the wave generator study holds the closed "
+               "end round); the buckling torque and the ratcheting torque (not yet computed)")
+    return out
 
 
 def singular_line(component: str, s: dict) -> str | None:
@@ -220,7 +237,7 @@ def input_mesh_rows(i: dict) -> list[tuple[str, ...]]:
 
 
 RATED_COLUMNS = ("component", "rated load", "peak von Mises (MPa)", "at (x, y, z) mm", "peak displacement (mm)",
-                 "fatigue limit (MPa)", "safety factor", "note")
+                 "fatigue limit (MPa)", "sigma_-1 / peak (not the design factor: see the design table)", "note")
 
 
 def point(xyz) -> str:

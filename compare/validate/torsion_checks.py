@@ -197,7 +197,7 @@ def cup_crack_allowances(params, depth_mm: float) -> dict[str, float]:
 def bearing_crack_curve(params, depth_mm: float, radial_force_N: float) -> Reference:
     """delta u_H / F_r in mm/N: the added radial compliance of the cracked ring (seed 000)."""
     wg, cr, E = params.wave_generator, params.cracks, params.material.youngs_modulus_MPa
-    du = {v: cracks.bearing_displacement_mm(radial_force_N, wg.bearing_inner_ring_thickness_mm, wg.beta,
+    du = {v: cracks.bearing_displacement_mm(radial_force_N, wg.bearing_width_mm, wg.beta,
                                             wg.contact_semi_axes_mm, depth_mm, E, cr.surface_crack_shape_factor, v)
           / radial_force_N for v in Variant}
     return Reference(du[Variant.PUBLISHED], du[Variant.CORRECTED], "mm/N", "seed 000 du_H / F_r")

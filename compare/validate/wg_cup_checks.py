@@ -16,7 +16,6 @@ from __future__ import annotations
 import math
 
 from strainwave.analytic import ring, ring_prescribed
-from strainwave.analytic.cup_fatigue import cup_fatigue_of
 from strainwave.analytic.reference import Reference
 from strainwave.compare.validate.checks import Check, evaluate, fea_tolerance, gci_basis, not_evaluated
 from strainwave.compare.validate.fea_book import FeaBook
@@ -81,7 +80,8 @@ def _value(book: FeaBook, label: str, name: str) -> dict | None:
 
 
 def wg_record(book: FeaBook, label: str, params) -> dict:
-    """The numbers issue 34 asks for, and the fatigue safety of the revolution cycle (for the design verdict)."""
+    """The numbers issue 34 asks for, and the revolution cycle the design factor ``cup_tooth_root`` takes
+    (compare/validate/design_fea.py: its n is in design.csv, not here)."""
     result = book.result(label)
     if result is None:
         return {}
@@ -89,24 +89,13 @@ def wg_record(book: FeaBook, label: str, params) -> dict:
     record = {"study": STUDY, "case": label, "quantities": {n: _value(book, label, n) for n in names}}
     a, m = result.quantities.get("cycle_amplitude_MPa"), result.quantities.get("cycle_mean_MPa")
     if a is not None and m is not None:
-        record["fatigue"] = cup_fatigue_of(params, a.value, m.value).to_dict() | {
-            "amplitude_gci_MPa": a.uncertainty, "mean_gci_MPa": m.uncertainty,
-            "band": _band(params, (a.value, a.uncertainty), (m.value, m.uncertainty)),
+        record["fatigue"] = {
+            "amplitude_MPa": a.value, "mean_MPa": m.value, "amplitude_gci_MPa": a.uncertainty,
+            "mean_gci_MPa": m.uncertainty,
             "where": "band outer fibre (tooth root circle, smooth band) at mid-width, rigid cam, nonlinear, rated T",
-            "notch": "K_sigma = ewg_drive.stress_concentration on the amplitude (the tooth root's notch)"}
+            "design_factor": "cup_tooth_root (design.csv): the fitted tooth factors, the mesh load and the shear added"}
     record["closed_form_axis_stresses_MPa"] = {axis: references(params, axis).variants() for axis in ("major", "minor")}
     return record
-
-
-def _band(params, amplitude: tuple[float, float | None], mean: tuple[float, float | None]):
-    """The governing factor's band over the amplitude's and the mean's GCI bands (None without both GCIs)."""
-    from strainwave.compare.validate.design import factor_band
-
-    def governing(a: float, m: float) -> float:
-        f = cup_fatigue_of(params, max(a, 0.0), m)
-        return min(f.n_eq13, f.n_goodman)
-    band = factor_band(governing, amplitude, mean)
-    return None if band is None else list(band)
 
 
 def wg_lines(record: dict) -> list[tuple[str, str]]:
@@ -133,32 +122,5 @@ def wg_lines(record: dict) -> list[tuple[str, str]]:
     f = record.get("fatigue")
     if f:
         rows.append(("revolution cycle at rated T: amplitude / mean", f"{f['amplitude_MPa']:.4g} / {f['mean_MPa']:.4g} MPa"))
-        rows.append(("safety: seed 003 eq 13 / Goodman", f"{f['n_eq13']:.3g} / {f['n_goodman']:.3g}"))
+        rows.append(("design factor", "Flexspline cup, tooth root on the wave generator: see the design table"))
     return rows
-
-
-def fatigue_factor(record: dict):
-    """The design verdict's entry for the cup as it cycles on the wave generator: the smaller of seed 003's
-    eq 13 and Goodman's factor on the FEA's revolution cycle (None when the case did not run)."""
-    from strainwave.compare.validate.design import ComponentFactor
-
-    f = record.get("fatigue")
-    if not f:
-        return ComponentFactor("cup_wave_generator", "Flexspline cup on the wave generator", None,
-                               "min(seed 003 eq 13, Goodman) on the revolution cycle", None, None, "",
-                               "its FEA case did not run or failed (see the cases table)")
-    n = min(f["n_eq13"], f["n_goodman"])
-    which = "seed 003 eq 13" if f["n_eq13"] <= f["n_goodman"] else "Goodman"
-    return ComponentFactor("cup_wave_generator", "Flexspline cup on the wave generator", n,
-                           f"min(seed 003 eq 13 = {f['n_eq13']:.3g}, Goodman = {f['n_goodman']:.3g}), {which} "
-                           f"governs: stress amplitude {f['amplitude_MPa']:.4g} MPa about a mean of {f['mean_MPa']:.4g} "
-                           f"MPa over one input revolution ({f['where']}; {f['notch']}){_band_words(f)}",
-                           f["amplitude_MPa"], None, "wave generator insertion + rated output torque",
-                           band=tuple(f["band"]) if f.get("band") else None)
-
-
-def _band_words(f: dict) -> str:
-    if not f.get("band"):
-        return "; no band: the cycle's stresses carry no GCI"
-    return (f"; band {f['band'][0]:.3g}..{f['band'][1]:.3g} over the amplitude's GCI +-{abs(f['amplitude_gci_MPa']):.2g} "
-            f"MPa and the mean's +-{abs(f['mean_gci_MPa']):.2g} MPa")

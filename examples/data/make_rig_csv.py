@@ -4,13 +4,14 @@ shaft's Saint-Venant flexibility (as a crack would make it), plus encoder noise 
 
     python examples/data/make_rig_csv.py [OUT.csv]
 """
-import math
 import sys
 from pathlib import Path
 
 import numpy as np
 
 import strainwave as sw
+from strainwave.analytic.torsion import shaft_flexibility
+from strainwave.analytic.variant import Variant
 
 EXTRA_COMPLIANCE = 0.08   # the specimen's flexibility over the uncracked shaft's
 NOISE_RAD = 2e-6
@@ -19,10 +20,10 @@ NOISE_RAD = 2e-6
 def main() -> None:
     out = Path(sys.argv[1] if len(sys.argv) > 1 else Path(__file__).resolve().parents[1] / "rig.csv")
     params = sw.load_params()
-    shaft, material = params.output_shaft, params.material
-    shear_MPa = material.youngs_modulus_MPa / (2 * (1 + material.poisson_ratio))
-    flexibility = 32 * shaft.length_mm / (math.pi * shear_MPa * (shaft.outer_diameter_mm ** 4
-                                                                 - shaft.inner_diameter_mm ** 4))
+    shaft = params.output_shaft
+    # the hollow shaft's Saint-Venant flexibility at the FEA's own shear modulus E/(2(1+nu))
+    flexibility = shaft_flexibility(shaft.length_mm, shaft.outer_diameter_mm, shaft.inner_diameter_mm,
+                                    params.material.implied_shear_modulus_MPa, Variant.CORRECTED)
     t = np.linspace(0.0, 2.0, 600)
     torque = 1e6 * np.sin(2 * np.pi * t)
     twist = (1 + EXTRA_COMPLIANCE) * flexibility * torque + np.random.default_rng(52).normal(0.0, NOISE_RAD, t.size)
