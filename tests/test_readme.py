@@ -62,7 +62,8 @@ def test_every_readme_command_parses_and_names_files_that_ship():
     assert len(commands) >= 10
     for argv in commands:
         args = build_parser().parse_args(argv[1:argv.index(">")] if ">" in argv else argv[1:])
-        recording = getattr(args, "recording", None)
-        if recording is not None:
-            assert (root / recording).is_file(), recording
+        for name in ("recording", "table"):    # a sample recording, a stiffness table
+            shipped = getattr(args, name, None)
+            if shipped is not None:
+                assert (root / shipped).is_file(), shipped
     assert any(getattr(build_parser().parse_args(a[1:]), "inp", None) for a in commands if ">" not in a)
