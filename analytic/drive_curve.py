@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from strainwave.analytic.mesh_contact import MeshPath, solve_torque_path, torque_history
+from strainwave.fea.mesh_contact import MeshPath, solve_torque_path, torque_history
 from strainwave.analytic.mesh_drive import MeshDesign, bearing_twist_rad, mesh_system
 
 __all__ = ["DriveCurve", "predict_curve", "read_catalogue_numbers", "transmission_error_rad",

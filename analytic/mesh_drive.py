@@ -13,7 +13,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from strainwave.analytic import mesh_compliance as mc
-from strainwave.analytic.mesh_contact import MeshSystem
+from strainwave.fea.mesh_contact import MeshSystem
 from strainwave.analytic.mesh_kinematics import MeshGeometry, sliced_clearances
 from strainwave.analytic.wg_bearing import BallBearing, hertz_remainder_twist_rad, linearised_foundation
 

@@ -22,49 +22,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from strainwave.geometry.involute import ToothSpec, cup_tooth_spec, half_angle_rad
+from strainwave.geometry.involute import half_angle_rad
+from strainwave.geometry.mesh_geometry import MeshGeometry, mesh_geometry
 
 __all__ = ["MeshGeometry", "Engagement", "mesh_geometry", "engagement", "engagement_zone_rad", "study_loads"]
-
-
-@dataclass(frozen=True)
-class MeshGeometry:
-    fs: ToothSpec                  # the cup's external teeth
-    cs_space: ToothSpec            # the CS's tooth space, as the external tooth of Z_c that fills it
-    cs_tooth: ToothSpec            # the CS's internal teeth (the complement of that space)
-    r_neutral_mm: float            # FS rim's neutral line (mid-wall under the teeth)
-    r_bore_mm: float
-    cs_tip_mm: float               # CS internal tip radius
-    w0_mm: float
-    backlash_mm: float             # per flank, circumferential, at the CS pitch circle
-    face_width_mm: float
-    cs_outer_radius_mm: float
-
-    @property
-    def z_f(self) -> int:
-        return self.fs.teeth
-
-    @property
-    def z_c(self) -> int:
-        return self.cs_space.teeth
-
-
-def mesh_geometry(params) -> MeshGeometry:
-    fc, cs, g = params.flexspline_cup, params.circular_spline, params.gear
-    fs = cup_tooth_spec(params)
-    z_c = fc.teeth + g.wave_number
-    x = fs.shift_coef
-    space = ToothSpec(z_c, fc.module_mm, cs.pressure_angle_deg, cs.addendum_coefficient, 1.35,
-                      internal=False, shift_coef=x)
-    # the CS's own teeth: the complement of that space; internal ToothSpec radii carry no shift, so it goes
-    # into the addendum and dedendum: tip r_p + (x - h_a) m, root r_p + (x + 1.35) m
-    cs_tooth = ToothSpec(z_c, fc.module_mm, cs.pressure_angle_deg, cs.addendum_coefficient - x, 1.35 + x,
-                         internal=True, shift_coef=-x)
-    cs_tip = space.pitch_radius_mm + (x - cs.addendum_coefficient) * fc.module_mm
-    r_bore = 0.5 * fc.pitch_diameter_mm - fc.wall_thickness_mm
-    return MeshGeometry(fs, space, cs_tooth, r_bore + 0.5 * fc.wall_thickness_mm, r_bore, cs_tip,
-                        g.radial_deformation_mm, cs.backlash_mm, min(cs.face_width_mm, 0.2 * fc.pitch_diameter_mm),
-                        0.5 * cs.outer_diameter_mm)
 
 
 @dataclass(frozen=True)
@@ -154,7 +115,7 @@ def pairs_at(geo: MeshGeometry, psi_rad: float) -> dict:
 def study_loads(params, quick: bool = False) -> dict:
     """The tooth-mesh study's inputs as numbers: the pairs at each WG angle, the torque history and facts."""
     from strainwave.analytic.catalogue_power_law import catalogue_curve_Nm
-    from strainwave.analytic.mesh_contact import torque_history
+    from strainwave.fea.mesh_contact import torque_history
     geo = mesh_geometry(params)
     n = ANGLES[bool(quick)]
     angles = [pairs_at(geo, 2 * np.pi / geo.z_c * k / n) for k in range(n)]

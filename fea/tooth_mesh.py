@@ -6,7 +6,7 @@ of contact radii; the teeth are alike, so tooth j on tooth k is the influence of
 wave-generator angle the kinematic engagement (analytic/mesh_engagement.py, passed in as numbers by the
 registry's ``load_inputs``) names the flank pairs, their contact radii, unloaded clearances, levers and
 slides; the compliance of those pairs (FS rim + CS teeth, in series along the line of action) and the
-frictional contact solve along 0 -> +T -> -T -> +T (analytic/mesh_contact.py, the agreed solver, not a
+frictional contact solve along 0 -> +T -> -T -> +T (fea/mesh_contact.py, the agreed solver, not a
 closed form) give the loop. Every reported number is that chain on one mesh, so each carries its GCI.
 
 Read from the loop with compare/diagnose/catalogue_values.py's rules (the same as a recording):
@@ -102,7 +102,7 @@ def pair_compliance(infl: Mapping, pairs: Mapping, z_f: int, z_c: int) -> np.nda
 
 def influences(params, mesh: Mapping, h_mm: float, *, plane_stress: bool = False) -> tuple[dict, dict]:
     """The FS rim's and the CS sector's flank influences on one mesh size, and the mesh facts."""
-    from strainwave.analytic.mesh_engagement import mesh_geometry
+    from strainwave.geometry.mesh_geometry import mesh_geometry
     geo = mesh_geometry(params)
     m = params.material
     # plane strain: the face width (30 mm) is 15-40x the tooth and the rim thickness (docs/decisions/064)
@@ -138,7 +138,7 @@ def influences(params, mesh: Mapping, h_mm: float, *, plane_stress: bool = False
 
 def systems(infl: Mapping, mesh: Mapping) -> list:
     """One MeshSystem per wave-generator angle."""
-    from strainwave.analytic.mesh_contact import MeshSystem
+    from strainwave.fea.mesh_contact import MeshSystem
     out = []
     for pairs in mesh["angles"]:
         C = pair_compliance(infl, pairs, mesh["z_f"], mesh["z_c"])
@@ -187,7 +187,7 @@ def loop_values(paths: list, rated_Nmm: float) -> dict:
     # twist is undetermined (it read 0 and -0.99 arcmin on the two gears); friction's loss is its work per cycle
     lm = LOST_MOTION_FRACTION * rated_Nmm
     v["lost_motion_arcmin"] = ARCMIN * (_branch_twist(p, lm, -1) - _branch_twist(p, -lm, +1))
-    from strainwave.analytic.mesh_contact import loop_area_Nmm_rad
+    from strainwave.fea.mesh_contact import loop_area_Nmm_rad
     v["friction_loss"] = loop_area_Nmm_rad(p)       # the work flank friction takes per +/-rated cycle
     k_peak = int(np.argmax(T))
     at_rated = np.array([q.twist_rad[int(np.argmax(q.torque_Nmm))] for q in paths])
@@ -206,7 +206,7 @@ def crack_signature(infl: Mapping, mesh: Mapping) -> tuple[dict, np.ndarray]:
     compliance (solid-body sector, cracked minus uncracked, same mesh size) on tooth 0's +flank pair; the
     -flank load closes the crack, so it is left uncracked (the FE's slot would stay open). Returns the readings
     and the twist change at rated torque against tooth 0's angle from the major axis."""
-    from strainwave.analytic.mesh_contact import solve_torque_path
+    from strainwave.fea.mesh_contact import solve_torque_path
     ramp = np.linspace(0.0, mesh["rated_torque_Nmm"], 21)
     change = []
     for pairs in mesh["crack_angles"]:
@@ -218,7 +218,7 @@ def crack_signature(infl: Mapping, mesh: Mapping) -> tuple[dict, np.ndarray]:
             if cracked and hit.size:
                 w = _interp_weights(infl["fs_radii"], pairs["fs_radius_mm"][hit])[0]
                 Ck[hit[0], hit[0]] += float(w @ infl["crack_delta"] @ w)
-            from strainwave.analytic.mesh_contact import MeshSystem
+            from strainwave.fea.mesh_contact import MeshSystem
             sys_ = MeshSystem(pairs["clearance_mm"], Ck, pairs["lever_mm"], pairs["slide_mm_per_rad"], 0.0,
                               mesh["rim_radius_mm"])
             twists.append(solve_torque_path(sys_, ramp).twist_rad[-1])
@@ -374,7 +374,7 @@ class ToothMesh(StudyVariant):
         t0 = time.perf_counter()
         infl, facts = influences(self.params, self.mesh_inputs, refinement)
         t1 = time.perf_counter()
-        from strainwave.analytic.mesh_contact import solve_torque_path
+        from strainwave.fea.mesh_contact import solve_torque_path
         history = np.asarray(self.mesh_inputs["torque_history_Nmm"])
         paths = [solve_torque_path(s, history) for s in systems(infl, self.mesh_inputs)]
         crack, change = crack_signature(infl, self.mesh_inputs)

@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from strainwave.analytic.mesh_contact import (MeshSystem, loop_area_Nmm_rad, normal_forces, solve_torque_path,
+from strainwave.fea.mesh_contact import (MeshSystem, loop_area_Nmm_rad, normal_forces, solve_torque_path,
                                               torque_history)
 
 
