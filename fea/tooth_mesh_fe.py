@@ -194,6 +194,17 @@ def sector_model(spec, r_held_mm: float, teeth_each_side: int, h_mm: float, lame
                     {"mesh": t1 - t0, "assemble": t2 - t1, "solve": t3 - t2})
 
 
+def _boundary_facet_teeth(model: RimSolve) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The boundary facets, their mid radii, the tooth each faces and its angle off that tooth's centre line."""
+    mesh = model.mesh
+    bf = mesh.boundary_facets()
+    mid = mesh.p[:, mesh.facets[:, bf]].mean(axis=1)
+    pitch = 2 * math.pi / model.teeth
+    rel = np.angle(np.exp(1j * (np.arctan2(mid[1], mid[0]) - model.centre_angle_rad)))
+    nearest = np.round(rel / pitch)
+    return bf, np.hypot(*mid), nearest.astype(int) % model.teeth, rel - nearest * pitch
+
+
 def flank_loads(model: RimSolve, teeth: np.ndarray, radius_mm: np.ndarray, band_mm: float,
                 side: int) -> tuple[np.ndarray, np.ndarray]:
     """Unit flank loads (columns, in u~ dofs) pressing on flank ``side`` (+1: the tooth's +theta flank) of each
@@ -201,21 +212,14 @@ def flank_loads(model: RimSolve, teeth: np.ndarray, radius_mm: np.ndarray, band_
 
     The rim's loads are balanced in moment by a uniform tangential shear on the bore."""
     from skfem import FacetBasis, ElementVector, LinearForm
-    mesh = model.mesh
-    bf = mesh.boundary_facets()
-    mid = mesh.p[:, mesh.facets[:, bf]].mean(axis=1)
-    r_mid = np.hypot(*mid)
-    pitch = 2 * math.pi / model.teeth
-    rel = np.angle(np.exp(1j * (np.arctan2(mid[1], mid[0]) - model.centre_angle_rad)))
-    which = np.round(rel / pitch).astype(int) % model.teeth
-    off = np.angle(np.exp(1j * (rel - np.round(rel / pitch) * pitch)))
+    bf, r_mid, which, off = _boundary_facet_teeth(model)
     cols, moments = [], []
     ndof = model.T.shape[0]
     for j, rc in zip(teeth, radius_mm):
         sel = bf[(which == j % model.teeth) & (np.sign(off) == side) & (np.abs(r_mid - rc) < band_mm + 0.5 * model.h_mm)]
         if sel.size == 0:
             raise ValueError(f"tooth {j}: no flank facet near r = {rc:.4g} mm")
-        fb = FacetBasis(mesh, ElementVector(model.basis.elem), facets=sel, intorder=6)
+        fb = FacetBasis(model.mesh, ElementVector(model.basis.elem), facets=sel, intorder=6)
 
         @LinearForm
         def press(v, w):
@@ -268,14 +272,7 @@ def compliance(model: RimSolve, F: np.ndarray) -> np.ndarray:
 
 def _flank_facets(model: RimSolve, side: int, root_mm: float):
     """The boundary facets on flank ``side`` of every tooth (above/below the root circle) and their tooth."""
-    mesh = model.mesh
-    bf = mesh.boundary_facets()
-    mid = mesh.p[:, mesh.facets[:, bf]].mean(axis=1)
-    r_mid = np.hypot(*mid)
-    pitch = 2 * math.pi / model.teeth
-    rel = np.angle(np.exp(1j * (np.arctan2(mid[1], mid[0]) - model.centre_angle_rad)))
-    which = np.round(rel / pitch).astype(int) % model.teeth
-    off = rel - np.round(rel / pitch) * pitch
+    bf, r_mid, which, off = _boundary_facet_teeth(model)
     on_tooth = (r_mid < root_mm - 1e-3) if model.internal else (r_mid > root_mm + 1e-3)
     keep = on_tooth & (np.sign(off) == side)
     return bf[keep], which[keep]
