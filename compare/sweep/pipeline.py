@@ -294,6 +294,16 @@ def _compute(client, specs: dict[str, PointSpec], cache_root: Path, task: TaskFn
     return done
 
 
+def _cached_points(cache: ResultCache, keys: list[str]) -> dict[str, dict]:
+    """The points a cache already holds, each checked against its own key (anything else is recomputed)."""
+    by_key: dict[str, dict] = {}
+    for key in keys:
+        hit = cache.get(key, lambda r: point_record_ok(r, key))
+        if hit is not None:
+            by_key[key] = {**hit, "cached": True}
+    return by_key
+
+
 def run_sweep(study: str, *, vary: list[str], params_path: str | Path | None = None,
               sample_file: str | Path | None = None, scheduler: str | None = None, workers: int | None = None,
               out_dir: Path = Path("reports/sweep"), quick: bool = False, tolerance: float = 0.05,
@@ -323,11 +333,7 @@ def run_sweep(study: str, *, vary: list[str], params_path: str | Path | None = N
     cache = ResultCache(out_dir / "cache")
     started = time.perf_counter()
 
-    by_key: dict[str, dict] = {}
-    for key in keys:
-        hit = cache.get(key, lambda r: point_record_ok(r, key))
-        if hit is not None:
-            by_key[key] = {**hit, "cached": True}
+    by_key = _cached_points(cache, keys)
     # Most elements first: no worker idles at the end (docs/decisions/013-sweep-worker-start-up.md).
     order = sorted(range(len(specs)), key=lambda i: -elements[i])
     todo = {keys[i]: specs[i] for i in order if keys[i] not in by_key}

@@ -327,6 +327,13 @@ def _files(out_dir: Path, outcomes, steps) -> dict:
             "report_pdf": "report.pdf" if chromium() else None}
 
 
+def _check_summary(checks: list[dict]) -> dict:
+    """How many checks, how many pass, which fail and which could not be evaluated."""
+    failed = [c["id"] for c in checks if not c["passed"]]
+    return {"checks": len(checks), "passed": len(checks) - len(failed), "failed": failed,
+            "not_evaluated": [c["id"] for c in checks if c["verdict"] == "not evaluated"]}
+
+
 def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str], None],
                  step: bool | None = None, params_file: str | Path | None = None) -> Outcome:
     """Run the whole validation into ``out_dir``; returns the checks and timings (see module docstring).
@@ -378,12 +385,11 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
     wg_cup, design = _design(params, book, plan, stresses)
     with _stage("reports", timings, progress, 6, total):
         checks = [c.to_dict() for c in check_set.checks]
-        failed = [c["id"] for c in checks if not c["passed"]]
+        summary_row = _check_summary(checks)
         doc = {
             "schema_version": 1,
-            "passed": bool(checks) and not failed,
-            "summary": {"checks": len(checks), "passed": len(checks) - len(failed), "failed": failed,
-                        "not_evaluated": [c["id"] for c in checks if c["verdict"] == "not evaluated"]},
+            "passed": bool(checks) and not summary_row["failed"],
+            "summary": summary_row,
             "metadata": _metadata(params, quick, step, plan, outcomes, steps, timings, out_dir),
             "designer": _designer_lines(summary),
             "designer_table": designer_table(summary),

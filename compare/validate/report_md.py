@@ -23,7 +23,8 @@ def _table(columns, rows) -> list[str]:
     return lines
 
 
-def render_markdown(doc: dict) -> str:
+def _md_headlines(doc: dict) -> list[str]:
+    """Title, the two verdicts, the run, the parameter diff and the design verdict."""
     lines = [f"# {report_title(doc)}", "", f"**{rt.VALIDATION_QUESTION}** {rt.headline(doc)}", "",
              f"**{rt.DESIGN_QUESTION}** {rt.design_headline(doc)}", "", rt.run_line(doc), ""]
     lines += [f"- {line}" for line in run_lines(doc)] + ([""] if run_lines(doc) else [])
@@ -44,11 +45,16 @@ def render_markdown(doc: dict) -> str:
         lines += [f"- {t}" for t in rt.design_notes(design)] + [""]
         lines += [f"- {t}" for t in (rt.singular_line(c, s) for c, s in doc.get("stress_at_rated", {}).items()) if t]
         lines += [""]
+    return lines
+
+
+def _md_failing_and_rated(doc: dict) -> list[str]:
+    """Failing checks, the stress at the rated load, the flexspline on its wave generator."""
+    lines = []
     failing = [c for c in doc["checks"] if not c["passed"]]
     if failing:
         lines += ["## Failing checks", ""]
         lines += [f"- `{c['id']}`: {rt.failing_line(c)}" for c in failing] + [""]
-    images = doc["images"]
     rated = doc.get("stress_at_rated", {})
     if rated:
         lines += ["## Stress at the rated load", ""]
@@ -57,6 +63,14 @@ def render_markdown(doc: dict) -> str:
     if wg_rows:
         lines += ["## Flexspline on the wave generator (stress and fatigue safety)", ""]
         lines += _table(("item", "value"), wg_rows) + [""]
+    return lines
+
+
+def _md_components(doc: dict) -> list[str]:
+    """One section per component: inputs, checks, crack sweep, images."""
+    lines = []
+    images = doc["images"]
+    rated = doc.get("stress_at_rated", {})
     for component, title in rt.components():
         checks = [c for c in doc["checks"] if c["component"] == component]
         lines += [f"## {title}", ""]
@@ -80,6 +94,12 @@ def render_markdown(doc: dict) -> str:
             lines += [f"![{image['caption']}]({image['path']})", "", f"*{image['caption']}*", ""]
         if component in doc.get("views", {}):
             lines += ["An interactive 3D view of this stress field is in report.html.", ""]
+    return lines
+
+
+def _md_appendices(doc: dict) -> list[str]:
+    """The GCI table, NAFEMS, the seed audit, the catalogue drives, cases and timings."""
+    lines = []
     lines += ["## Discretization error (GCI table)", "", rt.GCI_INTRO, ""]
     lines += _table(rt.GCI_COLUMNS, [rt.gci_cells(r) for r in doc.get("gci_table", [])]) + [""]
     nafems = doc.get("nafems")
@@ -101,6 +121,13 @@ def render_markdown(doc: dict) -> str:
     if doc.get("missing_images"):
         lines += ["## Images that could not be made", ""]
         lines += [f"- {m['what']}: {m['reason']}" for m in doc["missing_images"]] + [""]
+    return lines
+
+
+def _md_files(doc: dict) -> list[str]:
+    """The files written beside the report, and the versions."""
+    meta = doc["metadata"]
+    lines = []
     lines += ["## Files", ""]
     lines += [f"- STEP: [{Path(p).name}]({p})" for p in doc["files"]["step"]] or [f"- STEP: {rt.no_step_line(doc)}"]
     lines += [f"- VTU: [{Path(p).name}]({p})" for p in doc["files"]["fields"]]
@@ -109,7 +136,14 @@ def render_markdown(doc: dict) -> str:
         else [f"- {rt.NO_PDF}"]
     lines += [""]
     lines += ["## Versions", ""] + [f"- {k}: {v}" for k, v in meta["versions"].items()] + [""]
-    return "\n".join(lines)
+    return lines
+
+
+
+
+def render_markdown(doc: dict) -> str:
+    lines = _md_headlines(doc) + _md_failing_and_rated(doc) + _md_components(doc) + _md_appendices(doc)
+    return "\n".join(lines + _md_files(doc))
 
 
 def write_markdown(path: Path, doc: dict) -> Path:
