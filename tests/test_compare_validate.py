@@ -363,6 +363,9 @@ FULL_VERDICTS = Path(__file__).parent / "data" / "validate_full_verdicts.json"
 # Verdicts --quick may reach apart from the recorded full run, by check id, with the reason: only where quick
 # still PASSES and only the published side moves. A full `make validate` re-records FULL_VERDICTS and empties this.
 QUICK_VERDICT_EXCEPTIONS: dict[str, str] = {
+    "bearing.crack_compliance": "issue 49's 3 mm ring: the full run's tolerance (10.8 %, mostly its GCI) holds the "
+                                "published form too ('both'); quick's own tolerance excludes it ('corrected'); the "
+                                "asserted corrected form passes in both",
     "cup.crack_compliance": "issue 50: the midpoint of plane stress and plane strain is asserted; quick's best-resolved "
                             "depth is a = 1.12 mm (full: 0.14 mm), where the FEA lies nearer plane stress (-2.8 % of it), "
                             "so the published (plane-stress) form is inside too ('both', passing)",
@@ -389,8 +392,10 @@ def test_quick_verdicts_are_those_of_the_full_run(results):
     reasons = {c["id"]: c["reason_not_evaluated"] for c in results["checks"]}
     unresolved = {k for k, r in reasons.items() if r.startswith("not resolved at --quick")}
     assert unresolved == set(QUICK_NOT_RESOLVED), (unresolved, sorted(QUICK_NOT_RESOLVED))
+    kept = {"corrected", "both"}            # the asserted (corrected) form inside the tolerance
     for k in QUICK_VERDICT_EXCEPTIONS:      # an exception never hides a failure or a lost corrected verdict
-        assert quick[k]["passed"] and quick[k]["verdict"] in (full[k]["verdict"], "both"), (k, quick[k], full[k])
+        assert quick[k]["passed"] and (quick[k]["verdict"] in (full[k]["verdict"], "both")
+                                       or {quick[k]["verdict"], full[k]["verdict"]} <= kept), (k, quick[k], full[k])
 
 # Injected first into <head>: records every script error and console.error, then, once the page has loaded,
 # counts the drawn (non-white) pixels and distinct colours of every 3D view canvas.
