@@ -47,6 +47,7 @@ from strainwave.compare.diagnose.events import find_jump, without_jump
 from strainwave.compare.diagnose.explain import explain
 from strainwave.compare.diagnose.judge import AMBIGUOUS_BIC, BIC_THRESHOLD, MIN_COMPONENT_SIGMAS
 from strainwave.compare.diagnose.locate import Located, locate, locate_effect
+from strainwave.compare.diagnose.mains import find_mains
 from strainwave.compare.diagnose.parallel import usable_workers
 from strainwave.compare.diagnose.quantities import Reading, read_quantities
 from strainwave.compare.diagnose.recording import Recording, TestFlags, parse_recording
@@ -76,6 +77,10 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
         # the baseline is the drive's curve: its bend above T1 is taken out of the twist, its first slope stays
         rec = dataclasses.replace(rec, response=rec.response - base.curve.departure_rad(rec.load * 1e-3))
     rec, events = _without_events(rec, base)
+    if (mains := find_mains(rec.load, rec.response, rec.time_s)) is not None:
+        # a rig's mains pick-up is reported beside the verdict, which is read without it
+        rec = dataclasses.replace(rec, response=rec.response - mains.line)
+        events = events + (mains.sentence(rec.response_name, rec.response_unit),)
     check_baseline_scale(rec, base)
     from threadpoolctl import threadpool_limits
     # Tiny (N x 4) linear-algebra calls: BLAS threads only add overhead (docs/decisions/019-diagnose-speed.md).
