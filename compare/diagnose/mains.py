@@ -46,7 +46,8 @@ def _alias(f: float, fs: float) -> float:
     return abs(f - fs * round(f / fs))
 
 
-def _basis(load: np.ndarray, t: np.ndarray) -> np.ndarray:
+def load_basis(load: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """Any smooth curve of the load per loading direction (a loop, a stiffening), plus a line in time."""
     x = load / (float(np.max(np.abs(load))) or 1.0)
     d = np.sign(np.gradient(x))
     up = (d >= 0).astype(float)
@@ -60,7 +61,7 @@ def find_mains(load: np.ndarray, response: np.ndarray, time_s: np.ndarray | None
         return None
     n, span = len(time_s), float(time_s[-1] - time_s[0])
     fs = (n - 1) / span
-    A = _basis(load, time_s)
+    A = load_basis(load, time_s)
     q, _ = np.linalg.qr(A)
     r = response - q @ (q.T @ response)
     m = 4 * n                                   # zero-padded: the peak located to a quarter of a bin
@@ -93,4 +94,4 @@ def find_mains(load: np.ndarray, response: np.ndarray, time_s: np.ndarray | None
     return MainsLine(f0, f, amplitude, 2.0 * amplitude / sigma, coef[-2] * np.cos(w) + coef[-1] * np.sin(w))
 
 
-__all__ = ["MAINS_HZ", "MAINS_TOLERANCE", "MainsLine", "find_mains"]
+__all__ = ["MAINS_HZ", "MAINS_TOLERANCE", "MainsLine", "find_mains", "load_basis"]

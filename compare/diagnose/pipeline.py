@@ -41,13 +41,14 @@ from strainwave.errors import InputError
 from strainwave.io_atomic import atomic_write_text, json_ready
 from strainwave.compare.diagnose.baseline import Baseline, analytic_baseline, fea_baseline
 from strainwave.compare.diagnose.candidates import REREAD_PRIOR_SIGMAS, Noise, fit_candidates, read_noise, select
-from strainwave.compare.diagnose.context import build_context
+from strainwave.compare.diagnose.context import build_context, find_segments, reversal_threshold
 from strainwave.compare.diagnose.diagnosis import Diagnosis, RankedEffect, Verdict
 from strainwave.compare.diagnose.events import find_jump, without_jump
 from strainwave.compare.diagnose.explain import explain
 from strainwave.compare.diagnose.judge import AMBIGUOUS_BIC, BIC_THRESHOLD, MIN_COMPONENT_SIGMAS
 from strainwave.compare.diagnose.locate import Located, locate, locate_effect
 from strainwave.compare.diagnose.mains import find_mains
+from strainwave.compare.diagnose.time_events import find_time_events
 from strainwave.compare.diagnose.parallel import usable_workers
 from strainwave.compare.diagnose.quantities import Reading, read_quantities
 from strainwave.compare.diagnose.recording import Recording, TestFlags, parse_recording
@@ -86,7 +87,21 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
     # Tiny (N x 4) linear-algebra calls: BLAS threads only add overhead (docs/decisions/019-diagnose-speed.md).
     with threadpool_limits(limits=1):
         diag, arrays = _diagnose(rec, base, usable_workers() if workers is None else workers)
+        if diag.verdict is Verdict.UNEXPLAINED and (found := _time_events(rec)) is not None:
+            # events in time the catalogue cannot draw: named, taken out, the rest diagnosed again
+            diag, arrays = _diagnose(dataclasses.replace(rec, response=found.response), base,
+                                     usable_workers() if workers is None else workers)
+            events = events + found.sentences
     return (dataclasses.replace(diag, events=events) if events else diag), arrays
+
+
+def _time_events(rec: Recording):
+    """time_events.find_time_events on the raw channels, the first loading (up to the first reversal) left out
+    of the drift's fit."""
+    u = rec.load / (float(np.max(np.abs(rec.load))) or 1.0)
+    segments = find_segments(u, reversal_threshold(u))
+    first = segments[0][1] if len(segments) > 1 else 0
+    return find_time_events(rec.load, rec.response, rec.time_s, first, rec.response_unit)
 
 
 def _without_events(rec: Recording, base: Baseline) -> tuple[Recording, tuple[str, ...]]:
