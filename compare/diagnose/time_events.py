@@ -34,10 +34,12 @@ SLIP_SIGMAS = 30.0          # a step this many robust sigmas of the sample-to-sa
 SLIP_SPAN = 3               # samples a slip may take
 MAX_SLIPS = 20
 HOLD_BAND = 0.005           # a hold: the load within this fraction of the largest load ...
-HOLD_MIN_SAMPLES = 20       # ... for at least this many samples ...
+HOLD_MIN_SAMPLES = 20       # ... for at least this many samples and HOLD_SHARE of the record (the top of a
+HOLD_SHARE = 0.05           #     slow sine is no hold) ...
 HOLD_LOAD = 0.2             # ... at a load at least this fraction of the largest
 DRIFT_TAU = (0.03, 3.0)     # time constants tried for a drift, fractions of the record
 N_TAU = 25
+DRIFT_ROWS = 10_000
 LOAD_KNOTS = 48             # knots per loading direction of the load model a drift is read against
 DRIFT_LEAVES = 4.0          # a drift is the whole story beside the load: its residual's variance within this x
                             # the white noise's (else the load model misses something, e.g. a stick-slip stair,
@@ -86,7 +88,8 @@ def _holds(load: np.ndarray) -> list[tuple[int, int]]:
     out, start = [], 0
     for k in range(1, len(load) + 1):
         if k == len(load) or abs(load[k] - load[start]) > HOLD_BAND * full:
-            if k - start >= HOLD_MIN_SAMPLES and abs(float(np.median(load[start:k]))) >= HOLD_LOAD * full:
+            if k - start >= max(HOLD_MIN_SAMPLES, HOLD_SHARE * len(load)) \
+                    and abs(float(np.median(load[start:k]))) >= HOLD_LOAD * full:
                 out.append((start, k))
             start = k
     return out
@@ -116,7 +119,8 @@ def find_hold_creep(load: np.ndarray, y: np.ndarray, t: np.ndarray, sigma: float
         n, span = b - a, float(t[b - 1] - t[a])
         if not span > 0.0:
             continue
-        ones = np.ones((n, 1)) / math.sqrt(n)
+        # a constant and the load's own wander within the band (the response follows it, that is no creep)
+        ones, _ = np.linalg.qr(np.column_stack([np.ones(n), load[a:b] - float(np.mean(load[a:b]))]))
         rc = r - ones @ (ones.T @ r)
         dt = span / (n - 1)
         gain, tau, amp, curve = _best_exponential(tt, rc, np.geomspace(dt, 3.0 * span, N_TAU), ones)
@@ -152,7 +156,9 @@ def load_states(load: np.ndarray, t: np.ndarray) -> np.ndarray:
 def find_drift(load: np.ndarray, y: np.ndarray, t: np.ndarray, sigma: float, first: int,
                unit: str) -> tuple[np.ndarray, str | None]:
     """A thermal zero drift (see the module doc): (the response without it, a sentence) or (y, None)."""
-    keep = np.arange(len(y)) >= first
+    # fitted on at most DRIFT_ROWS rows (a slow curve needs no more), taken out of every row
+    rows = np.arange(len(y))
+    keep = (rows >= first) & (rows % max(1, len(y) // DRIFT_ROWS) == 0)
     tt = t - t[0]
     span = float(tt[-1])
     if keep.sum() < 50 or not span > 0.0:
