@@ -23,6 +23,7 @@ from strainwave.compare.diagnose.structure import MIN_COMPONENT_SIGMAS
 MAINS_HZ = (50.0, 60.0)
 MAINS_TOLERANCE = 0.01      # grids hold their frequency within 1 % (EN 50160: 50 Hz +/- 1 % for 99.5 % of a year)
 LOAD_DEGREE = 7
+LINE_OVER_FLOOR = 20.0      # periodogram power over the neighbouring spectrum's median (white: P(>20x) ~ 1e-6)
 MIN_CYCLES = 4.0            # a line fewer cycles than this over the record is a drift, not a line
 
 
@@ -79,7 +80,13 @@ def find_mains(load: np.ndarray, response: np.ndarray, time_s: np.ndarray | None
             best = (f0, float(freqs[k]), float(power[k]))
     if best is None:
         return None
-    f0, f, _ = best
+    f0, f, peak = best
+    # a line is narrow: its power stands LINE_OVER_FLOOR above the median of the spectrum from f/2 to 2f (a
+    # load-model misfit, a rate-dependent loop, coloured noise have smooth spectra; at the floor's 1.5 sigma
+    # swing and 300 rows a sinusoid stands ~40x above white noise's median)
+    near = (freqs >= 0.5 * f) & (freqs <= 2.0 * f) & (np.abs(freqs - f) > 4.0 / span)
+    if np.any(near) and peak ** 2 < LINE_OVER_FLOOR * float(np.median(power[near] ** 2)):
+        return None
     w = 2.0 * np.pi * f * (time_s - time_s[0])
     full = np.column_stack([A, np.cos(w), np.sin(w)])
     coef, *_ = np.linalg.lstsq(full, response, rcond=None)

@@ -7,9 +7,10 @@ bent to it, and a recording the catalogue explains is never touched (no event ca
 Each is read against a load model that draws any single- or double-valued curve of the load (mains.load_basis:
 a polynomial per loading direction, plus a line in time), so a loop or a stiffening is no event:
 
-- a one-way slip: steps of the response between neighbouring samples, each beyond SLIP_SIGMAS robust sigmas of
-  the sample-to-sample differences, ALL in one direction (a clamp or flange that walks one way; steps both ways
-  are a stick-slip joint, which stays unexplained). Each step (over up to SLIP_SPAN samples) is taken out;
+- a one-way slip: two or more steps of the response between neighbouring samples, each beyond SLIP_SIGMAS
+  robust sigmas of the sample-to-sample differences, ALL in one direction (a clamp or flange that walks one way;
+  steps both ways are a stick-slip joint, which stays unexplained; a single step is a jump, which glitches.py
+  names: a splice or a re-clamp are single steps too). Each step is taken out;
 - creep under a hold: where the load is held (within HOLD_BAND of the largest, at least HOLD_MIN_SAMPLES, at
   |load| >= HOLD_LOAD), the response moves in time as a + A (1 - exp(-(t - t0)/tau)), A of the held load's sign
   (the twist creeps further the way the torque holds it), better than a constant by BIC_THRESHOLD; named with
@@ -68,7 +69,8 @@ def find_slips(load: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, str | None]
     if not scale > 0.0:
         return y, None
     big = np.flatnonzero(np.abs(d) > SLIP_SIGMAS * scale)
-    if len(big) == 0 or len(big) > MAX_SLIPS * SLIP_SPAN:
+    # a walk is two slips or more, a single step is a jump (glitches.py names it: a slip, a splice, a re-clamp)
+    if len(big) < 2 or len(big) > MAX_SLIPS * SLIP_SPAN:
         return y, None
     signs = np.sign(d[big])
     if np.any(signs != signs[0]):
