@@ -47,6 +47,7 @@ QUANTITIES = (
     ("pair_stiffness_internal_N_per_mm_um", "N/(mm*um)"),
     ("crack_tooth_compliance_ratio", "1"), ("crack_te_peak_rad", "rad"),
     ("rigid_rim_peak_tooth_share", "1"), ("rigid_rim_teeth_in_contact", "1"), ("rigid_rim_twist_rated_rad", "rad"),
+    ("engagement_edge_rated_rad", "rad"), ("engagement_edge_first_step_rad", "rad"),
 )
 SECTOR_H_RATIO = 0.5              # the sectors' element size over the rim's
 SOLID_DEPTH_OVER_M = 6.0          # the FS tooth's solid-body sector is held this deep below its root (ISO's body)
@@ -225,6 +226,20 @@ def rigid_rim(infl: Mapping, mesh: Mapping) -> tuple[dict, dict]:
               "friction_coefficient": float(mesh["friction_coefficient"]), "torque_Nmm": float(first[-1]),
               "forces_N": F.tolist(), "twist_rad": float(path.twist_rad[-1])}
     return values, inputs
+
+
+def engagement_edge(path, pairs: Mapping) -> dict:
+    """The outermost loaded flank pair's angle from the major axis, folded into its lobe (dual wave), on the headline
+    angle's first loading: at rated (the check ``mesh.engagement_zone``'s reading) and at the path's first load
+    step (a small torque, shown beside it)."""
+    folded = 0.5 * np.angle(np.exp(2j * np.asarray(pairs["phi_rad"])))
+    k_peak = int(np.argmax(path.torque_Nmm))
+    k_first = int(np.flatnonzero(path.torque_Nmm > 0.0)[0])
+    edge = {}
+    for name, k in (("engagement_edge_rated_rad", k_peak), ("engagement_edge_first_step_rad", k_first)):
+        on = path.forces_N[k] > 0.0
+        edge[name] = float(folded[on].max()) if on.any() else math.nan
+    return edge
 
 
 def crack_signature(infl: Mapping, mesh: Mapping) -> tuple[dict, np.ndarray]:
@@ -406,7 +421,7 @@ class ToothMesh(StudyVariant):
         crack, change = crack_signature(infl, self.mesh_inputs)
         rigid, rigid_inputs = rigid_rim(infl, self.mesh_inputs)
         values = (loop_values(paths, self.mesh_inputs["rated_torque_Nmm"]) | major_pair(infl, self.mesh_inputs) | crack
-                  | rigid)
+                  | rigid | engagement_edge(paths[0], self.mesh_inputs["angles"][0]))
         t2 = time.perf_counter()
         quality = MeshQuality(facts["elements"], facts["nodes"], facts["dofs"], 2, float("nan"), float("nan"))
         fields = {"paths": paths, "rated_u": rated_field(infl, self.mesh_inputs, paths[0]),

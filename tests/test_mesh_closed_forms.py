@@ -130,3 +130,64 @@ def test_rigid_rim_check_without_a_record_is_not_evaluated():
     c = mcf.rigid_rim_check(_Book(0.1, None), "tooth-mesh", params)
     assert c.verdict == "not evaluated" and not c.passed
     assert mcf.rigid_rim_check(_Book(0.1, None), None, params).reason_not_evaluated == "no tooth-mesh case"
+
+
+# --- the engagement zone's edge (kinematic theory) ---------------------------------------------------------------
+
+from strainwave.analytic.engagement_zone import driving_flank_gap_mm, tip_path, zone_edge_rad  # noqa: E402
+
+GEARS = [None, "strainwave/data/second_gear.toml"]
+
+
+def test_tip_path_rides_an_inextensible_neutral_line():
+    w0, rn = 0.8, 78.88
+    phi = np.linspace(-1.5, 1.5, 3001)
+    R, ang = tip_path(phi, w0, rn, rn)                  # a point on the neutral line itself
+    w, v = R - rn, (ang - phi) * rn
+    assert np.allclose(np.gradient(v, phi)[1:-1], -w[1:-1], atol=1e-5)    # v' = -w: the line does not stretch
+    R0, a0 = tip_path(0.0, w0, rn, 81.88)
+    assert R0 == pytest.approx(81.88 + w0) and a0 == pytest.approx(0.0)     # the major axis: full depth, centred
+
+
+@pytest.mark.parametrize("name", GEARS)
+def test_zone_edge_is_where_the_tip_reaches_the_flank_and_agrees_with_the_studys_engagement(name):
+    geo = mesh_geometry(load_params(name))
+    edge = zone_edge_rad(geo)
+    assert math.radians(40) < edge < math.radians(70)
+    assert driving_flank_gap_mm(edge - 1e-4, geo) > 0.0 > driving_flank_gap_mm(edge + 1e-4, geo)
+    # on the major axis the tooth sits centred in its space: the gap is the backlash and the involutes' fit
+    assert driving_flank_gap_mm(0.0, geo) > 0.0
+    # the study's engagement (another derivation, contact at the middle of the overlap) keeps driving pairs with a
+    # closed gap up to the edge and none beyond it: its outermost pair stands within one pitch inside the edge
+    pairs = pairs_at(geo, 0.0)
+    folded = 0.5 * np.angle(np.exp(2j * pairs["phi_rad"][pairs["side"] > 0]))
+    assert edge - 2 * math.pi / geo.z_f < folded.max() <= edge
+
+
+def _zone_book(value):
+    h = (0.24, 0.336, 0.4704)
+    q = Quantity(mcf.ZONE, value, "rad", grid_convergence(h, (value, value * 0.999, value * 0.997), formal_order=2.0))
+
+    class B:
+        def quantity(self, label, name):
+            return (q, "") if name in (mcf.ZONE, "engagement_edge_first_step_rad") else (None, "")
+    return B()
+
+
+@pytest.mark.parametrize("name", GEARS)
+def test_zone_check_passes_on_the_studys_edge_and_fails_on_a_perturbed_reference(name, monkeypatch):
+    params = load_params(name)
+    fe = math.radians(54.0)            # the study's outermost loaded pair at rated on both gears (quick meshes)
+    c = mcf.zone_check(_zone_book(fe), "tooth-mesh", params)
+    assert c.passed, c
+    assert mutation_rows([c.to_dict()])[0].catches_20
+    for f in (0.8, 1.2):
+        assert not mcf.zone_check(_zone_book(fe * f), "tooth-mesh", params).passed
+    ref = mcf.zone_reference
+    for f in (0.8, 1.2):
+        monkeypatch.setattr(mcf, "zone_reference", lambda p, f=f: tuple(x * f for x in ref(p)))
+        assert not mcf.zone_check(_zone_book(fe), "tooth-mesh", params).passed
+    # a pair two pitches inside the edge is more than the quantisation allows
+    monkeypatch.setattr(mcf, "zone_reference", ref)
+    two_in = ref(params)[0] - 2 * 2 * math.pi / params.flexspline_cup.teeth
+    assert not mcf.zone_check(_zone_book(two_in), "tooth-mesh", params).passed

@@ -204,6 +204,13 @@ CHECKS: tuple[CheckSpec, ...] = (
               lambda ctx: mesh_closed_form_checks.rigid_rim_check(ctx.book, ctx.label(mesh_closed_form_checks.STUDY),
                                                                   ctx.params),
               None, f"{GCI} (the closed form solves the same contact problem exactly)"),
+    CheckSpec("mesh.engagement_zone", "mesh",
+              lambda ctx: mesh_closed_form_checks.zone_check(ctx.book, ctx.label(mesh_closed_form_checks.STUDY),
+                                                             ctx.params),
+              lambda params, at: Reference(None, mesh_closed_form_checks.zone_reference(params)[0], "rad",
+                                           "analytic/engagement_zone.py"),
+              f"{GCI} + one FS pitch + the contact point (tip vs mid-overlap)",
+              ((mesh_closed_form_checks.STUDY, mesh_closed_form_checks.ZONE),)),
 )
 
 REQUIRED_IDS = tuple(spec.id for spec in CHECKS)

@@ -11,6 +11,15 @@
   coupled result (the rim's give shares the load differently) beside it, not asserted.
   Tolerance = the GCI of the FE reading (Fs once). No other allowance: for the same inputs the closed form is the
   exact solution of the same contact problem (the solver's own round-off is ~1e-12).
+- ``mesh.engagement_zone``: the edge of the engagement zone. FE side: the outermost flank pair the study's contact
+  solve loads at rated (headline WG angle, first loading; its angle from the major axis folded into the lobe).
+  Closed form: the kinematic theory's zone edge, where the rigid tooth's tip, riding the inextensible neutral line
+  (w = w0 cos 2 phi, v = -(w0/2) sin 2 phi), reaches the circular spline's flank (analytic/engagement_zone.py,
+  written out by hand, not the study's engagement). Beyond it rigid teeth would cut into each other, and the gap
+  narrows towards it, so the pair nearest the edge loads first (the first load step's edge is in the note).
+  Tolerance = GCI + one FS pitch over the edge angle (the loaded teeth stand on the pitch: the outermost is up to a
+  pitch inside the edge) + the contact point (the study takes it at the middle of the radial overlap, the closed
+  form at the tip: the closed form's own edge at the mid-overlap radius, over the edge angle).
 """
 from __future__ import annotations
 
@@ -53,3 +62,45 @@ def rigid_rim_check(book, label: str | None, params) -> Check:
                            tol, note=note, sources={"fea": f"FEA {label} (contact solve, rim coupling removed)",
                                                     "analytic": "analytic/rigid_rim_sharing.py"}))
     return check
+
+
+ZONE = "engagement_edge_rated_rad"
+
+
+def zone_reference(params) -> tuple[float, float]:
+    """(the zone's edge at the tooth tip, at the middle of the radial overlap there), rad."""
+    import math
+    from strainwave.analytic.engagement_zone import zone_edge_rad
+    from strainwave.geometry.mesh_geometry import mesh_geometry
+    geo = mesh_geometry(params)
+    tip = zone_edge_rad(geo)
+    depth = geo.fs.tip_radius_mm + geo.w0_mm * math.cos(2 * tip) - geo.cs_tip_mm
+    return tip, zone_edge_rad(geo, geo.fs.tip_radius_mm - 0.5 * depth)
+
+
+def zone_allowances(params, edge_rad: float, mid_rad: float) -> dict[str, float]:
+    import math
+    pitch = 2 * math.pi / params.flexspline_cup.teeth
+    return {f"one FS pitch ({math.degrees(pitch):.3g} deg) over the edge angle (the loaded teeth stand on the pitch)":
+            pitch / edge_rad,
+            "contact at the middle of the radial overlap (the study) vs the tip (the closed form)":
+            abs(edge_rad - mid_rad) / edge_rad}
+
+
+def zone_check(book, label: str | None, params) -> Check:
+    import math
+    cid, quantity, unit = ("mesh.engagement_zone", "edge of the engagement zone: outermost loaded pair at rated, "
+                           "from the major axis", "rad")
+    edge, mid = zone_reference(params)
+    q, why = (None, f"no {STUDY} case") if label is None else book.quantity(label, ZONE)
+    if q is None:
+        return not_evaluated(cid, quantity, unit, why, analytic={"corrected": edge})
+    tol = fea_tolerance(q.value, q.uncertainty, allowances=zone_allowances(params, edge, mid), basis=gci_basis(q))
+    first, _ = book.quantity(label, "engagement_edge_first_step_rad")
+    note = (f"closed form: the tooth tip's path on the neutral line reaches the CS flank at {math.degrees(edge):.4g} deg "
+            f"({math.degrees(mid):.4g} deg at the middle of the overlap); the contact solve's outermost loaded pair at "
+            f"rated {math.degrees(q.value):.4g} deg, at its first load step (a small torque) "
+            f"{'n/a' if first is None else format(math.degrees(first.value), '.4g')} deg")
+    return evaluate(Check(cid, quantity, unit, q.value, q.uncertainty, {"corrected": edge}, "corrected", tol,
+                          note=note, sources={"fea": f"FEA {label} (contact solve)",
+                                              "analytic": "analytic/engagement_zone.py (kinematic theory)"}))
