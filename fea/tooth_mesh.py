@@ -424,9 +424,10 @@ class ToothMesh(StudyVariant):
                   | rigid | engagement_edge(paths[0], self.mesh_inputs["angles"][0]))
         t2 = time.perf_counter()
         quality = MeshQuality(facts["elements"], facts["nodes"], facts["dofs"], 2, float("nan"), float("nan"))
-        fields = {"paths": paths, "rated_u": rated_field(infl, self.mesh_inputs, paths[0]),
-                  "r_bore_mm": infl["r_bore_mm"],
-                  "crack_change": change, "rigid_rim": rigid_inputs} if keep_fields else {}
+        # the rigid-rim solve's inputs are kept on every mesh (small): the check mesh.rigid_rim_sharing reads them
+        fields = {"rigid_rim": rigid_inputs} | ({"paths": paths, "rated_u": rated_field(infl, self.mesh_inputs, paths[0]),
+                                                 "r_bore_mm": infl["r_bore_mm"],
+                                                 "crack_change": change} if keep_fields else {})
         infl.pop("rim")
         return MeshSolve(refinement, values, quality,
                          {"mesh": facts["mesh"], "assemble": facts["assemble"], "solve": facts["solve"],
@@ -467,8 +468,8 @@ class ToothMesh(StudyVariant):
 
     def meta(self, parts, series: Mapping[str, Series]) -> dict:
         f = series["rim"].finest.fields
-        if not f:
-            return {}
+        if "paths" not in f:
+            return {"rigid_rim": f["rigid_rim"]}
         p = f["paths"][0]
         return {"loop": {"torque_Nmm": p.torque_Nmm.tolist(), "twist_rad": p.twist_rad.tolist()},
                 "forces_at_rated_N": p.forces_N[int(np.argmax(p.torque_Nmm))].tolist(),
