@@ -23,6 +23,8 @@
 """
 from __future__ import annotations
 
+import math
+
 from strainwave.compare.validate.checks import Check, evaluate, fea_tolerance, gci_basis, not_evaluated
 
 STUDY = "tooth-mesh"
@@ -58,10 +60,9 @@ def rigid_rim_check(book, label: str | None, params) -> Check:
             f"{inputs['friction_coefficient']:g}, {len(inputs['clearance_mm'])} flank pairs; pairs in contact: "
             f"contact solve {n_fe}, closed form {ref.teeth_in_contact}; twist: contact solve "
             f"{inputs['twist_rad']:.6g} rad, closed form {ref.twist_rad:.6g} rad; {_beside(book, label)}")
-    check = evaluate(Check(cid, quantity, unit, q.value, q.uncertainty, {"corrected": ref.peak_share}, "corrected",
-                           tol, note=note, sources={"fea": f"FEA {label} (contact solve, rim coupling removed)",
-                                                    "analytic": "analytic/rigid_rim_sharing.py"}))
-    return check
+    return evaluate(Check(cid, quantity, unit, q.value, q.uncertainty, {"corrected": ref.peak_share}, "corrected",
+                          tol, note=note, sources={"fea": f"FEA {label} (contact solve, rim coupling removed)",
+                                                   "analytic": "analytic/rigid_rim_sharing.py"}))
 
 
 ZONE = "engagement_edge_rated_rad"
@@ -69,7 +70,6 @@ ZONE = "engagement_edge_rated_rad"
 
 def zone_reference(params) -> tuple[float, float]:
     """(the zone's edge at the tooth tip, at the middle of the radial overlap there), rad."""
-    import math
     from strainwave.analytic.engagement_zone import zone_edge_rad
     from strainwave.geometry.mesh_geometry import mesh_geometry
     geo = mesh_geometry(params)
@@ -79,7 +79,6 @@ def zone_reference(params) -> tuple[float, float]:
 
 
 def zone_allowances(params, edge_rad: float, mid_rad: float) -> dict[str, float]:
-    import math
     pitch = 2 * math.pi / params.flexspline_cup.teeth
     return {f"one FS pitch ({math.degrees(pitch):.3g} deg) over the edge angle (the loaded teeth stand on the pitch)":
             pitch / edge_rad,
@@ -88,7 +87,6 @@ def zone_allowances(params, edge_rad: float, mid_rad: float) -> dict[str, float]
 
 
 def zone_check(book, label: str | None, params) -> Check:
-    import math
     cid, quantity, unit = ("mesh.engagement_zone", "edge of the engagement zone: outermost loaded pair at rated, "
                            "from the major axis", "rad")
     edge, mid = zone_reference(params)
