@@ -425,9 +425,10 @@ class ToothMesh(StudyVariant):
         t2 = time.perf_counter()
         quality = MeshQuality(facts["elements"], facts["nodes"], facts["dofs"], 2, float("nan"), float("nan"))
         # the rigid-rim solve's inputs are kept on every mesh (small): the check mesh.rigid_rim_sharing reads them
-        fields = {"rigid_rim": rigid_inputs} | ({"paths": paths, "rated_u": rated_field(infl, self.mesh_inputs, paths[0]),
-                                                 "r_bore_mm": infl["r_bore_mm"],
-                                                 "crack_change": change} if keep_fields else {})
+        fields = {"rigid_rim": rigid_inputs}
+        if keep_fields:
+            fields |= {"paths": paths, "rated_u": rated_field(infl, self.mesh_inputs, paths[0]),
+                       "r_bore_mm": infl["r_bore_mm"], "crack_change": change}
         infl.pop("rim")
         return MeshSolve(refinement, values, quality,
                          {"mesh": facts["mesh"], "assemble": facts["assemble"], "solve": facts["solve"],

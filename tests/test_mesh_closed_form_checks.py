@@ -70,7 +70,8 @@ def rigid_solve():
     from strainwave.fea.mesh_contact import torque_history
     rated = params.gear.rated_output_torque_Nmm
     mesh = {"angles": [pairs], "z_f": geo.z_f, "z_c": geo.z_c, "friction_coefficient": 0.08,
-            "rim_radius_mm": geo.r_neutral_mm, "torque_history_Nmm": torque_history(rated), "module_mm": geo.fs.module_mm,
+            "rim_radius_mm": geo.r_neutral_mm, "torque_history_Nmm": torque_history(rated),
+            "module_mm": geo.fs.module_mm,
             "fs_tip_mm": geo.fs.tip_radius_mm, "cs_tip_mm": geo.cs_tip_mm,
             "fs_radius_range_mm": (pairs["fs_radius_mm"].min(), pairs["fs_radius_mm"].max()),
             "cs_radius_range_mm": (pairs["cs_radius_mm"].min(), pairs["cs_radius_mm"].max())}

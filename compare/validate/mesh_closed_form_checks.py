@@ -95,7 +95,8 @@ def zone_check(book, label: str | None, params) -> Check:
         return not_evaluated(cid, quantity, unit, why, analytic={"corrected": edge})
     tol = fea_tolerance(q.value, q.uncertainty, allowances=zone_allowances(params, edge, mid), basis=gci_basis(q))
     first, _ = book.quantity(label, "engagement_edge_first_step_rad")
-    note = (f"closed form: the tooth tip's path on the neutral line reaches the CS flank at {math.degrees(edge):.4g} deg "
+    note = (f"closed form: the tooth tip's path on the neutral line reaches the CS flank at {math.degrees(edge):.4g} "
+            "deg "
             f"({math.degrees(mid):.4g} deg at the middle of the overlap); the contact solve's outermost loaded pair at "
             f"rated {math.degrees(q.value):.4g} deg, at its first load step (a small torque) "
             f"{'n/a' if first is None else format(math.degrees(first.value), '.4g')} deg")
