@@ -139,6 +139,7 @@ class CataloguePrediction:
     rules: MeshRules
     cpu_s: float
     slopes: dict = field(default_factory=dict)
+    cup_zone: dict = field(default_factory=dict)     # ratio -> analytic.cup_zone.CupZoneTerm (FE, with GCI)
 
     def __post_init__(self):
         self.slopes = {"size": self._slopes("size"), "ratio": self._slopes("ratio")}
@@ -202,7 +203,8 @@ class CataloguePrediction:
             rows.append(d)
         return {"rows": rows, "log_slopes": self.slopes, "ratio_trend": self.trend(), "misses": self.misses(),
                 "goals": {**GOALS, "ratio_trend": TREND_GOAL}, "ratio_labels": RATIO_OF_LABEL,
-                "design_rules": {k: v for k, v in self.rules.__dict__.items()}, "cpu_s": self.cpu_s}
+                "design_rules": {k: v for k, v in self.rules.__dict__.items()}, "cpu_s": self.cpu_s,
+                "cup_zone_terms": [t.to_dict() for t in self.cup_zone.values()]}
 
     def summary(self) -> str:
         lines = ["predicted / catalogue (design rules: decision 065; '-' a blank cell)",
@@ -223,6 +225,11 @@ class CataloguePrediction:
         for name, m in self.misses().items():
             lines.append(f"{name} outside +/-{GOALS[name]:.0%} on {len(m['rows'])} rows ({', '.join(m['rows'])}): "
                          f"left out: {'; '.join(m['left_out'])}")
+        for t in self.cup_zone.values():
+            c = t.extra.convergence
+            lines.append(f"cup under the mesh zones, ratio {t.ratio:g} (FE at d = {t.reference_d_mm:g} mm, scaled "
+                         f"(d_ref/d)^3): +{t.extra.value:.3e} rad/(N mm), GCI {100 * c.gci_fine:.2g} %, over the "
+                         f"uniform shear's {t.uniform.value:.3e} ({t.cpu_s:.1f} CPU-s)")
         lines.append(f"CPU {self.cpu_s:.1f} s for {len(self.rows)} rows")
         return "\n".join(lines)
 
@@ -230,19 +237,28 @@ class CataloguePrediction:
 _ARCMIN = math.pi / (180.0 * 60.0)
 
 
-def predict_table(path: Path, rules: MeshRules = MeshRules()) -> CataloguePrediction:
-    """Read ``path`` and predict every row (exit-2 InputError on a bad file)."""
+def predict_table(path: Path, rules: MeshRules | None = None) -> CataloguePrediction:
+    """Read ``path`` and predict every row (exit-2 InputError on a bad file). In series with each row's mesh:
+    the cup (tube + diaphragm + hub) and the cup's extra twist under the mesh zones' load, measured by FE once
+    per distinct ratio at the rules' reference size and scaled by similitude (decision 067)."""
     import time
+    rules = MeshRules() if rules is None else rules
     try:
         text = Path(path).read_text("utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         raise InputError("TABLE", str(path), f"a readable UTF-8 CSV file ({exc.__class__.__name__})") from None
     rows = read_table(text, str(path))
     t0 = time.process_time()
+    zone = {}
+    for ratio in sorted({row.ratio for row in rows}):
+        term = rules.cup_zone_term(ratio)
+        if term is not None:
+            zone[ratio] = term
     preds = []
     for row in rows:
         design = rules.design(row.size, row.ratio)
-        curve = predict_curve(design, rules.cup_flexibility_rad_per_Nmm(row.size), rules.rated_torque_Nm(row.size),
-                              with_te=False)
+        d = rules.pitch_diameter_mm(row.size)
+        series = rules.cup_flexibility_rad_per_Nmm(row.size) + (zone[row.ratio].at(d) if row.ratio in zone else 0.0)
+        curve = predict_curve(design, series, rules.rated_torque_Nm(row.size), with_te=False)
         preds.append(RowPrediction(row, curve))
-    return CataloguePrediction(preds, rules, time.process_time() - t0)
+    return CataloguePrediction(preds, rules, time.process_time() - t0, cup_zone=zone)
