@@ -1,8 +1,8 @@
 """One set of design rules that turns a catalogue size and ratio into a drive (decision 065).
 
 Fixed before any comparison; no per-size or per-ratio factor. Every proportion is the shipped gear's
-(defaults.toml, d1 = 160 mm) made dimensionless, or a standard's value. The one coefficient fitted to the
-catalogue is ``foundation_coefficient`` (fitted on sizes 14-25 only; sizes 32-58 confirm it).
+(defaults.toml, d1 = 160 mm) made dimensionless, or a standard's value. Nothing is fitted to the catalogue
+(``foundation_coefficient`` is the first revision's fitted support, kept as an option and off: decision 065).
 """
 from __future__ import annotations
 
