@@ -96,3 +96,16 @@ def test_the_rules_cup_holds_the_diaphragm():
     diaphragm = (1.0 / (0.25 * d) ** 2 - 1.0 / (0.5 * (d - t)) ** 2) / (4.0 * math.pi * rules.shear_modulus_MPa * t)
     assert series == pytest.approx(bare + diaphragm, rel=0.1)
     assert series > 1.9 * 0.83 * bare          # the previous rule: seed 000's tube with its cup k_G 0.83
+
+
+def test_the_tooth_loads_carry_the_torque(size14):
+    """The zone's loads are the mesh model's: their moment at the pitch radius is the torque less flank friction's
+    share (mu tan(alpha) ~ 3 %), and they sit within a quarter-turn's fraction of the two major axes."""
+    from strainwave.analytic.cup_zone import teeth_tangential_loads
+    T = 5.0e4
+    ang, Ft = teeth_tangential_loads(size14, T)
+    r_p = size14.geometry.pitch_radius_mm
+    assert float(np.sum(Ft) * r_p) == pytest.approx(T, rel=0.05)
+    assert not float(np.sum(Ft) * r_p) == pytest.approx(1.2 * T, rel=0.05)
+    off = np.abs(np.mod(ang + 0.5 * math.pi, math.pi) - 0.5 * math.pi)
+    assert off.max() < math.radians(30.0)
