@@ -35,8 +35,8 @@ LEFT_OUT = {
                                 "and the cup's twist under the mesh zones (decision 067) the K3 miss at size 25 is "
                                 "~2.5e-8 rad/(N mm) at i = 30 and ~3e-9 at i = 100; the closed form's own tooth on "
                                 "its thin rim is already ~10x softer than the FE tooth on a held rim at i = 30, so "
-                                "it is not that; not measured: the circular spline's body, the WG outer ring's "
-                                "ovalisation beyond Hertz, real i = 30 proportions; at low torque also the rim's "
+                                "it is not that, nor the rim's lift-off from the balls (~1 %); not measured: the "
+                                "circular spline's body, real i = 30 proportions; at low torque also the rim's "
                                 "support that stiffens with load",
     ("K1_Nm_per_rad", "low"): "the radial support is one linear foundation: the rim lifted off the bearing beyond "
                                "the wrap angle is pressed back onto the balls as the torque grows (a support that "
@@ -45,8 +45,8 @@ LEFT_OUT = {
                                 "and the cup's twist under the mesh zones (decision 067) the miss at size 25 is "
                                 "~2.5e-8 rad/(N mm) at i = 30 and ~3e-9 at i = 100; the closed form's own tooth on "
                                 "its thin rim is already ~10x softer than the FE tooth on a held rim at i = 30, so "
-                                "it is not that; not measured: the circular spline's body, the WG outer ring's "
-                                "ovalisation beyond Hertz, real i = 30 proportions",
+                                "it is not that, nor the rim's lift-off from the balls (~1 %); not measured: the "
+                                "circular spline's body, real i = 30 proportions",
     ("K3_Nm_per_rad", "low"): "load spreading over more teeth than the ideal rack engages (the wider, "
                                "conjugate S-tooth zone of real profiles)",
     ("T1_Nm", "low"): "the contact set grows smoothly from zero torque (zero backlash), so the reader's first knee "

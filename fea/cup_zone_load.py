@@ -39,8 +39,9 @@ def uniform_zone() -> ZoneLoad:
 
 
 def tooth_zone(angles_rad: np.ndarray, tangential_N: np.ndarray, pitch_rad: float) -> ZoneLoad:
-    """The teeth's tangential loads as a shear: each tooth's load spread by a hat one pitch either side (area 1),
-    so the shear is the linear interpolation of load per pitch between teeth; folded to period pi."""
+    """The teeth's tangential loads (every tooth round the whole circle) as a shear per radian: each tooth's load
+    spread by a hat one pitch either side (area 1), so the shear is the linear interpolation of load per pitch
+    between teeth; folded to period pi, the two lobes averaged (one lobe's total is half of the teeth's)."""
     a = np.mod(np.asarray(angles_rad, float) + 0.5 * math.pi, math.pi) - 0.5 * math.pi     # into [-pi/2, pi/2)
     F = np.asarray(tangential_N, float)
 
@@ -48,7 +49,7 @@ def tooth_zone(angles_rad: np.ndarray, tangential_N: np.ndarray, pitch_rad: floa
         x = np.mod(np.asarray(phi, float) + 0.5 * math.pi, math.pi) - 0.5 * math.pi
         d = np.abs(x[..., None] - a)
         d = np.minimum(d, math.pi - d)
-        return np.sum(F * np.clip(1.0 - d / pitch_rad, 0.0, None), axis=-1) / pitch_rad
+        return 0.5 * np.sum(F * np.clip(1.0 - d / pitch_rad, 0.0, None), axis=-1) / pitch_rad
     return ZoneLoad("teeth", weight)
 
 

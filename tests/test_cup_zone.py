@@ -109,3 +109,12 @@ def test_the_tooth_loads_carry_the_torque(size14):
     assert not float(np.sum(Ft) * r_p) == pytest.approx(1.2 * T, rel=0.05)
     off = np.abs(np.mod(ang + 0.5 * math.pi, math.pi) - 0.5 * math.pi)
     assert off.max() < math.radians(30.0)
+
+
+def test_a_zone_holds_one_lobes_load_per_half_turn():
+    """Teeth round the whole circle, folded to period pi: one half-turn carries one lobe, half of the teeth's total."""
+    a = np.radians(np.concatenate([np.arange(-4.0, 9.0, 1.8), 180.0 + np.arange(-4.0, 9.0, 1.8)]))
+    F = np.linspace(1.0, 3.0, a.size)
+    w = cz.tooth_zone(a, F, math.radians(1.8)).weight
+    phi = np.linspace(-0.5 * math.pi, 0.5 * math.pi, 200001)
+    assert float(np.trapezoid(w(phi), phi)) == pytest.approx(0.5 * F.sum(), rel=1e-6)
