@@ -88,10 +88,13 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
     with threadpool_limits(limits=1):
         diag, arrays = _diagnose(rec, base, usable_workers() if workers is None else workers)
         if diag.verdict is Verdict.UNEXPLAINED and (found := _time_events(rec)) is not None:
-            # events in time the catalogue cannot draw: named, taken out, the rest diagnosed again
-            diag, arrays = _diagnose(dataclasses.replace(rec, response=found.response), base,
-                                     usable_workers() if workers is None else workers)
-            events = events + found.sentences
+            # events in time the catalogue cannot draw: taken out, the rest diagnosed again; named where that
+            # rest is explained or agrees (else they are not the story: a re-clamp, a rate-dependent loop
+            # read part-way as a drift), the first answer standing
+            again, arrays_again = _diagnose(dataclasses.replace(rec, response=found.response), base,
+                                            usable_workers() if workers is None else workers)
+            if again.verdict is not Verdict.UNEXPLAINED:
+                diag, arrays, events = again, arrays_again, events + found.sentences
     return (dataclasses.replace(diag, events=events) if events else diag), arrays
 
 

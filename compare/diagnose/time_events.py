@@ -1,8 +1,10 @@
 """Events in time that no catalogue effect draws: a one-way slip, creep under a hold, a thermal zero drift.
 
-Read only where the catalogue leaves the recording unexplained (pipeline.diagnose): each event found is named,
-taken out of the response, and the recording diagnosed again without it, so the catalogue's effects are never
-bent to it, and a recording the catalogue explains is never touched (no event can be a false alarm there).
+Read only where the catalogue leaves the recording unexplained (pipeline.diagnose): the events found are taken
+out of the response and the recording diagnosed again without them; where the rest is then explained or agrees
+they are named beside that verdict, else the first answer (unexplained) stands. The catalogue's effects are
+never bent to an event, and a recording the catalogue explains is never touched (no event can be a false
+alarm there).
 
 Each is read against a load model that draws any single- or double-valued curve of the load (mains.load_basis:
 a polynomial per loading direction, plus a line in time), so a loop or a stiffening is no event:
