@@ -20,13 +20,18 @@ The diagnosis runs in steps, each a function that hands the next a small record:
 4. verdict (verdict.decide -> `Answer`): the first model (best BIC first) whose residual passes the
    goodness-of-fit test with physical values is named: *explained*; otherwise *unexplained*, the best model kept
    as a suggestion; no mismatch: *agrees*. Each named effect meets its rival (Effect.rival: a rate-dependent
-   loop, a specimen exchanged mid-test): better by > 10 where the recording can decide, *unexplained*; within
+   loop, a specimen exchanged mid-test): better by > 10, *unexplained* (at one loading rate too); within
    6 BIC, ambiguous. A glitch under a verdict that calls the residual noise makes it *unexplained*;
 5. quantities (quantities.read_quantities -> `Reading`): BIC weights, parameters with standard errors from the
    Jacobian, warnings (values at a bound, physically implausible), a loop's width and its error;
 6. location (`Location`): where the fitted effect acts, cross-checked with the binned residual (locate.py), and
    the residual's structure in physical terms;
 7. explanation: the `Diagnosis` and its text (explain.py), JSON, plot.
+
+Before step 1, a drive's tooth ratcheting (events.py) and mains pick-up (mains.py) are named and taken out of
+the response; after step 7, where the answer is *unexplained*, events in time (time_events.py: a one-way slip,
+creep under a hold, a thermal drift) are taken out and the recording diagnosed again, and named where the rest
+is then explained or agrees.
 """
 from __future__ import annotations
 

@@ -3,8 +3,8 @@
 Explained where some catalogue model (best BIC first, at most MAX_GOF_TRIES forms) beats the nuisance fit, leaves
 a residual the goodness-of-fit test calls noise, has physically plausible values and resolved effects; else
 unexplained where there is a mismatch, agrees where there is none. Then each named effect's rival (Effect.rival,
-a model outside the catalogue that draws the same data) is heard: better by more than BIC_THRESHOLD where the
-recording can tell them apart, the answer is unexplained; within AMBIGUOUS_BIC, ambiguous. Last, samples the
+a model outside the catalogue that draws the same data) is heard: better by more than BIC_THRESHOLD, the answer
+is unexplained (docs/recordings.md); within AMBIGUOUS_BIC, ambiguous. Last, samples the
 noise cannot have made (glitches.py) under a verdict that says the residual is noise make it unexplained.
 """
 from __future__ import annotations
