@@ -91,17 +91,3 @@ def test_creep_under_a_hold_is_named_with_a_time_constant_and_a_clean_hold_is_no
     # a drift during a hold that goes on the same way under the opposite torque is no creep
     _, drift = find_hold_creep(T, c * T + noise + 8 * sigma * np.sqrt(t / t[-1]), t, sigma, "rad")
     assert len(drift) <= 1
-
-
-@pytest.mark.heavy
-def test_a_drive_behind_a_warm_up_drift_reads_its_normal_model_with_the_drift_named(tmp_path):
-    from strainwave.compare.diagnose.diagnosis import Verdict
-    from strainwave.compare.diagnose.pipeline import diagnose_file
-    from strainwave.compare.diagnose.recording import TestFlags
-    t, T, phi = drive_rig.drive_test(CHA20, 37.5, T_rated=34.0, n=3000, seed=1)
-    path = tmp_path / "warm.csv"
-    path.write_text(drive_rig.rig_file(t, T, phi + 40 * STEP * np.sqrt(t / t[-1])), encoding="utf-8")
-    diag = diagnose_file(path, flags=TestFlags(stiffness="16e3 Nm/rad", rated_torque="34 Nm"))
-    assert diag.verdict is Verdict.EXPLAINED
-    assert set(diag.named) == {"nonlinear_stiffness", "lost_motion", "hysteresis"}
-    assert any("thermal zero drift" in e for e in diag.events)
