@@ -182,7 +182,7 @@ def wg_inner_ring_factor(params, fea: dict | None = None, advise: bool = True) -
     if not advise:
         return factor
     return _with_advice(factor, params, "wave_generator.bearing_inner_ring_thickness_mm", wg_inner_ring_factor, fea,
-                        (0.1, 0.95 * r_race))
+                        (0.1, 0.95 * r_race), admissible=True)
 
 
 def wg_outer_ring_factor(params, fea: dict | None = None, advise: bool = True) -> FatigueFactor:
@@ -198,7 +198,7 @@ def wg_outer_ring_factor(params, fea: dict | None = None, advise: bool = True) -
     if not advise:
         return factor
     return _with_advice(factor, params, "wave_generator.outer_ring_thickness_mm", wg_outer_ring_factor, None,
-                        (0.1, 0.5 * r_o))
+                        (0.1, 0.5 * r_o), admissible=True)
 
 
 def bearing_ratings(params) -> dict:
@@ -233,10 +233,14 @@ def closed_form_factors(params) -> list[FatigueFactor]:
             wg_outer_ring_factor(params)]
 
 
-def _with_advice(factor: FatigueFactor, params, key: str, build, fea, span: tuple[float, float]) -> FatigueFactor:
-    """``factor`` with the value of ``key`` that brings it to [n] when it falls short. With FEA inputs the
-    closed form's dependence on the key is used, scaled by the FEA's ratio to it at the current value."""
-    if factor.n >= factor.required and factor.static_n >= 1.0:
+def _with_advice(factor: FatigueFactor, params, key: str, build, fea, span: tuple[float, float],
+                 admissible: bool = False) -> FatigueFactor:
+    """``factor`` with the value of ``key`` that brings it to [n] when it falls short, and with ``admissible``
+    the same value as the end of the range that keeps it at [n] whether it passes or not (a sizing parameter
+    the user may have changed: the range is named either way). With FEA inputs the closed form's dependence
+    on the key is used, scaled by the FEA's ratio to it at the current value."""
+    fails = factor.n < factor.required or factor.static_n < 1.0
+    if not (fails or admissible):
         return factor
     current = _get(params, key)
     closed = build(params, None, False) if fea is not None else factor
@@ -247,7 +251,9 @@ def _with_advice(factor: FatigueFactor, params, key: str, build, fea, span: tupl
         return min(f.n * ratio, f.static_n * f.required)   # the static check must hold too
     advice = solve_for(key, n_at, factor.required, current, *span,
                        note="closed-form dependence" + ("" if fea is None else ", scaled to the FEA's factor"))
-    return replace(factor, advice=advice)
+    kept = None if not admissible else replace(
+        advice, note=f"keeps it at [n] = {factor.required:g} and static n >= 1; now {current:g}; {advice.note}")
+    return replace(factor, advice=advice if fails else None, admissible=kept)
 
 
 def _get(params, key: str) -> float:

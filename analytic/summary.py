@@ -78,7 +78,8 @@ def design_lines(d: dict) -> list[str]:
     for f in d["factors"]:
         out.append(f"  {f['title']}: n = {_n3(f['n'])}, static {_n3(f['static_n'])}, {f['verdict']}; sigma_a = "
                    f"{f['amplitude_MPa']:.4g}, sigma_m = {f['mean_MPa']:.4g} MPa, K = {f['notch_K']:.3g}, {f['material']}"
-                   + (f"; advice: {f['advice']}" if f["advice"] else ""))
+                   + (f"; advice: {f['advice']}" if f["advice"] else "")
+                   + (f"; admissible: {f['admissible']}" if f.get("admissible") else ""))
     r = d["ratings"]
     if "reason" in r:
         return out + [f"  WG bearing ratings: not evaluated ({r['reason']})"]

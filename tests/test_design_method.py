@@ -115,6 +115,23 @@ def test_advice_value_brings_the_factor_to_the_required_n():
     assert "bearing_inner_ring_thickness_mm <= " in f.advice.text()
 
 
+def test_second_gear_with_a_5_mm_ring_names_its_admissible_thickness():
+    """Issue 49: the user who set inner_ring_thickness_mm = 5 on the second gear sees the thickness named though the
+    ring passes: the admissible range's end, where the factor (or the static check) meets its limit."""
+    key = "wave_generator.bearing_inner_ring_thickness_mm"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        p = load_params(SECOND).with_value(key, 5.0)
+        f = df.wg_inner_ring_factor(p)
+        a = f.admissible
+        assert f.verdict() == "PASS" and f.advice is None and a is not None and a.key == key and a.relation == "<="
+        assert a.value > 5.0 and f"{key} <= " in a.text() and "now 5" in a.text()
+        inside, outside = (df.wg_inner_ring_factor(p.with_value(key, a.value * s), advise=False) for s in (0.99, 1.01))
+    assert inside.n >= f.required and inside.static_n >= 1.0
+    assert outside.n < f.required or outside.static_n < 1.0
+    assert f.row()["admissible"] == a.text()
+
+
 def test_solver_finds_the_root_on_the_current_side_and_says_when_there_is_none():
     a = solve_for("x", lambda x: 10.0 / x, 2.0, 8.0, 0.5, 20.0)
     assert a.value == pytest.approx(5.0, rel=1e-6) and a.relation == "<="
