@@ -129,6 +129,15 @@ def cup_cycle(params) -> dict:
             "K_delta": kd, "K_sigma": ks, "r_m_mm": r_m}
 
 
+# Which of the cup's two tooth-root factors is the verdict, and why (issue 49: analytic 1.9 against validate 1.19)
+CUP_GOVERNS = ("validate's FEA governs (study cup-wave-generator: the band on the rigid cam, nonlinear, rated T). The "
+               "closed form is the wall's bending alone, a ring forced into w0 cos 2phi (fully reversed, no mean); the "
+               "FEA's root-circle cycle adds what that ring cannot hold: the membrane hoop stress of the coned band "
+               "and the cam's contact (the band leaves the cam between the axes: a larger swing and a tensile mean; "
+               "docs/decisions/067-design49b-buckling-and-advice.md gives both gears' numbers). Same tooth factors, "
+               "mesh load and shear in both: only the wave's cycle differs")
+
+
 def cup_tooth_root_factor(params, fea: dict | None = None, advise: bool = True) -> FatigueFactor:
     """The cup's tooth-root factor; ``fea`` = {amplitude_MPa, mean_MPa, band}: the smooth band's cycle from the
     FEA of the cup on the wave generator (replacing the wave's bending and its mean), the tooth factors kept."""
@@ -145,10 +154,13 @@ def cup_tooth_root_factor(params, fea: dict | None = None, advise: bool = True) 
     m_src = (f"half the mesh root stress (pulsating) + K_delta x the wave's mean {bend_m:.4g} MPa, with the torque's "
              f"shear tau = T/(2 pi r_m^2 t) = {c['shear_MPa']:.4g} MPa as sqrt(sigma_m^2 + 3 tau^2)")
     n_src = f"K_sigma = {c['K_sigma']:.3f} (K_delta = {c['K_delta']:.3f}), the tooth-factor fit at the cup's h/t, m/t"
+    extra = {"closed_form": c, "governs": CUP_GOVERNS}
+    if fea is not None:
+        extra["closed_form_n"] = cup_tooth_root_factor(params, None, False).n
     factor = FatigueFactor("cup_tooth_root", TITLES["cup_tooth_root"], amp, mean, a_src, m_src, c["K_sigma"], n_src,
                            flexspline_steel(params), params.ewg_drive.permissible_safety,
                            f"wave generator insertion w0 + {RATED}", band=None if fea is None else fea.get("band"),
-                           extra={"closed_form": c})
+                           extra=extra)
     if not advise:
         return factor
     return _with_advice(factor, params, "flexspline_cup.wall_thickness_mm", cup_tooth_root_factor, fea,

@@ -80,6 +80,8 @@ def design_lines(d: dict) -> list[str]:
                    f"{f['amplitude_MPa']:.4g}, sigma_m = {f['mean_MPa']:.4g} MPa, K = {f['notch_K']:.3g}, {f['material']}"
                    + (f"; advice: {f['advice']}" if f["advice"] else "")
                    + (f"; admissible: {f['admissible']}" if f.get("admissible") else ""))
+        if (f.get("extra") or {}).get("governs"):
+            out.append(f"    NOT THE VERDICT: {f['extra']['governs']} (validate's design verdict carries it)")
     r = d["ratings"]
     if "reason" in r:
         return out + [f"  WG bearing ratings: not evaluated ({r['reason']})"]

@@ -73,10 +73,20 @@ def design_row(f: dict) -> tuple[str, ...]:
     fat = f.get("fatigue") or {}
     extra = "".join([f"; static n = {fat['static_n']:.3g} (R_p0.2)" if fat.get("static_n") is not None else "",
                      f"; advice: {fat['advice']}" if fat.get("advice") else "",
-                     f"; admissible: {fat['admissible']}" if fat.get("admissible") else ""])
+                     f"; admissible: {fat['admissible']}" if fat.get("admissible") else "",
+                     _closed_form_beside(fat)])
     return (f["title"], factor, num(f["required"], 3), num(f["stress_MPa"], 4),
             num(f["limit_MPa"], 4), result, f["load"] or "-", f["definition"] + extra + (f"; {f['reason']}" if f["reason"]
                                                                                           else ""))
+
+
+def _closed_form_beside(fat: dict) -> str:
+    """The closed form's factor of the same point beside the FEA's, and which governs (the cup's tooth root)."""
+    extra = fat.get("extra") or {}
+    if extra.get("closed_form_n") is None:
+        return ""
+    return (f"; closed form (analytic/design_factors.py, the wall's bending alone) n = {extra['closed_form_n']:.3g}: "
+            f"{extra['governs']}")
 
 
 def design_notes(design: dict) -> list[str]:
