@@ -29,7 +29,7 @@ from strainwave.analytic import wg_contact
 from strainwave.analytic.design_method import (Advice, FatigueFactor, bearing_steel, flexspline_steel, goodman,
                                                solve_for)
 
-__all__ = ["ring_factor", "cup_tooth_root_factor", "wg_inner_ring_factor", "wg_outer_ring_factor",
+__all__ = ["ring_factor", "cup_tooth_root_factor", "wg_inner_ring_factor", "wg_outer_ring_factor", "diaphragm_factor",
            "closed_form_factors", "bearing_ratings", "minimal_teeth", "materials_table", "TITLES"]
 
 TITLES = {"ring": "EWG flexspline ring, tooth root", "cup_tooth_root": "Flexspline cup, tooth root on the wave generator",
@@ -213,6 +213,31 @@ def wg_outer_ring_factor(params, fea: dict | None = None, advise: bool = True) -
                         (0.1, 0.5 * r_o), admissible=True)
 
 
+def diaphragm_factor(params, fea: dict | None = None, advise: bool = True) -> FatigueFactor:
+    """The diaphragm in closed form (no study resolves it): analytic/diaphragm.py's annular plate under the wave
+    generator's coning (fully reversed) with the torque's shear at the hub as the steady mean."""
+    from strainwave.analytic.diaphragm import diaphragm_geometry, diaphragm_stresses
+    a, b, t, lever = diaphragm_geometry(params)
+    m = params.material
+    s = diaphragm_stresses(a, b, t, lever, params.gear.radial_deformation_mm, params.gear.rated_output_torque_Nmm,
+                           m.youngs_modulus_MPa, m.poisson_ratio)
+    where = "hub" if abs(s.hub_bending_MPa) >= abs(s.wall_bending_MPa) else "wall"
+    factor = FatigueFactor(
+        "cup_diaphragm", TITLES["cup_diaphragm"], s.bending_MPa, math.sqrt(3.0) * s.hub_shear_MPa,
+        (f"CLOSED FORM (no study resolves the diaphragm): radial bending 6 M_r/t^2 at the {where} edge of an annular "
+         f"plate a = {a:.4g}, b = {b:.4g}, t = {t:.4g} mm under the wall's cos 2phi coning (edge rotation w0/L = "
+         f"{s.edge_rotation_rad:.4g} rad, L = {lever:.4g} mm; Clebsch's n = 2 solution, Timoshenko & Woinowsky-Krieger "
+         f"sec. 34; analytic/diaphragm.py): hub {s.hub_bending_MPa:.4g}, wall {s.wall_bending_MPa:.4g} MPa, fully reversed"),
+        f"the torque's shear at the hub tau = T/(2 pi a^2 t) = {s.hub_shear_MPa:.4g} MPa, steady, as sqrt(3) tau",
+        1.0, "1: a plate without the hub's and the wall's corner fillets (their concentration is not modelled)",
+        flexspline_steel(params), params.ewg_drive.permissible_safety, f"wave generator insertion w0 + {RATED}",
+        extra={"closed_form": s.to_dict()})
+    if not advise:
+        return factor
+    length = params.flexspline_cup.length_mm
+    return _with_advice(factor, params, "flexspline_cup.length_mm", diaphragm_factor, None, (0.5 * length, 4.0 * length))
+
+
 def bearing_ratings(params) -> dict:
     """Hertz p0 of the most loaded ball on each race, ISO 76's static check and ISO 281's L10 in hours."""
     from strainwave.analytic.study_loads import wg_bearing_load
@@ -242,7 +267,7 @@ def bearing_ratings(params) -> dict:
 
 def closed_form_factors(params) -> list[FatigueFactor]:
     return [ring_factor(params), cup_tooth_root_factor(params), wg_inner_ring_factor(params),
-            wg_outer_ring_factor(params)]
+            wg_outer_ring_factor(params), diaphragm_factor(params)]
 
 
 def _with_advice(factor: FatigueFactor, params, key: str, build, fea, span: tuple[float, float],

@@ -35,7 +35,8 @@ def _recomputed(row: dict) -> tuple[float, float]:
 
 def test_every_closed_form_factor_is_recomputed_from_its_stated_inputs(gear):
     factors = df.closed_form_factors(gear)
-    assert [f.component for f in factors] == ["ring", "cup_tooth_root", "wg_inner_ring", "wg_outer_ring"]
+    assert [f.component for f in factors] == ["ring", "cup_tooth_root", "wg_inner_ring", "wg_outer_ring",
+                                                 "cup_diaphragm"]
     for f in factors:
         row = f.row()
         n, static = _recomputed(row)

@@ -11,6 +11,8 @@ Each factor takes its cycle from the FEA where a study solved it, and from the c
 - ``wg_inner_ring``: study wg-bearing: the cam's hoop stress at the race (a mean: the ring turns with the cam)
   and half the change the rated ball loads add at the load line (the amplitude of the ball passes).
 - ``wg_outer_ring``: closed form (no study models the outer ring).
+- ``cup_diaphragm``: closed form (no study resolves the diaphragm: wg-cup holds the closed end round), the annular
+  plate of analytic/diaphragm.py, stated as closed form in its sources.
 - ``cup_band_edge``: study wg-cup, prescribed linear: the wall's bending at the band's edge (station 1.0 band
   widths from the rim), fully reversed as the wave passes, a smooth wall (notch 1).
 - every other reported component (torsion of the cup and the shaft): its FEA peak von Mises at the rated
@@ -133,6 +135,7 @@ def design_factors_from_fea(params, book, labels: dict, stresses: dict, titles: 
     inner = inner_ring_fea(book, labels.get("wg-bearing"), params)
     out.append(ComponentFactor.of(df.wg_inner_ring_factor(params, inner)) if inner else _not_run("wg_inner_ring"))
     out.append(ComponentFactor.of(df.wg_outer_ring_factor(params)))
+    out.append(ComponentFactor.of(df.diaphragm_factor(params)))
     return out
 
 
