@@ -167,6 +167,20 @@ def cup_tooth_root_factor(params, fea: dict | None = None, advise: bool = True) 
                         (0.1, 0.5 * params.flexspline_cup.pitch_diameter_mm * 0.2))
 
 
+def band_edge_closed(params, fea: dict | None = None, advise: bool = False) -> FatigueFactor:
+    """The band edge's dependence on the parameters for the advice only: the wall's bending of a ring forced into
+    w0 cos 2phi (its FEA factor is the verdict, compare/validate/design_fea.band_edge_factor)."""
+    c = cup_cycle(params)
+    return FatigueFactor("cup_band_edge", TITLES["cup_band_edge"], c["bending_MPa"], 0.0,
+                         "E' t/2 3 w0/r_m^2 (analytic/ring_prescribed.py)", "0: fully reversed", 1.0, "1: smooth wall",
+                         flexspline_steel(params), params.ewg_drive.permissible_safety, "wave generator insertion w0")
+
+
+def with_advice(factor: FatigueFactor, params, key: str, build, span: tuple[float, float]) -> FatigueFactor:
+    """``_with_advice`` for a factor computed on the FEA (``build``: its closed-form dependence on ``key``)."""
+    return _with_advice(factor, params, key, build, {}, span)
+
+
 # ---- the wave generator bearing -------------------------------------------------------------------------------
 def inner_ring_radii(params) -> tuple[float, float]:
     from strainwave.geometry.bearing_ring import check_ring_fits

@@ -254,3 +254,18 @@ def test_ball_spring_constant_is_hertz_and_the_series_of_its_two_contacts():
 def _radii(D, f, r, inner):
     rx = 1.0 / (2.0 / D + (1.0 if inner else -1.0) / r)
     return rx, 1.0 / (2.0 / D - 1.0 / (f * D))
+
+
+def test_band_edge_below_n_gets_a_wall_thickness_that_brings_it_to_n():
+    """The band edge's factor is the FEA's; below [n] its advice follows the ring's closed form scaled to the FEA."""
+    from types import SimpleNamespace
+    from strainwave.compare.validate.design_fea import band_edge_factor
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        p = load_params()
+        book = SimpleNamespace(quantity=lambda label, name: (SimpleNamespace(value=600.0, uncertainty=5.0), ""))
+        f = band_edge_factor(book, "case", p)
+        assert f.n < f.required and f.advice is not None and f.advice.key == "flexspline_cup.wall_thickness_mm"
+        assert f.advice.relation == "<=" and f.advice.value < p.flexspline_cup.wall_thickness_mm
+        scale = df.band_edge_closed(p.with_value(f.advice.key, f.advice.value)).n / df.band_edge_closed(p).n
+    assert f.n * scale == pytest.approx(f.required, rel=1e-6)

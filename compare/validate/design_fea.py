@@ -90,11 +90,14 @@ def band_edge_factor(book, label, params) -> FatigueFactor | None:
         return None
     steel = flexspline_steel(params)
     band = factor_band(lambda a: goodman(abs(a), 0.0, 1.0, steel), (q.value, q.uncertainty))
-    return FatigueFactor("cup_band_edge", df.TITLES["cup_band_edge"], abs(q.value), 0.0,
-                         f"FEA {label}: the wall's bending (outer - inner)/2 at the band's edge, major axis, prescribed w0",
-                         "0: fully reversed, the wave passes twice per input revolution", 1.0,
-                         "1: the smooth wall beyond the teeth", steel, params.ewg_drive.permissible_safety,
-                         "wave generator insertion w0", band=band)
+    factor = FatigueFactor("cup_band_edge", df.TITLES["cup_band_edge"], abs(q.value), 0.0,
+                           f"FEA {label}: the wall's bending (outer - inner)/2 at the band's edge, major axis, prescribed w0",
+                           "0: fully reversed, the wave passes twice per input revolution", 1.0,
+                           "1: the smooth wall beyond the teeth", steel, params.ewg_drive.permissible_safety,
+                           "wave generator insertion w0", band=band)
+    # the wall's thickness scales its bending: the advice follows the ring's closed form, scaled to the FEA
+    return df.with_advice(factor, params, "flexspline_cup.wall_thickness_mm", df.band_edge_closed,
+                          (0.1, 0.1 * params.flexspline_cup.pitch_diameter_mm))
 
 
 def peak_factor(component: str, title: str, at, params) -> FatigueFactor:
