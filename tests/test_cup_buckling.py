@@ -65,3 +65,17 @@ def test_buckling_check_passes_and_fails_on_a_perturbed_reference(monkeypatch):
         assert not bc.buckling_check(p, solved).passed, scale
     record = bc.buckling_record(p, check)
     assert record["fe_over_rated"] == pytest.approx(check.fea / p.gear.rated_output_torque_Nmm)
+
+
+def test_a_tube_the_fe_cannot_take_is_not_evaluated_not_raised(monkeypatch):
+    from strainwave.compare.validate import buckling_checks as bc
+    from strainwave.errors import StageError
+    from strainwave.params import load_params
+
+    def fail(params):
+        raise StageError("solve", "cup-buckling", "the buckling eigenvalues did not converge")
+    monkeypatch.setattr(bc, "fe_quantity", fail)
+    check = bc.buckling_check(load_params())
+    assert check.verdict == "not evaluated" and not check.passed and "did not converge" in check.reason_not_evaluated
+    assert check.analytic["corrected"] == pytest.approx(bc.closed_form(load_params()).torque_Nmm)
+    assert bc.buckling_record(load_params(), check)["fe_over_rated"] is None

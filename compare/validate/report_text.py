@@ -111,8 +111,9 @@ def buckling_line(b: dict) -> str:
     first = (f"the wall's shear reaches R_p0.2/sqrt(3) = {b['shear_yield_MPa']:.4g} MPa first, at "
              f"{b['shear_yield_torque_Nmm'] / b['rated_torque_Nmm']:.3g} x rated: the elastic buckling torque is an "
              "upper bound" if b["yields_first"] else "it buckles before the wall yields")
+    gci = "none" if b.get("fe_gci_Nmm") is None else f"{b['fe_gci_Nmm'] / 1e3:.3g}"
     return (f"Flexspline torsional buckling (check cup.buckling_torque): FE {b['fe_buckling_torque_Nmm'] / 1e3:.4g} N m "
-            f"(GCI {b['fe_gci_Nmm'] / 1e3:.3g}) = {b['fe_over_rated']:.3g} x the rated torque; closed form "
+            f"(GCI {gci}) = {b['fe_over_rated']:.3g} x the rated torque; closed form "
             f"{b['closed_form_torque_Nmm'] / 1e3:.4g} N m ({b['closed_form_over_rated']:.3g} x, n = {b['n_waves']} waves, "
             f"Z = {b['Z']:.4g}); {first}; beside it, CSF size {b['csf_size']}: {b['csf_buckling_torque_Nm']:g} N m "
             f"({b['csf_note']})")
