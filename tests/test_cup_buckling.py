@@ -4,6 +4,7 @@ import math
 from dataclasses import replace
 
 import pytest
+from hypothesis import given, settings, strategies as st
 
 from strainwave.analytic.cylinder_buckling import asymptote_k, batdorf_k, torsional_buckling
 
@@ -79,3 +80,16 @@ def test_a_tube_the_fe_cannot_take_is_not_evaluated_not_raised(monkeypatch):
     assert check.verdict == "not evaluated" and not check.passed and "did not converge" in check.reason_not_evaluated
     assert check.analytic["corrected"] == pytest.approx(bc.closed_form(load_params()).torque_Nmm)
     assert bc.buckling_record(load_params(), check)["fe_over_rated"] is None
+
+
+@settings(max_examples=25, deadline=None)
+@given(r_over_t=st.floats(20.0, 500.0), l_over_r=st.floats(0.3, 5.0))
+def test_closed_form_lies_between_the_flat_strip_and_the_moderate_length_line(r_over_t, l_over_r):
+    """Curvature only stiffens a strip in shear (k_s >= 5.35); past Z = 100 the least integer-n solution is Batdorf's
+    line 0.85 Z^(3/4) within 10 % (the integer n and the dropped plate term)."""
+    R = 50.0
+    cb = torsional_buckling(R, R / r_over_t, l_over_r * R, 2.1e5, 0.3)
+    assert cb.n_waves >= 2 and math.isfinite(cb.torque_Nmm) and cb.torque_Nmm > 0
+    assert cb.k_s >= 5.35 * 0.995
+    if cb.Z >= 100:
+        assert cb.k_s == pytest.approx(cb.k_s_asymptote, rel=0.10)
