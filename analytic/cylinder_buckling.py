@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["CylinderBuckling", "batdorf_k", "asymptote_k", "torsional_buckling", "TERMS"]
+__all__ = ["CylinderBuckling", "batdorf_k", "asymptote_k", "torsional_buckling", "cup_tube", "TERMS"]
 
 TERMS = 24                 # axial half-waves in the Galerkin sum (k_s converged to < 1e-4 at Z <= 1e4)
 ASYMPTOTE = 0.85           # k_s = 0.85 Z^(3/4), simply supported (Batdorf; SP-8007)
@@ -85,3 +85,12 @@ def torsional_buckling(R_mm: float, t_mm: float, L_mm: float, E_MPa: float, nu: 
     ka = asymptote_k(Z)
     arm = 2.0 * math.pi * R_mm * R_mm * t_mm
     return CylinderBuckling(Z, n, k, ka, k * scale, ka * scale, k * scale * arm, ka * scale * arm)
+
+
+def cup_tube(params) -> tuple[float, float, float]:
+    """(R, t, L) of the flexspline cup's wall as the buckling tube: mid radius of bore to root circle, wall, and the
+    length from the diaphragm's mid-plane to the rim (the FE's tube, fea/wg_band.tube_geometry)."""
+    from strainwave.geometry.flexspline_cup import BOSS_HEIGHT_WALLS
+    fc = params.flexspline_cup
+    t = fc.wall_thickness_mm
+    return 0.5 * (fc.pitch_diameter_mm - t), t, fc.length_mm - (BOSS_HEIGHT_WALLS - 0.5) * t

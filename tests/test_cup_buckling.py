@@ -93,3 +93,16 @@ def test_closed_form_lies_between_the_flat_strip_and_the_moderate_length_line(r_
     assert cb.k_s >= 5.35 * 0.995
     if cb.Z >= 100:
         assert cb.k_s == pytest.approx(cb.k_s_asymptote, rel=0.10)
+
+
+@pytest.mark.parametrize("path", [None, "strainwave/data/second_gear.toml"])
+def test_the_closed_forms_tube_is_the_fes(path):
+    import warnings
+    from strainwave.analytic.cylinder_buckling import cup_tube
+    from strainwave.fea.wg_band import tube_geometry
+    from strainwave.params import load_params
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        p = load_params(path)
+    geo = tube_geometry(p)
+    assert cup_tube(p) == pytest.approx((geo.r_m_mm, geo.wall_mm, geo.length_mm - geo.z_end_mm), rel=1e-12)
