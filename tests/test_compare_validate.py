@@ -458,7 +458,7 @@ def test_both_verdicts_open_the_report_and_a_failing_design_is_red(quick_run, re
     # one factor per component and point of it (issue 49), each recomputed from the inputs it states (design.csv's
     # row): Goodman on its amplitude and mean, the static check beside it; the verdict is exactly theirs
     assert {f["component"] for f in design["factors"]} == {"shaft", "cup", "ring", "cup_tooth_root", "cup_band_edge",
-                                                           "wg_inner_ring", "wg_outer_ring"}
+                                                           "wg_inner_ring", "wg_outer_ring", "cup_diaphragm"}
     for f in design["factors"]:
         assert f["definition"] and f["required"] == design["required_safety_factor"]
         row = f["fatigue"]
