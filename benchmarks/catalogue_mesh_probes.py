@@ -72,6 +72,8 @@ def fe_against_reduced(ratio: int) -> None:
             t0 = time.process_time()
             infl, _ = tm.influences(params, mesh, h, bed_N_per_mm2=None if support == "held" else bed)
             w = tm._interp_weights(infl["fs_radii"], np.array([mesh["major_fs_radius_mm"]]))[0]
+            sector = tm.major_pair(infl, mesh)["cs_tooth_compliance_major_mm_per_N"]    # the FE's own CS tooth
+            raw = _read([solve_torque_path(tm.systems(infl, {**mesh, "angles": [a0]})[0], hist)], rated)
             fs_solid = float(w @ infl["fs_solid"][0] @ w)
             iso = mc.tooth_pair_compliance_mm_per_N(
                 mc.iso6336_single_pair_stiffness_N_per_mm_um(z, None, alpha_deg=20.0), infl["face_width_mm"])
@@ -81,6 +83,8 @@ def fe_against_reduced(ratio: int) -> None:
             print(json.dumps({"ratio": ratio, "model": "fe", "support": support, "h_mm": h,
                               "fs_tooth_mm_per_N": float(w @ infl["fs_same"][0] @ w),
                               "fs_next_mm_per_N": float(w @ infl["fs_same"][1] @ w), "cs_mm_per_N": iso - fs_solid,
+                              "cs_sector_mm_per_N": float(sector),
+                              "secant_with_cs_sector": raw["secant_stiffness_rated_Nmm_per_rad"],
                               "cpu_s": time.process_time() - t0} | v), flush=True)
 
 
