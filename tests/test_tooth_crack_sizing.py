@@ -116,6 +116,17 @@ def test_a_cracked_tooth_is_sized_within_its_interval(index, seed):
     assert not wrong.low_mm <= truth <= wrong.high_mm
 
 
+def test_a_curve_its_meshes_do_not_agree_on_sizes_nothing():
+    """The same cracked drive on a curve whose coarse 'meshes' are 40 % and 100 % off: the crack is seen, its depth
+    is not claimed; the same curve with meshes 0.4 % and 1.2 % off sizes it (the gate can pass and fail)."""
+    good, bad = _synthetic_record(), _synthetic_record((0.0, 0.4, 1.0))
+    T, y, th, t = _drive(np.asarray(good["per_mesh"][0][2]["change_rad"]), seed=8)
+    out = _size(T, y, th, t, bad)
+    assert out["reading"]["detected"] and out["_sizes"] == []
+    assert any("not sized: the FE curve's uncertainty" in line for line in out["lines"])
+    assert _size(T, y, th, t, good)["_sizes"][0].possible
+
+
 def test_a_clean_drive_reads_no_tooth_crack():
     record = _synthetic_record()
     T, y, th, t = _drive(None, seed=3)
@@ -164,3 +175,46 @@ def test_the_curve_closes_under_negative_torque_and_grows_with_depth():
         tcr.curve_for(record, T, one_load=False)
     curve = tcr.curve_for(record, np.linspace(0.3, 1.0, 500) * RATED, one_load=False)
     assert all(np.diff(curve.delta) > 0) and all(u > 0 for u in curve.uncertainty)
+
+
+def _write_drive(path, T, y, th, t, extra_head=()):
+    head = ["# [test]", '# kind = "torsion"', '# specimen = "gear"', "# baseline_stiffness_Nmm_per_rad = 1.6e9",
+            "# baseline_uncertainty = 0.3", *extra_head, "torque_Nmm,twist_rad,time_s,input_angle_rad"]
+    rows = (f"{a:.6f},{b:.12e},{c:.6f},{d:.9f}" for a, b, c, d in zip(T, y, t, th))
+    path.write_text("\n".join([*head, *rows]) + "\n")
+
+
+@pytest.mark.heavy
+def test_size_crack_command_reads_the_tooth_crack_channel(tmp_path, strainwave_cmd):
+    """End to end through the CLI, the curve taken from --cache (put there as the command keys it): a drive
+    recording with a cracked tooth's ripple is sized in the JSON's tooth_crack record; a bad slot width exits 2 in
+    one line naming the key, before any FE work (two diagnoses of a drive: ~10 s at a quiet load, so heavy)."""
+    import json
+    import subprocess
+
+    from strainwave.cache import ResultCache, case_key
+    record = _synthetic_record()
+    ResultCache(tmp_path).put(case_key("tooth-crack-curve", {"params": PARAMS.to_dict(), "quick": False}), record)
+    T, y, th, t = _drive(np.asarray(record["per_mesh"][0][3]["change_rad"]), seed=7, n=2100, revolutions=70.0)
+    _write_drive(tmp_path / "drive.csv", T, y, th, t)
+    run = subprocess.run([*strainwave_cmd, "size-crack", str(tmp_path / "drive.csv"), "--cache", str(tmp_path),
+                          "--json", "-"], capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    out = json.loads(run.stdout)["tooth_crack"]
+    (size,) = out["sizes"]
+    assert size["component"] == tcr.COMPONENT and size["low_mm"] <= DEPTHS[3] <= size["high_mm"], out["lines"]
+    _write_drive(tmp_path / "slot.csv", T, y, th, t, ("# [params.crack_geometry]", "# slot_width_mm = 0.05"))
+    bad = subprocess.run([*strainwave_cmd, "size-crack", str(tmp_path / "slot.csv"), "--cache", str(tmp_path)],
+                         capture_output=True, text=True, timeout=120)
+    assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "slot_width_mm" in bad.stderr
+
+
+def test_a_slot_too_wide_for_the_shallowest_crack_is_refused_by_its_key():
+    """Every seeded crack 0.2 mm deep allows a 0.04 mm slot; the curve's shallowest tooth crack (0.1 mm) does not."""
+    from strainwave.errors import InputError
+    from strainwave.fea.tooth_crack_curve import curve_depths_mm
+    wide = PARAMS.with_values({"output_shaft.crack_depth_mm": 0.2, "flexspline_cup.root_crack_depth_mm": 0.2,
+                               "wave_generator.bearing_crack_depth_mm": 0.2, "crack_geometry.slot_width_mm": 0.03})
+    with pytest.raises(InputError, match="crack_geometry.slot_width_mm"):
+        curve_depths_mm(wide)
+    assert curve_depths_mm(PARAMS)[0] >= 5 * PARAMS.crack_geometry.slot_width_mm

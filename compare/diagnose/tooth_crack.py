@@ -41,6 +41,9 @@ WG_HARMONICS = (1, 2, 3, 4)
 DETECT_P = 1e-3            # the torque-scaled harmonics' Wald test: a false alarm in a thousand clean drives
 MIN_TORQUE_SPREAD = 0.3    # of the peak torque: below it a crack and a tooth's pitch error are not told apart
 SAMPLES_PER_CYCLE = 4.0    # of the highest fitted harmonic, per input revolution
+# a curve point whose GCI exceeds this fraction of its value does not know the crack's ripple to within a factor
+# of ~2 at k = 2: nothing is sized on it (the study's contact solution is not always mesh-converged: decision 067)
+MAX_CURVE_GCI = 0.5
 
 
 @dataclass(frozen=True)
@@ -240,6 +243,12 @@ def _sized_lines(reading: ToothCrackReading, curve: DeltaCurve | None) -> tuple[
     if curve is None:
         return [], [f"{COMPONENT}: not sized (no FE curve)"]
     size = size_crack(reading.ripple, reading.sigma, [curve])[0]
+    if size.possible:
+        gci = curve.relative_uncertainty_at(size.depth_mm)
+        if gci > MAX_CURVE_GCI:
+            return [], [f"{COMPONENT}: not sized: the FE curve's uncertainty is {gci:.0%} of its ripple near "
+                        f"a = {size.depth_mm:.3g} mm (over {MAX_CURVE_GCI:.0%}: its three meshes disagree), so the "
+                        "data say a crack is there but not how deep"]
     lines = [size.line()]
     if not size.possible:
         lines.append(f"{COMPONENT}: not on the curve: its deepest crack (a = {curve.depths_mm[-1]:g} mm) ripples "
