@@ -218,3 +218,36 @@ def test_a_slot_too_wide_for_the_shallowest_crack_is_refused_by_its_key():
     with pytest.raises(InputError, match="crack_geometry.slot_width_mm"):
         curve_depths_mm(wide)
     assert curve_depths_mm(PARAMS)[0] >= 5 * PARAMS.crack_geometry.slot_width_mm
+
+
+@pytest.mark.heavy
+def test_the_fe_curve_on_the_default_gear(tmp_path):
+    """The real curve (the tooth-mesh FE at five depths on the study's three meshes, ~50 CPU-s): first principles on
+    every mesh (the cracked tooth is more compliant at every depth, more so the deeper; the drive's twist ripple
+    grows with the depth); the ripple written from its finest raw point is seen, and sized within its interval
+    wherever the curve's meshes agree to MAX_CURVE_GCI, refused with its reason otherwise. A second call reads
+    the cache."""
+    from strainwave.fea.tooth_crack_curve import curve_depths_mm
+    record = tcr.mesh_curve_record(PARAMS, tmp_path)
+    assert record["depths_mm"] == list(curve_depths_mm(PARAMS)) and len(record["per_mesh"]) == 3
+    phi = np.asarray(record["phi_rad"])
+    for rows in record["per_mesh"]:
+        ratios = [r["tooth_ratio"] for r in rows]
+        ripple = [abs(tcr.fundamental(r["change_rad"], phi)[-1]) for r in rows]
+        assert ratios[0] > 1.0 and all(np.diff(ratios) > 0), ratios
+        assert all(np.diff(ripple) > 0), ripple
+        # the crack adds nothing unloaded, and its twist change is never negative (it only softens)
+        assert all(np.min(r["change_rad"]) >= -1e-15 and np.max(np.abs(r["change_rad"][0])) == 0 for r in rows)
+    index = 2
+    T, y, th, t = _drive(np.asarray(record["per_mesh"][0][index]["change_rad"]), seed=11, noise_rad=1e-9,
+                         rated=record["rated_torque_Nmm"])
+    out = _size(T, y, th, t, record)
+    assert out["reading"]["detected"], out["lines"]
+    curve = out["_curve"]
+    truth = record["depths_mm"][index]
+    if curve.relative_uncertainty_at(truth) <= tcr.MAX_CURVE_GCI:
+        size = out["_sizes"][0]
+        assert size.low_mm <= truth <= size.high_mm, out["lines"]
+    else:
+        assert out["_sizes"] == [] and "not sized: the FE curve's uncertainty" in "\n".join(out["lines"])
+    assert tcr.mesh_curve_record(PARAMS, tmp_path) == record            # the cache answers the second call
