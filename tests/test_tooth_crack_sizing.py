@@ -166,15 +166,17 @@ def test_too_short_a_run_is_not_read():
     assert "telling the crack's order from the wave generator's 2x takes" in out["lines"][0]
 
 
-def test_the_curve_closes_under_negative_torque_and_grows_with_depth():
-    """First principles on the reader's side: a torque that never turns positive loads only the uncracked flank
-    (the crack closes), so no curve rises; the synthetic curve's points rise with depth."""
+def test_the_crack_closes_under_the_other_flank_and_the_curve_grows_with_depth():
+    """First principles on the reader's side: a drive run the other way has its crack at the mirrored root and the
+    same curve; a torque cycled through zero opens the crack only on its prevailing side, so the ripple per unit
+    torque is smaller than on that side alone, and not zero; the points rise with depth."""
     record = _synthetic_record()
-    T = np.linspace(-RATED, -0.2 * RATED, 500)
-    with pytest.raises(ValueError):
-        tcr.curve_for(record, T, one_load=False)
-    curve = tcr.curve_for(record, np.linspace(0.3, 1.0, 500) * RATED, one_load=False)
-    assert all(np.diff(curve.delta) > 0) and all(u > 0 for u in curve.uncertainty)
+    up = tcr.curve_for(record, np.linspace(0.3, 1.0, 500) * RATED, one_load=False)
+    down = tcr.curve_for(record, -np.linspace(0.3, 1.0, 500) * RATED, one_load=False)
+    assert np.allclose(up.delta, down.delta, rtol=1e-12)
+    both = tcr.curve_for(record, RATED * np.sin(np.linspace(0, 6 * np.pi, 900)) + 0.05 * RATED, one_load=False)
+    assert all(0 < b < 0.8 * u for b, u in zip(both.delta, up.delta))
+    assert all(np.diff(up.delta) > 0) and all(u > 0 for u in up.uncertainty)
 
 
 def _write_drive(path, T, y, th, t, extra_head=()):

@@ -186,11 +186,14 @@ def fundamental(change: np.ndarray, phi_rad: np.ndarray, step: int = 1) -> np.nd
 
 def _projected(F: np.ndarray, levels_Nmm: np.ndarray, T: np.ndarray, one_load: bool) -> float:
     """|slope| of the model's fundamental F(T) at the recording's torques on the reading's columns ([1, T] or [T]):
-    what the fit of ``read_ripple`` returns for data made of that model (rad/(N mm)). A torque below zero loads the
-    other flank, whose root is in compression: the crack there closes and adds nothing."""
-    Tc = np.clip(T, 0.0, levels_Nmm[-1])
-    Fi = np.interp(Tc, levels_Nmm, F.real) + 1j * np.interp(Tc, levels_Nmm, F.imag)
-    Fi = np.where(T > 0, Fi, 0.0)
+    what the fit of ``read_ripple`` returns for data made of that model (rad/(N mm)). The crack is taken at the root
+    in tension under the recording's prevailing torque sign (the FE's +flank under a positive torque, its mirror under
+    a negative one); the other sign loads the other flank, under which that root is in compression: the crack closes
+    and adds nothing."""
+    sign = 1.0 if float(np.mean(T)) >= 0.0 else -1.0
+    Tl = np.clip(sign * T, 0.0, levels_Nmm[-1])
+    Fi = np.interp(Tl, levels_Nmm, F.real) + 1j * np.interp(Tl, levels_Nmm, F.imag)
+    Fi = sign * np.where(sign * T > 0, Fi, 0.0)
     A = T[:, None] if one_load else np.column_stack([np.ones_like(T), T])
     coef, *_ = np.linalg.lstsq(A.astype(complex), Fi, rcond=None)
     return float(abs(coef[-1]))
