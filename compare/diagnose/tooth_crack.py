@@ -115,9 +115,21 @@ def _columns(u: np.ndarray, s: np.ndarray, angle: np.ndarray, order: float, J: i
         phase = j * order * angle
         crack += [u * np.cos(phase), u * np.sin(phase)]
         plain += [np.cos(phase), np.sin(phase)] if pitch else []
-    n0 = len(cols)
-    X = np.column_stack(cols + crack + plain)
+    nuisance = _independent(np.column_stack(cols))     # a constant torque or time leaves some of them dependent
+    n0 = nuisance.shape[1]
+    X = np.column_stack([nuisance, *crack, *plain])
     return X, slice(n0, n0 + len(crack)), slice(n0 + len(crack), X.shape[1])
+
+
+def _independent(N: np.ndarray) -> np.ndarray:
+    """The columns of ``N`` a pivoted QR finds independent (relative tolerance 1e-9 on unit columns)."""
+    from scipy.linalg import qr
+    norms = np.linalg.norm(N, axis=0)
+    keep = norms > 0
+    N = N[:, keep] / norms[keep]
+    R, piv = qr(N, mode="r", pivoting=True)
+    d = np.abs(np.diag(R[0] if isinstance(R, tuple) else R))
+    return N[:, np.sort(piv[:int(np.count_nonzero(d > 1e-9 * d[0]))])]
 
 
 def _fit(X: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -166,7 +178,12 @@ def read_ripple(torque_Nmm, twist_rad, angle_rad, order: float, time_s=None) -> 
     t = np.arange(len(T), dtype=float) if time_s is None else np.asarray(time_s, float)
     s = (t - t.mean()) / max(float(np.ptp(t)), 1e-300)
     X, crack, plain = _columns(u, s, th, order, J, pitch=not one_load)
-    beta, cov = _fit(X, y)
+    try:
+        beta, cov = _fit(X, y)
+    except np.linalg.LinAlgError:
+        return ToothCrackReading(order, revs, need, **empty, one_load=one_load, reason=(
+            "the crack's harmonics cannot be told from the load, the drift and the wave generator's harmonics in this "
+            "recording"))
     chi, dof, p = _wald(beta, cov, crack)
     pitch_p = _wald(beta, cov, plain)[2] if not one_load else None
     a, b = beta[crack.start], beta[crack.start + 1]
