@@ -105,6 +105,8 @@ def test_a_cracked_tooth_is_sized_within_its_interval(index, seed):
     assert out["reading"]["detected"], out["lines"]
     size = out["_sizes"][0]
     truth = DEPTHS[index]
+    assert "202 per output revolution" in out["lines"][0]
+    assert [r["tooth_compliance_ratio"] for r in out["cracked_tooth"]] == [1 + 0.25 * a for a in DEPTHS]
     assert size.possible and size.low_mm <= truth <= size.high_mm, out["lines"]
     assert size.high_mm - size.low_mm < 0.6 * truth          # an interval that says something
     # the check can fail: a curve twice as steep (the crack's ripple doubled) puts the same reading elsewhere

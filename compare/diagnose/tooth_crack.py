@@ -32,7 +32,7 @@ import numpy as np
 from strainwave.compare.diagnose.crack_sizing import COVERAGE_K, DeltaCurve, size_crack
 
 __all__ = ["COMPONENT", "UNIT", "ToothCrackReading", "crack_order", "read_ripple", "curve_for", "fundamental",
-           "mesh_curve_record", "size_tooth_crack"]
+           "mesh_curve_record", "size_tooth_crack", "tooth_ratios"]
 
 COMPONENT = "flexspline tooth root (mesh)"
 UNIT = "rad/(N*mm)"
@@ -236,6 +236,18 @@ def curve_for(record: Mapping, torque_Nmm, *, one_load: bool) -> DeltaCurve:
                       float(record["wall_mm"]), record.get("source", "FEA: tooth-mesh crack curve"))
 
 
+def tooth_ratios(record: Mapping) -> list[dict]:
+    """Per depth: the cracked tooth's own compliance over the sound tooth's (FE, at the major axis's contact
+    radius) with the GCI of its three meshes."""
+    from strainwave.fea.refinement import converged_quantity
+    out = []
+    for i, a in enumerate(record["depths_mm"]):
+        q = converged_quantity("crack_tooth_compliance_ratio", "1", record["sizes_mm"],
+                               [m[i]["tooth_ratio"] for m in record["per_mesh"]])
+        out.append({"depth_mm": a, "tooth_compliance_ratio": q.value, "gci": q.uncertainty or 0.0})
+    return out
+
+
 def mesh_curve_record(params, cache_dir: Path | None = None, progress: Callable[[str], None] = lambda m: None,
                       *, quick: bool = False) -> dict:
     """The raw FE curve (fea/tooth_crack_curve.curve_points on the study's three meshes), solved on demand and
@@ -282,18 +294,25 @@ def _sized_lines(reading: ToothCrackReading, curve: DeltaCurve | None) -> tuple[
 def size_tooth_crack(load, response, angle, params, *, time_s=None, curve_record: Callable[[], Mapping]) -> dict:
     """The sizing record of a drive's recording on the tooth-crack channel: its reading, and the depth on the FE
     curve (``curve_record()``, called only when the order is readable) or why none."""
-    order = crack_order(params)["per_input_revolution"]
-    reading = read_ripple(load, response, angle, order, time_s)
-    sizes, lines = [], [reading.line()]
-    curve = None
+    reading = read_ripple(load, response, angle, crack_order(params)["per_input_revolution"], time_s)
+    orders = crack_order(params)
+    sizes, lines = [], [reading.line() + f" ({orders['per_output_revolution']:.4g} per output revolution)"]
+    curve, ratios = None, None
     if reading.ripple is not None:
         try:
-            curve = curve_for(curve_record(), load, one_load=reading.one_load)
+            record = curve_record()
+            ratios = tooth_ratios(record)
+            curve = curve_for(record, load, one_load=reading.one_load)
         except ValueError as exc:        # a curve that does not rise with depth sizes nothing
             lines.append(f"{COMPONENT}: not sized ({exc})")
     if reading.detected:
         sizes, more = _sized_lines(reading, curve)
         lines += more
+        if sizes and sizes[0].possible and ratios:
+            r = float(np.interp(sizes[0].depth_mm, [q["depth_mm"] for q in ratios],
+                                [q["tooth_compliance_ratio"] for q in ratios]))
+            lines.append(f"{COMPONENT}: at that depth the cracked tooth is {100 * (r - 1):.3g} % more compliant than a "
+                         "sound one (FE, at the major axis's contact radius)")
     elif curve is not None:
         bound = reading.ripple + COVERAGE_K * reading.sigma
         a = curve.depth_for(bound)
@@ -307,6 +326,7 @@ def size_tooth_crack(load, response, angle, params, *, time_s=None, curve_record
     return {"effect": "tooth_crack_ripple", "quantity": "tooth-crack ripple (torque-scaled fundamental)",
             "reading": reading.to_dict(), "delta": reading.ripple, "sigma": reading.sigma, "unit": UNIT,
             "coverage_k": COVERAGE_K, "sizes": [s.to_dict() for s in sizes], "lines": lines,
+            "orders": orders, "cracked_tooth": ratios,
             "curve": None if curve is None else {"depths_mm": list(curve.depths_mm), "ripple": list(curve.delta),
-                                                 "uncertainty": list(curve.uncertainty)},
+                                                 "uncertainty": list(curve.uncertainty), "source": curve.source},
             "_sizes": sizes, "_curve": curve}
