@@ -18,7 +18,9 @@ where the torque-scaled harmonics together stand above the noise (Wald test, p <
 The curve (``curve_for``): the FE's twist change over tooth 0's positions at each torque of the ramp, its
 fundamental over one pass period, projected on the same columns at the recording's own torques (the contact is
 non-linear: the crack's ripple per unit torque is not the same at half and at full torque), on each of the study's
-three meshes, so each point carries its GCI, and the trapezoidal rule's error over the positions.
+three meshes, so each point carries its GCI, and the trapezoidal rule's error over the positions. A depth is
+given with crack_sizing's k = 2 interval, "not on the curve" beyond its deepest point, or "not sized" where the
+curve's meshes disagree by more than MAX_CURVE_GCI (decision 067).
 """
 from __future__ import annotations
 
