@@ -31,8 +31,8 @@ __all__ = ["DEPTH_FRACTIONS", "PHI_DEG", "root_thickness_mm", "curve_depths_mm",
 # of the FS tooth's root thickness: shallow (0.05) to half through; the slot's width stays <= depth/5
 DEPTH_FRACTIONS = (0.05, 0.1, 0.2, 0.35, 0.5)
 RAMP_STEPS = 21             # steps of the 0 -> rated ramp (the study's); the ripple is kept at every step
-# positions of tooth 0 (from the WG major axis): the +flank carries load from -1.5 to +12 deg at rated torque on
-# the default gear (the study's 7.5 deg grid saw it at two positions), so 1.5 deg steps, 10 deg clear each side
+# positions of tooth 0 (from the WG major axis): the +flank carries load from 0 to +6 deg at rated torque on the
+# default gear (the study's 7.5 deg grid sees it at one position), so 1.5 deg steps, well clear each side
 PHI_DEG = np.arange(-12.0, 27.0 + 1e-9, 1.5)
 
 

@@ -38,7 +38,7 @@ __all__ = ["COMPONENT", "UNIT", "ToothCrackReading", "crack_order", "read_ripple
 
 COMPONENT = "flexspline tooth root (mesh)"
 UNIT = "rad/(N*mm)"
-HARMONICS = 12             # of the crack's order: the pulse is ~14 deg of the 180 deg between passes
+HARMONICS = 12             # of the crack's order: the pulse (~7 of the 180 deg between passes) is not assumed
 WG_HARMONICS = (1, 2, 3, 4)
 DETECT_P = 1e-3            # the torque-scaled harmonics' Wald test: a false alarm in a thousand clean drives
 MIN_TORQUE_SPREAD = 0.3    # of the peak torque: below it a crack and a tooth's pitch error are not told apart
