@@ -64,6 +64,8 @@ TET10_EDGES = ((0, 1), (1, 2), (0, 2), (0, 3), (2, 3), (1, 3))
 # face keeps ~1e-10 of it: P2 vertices released by their consistent forces, docs/surface_crack.md)
 SHUT_SHARE = 1e-6
 CLOSURE_BRACKET = (0.0, 1.5)     # -sigma_m/sigma_b: shut at 0 (the face all in compression for a < t/2), open at 1.5
+# the fields' stress read this fraction inside each element: a quarter-point element's map is singular at its front node
+QUARTER_POINT_INSET = 1e-3
 CLOSURE_STEPS = 12               # bisection: the bracket / 2^12 = 3.7e-4
 # the fields drawn, at the checked depth: the crack wide open at the major axis and held shut at the minor axis
 FIELDS_STATES = ("major", "minor")
@@ -136,7 +138,8 @@ def _build(model, s: Block, h_mm: float, h_fine_mm: float, mirrored: bool, gradi
     return extract(model, 3, 2, tags, h_mm)
 
 
-def block_mesh(s: Block, h_mm: float, h_fine_mm: float, *, mirrored: bool = False, grading=None):
+def block_mesh(s: Block, h_mm: float, h_fine_mm: float, *, mirrored: bool = False, grading=None,
+               quarter_points: bool = True):
     """MeshData of the quarter block (P2 tets), groups crack / ligament / sym_x / far, quarter-point nodes at the
     front. ``mirrored``: the half block -L <= z <= L with the crack as an internal surface (a seam for
     ``crack_seam.open_crack``), the same grading, mid-side nodes left mid-side: the cross-check of the
@@ -144,7 +147,9 @@ def block_mesh(s: Block, h_mm: float, h_fine_mm: float, *, mirrored: bool = Fals
     from strainwave.fea.session import mesh_in_child
     md = mesh_in_child(lambda model: _build(model, s, h_mm, h_fine_mm, mirrored, grading or GRADING),
                        what=f"{STUDY} block")
-    return md if mirrored else quarter_point(md, np.intersect1d(md.group_nodes("crack"), md.group_nodes("ligament")))
+    if mirrored or not quarter_points:
+        return md
+    return quarter_point(md, np.intersect1d(md.group_nodes("crack"), md.group_nodes("ligament")))
 
 
 def quarter_point(md, front_nodes: np.ndarray):
@@ -270,12 +275,13 @@ def closure_ratio(system: FaceSystem, loads, face_y: np.ndarray, t_mm: float, op
 
 
 def solve_block(s: Block, h_mm: float, h_fine_mm: float, fields_of: tuple[str, ...] = (), *, grading=None,
-                closure: bool = False) -> BlockSolution:
+                closure: bool = False, quarter_points: bool = True) -> BlockSolution:
     """One mesh: per state the contact set at (wave generator + rated torque), then the tangent compliance
     under the torque's unit membrane with that set held, minus the whole face held (uncracked). ``fields_of``:
-    the states whose mesh and displacement are kept for their fields; ``closure``: also the closure ratio."""
+    the states whose mesh and displacement are kept for their fields; ``closure``: also the closure ratio;
+    ``quarter_points``: False keeps every mid-side node mid-side (the seam cross-check's elements)."""
     t0 = time.perf_counter()
-    md = block_mesh(s, h_mm, h_fine_mm, grading=grading)
+    md = block_mesh(s, h_mm, h_fine_mm, grading=grading, quarter_points=quarter_points)
     sk, K, f_m, f_b, base, face_z = _system(md, s)
     system = FaceSystem.of(K, base, face_z, STUDY)
     try:
@@ -439,5 +445,6 @@ def _write_fields(vtu, block: Block, finest: BlockSolution, material) -> tuple:
         load = (f"{state} state, wave generator + rated torque: crack-face normal stress {membrane:.4g} MPa membrane "
                 f"+ {bending:.4g} MPa outer-fibre bending on the far face (quarter block, a = {block.a_mm:g} mm)")
         info = field_info(STUDY, load, material)
-        written.append(write_solid_fields(path, md, sk, u, Lame.from_young(block.E_MPa, block.nu), info))
+        written.append(write_solid_fields(path, md, sk, u, Lame.from_young(block.E_MPa, block.nu), info,
+                                          inset=QUARTER_POINT_INSET))
     return tuple(written)
