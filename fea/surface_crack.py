@@ -55,9 +55,9 @@ MAX_ACTIVE_SET_ITERATIONS = 30
 # front size a/12 on the finest mesh, graded to h over 2a + h/2 (docs/decisions/029-surface-crack-block.md)
 GRADING = CrackFrontGrading(tip_over_a=1.0 / 12.0, floor_over_h=0.02, near_over_a=0.25, zone_over_a=2.0,
                             grow_over_h=0.5)
-# the checked depth's grading: the same front, graded to h over 6a + 1.5h (the crack's own near field resolved:
-# GCI 10.5 -> 0.74 % with quarter-point nodes, docs/decisions/067-crack50b-surface-crack-resolved.md)
-GRADING_CHECKED = dataclasses.replace(GRADING, zone_over_a=6.0, grow_over_h=1.5)
+# the checked depth's grading: the same front, graded to h over 8a + h/2 (the crack's own near field resolved:
+# GCI 10.5 -> 0.72 % default, 0.88 % second gear, with quarter-point nodes; decision 067-crack50b)
+GRADING_CHECKED = dataclasses.replace(GRADING, zone_over_a=8.0)
 # gmsh's 10-node tetrahedron: mid-side nodes 4..9 sit on these vertex pairs
 TET10_EDGES = ((0, 1), (1, 2), (0, 2), (0, 3), (2, 3), (1, 3))
 # closure: the crack counts as shut when its tangent compliance is below this share of the open crack's (a held
