@@ -326,7 +326,9 @@ class SurfaceCrack(StudyFacts):
     study = STUDY
     # the deepest crack's block (the estimate's volume) at the default h = t/4: 17,884 tets vs 655 cells (27.3)
     elements_per_cell = 27.3
-    cpu_s_per_element = (7.4e-4, 3.1e-4)   # full, --quick: validate's schedule (decision 049)
+    # full, --quick: validate's schedule (decision 049); decision 067's checked depth (37.6k tets on its finest mesh):
+    # --quick 24.2 CPU s at load 14 (was 5.4 s), full ~ the former 15 s + that difference
+    cpu_s_per_element = (1.9e-3, 1.35e-3)
     default_size_mm = staticmethod(default_size_mm)
     rated_load = TORQUE_RATED      # solved at the rated T on top of the wave generator (not linear in T: contact)
     title = "flexspline tooth-root surface crack"
