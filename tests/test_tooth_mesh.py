@@ -120,3 +120,17 @@ def test_study_on_quick_meshes_obeys_first_principles():
     assert q["K3_Nmm_per_rad"] > q["K1_Nmm_per_rad"] > 0.0             # clearance closes: the mesh stiffens
     # the flank loads balance the rated torque: the peak tooth's share times the lever can't exceed it
     assert q["peak_tooth_load_N"] * geo.cs_space.base_radius_mm <= params.gear.rated_output_torque_Nmm
+
+
+@pytest.mark.parametrize("name", [None, "strainwave/data/second_gear.toml"])
+def test_circular_spline_teeth_are_the_complement_of_its_space(name):
+    """The CS sector the FE meshes: its tooth fills what the space leaves (a double-counted profile shift made a
+    zigzag outline with the tip 0.8 mm too deep and the CS tooth ~10x too soft)."""
+    from strainwave.geometry.involute import half_angle_rad
+    geo = mesh_geometry(load_params(name))
+    cs, space = geo.cs_tooth, geo.cs_space
+    m, x = cs.module_mm, geo.fs.shift_coef
+    assert cs.tip_radius_mm == pytest.approx(geo.cs_tip_mm, abs=1e-9)
+    assert cs.root_radius_mm == pytest.approx(space.pitch_radius_mm + (x + 1.35) * m, abs=1e-9)
+    r = np.linspace(cs.tip_radius_mm, cs.root_radius_mm, 7)
+    assert np.allclose(half_angle_rad(cs, r) + half_angle_rad(space, r), math.pi / space.teeth, atol=1e-12)
