@@ -20,7 +20,10 @@ Quantity: the tangent torsional compliance of the crack at the state (wave gener
 delta lambda_f = 4 (f1.u1 - f1.u1_0) s^2: f1 the far-face load of a unit normal stress, u1 its solution
 with the converged contact set held, u1_0 the same with the whole face held (the uncracked block, same
 mesh), 4 the two symmetry planes, s the torque's crack-face stress per N*mm. P2 tetrahedra graded to the
-front (``refinement.CrackFrontGrading``), three meshes, GCI of formal order 1 (a crack compliance).
+front (``refinement.CrackFrontGrading``; the checked depth over a wider zone, ``GRADING_CHECKED``) with
+quarter-point mid-side nodes on the edges from it, three meshes, GCI of formal order 1 (a crack compliance).
+At the checked depth also the closure ratio: -sigma_m/sigma_b at which a compressive outer-fibre bending shuts
+the crack whole (``closure_ratio``, by bisection on the face contact).
 
 Solution: one factorisation per mesh, of K with the face free, which also gives S, its Schur complement on the
 face's normal dofs (``FaceSystem``); a contact set is then a dense solve of S's open block, and
@@ -288,8 +291,9 @@ def solve_block(s: Block, h_mm: float, h_fine_mm: float, fields_of: tuple[str, .
         u0 = system.free_solution(np.stack([f_m, f_b], axis=1))
         r_m, r_b = system.condensed(u0).T
         loads, face_y = (f_m, f_b, r_m, r_b, u0), sk.doflocs[1, face_z // 3]
-        open_c = open_compliance(system.factor.S, r_m, np.zeros(r_m.shape, bool))
-        by_active: dict[bytes, float] = {}
+        none = np.zeros(r_m.shape, bool)
+        open_c = open_compliance(system.factor.S, r_m, none)
+        by_active: dict[bytes, float] = {np.packbits(none).tobytes(): open_c}
         out, fields = {}, {}
         for name, membrane, bending in s.states:
             active, iterations, u = _state_contact(system, loads, face_y, s.t_mm, membrane, bending)
