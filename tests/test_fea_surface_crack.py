@@ -167,6 +167,31 @@ def test_record_gives_the_breathing_ripple_in_percent_of_K_HD(params):
     assert by_phi[0] > 0.0 and by_phi[90] == 0.0 and by_phi[45] == pytest.approx(by_phi[0])
 
 
+def test_record_sets_the_cup_fea_tooth_root_stresses_beside_the_closed_form_map(params):
+    """Issue 50 item 3's gap, recorded, not asserted: the cup FEA's torque shear at the band's mid-width against the
+    seed's T/(2 pi r_m^2 t), as the factor it puts on the open crack's delta."""
+    import math
+    from strainwave.compare.validate import surface_crack_checks as scc
+    from strainwave.compare.validate.fea_book import FeaBook
+    from strainwave.compare.validate.runner import Case, CaseOutcome
+    from strainwave.fea.convergence import Convergence
+    from strainwave.fea.result import Load, MeshQuality, Quantity, StudyResult, Support
+    seed = sc.tooth_root_loads(params, 0.0)
+    tau = seed.per_torque_MPa_per_Nmm * seed.torque_Nmm / math.sin(math.radians(2 * params.cracks.flexspline_crack_angle_deg))
+    values = {"cycle_torque_shear_MPa": 0.5 * tau, "prescribed_linear_hoop_major_outer_MPa": 150.0,
+              "prescribed_linear_bending_major_MPa": 100.0}
+    q = {n: Quantity(n, v, "MPa", Convergence((1.0, 1.4, 1.96), (v, v, 0.99 * v), math.inf, v, 0.01, True))
+         for n, v in values.items()}
+    res = StudyResult("cup-wave-generator", q, MeshQuality(1, 1, 3, 2, 1.0, 1.0), Load("T", 1.0, "N*mm", ("x",), "x"),
+                      (Support(("x",), "x"),))
+    book = FeaBook({"cup-wave-generator": CaseOutcome(Case("cup-wave-generator", "cup-wave-generator"), res, 1.0,
+                                                      False)})
+    gap = scc.cup_fea_load_gap(book, params)
+    assert gap["torque_shear_seed_MPa"] == pytest.approx(tau) and gap["delta_scale_fea_over_seed"] == pytest.approx(0.25)
+    assert gap["membrane_major_fea_MPa"] == pytest.approx(50.0) and "membrane_minor_fea_MPa" not in gap
+    assert scc.cup_fea_load_gap(FeaBook({}), params) == {}
+
+
 def test_checks_and_record_reach_results_json_through_the_check_list(params):
     from strainwave.analytic.summary import analytic_summary
     from strainwave.compare.validate import check_list

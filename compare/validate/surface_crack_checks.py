@@ -37,7 +37,7 @@ from strainwave.fea.surface_crack import (ASPECT, CLOSURE_BRACKET, CLOSURE_STEPS
 
 __all__ = ["STUDY", "CHECKS", "headline_depth_mm", "allowances", "references", "reference_at", "surface_crack_checks",
            "surface_crack_record", "closure_angle_deg", "newman_raju_closure_ratio", "exact_closure_ratio",
-           "closure_allowances", "closure_references"]
+           "closure_allowances", "closure_references", "cup_fea_load_gap"]
 
 CHECKS = (("cup.surface_crack_major", "major"), ("cup.surface_crack_closure_angle", "closure"))
 NEWMAN_RAJU_K2 = 0.10     # +-5 % on K (Newman-Raju's statement against their FE), squared
@@ -216,4 +216,27 @@ def surface_crack_record(book: FeaBook, label: str | None, params) -> dict:
             row["ripple_percent_of_K_HD"] = ripple
             row["ripple_percent_of_K_HD_per_mm"] = ripple / a
         rows.append(row)
-    return {"study": STUDY, "case": label, "K_HD_Nmm_per_rad": 1.0 / lam_total, "depths": rows}
+    return {"study": STUDY, "case": label, "K_HD_Nmm_per_rad": 1.0 / lam_total, "depths": rows,
+            "cup_fea_tooth_root": cup_fea_load_gap(book, params)}
+
+
+def cup_fea_load_gap(book: FeaBook, params, wg_label: str = "cup-wave-generator") -> dict:
+    """The cup-on-wave-generator FEA's own tooth-root stresses at the band's mid-width beside the closed form's
+    crack-face map (issue 50 item 3, not asserted: decision 067): the torque's outer-fibre shear against the seed's
+    T/(2 pi r_m^2 t), and the prescribed case's membrane hoop stress ((outer fibre) - bending) against the ring's 0.
+    The open crack's delta scales with the shear squared, so the ratio says what loading the block by the FEA gives."""
+    shear, _ = book.quantity(wg_label, "cycle_torque_shear_MPa")
+    if shear is None:
+        return {}
+    seed = sc.tooth_root_loads(params, 0.0)
+    tau_seed = seed.per_torque_MPa_per_Nmm * seed.torque_Nmm / math.sin(2.0 * math.radians(
+        params.cracks.flexspline_crack_angle_deg))
+    out = {"torque_shear_fea_MPa": shear.value, "torque_shear_fea_gci_MPa": shear.uncertainty,
+           "torque_shear_seed_MPa": tau_seed, "delta_scale_fea_over_seed": (shear.value / tau_seed) ** 2}
+    for axis in ("major", "minor"):
+        hoop, _ = book.quantity(wg_label, f"prescribed_linear_hoop_{axis}_outer_MPa")
+        bend, _ = book.quantity(wg_label, f"prescribed_linear_bending_{axis}_MPa")
+        if hoop is not None and bend is not None:
+            out[f"membrane_{axis}_fea_MPa"] = hoop.value - bend.value
+            out[f"membrane_{axis}_fea_gci_MPa"] = (hoop.uncertainty or 0.0) + (bend.uncertainty or 0.0)
+    return out
