@@ -144,6 +144,7 @@ SHAFT, CUP, BEARING, RING = "shaft-torsion", "cup-torsion", "bearing-ring", "rin
 GCI = "GCI (Roache Fs 1.25 / 3 inside, added once)"
 ARC = f"{GCI} + the ring's arc-load and (delta/r_m)^2 allowances"
 NEWMAN_RAJU = f"{GCI} + Newman-Raju's K^2 (10 %) + the block's far face (c/L)^3"
+CLOSURE = f"{GCI} of the closure ratio, as an angle + Newman-Raju's K < 0 rule vs the exact face condition + bisection"
 
 CHECKS: tuple[CheckSpec, ...] = (
     CheckSpec("shaft.flexibility", "shaft",
@@ -204,10 +205,9 @@ CHECKS: tuple[CheckSpec, ...] = (
               ((wg_cup_checks.STUDY, "prescribed_linear_bending_minor_MPa"),)),
     CheckSpec("cup.surface_crack_major", "cup", _pick(_surface_crack, "cup.surface_crack_major"),
               surface_crack_checks.reference_at("major"), NEWMAN_RAJU, record=_surface_crack_record),
-    CheckSpec("cup.surface_crack_between", "cup", _pick(_surface_crack, "cup.surface_crack_between"),
-              surface_crack_checks.reference_at("between"), NEWMAN_RAJU),
-    CheckSpec("cup.surface_crack_minor", "cup", _pick(_surface_crack, "cup.surface_crack_minor"),
-              surface_crack_checks.reference_at("minor"), NEWMAN_RAJU),
+    # issue 50: replaces cup.surface_crack_between (equal to _major) and _minor (a shut share 1 by construction)
+    CheckSpec("cup.surface_crack_closure_angle", "cup", _pick(_surface_crack, "cup.surface_crack_closure_angle"),
+              surface_crack_checks.reference_at("closure"), CLOSURE),
     CheckSpec("mesh.pair_stiffness", "mesh",
               lambda ctx: tooth_mesh_checks.pair_check(ctx.book, ctx.label(tooth_mesh_checks.STUDY), ctx.params),
               lambda params, at: tooth_mesh_checks.pair_reference(params),
