@@ -1,8 +1,8 @@
 """One set of design rules that turns a catalogue size and ratio into a drive (decision 065).
 
 Fixed before any comparison; no per-size or per-ratio factor. Every proportion is the shipped gear's
-(defaults.toml, d1 = 160 mm) made dimensionless, or a standard's value. The one coefficient fitted to the
-catalogue is ``foundation_coefficient`` (fitted on sizes 14-25 only; sizes 32-58 confirm it).
+(defaults.toml, d1 = 160 mm) made dimensionless, or a standard's value. Nothing is fitted to the catalogue
+(``foundation_coefficient`` is the first revision's fitted support, kept as an option and off: decision 065).
 """
 from __future__ import annotations
 
@@ -57,6 +57,10 @@ class MeshRules:
     ball_diameter_over_d: float = 9.525 / 160.0  # shipped WG bearing: D_w / d1 (3/8 in at d1 = 160)
     ball_count: int = 24                        # shipped WG bearing (similar bodies keep the count)
     rim_ratio_exponent: float = 0.0             # rim = rim_over_d d (i/100)^p: 0 one blank per size (decision 065)
+    # the cup's extra twist when the torque enters at the two mesh zones (decision 067): measured by FE per ratio at
+    # this size on meshes of these elements around the quarter wall (finest first), scaled by similitude; None: left out
+    cup_zone_reference_size: float = 25.0
+    cup_zone_elements: tuple[int, int, int] | None = (20, 14, 10)
 
     def foundation_N_per_mm2(self, E_MPa: float, face_width_mm: float, d_mm: float) -> float:
         return (self.foundation_coefficient or 0.0) * E_MPa * face_width_mm / d_mm
@@ -100,10 +104,25 @@ class MeshRules:
         return 1e-3 * self.rated_torque_per_d3_MPa * self.pitch_diameter_mm(size) ** 3
 
     def cup_flexibility_rad_per_Nmm(self, size: float) -> float:
-        """The cup's tube in torsion (seed 000's lambda_f0, corrected pi/32, cup k_G = 0.83)."""
+        """The cup in torsion: tube + diaphragm + hub in series (``torsion.cup_series_flexibility``, the project's
+        corrected cup flexibility, docs/architecture.md), on the CAD's hub and diaphragm proportions with the
+        rim as wall and diaphragm. The rules' cup (wall 0.014 d, length d) is the shipped cup scaled, on which
+        validate's ``cup.flexibility`` holds the FE to this model (decision 067)."""
         from strainwave.analytic import torsion
-        from strainwave.analytic.variant import Variant
+        from strainwave.geometry.flexspline_cup import BAND_RATIO, BOSS_HEIGHT_WALLS, HUB_BORE_RATIO, HUB_RATIO
         d = self.pitch_diameter_mm(size)
-        return torsion.flexspline_flexibility(d, self.rim_over_d * d, self.length_over_d * d,
-                                              self.shear_modulus_MPa, 1.0, torsion.structure_coefficient(True),
-                                              Variant.CORRECTED)
+        t = self.rim_over_d * d
+        return torsion.cup_series_flexibility(
+            d, t, self.length_over_d * d, self.shear_modulus_MPa, hub_radius_mm=HUB_RATIO * d,
+            hub_bore_radius_mm=HUB_BORE_RATIO * d, hub_height_mm=BOSS_HEIGHT_WALLS * t, diaphragm_thickness_mm=t,
+            band_length_mm=BAND_RATIO * d, diaphragm_z_mm=(BOSS_HEIGHT_WALLS - 0.5) * t).total
+
+    def cup_zone_term(self, ratio: float):
+        """The cup's extra flexibility under the mesh zones' load at this ratio (``analytic.cup_zone``), measured
+        at ``cup_zone_reference_size``; None when the rules leave it out."""
+        if self.cup_zone_elements is None:
+            return None
+        from strainwave.analytic.cup_zone import cup_zone_term
+        size = self.cup_zone_reference_size
+        return cup_zone_term(self.design(size, ratio), 1e3 * self.rated_torque_Nm(size), self.cup_zone_elements,
+                             ratio)

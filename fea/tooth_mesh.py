@@ -46,6 +46,8 @@ QUANTITIES = (
     ("peak_tooth_load_N", "N"), ("pair_stiffness_solid_N_per_mm_um", "N/(mm*um)"),
     ("pair_stiffness_internal_N_per_mm_um", "N/(mm*um)"),
     ("crack_tooth_compliance_ratio", "1"), ("crack_te_peak_rad", "rad"),
+    ("rigid_rim_peak_tooth_share", "1"), ("rigid_rim_teeth_in_contact", "1"), ("rigid_rim_twist_rated_rad", "rad"),
+    ("engagement_edge_rated_rad", "rad"), ("engagement_edge_first_step_rad", "rad"),
 )
 SECTOR_H_RATIO = 0.5              # the sectors' element size over the rim's
 SOLID_DEPTH_OVER_M = 6.0          # the FS tooth's solid-body sector is held this deep below its root (ISO's body)
@@ -100,8 +102,10 @@ def pair_compliance(infl: Mapping, pairs: Mapping, z_f: int, z_c: int) -> np.nda
     return 0.5 * (C + C.T)
 
 
-def influences(params, mesh: Mapping, h_mm: float, *, plane_stress: bool = False) -> tuple[dict, dict]:
-    """The FS rim's and the CS sector's flank influences on one mesh size, and the mesh facts."""
+def influences(params, mesh: Mapping, h_mm: float, *, plane_stress: bool = False,
+               bed_N_per_mm2: float | None = None) -> tuple[dict, dict]:
+    """The FS rim's and the CS sector's flank influences on one mesh size, and the mesh facts (``bed_N_per_mm2``:
+    the rim's bore on a radial Winkler bed instead of held, fea/tooth_mesh_fe.rim_model)."""
     from strainwave.geometry.mesh_geometry import mesh_geometry
     geo = mesh_geometry(params)
     m = params.material
@@ -109,7 +113,7 @@ def influences(params, mesh: Mapping, h_mm: float, *, plane_stress: bool = False
     lame = Lame.from_young(m.youngs_modulus_MPa, m.poisson_ratio, plane_stress=plane_stress)
     band = BAND_OVER_M * geo.fs.module_mm
     fs_r, cs_r = radii_grids(mesh)
-    rim = fe.rim_model(geo.fs, geo.r_bore_mm, h_mm, lame, geo.face_width_mm)
+    rim = fe.rim_model(geo.fs, geo.r_bore_mm, h_mm, lame, geo.face_width_mm, bed_N_per_mm2)
     offs = np.arange(geo.z_f)
     same = fe.influence(rim, geo.fs.root_radius_mm, fs_r, band, +1, offs, geo.r_bore_mm)
     other = fe.influence(rim, geo.fs.root_radius_mm, fs_r, band, -1, offs, geo.r_bore_mm)
@@ -199,6 +203,45 @@ def loop_values(paths: list, rated_Nmm: float) -> dict:
             "transmission_error_pp_rad": float(at_rated.max() - at_rated.min()),
             "teeth_in_contact_rated": float(np.count_nonzero(F > 0)),
             "peak_tooth_share": float(F.max() / F.sum()), "peak_tooth_load_N": float(F.max())}
+
+
+def rigid_rim(infl: Mapping, mesh: Mapping) -> tuple[dict, dict]:
+    """The headline angle's contact solve with the rim's coupling removed (teeth on a rigid rim: each pair's own
+    FE compliance, the diagonal of the flexibility), first loading 0 -> rated with friction: the readings the check
+    ``mesh.rigid_rim_sharing`` holds against the closed form, and the inputs of that solve (the check's closed
+    form takes the same ones)."""
+    from strainwave.fea.mesh_contact import MeshSystem, solve_torque_path
+    pairs = mesh["angles"][0]
+    c = np.diag(pair_compliance(infl, pairs, mesh["z_f"], mesh["z_c"])).copy()
+    system = MeshSystem(pairs["clearance_mm"], np.diag(c), pairs["lever_mm"], pairs["slide_mm_per_rad"],
+                        mesh["friction_coefficient"], mesh["rim_radius_mm"])
+    history = np.asarray(mesh["torque_history_Nmm"], float)
+    first = history[:int(np.argmax(history)) + 1]           # the virgin loading up to rated
+    path = solve_torque_path(system, first)
+    F = path.forces_N[-1]
+    values = {"rigid_rim_peak_tooth_share": float(F.max() / F.sum()),
+              "rigid_rim_teeth_in_contact": float(np.count_nonzero(F > 0.0)),
+              "rigid_rim_twist_rated_rad": float(path.twist_rad[-1])}
+    inputs = {"clearance_mm": np.asarray(pairs["clearance_mm"]).tolist(), "compliance_mm_per_N": c.tolist(),
+              "lever_mm": np.asarray(pairs["lever_mm"]).tolist(),
+              "slide_mm_per_rad": np.asarray(pairs["slide_mm_per_rad"]).tolist(),
+              "friction_coefficient": float(mesh["friction_coefficient"]), "torque_Nmm": float(first[-1]),
+              "forces_N": F.tolist(), "twist_rad": float(path.twist_rad[-1])}
+    return values, inputs
+
+
+def engagement_edge(path, pairs: Mapping) -> dict:
+    """The outermost loaded flank pair's angle from the major axis, folded into its lobe (dual wave), on the headline
+    angle's first loading: at rated (the check ``mesh.engagement_zone``'s reading) and at the path's first load
+    step (a small torque, shown beside it)."""
+    folded = 0.5 * np.angle(np.exp(2j * np.asarray(pairs["phi_rad"])))
+    k_peak = int(np.argmax(path.torque_Nmm))
+    k_first = int(np.flatnonzero(path.torque_Nmm > 0.0)[0])
+    edge = {}
+    for name, k in (("engagement_edge_rated_rad", k_peak), ("engagement_edge_first_step_rad", k_first)):
+        on = path.forces_N[k] > 0.0
+        edge[name] = float(folded[on].max()) if on.any() else math.nan
+    return edge
 
 
 def crack_signature(infl: Mapping, mesh: Mapping) -> tuple[dict, np.ndarray]:
@@ -378,12 +421,16 @@ class ToothMesh(StudyVariant):
         history = np.asarray(self.mesh_inputs["torque_history_Nmm"])
         paths = [solve_torque_path(s, history) for s in systems(infl, self.mesh_inputs)]
         crack, change = crack_signature(infl, self.mesh_inputs)
-        values = loop_values(paths, self.mesh_inputs["rated_torque_Nmm"]) | major_pair(infl, self.mesh_inputs) | crack
+        rigid, rigid_inputs = rigid_rim(infl, self.mesh_inputs)
+        values = (loop_values(paths, self.mesh_inputs["rated_torque_Nmm"]) | major_pair(infl, self.mesh_inputs) | crack
+                  | rigid | engagement_edge(paths[0], self.mesh_inputs["angles"][0]))
         t2 = time.perf_counter()
         quality = MeshQuality(facts["elements"], facts["nodes"], facts["dofs"], 2, float("nan"), float("nan"))
-        fields = {"paths": paths, "rated_u": rated_field(infl, self.mesh_inputs, paths[0]),
-                  "r_bore_mm": infl["r_bore_mm"],
-                  "crack_change": change} if keep_fields else {}
+        # the rigid-rim solve's inputs are kept on every mesh (small): the check mesh.rigid_rim_sharing reads them
+        fields = {"rigid_rim": rigid_inputs}
+        if keep_fields:
+            fields |= {"paths": paths, "rated_u": rated_field(infl, self.mesh_inputs, paths[0]),
+                       "r_bore_mm": infl["r_bore_mm"], "crack_change": change}
         infl.pop("rim")
         return MeshSolve(refinement, values, quality,
                          {"mesh": facts["mesh"], "assemble": facts["assemble"], "solve": facts["solve"],
@@ -424,13 +471,14 @@ class ToothMesh(StudyVariant):
 
     def meta(self, parts, series: Mapping[str, Series]) -> dict:
         f = series["rim"].finest.fields
-        if not f:
-            return {}
+        if "paths" not in f:
+            return {"rigid_rim": f["rigid_rim"]}
         p = f["paths"][0]
         return {"loop": {"torque_Nmm": p.torque_Nmm.tolist(), "twist_rad": p.twist_rad.tolist()},
                 "forces_at_rated_N": p.forces_N[int(np.argmax(p.torque_Nmm))].tolist(),
                 "pairs": {k: np.asarray(v).tolist() for k, v in self.mesh_inputs["angles"][0].items()},
                 "te_twist_at_rated_rad": [float(q.twist_rad[int(np.argmax(q.torque_Nmm))]) for q in f["paths"]],
+                "rigid_rim": f["rigid_rim"],
                 "crack": {"tooth_phi_rad": list(self.mesh_inputs["crack_phi_rad"]),
                           "twist_change_at_rated_rad": np.asarray(f["crack_change"]).tolist(),
                           "orders": crack_orders(self.mesh_inputs)}}

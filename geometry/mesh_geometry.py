@@ -38,10 +38,10 @@ def mesh_geometry(params) -> MeshGeometry:
     x = fs.shift_coef
     space = ToothSpec(z_c, fc.module_mm, cs.pressure_angle_deg, cs.addendum_coefficient, 1.35,
                       internal=False, shift_coef=x)
-    # the CS's own teeth: the complement of that space; internal ToothSpec radii carry no shift, so it goes
-    # into the addendum and dedendum: tip r_p + (x - h_a) m, root r_p + (x + 1.35) m
-    cs_tooth = ToothSpec(z_c, fc.module_mm, cs.pressure_angle_deg, cs.addendum_coefficient - x, 1.35 + x,
-                         internal=True, shift_coef=-x)
+    # the CS's own teeth: the complement of that space. An internal ToothSpec carries its shift in its radii and
+    # thins its tooth by it (involute.py since the circular-spline part): tip r_p + (x - h_a) m, root r_p + (x + 1.35) m
+    cs_tooth = ToothSpec(z_c, fc.module_mm, cs.pressure_angle_deg, cs.addendum_coefficient, 1.35,
+                         internal=True, shift_coef=x)
     cs_tip = space.pitch_radius_mm + (x - cs.addendum_coefficient) * fc.module_mm
     r_bore = 0.5 * fc.pitch_diameter_mm - fc.wall_thickness_mm
     return MeshGeometry(fs, space, cs_tooth, r_bore + 0.5 * fc.wall_thickness_mm, r_bore, cs_tip,

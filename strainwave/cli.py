@@ -594,7 +594,7 @@ def _add_size_crack(add) -> None:
                    help="model the recording is compared with")
     p.add_argument("--curves", metavar="RESULTS.json", help="a validate results.json: the cup's FEA crack curve")
     p.add_argument("--cache", metavar="DIR", help="keep the FEA curves solved on demand (the shaft's crack, the "
-                   "flexspline's breathing ripple) here for the next run")
+                   "flexspline's breathing ripple, the tooth crack through the mesh) here for the next run")
     p.add_argument("--paris-c", type=_positive_float, default=5.21e-13, metavar="C",
                    help="Paris law da/dN = C dK^m, mm/cycle and N/mm^1.5 (default: %(default)s, BS 7910 steel in air)")
     p.add_argument("--paris-m", type=float, default=3.0, metavar="M", help="Paris exponent")

@@ -11,7 +11,10 @@ from strainwave.errors import InputError
 HEADER = "size,ratio,T1_Nm,T2_Nm,K1_e3,K2_e3,K3_e3\n"
 
 
-def test_two_rows_with_a_blank_cell_and_a_label(tmp_path, capsys):
+def test_two_rows_with_a_blank_cell_and_a_label(tmp_path, capsys, monkeypatch):
+    from strainwave.analytic import catalogue_predict
+    # the cup-zone FE on coarse meshes: this test is the command's plumbing (tests/test_cup_zone.py holds the FE)
+    monkeypatch.setattr(catalogue_predict, "MeshRules", lambda: MeshRules(cup_zone_elements=(7, 5, 4)))
     table = tmp_path / "t.csv"
     table.write_text("# a comment\n" + HEADER + "14,30,2,6.9,1.9,,3.4\n14,>50,2,6.9,4.7,6.1,7.1\n")
     out = tmp_path / "o.json"
@@ -25,6 +28,8 @@ def test_two_rows_with_a_blank_cell_and_a_label(tmp_path, capsys):
     assert data["rows"][0]["K2_Nm_per_rad_catalogue"] is None           # the blank cell: no comparison
     assert data["rows"][1]["K3_Nm_per_rad_catalogue"] == pytest.approx(7100.0)
     assert data["ratio_trend"][0]["catalogue"] == pytest.approx(7.1 / 3.4)
+    assert [t["ratio"] for t in data["cup_zone_terms"]] == [30.0, 100.0]
+    assert all(t["extra_rad_per_Nmm"]["gci_fine"] >= 0.0 for t in data["cup_zone_terms"])
     assert "predicted / catalogue" in capsys.readouterr().out
 
 

@@ -120,3 +120,38 @@ def test_study_on_quick_meshes_obeys_first_principles():
     assert q["K3_Nmm_per_rad"] > q["K1_Nmm_per_rad"] > 0.0             # clearance closes: the mesh stiffens
     # the flank loads balance the rated torque: the peak tooth's share times the lever can't exceed it
     assert q["peak_tooth_load_N"] * geo.cs_space.base_radius_mm <= params.gear.rated_output_torque_Nmm
+
+
+@pytest.mark.parametrize("name", [None, "strainwave/data/second_gear.toml"])
+def test_circular_spline_teeth_are_the_complement_of_its_space(name):
+    """The CS sector the FE meshes: its tooth fills what the space leaves (a double-counted profile shift made a
+    zigzag outline with the tip 0.8 mm too deep and the CS tooth ~10x too soft)."""
+    from strainwave.geometry.involute import half_angle_rad
+    geo = mesh_geometry(load_params(name))
+    cs, space = geo.cs_tooth, geo.cs_space
+    m, x = cs.module_mm, geo.fs.shift_coef
+    assert cs.tip_radius_mm == pytest.approx(geo.cs_tip_mm, abs=1e-9)
+    assert cs.root_radius_mm == pytest.approx(space.pitch_radius_mm + (x + 1.35) * m, abs=1e-9)
+    r = np.linspace(cs.tip_radius_mm, cs.root_radius_mm, 7)
+    assert np.allclose(half_angle_rad(cs, r) + half_angle_rad(space, r), math.pi / space.teeth, atol=1e-12)
+
+
+def test_rim_on_a_bed_tends_to_the_held_bore_and_softens_on_the_balls():
+    """The rim's bore on a radial Winkler bed (decision 068): a very stiff bed gives the held bore's tooth
+    compliance, the balls' bed (5e3 N/mm^2) a softer one."""
+    from strainwave.fea import tooth_mesh_fe as fe
+    from strainwave.fea.assembly import Lame
+    params = load_params(None, {"flexspline_cup": {"teeth": 60, "module_mm": 160.0 / 60},
+                                "gear": {"radial_deformation_mm": 160.0 / 60}})
+    geo = mesh_geometry(params)
+    m = geo.fs.module_mm
+    lame = Lame.from_young(2.1e5, 0.3)
+    radii = np.array([geo.fs.root_radius_mm + 1.3 * m])
+
+    def tooth(bed):
+        rim = fe.rim_model(geo.fs, geo.r_bore_mm, 0.8 * m, lame, geo.face_width_mm, bed)
+        return float(fe.influence(rim, geo.fs.root_radius_mm, radii, 0.2 * m, +1, np.array([0]), geo.r_bore_mm)[0, 0, 0])
+
+    held, stiff, balls = tooth(None), tooth(5e8), tooth(5e3)
+    assert abs(stiff / held - 1.0) < 0.01            # 5e8 N/mm^2: the bore as good as held
+    assert balls > 1.3 * held                        # measured 2.5x on this rim (Z 60, m 2.67)
