@@ -274,14 +274,16 @@ def _cmd_diagnose(args) -> int:
     from strainwave.compare.diagnose.recording import TestFlags
     flags = TestFlags(args.kind, args.specimen, args.stiffness, args.rated_torque, args.columns, args.unit)
     diagnosis = diagnose_file(Path(args.recording), params_path=args.params, baseline=args.baseline,
-                              plot_out=Path(args.plot) if args.plot else None, flags=flags)
+                              plot_out=Path(args.plot) if args.plot else None, flags=flags, progress=_progress)
     _emit(args, diagnosis.summary(), diagnosis.to_dict)
     return 0
 
 
 def _cmd_catalogue(args) -> int:
     from strainwave.analytic.catalogue_predict import predict_table
-    prediction = predict_table(Path(args.table))
+    from strainwave.progress import ticking
+    with ticking(f"catalogue {Path(args.table).name}: predicting every row", _progress):
+        prediction = predict_table(Path(args.table))
     _emit(args, prediction.summary(), prediction.to_dict)
     return 0
 

@@ -113,7 +113,11 @@ def size_and_life(recording: Path, options: LifeOptions, *, params_path=None, ba
         read_results(options.curves)
     rec = parse_recording(recording)
     params = load_params(params_path, overrides=rec.param_overrides or None, origin=f"{recording} [params]")
-    diag, _ = diagnose(rec, params, baseline)
+    from strainwave.progress import ticking
+    now = [f"the {baseline} baseline"]
+    with ticking(lambda: f"size-crack {Path(recording).name}: diagnosing, {now[0]}", progress,
+                 done=f"size-crack {Path(recording).name}: diagnosis"):
+        diag, _ = diagnose(rec, params, baseline, stage=lambda s: now.__setitem__(0, s))
     sizing = size_diagnosis(diag, params, rec.load, rec.response, results=options.curves, cache_dir=options.cache_dir, progress=progress)
     lives = [] if sizing is None else life_of_sizing(
         sizing, diag.baseline.compliance, params, law=law, spectrum=spectrum or LoadSpectrum.constant(

@@ -158,9 +158,14 @@ NO_PDF = ("report.pdf: not printed: the PDF is this page printed by headless Chr
           "Your browser's Print > Save as PDF of report.html gives the same pages.")
 
 
+DRIVE_UNITS = ("N*mm/rad", "N*mm")   # a check in these reports a stiffness or torque: N m/rad, N m beside
+
+
 def check_row(c: dict) -> tuple[str, ...]:
     fea = "not evaluated" if c["fea"] is None else (
         f"{num(c['fea'])} +/- {num(c['fea_uncertainty'], 2)}" if c["fea_uncertainty"] is not None else num(c["fea"]))
+    if c["fea"] is not None and c.get("unit") in DRIVE_UNITS:   # the drive's stiffness also as the catalogue gives it
+        fea += beside(c["fea"], c["unit"])
     cells = []
     for variant in ("published", "corrected"):
         value = c["analytic"].get(variant)
