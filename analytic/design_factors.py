@@ -29,7 +29,7 @@ from strainwave.analytic import wg_contact
 from strainwave.analytic.design_method import (Advice, FatigueFactor, bearing_steel, flexspline_steel, goodman,
                                                solve_for)
 
-__all__ = ["ring_factor", "cup_tooth_root_factor", "wg_inner_ring_factor", "wg_outer_ring_factor",
+__all__ = ["ring_factor", "cup_tooth_root_factor", "wg_inner_ring_factor", "wg_outer_ring_factor", "diaphragm_factor",
            "closed_form_factors", "bearing_ratings", "minimal_teeth", "materials_table", "TITLES"]
 
 TITLES = {"ring": "EWG flexspline ring, tooth root", "cup_tooth_root": "Flexspline cup, tooth root on the wave generator",
@@ -129,6 +129,15 @@ def cup_cycle(params) -> dict:
             "K_delta": kd, "K_sigma": ks, "r_m_mm": r_m}
 
 
+# Which of the cup's two tooth-root factors is the verdict, and why (issue 49: analytic 1.9 against validate 1.19)
+CUP_GOVERNS = ("validate's FEA governs (study cup-wave-generator: the band on the rigid cam, nonlinear, rated T). The "
+               "closed form is the wall's bending alone, a ring forced into w0 cos 2phi (fully reversed, no mean); the "
+               "FEA's root-circle cycle adds what that ring cannot hold: the membrane hoop stress of the coned band "
+               "and the cam's contact (the band leaves the cam between the axes: a larger swing and a tensile mean; "
+               "docs/decisions/067-design49b-buckling-and-advice.md gives both gears' numbers). Same tooth factors, "
+               "mesh load and shear in both: only the wave's cycle differs")
+
+
 def cup_tooth_root_factor(params, fea: dict | None = None, advise: bool = True) -> FatigueFactor:
     """The cup's tooth-root factor; ``fea`` = {amplitude_MPa, mean_MPa, band}: the smooth band's cycle from the
     FEA of the cup on the wave generator (replacing the wave's bending and its mean), the tooth factors kept."""
@@ -145,14 +154,31 @@ def cup_tooth_root_factor(params, fea: dict | None = None, advise: bool = True) 
     m_src = (f"half the mesh root stress (pulsating) + K_delta x the wave's mean {bend_m:.4g} MPa, with the torque's "
              f"shear tau = T/(2 pi r_m^2 t) = {c['shear_MPa']:.4g} MPa as sqrt(sigma_m^2 + 3 tau^2)")
     n_src = f"K_sigma = {c['K_sigma']:.3f} (K_delta = {c['K_delta']:.3f}), the tooth-factor fit at the cup's h/t, m/t"
+    extra = {"closed_form": c, "governs": CUP_GOVERNS}
+    if fea is not None:
+        extra["closed_form_n"] = cup_tooth_root_factor(params, None, False).n
     factor = FatigueFactor("cup_tooth_root", TITLES["cup_tooth_root"], amp, mean, a_src, m_src, c["K_sigma"], n_src,
                            flexspline_steel(params), params.ewg_drive.permissible_safety,
                            f"wave generator insertion w0 + {RATED}", band=None if fea is None else fea.get("band"),
-                           extra={"closed_form": c})
+                           extra=extra)
     if not advise:
         return factor
     return _with_advice(factor, params, "flexspline_cup.wall_thickness_mm", cup_tooth_root_factor, fea,
                         (0.1, 0.5 * params.flexspline_cup.pitch_diameter_mm * 0.2))
+
+
+def band_edge_closed(params, fea: dict | None = None, advise: bool = False) -> FatigueFactor:
+    """The band edge's dependence on the parameters for the advice only: the wall's bending of a ring forced into
+    w0 cos 2phi (its FEA factor is the verdict, compare/validate/design_fea.band_edge_factor)."""
+    c = cup_cycle(params)
+    return FatigueFactor("cup_band_edge", TITLES["cup_band_edge"], c["bending_MPa"], 0.0,
+                         "E' t/2 3 w0/r_m^2 (analytic/ring_prescribed.py)", "0: fully reversed", 1.0, "1: smooth wall",
+                         flexspline_steel(params), params.ewg_drive.permissible_safety, "wave generator insertion w0")
+
+
+def with_advice(factor: FatigueFactor, params, key: str, build, span: tuple[float, float]) -> FatigueFactor:
+    """``_with_advice`` for a factor computed on the FEA (``build``: its closed-form dependence on ``key``)."""
+    return _with_advice(factor, params, key, build, {}, span)
 
 
 # ---- the wave generator bearing -------------------------------------------------------------------------------
@@ -182,7 +208,7 @@ def wg_inner_ring_factor(params, fea: dict | None = None, advise: bool = True) -
     if not advise:
         return factor
     return _with_advice(factor, params, "wave_generator.bearing_inner_ring_thickness_mm", wg_inner_ring_factor, fea,
-                        (0.1, 0.95 * r_race))
+                        (0.1, 0.95 * r_race), admissible=True)
 
 
 def wg_outer_ring_factor(params, fea: dict | None = None, advise: bool = True) -> FatigueFactor:
@@ -198,7 +224,32 @@ def wg_outer_ring_factor(params, fea: dict | None = None, advise: bool = True) -
     if not advise:
         return factor
     return _with_advice(factor, params, "wave_generator.outer_ring_thickness_mm", wg_outer_ring_factor, None,
-                        (0.1, 0.5 * r_o))
+                        (0.1, 0.5 * r_o), admissible=True)
+
+
+def diaphragm_factor(params, fea: dict | None = None, advise: bool = True) -> FatigueFactor:
+    """The diaphragm in closed form (no study resolves it): analytic/diaphragm.py's annular plate under the wave
+    generator's coning (fully reversed) with the torque's shear at the hub as the steady mean."""
+    from strainwave.analytic.diaphragm import diaphragm_geometry, diaphragm_stresses
+    a, b, t, lever = diaphragm_geometry(params)
+    m = params.material
+    s = diaphragm_stresses(a, b, t, lever, params.gear.radial_deformation_mm, params.gear.rated_output_torque_Nmm,
+                           m.youngs_modulus_MPa, m.poisson_ratio)
+    where = "hub" if abs(s.hub_bending_MPa) >= abs(s.wall_bending_MPa) else "wall"
+    factor = FatigueFactor(
+        "cup_diaphragm", TITLES["cup_diaphragm"], s.bending_MPa, math.sqrt(3.0) * s.hub_shear_MPa,
+        (f"CLOSED FORM (no study resolves the diaphragm): radial bending 6 M_r/t^2 at the {where} edge of an annular "
+         f"plate a = {a:.4g}, b = {b:.4g}, t = {t:.4g} mm under the wall's cos 2phi coning (edge rotation w0/L = "
+         f"{s.edge_rotation_rad:.4g} rad, L = {lever:.4g} mm; Clebsch's n = 2 solution, Timoshenko & Woinowsky-Krieger "
+         f"sec. 34; analytic/diaphragm.py): hub {s.hub_bending_MPa:.4g}, wall {s.wall_bending_MPa:.4g} MPa, fully reversed"),
+        f"the torque's shear at the hub tau = T/(2 pi a^2 t) = {s.hub_shear_MPa:.4g} MPa, steady, as sqrt(3) tau",
+        1.0, "1: a plate without the hub's and the wall's corner fillets (their concentration is not modelled)",
+        flexspline_steel(params), params.ewg_drive.permissible_safety, f"wave generator insertion w0 + {RATED}",
+        extra={"closed_form": s.to_dict()})
+    if not advise:
+        return factor
+    length = params.flexspline_cup.length_mm
+    return _with_advice(factor, params, "flexspline_cup.length_mm", diaphragm_factor, None, (0.5 * length, 4.0 * length))
 
 
 def bearing_ratings(params) -> dict:
@@ -230,13 +281,17 @@ def bearing_ratings(params) -> dict:
 
 def closed_form_factors(params) -> list[FatigueFactor]:
     return [ring_factor(params), cup_tooth_root_factor(params), wg_inner_ring_factor(params),
-            wg_outer_ring_factor(params)]
+            wg_outer_ring_factor(params), diaphragm_factor(params)]
 
 
-def _with_advice(factor: FatigueFactor, params, key: str, build, fea, span: tuple[float, float]) -> FatigueFactor:
-    """``factor`` with the value of ``key`` that brings it to [n] when it falls short. With FEA inputs the
-    closed form's dependence on the key is used, scaled by the FEA's ratio to it at the current value."""
-    if factor.n >= factor.required and factor.static_n >= 1.0:
+def _with_advice(factor: FatigueFactor, params, key: str, build, fea, span: tuple[float, float],
+                 admissible: bool = False) -> FatigueFactor:
+    """``factor`` with the value of ``key`` that brings it to [n] when it falls short, and with ``admissible``
+    the same value as the end of the range that keeps it at [n] whether it passes or not (a sizing parameter
+    the user may have changed: the range is named either way). With FEA inputs the closed form's dependence
+    on the key is used, scaled by the FEA's ratio to it at the current value."""
+    fails = factor.n < factor.required or factor.static_n < 1.0
+    if not (fails or admissible):
         return factor
     current = _get(params, key)
     closed = build(params, None, False) if fea is not None else factor
@@ -247,7 +302,9 @@ def _with_advice(factor: FatigueFactor, params, key: str, build, fea, span: tupl
         return min(f.n * ratio, f.static_n * f.required)   # the static check must hold too
     advice = solve_for(key, n_at, factor.required, current, *span,
                        note="closed-form dependence" + ("" if fea is None else ", scaled to the FEA's factor"))
-    return replace(factor, advice=advice)
+    kept = None if not admissible else replace(
+        advice, note=f"keeps it at [n] = {factor.required:g} and static n >= 1; now {current:g}; {advice.note}")
+    return replace(factor, advice=advice if fails else None, admissible=kept)
 
 
 def _get(params, key: str) -> float:

@@ -97,6 +97,7 @@ class FatigueFactor:
     load: str
     band: tuple[float, float] | None = None
     advice: Advice | None = None
+    admissible: Advice | None = None    # the value of a sizing parameter up to which the factor holds [n], pass or fail
     criterion: str = CRITERION
     criterion_source: str = CRITERION_SOURCE
     extra: dict = field(default_factory=dict)
@@ -127,7 +128,8 @@ class FatigueFactor:
                 "band_high": None if self.band is None else self.band[1],
                 "amplitude_source": self.amplitude_source, "mean_source": self.mean_source,
                 "notch_source": self.notch_source, "load": self.load,
-                "advice": "" if self.advice is None else self.advice.text()}
+                "advice": "" if self.advice is None else self.advice.text(),
+                "admissible": "" if self.admissible is None else self.admissible.text()}
 
     def to_dict(self) -> dict:
         return {**self.row(), "criterion_source": self.criterion_source, "material_source": self.strength.source,

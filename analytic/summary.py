@@ -50,7 +50,19 @@ def design_summary(params) -> dict:
         ratings = {"reason": str(exc)}
     return _finite({"factors": [f.to_dict() for f in df.closed_form_factors(params)], "ratings": ratings,
                     "materials": df.materials_table(params), "Z_R_min_goodman": zmin,
-                    "required": params.ewg_drive.permissible_safety, "fit_margin": df.fit_margin()})
+                    "required": params.ewg_drive.permissible_safety, "fit_margin": df.fit_margin(),
+                    "buckling": buckling_summary(params)})
+
+
+def buckling_summary(params) -> dict:
+    """The flexspline's torsional buckling in closed form (analytic/cylinder_buckling.py, the check
+    cup.buckling_torque's reference), over the rated torque, and the shear yield's torque beside it."""
+    from strainwave.analytic.cylinder_buckling import cup_tube, torsional_buckling
+    (R, t, L), m = cup_tube(params), params.material
+    cb = torsional_buckling(R, t, L, m.youngs_modulus_MPa, m.poisson_ratio)
+    rated = params.gear.rated_output_torque_Nmm
+    yield_torque = m.yield_strength_MPa / math.sqrt(3.0) * 2.0 * math.pi * R * R * t
+    return {**cb.to_dict(), "over_rated": cb.torque_Nmm / rated, "shear_yield_torque_over_rated": yield_torque / rated}
 
 
 def _finite(value):
@@ -78,7 +90,17 @@ def design_lines(d: dict) -> list[str]:
     for f in d["factors"]:
         out.append(f"  {f['title']}: n = {_n3(f['n'])}, static {_n3(f['static_n'])}, {f['verdict']}; sigma_a = "
                    f"{f['amplitude_MPa']:.4g}, sigma_m = {f['mean_MPa']:.4g} MPa, K = {f['notch_K']:.3g}, {f['material']}"
-                   + (f"; advice: {f['advice']}" if f["advice"] else ""))
+                   + (f"; advice: {f['advice']}" if f["advice"] else "")
+                   + (f"; admissible: {f['admissible']}" if f.get("admissible") else ""))
+        if (f.get("extra") or {}).get("governs"):
+            out.append(f"    NOT THE VERDICT: {f['extra']['governs']} (validate's design verdict carries it)")
+    b = d.get("buckling")
+    if b:
+        first = (f"; the wall's shear yields first, at {b['shear_yield_torque_over_rated']:.3g} x rated"
+                 if b["shear_yield_torque_over_rated"] < b["over_rated"] else "; it buckles before the wall yields")
+        out.append(f"  Flexspline torsional buckling (closed form, Batdorf's Galerkin of Donnell's equation, n = "
+                   f"{b['n_waves']}, Z = {b['Z']:.4g}; validate's check cup.buckling_torque holds the FE to it): "
+                   f"{b['torque_Nmm'] / 1e3:.4g} N m = {b['over_rated']:.3g} x rated" + first)
     r = d["ratings"]
     if "reason" in r:
         return out + [f"  WG bearing ratings: not evaluated ({r['reason']})"]

@@ -5,8 +5,9 @@ elements sharing a node (plain nodal averaging; good enough for pictures and hot
 error estimation). VTU is written by VTK's own XML writer, zlib-compressed, fields as Float32 with named
 components (``stress_MPa``: xx, yy, zz, xy, yz, xz; ``displacement_mm``: x, y, z), beside von Mises and the
 three principal stresses; ParaView, pyvista and meshio read it (quadratic cells keep their mid nodes, so P2
-fields render curved). Text FieldData is a 0-separated char array (``field_text``), since meshio cannot read
-VTK's String arrays.
+fields render curved). Text FieldData is VTK String arrays (ParaView's spreadsheet and pyvista show text);
+meshio 5.3 refuses String arrays, so a meshio user reads through ``pyvista.to_meshio(pyvista.read(FILE))``
+(docs/decisions/067-out52b-strings-progress.md).
 
 The load the fields are at is said in every file: ``fields_at`` (text) and ``load_scale_applied`` (the factor
 from the solved load, 1 as solved). ``rescale_vtu`` turns a study's fields into those of another load (the
@@ -128,19 +129,19 @@ COMPONENT_NAMES = {"displacement_mm": ("x", "y", "z"), "stress_MPa": ("xx", "yy"
 
 
 def _text_array(name: str, values: list[str]):
-    """Strings as a VTK char array, each 0-terminated: meshio cannot read VTK's String arrays (issue 40)."""
-    from vtkmodules.vtkCommonCore import vtkCharArray
+    """Strings as a VTK String array, so ParaView and pyvista show text (issue 52)."""
+    from vtkmodules.vtkCommonCore import vtkStringArray
 
-    arr = vtkCharArray()
+    arr = vtkStringArray()
     arr.SetName(name)
-    for byte in b"".join(v.encode("utf-8") + b"\0" for v in values):
-        arr.InsertNextValue(chr(byte))
+    for value in values:
+        arr.InsertNextValue(value)
     return arr
 
 
 def field_text(mesh, name: str) -> list[str]:
-    """The strings of FieldData ``name`` of a VTU these writers made (0-separated chars; VTK String arrays of
-    older files are read as they are)."""
+    """The strings of FieldData ``name`` of a VTU these writers made (VTK String arrays; the 0-separated
+    char arrays of files written before issue 52 are decoded)."""
     raw = mesh.field_data[name]
     values = np.asarray(raw)
     if values.dtype.kind in "iu":

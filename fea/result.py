@@ -96,7 +96,9 @@ class Load:
         raise KeyError(f"load {self.name!r} has no shape parameter {name!r}")
 
     def describe(self) -> str:
-        return f"{self.name} = {self.magnitude:g} {self.unit} on {', '.join(repr(g) for g in self.on)}: {self.distribution}"
+        from strainwave.catalogue_units import beside   # a torque also in the catalogue's N m
+        return (f"{self.name} = {self.magnitude:g} {self.unit}{beside(self.magnitude, self.unit)} on "
+                f"{', '.join(repr(g) for g in self.on)}: {self.distribution}")
 
     def to_dict(self) -> dict:
         return {"name": self.name, "magnitude": self.magnitude, "unit": self.unit, "on": list(self.on),

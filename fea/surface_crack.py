@@ -20,7 +20,10 @@ Quantity: the tangent torsional compliance of the crack at the state (wave gener
 delta lambda_f = 4 (f1.u1 - f1.u1_0) s^2: f1 the far-face load of a unit normal stress, u1 its solution
 with the converged contact set held, u1_0 the same with the whole face held (the uncracked block, same
 mesh), 4 the two symmetry planes, s the torque's crack-face stress per N*mm. P2 tetrahedra graded to the
-front (``refinement.CrackFrontGrading``), three meshes, GCI of formal order 1 (a crack compliance).
+front (``refinement.CrackFrontGrading``; the checked depth over a wider zone, ``GRADING_CHECKED``) with
+quarter-point mid-side nodes on the edges from it, three meshes, GCI of formal order 1 (a crack compliance).
+At the checked depth also the closure ratio: -sigma_m/sigma_b at which a compressive outer-fibre bending shuts
+the crack whole (``closure_ratio``, by bisection on the face contact).
 
 Solution: one factorisation per mesh, of K with the face free, which also gives S, its Schur complement on the
 face's normal dofs (``FaceSystem``); a contact set is then a dense solve of S's open block, and
@@ -44,7 +47,7 @@ from strainwave.fea.result import CrackRecord, Load, MeshQuality, StudyResult, S
 from strainwave.fea.study_facts import TORQUE_RATED, StudyFacts
 
 __all__ = ["STUDY", "ASPECT", "DEPTHS_OVER_T", "SurfaceCrack", "Block", "block_for", "block_mesh", "solve_block",
-           "converge_depth", "delta_name", "sweep_depths_mm", "run", "FIELDS_STATES", "field_paths", "contact_state"]
+           "converge_depth", "delta_name", "closure_name", "closure_ratio", "quarter_point", "GRADING_CHECKED", "sweep_depths_mm", "run", "FIELDS_STATES", "field_paths", "contact_state"]
 
 STUDY = "cup-surface-crack"
 # the crack's shape: a/c = 0.5, a fatigue crack's usual aspect at a notch root (its depth grows slower)
@@ -55,6 +58,18 @@ MAX_ACTIVE_SET_ITERATIONS = 30
 # front size a/12 on the finest mesh, graded to h over 2a + h/2 (docs/decisions/029-surface-crack-block.md)
 GRADING = CrackFrontGrading(tip_over_a=1.0 / 12.0, floor_over_h=0.02, near_over_a=0.25, zone_over_a=2.0,
                             grow_over_h=0.5)
+# the checked depth's grading: the same front, graded to h over 8a + h/2 (the crack's own near field resolved:
+# GCI 10.5 -> 0.72 % default, 0.88 % second gear, with quarter-point nodes; decision 067-crack50b)
+GRADING_CHECKED = dataclasses.replace(GRADING, zone_over_a=8.0)
+# gmsh's 10-node tetrahedron: mid-side nodes 4..9 sit on these vertex pairs
+TET10_EDGES = ((0, 1), (1, 2), (0, 2), (0, 3), (2, 3), (1, 3))
+# closure: the crack counts as shut when its tangent compliance is below this share of the open crack's (a held
+# face keeps ~1e-10 of it: P2 vertices released by their consistent forces, docs/surface_crack.md)
+SHUT_SHARE = 1e-6
+CLOSURE_BRACKET = (0.0, 1.5)     # -sigma_m/sigma_b: shut at 0 (the face all in compression for a < t/2), open at 1.5
+# the fields' stress read this fraction inside each element: a quarter-point element's map is singular at its front node
+QUARTER_POINT_INSET = 1e-3
+CLOSURE_STEPS = 12               # bisection: the bracket / 2^12 = 3.7e-4
 # the fields drawn, at the checked depth: the crack wide open at the major axis and held shut at the minor axis
 FIELDS_STATES = ("major", "minor")
 HALF_WIDTH_OVER_C = 4.0     # block half-width b = max(4 c, t): f_w of Newman-Raju <= 1.0007 at a/t <= 0.8
@@ -98,7 +113,7 @@ def _front_points(s: Block, n: int = 24) -> tuple[tuple[float, float, float], ..
     return tuple((float(s.c_mm * math.cos(p)), float(s.a_mm * math.sin(p)), 0.0) for p in phi)
 
 
-def _build(model, s: Block, h_mm: float, h_fine_mm: float, mirrored: bool):
+def _build(model, s: Block, h_mm: float, h_fine_mm: float, mirrored: bool, grading: CrackFrontGrading):
     from strainwave.fea.meshing import extract, generate
     occ = model.occ
     b, t, L = s.half_width_mm, s.t_mm, s.length_mm
@@ -120,18 +135,40 @@ def _build(model, s: Block, h_mm: float, h_fine_mm: float, mirrored: bool):
             groups["sym_x"].append(tag)
         elif z0 > L - tol or z1 < -L + tol:
             groups["far"].append(tag)
-    refine = [GRADING.refine(_front_points(s), h_mm, h_fine_mm, s.a_mm)]
+    refine = [grading.refine(_front_points(s), h_mm, h_fine_mm, s.a_mm)]
     generate(model, 3, 2, size_mm=h_mm, refine=refine)
     tags = {name: (2, v) for name, v in groups.items() if v}
     return extract(model, 3, 2, tags, h_mm)
 
 
-def block_mesh(s: Block, h_mm: float, h_fine_mm: float, *, mirrored: bool = False):
-    """MeshData of the quarter block (P2 tets), groups crack / ligament / sym_x / far. ``mirrored``: the half
-    block -L <= z <= L with the crack as an internal surface (a seam for ``crack_seam.open_crack``), the same
-    grading: the cross-check of the symmetry-plane model."""
+def block_mesh(s: Block, h_mm: float, h_fine_mm: float, *, mirrored: bool = False, grading=None,
+               quarter_points: bool = True):
+    """MeshData of the quarter block (P2 tets), groups crack / ligament / sym_x / far, quarter-point nodes at the
+    front. ``mirrored``: the half block -L <= z <= L with the crack as an internal surface (a seam for
+    ``crack_seam.open_crack``), the same grading, mid-side nodes left mid-side: the cross-check of the
+    symmetry-plane model."""
     from strainwave.fea.session import mesh_in_child
-    return mesh_in_child(lambda model: _build(model, s, h_mm, h_fine_mm, mirrored), what=f"{STUDY} block")
+    md = mesh_in_child(lambda model: _build(model, s, h_mm, h_fine_mm, mirrored, grading or GRADING),
+                       what=f"{STUDY} block")
+    if mirrored or not quarter_points:
+        return md
+    return quarter_point(md, np.intersect1d(md.group_nodes("crack"), md.group_nodes("ligament")))
+
+
+def quarter_point(md, front_nodes: np.ndarray):
+    """``md`` with the mid-side node of every edge that has one vertex on the front moved to a quarter of the edge
+    from it (Barsoum): the element's map then holds the front's sqrt(r) displacement along that edge."""
+    nodes, cells = md.nodes_mm.copy(), md.cells
+    on = np.zeros(nodes.shape[0], bool)
+    on[np.intersect1d(front_nodes, cells[:, :4])] = True
+    moved = np.zeros(nodes.shape[0], bool)
+    for j, (i0, i1) in enumerate(TET10_EDGES):
+        mid = cells[:, 4 + j]
+        for a, b in ((cells[:, i0], cells[:, i1]), (cells[:, i1], cells[:, i0])):
+            sel = on[a] & ~on[b] & ~moved[mid]
+            nodes[mid[sel]] = 0.75 * md.nodes_mm[a[sel]] + 0.25 * md.nodes_mm[b[sel]]
+            moved[mid[sel]] = True
+    return dataclasses.replace(md, nodes_mm=nodes)
 
 
 @dataclass(frozen=True)
@@ -150,6 +187,7 @@ class BlockSolution:
     quality: tuple[float, float]
     solve_s: float
     fields: dict = dataclasses.field(default_factory=dict)   # state -> (MeshData, skfem mesh, u) (``fields_of``)
+    closure_ratio: float = math.nan   # -sigma_m/sigma_b at which the crack shuts whole (``closure_ratio``)
 
 
 def _system(md, s: Block):
@@ -216,25 +254,49 @@ def _settled(active, u_face, force, tol, tol_f) -> np.ndarray:
     return (active & (force >= -tol_f)) | (~active & (u_face < -tol))
 
 
-def solve_block(s: Block, h_mm: float, h_fine_mm: float, fields_of: tuple[str, ...] = ()) -> BlockSolution:
+def _state_contact(system: FaceSystem, loads, face_y: np.ndarray, t_mm: float, membrane: float, bending: float):
+    """contact_state at (membrane, bending) on the far face, started from the face points the uncracked stress
+    presses shut (fewer iterations than from none)."""
+    f_m, f_b, r_m, r_b, u0 = loads
+    start = membrane + bending * (1.0 - 2.0 * face_y / t_mm) < 0.0
+    return contact_state(system, membrane * f_m + bending * f_b, membrane * r_m + bending * r_b, start,
+                         u0 @ [membrane, bending])
+
+
+def closure_ratio(system: FaceSystem, loads, face_y: np.ndarray, t_mm: float, open_c: float) -> float:
+    """-sigma_m/sigma_b at which the crack shuts whole under a compressive outer-fibre bending (sigma_b = -1):
+    bisection of CLOSURE_BRACKET until the tangent compliance falls below SHUT_SHARE of the open crack's
+    (frictionless face contact decides; the midpoint of the last bracket, resolution CLOSURE_BRACKET / 2^steps)."""
+    lo, hi = CLOSURE_BRACKET
+    r_m = loads[2]
+    for _ in range(CLOSURE_STEPS):
+        mid = 0.5 * (lo + hi)
+        active = _state_contact(system, loads, face_y, t_mm, mid, -1.0)[0]
+        shut = open_compliance(system.factor.S, r_m, active) < SHUT_SHARE * open_c
+        lo, hi = (mid, hi) if shut else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
+def solve_block(s: Block, h_mm: float, h_fine_mm: float, fields_of: tuple[str, ...] = (), *, grading=None,
+                closure: bool = False, quarter_points: bool = True) -> BlockSolution:
     """One mesh: per state the contact set at (wave generator + rated torque), then the tangent compliance
     under the torque's unit membrane with that set held, minus the whole face held (uncracked). ``fields_of``:
-    the states whose mesh and displacement are kept for their fields."""
+    the states whose mesh and displacement are kept for their fields; ``closure``: also the closure ratio;
+    ``quarter_points``: False keeps every mid-side node mid-side (the seam cross-check's elements)."""
     t0 = time.perf_counter()
-    md = block_mesh(s, h_mm, h_fine_mm)
+    md = block_mesh(s, h_mm, h_fine_mm, grading=grading, quarter_points=quarter_points)
     sk, K, f_m, f_b, base, face_z = _system(md, s)
     system = FaceSystem.of(K, base, face_z, STUDY)
     try:
         u0 = system.free_solution(np.stack([f_m, f_b], axis=1))
         r_m, r_b = system.condensed(u0).T
-        by_active: dict[bytes, float] = {}
+        loads, face_y = (f_m, f_b, r_m, r_b, u0), sk.doflocs[1, face_z // 3]
+        none = np.zeros(r_m.shape, bool)
+        open_c = open_compliance(system.factor.S, r_m, none)
+        by_active: dict[bytes, float] = {np.packbits(none).tobytes(): open_c}
         out, fields = {}, {}
         for name, membrane, bending in s.states:
-            # start from the face points the uncracked stress presses shut: fewer iterations than from none
-            y = sk.doflocs[1, face_z // 3]
-            start = membrane + bending * (1.0 - 2.0 * y / s.t_mm) < 0.0
-            active, iterations, u = contact_state(system, membrane * f_m + bending * f_b,
-                                                  membrane * r_m + bending * r_b, start, u0 @ [membrane, bending])
+            active, iterations, u = _state_contact(system, loads, face_y, s.t_mm, membrane, bending)
             if name in fields_of:
                 fields[name] = (md, sk, u)
             key = np.packbits(active).tobytes()
@@ -242,11 +304,12 @@ def solve_block(s: Block, h_mm: float, h_fine_mm: float, fields_of: tuple[str, .
                 by_active[key] = open_compliance(system.factor.S, r_m, active)
             delta = 4.0 * by_active[key] * s.per_torque_MPa_per_Nmm ** 2
             out[name] = StateSolution(delta, float(active.mean()) if active.size else 0.0, iterations)
+        rho = closure_ratio(system, loads, face_y, s.t_mm, open_c) if closure else math.nan
     finally:
         system.factor.close()
     q = md.quality
     return BlockSolution(out, K.shape[0], q.elements, q.nodes, (q.min_quality, q.mean_quality),
-                         time.perf_counter() - t0, fields)
+                         time.perf_counter() - t0, fields, rho)
 
 
 def default_size_mm(params, quick: bool) -> float:
@@ -267,7 +330,9 @@ class SurfaceCrack(StudyFacts):
     study = STUDY
     # the deepest crack's block (the estimate's volume) at the default h = t/4: 17,884 tets vs 655 cells (27.3)
     elements_per_cell = 27.3
-    cpu_s_per_element = (7.4e-4, 3.1e-4)   # full, --quick: validate's schedule (decision 049)
+    # full, --quick: validate's schedule (decision 049); decision 067's checked depth (37.6k tets on its finest mesh):
+    # --quick 24.2 CPU s at load 14 (was 5.4 s), full ~ the former 15 s + that difference
+    cpu_s_per_element = (1.9e-3, 1.35e-3)
     default_size_mm = staticmethod(default_size_mm)
     rated_load = TORQUE_RATED      # solved at the rated T on top of the wave generator (not linear in T: contact)
     title = "flexspline tooth-root surface crack"
@@ -297,20 +362,31 @@ def delta_name(state: str, depth_mm: float) -> str:
     return f"delta_flexibility_{state}_a{depth_mm:g}_rad_per_Nmm"
 
 
-def converge_depth(s: Block, h_fine_mm: float, progress=lambda m: None, fields_of: tuple[str, ...] = ()):
+def closure_name(depth_mm: float) -> str:
+    return f"closure_ratio_a{depth_mm:g}"
+
+
+def converge_depth(s: Block, h_fine_mm: float, progress=lambda m: None, fields_of: tuple[str, ...] = (), *,
+                   checked: bool = False):
     """({quantity name: Quantity with GCI}, the three solutions, finest first) of one crack depth, every state on
-    the same three meshes h, h r, h r^2; ``fields_of``: the finest keeps these states' fields."""
+    the same three meshes h, h r, h r^2; ``fields_of``: the finest keeps these states' fields. ``checked``: the
+    checked depth, graded by GRADING_CHECKED and with its closure ratio."""
     sizes = [h_fine_mm * DEFAULT_RATIO ** k for k in range(3)]
+    grading = GRADING_CHECKED if checked else GRADING
     runs = []
     for k in (2, 1, 0):
         progress(f"{STUDY}: a = {s.a_mm:g} mm, refinement {3 - k}/3 (h = {sizes[k]:.3g} mm)")
-        runs.append(solve_block(s, sizes[k], h_fine_mm, fields_of if k == 0 else ()))
+        runs.append(solve_block(s, sizes[k], h_fine_mm, fields_of if k == 0 else (), grading=grading, closure=checked))
     runs = runs[::-1]
     q = {}
     for name, _, _ in s.states:
         qn = delta_name(name, s.a_mm)
         q[qn] = converged_quantity(qn, "rad/(N*mm)", sizes, [r.states[name].delta_flexibility for r in runs],
                                    order=CRACK_FORMAL_ORDER)
+    if checked:
+        # the shut/open decision is the crack's contact: formal order 1 as its compliance (Fs 3 unless confirmed)
+        qn = closure_name(s.a_mm)
+        q[qn] = converged_quantity(qn, "1", sizes, [r.closure_ratio for r in runs], order=CRACK_FORMAL_ORDER)
     return q, runs
 
 
@@ -329,17 +405,20 @@ def run(params, *, per_torque_MPa_per_Nmm: float, states, mesh_size_mm=None, ord
     for depth in sweep_depths_mm(params, quick):
         block = block_for(t, depth, ratio, m.youngs_modulus_MPa, m.poisson_ratio, per_torque_MPa_per_Nmm, states)
         drawn = vtu is not None and depth == sweep_depths_mm(params, True)[0]     # the checked depth
-        qd, runs = converge_depth(block, h, progress, FIELDS_STATES if drawn else ())
+        checked = depth == sweep_depths_mm(params, True)[0]
+        qd, runs = converge_depth(block, h, progress, FIELDS_STATES if drawn else (), checked=checked)
         q |= qd
         fields = _write_fields(vtu, block, runs[0], m) if drawn else fields
         finest = runs[0] if finest is None or runs[0].dofs > finest.dofs else finest
         facts[f"{depth:g}"] = {"depth_mm": depth, "half_length_mm": block.c_mm, "half_width_mm": block.half_width_mm,
                                "length_mm": block.length_mm, "dofs": [r.dofs for r in runs],
+                               "grading": dataclasses.asdict(GRADING_CHECKED if checked else GRADING),
                                "solve_s": [r.solve_s for r in runs],
                                "shut_fraction": {n: r.shut_fraction for n, r in runs[0].states.items()},
                                "active_set_iterations": {n: r.active_set_iterations for n, r in runs[0].states.items()}}
     mesh = MeshQuality(finest.elements, finest.nodes, finest.dofs, 2, *finest.quality)
-    meta = {"model": "quarter block of the band wall in the crack's frame, P2 tetrahedra graded to the front, "
+    meta = {"model": "quarter block of the band wall in the crack's frame, P2 tetrahedra graded to the front "
+                     "(quarter-point mid-side nodes on the edges from it), "
                      "crack face in frictionless contact with its mirror (symmetry plane z = 0)",
             "aspect_a_over_c": ratio, "wall_mm": t, "states": [list(s) for s in states],
             "per_torque_MPa_per_Nmm": per_torque_MPa_per_Nmm, "cracks": facts}
@@ -372,5 +451,6 @@ def _write_fields(vtu, block: Block, finest: BlockSolution, material) -> tuple:
         load = (f"{state} state, wave generator + rated torque: crack-face normal stress {membrane:.4g} MPa membrane "
                 f"+ {bending:.4g} MPa outer-fibre bending on the far face (quarter block, a = {block.a_mm:g} mm)")
         info = field_info(STUDY, load, material)
-        written.append(write_solid_fields(path, md, sk, u, Lame.from_young(block.E_MPa, block.nu), info))
+        written.append(write_solid_fields(path, md, sk, u, Lame.from_young(block.E_MPa, block.nu), info,
+                                          inset=QUARTER_POINT_INSET))
     return tuple(written)

@@ -102,8 +102,10 @@ def pair_compliance(infl: Mapping, pairs: Mapping, z_f: int, z_c: int) -> np.nda
     return 0.5 * (C + C.T)
 
 
-def influences(params, mesh: Mapping, h_mm: float, *, plane_stress: bool = False) -> tuple[dict, dict]:
-    """The FS rim's and the CS sector's flank influences on one mesh size, and the mesh facts."""
+def influences(params, mesh: Mapping, h_mm: float, *, plane_stress: bool = False,
+               bed_N_per_mm2: float | None = None) -> tuple[dict, dict]:
+    """The FS rim's and the CS sector's flank influences on one mesh size, and the mesh facts (``bed_N_per_mm2``:
+    the rim's bore on a radial Winkler bed instead of held, fea/tooth_mesh_fe.rim_model)."""
     from strainwave.geometry.mesh_geometry import mesh_geometry
     geo = mesh_geometry(params)
     m = params.material
@@ -111,7 +113,7 @@ def influences(params, mesh: Mapping, h_mm: float, *, plane_stress: bool = False
     lame = Lame.from_young(m.youngs_modulus_MPa, m.poisson_ratio, plane_stress=plane_stress)
     band = BAND_OVER_M * geo.fs.module_mm
     fs_r, cs_r = radii_grids(mesh)
-    rim = fe.rim_model(geo.fs, geo.r_bore_mm, h_mm, lame, geo.face_width_mm)
+    rim = fe.rim_model(geo.fs, geo.r_bore_mm, h_mm, lame, geo.face_width_mm, bed_N_per_mm2)
     offs = np.arange(geo.z_f)
     same = fe.influence(rim, geo.fs.root_radius_mm, fs_r, band, +1, offs, geo.r_bore_mm)
     other = fe.influence(rim, geo.fs.root_radius_mm, fs_r, band, -1, offs, geo.r_bore_mm)

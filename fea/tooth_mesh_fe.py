@@ -115,8 +115,26 @@ def _assemble(p, t, lame: Lame, thickness_mm: float):
     return mesh, basis, elasticity_stiffness(basis, lame, thickness_mm=thickness_mm)
 
 
-def rim_model(spec, r_bore_mm: float, h_mm: float, lame: Lame, thickness_mm: float) -> RimSolve:
-    """The flexspline's whole toothed rim on a rigid WG (radially held bore), factorised."""
+def _bore_bed(mesh, basis, r_bore_mm: float, k_N_per_mm3: float):
+    """Stiffness of a radial Winkler bed (modulus per unit bore area) under the bore, per unit thickness."""
+    from skfem import BilinearForm, ElementVector, FacetBasis
+    from skfem.helpers import dot
+    bf = mesh.boundary_facets()
+    r_mid = np.hypot(*mesh.p[:, mesh.facets[:, bf]].mean(axis=1))
+    fb = FacetBasis(mesh, ElementVector(basis.elem), facets=bf[r_mid < r_bore_mm + 1e-3], intorder=4)
+
+    @BilinearForm
+    def bed(u, v, w):
+        # radial, not the chord's normal: a chord's normal would also hold the bore's tangential slip
+        e = w.x / np.sqrt(w.x[0] ** 2 + w.x[1] ** 2)
+        return k_N_per_mm3 * dot(u, e) * dot(v, e)
+    return bed.assemble(fb)
+
+
+def rim_model(spec, r_bore_mm: float, h_mm: float, lame: Lame, thickness_mm: float,
+              bed_N_per_mm2: float | None = None) -> RimSolve:
+    """The flexspline's whole toothed rim on a rigid WG (radially held bore), factorised. ``bed_N_per_mm2``: the
+    bore on a radial Winkler bed instead (N/mm per mm of bore, over the whole thickness: the WG bearing's balls)."""
     t0 = time.perf_counter()
     outer = _outline(spec, n_flank=max(6, int(math.ceil(2.5 * spec.module_mm / h_mm))))
     bore = _circle(r_bore_mm, h_mm)
@@ -128,6 +146,10 @@ def rim_model(spec, r_bore_mm: float, h_mm: float, lame: Lame, thickness_mm: flo
     T = _rotation(locs, on_bore, K.shape[0])
     pin = on_bore[np.argmin(np.abs(np.arctan2(locs[1, on_bore], locs[0, on_bore]) - math.pi / 2))]
     fixed = np.concatenate([2 * on_bore, [2 * pin + 1]])
+    if bed_N_per_mm2 is not None:
+        # the bed holds the bore radially (and the rim's translation); only the rigid rotation is pinned
+        K = K + _bore_bed(mesh, basis, r_bore_mm, bed_N_per_mm2 / thickness_mm) * thickness_mm
+        fixed = np.array([2 * pin + 1])
     t2 = time.perf_counter()
     free, solve = _factorise(K, T, fixed)
     t3 = time.perf_counter()

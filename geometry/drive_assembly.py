@@ -312,6 +312,7 @@ def cup_gear_assembly(params, *, crack_depth_mm: float | None = None, teeth: boo
 
     if teeth:
         _check_minor_axis(params)
+        _warn_tooth_overlap(params)
     cup = deformed_cup(params, teeth=teeth)
     spline = build_part(PartName.CIRCULAR_SPLINE, params, teeth=teeth)
     shaft = build_part(PartName.OUTPUT_SHAFT, params, crack_depth_mm=crack_depth_mm)
@@ -333,3 +334,14 @@ def _check_minor_axis(params) -> None:
                          f"the teeth's tips overlap by {-clear.tip_minor_mm:.3g} mm at the minor axis: with w0 = {w0:g} mm "
                          f"and the cup's addendum {CUP_ADDENDUM_COEF:g} m it must be <= 2 w0/m - {CUP_ADDENDUM_COEF:g} = "
                          f"{2 * w0 / m - CUP_ADDENDUM_COEF:.4g}")
+
+
+def _warn_tooth_overlap(params) -> None:
+    """Say where the design's rigid teeth overlap (the default's w0 = m pair does at 56-88 deg: decision 067)."""
+    import warnings
+
+    from strainwave.geometry.tooth_interference import ToothOverlapWarning, overlap_summary
+
+    summary = overlap_summary(params)
+    if summary:
+        warnings.warn(ToothOverlapWarning(f"circular_spline: {summary}"), stacklevel=3)

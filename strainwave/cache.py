@@ -24,12 +24,13 @@ from strainwave.io_atomic import atomic_write_text
 @lru_cache(maxsize=1)
 def code_version() -> str:
     """SHA-256 (16 hex) over the installed strainwave sources, in a stable order."""
-    import strainwave
     from strainwave import analytic, compare, fea, geometry
 
     digest = hashlib.sha256()
-    for package in (strainwave, analytic, compare, fea, geometry):
-        root = Path(package.__file__).parent
+    # this file's own folder for strainwave itself: a folder named strainwave in the working directory (an output
+    # folder, say) makes `strainwave` a namespace package without __file__ in a case's child process
+    roots = [Path(__file__).parent] + [Path(package.__file__).parent for package in (analytic, compare, fea, geometry)]
+    for root in roots:
         for path in sorted(root.rglob("*.py")) + sorted(root.glob("data/*.toml")):
             digest.update(str(path.relative_to(root)).encode())
             digest.update(path.read_bytes())

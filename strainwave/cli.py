@@ -274,14 +274,16 @@ def _cmd_diagnose(args) -> int:
     from strainwave.compare.diagnose.recording import TestFlags
     flags = TestFlags(args.kind, args.specimen, args.stiffness, args.rated_torque, args.columns, args.unit)
     diagnosis = diagnose_file(Path(args.recording), params_path=args.params, baseline=args.baseline,
-                              plot_out=Path(args.plot) if args.plot else None, flags=flags)
+                              plot_out=Path(args.plot) if args.plot else None, flags=flags, progress=_progress)
     _emit(args, diagnosis.summary(), diagnosis.to_dict)
     return 0
 
 
 def _cmd_catalogue(args) -> int:
     from strainwave.analytic.catalogue_predict import predict_table
-    prediction = predict_table(Path(args.table))
+    from strainwave.progress import ticking
+    with ticking(f"catalogue {Path(args.table).name}: predicting every row", _progress):
+        prediction = predict_table(Path(args.table))
     _emit(args, prediction.summary(), prediction.to_dict)
     return 0
 
@@ -592,7 +594,7 @@ def _add_size_crack(add) -> None:
                    help="model the recording is compared with")
     p.add_argument("--curves", metavar="RESULTS.json", help="a validate results.json: the cup's FEA crack curve")
     p.add_argument("--cache", metavar="DIR", help="keep the FEA curves solved on demand (the shaft's crack, the "
-                   "flexspline's breathing ripple) here for the next run")
+                   "flexspline's breathing ripple, the tooth crack through the mesh) here for the next run")
     p.add_argument("--paris-c", type=_positive_float, default=5.21e-13, metavar="C",
                    help="Paris law da/dN = C dK^m, mm/cycle and N/mm^1.5 (default: %(default)s, BS 7910 steel in air)")
     p.add_argument("--paris-m", type=float, default=3.0, metavar="M", help="Paris exponent")

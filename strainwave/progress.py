@@ -44,19 +44,22 @@ class Counter:
 
 
 @contextmanager
-def ticking(what: str, progress: Callable[[str], None], *, every_s: float = TICK_S,
-            first_s: float | None = None) -> Iterator[None]:
-    """'WHAT: still working, N s' after ``first_s`` (default ``every_s``) and then every ``every_s`` seconds, and
-    'WHAT done in N s' at the end of work that ticked: work done sooner prints nothing, so an input refused at
-    once (imports and checks take seconds on a loaded machine) stays its one error line."""
+def ticking(what: str | Callable[[], str], progress: Callable[[str], None], *, every_s: float | None = None,
+            first_s: float | None = None, done: str | None = None) -> Iterator[None]:
+    """'WHAT: still working, N s' after ``first_s`` (default ``every_s``, default ``TICK_S``) and then every
+    ``every_s`` seconds, and 'DONE done in N s' (``done`` defaults to WHAT) at the end of work that ticked: work
+    done sooner prints nothing, so an input refused at once (imports and checks take seconds on a loaded machine)
+    stays its one error line. ``what`` may be a callable: each line names the stage the work is in then."""
+    every_s = TICK_S if every_s is None else every_s
     start, stop, ticked = time.perf_counter(), threading.Event(), []
+    name = what if callable(what) else (lambda: what)
 
     def tick():
         wait = every_s if first_s is None else first_s
         while not stop.wait(wait):
             wait = every_s
             ticked.append(True)
-            progress(f"{what}: still working, {time.perf_counter() - start:.0f} s")
+            progress(f"{name()}: still working, {time.perf_counter() - start:.0f} s")
 
     thread = threading.Thread(target=tick, name="strainwave-progress", daemon=True)
     thread.start()
@@ -66,4 +69,4 @@ def ticking(what: str, progress: Callable[[str], None], *, every_s: float = TICK
         stop.set()
         thread.join()
     if ticked:
-        progress(f"{what} done in {time.perf_counter() - start:.1f} s")
+        progress(f"{done or name()} done in {time.perf_counter() - start:.1f} s")

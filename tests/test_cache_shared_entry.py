@@ -52,3 +52,19 @@ def test_a_damaged_entry_is_computed_again_and_no_path_keeps_nothing(tmp_path):
     assert shared_entry(entry, _read, lambda: "ok:other", _write) == "ok:new"     # read back, not recomputed
     assert shared_entry(None, _read, lambda: "ok:alone", _write) == "ok:alone"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["ring.txt", "ring.txt.lock"]
+
+
+def test_code_version_holds_beside_a_folder_named_strainwave(tmp_path):
+    """A folder named strainwave in the working directory (README run: `cp -r strainwave/data`, or an output folder)
+    makes `strainwave` a namespace package without __file__ where '' leads sys.path, as in validate's case processes:
+    every case keyed by code_version failed with TypeError (found running the README's validate, issue 52)."""
+    import subprocess
+    import sys
+
+    from strainwave.cache import code_version
+
+    (tmp_path / "strainwave" / "data").mkdir(parents=True)
+    proc = subprocess.run([sys.executable, "-c", "from strainwave.cache import code_version; print(code_version())"],
+                          cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr[-500:]
+    assert proc.stdout.strip() == code_version()

@@ -325,8 +325,16 @@ for _id in ("shaft.flexibility", "shaft.crack_compliance", "cup.flexibility", "c
             "ring.tooth_influence", "ring.stress_concentration", "gear.stiffness", "cup.surface_crack_major",
             "cup.surface_crack_between", "cup.surface_crack_minor"):
     DELIBERATE_CHANGES[_id] = DELIBERATE_CHANGES.get(_id, "") + ("; " if _id in DELIBERATE_CHANGES else "") + _GCI_ONCE
+DELIBERATE_CHANGES["cup.surface_crack_major"] += (
+    "; issue 50 item 3 (decision 067-crack50b): quarter-point nodes at the front and the checked depth graded over "
+    "8a + h/2: 4.2376e-16 -> 4.3252e-16 (-5.1 % -> -3.2 % of Newman-Raju), GCI 10.5 -> 0.72 %, tolerance 20.7 -> 11.0 %")
 # Checks removed on purpose, with the reason (a removed check is listed, never silently gone).
 DELIBERATE_REMOVALS: dict[str, str] = {
+    "cup.surface_crack_between": "issue 50 (decision 067-crack50b): equal to cup.surface_crack_major to every digit (an "
+                                 "open crack's tangent compliance does not depend on where it sits); replaced by "
+                                 "cup.surface_crack_closure_angle",
+    "cup.surface_crack_minor": "issue 50 (decision 067-crack50b): a shut share that is 1 by construction once the crack "
+                               "shuts whole; cup.surface_crack_closure_angle checks when it does",
     "bearing.radial_compliance": "ring (issue 13): passed vacuously (ring FEA 31x below 1/K_G0 back-computed from "
                                  "the seed's table); now information: analytic checks entry and audit 13 (K_G0 "
                                  "= 0.139 of one ball's Hertz contacts at the seed's ellipse)",
@@ -458,7 +466,7 @@ def test_both_verdicts_open_the_report_and_a_failing_design_is_red(quick_run, re
     # one factor per component and point of it (issue 49), each recomputed from the inputs it states (design.csv's
     # row): Goodman on its amplitude and mean, the static check beside it; the verdict is exactly theirs
     assert {f["component"] for f in design["factors"]} == {"shaft", "cup", "ring", "cup_tooth_root", "cup_band_edge",
-                                                           "wg_inner_ring", "wg_outer_ring"}
+                                                           "wg_inner_ring", "wg_outer_ring", "cup_diaphragm"}
     for f in design["factors"]:
         assert f["definition"] and f["required"] == design["required_safety_factor"]
         row = f["fatigue"]

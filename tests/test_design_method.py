@@ -35,7 +35,8 @@ def _recomputed(row: dict) -> tuple[float, float]:
 
 def test_every_closed_form_factor_is_recomputed_from_its_stated_inputs(gear):
     factors = df.closed_form_factors(gear)
-    assert [f.component for f in factors] == ["ring", "cup_tooth_root", "wg_inner_ring", "wg_outer_ring"]
+    assert [f.component for f in factors] == ["ring", "cup_tooth_root", "wg_inner_ring", "wg_outer_ring",
+                                                 "cup_diaphragm"]
     for f in factors:
         row = f.row()
         n, static = _recomputed(row)
@@ -113,6 +114,23 @@ def test_advice_value_brings_the_factor_to_the_required_n():
         fixed = df.wg_inner_ring_factor(p.with_value(f.advice.key, f.advice.value * 0.999))
     assert fixed.n >= f.required * 0.999 and fixed.static_n >= 1.0
     assert "bearing_inner_ring_thickness_mm <= " in f.advice.text()
+
+
+def test_second_gear_with_a_5_mm_ring_names_its_admissible_thickness():
+    """Issue 49: the user who set inner_ring_thickness_mm = 5 on the second gear sees the thickness named though the
+    ring passes: the admissible range's end, where the factor (or the static check) meets its limit."""
+    key = "wave_generator.bearing_inner_ring_thickness_mm"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        p = load_params(SECOND).with_value(key, 5.0)
+        f = df.wg_inner_ring_factor(p)
+        a = f.admissible
+        assert f.verdict() == "PASS" and f.advice is None and a is not None and a.key == key and a.relation == "<="
+        assert a.value > 5.0 and f"{key} <= " in a.text() and "now 5" in a.text()
+        inside, outside = (df.wg_inner_ring_factor(p.with_value(key, a.value * s), advise=False) for s in (0.99, 1.01))
+    assert inside.n >= f.required and inside.static_n >= 1.0
+    assert outside.n < f.required or outside.static_n < 1.0
+    assert f.row()["admissible"] == a.text()
 
 
 def test_solver_finds_the_root_on_the_current_side_and_says_when_there_is_none():
@@ -236,3 +254,18 @@ def test_ball_spring_constant_is_hertz_and_the_series_of_its_two_contacts():
 def _radii(D, f, r, inner):
     rx = 1.0 / (2.0 / D + (1.0 if inner else -1.0) / r)
     return rx, 1.0 / (2.0 / D - 1.0 / (f * D))
+
+
+def test_band_edge_below_n_gets_a_wall_thickness_that_brings_it_to_n():
+    """The band edge's factor is the FEA's; below [n] its advice follows the ring's closed form scaled to the FEA."""
+    from types import SimpleNamespace
+    from strainwave.compare.validate.design_fea import band_edge_factor
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        p = load_params()
+        book = SimpleNamespace(quantity=lambda label, name: (SimpleNamespace(value=600.0, uncertainty=5.0), ""))
+        f = band_edge_factor(book, "case", p)
+        assert f.n < f.required and f.advice is not None and f.advice.key == "flexspline_cup.wall_thickness_mm"
+        assert f.advice.relation == "<=" and f.advice.value < p.flexspline_cup.wall_thickness_mm
+        scale = df.band_edge_closed(p.with_value(f.advice.key, f.advice.value)).n / df.band_edge_closed(p).n
+    assert f.n * scale == pytest.approx(f.required, rel=1e-6)

@@ -1,6 +1,7 @@
 """The VTU a user gets from `strainwave solve --vtu` (issue 40): at the rated load the command reports (and
-saying so), stress components named, principal stresses, region ids, zlib through VTK's writer, and read
-by meshio, pyvista and VTK's own XML reader alike. One cheap solve (coarse P1 shaft, h = 15 mm: the coarsest whose three meshes differ) for the module."""
+saying so), stress components named, principal stresses, region ids, zlib through VTK's writer, its text
+FieldData as VTK String arrays (issue 52), read by pyvista and VTK's own XML reader, and by meshio through
+pyvista (meshio 5.3's own reader refuses String arrays: a test records that, docs/decisions/067). One cheap solve (coarse P1 shaft, h = 15 mm: the coarsest whose three meshes differ) for the module."""
 from __future__ import annotations
 
 import json
@@ -23,19 +24,52 @@ def solved(tmp_path_factory):
     return out / "shaft.vtu", json.loads((out / "solve.json").read_text())
 
 
-def test_meshio_reads_both_files_with_named_fields(solved):
+def test_meshio_gets_both_files_with_named_fields_through_pyvista(solved):
     import meshio
+    import pyvista as pv
 
     path, _ = solved
     fields = {"shaft.vtu": {"displacement_mm", "stress_MPa", "von_mises_MPa", "principal_stress_1_MPa",
                             "principal_stress_2_MPa", "principal_stress_3_MPa"},
               "shaft.boundary.vtu": {"displacement_mm", "von_mises_MPa", "volume_point_id"}}   # faces repeat two
     for name, expected in fields.items():
-        mesh = meshio.read(path.with_name(name))
-        assert mesh.points.shape[1] == 3 and sum(len(c.data) for c in mesh.cells) > 0
+        grid = pv.read(path.with_name(name))
+        mesh = pv.to_meshio(grid)   # the documented route (README, docs/outputs.md)
+        assert isinstance(mesh, meshio.Mesh)
+        assert mesh.points.shape == (grid.n_points, 3) and sum(len(c.data) for c in mesh.cells) == grid.n_cells
         assert set(mesh.point_data) == expected
+        assert np.array_equal(mesh.point_data["von_mises_MPa"], grid.point_data["von_mises_MPa"])
         assert "physical_group" in mesh.cell_data
-        assert float(mesh.field_data["load_scale_applied"][0]) == pytest.approx(1000.0)
+
+
+def test_meshio_own_reader_refuses_vtk_string_arrays(solved):
+    """meshio 5.3.5 reads no VTK String array (its issue 1370): the day it does, this fails and the README's
+    pyvista route for meshio users can go."""
+    import meshio
+
+    path, _ = solved
+    with pytest.raises((meshio.ReadError, AssertionError)):   # 5.3.5: a bare assert on the appended String data
+        meshio.read(path)
+
+
+def test_text_field_data_reads_as_str_in_pyvista_and_vtk(solved):
+    import pyvista as pv
+    from vtkmodules.vtkCommonCore import vtkStringArray
+    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+
+    path, _ = solved
+    for name in ("shaft.vtu", "shaft.boundary.vtu"):
+        grid = pv.read(path.with_name(name))
+        names = list(grid.field_data["physical_group_names"])
+        assert names[0] == "solid" and {"fixed", "loaded"} <= set(names) and all(isinstance(n, str) for n in names)
+        assert str(grid.field_data["study"][0]) == "shaft-torsion"
+        assert str(grid.field_data["fields_at"][0]).startswith("the rated load: output torque T = 1e+06 N*mm")
+        assert float(grid.field_data["load_scale_applied"][0]) == pytest.approx(1000.0)
+        reader = vtkXMLUnstructuredGridReader()
+        reader.SetFileName(str(path.with_name(name)))
+        reader.Update()
+        material = reader.GetOutput().GetFieldData().GetAbstractArray("material")
+        assert isinstance(material, vtkStringArray) and material.GetValue(0).startswith("E = ")
 
 
 def test_vtk_reader_sees_component_names_and_the_rated_load(solved):

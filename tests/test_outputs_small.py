@@ -70,3 +70,20 @@ def test_catalogue_units_stand_beside_the_models():
     assert in_catalogue_units(1e-3, "rad")[0] == np.degrees(1e-3) * 60 and beside(3.0, "MPa") == ""
     load = RatedLoad("shaft-torsion", "output torque T", "N*mm", 1e3, 7.8e3, "chosen")
     assert load.describe() == "output torque T = 7800 N*mm (7.8 N m) (chosen)"
+
+
+def test_the_drives_stiffness_check_and_a_studys_torque_read_in_catalogue_units_too():
+    """The report's check row of the drive's K_HD (N*mm/rad) carries N m/rad; a flexibility row (a part's, rad/(N*mm))
+    stays as it is; a study's load line (solve, each VTU's `load`) says N m beside N*mm."""
+    from strainwave.compare.validate.report_text import check_row
+    from strainwave.fea.result import Load
+
+    def row(unit, value):
+        return check_row({"id": "x", "quantity": "q", "unit": unit, "fea": value, "fea_uncertainty": None,
+                          "analytic": {}, "rel_error": {}, "tolerance": {"relative": None}, "passed": True,
+                          "verdict": "corrected", "reason_not_evaluated": ""})
+    assert row("N*mm/rad", 5.376e8)[2].endswith("(5.376e+05 N m/rad)")
+    assert "N m" not in row("rad/(N*mm)", 1.2e-9)[2]
+    torque = Load("output torque T", 1000.0, "N*mm", ("loaded",), "shear")
+    assert torque.describe().startswith("output torque T = 1000 N*mm (1 N m) on 'loaded'")
+    assert Load("force F", 10.0, "N", ("loaded",), "x").describe().startswith("force F = 10 N on")

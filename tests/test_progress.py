@@ -52,3 +52,34 @@ def test_benchmark_diagnose_reports_each_recording(monkeypatch, capsys):
     assert cli.main(["benchmark-diagnose", "--n", "1"]) == 0
     err = capsys.readouterr().err
     assert "benchmark-diagnose 1/2 f1-clean-000: agrees" in err and "benchmark-diagnose 2/2 f1-clean-001" in err
+
+
+def _short_recording(tmp_path):
+    """The shipped sample's header and its first 200 rows (enough for the fits, a second's work)."""
+    from pathlib import Path
+
+    lines = (Path(__file__).parents[1] / "examples" / "rig.csv").read_text().splitlines()
+    head = [line for line in lines if line.startswith("#") or not line[:1].isdigit() and not line.startswith("-")]
+    rows = [line for line in lines if line not in head]
+    path = tmp_path / "rig200.csv"
+    path.write_text("\n".join(head + rows[:200]) + "\n")
+    return path
+
+
+def test_diagnose_says_its_stage_on_stderr_when_it_takes_longer_than_the_tick(monkeypatch, capsys, tmp_path):
+    """A diagnosis longer than TICK_S names its stage on stderr (here the tick is shortened, so a second's work is
+    'long'); one shorter than the tick prints no progress at all, and stdout holds only the result."""
+    import strainwave.progress as progress
+    from strainwave import cli
+
+    path = _short_recording(tmp_path)
+    monkeypatch.setattr(progress, "TICK_S", 0.02)
+    assert cli.main(["diagnose", str(path)]) == 0
+    out, err = capsys.readouterr()
+    assert "diagnose rig200.csv: " in err and ": still working, " in err and "diagnose rig200.csv done in " in err
+    assert "fitting the effects to 200 rows" in err or "the analytic baseline" in err
+    assert "still working" not in out and "rig200.csv" in out   # stdout: the diagnosis alone
+    monkeypatch.setattr(progress, "TICK_S", 600.0)
+    assert cli.main(["diagnose", str(path)]) == 0
+    out, err = capsys.readouterr()
+    assert "still working" not in err and "done in" not in err and out

@@ -134,3 +134,24 @@ def test_circular_spline_teeth_are_the_complement_of_its_space(name):
     assert cs.root_radius_mm == pytest.approx(space.pitch_radius_mm + (x + 1.35) * m, abs=1e-9)
     r = np.linspace(cs.tip_radius_mm, cs.root_radius_mm, 7)
     assert np.allclose(half_angle_rad(cs, r) + half_angle_rad(space, r), math.pi / space.teeth, atol=1e-12)
+
+
+def test_rim_on_a_bed_tends_to_the_held_bore_and_softens_on_the_balls():
+    """The rim's bore on a radial Winkler bed (decision 068): a very stiff bed gives the held bore's tooth
+    compliance, the balls' bed (5e3 N/mm^2) a softer one."""
+    from strainwave.fea import tooth_mesh_fe as fe
+    from strainwave.fea.assembly import Lame
+    params = load_params(None, {"flexspline_cup": {"teeth": 60, "module_mm": 160.0 / 60},
+                                "gear": {"radial_deformation_mm": 160.0 / 60}})
+    geo = mesh_geometry(params)
+    m = geo.fs.module_mm
+    lame = Lame.from_young(2.1e5, 0.3)
+    radii = np.array([geo.fs.root_radius_mm + 1.3 * m])
+
+    def tooth(bed):
+        rim = fe.rim_model(geo.fs, geo.r_bore_mm, 0.8 * m, lame, geo.face_width_mm, bed)
+        return float(fe.influence(rim, geo.fs.root_radius_mm, radii, 0.2 * m, +1, np.array([0]), geo.r_bore_mm)[0, 0, 0])
+
+    held, stiff, balls = tooth(None), tooth(5e8), tooth(5e3)
+    assert abs(stiff / held - 1.0) < 0.01            # 5e8 N/mm^2: the bore as good as held
+    assert balls > 1.3 * held                        # measured 2.5x on this rim (Z 60, m 2.67)

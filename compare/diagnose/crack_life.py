@@ -42,21 +42,25 @@ class CrackLifeReport:
     named: tuple[str, ...]
     sizing: dict | None
     lives: list
+    tooth_crack: dict | None = None      # the tooth-root crack through the mesh (compare/diagnose/tooth_crack.py)
 
     def summary(self) -> str:
         head = f"{self.recording}: {self.verdict}" + (f" ({' + '.join(self.named)})" if self.named else "")
+        tooth = [] if self.tooth_crack is None else ["tooth-root crack through the mesh:", *self.tooth_crack["lines"]]
         if self.sizing is None:
-            return head + ("\nno crack-type change to size: the diagnosis names neither crack_closure, a compliance "
-                           "change nor a stiffness ripple at twice the input angle")
+            return "\n".join([head + ("\nno crack-type change to size: the diagnosis names neither crack_closure, a "
+                                      "compliance change nor a stiffness ripple at twice the input angle"), *tooth])
         s = self.sizing
         lines = [head, f"measured {s.get('quantity', 'compliance change')} {s['delta']:.4g} +/- {s['sigma']:.2g} "
-                       f"{s['unit']} (1 sigma, from {s['effect']})", *s["lines"], *life_lines(self.lives)]
+                       f"{s['unit']} (1 sigma, from {s['effect']})", *s["lines"], *life_lines(self.lives), *tooth]
         return "\n".join(lines)
 
     def to_dict(self) -> dict:
         sizing = None if self.sizing is None else {k: v for k, v in self.sizing.items() if not k.startswith("_")}
+        tooth = None if self.tooth_crack is None else {k: v for k, v in self.tooth_crack.items()
+                                                        if not k.startswith("_")}
         return {"recording": self.recording, "verdict": self.verdict, "named": list(self.named), "sizing": sizing,
-                "remaining_life": self.lives}
+                "remaining_life": self.lives, "tooth_crack": tooth}
 
 
 def read_torque_history(path: Path) -> np.ndarray:
@@ -109,7 +113,11 @@ def size_and_life(recording: Path, options: LifeOptions, *, params_path=None, ba
         read_results(options.curves)
     rec = parse_recording(recording)
     params = load_params(params_path, overrides=rec.param_overrides or None, origin=f"{recording} [params]")
-    diag, _ = diagnose(rec, params, baseline)
+    from strainwave.progress import ticking
+    now = [f"the {baseline} baseline"]
+    with ticking(lambda: f"size-crack {Path(recording).name}: diagnosing, {now[0]}", progress,
+                 done=f"size-crack {Path(recording).name}: diagnosis"):
+        diag, _ = diagnose(rec, params, baseline, stage=lambda s: now.__setitem__(0, s))
     sizing = size_diagnosis(diag, params, rec.load, rec.response, results=options.curves, cache_dir=options.cache_dir, progress=progress)
     lives = [] if sizing is None else life_of_sizing(
         sizing, diag.baseline.compliance, params, law=law, spectrum=spectrum or LoadSpectrum.constant(
@@ -117,4 +125,10 @@ def size_and_life(recording: Path, options: LifeOptions, *, params_path=None, ba
         cycles_per_hour=options.cycles_per_hour)
     if plot_out is not None and lives:
         plot_life(plot_out, lives)
-    return CrackLifeReport(diag.recording, diag.verdict.value, tuple(diag.named), sizing, lives)
+    tooth = None
+    angle = rec.extra.get("input_angle_rad")
+    if angle is not None and rec.specimen == "gear":   # a drive turning: the cracked tooth's passes through the mesh
+        from strainwave.compare.diagnose.tooth_crack import mesh_curve_record, size_tooth_crack
+        tooth = size_tooth_crack(rec.load, rec.response, angle, params, time_s=rec.time_s,
+                                 curve_record=lambda: mesh_curve_record(params, options.cache_dir, progress))
+    return CrackLifeReport(diag.recording, diag.verdict.value, tuple(diag.named), sizing, lives, tooth)

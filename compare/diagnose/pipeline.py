@@ -39,6 +39,7 @@ import dataclasses
 import json
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Callable
 
 import numpy as np
 
@@ -67,13 +68,15 @@ BASELINE_OFF = 10.0
 
 
 def diagnose(rec: Recording, params, baseline: str = "analytic",
-             workers: int | None = None) -> tuple[Diagnosis, dict]:
+             workers: int | None = None, stage: Callable[[str], None] = lambda s: None) -> tuple[Diagnosis, dict]:
     """Run the diagnosis on a parsed recording; returns the diagnosis and the arrays for the plot.
 
     ``workers``: processes sharing the independent fits (parallel.fit_all; the answer is the same for any
-    number); None takes what the machine safely offers (parallel.usable_workers)."""
+    number); None takes what the machine safely offers (parallel.usable_workers). ``stage`` hears the name of
+    each stage as it starts (the CLI's progress line names it)."""
     if baseline not in ("analytic", "fea"):
         raise InputError("--baseline", baseline, "must be analytic or fea")
+    stage(f"the {baseline} baseline")
     if baseline == "fea" and rec.specimen == "gear" and rec.baseline_stiffness is None and rec.unit is None:
         from strainwave.compare.diagnose.drive_baseline import curve_baseline
         base, rec = curve_baseline(rec, params)      # the tooth-mesh drive curve (issue 48, item 6)
@@ -88,6 +91,7 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
         rec = dataclasses.replace(rec, response=rec.response - mains.line)
         events = events + (mains.sentence(rec.response_name, rec.response_unit),)
     check_baseline_scale(rec, base)
+    stage(f"fitting the effects to {rec.n} rows")
     from threadpoolctl import threadpool_limits
     # Tiny (N x 4) linear-algebra calls: BLAS threads only add overhead (docs/decisions/019-diagnose-speed.md).
     with threadpool_limits(limits=1):
@@ -245,13 +249,25 @@ def explained(noise: Noise, answer: Answer, reading: Reading, location: Location
 
 
 def diagnose_file(path: Path, *, params_path=None, baseline: str = "analytic", json_out: Path | None = None,
-                  plot_out: Path | None = None, flags: TestFlags | None = None) -> Diagnosis:
+                  plot_out: Path | None = None, flags: TestFlags | None = None,
+                  progress: Callable[[str], None] | None = None) -> Diagnosis:
     """CLI entry: parse (``flags``: [test] keys from the command line), apply [params] overrides from the header,
-    diagnose, write JSON/plot atomically."""
+    diagnose, write JSON/plot atomically. ``progress`` hears a line naming the stage every ``progress.TICK_S``
+    seconds of work that takes longer (nothing for a quick one)."""
+    from strainwave.progress import ticking
+    now = ["reading the recording"]
+    with ticking(lambda: f"diagnose {Path(path).name}: {now[0]}", progress or (lambda m: None),
+                 done=f"diagnose {Path(path).name}"):
+        return _diagnose_file(path, params_path, baseline, json_out, plot_out, flags, lambda s: now.__setitem__(0, s))
+
+
+def _diagnose_file(path: Path, params_path, baseline: str, json_out: Path | None, plot_out: Path | None,
+                   flags: TestFlags | None, stage: Callable[[str], None]) -> Diagnosis:
     from strainwave.params import load_params
     rec = parse_recording(path, flags)
     params = load_params(params_path, overrides=rec.param_overrides or None, origin=f"{path} [params]")
-    diag, arrays = diagnose(rec, params, baseline)
+    diag, arrays = diagnose(rec, params, baseline, stage=stage)
+    stage("writing the outputs")
     if json_out is not None:
         atomic_write_text(Path(json_out), json.dumps(json_ready(diag.to_dict()), indent=2, allow_nan=False) + "\n")
     if plot_out is not None:

@@ -29,7 +29,7 @@ def _rel(analytic, fea) -> float:
 
 
 # each design factor's closed-form n at the point (compare/sweep/task.design_n)
-N_COLUMNS = ("ring", "cup_tooth_root", "wg_inner_ring", "wg_outer_ring")
+N_COLUMNS = ("ring", "cup_tooth_root", "wg_inner_ring", "wg_outer_ring", "cup_diaphragm")
 
 
 def records_frame(records: list[dict], varied: list[str]) -> pd.DataFrame:

@@ -178,7 +178,7 @@ def design_n(params) -> dict[str, float | None]:
 
 
 DESIGN_BUILDERS = {"ring": "ring_factor", "cup_tooth_root": "cup_tooth_root_factor", "wg_inner_ring": "wg_inner_ring_factor",
-                   "wg_outer_ring": "wg_outer_ring_factor"}
+                   "wg_outer_ring": "wg_outer_ring_factor", "cup_diaphragm": "diaphragm_factor"}
 
 
 def _unit(text: str) -> str:

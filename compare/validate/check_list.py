@@ -17,6 +17,7 @@ from strainwave.compare.validate import (ring_checks, surface_crack_checks, tors
                                         wg_cup_checks)
 from strainwave.compare.validate import tooth_mesh_checks
 from strainwave.compare.validate import mesh_closed_form_checks
+from strainwave.compare.validate import buckling_checks
 from strainwave.compare.validate.checks import Check
 from strainwave.compare.validate.crack_checks import cup_crack, shaft_crack, shaft_range_note
 
@@ -124,6 +125,17 @@ def _surface_crack(ctx):
     return surface_crack_checks.surface_crack_checks(ctx.book, ctx.label(surface_crack_checks.STUDY), ctx.params)
 
 
+def _buckling(ctx) -> Check:
+    """The buckling check, solved once per run (its record reads the same solve)."""
+    if "buckling" not in ctx.memo:
+        ctx.memo["buckling"] = buckling_checks.buckling_check(ctx.params)
+    return ctx.memo["buckling"]
+
+
+def _buckling_record(ctx) -> dict:
+    return buckling_checks.buckling_record(ctx.params, _buckling(ctx))
+
+
 def _surface_crack_record(ctx) -> dict:
     return surface_crack_checks.surface_crack_record(ctx.book, ctx.label(surface_crack_checks.STUDY), ctx.params)
 
@@ -132,6 +144,7 @@ SHAFT, CUP, BEARING, RING = "shaft-torsion", "cup-torsion", "bearing-ring", "rin
 GCI = "GCI (Roache Fs 1.25 / 3 inside, added once)"
 ARC = f"{GCI} + the ring's arc-load and (delta/r_m)^2 allowances"
 NEWMAN_RAJU = f"{GCI} + Newman-Raju's K^2 (10 %) + the block's far face (c/L)^3"
+CLOSURE = f"{GCI} of the closure ratio, as an angle + Newman-Raju's K < 0 rule vs the exact face condition + bisection"
 
 CHECKS: tuple[CheckSpec, ...] = (
     CheckSpec("shaft.flexibility", "shaft",
@@ -192,10 +205,9 @@ CHECKS: tuple[CheckSpec, ...] = (
               ((wg_cup_checks.STUDY, "prescribed_linear_bending_minor_MPa"),)),
     CheckSpec("cup.surface_crack_major", "cup", _pick(_surface_crack, "cup.surface_crack_major"),
               surface_crack_checks.reference_at("major"), NEWMAN_RAJU, record=_surface_crack_record),
-    CheckSpec("cup.surface_crack_between", "cup", _pick(_surface_crack, "cup.surface_crack_between"),
-              surface_crack_checks.reference_at("between"), NEWMAN_RAJU),
-    CheckSpec("cup.surface_crack_minor", "cup", _pick(_surface_crack, "cup.surface_crack_minor"),
-              surface_crack_checks.reference_at("minor"), NEWMAN_RAJU),
+    # issue 50: replaces cup.surface_crack_between (equal to _major) and _minor (a shut share 1 by construction)
+    CheckSpec("cup.surface_crack_closure_angle", "cup", _pick(_surface_crack, "cup.surface_crack_closure_angle"),
+              surface_crack_checks.reference_at("closure"), CLOSURE),
     CheckSpec("mesh.pair_stiffness", "mesh",
               lambda ctx: tooth_mesh_checks.pair_check(ctx.book, ctx.label(tooth_mesh_checks.STUDY), ctx.params),
               lambda params, at: tooth_mesh_checks.pair_reference(params),
@@ -211,6 +223,10 @@ CHECKS: tuple[CheckSpec, ...] = (
                                            "analytic/engagement_zone.py"),
               f"{GCI} + one FS pitch + the contact point (tip vs mid-overlap)",
               ((mesh_closed_form_checks.STUDY, mesh_closed_form_checks.ZONE),)),
+    # issue 49: the flexspline's torsional buckling, FE eigenvalue of the full tube (validate's own three meshes)
+    CheckSpec("cup.buckling_torque", "cup", _buckling,
+              lambda params, at: buckling_checks.reference(params),
+              f"{GCI} + Donnell's 1/n^2 + the Galerkin sum's truncation", record=_buckling_record),
 )
 
 REQUIRED_IDS = tuple(spec.id for spec in CHECKS)

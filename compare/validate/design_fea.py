@@ -11,6 +11,8 @@ Each factor takes its cycle from the FEA where a study solved it, and from the c
 - ``wg_inner_ring``: study wg-bearing: the cam's hoop stress at the race (a mean: the ring turns with the cam)
   and half the change the rated ball loads add at the load line (the amplitude of the ball passes).
 - ``wg_outer_ring``: closed form (no study models the outer ring).
+- ``cup_diaphragm``: closed form (no study resolves the diaphragm: wg-cup holds the closed end round), the annular
+  plate of analytic/diaphragm.py, stated as closed form in its sources.
 - ``cup_band_edge``: study wg-cup, prescribed linear: the wall's bending at the band's edge (station 1.0 band
   widths from the rim), fully reversed as the wave passes, a smooth wall (notch 1).
 - every other reported component (torsion of the cup and the shaft): its FEA peak von Mises at the rated
@@ -88,11 +90,14 @@ def band_edge_factor(book, label, params) -> FatigueFactor | None:
         return None
     steel = flexspline_steel(params)
     band = factor_band(lambda a: goodman(abs(a), 0.0, 1.0, steel), (q.value, q.uncertainty))
-    return FatigueFactor("cup_band_edge", df.TITLES["cup_band_edge"], abs(q.value), 0.0,
-                         f"FEA {label}: the wall's bending (outer - inner)/2 at the band's edge, major axis, prescribed w0",
-                         "0: fully reversed, the wave passes twice per input revolution", 1.0,
-                         "1: the smooth wall beyond the teeth", steel, params.ewg_drive.permissible_safety,
-                         "wave generator insertion w0", band=band)
+    factor = FatigueFactor("cup_band_edge", df.TITLES["cup_band_edge"], abs(q.value), 0.0,
+                           f"FEA {label}: the wall's bending (outer - inner)/2 at the band's edge, major axis, prescribed w0",
+                           "0: fully reversed, the wave passes twice per input revolution", 1.0,
+                           "1: the smooth wall beyond the teeth", steel, params.ewg_drive.permissible_safety,
+                           "wave generator insertion w0", band=band)
+    # the wall's thickness scales its bending: the advice follows the ring's closed form, scaled to the FEA
+    return df.with_advice(factor, params, "flexspline_cup.wall_thickness_mm", df.band_edge_closed,
+                          (0.1, 0.1 * params.flexspline_cup.pitch_diameter_mm))
 
 
 def peak_factor(component: str, title: str, at, params) -> FatigueFactor:
@@ -133,6 +138,7 @@ def design_factors_from_fea(params, book, labels: dict, stresses: dict, titles: 
     inner = inner_ring_fea(book, labels.get("wg-bearing"), params)
     out.append(ComponentFactor.of(df.wg_inner_ring_factor(params, inner)) if inner else _not_run("wg_inner_ring"))
     out.append(ComponentFactor.of(df.wg_outer_ring_factor(params)))
+    out.append(ComponentFactor.of(df.diaphragm_factor(params)))
     return out
 
 

@@ -72,10 +72,21 @@ def design_row(f: dict) -> tuple[str, ...]:
     factor = num(f["safety_factor"], 3) + (f" ({band[0]:.3g}..{band[1]:.3g})" if band else "")
     fat = f.get("fatigue") or {}
     extra = "".join([f"; static n = {fat['static_n']:.3g} (R_p0.2)" if fat.get("static_n") is not None else "",
-                     f"; advice: {fat['advice']}" if fat.get("advice") else ""])
+                     f"; advice: {fat['advice']}" if fat.get("advice") else "",
+                     f"; admissible: {fat['admissible']}" if fat.get("admissible") else "",
+                     _closed_form_beside(fat)])
     return (f["title"], factor, num(f["required"], 3), num(f["stress_MPa"], 4),
             num(f["limit_MPa"], 4), result, f["load"] or "-", f["definition"] + extra + (f"; {f['reason']}" if f["reason"]
                                                                                           else ""))
+
+
+def _closed_form_beside(fat: dict) -> str:
+    """The closed form's factor of the same point beside the FEA's, and which governs (the cup's tooth root)."""
+    extra = fat.get("extra") or {}
+    if extra.get("closed_form_n") is None:
+        return ""
+    return (f"; closed form (analytic/design_factors.py, the wall's bending alone) n = {extra['closed_form_n']:.3g}: "
+            f"{extra['governs']}")
 
 
 def design_notes(design: dict) -> list[str]:
@@ -87,9 +98,25 @@ def design_notes(design: dict) -> list[str]:
         out.append(f"Wave generator bearing: Hertz p0 = {r['p0_max_MPa']:.4g} MPa on the most loaded ball (Q = "
                    f"{r['max_ball_load_N']:.4g} N), static n = {r['static_contact_n']:.3g} ({r['static_contact_source']}); "
                    f"C_r = {r['C_r_N']:.4g} N, L10 = {r['L10_h']:.4g} h ({r['L10_note']})")
-    out.append("No factor: the flexspline's diaphragm (no study resolves it: the wave generator study holds the closed "
-               "end round); the buckling torque and the ratcheting torque (not yet computed)")
+    b = design.get("buckling")
+    if b and b.get("fe_over_rated") is not None:
+        out.append(buckling_line(b))
+    out.append("Not computed: the ratcheting torque (it needs the tooth-mesh study's radial separation under load)")
     return out
+
+
+def buckling_line(b: dict) -> str:
+    """The flexspline's buckling rating: FE and closed form over the rated torque, yield or buckling first, and the
+    catalogue's nearest size (shown, not asserted)."""
+    first = (f"the wall's shear reaches R_p0.2/sqrt(3) = {b['shear_yield_MPa']:.4g} MPa first, at "
+             f"{b['shear_yield_torque_Nmm'] / b['rated_torque_Nmm']:.3g} x rated: the elastic buckling torque is an "
+             "upper bound" if b["yields_first"] else "it buckles before the wall yields")
+    gci = "none" if b.get("fe_gci_Nmm") is None else f"{b['fe_gci_Nmm'] / 1e3:.3g}"
+    return (f"Flexspline torsional buckling (check cup.buckling_torque): FE {b['fe_buckling_torque_Nmm'] / 1e3:.4g} N m "
+            f"(GCI {gci}) = {b['fe_over_rated']:.3g} x the rated torque; closed form "
+            f"{b['closed_form_torque_Nmm'] / 1e3:.4g} N m ({b['closed_form_over_rated']:.3g} x, n = {b['n_waves']} waves, "
+            f"Z = {b['Z']:.4g}); {first}; beside it, CSF size {b['csf_size']}: {b['csf_buckling_torque_Nm']:g} N m "
+            f"({b['csf_note']})")
 
 
 def singular_line(component: str, s: dict) -> str | None:
@@ -131,9 +158,14 @@ NO_PDF = ("report.pdf: not printed: the PDF is this page printed by headless Chr
           "Your browser's Print > Save as PDF of report.html gives the same pages.")
 
 
+DRIVE_UNITS = ("N*mm/rad", "N*mm")   # a check in these reports a stiffness or torque: N m/rad, N m beside
+
+
 def check_row(c: dict) -> tuple[str, ...]:
     fea = "not evaluated" if c["fea"] is None else (
         f"{num(c['fea'])} +/- {num(c['fea_uncertainty'], 2)}" if c["fea_uncertainty"] is not None else num(c["fea"]))
+    if c["fea"] is not None and c.get("unit") in DRIVE_UNITS:   # the drive's stiffness also as the catalogue gives it
+        fea += beside(c["fea"], c["unit"])
     cells = []
     for variant in ("published", "corrected"):
         value = c["analytic"].get(variant)

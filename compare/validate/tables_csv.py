@@ -82,7 +82,7 @@ def stress_rows(doc: dict) -> list[dict]:
 
 DESIGN_FIELDS = ("component", "title", "criterion", "amplitude_MPa", "mean_MPa", "notch_K", "fatigue_limit_MPa",
                  "ultimate_strength_MPa", "yield_strength_MPa", "n", "required_n", "static_n", "verdict", "band_low",
-                 "band_high", "material", "amplitude_source", "mean_source", "notch_source", "load", "advice")
+                 "band_high", "material", "amplitude_source", "mean_source", "notch_source", "load", "advice", "admissible")
 
 
 def design_rows(doc: dict) -> list[dict]:

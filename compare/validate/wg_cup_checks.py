@@ -17,6 +17,7 @@ import math
 
 from strainwave.analytic import ring, ring_prescribed
 from strainwave.analytic.reference import Reference
+from strainwave.catalogue_units import beside
 from strainwave.compare.validate.checks import Check, evaluate, fea_tolerance, gci_basis, not_evaluated
 from strainwave.compare.validate.fea_book import FeaBook
 
@@ -109,7 +110,8 @@ def wg_lines(record: dict) -> list[tuple[str, str]]:
         if x is None:
             return "n/a"
         gci = x["uncertainty"]
-        return f"{x['value']:.4g} {unit}" + ("" if gci is None else f" (GCI +- {abs(gci):.2g})")
+        return (f"{x['value']:.4g} {unit}" + ("" if gci is None else f" (GCI +- {abs(gci):.2g})")
+                + beside(x["value"], unit))   # the torsional stiffness also in the catalogue's N m/rad
     rows = []
     for model in ("prescribed", "contact"):
         for kin in ("linear", "nonlinear"):
