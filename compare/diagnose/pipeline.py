@@ -100,6 +100,7 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
             # events in time the catalogue cannot draw: taken out, the rest diagnosed again; named where that
             # rest is explained or agrees (else they are not the story: a re-clamp, a rate-dependent loop
             # read part-way as a drift), the first answer standing
+            stage("events in time taken out: diagnosing the rest again")
             again, arrays_again = _diagnose(dataclasses.replace(rec, response=found.response), base,
                                             usable_workers() if workers is None else workers)
             if again.verdict is not Verdict.UNEXPLAINED:
