@@ -20,13 +20,18 @@ The diagnosis runs in steps, each a function that hands the next a small record:
 4. verdict (verdict.decide -> `Answer`): the first model (best BIC first) whose residual passes the
    goodness-of-fit test with physical values is named: *explained*; otherwise *unexplained*, the best model kept
    as a suggestion; no mismatch: *agrees*. Each named effect meets its rival (Effect.rival: a rate-dependent
-   loop, a specimen exchanged mid-test): better by > 10 where the recording can decide, *unexplained*; within
+   loop, a specimen exchanged mid-test): better by > 10, *unexplained* (at one loading rate too); within
    6 BIC, ambiguous. A glitch under a verdict that calls the residual noise makes it *unexplained*;
 5. quantities (quantities.read_quantities -> `Reading`): BIC weights, parameters with standard errors from the
    Jacobian, warnings (values at a bound, physically implausible), a loop's width and its error;
 6. location (`Location`): where the fitted effect acts, cross-checked with the binned residual (locate.py), and
    the residual's structure in physical terms;
 7. explanation: the `Diagnosis` and its text (explain.py), JSON, plot.
+
+Before step 1, a drive's tooth ratcheting (events.py) and mains pick-up (mains.py) are named and taken out of
+the response; after step 7, where the answer is *unexplained*, events in time (time_events.py: a one-way slip,
+creep under a hold, a thermal drift) are taken out and the recording diagnosed again, and named where the rest
+is then explained or agrees.
 """
 from __future__ import annotations
 
@@ -42,12 +47,14 @@ from strainwave.errors import InputError
 from strainwave.io_atomic import atomic_write_text, json_ready
 from strainwave.compare.diagnose.baseline import Baseline, analytic_baseline, fea_baseline
 from strainwave.compare.diagnose.candidates import REREAD_PRIOR_SIGMAS, Noise, fit_candidates, read_noise, select
-from strainwave.compare.diagnose.context import build_context
+from strainwave.compare.diagnose.context import build_context, find_segments, reversal_threshold
 from strainwave.compare.diagnose.diagnosis import Diagnosis, RankedEffect, Verdict
 from strainwave.compare.diagnose.events import find_jump, without_jump
 from strainwave.compare.diagnose.explain import explain
 from strainwave.compare.diagnose.judge import AMBIGUOUS_BIC, BIC_THRESHOLD, MIN_COMPONENT_SIGMAS
 from strainwave.compare.diagnose.locate import Located, locate, locate_effect
+from strainwave.compare.diagnose.mains import find_mains
+from strainwave.compare.diagnose.time_events import find_time_events
 from strainwave.compare.diagnose.parallel import usable_workers
 from strainwave.compare.diagnose.quantities import Reading, read_quantities
 from strainwave.compare.diagnose.recording import Recording, TestFlags, parse_recording
@@ -79,13 +86,35 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
         # the baseline is the drive's curve: its bend above T1 is taken out of the twist, its first slope stays
         rec = dataclasses.replace(rec, response=rec.response - base.curve.departure_rad(rec.load * 1e-3))
     rec, events = _without_events(rec, base)
+    if (mains := find_mains(rec.load, rec.response, rec.time_s)) is not None:
+        # a rig's mains pick-up is reported beside the verdict, which is read without it
+        rec = dataclasses.replace(rec, response=rec.response - mains.line)
+        events = events + (mains.sentence(rec.response_name, rec.response_unit),)
     check_baseline_scale(rec, base)
     stage(f"fitting the effects to {rec.n} rows")
     from threadpoolctl import threadpool_limits
     # Tiny (N x 4) linear-algebra calls: BLAS threads only add overhead (docs/decisions/019-diagnose-speed.md).
     with threadpool_limits(limits=1):
         diag, arrays = _diagnose(rec, base, usable_workers() if workers is None else workers)
+        if diag.verdict is Verdict.UNEXPLAINED and (found := _time_events(rec)) is not None:
+            # events in time the catalogue cannot draw: taken out, the rest diagnosed again; named where that
+            # rest is explained or agrees (else they are not the story: a re-clamp, a rate-dependent loop
+            # read part-way as a drift), the first answer standing
+            stage("events in time taken out: diagnosing the rest again")
+            again, arrays_again = _diagnose(dataclasses.replace(rec, response=found.response), base,
+                                            usable_workers() if workers is None else workers)
+            if again.verdict is not Verdict.UNEXPLAINED:
+                diag, arrays, events = again, arrays_again, events + found.sentences
     return (dataclasses.replace(diag, events=events) if events else diag), arrays
+
+
+def _time_events(rec: Recording):
+    """time_events.find_time_events on the raw channels, the first loading (up to the first reversal) left out
+    of the drift's fit."""
+    u = rec.load / (float(np.max(np.abs(rec.load))) or 1.0)
+    segments = find_segments(u, reversal_threshold(u))
+    first = segments[0][1] if len(segments) > 1 else 0
+    return find_time_events(rec.load, rec.response, rec.time_s, first, rec.response_unit)
 
 
 def _without_events(rec: Recording, base: Baseline) -> tuple[Recording, tuple[str, ...]]:

@@ -22,6 +22,7 @@ from strainwave.compare.diagnose.judge import BIC_THRESHOLD
 from strainwave.compare.diagnose.verdict import Answer
 from strainwave.compare.diagnose.zero_load_width import full_scale_cycles, zero_load_width
 
+BAND_MARGIN = 1.5         # a band's range (Effect.where) widened this much: its take-up's tails stay out of the width
 LOSS_CONTRADICTION = 2.58  # standard errors (99 %): the data's width at zero torque overrides the loop model's
 
 
@@ -82,10 +83,10 @@ def _quantities(ctx, fit: Fit, sigma: float, other_forms: list[Fit] = ()) -> dic
     # the same width read from the data (zero_load_width.py): the residual without the model's hysteresis
     hyst = sum(e.contribution(ctx, th) for e, th in zip(fit.effects, thetas) if e.loop)
     r = ctx.y - fit.model
-    # not beside a band at zero load (a backlash, Effect.zero_load_band): it sits at zero torque, where the width is read, and the flanks' own
-    # sliding friction would be counted as the loss (and its steep band is no quadratic)
-    measured = None if any(e.zero_load_band for e in fit.effects) else \
-        zero_load_width(ctx, ctx.y - (fit.model - hyst), sigma, lag1(r), float(np.mean(r ** 2)))
+    # beside a band at zero load (a backlash, Effect.zero_load_band) the band is left out of the window and the
+    # branches are read across it: the flanks' own sliding friction there is no part of the loop's loss
+    measured = zero_load_width(ctx, ctx.y - (fit.model - hyst), sigma, lag1(r), float(np.mean(r ** 2)),
+                               _bands(ctx, fit))
     source = "model"
     if measured is not None:
         w, se = measured.width * ctx.Y, measured.std_error * ctx.Y
@@ -102,6 +103,17 @@ def _quantities(ctx, fit: Fit, sigma: float, other_forms: list[Fit] = ()) -> dic
             "hysteresis_loss_form_spread_arcmin": (spread * ARCMIN_PER_RAD, "arcmin"),
             "hysteresis_full_scale_cycles": (full_scale_cycles(ctx), "count"),
             "hysteresis_loss_read_at_load": (width_load(ctx) * ctx.X, ctx.load_unit), **data}
+
+
+def _bands(ctx, fit: Fit) -> tuple[tuple[float, float], ...]:
+    """Load ranges (normalised) of the fit's bands at zero load, widened BAND_MARGIN about their centres."""
+    out = []
+    for e, th in zip(fit.effects, fit.split_theta()):
+        if e.zero_load_band and e.where is not None:
+            for lo, hi in e.where(ctx, th)[0]:
+                c, half = 0.5 * (lo + hi), 0.5 * BAND_MARGIN * (hi - lo)
+                out.append((c - half, c + half))
+    return tuple(out)
 
 
 def _with_loss_error(ctx, fit: Fit, quantities: dict, ranked: RankedEffect) -> dict:

@@ -3,8 +3,8 @@
 Explained where some catalogue model (best BIC first, at most MAX_GOF_TRIES forms) beats the nuisance fit, leaves
 a residual the goodness-of-fit test calls noise, has physically plausible values and resolved effects; else
 unexplained where there is a mismatch, agrees where there is none. Then each named effect's rival (Effect.rival,
-a model outside the catalogue that draws the same data) is heard: better by more than BIC_THRESHOLD where the
-recording can tell them apart, the answer is unexplained; within AMBIGUOUS_BIC, ambiguous. Last, samples the
+a model outside the catalogue that draws the same data) is heard: better by more than BIC_THRESHOLD, the answer
+is unexplained (docs/recordings.md); within AMBIGUOUS_BIC, ambiguous. Last, samples the
 noise cannot have made (glitches.py) under a verdict that says the residual is noise make it unexplained.
 """
 from __future__ import annotations
@@ -44,14 +44,14 @@ class Answer:
     glitch_only: bool = False         # a glitch is all that departs from the baseline
 
     def judged_by_rival(self, rival: RivalReading) -> "Answer":
-        """A rival fitting better by more than BIC_THRESHOLD, where the recording can decide between them, makes
-        the answer unexplained; within AMBIGUOUS_BIC (or better) and closer than the runner-up, ambiguous. A
-        rival better by more than BIC_THRESHOLD that the recording cannot tell apart (one loading rate) stays
-        ambiguous with its margin shown: made unexplained, 2 of 6 family-2 CHA gears with their (rate-independent)
-        loops lost their named set (docs/decisions/064-diag51-drive-normal-model.md)."""
-        if rival.margin_bic < -BIC_THRESHOLD and rival.decisive:
+        """A rival fitting better by more than BIC_THRESHOLD makes the answer unexplained (docs/recordings.md);
+        where the recording cannot tell the two apart (one loading rate) the note says what would. Within
+        AMBIGUOUS_BIC and closer than the runner-up, ambiguous."""
+        if rival.margin_bic < -BIC_THRESHOLD:
+            note = rival.unexplained_note if rival.decisive else \
+                f"{rival.label}: it fits better than the named model by {-rival.margin_bic:.0f} BIC units"
             return dataclasses.replace(self, verdict=Verdict.UNEXPLAINED, named=(), ambiguous=False,
-                                       note=rival.unexplained_note)
+                                       margin=rival.margin_bic, runner_up=rival.label, note=note)
         if rival.margin_bic < AMBIGUOUS_BIC and (self.margin is None or rival.margin_bic < self.margin):
             return dataclasses.replace(self, ambiguous=True, margin=rival.margin_bic, runner_up=rival.label)
         return self

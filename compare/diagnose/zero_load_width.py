@@ -79,17 +79,23 @@ def full_scale_cycles(ctx: Context) -> int:
 
 
 def zero_load_width(ctx: Context, residual: np.ndarray, sigma: float, rho: float = 0.0,
-                    noise_var: float | None = None) -> ZeroLoadWidth | None:
+                    noise_var: float | None = None, exclude: tuple[tuple[float, float], ...] = ()
+                    ) -> ZeroLoadWidth | None:
     """Width at zero load of ``residual`` (data minus the model's non-hysteretic part), or None when the
     recording does not cover zero torque on both steady branches or no window around zero is described by
     a quadratic per branch. ``sigma``: white noise (normalised); ``noise_var``: the noise's total variance
-    (default sigma^2); ``rho``: lag-1 autocorrelation of the noise."""
+    (default sigma^2); ``rho``: lag-1 autocorrelation of the noise; ``exclude``: load ranges (normalised)
+    left out of the window, a clearance's band (its own friction is the band's, not the loop's): the
+    quadratics are read across the gap."""
     full = float(np.max(np.abs(ctx.u)))
+    outside = np.ones(len(ctx.u), dtype=bool)
+    for lo, hi in exclude:
+        outside &= (ctx.u < lo) | (ctx.u > hi)
     rho = min(max(rho, 0.0), 0.99)
     inflation = (1.0 + rho) / (1.0 - rho)
     var = sigma ** 2 if noise_var is None else max(noise_var, sigma ** 2)
     for h in WINDOWS:
-        down, up = _branch_mask(ctx, -1, h), _branch_mask(ctx, 1, h)
+        down, up = _branch_mask(ctx, -1, h) & outside, _branch_mask(ctx, 1, h) & outside
         # both branch types must cover zero torque: samples on both sides of it inside the window (a test that
         # ends unloaded at zero gives one side only; a one-sided quadratic extrapolates too noisily)
         if any(np.count_nonzero(m & (ctx.u > 0)) < MIN_SIDE or np.count_nonzero(m & (ctx.u < 0)) < MIN_SIDE

@@ -74,6 +74,7 @@ class Outcome:
     seconds: float
     error: str = ""
     loss_std_error_arcmin: float | None = None   # the loss's standard error as the diagnosis reported it
+    events: tuple[str, ...] = ()     # events named beside the verdict (a slip, creep, a drift, mains pick-up)
 
     @property
     def cha(self) -> bool:
@@ -93,11 +94,12 @@ class Outcome:
 
     @property
     def false_alarm(self) -> bool:
-        return self.verdict != "agrees"
+        return self.verdict != "agrees" or bool(self.events)
 
     @property
     def ooc_flagged(self) -> bool:
-        return self.verdict == "unexplained" or (bool(self.named) and self.ambiguous)
+        # an event named beside the verdict (time_events.py) says what outside the catalogue the recording holds
+        return self.verdict == "unexplained" or (bool(self.named) and self.ambiguous) or bool(self.events)
 
     @property
     def ooc_confident_wrong(self) -> bool:
@@ -329,7 +331,8 @@ def diagnose_concealed(c: Concealed, name: str, default_params) -> Outcome:
         stiff = tuple(_quantity(diag, effect, k) for k in ("K1", "K2", "K3"))
     return Outcome(c.family, name, c.name, c.truth, c.out_of_catalogue, c.noise, c.snr, rec.n,
                    diag.verdict.value, named, bool(diag.ambiguous), c.loss_arcmin, loss, c.stiffness_Nmm_per_rad,
-                   stiff, diag.rms_before, diag.rms_after, diag.noise_std, dt, loss_std_error_arcmin=loss_se)
+                   stiff, diag.rms_before, diag.rms_after, diag.noise_std, dt, loss_std_error_arcmin=loss_se,
+                   events=tuple(diag.events))
 
 
 def concealed_recordings(family: int, n_per_class: int, seed: int, params, *, rows=None, classes=None,
