@@ -334,6 +334,34 @@ def _check_summary(checks: list[dict]) -> dict:
             "not_evaluated": [c["id"] for c in checks if c["verdict"] == "not evaluated"]}
 
 
+def _results_document(params, quick, step, plan, book, outcomes, steps, timings, out_dir, summary, check_set, made,
+                      images, missing, stresses, wg_cup, design, nafems, audit) -> dict:
+    """results.json's document (before the run record and the total time): every stage's output by key."""
+    checks = [c.to_dict() for c in check_set.checks]
+    summary_row = _check_summary(checks)
+    return {
+        "schema_version": 1,
+        "passed": bool(checks) and not summary_row["failed"],
+        "summary": summary_row,
+        "metadata": _metadata(params, quick, step, plan, outcomes, steps, timings, out_dir),
+        "designer": _designer_lines(summary),
+        "designer_table": designer_table(summary),
+        "design": {**design.to_dict(), **_design_extras(params),
+                   "buckling": check_set.records.get("cup.buckling_torque")},
+        "inputs": _inputs(plan, book, params),
+        "stress_at_rated": {c: s.to_dict() for c, s in stresses.items()},
+        "cup_wave_generator": wg_cup,
+        "records": check_set.records,
+        "views": {c: v.to_dict() for c, v in made.views.items()},
+        "gci_table": [r.to_dict() for r in gci_rows(book, ORDER)],
+        "nafems": nafems,
+        "checks": checks, "audit": audit, "catalogue": catalogue_document(),
+        "crack_sweeps": {k: r.to_dict() for k, r in check_set.sweeps.items()},
+        "images": [i.to_dict() for i in images], "missing_images": [m.to_dict() for m in missing],
+        "files": _files(out_dir, outcomes, steps),
+    }
+
+
 def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str], None],
                  step: bool | None = None, params_file: str | Path | None = None) -> Outcome:
     """Run the whole validation into ``out_dir``; returns the checks and timings (see module docstring).
@@ -384,29 +412,8 @@ def run_validate(params, out_dir: Path, *, quick: bool, progress: Callable[[str]
     images, missing, stresses = _previews(steps, out_dir) + made.images, made.missing, made.stresses
     wg_cup, design = _design(params, book, plan, stresses)
     with _stage("reports", timings, progress, 6, total):
-        checks = [c.to_dict() for c in check_set.checks]
-        summary_row = _check_summary(checks)
-        doc = {
-            "schema_version": 1,
-            "passed": bool(checks) and not summary_row["failed"],
-            "summary": summary_row,
-            "metadata": _metadata(params, quick, step, plan, outcomes, steps, timings, out_dir),
-            "designer": _designer_lines(summary),
-            "designer_table": designer_table(summary),
-            "design": {**design.to_dict(), **_design_extras(params),
-                       "buckling": check_set.records.get("cup.buckling_torque")},
-            "inputs": _inputs(plan, book, params),
-            "stress_at_rated": {c: s.to_dict() for c, s in stresses.items()},
-            "cup_wave_generator": wg_cup,
-            "records": check_set.records,
-            "views": {c: v.to_dict() for c, v in made.views.items()},
-            "gci_table": [r.to_dict() for r in gci_rows(book, ORDER)],
-            "nafems": nafems,
-            "checks": checks, "audit": audit, "catalogue": catalogue_document(),
-            "crack_sweeps": {k: r.to_dict() for k, r in check_set.sweeps.items()},
-            "images": [i.to_dict() for i in images], "missing_images": [m.to_dict() for m in missing],
-            "files": _files(out_dir, outcomes, steps),
-        }
+        doc = _results_document(params, quick, step, plan, book, outcomes, steps, timings, out_dir, summary,
+                                check_set, made, images, missing, stresses, wg_cup, design, nafems, audit)
         doc["metadata"]["total_s"] = time.perf_counter() - start
         doc["metadata"]["run"] = run_record(params, params_file)
         doc = plain(doc)
