@@ -26,7 +26,7 @@ import scipy.sparse as sp
 
 from strainwave.errors import StageError
 from strainwave.fea.assembly import Lame
-from strainwave.fea.wg_band import Tube, TubeGeometry, _element_dofs, _gradients, _state, _on
+from strainwave.fea.wg_band import Tube, TubeGeometry, _element_dofs, _gradients, _state, _on, cylindrical_basis
 
 __all__ = ["full_tube_mesh", "geometric_stiffness", "buckling_torque", "BucklingSolve", "STUDY"]
 
@@ -39,7 +39,7 @@ def full_tube_mesh(geo: TubeGeometry, n_theta: int) -> Tube:
     """The whole wall: ``n_theta`` elements around, square-ish along z, one through the wall. The straight
     P2 mesh of the merged lattice, with every node moved out onto its own radius (a node between two vertex
     angles sits cos(dtheta/2) inside it on the chord)."""
-    from skfem import CellBasis, ElementHex2, MeshHex, MeshHex2
+    from skfem import MeshHex, MeshHex2
 
     h = 2.0 * math.pi * geo.r_m_mm / n_theta
     nz = max(2, round((geo.length_mm - geo.z_end_mm) / h))
@@ -62,15 +62,7 @@ def full_tube_mesh(geo: TubeGeometry, n_theta: int) -> Tube:
     between = ~np.isclose(np.mod(ang / step + 0.5, 1.0) - 0.5, 0.0, atol=1e-6)
     x[:2, between] /= math.cos(0.5 * step)
     mesh = MeshHex2(x, m2.t)
-    basis = CellBasis(mesh, ElementHex2(), intorder=5)
-    d = basis.doflocs
-    rr, pp = np.hypot(d[0], d[1]), np.arctan2(d[1], d[0])
-    comp = 3 * np.arange(basis.N) + np.arange(3)[:, None]
-    c, s = np.cos(pp), np.sin(pp)
-    rows = np.concatenate([comp[0], comp[0], comp[1], comp[1], comp[2]])
-    cols = np.concatenate([comp[0], comp[1], comp[0], comp[1], comp[2]])
-    rot = sp.csr_matrix((np.concatenate([c, -s, s, c, np.ones_like(c)]), (rows, cols)), shape=(3 * basis.N,) * 2)
-    return Tube(geo, None, mesh, basis, comp, rr, pp, d[2], rot, h)
+    return Tube(geo, None, mesh, *cylindrical_basis(mesh), h)
 
 
 def twist_state(tube: Tube, lame: Lame) -> tuple[np.ndarray, float]:

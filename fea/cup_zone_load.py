@@ -66,22 +66,7 @@ def tube_of_design(design) -> wb.TubeGeometry:
 def weighted_band_loads(tube: wb.Tube, weight: Callable[[np.ndarray], np.ndarray]) -> tuple[np.ndarray, float]:
     """(load vector of the tangential shear weight(phi) on the band's outer surface of the quarter, its moment
     int weight r dA over the quarter), by the facet rule of ``band_outer_loads``."""
-    from skfem import CellBasis
-    from skfem.quadrature import get_quadrature
-    from skfem.refdom import RefQuad
-
-    geo, pm = tube.geo, tube.param_mesh
-    elements = np.flatnonzero(pm.p[2, pm.t].min(axis=0) > geo.band_start_mm - wb.TOL_MM)
-    axis, value = wb._outer_face(tube, elements)
-    tangent = [j for j in range(3) if j != axis]
-    st, w = get_quadrature(RefQuad, 8)
-    X = np.empty((3, st.shape[1]))
-    X[axis], X[tangent] = value, st
-    cb = CellBasis(tube.mesh, tube.basis.elem, elements=elements, quadrature=(X, w))
-    x = cb.global_coordinates().value
-    r = np.hypot(x[0], x[1])
-    DF = cb.mapping.DF(X, tind=elements)
-    dA = np.linalg.norm(np.cross(DF[:, tangent[0]], DF[:, tangent[1]], axis=0), axis=0) * w
+    cb, x, r, dA = wb.band_outer_quadrature(tube, 8)
     q = weight(np.arctan2(x[1], x[0])) * dA
     e_theta = np.stack([-x[1], x[0]]) / r
     N = np.stack([cb.basis[a][0].value for a in range(len(cb.basis))]) * q

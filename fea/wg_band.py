@@ -127,7 +127,7 @@ def _axial_grid(geo: TubeGeometry, h_mm: float) -> np.ndarray:
 
 def tube_mesh(geo: TubeGeometry, n_theta: int) -> Tube:
     """The quarter wall with ``n_theta`` elements around, square-ish elements along z, one through the wall."""
-    from skfem import CellBasis, ElementHex2, MeshHex, MeshHex2
+    from skfem import MeshHex, MeshHex2
 
     h = 0.5 * math.pi * geo.r_m_mm / n_theta
     pm = MeshHex.init_tensor(np.array([geo.r_i_mm, geo.r_o_mm]), np.linspace(0.0, 0.5 * math.pi, n_theta + 1),
@@ -135,6 +135,14 @@ def tube_mesh(geo: TubeGeometry, n_theta: int) -> Tube:
     p2 = MeshHex2.from_mesh(pm)
     r, th, z = p2.doflocs
     mesh = MeshHex2(np.array([r * np.cos(th), r * np.sin(th), z]), p2.t)
+    return Tube(geo, pm, mesh, *cylindrical_basis(mesh), h)
+
+
+def cylindrical_basis(mesh) -> tuple:
+    """(P2 vector basis, its dofs by component, r, phi, z at the dofs, the rotation from (r, phi, z) dofs to
+    Cartesian ones) of a hexahedral tube mesh: the fields of ``Tube`` after its mesh."""
+    from skfem import CellBasis, ElementHex2
+
     basis = CellBasis(mesh, ElementHex2(), intorder=5)
     x = basis.doflocs
     rr, pp = np.hypot(x[0], x[1]), np.arctan2(x[1], x[0])
@@ -144,7 +152,7 @@ def tube_mesh(geo: TubeGeometry, n_theta: int) -> Tube:
     cols = np.concatenate([comp[0], comp[1], comp[0], comp[1], comp[2]])
     vals = np.concatenate([c, -s, s, c, np.ones_like(c)])
     rot = sp.csr_matrix((vals, (rows, cols)), shape=(3 * basis.N, 3 * basis.N))
-    return Tube(geo, pm, mesh, basis, comp, rr, pp, x[2], rot, h)
+    return basis, comp, rr, pp, x[2], rot
 
 
 # ---- St Venant-Kirchhoff, total Lagrangian (linear: F = I, S = 0 in the tangent, Hooke's stress) ----
@@ -214,22 +222,7 @@ def band_outer_loads(tube: Tube) -> tuple[np.ndarray, np.ndarray, float, float]:
     """(load vector of a unit tangential shear, twist functional g (twist = g.u, the area-weighted mean
     rotation), quarter moment arm int r dA, quarter area) on the band's outer surface: the band's elements at
     their outer reference face (one element through the wall), the facet rule of intorder 6."""
-    from skfem import CellBasis
-    from skfem.quadrature import get_quadrature
-    from skfem.refdom import RefQuad
-
-    geo, pm = tube.geo, tube.param_mesh
-    elements = np.flatnonzero(pm.p[2, pm.t].min(axis=0) > geo.band_start_mm - TOL_MM)
-    axis, value = _outer_face(tube, elements)
-    tangent = [j for j in range(3) if j != axis]
-    st, w = get_quadrature(RefQuad, 6)
-    X = np.empty((3, st.shape[1]))
-    X[axis], X[tangent] = value, st
-    cb = CellBasis(tube.mesh, tube.basis.elem, elements=elements, quadrature=(X, w))
-    x = cb.global_coordinates().value
-    r = np.hypot(x[0], x[1])
-    DF = cb.mapping.DF(X, tind=elements)            # (i, J, element, point)
-    dA = np.linalg.norm(np.cross(DF[:, tangent[0]], DF[:, tangent[1]], axis=0), axis=0) * w
+    cb, x, r, dA = band_outer_quadrature(tube, 6)
     e_theta, rot_weight = np.stack([-x[1], x[0]]) / r, np.stack([-x[1], x[0]]) / r ** 2
     N = np.stack([cb.basis[a][0].value for a in range(len(cb.basis))]) * dA      # (a, element, point)
     dofs = cb.element_dofs.ravel()                                               # (a, element) scalar dofs
@@ -239,6 +232,27 @@ def band_outer_loads(tube: Tube) -> tuple[np.ndarray, np.ndarray, float, float]:
         turn += np.bincount(3 * dofs + k, np.sum(N * rot_weight[k], axis=2).ravel(), minlength=tube.dofs)
     arm, area = float(np.sum(r * dA)), float(np.sum(dA))
     return shear, turn / area, arm, area
+
+
+def band_outer_quadrature(tube: Tube, intorder: int) -> tuple:
+    """(basis on the band's elements at their outer reference face, the points x (3, element, point), their
+    radius, their area weights dA): the facet rule of ``intorder`` on the band's outer surface."""
+    from skfem import CellBasis
+    from skfem.quadrature import get_quadrature
+    from skfem.refdom import RefQuad
+
+    geo, pm = tube.geo, tube.param_mesh
+    elements = np.flatnonzero(pm.p[2, pm.t].min(axis=0) > geo.band_start_mm - TOL_MM)
+    axis, value = _outer_face(tube, elements)
+    tangent = [j for j in range(3) if j != axis]
+    st, w = get_quadrature(RefQuad, intorder)
+    X = np.empty((3, st.shape[1]))
+    X[axis], X[tangent] = value, st
+    cb = CellBasis(tube.mesh, tube.basis.elem, elements=elements, quadrature=(X, w))
+    x = cb.global_coordinates().value
+    DF = cb.mapping.DF(X, tind=elements)            # (i, J, element, point)
+    dA = np.linalg.norm(np.cross(DF[:, tangent[0]], DF[:, tangent[1]], axis=0), axis=0) * w
+    return cb, x, np.hypot(x[0], x[1]), dA
 
 
 def _outer_face(tube: Tube, elements: np.ndarray) -> tuple[int, float]:
