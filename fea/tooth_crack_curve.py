@@ -25,7 +25,7 @@ import numpy as np
 from strainwave.fea import tooth_mesh as tm
 from strainwave.fea import tooth_mesh_fe as fe
 
-__all__ = ["DEPTH_FRACTIONS", "PHI_DEG", "root_thickness_mm", "curve_depths_mm", "crack_angles", "signature",
+__all__ = ["DEPTH_FRACTIONS", "PHI_DEG", "root_thickness_mm", "curve_depths_mm", "signature",
            "curve_points"]
 
 # of the FS tooth's root thickness: shallow (0.05) to half through; the slot's width stays <= depth/5
@@ -54,14 +54,6 @@ def curve_depths_mm(params) -> tuple[float, ...]:
         raise InputError("crack_geometry.slot_width_mm", w, f"<= {depths[0] / 5:g} mm for the tooth-crack curve's "
                          f"shallowest crack ({depths[0]:g} mm = {DEPTH_FRACTIONS[0]:g} of the root thickness)")
     return depths
-
-
-def crack_angles(params) -> list[dict]:
-    """The flank pairs with tooth 0 at each of PHI_DEG (the study's rule: psi = -phi / (1 + dZ/Z_f))."""
-    from strainwave.analytic.mesh_engagement import pairs_at
-    from strainwave.geometry.mesh_geometry import mesh_geometry
-    geo = mesh_geometry(params)
-    return [pairs_at(geo, -p / (1 + (geo.z_c - geo.z_f) / geo.z_f)) for p in np.radians(PHI_DEG)]
 
 
 def signature(infl: Mapping, mesh: Mapping, angles: list[dict]) -> np.ndarray:
@@ -122,14 +114,14 @@ def mesh_values(params, mesh: Mapping, h_mm: float, depths: tuple[float, ...], a
     return out
 
 
-def curve_points(params, mesh: Mapping, *, quick: bool = False,
+def curve_points(params, mesh: Mapping, angles: list[dict], *, quick: bool = False,
                  progress: Callable[[str], None] = lambda m: None) -> dict:
     """The raw curve on the study's three meshes (finest first): per mesh and depth the cracked tooth's compliance
     ratio and the twist change (rad) at every ramp step and position of tooth 0; a JSON-ready record, from which
-    compare/diagnose/tooth_crack.py forms each quantity and its GCI."""
+    compare/diagnose/tooth_crack.py forms each quantity and its GCI. ``angles``: the kinematic flank pairs with
+    tooth 0 at each of PHI_DEG, handed in as numbers (closed forms stay out of fea/)."""
     depths = curve_depths_mm(params)
     sizes = tm.refinements(params.flexspline_cup.module_mm, quick)
-    angles = crack_angles(params)
     per_mesh = []
     for h in sizes[::-1]:                                 # coarse first: a failure shows early and cheap
         progress(f"tooth-crack curve: mesh h = {h:.3g} mm, {len(depths)} depths x {len(angles)} positions")

@@ -250,6 +250,15 @@ def tooth_ratios(record: Mapping) -> list[dict]:
     return out
 
 
+def crack_angles(params) -> list[dict]:
+    """The flank pairs with tooth 0 at each of the curve's PHI_DEG (the study's rule: psi = -phi / (1 + dZ/Z_f))."""
+    from strainwave.analytic.mesh_engagement import pairs_at
+    from strainwave.fea.tooth_crack_curve import PHI_DEG
+    from strainwave.geometry.mesh_geometry import mesh_geometry
+    geo = mesh_geometry(params)
+    return [pairs_at(geo, -p / (1 + (geo.z_c - geo.z_f) / geo.z_f)) for p in np.radians(PHI_DEG)]
+
+
 def mesh_curve_record(params, cache_dir: Path | None = None, progress: Callable[[str], None] = lambda m: None,
                       *, quick: bool = False) -> dict:
     """The raw FE curve (fea/tooth_crack_curve.curve_points on the study's three meshes), solved on demand and
@@ -264,7 +273,8 @@ def mesh_curve_record(params, cache_dir: Path | None = None, progress: Callable[
     rec = cache.get(key, schema) if cache else None
     if rec is None:
         progress("tooth-crack curve: the tooth-mesh FE at each crack depth on three meshes (cached with --cache)")
-        rec = curve_points(params, study_loads(params, quick=quick)["mesh"], quick=quick, progress=progress)
+        rec = curve_points(params, study_loads(params, quick=quick)["mesh"], crack_angles(params), quick=quick,
+                           progress=progress)
         rec["source"] = (f"FEA: tooth-mesh crack curve ({'quick' if quick else 'full'} meshes h = "
                          f"{', '.join(f'{h:.3g}' for h in rec['sizes_mm'])} mm)")
         if cache:
