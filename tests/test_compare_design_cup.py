@@ -36,6 +36,27 @@ def test_cup_tooth_root_takes_the_feas_cycle_and_a_band(params):
     assert fat["amplitude_MPa"] > 164.8
 
 
+def test_the_tooth_mesh_fes_flank_load_is_shown_beside_not_in_the_verdict(params):
+    """issue 49 item 3: the tooth-mesh study's peak flank load gives the factor it would imply, recomputed here from
+    its stated inputs (Goodman, K_sigma on the amplitude); the verdict keeps the closed-form mesh load."""
+    import math
+    from strainwave.analytic.design_method import flexspline_steel, goodman
+    plain = next(f for f in design_factors_from_fea(params, _book({}), {}, {}, {}, (), RECORD)
+                 if f.component == "cup_tooth_root")
+    book = _book({"peak_tooth_load_N": 2467.0})
+    cup = next(f for f in design_factors_from_fea(params, book, {"tooth-mesh": "B"}, {}, {}, (), RECORD)
+               if f.component == "cup_tooth_root")
+    assert cup.safety_factor == plain.safety_factor          # the verdict is unchanged
+    fe = cup.fatigue["extra"]["fe_mesh_load"]
+    c = cup.fatigue["extra"]["closed_form"]
+    m, b = params.flexspline_cup.module_mm, params.circular_spline.face_width_mm
+    root = 6.0 * 2467.0 * 1.35 * m / (b * (0.5 * math.pi * m) ** 2)
+    amp = c["K_delta"] * 164.8 + 0.5 * root
+    mean = math.hypot(c["K_delta"] * 59.1 + 0.5 * root, math.sqrt(3.0) * c["shear_MPa"])
+    assert fe["n"] == pytest.approx(goodman(amp, mean, c["K_sigma"], flexspline_steel(params)), rel=1e-12)
+    assert fe["peak_force_N"] > 10.0 * fe["closed_form_peak_force_N"] and fe["n"] < plain.safety_factor
+
+
 def test_a_missing_case_is_not_evaluated_and_fails_the_design(params):
     factors = design_factors_from_fea(params, _book({}), {}, {}, {}, (), {})
     missing = {f.component for f in factors if f.safety_factor is None}

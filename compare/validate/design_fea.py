@@ -109,6 +109,15 @@ def peak_factor(component: str, title: str, at, params) -> FatigueFactor:
                          at.load.describe())
 
 
+def _fe_mesh_load(book, label) -> dict:
+    """The tooth-mesh study's largest flank load at rated (for the cup's factor beside its closed-form mesh load)."""
+    q = _q(book, label, "peak_tooth_load_N")
+    if q is None:
+        return {}
+    return {"mesh_peak_force_N": q.value, "mesh_source": f"FEA {label}: the largest flank load at rated, "
+            f"{q.value:.4g} +- {q.uncertainty or 0.0:.2g} N (GCI)"}
+
+
 def design_factors_from_fea(params, book, labels: dict, stresses: dict, titles: dict, components,
                             wg_cup_record: dict) -> list[ComponentFactor]:
     """Every factor of the verdict (module docstring); ``labels``: study -> case label (or None)."""
@@ -126,6 +135,7 @@ def design_factors_from_fea(params, book, labels: dict, stresses: dict, titles: 
     out.append(ComponentFactor.of(df.ring_factor(params, ring)) if ring else _not_run("ring"))
     cup = cup_fea(wg_cup_record)
     if cup is not None:
+        cup |= _fe_mesh_load(book, labels.get("tooth-mesh"))
         closed = df.cup_tooth_root_factor(params, {**cup, "band": None})
         inputs = cup.pop("_band_inputs")
         band = None if inputs is None else factor_band(

@@ -85,8 +85,14 @@ def _closed_form_beside(fat: dict) -> str:
     extra = fat.get("extra") or {}
     if extra.get("closed_form_n") is None:
         return ""
-    return (f"; closed form (analytic/design_factors.py, the wall's bending alone) n = {extra['closed_form_n']:.3g}: "
+    text = (f"; closed form (analytic/design_factors.py, the wall's bending alone) n = {extra['closed_form_n']:.3g}: "
             f"{extra['governs']}")
+    fe = extra.get("fe_mesh_load")
+    if fe:
+        text += (f"; with the tooth-mesh FE's flank load instead of the closed form's ({fe['source']}; closed form "
+                 f"F0 {fe['closed_form_peak_force_N']:.4g} N) n would be {fe['n']:.3g}: not the verdict, since the FE "
+                 "mesh is 1.2-2x stiffer than catalogue drives and how many teeth share the load is not settled")
+    return text
 
 
 def design_notes(design: dict) -> list[str]:
