@@ -286,9 +286,10 @@ def _design(params, book, plan, stresses) -> tuple[dict, object]:
     from strainwave.compare.validate.artifacts import COMPONENT_TITLES
     from strainwave.compare.validate.design_fea import design_factors_from_fea
     from strainwave.fea.ring_compression import STUDY as RING_STUDY
+    from strainwave.fea.tooth_mesh import STUDY as MESH_STUDY
 
     wg_cup = wg_record(book, plan.label_of(WG_CUP_STUDY) or "", params)
-    labels = {s: plan.label_of(s) for s in (RING_STUDY, WG_CUP_STUDY, WG_BEARING_STUDY)}
+    labels = {s: plan.label_of(s) for s in (RING_STUDY, WG_CUP_STUDY, WG_BEARING_STUDY, MESH_STUDY)}
     factors = design_factors_from_fea(params, book, labels, stresses, COMPONENT_TITLES,
                                       tuple(c for c, _ in plan.reported()), wg_cup)
     return wg_cup, design_verdict(params, factors)
