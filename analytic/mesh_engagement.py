@@ -91,7 +91,7 @@ ANGLES = {False: 4, True: 3}
 # a flank pair whose gap exceeds this many modules cannot close within the rated twist: left out of the solve
 REACH_OVER_M = 0.5
 # positions of the cracked tooth 0 through the loaded zone of a positive torque (its +theta flank), rad
-CRACK_PHI = np.radians(np.linspace(-30.0, 75.0, 15))
+CRACK_PHI = np.radians(np.arange(-12.0, 27.0 + 1e-9, 1.5))   # the crack curve's grid (fea/tooth_crack_curve.PHI_DEG): 7.5 deg missed the pulse
 MIN_DEPTH_OVER_M = 0.25           # a radial overlap shallower than this is tip-on-tip, not flank contact
 
 
