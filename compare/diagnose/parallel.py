@@ -16,6 +16,7 @@ semaphore, a process limit) the fits run here.
 from __future__ import annotations
 
 import dataclasses
+import math
 import multiprocessing
 import os
 import threading
@@ -67,6 +68,13 @@ def _warm(ctx: Context, tasks: Sequence[FitTask]) -> None:
         e.contribution(ctx, np.clip(theta, [p.lo for p in e.params], [p.hi for p in e.params]))
 
 
+def _cost(task: FitTask) -> int:
+    """A fit's rough cost: its trust-region starts times the parameters the trust region searches."""
+    searched = [p for e in task.effects if e.basis is None for p in e.params]
+    starts = len(task.starts) if task.starts is not None else math.prod(len(p.starts) for p in searched)
+    return starts * (len(searched) + 1)
+
+
 def fit_all(ctx: Context, tasks: Sequence[FitTask], sigma: float, uncertainty: float,
             workers: int = 1) -> list[Fit]:
     """``fit_effects`` for every task, in the order given; on ``workers`` = 2 processes when more than one
@@ -81,11 +89,14 @@ def fit_all(ctx: Context, tasks: Sequence[FitTask], sigma: float, uncertainty: f
     except OSError:
         return [_run(ctx, t, sigma, uncertainty) for t in tasks]
 
+    # the costliest fits are claimed first, so neither process is left with a long one at the end
+    order = sorted(range(len(tasks)), key=lambda i: -_cost(tasks[i]))
+
     def claim() -> int:
         with claimed.get_lock():
             i = claimed.value
             claimed.value += 1
-        return i
+        return order[i] if i < len(order) else i
 
     def copy_side(conn) -> None:
         done: list[tuple[int, Fit]] = []
