@@ -77,3 +77,33 @@ def test_the_costliest_fits_are_claimed_first():
     assert _cost(FitTask((forms["hysteresis[bouc-wen]"],))) == 8 * 5
     assert _cost(FitTask((forms["hysteresis[preisach]"],))) == 1
     assert _cost(FitTask((forms["hysteresis[bouc-wen]"],), starts=(np.zeros(4),))) == 5
+
+
+def test_forms_with_a_basis_are_fitted_by_the_parent_and_the_answer_is_one_process_s(params, tmp_path):
+    """Two workers: the Preisach and play densities are fitted here (their bases built once, after the fork), the
+    other forms shared; every fit equals the one-process fit bit for bit."""
+    import os
+
+    from strainwave.compare.diagnose.parallel import fit_all
+    rec = parse_text(cha_recording(cha_rows()[3], hysteresis=True, n=400))
+    forms = [e for e in effects_for(rec.kind.value) if e.label in (
+        "hysteresis[preisach]", "hysteresis[play]", "hysteresis[preisach-fine]", "hysteresis[play-fine]",
+        "hysteresis[dahl]")]
+    parent = os.getpid()
+
+    def traced(e):
+        def contribution(c, theta):
+            if os.getpid() != parent:                  # the copy leaves a mark the parent can see
+                (tmp_path / e.label).touch()
+            return e.contribution(c, theta)
+        return dataclasses.replace(e, contribution=contribution)
+
+    tasks = [FitTask((traced(e),)) for e in forms]
+    serial = fit_all(build_context(rec, analytic_baseline(rec, params)), tasks, 1e-3, 0.3, workers=1)
+    shared = fit_all(build_context(rec, analytic_baseline(rec, params)), tasks, 1e-3, 0.3, workers=2)
+    in_copy = {p.name for p in tmp_path.iterdir()}
+    assert in_copy <= {"hysteresis[dahl]"}, in_copy
+    for a, b in zip(serial, shared):
+        assert a.bic == b.bic and a.nuisance == b.nuisance
+        np.testing.assert_array_equal(a.theta, b.theta)
+        np.testing.assert_array_equal(a.model, b.model)

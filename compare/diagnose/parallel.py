@@ -3,9 +3,10 @@
 A diagnosis fits each catalogue effect in every model form, then pairs of them: dozens of small
 trust-region fits that do not depend on one another. Threads gain nothing (the fits are Python loops
 around tiny BLAS calls, serialised by the GIL; docs/decisions/019-diagnose-speed.md), so the second core is used by a
-forked copy of the process. It inherits the recording, the noise model and every memoised basis without
-pickling, takes the next unclaimed fit from a shared counter, and sends its fits back through a pipe
-with their effects left out (the parent already holds them). Each fit is the same computation whichever
+forked copy of the process. It inherits the recording and the noise model without pickling, takes the next
+unclaimed fit from a shared counter (costliest first), and sends its fits back through a pipe with their effects
+left out (the parent already holds them). Fits of a form with a history basis (relay states, play operators)
+stay in the parent, which builds each basis once while the copy is already fitting the other forms. Each fit is the same computation whichever
 process runs it, so the answer does not depend on the number of workers.
 
 Forking is only safe, and only worth it, in a single-threaded process on a machine with a second core:
@@ -60,7 +61,7 @@ def _run(ctx: Context, task: FitTask, sigma: float, uncertainty: float) -> Fit:
 
 
 def _warm(ctx: Context, tasks: Sequence[FitTask]) -> None:
-    """Fill the context's memo of history bases before the fork, so neither process builds one twice."""
+    """Fill this process's memo of history bases (and the other per-context pieces the effects keep), once."""
     for e in {e.label: e for t in tasks for e in t.effects}.values():
         if e.basis is not None:
             e.basis(ctx)
@@ -75,13 +76,21 @@ def _cost(task: FitTask) -> int:
     return starts * (len(searched) + 1)
 
 
+def _has_basis(task: FitTask) -> bool:
+    return any(e.basis is not None for e in task.effects)
+
+
 def fit_all(ctx: Context, tasks: Sequence[FitTask], sigma: float, uncertainty: float,
             workers: int = 1) -> list[Fit]:
     """``fit_effects`` for every task, in the order given; on ``workers`` = 2 processes when more than one
     task waits."""
-    if workers < 2 or len(tasks) < 2:
+    # the costliest fits are claimed first, so neither process is left with a long one at the end; fits of a
+    # form with a history basis stay here, where the basis is built once while the copy starts on the others
+    order = sorted(range(len(tasks)), key=lambda i: -_cost(tasks[i]))
+    own = [i for i in order if _has_basis(tasks[i])]
+    shared = [i for i in order if not _has_basis(tasks[i])]
+    if workers < 2 or len(shared) < 1 or len(tasks) < 2:
         return [_run(ctx, t, sigma, uncertainty) for t in tasks]
-    _warm(ctx, tasks)
     mp = multiprocessing.get_context("fork")
     try:
         # a shared counter needs a POSIX semaphore (/dev/shm): some containers have none
@@ -89,14 +98,11 @@ def fit_all(ctx: Context, tasks: Sequence[FitTask], sigma: float, uncertainty: f
     except OSError:
         return [_run(ctx, t, sigma, uncertainty) for t in tasks]
 
-    # the costliest fits are claimed first, so neither process is left with a long one at the end
-    order = sorted(range(len(tasks)), key=lambda i: -_cost(tasks[i]))
-
     def claim() -> int:
         with claimed.get_lock():
-            i = claimed.value
+            k = claimed.value
             claimed.value += 1
-        return order[i] if i < len(order) else i
+        return shared[k] if k < len(shared) else len(tasks)
 
     def copy_side(conn) -> None:
         done: list[tuple[int, Fit]] = []
@@ -121,6 +127,9 @@ def fit_all(ctx: Context, tasks: Sequence[FitTask], sigma: float, uncertainty: f
     send.close()
     fits: dict[int, Fit] = {}
     try:
+        _warm(ctx, tasks)
+        for i in own:
+            fits[i] = _run(ctx, tasks[i], sigma, uncertainty)
         while (i := claim()) < len(tasks):
             fits[i] = _run(ctx, tasks[i], sigma, uncertainty)
         try:
