@@ -77,14 +77,26 @@ def _dahl_state(ctx: Context, approach) -> np.ndarray:
     sample at every reversal, a spike in the residual at 100x the noise)."""
     z = np.empty_like(ctx.u)
     z_r = 0.0
-    for start, stop, d in ctx.segments:
-        seg = ctx.u[start:stop + 1]                  # with the next stretch's first sample, its own extreme
-        travel = np.maximum.accumulate(np.maximum(d * (seg - seg[0]), 0.0))
+    for (start, stop, d), travel in zip(ctx.segments, _travels(ctx)):
         x = approach(max(1.0 - d * z_r, 0.0), travel)
         zs = d * (1.0 - x)
         z[start:stop] = zs[:stop - start]
         z_r = zs[-1]
     return z
+
+
+def _travels(ctx: Context) -> list[np.ndarray]:
+    """The load's travel since each stretch began (its running extreme), with the next stretch's first sample,
+    the stretch's own extreme; the same for every law and parameter, so kept on the context."""
+    if "travels" not in ctx.cache:
+        out = []
+        for start, stop, d in ctx.segments:
+            seg = ctx.u[start:stop + 1]
+            travel = np.maximum.accumulate(np.maximum(d * (seg - seg[0]), 0.0))
+            travel.flags.writeable = False
+            out.append(travel)
+        ctx.cache["travels"] = out
+    return ctx.cache["travels"]
 
 
 def dahl_unit(ctx: Context, w: float) -> np.ndarray:
