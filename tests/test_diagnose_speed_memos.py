@@ -107,3 +107,19 @@ def test_forms_with_a_basis_are_fitted_by_the_parent_and_the_answer_is_one_proce
         assert a.bic == b.bic and a.nuisance == b.nuisance
         np.testing.assert_array_equal(a.theta, b.theta)
         np.testing.assert_array_equal(a.model, b.model)
+
+
+def test_the_step_after_each_fit_is_applied_whichever_process_made_it(params):
+    """``then`` (the loop's stiffness prior in the diagnosis) is applied to every fit, the copy's too, once."""
+    from strainwave.compare.diagnose.parallel import fit_all
+    rec = parse_text(cha_recording(cha_rows()[3], hysteresis=True, n=400))
+    ctx = build_context(rec, analytic_baseline(rec, params))
+    tasks = [FitTask((e,)) for e in effects_for(rec.kind.value)
+             if e.label in ("hysteresis[dahl]", "lost_motion", "nonlinear_stiffness", "crack_closure")]
+
+    def then(c, f):
+        return dataclasses.replace(f, bic=f.bic + 1000.0)
+    plain = fit_all(ctx, tasks, 1e-3, 0.3, workers=1)
+    for workers in (1, 2):
+        for a, b in zip(plain, fit_all(ctx, tasks, 1e-3, 0.3, workers=workers, then=then)):
+            assert b.bic == a.bic + 1000.0 and [e.label for e in b.effects] == [e.label for e in a.effects]

@@ -22,7 +22,7 @@ import multiprocessing
 import os
 import threading
 from dataclasses import dataclass
-from typing import Sequence
+from typing import Callable, Sequence
 
 import numpy as np
 
@@ -55,9 +55,10 @@ def usable_workers() -> int:
     return 2
 
 
-def _run(ctx: Context, task: FitTask, sigma: float, uncertainty: float) -> Fit:
-    return fit_effects(ctx, task.effects, sigma, uncertainty,
-                       starts=None if task.starts is None else list(task.starts), noise=task.noise)
+def _run(ctx: Context, task: FitTask, sigma: float, uncertainty: float, then=None) -> Fit:
+    fit = fit_effects(ctx, task.effects, sigma, uncertainty,
+                      starts=None if task.starts is None else list(task.starts), noise=task.noise)
+    return fit if then is None else then(ctx, fit)
 
 
 def _warm(ctx: Context, tasks: Sequence[FitTask]) -> None:
@@ -81,22 +82,22 @@ def _has_basis(task: FitTask) -> bool:
 
 
 def fit_all(ctx: Context, tasks: Sequence[FitTask], sigma: float, uncertainty: float,
-            workers: int = 1) -> list[Fit]:
+            workers: int = 1, then: Callable[[Context, Fit], Fit] | None = None) -> list[Fit]:
     """``fit_effects`` for every task, in the order given; on ``workers`` = 2 processes when more than one
-    task waits."""
+    task waits. ``then(ctx, fit)``: applied to each fit by the process that made it."""
     # the costliest fits are claimed first, so neither process is left with a long one at the end; fits of a
     # form with a history basis stay here, where the basis is built once while the copy starts on the others
     order = sorted(range(len(tasks)), key=lambda i: -_cost(tasks[i]))
     own = [i for i in order if _has_basis(tasks[i])]
     shared = [i for i in order if not _has_basis(tasks[i])]
     if workers < 2 or len(shared) < 1 or len(tasks) < 2:
-        return [_run(ctx, t, sigma, uncertainty) for t in tasks]
+        return [_run(ctx, t, sigma, uncertainty, then) for t in tasks]
     mp = multiprocessing.get_context("fork")
     try:
         # a shared counter needs a POSIX semaphore (/dev/shm): some containers have none
         claimed = mp.Value("l", 0)
     except OSError:
-        return [_run(ctx, t, sigma, uncertainty) for t in tasks]
+        return [_run(ctx, t, sigma, uncertainty, then) for t in tasks]
 
     def claim() -> int:
         with claimed.get_lock():
@@ -108,7 +109,7 @@ def fit_all(ctx: Context, tasks: Sequence[FitTask], sigma: float, uncertainty: f
         done: list[tuple[int, Fit]] = []
         try:
             while (i := claim()) < len(tasks):
-                done.append((i, dataclasses.replace(_run(ctx, tasks[i], sigma, uncertainty), effects=())))
+                done.append((i, dataclasses.replace(_run(ctx, tasks[i], sigma, uncertainty, then), effects=())))
             conn.send(done)
         except BaseException:                  # noqa: BLE001 - whatever happens here, the parent finishes the work
             pass
@@ -123,15 +124,15 @@ def fit_all(ctx: Context, tasks: Sequence[FitTask], sigma: float, uncertainty: f
     except OSError:                            # no process to spare (a process limit, no memory to fork)
         receive.close()
         send.close()
-        return [_run(ctx, t, sigma, uncertainty) for t in tasks]
+        return [_run(ctx, t, sigma, uncertainty, then) for t in tasks]
     send.close()
     fits: dict[int, Fit] = {}
     try:
         _warm(ctx, tasks)
         for i in own:
-            fits[i] = _run(ctx, tasks[i], sigma, uncertainty)
+            fits[i] = _run(ctx, tasks[i], sigma, uncertainty, then)
         while (i := claim()) < len(tasks):
-            fits[i] = _run(ctx, tasks[i], sigma, uncertainty)
+            fits[i] = _run(ctx, tasks[i], sigma, uncertainty, then)
         try:
             for i, f in receive.recv():
                 fits[i] = dataclasses.replace(f, effects=tasks[i].effects)
@@ -143,4 +144,4 @@ def fit_all(ctx: Context, tasks: Sequence[FitTask], sigma: float, uncertainty: f
         if copy.is_alive():
             copy.terminate()
             copy.join()
-    return [fits[i] if i in fits else _run(ctx, tasks[i], sigma, uncertainty) for i in range(len(tasks))]
+    return [fits[i] if i in fits else _run(ctx, tasks[i], sigma, uncertainty, then) for i in range(len(tasks))]
