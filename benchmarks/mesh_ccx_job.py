@@ -257,12 +257,16 @@ def lobe_torque_Nmm(mesh: dict) -> float:
     return 0.5 * float(mesh["rated_torque_Nmm"])
 
 
-def problem_for(params, h_mm: float, *, quick: bool = False) -> tuple[Problem, dict]:
-    """The problem on the study's kinematics (analytic/mesh_engagement.py's numbers): (problem, the lobe's pairs)."""
+def pairs_for(params) -> dict:
+    """The lobe's pairs and torque from the study's kinematics (analytic/mesh_engagement.py's numbers)."""
     from strainwave.analytic.mesh_engagement import study_loads
-    mesh = study_loads(params, quick=quick)["mesh"]
-    pairs = lobe_pairs(mesh)
-    pairs["torque_Nmm"] = lobe_torque_Nmm(mesh)
+    mesh = study_loads(params)["mesh"]
+    return lobe_pairs(mesh) | {"torque_Nmm": lobe_torque_Nmm(mesh)}
+
+
+def problem_for(params, h_mm: float) -> tuple[Problem, dict]:
+    """The problem on the study's kinematics: (problem, the lobe's pairs)."""
+    pairs = pairs_for(params)
     return build(params, pairs, h_mm), pairs
 
 

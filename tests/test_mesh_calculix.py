@@ -1,0 +1,98 @@
+"""CalculiX and strainwave on one frictional tooth-contact problem on the same P2 mesh (issue 48 item 8).
+
+benchmarks/mesh_ccx_job.py: a sector of the cup's toothed rim (bore clamped), one rigid flat punch per
++theta-flank pair of a lobe at the study's unloaded clearances, mu = the study's. strainwave's band-load
+compliance and contact solve give the twist at the lobe's rated torque; CalculiX (CPE6, node-to-surface
+contact, *FRICTION) at that twist must give the same peak tooth share within 2 % and the same teeth in
+contact; a reference with one side's clearances x1.2 must fail the check. Like tests/test_calculix.py, a
+missing ccx fails under CI (.ci/run installs it) and skips elsewhere only when it cannot be installed.
+"""
+from __future__ import annotations
+
+import os
+import warnings
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from conftest import benchmark_module
+
+H_OVER_M = 0.42      # the study's quick finest mesh: ccx ~20 s; the bench runs the full finest (0.30)
+TORQUE_REL = 0.05    # CalculiX's torque at strainwave's twist: flush facet contact vs the 0.2 m band (decision 069)
+
+
+@pytest.fixture(scope="module")
+def jobs():
+    with benchmark_module("calculix_job") as cj, benchmark_module("mesh_ccx_job") as mj:
+        if cj.ensure_ccx() is None:
+            if os.environ.get("CI"):   # .ci/run installs calculix-ccx: missing there is a broken set-up
+                pytest.fail("ccx is not installed although .ci/run installs it")
+            pytest.skip("ccx is not installed and cannot be installed here (not root or no apt-get)")
+        yield cj, mj
+
+
+@pytest.fixture(scope="module")
+def params():
+    from strainwave.params import load_params
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")      # the seed's E/nu vs mu warning
+        return load_params()
+
+
+@pytest.fixture(scope="module")
+def solved(jobs, params, tmp_path_factory):
+    _, mj = jobs
+    problem, pairs = mj.problem_for(params, H_OVER_M * params.flexspline_cup.module_mm)
+    sw = mj.strainwave_solve(problem, pairs["torque_Nmm"])
+    ccx = mj.run_calculix(problem, params, sw["twist_rad"], tmp_path_factory.mktemp("mesh-ccx"))
+    return problem, pairs, sw, ccx
+
+
+@pytest.mark.heavy
+def test_calculix_carries_the_same_tooth_shares(jobs, solved):
+    _, mj = jobs
+    problem, pairs, sw, ccx = solved
+    ag = mj.agreement(sw, ccx)
+    assert ag["teeth_in_contact"][0] == ag["teeth_in_contact"][1] >= 2
+    assert abs(ag["peak_share_rel"]) <= mj.PEAK_SHARE_REL_TOL, ag
+    assert ag["passes"]
+    # the same teeth carry the load, and the torque at the same twist agrees to the contact model's allowance
+    assert np.array_equal(sw["forces_N"] > 0, ccx["forces_N"] > 1e-3 * ccx["forces_N"].max())
+    assert ag["torque_ratio"] == pytest.approx(1.0, rel=TORQUE_REL)
+    # first principles: flank loads push, and they carry the torque the punches take
+    assert np.all(ccx["forces_N"] > -1e-6 * ccx["forces_N"].max())
+    lever = problem.system.lever_mm + problem.system.friction_coefficient * np.abs(problem.system.slide_mm_per_rad)
+    assert float(lever @ ccx["forces_N"]) == pytest.approx(ccx["torque_Nmm"], rel=0.01)
+
+
+@pytest.mark.heavy
+@pytest.mark.parametrize("factor", [1.2, 0.8])
+def test_a_perturbed_reference_fails(jobs, solved, factor):
+    """strainwave's reference with the clearances of the tip-side pairs (the upper half of the lobe) scaled by
+    ``factor`` no longer matches CalculiX's unperturbed problem."""
+    _, mj = jobs
+    problem, pairs, sw, ccx = solved
+    c = problem.system.clearance_mm.copy()
+    upper = problem.teeth > np.median(problem.teeth)
+    c[upper] *= factor
+    perturbed = replace(problem, system=replace(problem.system, clearance_mm=c))
+    bad = mj.strainwave_solve(perturbed, pairs["torque_Nmm"])
+    assert not mj.agreement(bad, ccx)["passes"]
+
+
+def test_the_deck_is_the_problem(jobs, params, tmp_path):
+    """Cheap, without ccx: the punches sit at the clearances along the flank normals, every flank has its slave
+    faces, the nodes are the sector's P2 dofs and the gaps close at the base radius' rate."""
+    _, mj = jobs
+    pairs = mj.pairs_for(params)
+    problem = mj.build(params, pairs, 0.6 * params.flexspline_cup.module_mm)
+    info = mj.write_deck(tmp_path / "d.inp", problem, params, 1e-4)
+    face = info["punch_xy"][:, :2].mean(axis=1)
+    gap = np.einsum("ij,ij->i", face - problem.point_mm, problem.normal)
+    assert gap == pytest.approx(problem.clearance_mm, rel=1e-9, abs=1e-12)
+    text = (tmp_path / "d.inp").read_text()
+    assert text.count("*CONTACT PAIR") == problem.teeth.size
+    assert text.count("TYPE=CPE6") == 1 and "*FRICTION" in text
+    from strainwave.geometry.mesh_geometry import mesh_geometry
+    # an involute's normal is tangent to the base circle; the mesh's straight facets tilt it by < 2 %
+    assert problem.system.lever_mm == pytest.approx(mesh_geometry(params).fs.base_radius_mm, rel=0.02)
