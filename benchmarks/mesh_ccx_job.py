@@ -107,17 +107,23 @@ def build(params, pairs: dict, h_mm: float, *, margin_teeth: int = 3) -> Problem
                    geo.r_bore_mm, time.perf_counter() - t0)
 
 
-def strainwave_solve(problem: Problem, torque_Nmm: float, *, friction: bool = True) -> dict:
-    """strainwave's contact solve from unloaded to ``torque_Nmm``: twist, normal forces, shares."""
+def strainwave_solve(problem: Problem, torque_Nmm: float, *, friction: bool = True, unload_to: float | None = None) -> dict:
+    """strainwave's contact solve from unloaded to ``torque_Nmm`` (twist, normal forces, shares); with
+    ``unload_to`` (a fraction of it) also back down to that torque after the reversal (``unloaded``)."""
     from dataclasses import replace
     from strainwave.fea.mesh_contact import solve_torque_path
     s = problem.system if friction else replace(problem.system, friction_coefficient=0.0)
     t0 = time.perf_counter()
-    path = solve_torque_path(s, np.array([0.0, torque_Nmm]))
+    history = [0.0, torque_Nmm] + ([] if unload_to is None else [unload_to * torque_Nmm])
+    path = solve_torque_path(s, np.array(history))
     dt = time.perf_counter() - t0
-    F = path.forces_N[-1]
-    return {"twist_rad": float(path.twist_rad[-1]), "forces_N": F, "share": F / F.sum(),
-            "teeth_in_contact": int((F > 0).sum()), "torque_Nmm": float(torque_Nmm), "solve_s": dt}
+
+    def at(k: int) -> dict:
+        F = path.forces_N[k]
+        return {"twist_rad": float(path.twist_rad[k]), "forces_N": F, "share": F / F.sum(),
+                "teeth_in_contact": int((F > 0).sum()), "torque_Nmm": float(history[k])}
+    out = at(1) | {"solve_s": dt}
+    return out if unload_to is None else out | {"unloaded": at(2)}
 
 
 def _rows(lines: list[str], rows, fmt: str) -> None:
@@ -174,12 +180,13 @@ def _punches(problem: Problem, module_mm: float) -> np.ndarray:
     return np.concatenate([q, 0.5 * (q + np.roll(q, -1, axis=1))], axis=1)
 
 
-def write_deck(path: Path, problem: Problem, params, twist_rad: float, *, friction: bool = True,
+def write_deck(path: Path, problem: Problem, params, twist_rad, *, friction: bool = True,
                penalty_N_per_mm3: float = PENALTY_N_PER_MM3, stick_N_per_mm3: float = STICK_SLOPE_N_PER_MM3,
                increments: int = 20) -> dict:
     """The CalculiX job: the sector's P2 triangles as CPE6 (node id = basis dof + 1), its bore clamped, the punches
     as CPE8 moved rigidly by -twist about the axis, a node-to-surface *CONTACT PAIR per flank (penalty, *FRICTION),
-    the punches' reactions printed. Returns the punch node ids per pair (for ``read_punch_loads``)."""
+    the punches' reactions printed. ``twist_rad``: one twist, or a history of them, one step each (the flanks'
+    friction carries over). Returns the punch node ids per pair (for ``read_punch_loads``)."""
     from strainwave.geometry.mesh_geometry import mesh_geometry
     geo = mesh_geometry(params)
     x, conn = _fs_elements(problem.model)
@@ -214,26 +221,33 @@ def write_deck(path: Path, problem: Problem, params, twist_rad: float, *, fricti
     out += ["*MATERIAL, NAME=STEEL", "*ELASTIC", f"{m.youngs_modulus_MPa:.13e},{m.poisson_ratio:.13e}",
             "*SOLID SECTION, ELSET=EFS, MATERIAL=STEEL", f"{geo.face_width_mm:.13e}",
             "*SOLID SECTION, ELSET=EPUNCH, MATERIAL=STEEL", f"{geo.face_width_mm:.13e}",
-            "*BOUNDARY", "NBORE,1,2,0.", f"*STEP, INC={50 * increments}", "*STATIC",
-            f"{1.0 / increments},1.0,{1e-4 / increments},{1.0 / increments}", "*BOUNDARY"]
-    # the punches turn rigidly by -twist (linear kinematics, as strainwave's gap = c - lever * theta)
+            "*BOUNDARY", "NBORE,1,2,0."]
     p = quads.reshape(-1, 2)
-    u = twist_rad * np.column_stack([p[:, 1], -p[:, 0]])
-    for nid, (ux, uy) in zip(punch_nodes.ravel().tolist(), u.tolist()):
-        out += [f"{nid},1,1,{ux:.13e}", f"{nid},2,2,{uy:.13e}"]
-    out += ["*NODE PRINT, NSET=NPUNCH", "RF", "*END STEP", ""]
+    for theta in np.atleast_1d(np.asarray(twist_rad, float)).tolist():
+        out += [f"*STEP, INC={50 * increments}", "*STATIC",
+                f"{1.0 / increments},1.0,{1e-4 / increments},{1.0 / increments}", "*BOUNDARY"]
+        # the punches turn rigidly by -twist (linear kinematics, as strainwave's gap = c - lever * theta)
+        u = theta * np.column_stack([p[:, 1], -p[:, 0]])
+        for nid, (ux, uy) in zip(punch_nodes.ravel().tolist(), u.tolist()):
+            out += [f"{nid},1,1,{ux:.13e}", f"{nid},2,2,{uy:.13e}"]
+        out += ["*NODE PRINT, NSET=NPUNCH", "RF", "*END STEP"]
+    out.append("")
     path.write_text("\n".join(out))
     return {"punch_nodes": punch_nodes, "punch_xy": quads}
 
 
-def read_punch_loads(dat: Path, problem: Problem, punch_nodes: np.ndarray, punch_xy: np.ndarray) -> dict:
-    """Each flank's normal load (the punch's reaction along -normal... as the force the flank puts on it, along
-    +normal) and the torque the punches carry, from the last increment's RF in the .dat file."""
+def read_punch_loads(dat: Path, problem: Problem, punch_nodes: np.ndarray, punch_xy: np.ndarray,
+                     step: int | None = None) -> dict:
+    """Each flank's normal load (the force it puts on its punch, along +normal) and the torque the punches
+    carry, from the RF block at the end of ``step`` (1-based; None: the last) in the .dat file."""
     rf = {}
     inside = False
     for line in dat.read_text().splitlines():
         if line.strip().startswith("forces (fx,fy,fz)"):
-            inside, rf = True, {}          # a new increment's block: keep the last
+            t = float(line.split()[-1])        # total time: step k ends at k
+            if step is not None and t > step + 1e-9:
+                break
+            inside, rf = True, {}              # a new increment's block: keep the last
             continue
         parts = line.split()
         if inside and len(parts) == 4 and re.fullmatch(r"\d+", parts[0]):
@@ -270,17 +284,20 @@ def problem_for(params, h_mm: float) -> tuple[Problem, dict]:
     return build(params, pairs, h_mm), pairs
 
 
-def run_calculix(problem: Problem, params, twist_rad: float, job_dir: Path, *, friction: bool = True,
+def run_calculix(problem: Problem, params, twist_rad, job_dir: Path, *, friction: bool = True,
                  penalty_N_per_mm3: float = PENALTY_N_PER_MM3, stick_N_per_mm3: float = STICK_SLOPE_N_PER_MM3,
                  threads: int = 1, ccx: str = "ccx") -> dict:
-    """Write the deck, run ccx on it, read the flank loads; ``wall_s`` is ccx's own run (under GNU time)."""
+    """Write the deck, run ccx on it, read the flank loads (of each step when ``twist_rad`` is a history:
+    ``steps``); ``wall_s`` is ccx's own run (under GNU time)."""
     import calculix_job as cj
     job_dir.mkdir(parents=True, exist_ok=True)
     info = write_deck(job_dir / "mesh.inp", problem, params, twist_rad, friction=friction,
                       penalty_N_per_mm3=penalty_N_per_mm3, stick_N_per_mm3=stick_N_per_mm3)
     run, _ = cj.run_ccx(job_dir / "mesh.inp", threads=threads, ccx=ccx)
-    out = read_punch_loads(job_dir / "mesh.dat", problem, info["punch_nodes"], info["punch_xy"])
-    return out | {"wall_s": run.wall_s, "peak_GB": run.peak_GB}
+    n = np.atleast_1d(twist_rad).size
+    steps = [read_punch_loads(job_dir / "mesh.dat", problem, info["punch_nodes"], info["punch_xy"], k + 1)
+             for k in range(n)]
+    return steps[0] | {"steps": steps, "wall_s": run.wall_s, "peak_GB": run.peak_GB}
 
 
 def agreement(sw: dict, ccx: dict) -> dict:
