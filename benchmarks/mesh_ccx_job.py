@@ -257,9 +257,11 @@ def read_punch_loads(dat: Path, problem: Problem, punch_nodes: np.ndarray, punch
     R = np.array([[rf[int(i)] for i in row] for row in punch_nodes])         # (n, 4, 2) the supports' reactions
     force_on_punch = -R.sum(axis=1)                                          # what the flank pushes the punch with
     normal_N = np.einsum("ij,ij->i", force_on_punch, problem.normal)
+    tangent = np.column_stack([-problem.normal[:, 1], problem.normal[:, 0]])
+    tangential_N = np.einsum("ij,ij->i", force_on_punch, tangent)           # friction on the punch
     # torque on the punches (the CS) about the axis, positive as strainwave's T = sum (lever + mu slide) F
     torque = float(np.sum((punch_xy[..., 0] * -R[..., 1] - punch_xy[..., 1] * -R[..., 0])))
-    return {"forces_N": normal_N, "share": normal_N / normal_N.sum(), "torque_Nmm": torque,
+    return {"forces_N": normal_N, "tangential_N": tangential_N, "share": normal_N / normal_N.sum(), "torque_Nmm": torque,
             "teeth_in_contact": int((normal_N > 1e-3 * normal_N.max()).sum())}
 
 
@@ -309,5 +311,6 @@ def agreement(sw: dict, ccx: dict) -> dict:
             "share_max_abs_diff": float(np.max(np.abs(ccx["share"] - sw["share"]))),
             "teeth_in_contact": (sw["teeth_in_contact"], ccx["teeth_in_contact"]),
             "torque_ratio": ccx["torque_Nmm"] / sw["torque_Nmm"],
+            "normal_sum_ratio": float(ccx["forces_N"].sum() / sw["forces_N"].sum()),
             "passes": abs(peak_ccx / peak_sw - 1.0) <= PEAK_SHARE_REL_TOL
             and sw["teeth_in_contact"] == ccx["teeth_in_contact"]}
