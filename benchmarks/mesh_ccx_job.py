@@ -37,7 +37,7 @@ class Problem:
 
     model: object              # fe.RimSolve of the sector (scalar P2 basis, clamped bore)
     teeth: np.ndarray          # (n,) sector tooth of each pair (0 = the sector's centre tooth)
-    radius_mm: np.ndarray      # (n,) contact radius on the flank
+    radius_mm: np.ndarray      # (n,) contact radius: the midpoint of the flank facet at the study's radius
     clearance_mm: np.ndarray   # (n,) unloaded gap along the flank normal
     point_mm: np.ndarray       # (n, 2) contact point on the flank
     normal: np.ndarray         # (n, 2) the flank's outward normal there (the punch presses along -normal)
@@ -60,8 +60,10 @@ def lobe_pairs(mesh: dict, clearance_max_mm: float = CLEARANCE_MAX_MM) -> dict:
 
 
 def _flank_point(model, tooth: int, radius_mm: float) -> tuple[np.ndarray, np.ndarray]:
-    """The point of tooth ``tooth``'s +theta flank (the mesh's boundary) at ``radius_mm`` and the outward normal
-    of the straight facet it lies on (a punch set flush with that facet sees the clearance over all of it)."""
+    """The midpoint of the straight facet of tooth ``tooth``'s +theta flank (the mesh's boundary) that crosses
+    ``radius_mm``, and its outward normal. A punch set flush with that facet touches it over the whole facet,
+    centred where strainwave centres its band (off-centre, the tip tooth's steep compliance gradient moved
+    CalculiX's share by 9 % between meshes: decision 069)."""
     from strainwave.fea.tooth_mesh_fe import _boundary_facet_teeth
     bf, r_mid, which, off = _boundary_facet_teeth(model)
     sel = bf[(which == tooth % model.teeth) & (off > 0)]
@@ -69,11 +71,10 @@ def _flank_point(model, tooth: int, radius_mm: float) -> tuple[np.ndarray, np.nd
         a, b = model.mesh.p[:, model.mesh.facets[:, f]].T
         ra, rb = math.hypot(*a), math.hypot(*b)
         if min(ra, rb) <= radius_mm <= max(ra, rb) and ra != rb:
-            s = (radius_mm - ra) / (rb - ra)
             n = np.array([b[1] - a[1], a[0] - b[0]]) / math.hypot(*(b - a))
             mid = 0.5 * (a + b)
             centroid = model.mesh.p[:, model.mesh.t[:, model.mesh.f2t[0, f]]].mean(axis=1)
-            return a + s * (b - a), (n if n @ (mid - centroid) > 0 else -n)
+            return mid, (n if n @ (mid - centroid) > 0 else -n)
     raise ValueError(f"tooth {tooth}: no +theta flank facet crosses r = {radius_mm:.5g} mm")
 
 
@@ -92,18 +93,19 @@ def build(params, pairs: dict, h_mm: float, *, margin_teeth: int = 3) -> Problem
     teeth = pairs["tooth"] - centre                  # the sector is centred on tooth 0 at +x
     half = int(np.max(np.abs(teeth))) + margin_teeth
     model = fe.sector_model(geo.fs, geo.r_bore_mm, half, h_mm, lame, geo.face_width_mm)
-    band = 0.2 * geo.fs.module_mm                    # the study's band half-width (tooth_mesh.BAND_OVER_M)
-    F, M = fe.flank_loads(model, teeth, pairs["fs_radius_mm"], band, +1)
-    C = fe.compliance(model, F)
     flank = [_flank_point(model, int(j), float(r)) for j, r in zip(teeth, pairs["fs_radius_mm"])]
     point, normal = np.array([p for p, _ in flank]), np.array([n for _, n in flank])
+    radius = np.hypot(point[:, 0], point[:, 1])      # the contact facet's midpoint: within half a facet of the study's
+    band = 0.2 * geo.fs.module_mm                    # the study's band half-width (tooth_mesh.BAND_OVER_M)
+    F, M = fe.flank_loads(model, teeth, radius, band, +1)
+    C = fe.compliance(model, F)
     # the punches turn by -theta: each gap closes at lever * theta, lever = (P x n)_z (the base radius)
     lever = point[:, 0] * normal[:, 1] - point[:, 1] * normal[:, 0]
     tangent = np.column_stack([-normal[:, 1], normal[:, 0]])
     slide = point[:, 0] * tangent[:, 1] - point[:, 1] * tangent[:, 0]
     system = MeshSystem(np.asarray(pairs["clearance_mm"], float), C, lever, slide,
                         pairs["friction_coefficient"], pairs["rim_radius_mm"])
-    return Problem(model, teeth, np.asarray(pairs["fs_radius_mm"]), system.clearance_mm, point, normal, system,
+    return Problem(model, teeth, radius, system.clearance_mm, point, normal, system,
                    geo.r_bore_mm, time.perf_counter() - t0)
 
 
@@ -302,7 +304,7 @@ def run_calculix(problem: Problem, params, twist_rad, job_dir: Path, *, friction
     return steps[0] | {"steps": steps, "wall_s": run.wall_s, "peak_GB": run.peak_GB}
 
 
-def agreement(sw: dict, ccx: dict) -> dict:
+def agreement(sw: dict, ccx: dict, tol: float = PEAK_SHARE_REL_TOL) -> dict:
     """The numbers the check compares: peak shares (relative), the largest per-tooth share difference,
     the teeth in contact and CalculiX's torque at strainwave's twist over strainwave's torque."""
     peak_sw, peak_ccx = float(np.max(sw["share"])), float(np.max(ccx["share"]))
@@ -312,5 +314,5 @@ def agreement(sw: dict, ccx: dict) -> dict:
             "teeth_in_contact": (sw["teeth_in_contact"], ccx["teeth_in_contact"]),
             "torque_ratio": ccx["torque_Nmm"] / sw["torque_Nmm"],
             "normal_sum_ratio": float(ccx["forces_N"].sum() / sw["forces_N"].sum()),
-            "passes": abs(peak_ccx / peak_sw - 1.0) <= PEAK_SHARE_REL_TOL
+            "passes": abs(peak_ccx / peak_sw - 1.0) <= tol
             and sw["teeth_in_contact"] == ccx["teeth_in_contact"]}
