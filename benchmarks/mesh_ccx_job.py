@@ -27,7 +27,7 @@ PUNCH_HALF_MM_OVER_M = 0.3     # half-length of a punch's face along the flank, 
 PUNCH_DEPTH_OVER_M = 0.3       # its depth into the tooth space
 SLAVE_BAND_OVER_M = 0.5        # the flank facets each punch may touch: this far in radius from the contact point
 PENALTY_N_PER_MM3 = 1.0e8      # normal penalty slope: ~500 E / mm; x10 moves the shares < 0.1 % (decision 069)
-STICK_SLOPE_N_PER_MM3 = 1.0e7   # friction's stick slope (CalculiX's lambda); x10 moves the shares < 0.1 % (decision 069)
+STICK_SLOPE_N_PER_MM3 = 1.0e7   # friction's stick slope (CalculiX's lambda); x10: shares < 0.1 % (decision 069)
 CLEARANCE_MAX_MM = 0.05        # pairs further open than this never close at rated torque on this gear
 
 
@@ -52,7 +52,8 @@ def lobe_pairs(mesh: dict, clearance_max_mm: float = CLEARANCE_MAX_MM) -> dict:
     pr = mesh["angles"][0]
     z = int(mesh["z_f"])
     tooth = (np.asarray(pr["tooth"]) + z // 4) % z - z // 4        # signed, the lobe about tooth 0
-    keep = (np.asarray(pr["side"]) == 1) & (np.abs(tooth) < z // 4) & (np.asarray(pr["clearance_mm"]) < clearance_max_mm)
+    keep = ((np.asarray(pr["side"]) == 1) & (np.abs(tooth) < z // 4)
+            & (np.asarray(pr["clearance_mm"]) < clearance_max_mm))
     order = np.argsort(tooth[keep])
     return {"tooth": tooth[keep][order], "fs_radius_mm": np.asarray(pr["fs_radius_mm"])[keep][order],
             "clearance_mm": np.asarray(pr["clearance_mm"])[keep][order],
@@ -109,7 +110,8 @@ def build(params, pairs: dict, h_mm: float, *, margin_teeth: int = 3) -> Problem
                    geo.r_bore_mm, time.perf_counter() - t0)
 
 
-def strainwave_solve(problem: Problem, torque_Nmm: float, *, friction: bool = True, unload_to: float | None = None) -> dict:
+def strainwave_solve(problem: Problem, torque_Nmm: float, *, friction: bool = True,
+                     unload_to: float | None = None) -> dict:
     """strainwave's contact solve from unloaded to ``torque_Nmm`` (twist, normal forces, shares); with
     ``unload_to`` (a fraction of it) also back down to that torque after the reversal (``unloaded``)."""
     from dataclasses import replace
@@ -151,12 +153,13 @@ def _fs_elements(model) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _slave_faces(problem: Problem, conn: np.ndarray, k: int, band_mm: float) -> list[tuple[int, int]]:
-    """(element id, face 1/2/3: edges 1-2, 2-3, 3-1 as Abaqus numbers a plane element's faces) of the +theta-flank facets of pair k's tooth within ``band_mm`` of its
-    contact radius."""
+    """(element id, face 1/2/3: edges 1-2, 2-3, 3-1, as Abaqus numbers a plane element's faces) of the
+    +theta-flank facets of pair k's tooth within ``band_mm`` of its contact radius."""
     from strainwave.fea.tooth_mesh_fe import _boundary_facet_teeth
     model = problem.model
     bf, r_mid, which, off = _boundary_facet_teeth(model)
-    sel = bf[(which == problem.teeth[k] % model.teeth) & (off > 0) & (np.abs(r_mid - problem.radius_mm[k]) < band_mm)]
+    near = np.abs(r_mid - problem.radius_mm[k]) < band_mm
+    sel = bf[(which == problem.teeth[k] % model.teeth) & (off > 0) & near]
     faces = []
     for f in sel:
         e = int(model.mesh.f2t[0, f])
@@ -263,7 +266,8 @@ def read_punch_loads(dat: Path, problem: Problem, punch_nodes: np.ndarray, punch
     tangential_N = np.einsum("ij,ij->i", force_on_punch, tangent)           # friction on the punch
     # torque on the punches (the CS) about the axis, positive as strainwave's T = sum (lever + mu slide) F
     torque = float(np.sum((punch_xy[..., 0] * -R[..., 1] - punch_xy[..., 1] * -R[..., 0])))
-    return {"forces_N": normal_N, "tangential_N": tangential_N, "share": normal_N / normal_N.sum(), "torque_Nmm": torque,
+    return {"forces_N": normal_N, "tangential_N": tangential_N, "share": normal_N / normal_N.sum(),
+            "torque_Nmm": torque,
             "teeth_in_contact": int((normal_N > 1e-3 * normal_N.max()).sum())}
 
 

@@ -7,7 +7,8 @@ CalculiX (CPE6, node-to-surface contact, *FRICTION) runs the same twists in two 
 share within 2 %) is NOT met (decision 069: +8.1 % on this mesh, +4.5 % on the study's finest; the tip flank's
 contact is stiffer in CalculiX); the bench prints it as a MISS. What this test guards is the measured state: the
 same teeth in contact, the peak share within 10 % (a regression bound set after the measurement, not a goal),
-friction inside Coulomb's cone (the loaded flanks and the lobe); and a reference with the lobe's upper clearances x1.2 or x0.8 fails that bound.
+friction inside Coulomb's cone (the loaded flanks and the lobe); and a reference with the lobe's upper
+clearances x1.2 or x0.8 fails that bound.
 Like tests/test_calculix.py, a missing ccx fails under CI (.ci/run installs it) and skips elsewhere only when
 it cannot be installed.
 """
