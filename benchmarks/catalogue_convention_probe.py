@@ -2,7 +2,7 @@
 the row's own T1, T2 windows, K3 to the loop amplitude), beside the knee reader, and what the amplitude does.
 
 Run: .venv/bin/python benchmarks/catalogue_convention_probe.py [RULES_JSON]   (prints one JSON line per row and a
-summary; RULES_JSON: MeshRules overrides, e.g. '{"rim_ratio_exponent": 1.0}')
+summary; RULES_JSON: MeshRules overrides, e.g. '{"rim_rule": "fatigue"}'; --rated-only: the rated amplitude only)
 """
 from __future__ import annotations
 
@@ -41,7 +41,7 @@ def main(overrides: dict) -> None:
         cat = row.values
         T1, T2 = cat["T1_Nm"], cat["T2_Nm"]
         rec = {"size": row.size, "ratio": row.ratio_label}
-        for name, f in AMPLITUDES.items():
+        for name, f in (AMPLITUDES if FULL else {"rated": None}).items():
             A = rules.rated_torque_Nm(row.size) if f is None else f * T2
             T, tw, _ = _loop(design, series, A, 0.0)
             sec = catalogue_secants(T, tw, T1, T2)
@@ -62,14 +62,14 @@ def main(overrides: dict) -> None:
 
 def _summary(out, cpu):
     goals = {"K1": 0.35, "K3": 0.25, "T1": 0.35, "T2": 0.35}
-    for src in ("reader", "rated", "1.2T2", "2T2", "first_loading"):
+    for src in ("reader", "rated", "1.2T2", "2T2", "first_loading") if FULL else ("reader", "rated", "first_loading"):
         line = [src]
         for k in ("K1", "K2", "K3"):
             q = [r[src][k] for r in out]
             n = sum(abs(x - 1) <= goals.get(k, 0.25) for x in q) if k in goals else "-"
             line.append(f"{k} {min(q):.2f}-{max(q):.2f} ({n}/21)")
         print(" | ".join(line))
-    for src in ("reader", "rated", "1.2T2", "2T2"):
+    for src in ("reader", "rated", "1.2T2", "2T2") if FULL else ("reader", "rated"):
         tr = []
         for s in sorted({r["size"] for r in out}):
             have = [r for r in out if r["size"] == s]
@@ -80,5 +80,8 @@ def _summary(out, cpu):
     print(f"CPU {cpu:.1f} s")
 
 
+FULL = "--rated-only" not in sys.argv
+
 if __name__ == "__main__":
-    main(json.loads(sys.argv[1]) if len(sys.argv) > 1 else {})
+    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    main(json.loads(args[0]) if args else {})
