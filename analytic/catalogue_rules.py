@@ -20,7 +20,7 @@ __all__ = ["MeshRules", "RATIO_OF_LABEL", "RimRule", "ratio_of_label", "fatigue_
 
 class RimRule(str, Enum):
     """How thick the rim under the teeth is (decision 069)."""
-    BLANK = "blank"          # rim_over_d d (i/100)^p: one flexspline blank per size (decision 065)
+    BLANK = "blank"          # rim_over_d d (i/100)^p: one flexspline blank per size (decisions 065-068)
     MODULE = "module"        # rim_over_module m: the CJME 2021 benchmark's and the open twin's 2 m
     FATIGUE = "fatigue"      # the thickest rim the flexspline steel's Goodman line allows at [n] (HDS 9534681)
 
@@ -103,7 +103,9 @@ class MeshRules:
     ball_diameter_over_d: float = 9.525 / 160.0  # shipped WG bearing: D_w / d1 (3/8 in at d1 = 160)
     ball_count: int = 24                        # shipped WG bearing (similar bodies keep the count)
     rim_ratio_exponent: float = 0.0             # rim = rim_over_d d (i/100)^p: 0 one blank per size (decision 065)
-    rim_rule: RimRule = RimRule.BLANK           # decision 069: the sourced alternatives, measured, not adopted
+    # decision 069: the thickest rim the steel's Goodman line allows at [n] (HDS patent 9534681's sizing); the cup's
+    # wall (cup_flexibility_rad_per_Nmm) stays rim_over_d d: the rule sizes the toothed rim only
+    rim_rule: RimRule = RimRule.FATIGUE
     rim_over_module: float = 2.0                # RimRule.MODULE: CJME 2021 benchmark delta_0 = 2 m
     # the cup's extra twist when the torque enters at the two mesh zones (decision 067): measured by FE per ratio at
     # this size on meshes of these elements around the quarter wall (finest first), scaled by similitude; None: left out
