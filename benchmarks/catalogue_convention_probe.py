@@ -2,7 +2,8 @@
 the row's own T1, T2 windows, K3 to the loop amplitude), beside the knee reader, and what the amplitude does.
 
 Run: .venv/bin/python benchmarks/catalogue_convention_probe.py [RULES_JSON]   (prints one JSON line per row and a
-summary; RULES_JSON: MeshRules overrides, e.g. '{"rim_rule": "fatigue"}'; --rated-only: the rated amplitude only)
+summary; RULES_JSON: MeshRules overrides, e.g. '{"rim_rule": "fatigue"}'; --rated-only: the rated amplitude only;
+--cs-ring=F: the circular spline body's free-ring twist x F in series, analytic/cs_ring.py)
 """
 from __future__ import annotations
 
@@ -38,6 +39,9 @@ def main(overrides: dict) -> None:
         d = rules.pitch_diameter_mm(row.size)
         design = rules.design(row.size, row.ratio)
         series = rules.cup_flexibility_rad_per_Nmm(row.size) + (zone[row.ratio].at(d) if zone[row.ratio] else 0.0)
+        if CS_RING:      # decision 069 item 3: the circular spline body as a free ring (the soft bound), x CS_RING
+            from strainwave.analytic.cs_ring import cs_body_twist_rad_per_Nmm
+            series += CS_RING * cs_body_twist_rad_per_Nmm(design, 1.25 * d)
         cat = row.values
         T1, T2 = cat["T1_Nm"], cat["T2_Nm"]
         rec = {"size": row.size, "ratio": row.ratio_label}
@@ -81,6 +85,7 @@ def _summary(out, cpu):
 
 
 FULL = "--rated-only" not in sys.argv
+CS_RING = next((float(a.split("=")[1]) for a in sys.argv if a.startswith("--cs-ring=")), 0.0)
 
 if __name__ == "__main__":
     args = [a for a in sys.argv[1:] if not a.startswith("--")]
