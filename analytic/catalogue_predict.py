@@ -42,8 +42,10 @@ LEFT_OUT = {
     ("K3_Nm_per_rad", "high"): "a compliance 30-36 % of the catalogue's own at every ratio, not identified: with the "
                                 "fatigue rim (decision 069) the ratio trend is met and every row is 1.4-2.0x too "
                                 "stiff (size 25: 1.7e-8 / 7.6e-9 / 5.0e-9 rad/(N mm) missing at i = 30 / 50 / 100); "
-                                "ruled out: the tooth on its rim, coning, lift-off, the circular spline body and the "
-                                "WG outer ring's ovalisation (decisions 067-069)",
+                                "ruled out: the tooth on its rim, coning, lift-off, the WG outer ring's ovalisation; "
+                                "not in the chain: the circular spline body's ovalisation under the two zones, as a "
+                                "free ring 1.5e-8 / 1.1e-8 (i = 30 / 100, FE), whose restraint by the housing is "
+                                "not modelled (decisions 067-069)",
     ("K3_Nm_per_rad", "low"): "load spreading over more teeth than the ideal rack engages (the wider, "
                                "conjugate S-tooth zone of real profiles)",
     ("T1_Nm", "low"): "the contact set grows smoothly from zero torque (zero backlash), so the reader's first knee "
