@@ -28,3 +28,15 @@ def test_the_body_softens_with_a_thinner_body_and_scales_as_one_over_d_cubed():
     assert cs_body_twist_rad_per_Nmm(rules.design(25, 100), 1.4 * 63.5) < b
     with pytest.raises(ValueError, match="inside its root"):
         cs_body_twist_rad_per_Nmm(rules.design(25, 100), 60.0)
+
+
+def test_the_fe_body_is_the_closed_forms_ring_where_the_ring_is_thin():
+    """Like against like: a thin annulus (h / R = 0.05) under the radial pair opens as the inextensible ring does
+    (1-3 %); the tangential pair twists it more than the mid-surface form (the load sits on the bore, h / 2 off)."""
+    from strainwave.fea.cs_body_fe import cs_body_fe_twist_rad_per_Nmm
+    R, h, b, E = 36.0, 1.8, 11.9, 2.1e5
+    closed_t, closed_r = ring_mesh_twist_rad_per_Nmm(R, E * b * h ** 3 / 12.0, R - 0.5 * h, 20.0)
+    fe, _ = cs_body_fe_twist_rad_per_Nmm(R - 0.5 * h, R + 0.5 * h, E, b, R - 0.5 * h, 20.0, 2, 288)
+    assert fe["radial"] == pytest.approx(closed_r, rel=0.04)
+    assert not fe["radial"] == pytest.approx(1.2 * closed_r, rel=0.04)
+    assert closed_t < fe["tangential"] < 1.3 * closed_t
