@@ -45,3 +45,21 @@ def test_windows_off_the_catalogues_knees_read_other_slopes():
     assert abs(sec["K1_Nm_per_rad"] / K[0] - 1.0) > 0.02 and abs(sec["K2_Nm_per_rad"] / K[1] - 1.0) > 0.005
     with pytest.raises(ValueError, match="T1 < T2 < amplitude"):
         catalogue_secants(T, phi, T1, 200.0)
+
+
+def _row_prediction(values):
+    from strainwave.analytic.catalogue_predict import TableRow, _with_secants
+    from strainwave.analytic.drive_curve import DriveCurve
+    T, phi = _loop(150.0)
+    curve = DriveCurve(1.0, 2.0, 3.0, 25.0, 100.0, 0.0, 0.0, 150.0, T, phi)     # the reader's numbers: markers
+    return _with_secants(TableRow(32.0, "100", values, 2), curve)
+
+
+def test_a_row_reads_its_own_windows_and_falls_back_where_they_do_not_fit():
+    rp = _row_prediction({"T1_Nm": T1, "T2_Nm": T2, "K3_Nm_per_rad": 1.2e5})
+    assert rp.predicted("K3_Nm_per_rad") == pytest.approx(K[2], rel=1e-9) and rp.windows_from == "catalogue"
+    assert rp.reader("K3_Nm_per_rad") == 3.0 and rp.predicted("T2_Nm") == 100.0    # the knees stay the reader's
+    blank = _row_prediction({"T1_Nm": T1})                   # no T2: the predicted knee's
+    assert blank.windows_Nm == (T1, 100.0) and "predicted" in blank.windows_from
+    beyond = _row_prediction({"T1_Nm": T1, "T2_Nm": 160.0})  # T2 past the loop: the reader's K, said so
+    assert beyond.predicted("K3_Nm_per_rad") == 3.0 and beyond.windows_from.startswith("none")
