@@ -107,7 +107,11 @@ def design_notes(design: dict) -> list[str]:
     b = design.get("buckling")
     if b and b.get("fe_over_rated") is not None:
         out.append(buckling_line(b))
-    out.append("Not computed: the ratcheting torque (it needs the tooth-mesh study's radial separation under load)")
+    if design.get("ratcheting"):
+        from strainwave.compare.validate.ratcheting import ratcheting_line
+        out.append(ratcheting_line(design["ratcheting"]))
+    else:
+        out.append("Not computed: the ratcheting torque (the tooth-mesh study did not run)")
     return out
 
 

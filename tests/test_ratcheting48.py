@@ -1,0 +1,75 @@
+"""The tooth-mesh study's ratcheting torque (issue 48, item 2): first principles on the study's own kinematics and
+contact solve, and the record the report shows beside the closed form and the catalogue."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from strainwave.analytic.mesh_engagement import study_loads
+from strainwave.compare.validate import ratcheting as rt
+from strainwave.fea import tooth_mesh as tm
+from strainwave.fea.mesh_contact import MeshSystem, solve_torque_path
+from strainwave.fea.result import Quantity
+from strainwave.params import load_params
+
+
+@pytest.fixture(scope="module")
+def loaded():
+    """The default gear's headline pairs, solved to rated on a diagonal pair compliance (the FE's order of
+    magnitude, 5e-6 mm/N): the study's kinematics and contact solve without the FE's cost."""
+    mesh = study_loads(load_params(None), quick=True)["mesh"]
+    pairs = mesh["angles"][0]
+    n = len(pairs["side"])
+    system = MeshSystem(pairs["clearance_mm"], 5e-6 * np.eye(n), pairs["lever_mm"], pairs["slide_mm_per_rad"], 0.0,
+                        mesh["rim_radius_mm"])
+    path = solve_torque_path(system, np.linspace(0.0, mesh["rated_torque_Nmm"], 21))
+    return mesh, pairs, path
+
+
+def test_ratcheting_rises_with_the_wave_generators_stiffness_and_the_overlap(loaded):
+    mesh, pairs, path = loaded
+    base = tm.ratcheting(path, pairs, mesh)["ratcheting_torque_Nmm"]
+    stiffer = tm.ratcheting(path, pairs, {**mesh, "wg_radial_stiffness_N_per_mm": 2 * mesh["wg_radial_stiffness_N_per_mm"]})
+    deeper = tm.ratcheting(path, {**pairs, "depth_mm": 1.5 * pairs["depth_mm"]}, mesh)
+    flat = tm.ratcheting(path, {**pairs, "depth_mm": 0.0 * pairs["depth_mm"]}, mesh)
+    assert 0.0 < base < math.inf
+    # a radial spring twice as stiff lifts half as far per torque: twice the torque (the contact set held)
+    assert stiffer["ratcheting_torque_Nmm"] == pytest.approx(2.0 * base, rel=1e-12)
+    assert deeper["ratcheting_torque_Nmm"] == pytest.approx(1.5 * base, rel=1e-12)
+    assert flat["ratcheting_torque_Nmm"] == 0.0
+
+
+def test_the_lift_is_the_lobes_radial_push_over_its_stiffness():
+    # one pair on the major axis, 1000 N at 20 deg, K_G = 1e5 N/mm: the lobe moves in 1000 sin 20 / 1e5 mm
+    a = math.radians(20.0)
+    r = tm.ratcheting_torque_Nmm([1000.0], [a], [0.0], [0.8], 1e5, 2e5)
+    assert r["ratcheting_lift_rated_mm"] == pytest.approx(1000.0 * math.sin(a) / 1e5, rel=1e-12)
+    assert r["ratcheting_torque_Nmm"] == pytest.approx(2e5 * 0.8 / r["ratcheting_lift_rated_mm"], rel=1e-12)
+    # the same pair on the other lobe (phi = 180 deg) is pushed by that lobe alone: the same answer
+    other = tm.ratcheting_torque_Nmm([1000.0], [a], [math.pi], [0.8], 1e5, 2e5)
+    assert other["ratcheting_torque_Nmm"] == pytest.approx(r["ratcheting_torque_Nmm"], rel=1e-12)
+    # a steeper flank (larger pressure angle at the contact radius) pushes harder: it ratchets earlier
+    steep = tm.ratcheting_torque_Nmm([1000.0], [math.radians(30.0)], [0.0], [0.8], 1e5, 2e5)
+    assert steep["ratcheting_torque_Nmm"] < r["ratcheting_torque_Nmm"]
+
+
+class _Book:
+    def __init__(self, value):
+        self.q = Quantity("ratcheting_torque_Nmm", value, "N*mm", None)
+
+    def quantity(self, label, name):
+        return (self.q, "") if name == "ratcheting_torque_Nmm" else (None, "no")
+
+
+def test_record_puts_the_closed_form_and_the_catalogue_beside_the_fe():
+    params = load_params(None)
+    rec = rt.ratcheting_record(params, _Book(7.7e7), "tooth-mesh")
+    assert rec["fe_over_rated"] == pytest.approx(77.0)
+    assert rec["closed_form_torque_Nmm"] > 0 and rec["fe_over_closed_form"] == pytest.approx(7.7e7 / rec["closed_form_torque_Nmm"])
+    # d1 = 160 mm is size 63: the table's nearest is 58, its ratio 100 row, scaled by (63/58)^3
+    assert (rec["csf_size"], rec["csf_ratio"], rec["csf_torque_Nm"]) == (58, 100, 6400.0)
+    assert rec["csf_scaled_torque_Nm"] == pytest.approx(6400.0 * (160.0 / 2.54 / 58) ** 3)
+    assert "Ratcheting torque" in rt.ratcheting_line(rec)
+    assert rt.ratcheting_record(params, _Book(7.7e7), None) is None
