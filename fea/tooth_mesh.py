@@ -49,6 +49,7 @@ QUANTITIES = (
     ("rigid_rim_peak_tooth_share", "1"), ("rigid_rim_teeth_in_contact", "1"), ("rigid_rim_twist_rated_rad", "rad"),
     ("engagement_edge_rated_rad", "rad"), ("engagement_edge_first_step_rad", "rad"),
     ("ratcheting_torque_Nmm", "N*mm"), ("ratcheting_lift_rated_mm", "mm"), ("ratcheting_overlap_mm", "mm"),
+    ("root_stress_peak_tooth_MPa", "MPa"), ("root_stress_per_N_MPa", "MPa/N"), ("root_contact_radius_mm", "mm"),
 )
 SECTOR_H_RATIO = 0.5              # the sectors' element size over the rim's
 SOLID_DEPTH_OVER_M = 6.0          # the FS tooth's solid-body sector is held this deep below its root (ISO's body)
@@ -273,6 +274,24 @@ def ratcheting(path, pairs: Mapping, mesh: Mapping) -> dict:
                                  mesh["wg_radial_stiffness_N_per_mm"], float(path.torque_Nmm[k]))
 
 
+def root_stress(params, mesh: Mapping, path, h_mm: float) -> dict:
+    """The most loaded tooth's root stress at rated (headline angle, first loading): the filleted sector of
+    fea/tooth_root_fe.py under that tooth's flank load, at its contact radius, on this mesh's size (so it has a GCI)."""
+    from strainwave.fea.tooth_root_fe import root_stress_per_N
+    from strainwave.geometry.mesh_geometry import mesh_geometry
+    geo = mesh_geometry(params)
+    m = params.material
+    k_peak = int(np.argmax(path.torque_Nmm))
+    F = path.forces_N[k_peak]
+    j = int(np.argmax(F))
+    pairs = mesh["angles"][0]
+    lame = Lame.from_young(m.youngs_modulus_MPa, m.poisson_ratio)
+    r = root_stress_per_N(geo.fs, geo.r_bore_mm, h_mm, lame, geo.face_width_mm, float(pairs["fs_radius_mm"][j]),
+                          int(pairs["side"][j]), BAND_OVER_M * geo.fs.module_mm)
+    return {"root_stress_peak_tooth_MPa": r["stress_MPa_per_N"] * float(F[j]),
+            "root_stress_per_N_MPa": r["stress_MPa_per_N"], "root_contact_radius_mm": float(pairs["fs_radius_mm"][j])}
+
+
 def crack_signature(infl: Mapping, mesh: Mapping) -> tuple[dict, np.ndarray]:
     """The root crack of tooth 0 (its +theta flank's root) as tooth 0 passes the loaded zone: the crack's added
     compliance (solid-body sector, cracked minus uncracked, same mesh size) on tooth 0's +flank pair; the
@@ -453,7 +472,8 @@ class ToothMesh(StudyVariant):
         rigid, rigid_inputs = rigid_rim(infl, self.mesh_inputs)
         values = (loop_values(paths, self.mesh_inputs["rated_torque_Nmm"]) | major_pair(infl, self.mesh_inputs) | crack
                   | rigid | engagement_edge(paths[0], self.mesh_inputs["angles"][0])
-                  | ratcheting(paths[0], self.mesh_inputs["angles"][0], self.mesh_inputs))
+                  | ratcheting(paths[0], self.mesh_inputs["angles"][0], self.mesh_inputs)
+                  | root_stress(self.params, self.mesh_inputs, paths[0], refinement))
         t2 = time.perf_counter()
         quality = MeshQuality(facts["elements"], facts["nodes"], facts["dofs"], 2, float("nan"), float("nan"))
         # the rigid-rim solve's inputs are kept on every mesh (small): the check mesh.rigid_rim_sharing reads them
