@@ -20,6 +20,7 @@ from strainwave.fea import tooth_mesh_fe as fe
 __all__ = ["fillet_geometry", "sector_outline", "root_stress_per_N"]
 
 TEETH_EACH_SIDE = 3
+TOOTH_H_RATIO = 0.25              # element size in the loaded tooth over the rim's
 FILLET_H_RATIO = 0.1   # element size at the fillet over the rim's (the study's h): rho/8 at the finest; 1/6 read non-monotone
 
 
@@ -65,7 +66,7 @@ def sector_outline(spec, r_bore_mm: float, h_mm: float, h_fillet_mm: float) -> n
     """The closed sector: root circle and teeth in increasing angle (tooth 0 filleted), then the bore arc back."""
     pitch = 2 * math.pi / spec.teeth
     fil = fillet_geometry(spec)
-    n_flank = max(6, int(math.ceil(2.5 * spec.module_mm / h_mm)))
+    n_flank = max(6, int(math.ceil(2.5 * spec.module_mm / (TOOTH_H_RATIO * h_mm))))
     n_fillet = max(8, int(math.ceil(0.5 * math.pi * fil["rho_mm"] / h_fillet_mm)) + 2)
     a0, a1 = -(TEETH_EACH_SIDE + 0.5) * pitch, (TEETH_EACH_SIDE + 0.5) * pitch
     pts = [spec.root_radius_mm * np.array([[math.cos(a0), math.sin(a0)]])]
@@ -87,9 +88,13 @@ def _model(spec, r_bore_mm: float, h_mm: float, lame, thickness_mm: float) -> tu
     centres = [fil["centre_radius_mm"] * np.array([math.cos(s * fil["dphi_rad"]), math.sin(s * fil["dphi_rad"])])
                for s in (-1, 1)]
 
+    ht, reach = TOOTH_H_RATIO * h_mm, spec.tip_radius_mm - spec.root_radius_mm + spec.module_mm
+
     def size(x, y):
         d = min(abs(math.hypot(x - c[0], y - c[1]) - fil["rho_mm"]) for c in centres)
-        return min(h_mm, hf + 0.4 * d)
+        # the loaded tooth finer too: its flank band's resultant and lever set the root's moment
+        dt = max(0.0, math.hypot(x - spec.root_radius_mm, y) - reach)
+        return min(h_mm, hf + 0.4 * d, ht + 0.4 * dt)
     p, t = fe._gmsh_tri([outline], size)
     mesh, basis, K = fe._assemble(p, t, lame, thickness_mm)
     locs = basis.doflocs
