@@ -132,3 +132,22 @@ def test_design_factor_takes_the_fe_root_stress_beside_with_the_notch_once():
     high = df.fe_mesh_load_beside(params, fea | {"mesh_root_fe_MPa": 300.0}, c)
     assert "n_fe_root" not in df.fe_mesh_load_beside(params, fea, c)
     assert high["n_fe_root"] < low["n_fe_root"] and low["fe_root_MPa"] == 100.0
+
+
+def test_root_record_puts_iso_on_the_fes_own_load_beside_it():
+    from strainwave.compare.validate.tooth_root_record import tooth_root_line, tooth_root_record
+
+    class Book:
+        def __init__(self, vals):
+            self.vals = vals
+
+        def quantity(self, label, name):
+            return (Quantity(name, self.vals[name], "", None), "") if name in self.vals else (None, "no")
+    vals = {"root_stress_peak_tooth_MPa": 337.0, "peak_tooth_load_N": 2467.0, "root_contact_radius_mm": 81.6}
+    params = load_params(None)
+    rec = tooth_root_record(params, Book(vals), "tooth-mesh")
+    twice = tooth_root_record(params, Book(vals | {"peak_tooth_load_N": 2 * 2467.0}), "tooth-mesh")
+    assert twice["iso_MPa"] == pytest.approx(2 * rec["iso_MPa"], rel=1e-12)     # ISO takes the FE's own load
+    assert rec["fe_over_iso"] == pytest.approx(337.0 / rec["iso_MPa"])
+    assert "ISO 6336-3" in tooth_root_line(rec)
+    assert tooth_root_record(params, Book({}), "tooth-mesh") is None

@@ -26,7 +26,9 @@ def tooth_root_record(params, book, label: str | None) -> dict | None:
     return {"fe_MPa": fe.value, "fe_gci_MPa": fe.uncertainty, "load_N": F,
             "contact_radius_mm": q["root_contact_radius_mm"].value, "iso_MPa": iso.stress_MPa,
             "iso_nominal_MPa": iso.nominal_MPa, "Y_S": iso.Y_S, "Y_B": iso.Y_B, "s_Fn_mm": iso.s_Fn_mm,
-            "h_Fe_mm": iso.h_Fe_mm, "rho_F_mm": iso.rho_F_mm, "fe_over_iso": fe.value / iso.stress_MPa}
+            "h_Fe_mm": iso.h_Fe_mm, "rho_F_mm": iso.rho_F_mm, "fe_over_iso": fe.value / iso.stress_MPa,
+            # the FE's rim sits on a radially held bore (the rigid WG): ISO's thin-rim Y_B assumes a rim free to bend
+            "fe_over_iso_without_Y_B": fe.value * iso.Y_B / iso.stress_MPa}
 
 
 def tooth_root_line(r: dict) -> str:
@@ -35,5 +37,6 @@ def tooth_root_line(r: dict) -> str:
             f"r = {r['contact_radius_mm']:.4g} mm): FE {r['fe_MPa']:.4g} MPa (GCI {gci}; peak max-principal on the "
             f"root fillet, rho = {r['rho_F_mm']:.3g} mm); ISO 6336-3 method B on the same tooth and load "
             f"{r['iso_MPa']:.4g} MPa (nominal {r['iso_nominal_MPa']:.4g} x Y_S {r['Y_S']:.3g} x Y_B {r['Y_B']:.3g}; "
-            f"s_Fn {r['s_Fn_mm']:.3g}, h_Fe {r['h_Fe_mm']:.3g} mm): FE/ISO = {r['fe_over_iso']:.3g} (ISO's Y_S is "
-            "fitted on generated trochoid roots of longer teeth; this tooth is short, h_Fe/s_Fn < 0.5)")
+            f"s_Fn {r['s_Fn_mm']:.3g}, h_Fe {r['h_Fe_mm']:.3g} mm): FE/ISO = {r['fe_over_iso']:.3g}, "
+            f"{r['fe_over_iso_without_Y_B']:.3g} without Y_B (the FE's rim is held radially by the wave generator, "
+            "ISO's thin rim bends free; ISO's Y_S is fitted on generated trochoid roots of longer teeth)")
