@@ -21,7 +21,8 @@ __all__ = ["fillet_geometry", "sector_outline", "root_stress_per_N"]
 
 TEETH_EACH_SIDE = 3
 TOOTH_H_RATIO = 0.25              # element size in the loaded tooth over the rim's
-FILLET_H_RATIO = 0.1   # element size at the fillet over the rim's (the study's h): rho/8 at the finest; 1/6 read non-monotone
+# element size at the fillets over the rim's (the study's h): rho/8 at the finest (1/6 read non-monotone)
+FILLET_H_RATIO = 0.1
 
 
 def fillet_geometry(spec) -> dict:
@@ -48,13 +49,14 @@ def _tooth(spec, th: float, fil: dict, n_flank: int, n_fillet: int, filleted: bo
     pol = lambda r, a: np.column_stack([r * np.cos(a), r * np.sin(a)])  # noqa: E731
     if not filleted:
         radii = np.linspace(r_f, r_a, n_flank)
-        return np.vstack([pol(radii, th - half_angle_rad(spec, radii)), pol(radii[::-1], th + half_angle_rad(spec, radii[::-1]))])
+        up = radii[::-1]
+        return np.vstack([pol(radii, th - half_angle_rad(spec, radii)), pol(up, th + half_angle_rad(spec, up))])
     radii = np.linspace(fil["r_t_mm"], r_a, n_flank)
     psi = half_angle_rad(spec, radii)
     out = []
     for side in (-1, 1):
-        c = fil["centre_radius_mm"] * np.array([math.cos(th + side * fil["dphi_rad"]), math.sin(th + side * fil["dphi_rad"])])
-        root = r_f * np.array([math.cos(th + side * fil["dphi_rad"]), math.sin(th + side * fil["dphi_rad"])])
+        at = np.array([math.cos(th + side * fil["dphi_rad"]), math.sin(th + side * fil["dphi_rad"])])
+        c, root = fil["centre_radius_mm"] * at, r_f * at
         foot = pol(radii[0], th + side * psi[0])[0]
         arc = _arc(c, fil["rho_mm"], root, foot, n_fillet)
         flank = pol(radii, th + side * psi)
