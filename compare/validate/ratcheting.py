@@ -58,9 +58,9 @@ def ratcheting_record(params, book, label: str | None) -> dict | None:
 
 
 def ratcheting_line(r: dict) -> str:
-    gci = "none" if r.get("fe_gci_Nmm") is None else f"{r['fe_gci_Nmm'] / 1e3:.3g}"
+    gci = "no GCI" if r.get("fe_gci_Nmm") is None else f"GCI +- {r['fe_gci_Nmm'] / 1e3:.3g} N m"
     return (f"Ratcheting torque (tooth-mesh FE: the loaded teeth's radial push against one WG lobe's K_G uses up their "
-            f"overlap): {r['fe_torque_Nmm'] / 1e3:.4g} N m (GCI {gci}) = {r['fe_over_rated']:.3g} x rated; closed form "
+            f"overlap): {r['fe_torque_Nmm'] / 1e3:.4g} N m ({gci}) = {r['fe_over_rated']:.3g} x rated; closed form "
             f"(analytic/drive_curve.py, + the rim's bending on the bearing, full working depth) "
             f"{r['closed_form_torque_Nmm'] / 1e3:.4g} N m ({r['closed_form_over_rated']:.3g} x); beside them CSF-"
             f"{r['csf_size']} at i = {r['csf_ratio']}: {r['csf_torque_Nm']:g} N m, {r['csf_scaled_torque_Nm']:.4g} N m "

@@ -116,7 +116,7 @@ def design_notes(design: dict) -> list[str]:
         from strainwave.compare.validate.ratcheting import ratcheting_line
         out.append(ratcheting_line(design["ratcheting"]))
     else:
-        out.append("Not computed: the ratcheting torque (the tooth-mesh study did not run)")
+        out.append("Not computed: the ratcheting torque (no finite value from the tooth-mesh study: not run or failed)")
     if design.get("tooth_root_mesh"):
         from strainwave.compare.validate.tooth_root_record import tooth_root_line
         out.append(tooth_root_line(design["tooth_root_mesh"]))

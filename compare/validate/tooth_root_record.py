@@ -32,9 +32,9 @@ def tooth_root_record(params, book, label: str | None) -> dict | None:
 
 
 def tooth_root_line(r: dict) -> str:
-    gci = "none" if r.get("fe_gci_MPa") is None else f"{r['fe_gci_MPa']:.3g}"
+    gci = "no GCI" if r.get("fe_gci_MPa") is None else f"GCI +- {r['fe_gci_MPa']:.3g} MPa"
     return (f"Tooth-root stress from the mesh load (the most loaded flexspline tooth at rated, {r['load_N']:.4g} N at "
-            f"r = {r['contact_radius_mm']:.4g} mm): FE {r['fe_MPa']:.4g} MPa (GCI {gci}; peak max-principal on the "
+            f"r = {r['contact_radius_mm']:.4g} mm): FE {r['fe_MPa']:.4g} MPa ({gci}; peak max-principal on the "
             f"root fillet, rho = {r['rho_F_mm']:.3g} mm); ISO 6336-3 method B on the same tooth and load "
             f"{r['iso_MPa']:.4g} MPa (nominal {r['iso_nominal_MPa']:.4g} x Y_S {r['Y_S']:.3g} x Y_B {r['Y_B']:.3g}; "
             f"s_Fn {r['s_Fn_mm']:.3g}, h_Fe {r['h_Fe_mm']:.3g} mm): FE/ISO = {r['fe_over_iso']:.3g}, "
