@@ -151,3 +151,16 @@ def test_root_record_puts_iso_on_the_fes_own_load_beside_it():
     assert rec["fe_over_iso"] == pytest.approx(337.0 / rec["iso_MPa"])
     assert "ISO 6336-3" in tooth_root_line(rec)
     assert tooth_root_record(params, Book({}), "tooth-mesh") is None
+
+
+@pytest.mark.heavy
+def test_fe_ratcheting_scales_as_size_cubed_on_similar_drives():
+    """Dimensional analysis: the design rules' drives are similar bodies (every length ~ d, K_G ~ d, rated ~ d^3,
+    meshes ~ m), so the FE's ratcheting torque must scale as d^3 (the CSF table's ~size^3, decision 069)."""
+    import sys
+    from pathlib import Path
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+    from ratcheting_csf import fe_ratcheting_Nm
+    small, _ = fe_ratcheting_Nm(14, 50)
+    large, _ = fe_ratcheting_Nm(28, 50)
+    assert large / small == pytest.approx(8.0, rel=1e-3)
