@@ -83,6 +83,10 @@ def test_flank_hertz_checks_pass_and_fail_on_a_perturbed_side(default_checks):
         for k in (0.8, 1.2):
             assert not evaluate(dataclasses.replace(c, analytic={"corrected": k * c.analytic["corrected"]})).passed
             assert not evaluate(dataclasses.replace(c, fea=k * c.fea)).passed
+    # given the study's rated peak flank load, the notes say Hertz's assumption fails there
+    rated = fhc.hertz_checks(params, solved, rated_load_N_per_mm=82.0)
+    assert all("Hertz's assumptions fail there" in c.note for c in rated)
+    assert [c.fea for c in rated] == [c.fea for c in checks]
     rows = mutation_rows([c.to_dict() for c in checks])
     assert all(r.catches_20 and r.catches_10 for r in rows)
     # the validated load keeps Hertz's half-width at 5 % of the shorter of the working flank and tooth thickness

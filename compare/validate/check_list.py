@@ -142,7 +142,8 @@ def _surface_crack_record(ctx) -> dict:
 
 
 def _flank_hertz(ctx):
-    return flank_hertz_checks.hertz_checks(ctx.params)
+    load, _ = flank_hertz_checks.rated_peak_line_load(ctx.book, ctx.label(flank_hertz_checks.STUDY), ctx.params)
+    return flank_hertz_checks.hertz_checks(ctx.params, rated_load_N_per_mm=load)
 
 
 def _flank_hertz_record(ctx) -> dict:

@@ -25,6 +25,7 @@ asserted: there Hertz's half-width is about the working flank, outside the theor
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -132,9 +133,10 @@ def _check(cid, quantity, unit, q, ref, params, solves, sources) -> Check:
                           note=_note(params, solves, quantity), sources=sources))
 
 
-def hertz_checks(params, solved=None) -> list[Check]:
-    """Both checks on ``solved`` = fe_quantities(params) (solved here when None)."""
-    _, h, _, _ = closed_form(params)
+def hertz_checks(params, solved=None, rated_load_N_per_mm: float | None = None) -> list[Check]:
+    """Both checks on ``solved`` = fe_quantities(params) (solved here when None); with the study's rated peak flank
+    load, the notes say what Hertz's half-width is there (the FE at that load: ``rated_record``)."""
+    _, h, flank, _ = closed_form(params)
     names = ((CHECK_P0, "peak contact pressure of the flank pair at a small line load", "MPa", h.peak_pressure_MPa),
              (CHECK_B, "contact half-width of the flank pair at a small line load", "mm", h.half_width_mm))
     try:
@@ -144,8 +146,12 @@ def hertz_checks(params, solved=None) -> list[Check]:
                 for cid, qn, unit, ref in names]
     sources = {"fea": "fea/flank_hertz.py (validate's own three meshes)",
                "analytic": "analytic/hertz_line.py (Johnson, Contact Mechanics, sec. 4.2)"}
-    return [_check(cid, qn, unit, q, ref, params, solves, sources)
-            for (cid, qn, unit, ref), q in zip(names, (p0, bq))]
+    checks = [_check(cid, qn, unit, q, ref, params, solves, sources) for (cid, qn, unit, ref), q in zip(names, (p0, bq))]
+    if rated_load_N_per_mm is None:
+        return checks
+    _, hr, _, _ = closed_form(params, rated_load_N_per_mm)
+    more = f"; {rated_statement(rated_load_N_per_mm, hr.half_width_mm, flank)} (the FE there: records[{CHECK_P0}])"
+    return [dataclasses.replace(c, note=c.note + more) for c in checks]
 
 
 def rated_peak_line_load(book, label: str | None, params) -> tuple[float | None, str]:
@@ -163,8 +169,31 @@ def rated_record(params, load_N_per_mm: float | None, why: str = "") -> dict:
     whole working flank; where the pressure reaches its ends the contact spans the flank and Hertz does not hold."""
     if load_N_per_mm is None:
         return {"rated": None, "why": why}
-    from strainwave.fea.flank_hertz import solve_contact
     pair, h, flank, end = closed_form(params, load_N_per_mm)
+    try:
+        fe = _rated_fe(params, pair, load_N_per_mm, flank, end)
+    except (StageError, ValueError, RuntimeError, np.linalg.LinAlgError) as exc:   # reported, not raised
+        fe = [{"failed": str(exc)}]
+    ratio = h.half_width_mm / flank
+    return {"rated": {
+        "line_load_N_per_mm": load_N_per_mm, "hertz_half_width_mm": h.half_width_mm,
+        "hertz_peak_pressure_MPa": h.peak_pressure_MPa, "working_flank_mm": flank,
+        "b_over_flank": ratio, "criterion": CRITERION, "hertz_holds": ratio <= CRITERION, "fe": fe,
+        "statement": rated_statement(load_N_per_mm, h.half_width_mm, flank)}}
+
+
+def rated_statement(load_N_per_mm: float, b_mm: float, flank_mm: float) -> str:
+    ratio = b_mm / flank_mm
+    return (f"at the rated peak flank load ({load_N_per_mm:.4g} N/mm) Hertz's half-width {b_mm:.3g} mm is {ratio:.3g} x "
+            f"the working flank ({flank_mm:.3g} mm): "
+            + ("inside the criterion" if ratio <= CRITERION else
+               f"beyond the criterion {CRITERION:g}, Hertz's assumptions fail there (the contact spans the flank and "
+               "ends at the tip corners); these checks cover small loads only"))
+
+
+def _rated_fe(params, pair, load_N_per_mm: float, flank: float, end: float) -> list[dict]:
+    """The contact FE at the rated load on RATED_MESHES, the zone the working flank (its nearer end either side)."""
+    from strainwave.fea.flank_hertz import solve_contact
     lame = _lame(params)
     fe = []
     for n in RATED_MESHES:
@@ -174,13 +203,4 @@ def rated_record(params, load_N_per_mm: float | None, why: str = "") -> dict:
                    "zone_ends_loaded": s.zone_edge_loaded, "approach_mm": s.approach_mm,
                    "peak_at_x_mm": float(s.x_mm[int(np.argmax(s.pressure_MPa))]),
                    "x_mm": s.x_mm.tolist(), "pressure_MPa": s.pressure_MPa.tolist()})
-    ratio = h.half_width_mm / flank
-    return {"rated": {
-        "line_load_N_per_mm": load_N_per_mm, "hertz_half_width_mm": h.half_width_mm,
-        "hertz_peak_pressure_MPa": h.peak_pressure_MPa, "working_flank_mm": flank,
-        "b_over_flank": ratio, "criterion": CRITERION, "hertz_holds": ratio <= CRITERION, "fe": fe,
-        "statement": (f"at the rated peak flank load ({load_N_per_mm:.4g} N/mm) Hertz's half-width {h.half_width_mm:.3g} mm"
-                      f" is {ratio:.3g} x the working flank ({flank:.3g} mm): "
-                      + ("inside the criterion" if ratio <= CRITERION else
-                         f"beyond the criterion {CRITERION:g}, Hertz's assumptions fail there (the contact spans the "
-                         "flank and ends at the tip corners); the checks cover small loads only"))}}
+    return fe
