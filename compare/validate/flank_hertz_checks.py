@@ -26,6 +26,7 @@ asserted: there Hertz's half-width is about the working flank, outside the theor
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 
 import numpy as np
@@ -96,12 +97,20 @@ def allowances(params) -> dict[str, float]:
 
 
 def fe_quantities(params):
-    """(p0 and b with their GCI, the three solves) at the validated load."""
+    """(p0 and b with their GCI, the three solves) at the validated load (solved once per pair and material in a
+    process: validate's builders and the suite's several check lists of one gear share it)."""
+    pair, h, _, _ = closed_form(params)
+    m = params.material
+    return _solved(pair, m.youngs_modulus_MPa, m.poisson_ratio, h.load_N_per_mm, h.half_width_mm)
+
+
+@functools.lru_cache(maxsize=4)
+def _solved(pair, E_MPa: float, nu: float, load_N_per_mm: float, b: float):
+    from strainwave.fea.assembly import Lame
     from strainwave.fea.flank_hertz import solve_contact
     from strainwave.fea.refinement import converged_quantity
-    pair, h, _, _ = closed_form(params)
-    b, lame = h.half_width_mm, _lame(params)
-    solves = [solve_contact(pair, lame, h.load_N_per_mm, ZONE_OVER_B * b, b / n, FAR_OVER_M * pair.module_mm)
+    lame = Lame.from_young(E_MPa, nu)
+    solves = [solve_contact(pair, lame, load_N_per_mm, ZONE_OVER_B * b, b / n, FAR_OVER_M * pair.module_mm)
               for n in MESHES[::-1]][::-1]
     if any(s.zone_edge_loaded for s in solves):
         raise StageError("flank contact: the pressure reached the candidate zone's end")
