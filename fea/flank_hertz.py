@@ -327,6 +327,13 @@ class ContactSolve:
         return 2.0 * math.sqrt(max(m2 / m0 - (m1 / m0) ** 2, 0.0))
 
     @property
+    def centre_mm(self) -> float:
+        """The pressure's centroid: the teeth's tilt under load adds a linear term to the gap, which moves the contact
+        (by theta R*) and leaves p0 and b as they are."""
+        m0, m1, _ = self._moments()
+        return m1 / m0
+
+    @property
     def edge_half_width_mm(self) -> float:
         """Half the span of the loaded hats plus one spacing (the discrete edge, for the note)."""
         on = np.flatnonzero(self.pressure_MPa > 0)
