@@ -46,8 +46,9 @@ class FlankPair:
 
     @property
     def relative_radius_mm(self) -> float:
-        """R* = 1 / (1/rho_fs - 1/rho_cs): the internal pair's curvatures subtract."""
-        return 1.0 / (1.0 / self.rho_fs_mm - 1.0 / self.rho_cs_mm)
+        """R* = 1 / (1/rho_fs - 1/rho_cs): the internal pair's curvatures subtract (ValueError when they conform)."""
+        from strainwave.analytic.hertz_line import relative_radius_mm
+        return relative_radius_mm(self.rho_fs_mm, -self.rho_cs_mm)
 
 
 def flank_pair(params) -> FlankPair:

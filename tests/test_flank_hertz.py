@@ -122,3 +122,14 @@ def test_second_gear_passes_and_fails_at_20_percent():
     for c in fhc.hertz_checks(params):
         assert c.passed, (c.id, c.rel_error, c.tolerance.reason)
         assert all(r.catches_20 for r in mutation_rows([c.to_dict()]))
+
+
+def test_a_pair_without_hertz_contact_is_reported_not_raised(monkeypatch):
+    # flanks of equal curvature conform: no Hertz contact exists; the checks say so and are not evaluated
+    params = load_params(None)
+    real = fh.flank_pair(params)
+    monkeypatch.setattr(fh, "flank_pair", lambda p: dataclasses.replace(real, rho_cs_mm=real.rho_fs_mm))
+    checks = fhc.hertz_checks(params)
+    assert [c.verdict for c in checks] == ["not evaluated"] * 2 and not any(c.passed for c in checks)
+    assert "conform" in checks[0].reason_not_evaluated
+    assert fhc.rated_record(params, 82.0)["rated"] is None

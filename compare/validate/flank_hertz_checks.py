@@ -146,7 +146,11 @@ def _check(cid, quantity, unit, q, ref, params, solves, sources) -> Check:
 def hertz_checks(params, solved=None, rated_load_N_per_mm: float | None = None) -> list[Check]:
     """Both checks on ``solved`` = fe_quantities(params) (solved here when None); with the study's rated peak flank
     load, the notes say what Hertz's half-width is there (the FE at that load: ``rated_record``)."""
-    _, h, flank, _ = closed_form(params)
+    try:
+        _, h, flank, _ = closed_form(params)
+    except ValueError as exc:       # a pair whose flanks conform or separate has no Hertz contact: reported
+        return [not_evaluated(cid, cid, "", f"no Hertz line contact for this flank pair: {exc}")
+                for cid in (CHECK_P0, CHECK_B)]
     names = ((CHECK_P0, "peak contact pressure of the flank pair at a small line load", "MPa", h.peak_pressure_MPa),
              (CHECK_B, "contact half-width of the flank pair at a small line load", "mm", h.half_width_mm))
     try:
@@ -179,7 +183,10 @@ def rated_record(params, load_N_per_mm: float | None, why: str = "") -> dict:
     whole working flank; where the pressure reaches its ends the contact spans the flank and Hertz does not hold."""
     if load_N_per_mm is None:
         return {"rated": None, "why": why}
-    pair, h, flank, end = closed_form(params, load_N_per_mm)
+    try:
+        pair, h, flank, end = closed_form(params, load_N_per_mm)
+    except ValueError as exc:
+        return {"rated": None, "why": f"no Hertz line contact for this flank pair: {exc}"}
     try:
         fe = _rated_fe(params, pair, load_N_per_mm, flank, end)
     except (StageError, ValueError, RuntimeError, np.linalg.LinAlgError) as exc:   # reported, not raised
