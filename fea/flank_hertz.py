@@ -24,10 +24,10 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["FlankPair", "ContactSolve", "flank_pair", "solve_contact", "working_flank_mm"]
+__all__ = ["FlankPair", "ContactSolve", "BodyFlexibility", "flank_pair", "working_flank_mm", "surface_y", "initial_gap_mm",
+           "body_flexibility", "hat_weights", "contact_lcp", "solve_contact"]
 
 HELD_OUTSIDE_CS_ROOT_OVER_M = 2.0     # the spline's body held this many modules outside its root circle
-ZONE_OVER_B = 1.6                     # candidate zone half-length over the expected half-width
 
 
 @dataclass(frozen=True)
