@@ -22,7 +22,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.sparse as sp
 
 __all__ = ["FlankPair", "ContactSolve", "BodyFlexibility", "flank_pair", "working_flank_mm", "surface_y", "initial_gap_mm",
            "body_flexibility", "hat_weights", "contact_lcp", "solve_contact"]

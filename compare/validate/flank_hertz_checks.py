@@ -27,14 +27,14 @@ from __future__ import annotations
 
 import dataclasses
 import functools
-import math
 
 import numpy as np
 
 from strainwave.compare.validate.checks import Check, evaluate, fea_tolerance, not_evaluated
 from strainwave.errors import StageError
 
-__all__ = ["CHECK_P0", "CHECK_B", "TOLERANCE", "reference", "rated_peak_line_load", "B_OVER_FLANK", "CRITERION", "MESHES", "closed_form", "allowances",
+__all__ = ["CHECK_P0", "CHECK_B", "TOLERANCE", "reference", "rated_peak_line_load", "B_OVER_FLANK", "CRITERION",
+           "MESHES", "closed_form", "allowances",
            "fe_quantities", "hertz_checks", "rated_record"]
 
 CHECK_P0, CHECK_B = "mesh.flank_hertz", "mesh.flank_hertz_width"
@@ -131,8 +131,9 @@ def _note(params, solves, which: str) -> str:
             f" = {h.half_width_mm / flank:.3g} x the working flank ({flank:.3g} mm) and "
             f"{h.half_width_mm / t:.3g} x the tooth thickness ({t:.3g} mm), criterion <= {CRITERION:g}; meshes of "
             f"{', '.join(str(s.dofs) for s in solves)} dofs; FE edge of the loaded hats "
-            f"{solves[0].edge_half_width_mm:.4g} mm, contact centre x = {solves[0].centre_mm:.3g} mm (the teeth's tilt under load: "
-            f"a linear gap term moves the contact, not p0 or b); FE approach {solves[0].approach_mm:.4g} mm (both bodies to their "
+            f"{solves[0].edge_half_width_mm:.4g} mm, contact centre x = {solves[0].centre_mm:.3g} mm (the teeth's tilt "
+            f"under load: a linear gap term moves the contact, not p0 or b); FE approach "
+            f"{solves[0].approach_mm:.4g} mm (both bodies to their "
             "held faces)")
 
 
@@ -200,15 +201,19 @@ def rated_record(params, load_N_per_mm: float | None, why: str = "") -> dict:
 
 
 def _fe_words(fe: list[dict], p0_hertz: float) -> str:
-    """What the FE shows at rated, in words (its peak is a corner's: it grows with refinement, no converged value)."""
+    """What the FE shows at rated, in words, from its numbers (fe: finest mesh first)."""
     if not fe or "failed" in fe[0]:
         return f"; the FE failed there: {fe[0]['failed'] if fe else 'no mesh'}"
     peaks = ", ".join(f"{f['peak_pressure_MPa']:.4g} MPa at h = {f['h_contact_mm']:.3g} mm" for f in fe)
     x = fe[0]["peak_at_x_mm"]
-    where = "the cup tooth's tip corner" if x > 0 else "the spline tooth's tip corner"
-    return (f"; the FE there: its peak at x = {x:.3g} mm, the working flank's end ({where}), pressure at the study's contact point "
-            f"{fe[0]['centre_pressure_MPa']:.3g} MPa, peak {peaks} against Hertz's p0 {p0_hertz:.3g} MPa: an edge "
-            "contact whose peak grows as the mesh refines (a corner), not Hertz's ellipse")
+    words = (f"; the FE there: peak {peaks} at x = {x:.3g} mm, pressure at the study's contact point "
+             f"{fe[0]['centre_pressure_MPa']:.3g} MPa, against Hertz's p0 {p0_hertz:.3g} MPa")
+    if fe[0]["zone_ends_loaded"]:
+        where = "the cup tooth's tip corner" if x > 0 else "the spline tooth's tip corner"
+        words += f": the contact reaches the working flank's end ({where})"
+    if len(fe) > 1 and fe[0]["peak_pressure_MPa"] > 1.02 * fe[1]["peak_pressure_MPa"]:
+        words += "; its peak grows as the mesh refines (a corner's singularity): no converged value"
+    return words
 
 
 def rated_statement(load_N_per_mm: float, b_mm: float, flank_mm: float) -> str:
