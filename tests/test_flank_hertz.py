@@ -12,7 +12,7 @@ import pytest
 from strainwave.analytic.hertz_line import (contact_modulus_MPa, line_contact, load_for_half_width,
                                             relative_radius_mm)
 from strainwave.compare.validate import flank_hertz_checks as fhc
-from strainwave.compare.validate.checks import evaluate
+from strainwave.compare.validate.checks import evaluate, quick_resolution
 from strainwave.compare.validate.mutation_checks import mutation_rows
 from strainwave.fea import flank_hertz as fh
 from strainwave.params import load_params
@@ -79,6 +79,7 @@ def test_flank_hertz_checks_pass_and_fail_on_a_perturbed_side(default_checks):
     for c in checks:
         assert c.passed, (c.id, c.rel_error, c.tolerance.reason)
         assert c.tolerance.relative < 0.09                       # so a 10 % error fails too
+        assert quick_resolution(c) == c                          # resolved at --quick too (the same meshes)
         # the reference perturbed by +-20 % (and the FE value): each fails
         for k in (0.8, 1.2):
             assert not evaluate(dataclasses.replace(c, analytic={"corrected": k * c.analytic["corrected"]})).passed

@@ -3,8 +3,8 @@ at the flank (issue 48, item 3), like against like, where Hertz's assumptions ho
 
 FE (fea/flank_hertz.py): the design's cup tooth and circular-spline tooth, two plane-strain elastic bodies, pressed
 together at the tooth-mesh study's major-axis contact point (the middle of the radial overlap) by a frictionless
-contact solve (hat pressures, P2 flexibilities, active set). Three meshes: the contact zone's node spacing b/6,
-b/8.5 and b/12 (ratio sqrt 2), the rest graded out to m/4.
+contact solve (hat pressures, P2 flexibilities, active set). Three meshes: the contact zone's node spacing b/8.5,
+b/12 and b/17 (ratio sqrt 2), the rest graded (0.5 per mm) out to m/4.
 Closed form (analytic/hertz_line.py, Johnson sec. 4.2): the two involutes' radii of curvature at the contact,
 rho = sqrt(r^2 - r_b^2) = r_b tan(alpha_r) (the spline's concave: R* = 1/(1/rho_f - 1/rho_c)), E* of the pair.
 
@@ -40,7 +40,8 @@ __all__ = ["CHECK_P0", "CHECK_B", "TOLERANCE", "reference", "rated_peak_line_loa
 CHECK_P0, CHECK_B = "mesh.flank_hertz", "mesh.flank_hertz_width"
 B_OVER_FLANK = 0.05            # the validated load: Hertz's half-width over the working flank (and tooth thickness)
 CRITERION = 0.1                # Hertz's assumption taken to hold up to this b / flank and b / tooth thickness
-MESHES = (12.0, 8.5, 6.0)      # zone nodes per Hertz half-width, finest first (ratio sqrt 2)
+MESHES = (17.0, 12.0, 8.5)     # zone nodes per Hertz half-width, finest first (ratio sqrt 2)
+GRADE = 0.5                    # the mesh size's growth per mm away from the zone
 ZONE_OVER_B = 1.6              # the candidate zone's half-length over b
 FAR_OVER_M = 0.25              # the mesh size away from the contact, over the module
 RATED_MESHES = (40, 28)        # zone spacings over the working flank at the rated load (a record, two meshes)
@@ -110,7 +111,7 @@ def _solved(pair, E_MPa: float, nu: float, load_N_per_mm: float, b: float):
     from strainwave.fea.flank_hertz import solve_contact
     from strainwave.fea.refinement import converged_quantity
     lame = Lame.from_young(E_MPa, nu)
-    solves = [solve_contact(pair, lame, load_N_per_mm, ZONE_OVER_B * b, b / n, FAR_OVER_M * pair.module_mm)
+    solves = [solve_contact(pair, lame, load_N_per_mm, ZONE_OVER_B * b, b / n, FAR_OVER_M * pair.module_mm, GRADE)
               for n in MESHES[::-1]][::-1]
     if any(s.zone_edge_loaded for s in solves):
         raise StageError("flank contact: the pressure reached the candidate zone's end")
@@ -232,7 +233,7 @@ def _rated_fe(params, pair, load_N_per_mm: float, flank: float, end: float) -> l
     fe = []
     for n in RATED_MESHES:
         k = n // 2                    # the zone ends on the nearer flank end exactly (not beyond a tooth's tip)
-        s = solve_contact(pair, lame, load_N_per_mm, end * (1 - 1e-12), end / k, FAR_OVER_M * pair.module_mm)
+        s = solve_contact(pair, lame, load_N_per_mm, end * (1 - 1e-12), end / k, FAR_OVER_M * pair.module_mm, GRADE)
         fe.append({"h_contact_mm": s.h_contact_mm, "peak_pressure_MPa": float(s.pressure_MPa.max()),
                    "centre_pressure_MPa": float(np.interp(0.0, s.x_mm, s.pressure_MPa)),
                    "zone_ends_loaded": s.zone_edge_loaded, "approach_mm": s.approach_mm,
