@@ -428,8 +428,10 @@ class ToothMesh(StudyVariant):
         quality = MeshQuality(facts["elements"], facts["nodes"], facts["dofs"], 2, float("nan"), float("nan"))
         # the rigid-rim solve's inputs are kept on every mesh (small): the check mesh.rigid_rim_sharing reads them
         fields = {"rigid_rim": rigid_inputs}
+        if k == 0:
+            fields["paths"] = paths          # small: the finest loop reaches meta (diagnose --baseline fea reads it)
         if keep_fields:
-            fields |= {"paths": paths, "rated_u": rated_field(infl, self.mesh_inputs, paths[0]),
+            fields |= {"rated_u": rated_field(infl, self.mesh_inputs, paths[0]),
                        "r_bore_mm": infl["r_bore_mm"], "crack_change": change}
         infl.pop("rim")
         return MeshSolve(refinement, values, quality,
@@ -474,14 +476,16 @@ class ToothMesh(StudyVariant):
         if "paths" not in f:
             return {"rigid_rim": f["rigid_rim"]}
         p = f["paths"][0]
-        return {"loop": {"torque_Nmm": p.torque_Nmm.tolist(), "twist_rad": p.twist_rad.tolist()},
-                "forces_at_rated_N": p.forces_N[int(np.argmax(p.torque_Nmm))].tolist(),
-                "pairs": {k: np.asarray(v).tolist() for k, v in self.mesh_inputs["angles"][0].items()},
-                "te_twist_at_rated_rad": [float(q.twist_rad[int(np.argmax(q.torque_Nmm))]) for q in f["paths"]],
-                "rigid_rim": f["rigid_rim"],
-                "crack": {"tooth_phi_rad": list(self.mesh_inputs["crack_phi_rad"]),
-                          "twist_change_at_rated_rad": np.asarray(f["crack_change"]).tolist(),
-                          "orders": crack_orders(self.mesh_inputs)}}
+        out = {"loop": {"torque_Nmm": p.torque_Nmm.tolist(), "twist_rad": p.twist_rad.tolist()},
+               "forces_at_rated_N": p.forces_N[int(np.argmax(p.torque_Nmm))].tolist(),
+               "pairs": {k: np.asarray(v).tolist() for k, v in self.mesh_inputs["angles"][0].items()},
+               "te_twist_at_rated_rad": [float(q.twist_rad[int(np.argmax(q.torque_Nmm))]) for q in f["paths"]],
+               "rigid_rim": f["rigid_rim"]}
+        if "crack_change" not in f:
+            return out
+        return out | {"crack": {"tooth_phi_rad": list(self.mesh_inputs["crack_phi_rad"]),
+                                "twist_change_at_rated_rad": np.asarray(f["crack_change"]).tolist(),
+                                "orders": crack_orders(self.mesh_inputs)}}
 
 
 def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, progress=None, quick=False,

@@ -31,6 +31,7 @@ from strainwave.io_atomic import remove_stale_temps
 from strainwave.compare.validate.plan import make_plan
 from strainwave.compare.validate.report_html import write_html
 from strainwave.compare.validate.catalogue_table import catalogue_document
+from strainwave.compare.validate.mesh_chain_checks import gear_line
 from strainwave.compare.validate.report_pdf import chromium, print_pdf
 from strainwave.compare.validate.tables_csv import CSV_FILES, write_tables
 from strainwave.compare.validate.report_md import write_markdown
@@ -356,7 +357,7 @@ def _results_document(params, quick, step, plan, book, outcomes, steps, timings,
         "views": {c: v.to_dict() for c, v in made.views.items()},
         "gci_table": [r.to_dict() for r in gci_rows(book, ORDER)],
         "nafems": nafems,
-        "checks": checks, "audit": audit, "catalogue": catalogue_document(),
+        "checks": checks, "audit": audit, "catalogue": catalogue_document(gear_line=gear_line(book, plan, params)),
         "crack_sweeps": {k: r.to_dict() for k, r in check_set.sweeps.items()},
         "images": [i.to_dict() for i in images], "missing_images": [m.to_dict() for m in missing],
         "files": _files(out_dir, outcomes, steps),
