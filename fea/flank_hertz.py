@@ -228,7 +228,8 @@ def body_flexibility(pair: FlankPair, body: int, zone_x: np.ndarray, h_far: floa
     K = elasticity_stiffness(basis, lame)
     locs = basis.doflocs
     r = np.hypot(locs[0] - centre[0], locs[1] - centre[1])
-    held = np.flatnonzero(r < r_held + 1e-7 if body == 0 else r > r_held - 1e-7)
+    sag = h_far ** 2 / (4.0 * r_held) + 1e-9           # the held arc is a polygon: its chords' sagitta, twice
+    held = np.flatnonzero(r < r_held + sag if body == 0 else r > r_held - sag)
     free = np.setdiff1d(np.arange(K.shape[0]), np.concatenate([2 * held, 2 * held + 1]))
     zone = loop[mask]
     tree = cKDTree(locs.T)
@@ -240,12 +241,10 @@ def body_flexibility(pair: FlankPair, body: int, zone_x: np.ndarray, h_far: floa
     F = np.zeros((K.shape[0], len(zone)))
     sign = -1.0 if body == 0 else 1.0
     for k in range(len(zone)):          # hat k: L/6 at its vertex from each side, L/3 at each side's midside
-        for j, L, m in ((k - 1, seg[k - 1] if k > 0 else 0.0, mid[k - 1] if k > 0 else None),
-                        (k, seg[k] if k < len(seg) else 0.0, mid[k] if k < len(seg) else None)):
-            if m is None:
-                continue
-            F[2 * vert[k] + 1, k] += sign * L / 6.0
-            F[2 * m + 1, k] += sign * L / 3.0
+        for e in (k - 1, k):
+            if 0 <= e < len(seg):
+                F[2 * vert[k] + 1, k] += sign * seg[e] / 6.0
+                F[2 * mid[e] + 1, k] += sign * seg[e] / 3.0
     Ff = F[free]
     # PARDISO solves the ~50 right-hand sides as one block (5x SuperLU's column-by-column solve here)
     U, _ = _direct(K[free][:, free].tocsr(), Ff, "flank-hertz")
