@@ -20,7 +20,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from strainwave.analytic.catalogue import overrides_for
-from strainwave.analytic.catalogue_rules import MeshRules
+from strainwave.analytic.catalogue_rules import MeshRules, RimRule
 from strainwave.analytic.drive_curve import ratcheting_torque_Nm
 from strainwave.analytic.mesh_engagement import study_loads
 from strainwave.compare.validate.ratcheting import CSF_RATCHETING_NM
@@ -29,9 +29,11 @@ from strainwave.fea.mesh_contact import solve_torque_path
 from strainwave.params import load_params
 
 RATIOS = (30, 50, 80, 100, 120, 160)
+# decision 069-ratchet48's drives: the blank rim 0.014 d (the catalogue's default became the fatigue rim, 069-cat48d)
+RULES = MeshRules(rim_rule=RimRule.BLANK)
 
 
-def rules_params(size: float, ratio: int, rules: MeshRules = MeshRules()):
+def rules_params(size: float, ratio: int, rules: MeshRules = RULES):
     """The parameter set of MeshRules' drive (the closed form's MeshRules.design, as a parameter file)."""
     d = rules.pitch_diameter_mm(size)
     o = overrides_for(SimpleNamespace(size=size, gear_ratio=ratio))
@@ -81,7 +83,7 @@ def main(argv: list[str]) -> None:
     if "--rim" in argv:
         rest = argv[argv.index("--rim") + 1:]
         return with_rim(rest[0] if rest else None)
-    rules = MeshRules()
+    rules = RULES
     at25 = {}
     for i in RATIOS:
         at25[i], cpu = fe_ratcheting_Nm(25, i)
