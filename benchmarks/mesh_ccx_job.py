@@ -26,8 +26,8 @@ REAL = "%.13e"                 # CalculiX reads 20 characters a number (benchmar
 PUNCH_HALF_MM_OVER_M = 0.3     # half-length of a punch's face along the flank, over the module
 PUNCH_DEPTH_OVER_M = 0.3       # its depth into the tooth space
 SLAVE_BAND_OVER_M = 0.5        # the flank facets each punch may touch: this far in radius from the contact point
-PENALTY_N_PER_MM3 = 1.0e8      # normal penalty slope: ~500 E / mm; x10 moves the shares < 0.1 % (decision 069)
-STICK_SLOPE_N_PER_MM3 = 1.0e7   # friction's stick slope (CalculiX's lambda); x10: shares < 0.1 % (decision 069)
+PENALTY_N_PER_MM3 = 1.0e8      # normal penalty slope: ~500 E / mm; x10 moves the shares < 0.1 % (decision 069-ccx48)
+STICK_SLOPE_N_PER_MM3 = 1.0e7   # friction's stick slope (CalculiX's lambda); x10: shares < 0.1 % (decision 069-ccx48)
 CLEARANCE_MAX_MM = 0.05        # pairs further open than this never close at rated torque on this gear
 
 
@@ -64,7 +64,7 @@ def _flank_point(model, tooth: int, radius_mm: float) -> tuple[np.ndarray, np.nd
     """The midpoint of the straight facet of tooth ``tooth``'s +theta flank (the mesh's boundary) that crosses
     ``radius_mm``, and its outward normal. A punch set flush with that facet touches it over the whole facet,
     centred where strainwave centres its band (off-centre, the tip tooth's steep compliance gradient moved
-    CalculiX's share by 9 % between meshes: decision 069)."""
+    CalculiX's share by 9 % between meshes: decision 069-ccx48)."""
     from strainwave.fea.tooth_mesh_fe import _boundary_facet_teeth
     bf, r_mid, which, off = _boundary_facet_teeth(model)
     sel = bf[(which == tooth % model.teeth) & (off > 0)]

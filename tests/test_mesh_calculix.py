@@ -4,7 +4,7 @@ benchmarks/mesh_ccx_job.py: a sector of the cup's toothed rim (bore clamped), on
 +theta-flank pair of a lobe at the study's unloaded clearances, mu = the study's. strainwave's band-load
 compliance and contact solve give the twist at the lobe's rated torque and, after the reversal, at half of it;
 CalculiX (CPE6, node-to-surface contact, *FRICTION) runs the same twists in two steps. The issue's goal (peak
-share within 2 %) is NOT met (decision 069: +8.1 % on this mesh, +4.5 % on the study's finest; the tip flank's
+share within 2 %) is NOT met (decision 069-ccx48: +8.1 % on this mesh, +4.5 % on the study's finest; the tip flank's
 contact is stiffer in CalculiX); the bench prints it as a MISS. What this test guards is the measured state: the
 same teeth in contact, the peak share within 10 % (a regression bound set after the measurement, not a goal),
 friction inside Coulomb's cone (the loaded flanks and the lobe); and a reference with the lobe's upper
@@ -71,7 +71,7 @@ def test_calculix_carries_the_same_tooth_shares(jobs, solved, step):
     assert np.all(got["forces_N"] > -1e-6 * got["forces_N"].max())
     mu = problem.system.friction_coefficient
     # per flank on the flanks with >= 10 % of the load (after the reversal the 3 % flank's penalty friction exceeds
-    # mu N by 29 %: decision 069), and over the lobe
+    # mu N by 29 %: decision 069-ccx48), and over the lobe
     big = got["share"] >= 0.10
     assert np.all(np.abs(got["tangential_N"][big]) <= 1.01 * mu * got["forces_N"][big])
     assert abs(got["tangential_N"].sum()) <= mu * got["forces_N"].sum()
