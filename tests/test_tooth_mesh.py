@@ -120,6 +120,9 @@ def test_study_on_quick_meshes_obeys_first_principles():
     assert q["K3_Nmm_per_rad"] > q["K1_Nmm_per_rad"] > 0.0             # clearance closes: the mesh stiffens
     # the flank loads balance the rated torque: the peak tooth's share times the lever can't exceed it
     assert q["peak_tooth_load_N"] * geo.cs_space.base_radius_mm <= params.gear.rated_output_torque_Nmm
+    # ratcheting (decision 069-ratchet48): the teeth hold at rated, and the lift over K_G is what sets it
+    assert q["ratcheting_torque_Nmm"] > params.gear.rated_output_torque_Nmm
+    assert q["ratcheting_overlap_mm"] <= 2 * geo.w0_mm + 1e-9 and q["ratcheting_lift_rated_mm"] > 0.0
 
 
 @pytest.mark.parametrize("name", [None, "strainwave/data/second_gear.toml"])
