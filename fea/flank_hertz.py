@@ -43,12 +43,6 @@ class FlankPair:
     r_held_cs_mm: float
     module_mm: float
 
-    @property
-    def relative_radius_mm(self) -> float:
-        """R* = 1 / (1/rho_fs - 1/rho_cs): the internal pair's curvatures subtract (ValueError when they conform)."""
-        from strainwave.analytic.hertz_line import relative_radius_mm
-        return relative_radius_mm(self.rho_fs_mm, -self.rho_cs_mm)
-
 
 def flank_pair(params) -> FlankPair:
     """The study's major-axis pair (analytic/mesh_engagement: contact at the middle of the radial overlap)."""

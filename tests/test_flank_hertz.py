@@ -48,7 +48,7 @@ def test_the_real_involutes_gap_is_hertz_s_parabola():
     assert fh.surface_y(pair, 1, x) == pytest.approx(-x ** 2 / (2 * pair.rho_cs_mm), rel=2e-2, abs=1e-12)
     gap = fh.initial_gap_mm(pair, x)
     assert gap.min() >= 0.0 and gap[10] == 0.0
-    assert gap == pytest.approx(x ** 2 / (2 * pair.relative_radius_mm), rel=1e-2, abs=1e-14)
+    assert gap == pytest.approx(x ** 2 / (2 * fhc.pair_relative_radius_mm(pair)), rel=1e-2, abs=1e-14)
 
 
 def test_contact_lcp_on_a_winkler_bed():

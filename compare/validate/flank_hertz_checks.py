@@ -33,7 +33,7 @@ import numpy as np
 from strainwave.compare.validate.checks import Check, evaluate, fea_tolerance, not_evaluated
 from strainwave.errors import StageError
 
-__all__ = ["CHECK_P0", "CHECK_B", "TOLERANCE", "reference", "rated_peak_line_load", "B_OVER_FLANK", "CRITERION",
+__all__ = ["pair_relative_radius_mm", "CHECK_P0", "CHECK_B", "TOLERANCE", "reference", "rated_peak_line_load", "B_OVER_FLANK", "CRITERION",
            "MESHES", "closed_form", "allowances",
            "fe_quantities", "hertz_checks", "rated_record"]
 
@@ -56,6 +56,12 @@ def _lame(params):
     return Lame.from_young(m.youngs_modulus_MPa, m.poisson_ratio)
 
 
+def pair_relative_radius_mm(pair) -> float:
+    """R* = 1 / (1/rho_fs - 1/rho_cs): the internal pair's curvatures subtract (ValueError when they conform)."""
+    from strainwave.analytic.hertz_line import relative_radius_mm
+    return relative_radius_mm(pair.rho_fs_mm, -pair.rho_cs_mm)
+
+
 def tooth_thickness_mm(pair) -> float:
     from strainwave.geometry.involute import half_angle_rad
     return 2.0 * pair.r_fs_mm * float(half_angle_rad(pair.fs, pair.r_fs_mm))
@@ -72,8 +78,8 @@ def closed_form(params, load_N_per_mm: float | None = None):
     flank, end = working_flank_mm(pair)
     if load_N_per_mm is None:
         b = B_OVER_FLANK * min(flank, tooth_thickness_mm(pair))
-        load_N_per_mm = load_for_half_width(b, pair.relative_radius_mm, e_star)
-    return pair, line_contact(load_N_per_mm, pair.relative_radius_mm, e_star), flank, end
+        load_N_per_mm = load_for_half_width(b, pair_relative_radius_mm(pair), e_star)
+    return pair, line_contact(load_N_per_mm, pair_relative_radius_mm(pair), e_star), flank, end
 
 
 def reference(params, which: str):
@@ -128,7 +134,7 @@ def _note(params, solves, which: str) -> str:
     return (f"{which}; plane strain, the cup's tooth (held at its bore) against the circular spline's (held "
             f"{pair.r_held_cs_mm - pair.r_cs_mm:.3g} mm outside the contact), at the study's major-axis contact: r = "
             f"{pair.r_fs_mm:.4g} / {pair.r_cs_mm:.4g} mm, rho = {pair.rho_fs_mm:.4g} / -{pair.rho_cs_mm:.4g} mm, R* = "
-            f"{pair.relative_radius_mm:.4g} mm; line load {h.load_N_per_mm:.4g} N/mm: Hertz b = {h.half_width_mm:.4g} mm"
+            f"{pair_relative_radius_mm(pair):.4g} mm; line load {h.load_N_per_mm:.4g} N/mm: Hertz b = {h.half_width_mm:.4g} mm"
             f" = {h.half_width_mm / flank:.3g} x the working flank ({flank:.3g} mm) and "
             f"{h.half_width_mm / t:.3g} x the tooth thickness ({t:.3g} mm), criterion <= {CRITERION:g}; meshes of "
             f"{', '.join(str(s.dofs) for s in solves)} dofs; FE edge of the loaded hats "
