@@ -54,7 +54,7 @@ from strainwave.compare.diagnose.explain import explain
 from strainwave.compare.diagnose.judge import AMBIGUOUS_BIC, BIC_THRESHOLD, MIN_COMPONENT_SIGMAS
 from strainwave.compare.diagnose.locate import Located, locate, locate_effect
 from strainwave.compare.diagnose.mains import find_mains
-from strainwave.compare.diagnose.time_events import find_time_events
+from strainwave.compare.diagnose.time_events import find_thermal_drift, find_time_events
 from strainwave.compare.diagnose.parallel import usable_workers
 from strainwave.compare.diagnose.quantities import Reading, read_quantities
 from strainwave.compare.diagnose.recording import Recording, TestFlags, parse_recording
@@ -105,6 +105,14 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
                                             usable_workers() if workers is None else workers)
             if again.verdict is not Verdict.UNEXPLAINED:
                 diag, arrays, events = again, arrays_again, events + found.sentences
+        elif diag.verdict is not Verdict.UNEXPLAINED and (drift := _drift(rec)) is not None:
+            # a thermal drift the catalogue bent its effects to (decision 069): taken out, the rest diagnosed
+            # again and the drift named beside that verdict where it is not unexplained
+            stage("a thermal drift taken out: diagnosing the rest again")
+            again, arrays_again = _diagnose(dataclasses.replace(rec, response=rec.response - drift.curve), base,
+                                            usable_workers() if workers is None else workers)
+            if again.verdict is not Verdict.UNEXPLAINED:
+                diag, arrays, events = again, arrays_again, events + (drift.said,)
     return (dataclasses.replace(diag, events=events) if events else diag), arrays
 
 
@@ -115,6 +123,14 @@ def _time_events(rec: Recording):
     segments = find_segments(u, reversal_threshold(u))
     first = segments[0][1] if len(segments) > 1 else 0
     return find_time_events(rec.load, rec.response, rec.time_s, first, rec.response_unit)
+
+
+def _drift(rec: Recording):
+    """time_events.find_thermal_drift on the raw channels (decision 069), the first loading left out of its fit."""
+    u = rec.load / (float(np.max(np.abs(rec.load))) or 1.0)
+    segments = find_segments(u, reversal_threshold(u))
+    first = segments[0][1] if len(segments) > 1 else 0
+    return find_thermal_drift(rec.load, rec.response, rec.time_s, first, rec.response_unit)
 
 
 def _without_events(rec: Recording, base: Baseline) -> tuple[Recording, tuple[str, ...]]:

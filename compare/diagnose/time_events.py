@@ -25,13 +25,17 @@ a polynomial per loading direction, plus a line in time), so a loop or a stiffen
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.signal import lfilter
 
 from strainwave.compare.diagnose.judge import BIC_THRESHOLD
-from strainwave.compare.diagnose.structure import MIN_COMPONENT_SIGMAS
+from strainwave.compare.diagnose.noise import _TRIM_FACTOR, KEEP
+from strainwave.compare.diagnose.structure import (MIN_COMPONENT_SIGMAS, NoiseModel, fine_scale_noise,
+                                                   flicker_noise, slow_power_inflation)
 
 SLIP_SIGMAS = 30.0          # a step this many robust sigmas of the sample-to-sample differences is no noise
 SLIP_SPAN = 3               # samples a slip may take
@@ -47,6 +51,9 @@ LOAD_KNOTS = 48             # knots per loading direction of the load model a dr
 DRIFT_LEAVES = 4.0          # a drift is the whole story beside the load: its residual's variance within this x
                             # the white noise's (else the load model misses something, e.g. a stick-slip stair,
                             # that a slow curve in time only partly follows)
+DRIFT_TAILS = 2.0           # ... and the innovations its noise filter leaves Gaussian: their variance within this
+                            # x their trimmed variance (a stair's steps, which a filter reads as red noise, are
+                            # spikes in them; Gaussian innovations give 1.0-1.15)
 
 
 @dataclass(frozen=True)
@@ -99,11 +106,13 @@ def _holds(load: np.ndarray) -> list[tuple[int, int]]:
     return out
 
 
-def _best_exponential(t: np.ndarray, r: np.ndarray, taus: np.ndarray, basis: np.ndarray):
-    """(gain in RSS, tau, amplitude, curve) of A (1 - exp(-t/tau)) beside ``basis`` (orthonormal columns)."""
+def _best_exponential(t: np.ndarray, r: np.ndarray, taus: np.ndarray, basis: np.ndarray, whiten=None):
+    """(gain in RSS, tau, amplitude, curve) of A (1 - exp(-t/tau)) beside ``basis`` (orthonormal columns);
+    ``whiten``: the noise filter ``r`` and ``basis`` were passed through."""
     best = (0.0, math.nan, 0.0, np.zeros_like(r))
     for tau in taus:
         g = 1.0 - np.exp(-t / tau)
+        g = g if whiten is None else whiten(g)
         g = g - basis @ (basis.T @ g)
         gg = float(g @ g)
         if gg <= 0.0:
@@ -157,33 +166,137 @@ def load_states(load: np.ndarray, t: np.ndarray) -> np.ndarray:
     return np.column_stack([cols, (t - t[0]) / (t[-1] - t[0])])
 
 
-def find_drift(load: np.ndarray, y: np.ndarray, t: np.ndarray, sigma: float, first: int,
-               unit: str) -> tuple[np.ndarray, str | None]:
-    """A thermal zero drift (see the module doc): (the response without it, a sentence) or (y, None)."""
-    # fitted on at most DRIFT_ROWS rows (a slow curve needs no more), taken out of every row
+@dataclass(frozen=True)
+class Drift:
+    """A thermal zero drift found beside the load (see the module doc)."""
+
+    curve: np.ndarray           # the drift beyond the nuisance fit's line, every row (taken out of the response)
+    total: np.ndarray           # the whole drift in time (warm-up plus line), every row, zero where the fit starts
+    tau: float                  # time constant of the warm-up fitted (s, or samples without a time column)
+    evidence: float             # delta BIC under the recording's noise, deflated by its slow power
+    noise: str                  # the noise filter it was judged under
+    start_rate: float           # the drift's rate where the fit starts (response units per s)
+    start_s: float              # where the fit starts: the end of the first loading (s)
+
+    def sentence(self, t: np.ndarray, unit: str) -> str:
+        span = float(t[-1] - self.start_s)
+        change = float(self.total[-1])
+
+        def shown(x: float) -> str:
+            return f"{x:.3g} {unit}" + (f" ({x * _ARCMIN_PER_RAD:.3g} arcmin)" if unit == "rad" else "")
+        return (f"a thermal zero drift: the response drifts against time, not load, by {shown(change)} from "
+                f"{self.start_s:.4g} s to {float(t[-1]):.4g} s (mean rate {shown(change / span)}/s, "
+                f"{shown(self.start_rate)}/s at {self.start_s:.4g} s; time constant {self.tau:.3g} s), departing from a straight line by {shown(float(np.ptp(self.curve)))} "
+                f"(delta BIC {self.evidence:.3g} beside any function of the load per loading direction, "
+                f"{self.noise} noise); taken out of the fit")
+
+
+_ARCMIN_PER_RAD = 60.0 * 180.0 / math.pi
+
+
+def _noise_of(rest: np.ndarray) -> tuple[NoiseModel, float]:
+    """The recording's noise read from the fine scales of what the drift and the load leave (as
+    structure.reference_noise reads it), with its slow power; and the variance that filter implies."""
+    model = fine_scale_noise(rest)
+    model = dataclasses.replace(model, slow_inflation=slow_power_inflation(rest, model),
+                                flicker=flicker_noise(rest, model))
+    impulse = np.zeros(min(len(rest), 4000))
+    impulse[0] = 1.0
+    h = lfilter(model.a, model.b, impulse)          # r = lfilter(a, b, e): the filter's response to one innovation
+    return model, model.innovation_var * float(h @ h)
+
+
+def _trimmed_var(x: np.ndarray) -> float:
+    """Gaussian variance from the central KEEP of |x - median| (noise.py's trimming): spikes left out."""
+    a = np.abs(x - np.median(x))
+    kept = x[a <= np.quantile(a, KEEP)] - np.median(x)
+    return float(np.mean(kept ** 2)) / _TRIM_FACTOR
+
+
+def drift_test(load: np.ndarray, y: np.ndarray, t: np.ndarray, sigma: float, first: int) -> Drift | None:
+    """A warm-up in time beside any function of the load, judged as the effects are (decision 069)."""
     rows = np.arange(len(y))
     keep = (rows >= first) & (rows % max(1, len(y) // DRIFT_ROWS) == 0)
     tt = t - t[0]
     span = float(tt[-1])
     if keep.sum() < 50 or not span > 0.0:
-        return y, None
-    q, _ = np.linalg.qr(load_states(load[keep], t[keep]))
+        return None
+    X = load_states(load[keep], t[keep])
+    q, _ = np.linalg.qr(X)
     r = y[keep] - q @ (q.T @ y[keep])
     taus = span * np.geomspace(DRIFT_TAU[0], DRIFT_TAU[1], N_TAU)
-    gain, tau, amp, _ = _best_exponential(tt[keep], r, taus, q)
+    gain, tau, _, curve = _best_exponential(tt[keep], r, taus, q)
     n, rss0 = int(keep.sum()), float(r @ r)
-    if not rss0 > gain or n * math.log(rss0 / (rss0 - gain)) - 2.0 * math.log(n) <= BIC_THRESHOLD:
+    # not significant under white noise, it is not under a redder one (more slow power): the noise is not read
+    if not (math.isfinite(tau) and rss0 > gain) or n * math.log(rss0 / (rss0 - gain)) - 2.0 * math.log(n) \
+            <= BIC_THRESHOLD:
+        return None
+    model, variance = _noise_of(r - curve)
+    # both models scored on the whitened rows: a drift is judged against the noise it sits in
+    qw, _ = np.linalg.qr(model.whiten(X))
+    yw = model.whiten(y[keep])
+    rw = yw - qw @ (qw.T @ yw)
+    gain, tau, amp, _ = _best_exponential(tt[keep], rw, taus, qw, whiten=model.whiten)
+    n, rss0 = len(rw), float(rw @ rw)
+    if not rss0 > gain:
+        return None
+    warm = amp * (1.0 - np.exp(-tt / tau))
+    fit_all = np.column_stack([X, warm[keep]])
+    coef = np.linalg.lstsq(model.whiten(fit_all), yw, rcond=None)[0]
+    beyond = warm - np.polyval(np.polyfit(tt[keep], warm[keep], 1), tt)
+    a = int(np.flatnonzero(keep)[0])
+    # held over the first loading, not extrapolated: the fitted shape says nothing of the drift before it
+    beyond[:a] = beyond[a]
+    evidence = model.deflate(n * math.log(rss0 / (rss0 - gain)), beyond[keep]) - 2.0 * math.log(n)
+    rest = y[keep] - fit_all @ coef
+    innovations = model.whiten(rest)
+    if evidence <= BIC_THRESHOLD or float(np.var(rest)) > DRIFT_LEAVES * variance \
+            or float(np.var(innovations)) > DRIFT_TAILS * _trimmed_var(innovations):
+        return None
+    if float(np.ptp(beyond[keep])) < MIN_COMPONENT_SIGMAS * sigma:
+        return None
+    slope = coef[X.shape[1] - 1] / (t[keep][-1] - t[keep][0])           # load_states' line in time
+    whole = coef[-1] * warm + slope * tt
+    # reported over the rows it was fitted on (no extrapolation over the first loading)
+    return Drift(beyond, whole - whole[a], tau, evidence, model.describe(),
+                 float(coef[-1] * amp * math.exp(-tt[a] / tau) / tau + slope), float(t[a]))
+
+
+def find_drift(load: np.ndarray, y: np.ndarray, t: np.ndarray, sigma: float, first: int,
+               unit: str) -> tuple[np.ndarray, str | None]:
+    """A thermal zero drift (see the module doc): (the response without it, a sentence) or (y, None)."""
+    drift = drift_test(load, y, t, sigma, first)
+    if drift is None:
         return y, None
-    if (rss0 - gain) / n > DRIFT_LEAVES * sigma ** 2:
-        return y, None
-    drift = amp * (1.0 - np.exp(-tt / tau))
-    # the nuisance fit takes a line in time: what is left of the drift beyond it
-    drift = drift - np.polyval(np.polyfit(tt[keep], drift[keep], 1), tt)
-    swing = float(np.ptp(drift[keep]))
-    if swing < MIN_COMPONENT_SIGMAS * sigma:
-        return y, None
-    return y - drift, (f"a thermal zero drift: the response drifts against time, not load, departing from a "
-                       f"straight line by {swing:.3g} {unit} (time constant {tau:.3g} s); taken out of the fit")
+    return y - drift.curve, drift.sentence(t, unit)
+
+
+@dataclass(frozen=True)
+class FoundDrift:
+    curve: np.ndarray           # what to take out of the response (every row)
+    said: str
+
+
+def find_thermal_drift(load: np.ndarray, y: np.ndarray, t: np.ndarray | None, first: int,
+                       unit: str = "rad") -> FoundDrift | None:
+    """A thermal zero drift alone (decision 069: read on every verdict); without a time column the sample index
+    is the clock (times then in samples)."""
+    if len(y) < 50:
+        return None
+    clock = np.arange(len(y), dtype=float) if t is None or not t[-1] > t[0] else t
+    from threadpoolctl import threadpool_limits
+    sigma = _sigma(y)
+    with threadpool_limits(limits=1):       # a (rows x 97) QR: BLAS threads only contend (decision 019)
+        # read beside the creep under any hold (a hold's creep runs in time at a constant load, and is no drift)
+        drift = drift_test(load, find_hold_creep(load, y, clock, sigma, unit)[0], clock, sigma, first)
+    if drift is None:
+        return None
+    said = drift.sentence(clock, unit)
+    return FoundDrift(drift.curve, said if t is not None else _in_samples(said))
+
+
+def _in_samples(said: str) -> str:
+    return said.replace(" s ", " samples ").replace(" s;", " samples;").replace(" s)", " samples)").replace("/s", "/sample")
 
 
 def find_time_events(load: np.ndarray, y: np.ndarray, t: np.ndarray | None, first: int,
@@ -200,8 +313,8 @@ def find_time_events(load: np.ndarray, y: np.ndarray, t: np.ndarray | None, firs
         y1, drift = find_drift(load, y1, clock, sigma, first, unit)
         said += [drift] if drift else []
     if t is None:
-        said = [s.replace(" s;", " samples;") for s in said]
+        said = [_in_samples(s) for s in said]
     return TimeEvents(y1, tuple(said)) if said else None
 
 
-__all__ = ["TimeEvents", "find_drift", "find_hold_creep", "find_slips", "find_time_events"]
+__all__ = ["Drift", "FoundDrift", "TimeEvents", "drift_test", "find_drift", "find_thermal_drift", "find_hold_creep", "find_slips", "find_time_events"]
