@@ -96,7 +96,15 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
     # Tiny (N x 4) linear-algebra calls: BLAS threads only add overhead (docs/decisions/019-diagnose-speed.md).
     with threadpool_limits(limits=1):
         diag, arrays = _diagnose(rec, base, usable_workers() if workers is None else workers)
-        if diag.verdict is Verdict.UNEXPLAINED and (found := _time_events(rec)) is not None:
+        drift_named = False
+        if (drift := _drift(rec)) is not None:
+            # a thermal drift, which the catalogue bends its effects to (decision 069): taken out, the rows it
+            # was read on (after the first loading) diagnosed again, named beside that verdict unless unexplained
+            stage("a thermal drift taken out: diagnosing the rest again")
+            again, arrays_again = _diagnose(_after(rec, drift), base, usable_workers() if workers is None else workers)
+            if again.verdict is not Verdict.UNEXPLAINED:
+                diag, arrays, events, drift_named = again, arrays_again, events + (drift.said,), True
+        if not drift_named and diag.verdict is Verdict.UNEXPLAINED and (found := _time_events(rec)) is not None:
             # events in time the catalogue cannot draw: taken out, the rest diagnosed again; named where that
             # rest is explained or agrees (else they are not the story: a re-clamp, a rate-dependent loop
             # read part-way as a drift), the first answer standing
@@ -105,14 +113,6 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
                                             usable_workers() if workers is None else workers)
             if again.verdict is not Verdict.UNEXPLAINED:
                 diag, arrays, events = again, arrays_again, events + found.sentences
-        elif diag.verdict is not Verdict.UNEXPLAINED and (drift := _drift(rec)) is not None:
-            # a thermal drift the catalogue bent its effects to (decision 069): taken out, the rest diagnosed
-            # again and the drift named beside that verdict where it is not unexplained
-            stage("a thermal drift taken out: diagnosing the rest again")
-            again, arrays_again = _diagnose(dataclasses.replace(rec, response=rec.response - drift.curve), base,
-                                            usable_workers() if workers is None else workers)
-            if again.verdict is not Verdict.UNEXPLAINED:
-                diag, arrays, events = again, arrays_again, events + (drift.said,)
     return (dataclasses.replace(diag, events=events) if events else diag), arrays
 
 
@@ -131,6 +131,14 @@ def _drift(rec: Recording):
     segments = find_segments(u, reversal_threshold(u))
     first = segments[0][1] if len(segments) > 1 else 0
     return find_thermal_drift(rec.load, rec.response, rec.time_s, first, rec.response_unit)
+
+
+def _after(rec: Recording, drift) -> Recording:
+    """The rows a drift was read on (after the first loading, where it is known), the drift taken out."""
+    keep = slice(drift.start_row, None)
+    return dataclasses.replace(rec, load=rec.load[keep], response=(rec.response - drift.curve)[keep],
+                               time_s=None if rec.time_s is None else rec.time_s[keep],
+                               extra={c: v[keep] for c, v in rec.extra.items()})
 
 
 def _without_events(rec: Recording, base: Baseline) -> tuple[Recording, tuple[str, ...]]:

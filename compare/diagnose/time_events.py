@@ -178,7 +178,7 @@ class Drift:
     start_rate: float           # the drift's rate where the fit starts (response units per s)
     start_s: float              # where the fit starts: the end of the first loading (s)
 
-    def sentence(self, t: np.ndarray, unit: str) -> str:
+    def sentence(self, t: np.ndarray, unit: str, rows_after: bool = True) -> str:
         span = float(t[-1] - self.start_s)
         change = float(self.total[-1])
 
@@ -188,7 +188,8 @@ class Drift:
                 f"{self.start_s:.4g} s to {float(t[-1]):.4g} s (mean rate {shown(change / span)}/s, "
                 f"{shown(self.start_rate)}/s at {self.start_s:.4g} s; time constant {self.tau:.3g} s), departing from a straight line by {shown(float(np.ptp(self.curve)))} "
                 f"(delta BIC {self.evidence:.3g} beside any function of the load per loading direction, "
-                f"{self.noise} noise); taken out of the fit")
+                f"{self.noise} noise); " + (f"taken out, the rows from {self.start_s:.4g} s diagnosed without it"
+                                            if rows_after else "taken out of the fit"))
 
 
 _ARCMIN_PER_RAD = 60.0 * 180.0 / math.pi
@@ -268,13 +269,14 @@ def find_drift(load: np.ndarray, y: np.ndarray, t: np.ndarray, sigma: float, fir
     drift = drift_test(load, y, t, sigma, first)
     if drift is None:
         return y, None
-    return y - drift.curve, drift.sentence(t, unit)
+    return y - drift.curve, drift.sentence(t, unit, rows_after=False)
 
 
 @dataclass(frozen=True)
 class FoundDrift:
     curve: np.ndarray           # what to take out of the response (every row)
     said: str
+    start_row: int              # the first row it was read on (the end of the first loading)
 
 
 def find_thermal_drift(load: np.ndarray, y: np.ndarray, t: np.ndarray | None, first: int,
@@ -292,7 +294,8 @@ def find_thermal_drift(load: np.ndarray, y: np.ndarray, t: np.ndarray | None, fi
     if drift is None:
         return None
     said = drift.sentence(clock, unit)
-    return FoundDrift(drift.curve, said if t is not None else _in_samples(said))
+    start = int(np.searchsorted(clock, drift.start_s))
+    return FoundDrift(drift.curve, said if t is not None else _in_samples(said), start)
 
 
 def _in_samples(said: str) -> str:
