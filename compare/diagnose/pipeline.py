@@ -97,12 +97,14 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
     with threadpool_limits(limits=1):
         diag, arrays = _diagnose(rec, base, usable_workers() if workers is None else workers)
         drift_named = False
-        if (drift := _drift(rec)) is not None:
+        if (drift := _drift(rec, arrays["noise_model"])) is not None:
             # a thermal drift, which the catalogue bends its effects to (decision 069): taken out, the rows it
-            # was read on (after the first loading) diagnosed again, named beside that verdict unless unexplained
+            # was read on (after the first loading) diagnosed again
             stage("a thermal drift taken out: diagnosing the rest again")
             again, arrays_again = _diagnose(_after(rec, drift), base, usable_workers() if workers is None else workers)
-            if again.verdict is not Verdict.UNEXPLAINED:
+            # named where the rest is read at least as firmly (a sensor's wander taken for a drift left a
+            # family-2 Preisach loop explained but ambiguous)
+            if again.verdict is not Verdict.UNEXPLAINED and (diag.ambiguous or not again.ambiguous):
                 diag, arrays, events, drift_named = again, arrays_again, events + (drift.said,), True
         if not drift_named and diag.verdict is Verdict.UNEXPLAINED and (found := _time_events(rec)) is not None:
             # events in time the catalogue cannot draw: taken out, the rest diagnosed again; named where that
@@ -125,12 +127,13 @@ def _time_events(rec: Recording):
     return find_time_events(rec.load, rec.response, rec.time_s, first, rec.response_unit)
 
 
-def _drift(rec: Recording):
-    """time_events.find_thermal_drift on the raw channels (decision 069), the first loading left out of its fit."""
+def _drift(rec: Recording, noise=None):
+    """time_events.find_thermal_drift on the raw channels (decision 069), the first loading left out of its fit,
+    judged also under the recording's one noise model ``noise`` (read on the fitted rows)."""
     u = rec.load / (float(np.max(np.abs(rec.load))) or 1.0)
     segments = find_segments(u, reversal_threshold(u))
     first = segments[0][1] if len(segments) > 1 else 0
-    return find_thermal_drift(rec.load, rec.response, rec.time_s, first, rec.response_unit)
+    return find_thermal_drift(rec.load, rec.response, rec.time_s, first, rec.response_unit, noise)
 
 
 def _after(rec: Recording, drift) -> Recording:
@@ -213,7 +216,7 @@ def _diagnose(rec: Recording, base: Baseline, workers: int) -> tuple[Diagnosis, 
     diag = explained(noise, answer, reading, location)                             # 7
     after = answer.best if answer.verdict is not Verdict.AGREES else noise.base_fit
     arrays = {"load": fit_rec.load, "response": fit_rec.response, "baseline": noise.base_fit.model * ctx.Y,
-              "augmented": after.model * ctx.Y, "model_label": after.label}
+              "augmented": after.model * ctx.Y, "model_label": after.label, "noise_model": noise.judge.noise}
     return diag, arrays
 
 

@@ -34,6 +34,7 @@ from scipy.signal import lfilter
 
 from strainwave.compare.diagnose.judge import BIC_THRESHOLD
 from strainwave.compare.diagnose.noise import _TRIM_FACTOR, KEEP
+from strainwave.compare.diagnose.rows import stride
 from strainwave.compare.diagnose.structure import (MIN_COMPONENT_SIGMAS, NoiseModel, fine_scale_noise,
                                                    flicker_noise, slow_power_inflation)
 
@@ -170,8 +171,9 @@ def load_states(load: np.ndarray, t: np.ndarray) -> np.ndarray:
 class Drift:
     """A thermal zero drift found beside the load (see the module doc)."""
 
-    curve: np.ndarray           # the drift beyond the nuisance fit's line, every row (taken out of the response)
+    curve: np.ndarray           # the drift (warm-ups and line) from the end of the first loading, 0 before it
     total: np.ndarray           # the whole drift in time (warm-up plus line), every row, zero where the fit starts
+    departure: float            # its departure from a straight line over the rows read (peak to peak)
     tau: float                  # time constant of the warm-up fitted (s, or samples without a time column)
     evidence: float             # delta BIC under the recording's noise, deflated by its slow power
     noise: str                  # the noise filter it was judged under
@@ -186,7 +188,7 @@ class Drift:
             return f"{x:.3g} {unit}" + (f" ({x * _ARCMIN_PER_RAD:.3g} arcmin)" if unit == "rad" else "")
         return (f"a thermal zero drift: the response drifts against time, not load, by {shown(change)} from "
                 f"{self.start_s:.4g} s to {float(t[-1]):.4g} s (mean rate {shown(change / span)}/s, "
-                f"{shown(self.start_rate)}/s at {self.start_s:.4g} s; time constant {self.tau:.3g} s), departing from a straight line by {shown(float(np.ptp(self.curve)))} "
+                f"{shown(self.start_rate)}/s at {self.start_s:.4g} s; time constant {self.tau:.3g} s), departing from a straight line by {shown(self.departure)} "
                 f"(delta BIC {self.evidence:.3g} beside any function of the load per loading direction, "
                 f"{self.noise} noise); " + (f"taken out, the rows from {self.start_s:.4g} s diagnosed without it"
                                             if rows_after else "taken out of the fit"))
@@ -214,10 +216,29 @@ def _trimmed_var(x: np.ndarray) -> float:
     return float(np.mean(kept ** 2)) / _TRIM_FACTOR
 
 
-def drift_test(load: np.ndarray, y: np.ndarray, t: np.ndarray, sigma: float, first: int) -> Drift | None:
-    """A warm-up in time beside any function of the load, judged as the effects are (decision 069)."""
+def _judged(tt: np.ndarray, keep: np.ndarray, X: np.ndarray, y: np.ndarray, taus: np.ndarray, model: NoiseModel):
+    """(delta BIC deflated by the sensor's slow power, tau, amplitude) of the best warm-up beside the load X,
+    both scored on the rows whitened by ``model``."""
+    qw, _ = np.linalg.qr(model.whiten(X))
+    yw = model.whiten(y)
+    rw = yw - qw @ (qw.T @ yw)
+    gain, tau, amp, _ = _best_exponential(tt[keep], rw, taus, qw, whiten=model.whiten)
+    n, rss0 = len(rw), float(rw @ rw)
+    if not (rss0 > gain and math.isfinite(tau)):
+        return -math.inf, tau, amp
+    warm = amp * (1.0 - np.exp(-tt[keep] / tau))
+    beyond = warm - np.polyval(np.polyfit(tt[keep], warm, 1), tt[keep])
+    return model.deflate(n * math.log(rss0 / (rss0 - gain)), beyond) - 2.0 * math.log(n), tau, amp
+
+
+def drift_test(load: np.ndarray, y: np.ndarray, t: np.ndarray, sigma: float, first: int,
+               noise: NoiseModel | None = None) -> Drift | None:
+    """A warm-up in time beside any function of the load, judged as the effects are (decision 069); ``noise``:
+    the recording's one noise model on the fitted rows (rows.subsample's stride), where known."""
     rows = np.arange(len(y))
-    keep = (rows >= first) & (rows % max(1, len(y) // DRIFT_ROWS) == 0)
+    step = max(1, len(y) // DRIFT_ROWS)
+    keep = (rows >= first) & (rows % step == 0)
+    noise = noise if step == stride(len(y)) else None           # read on the fitted rows: only on the same rows
     tt = t - t[0]
     span = float(tt[-1])
     if keep.sum() < 50 or not span > 0.0:
@@ -233,14 +254,12 @@ def drift_test(load: np.ndarray, y: np.ndarray, t: np.ndarray, sigma: float, fir
             <= BIC_THRESHOLD:
         return None
     model, variance = _noise_of(r - curve)
-    # both models scored on the whitened rows: a drift is judged against the noise it sits in
-    qw, _ = np.linalg.qr(model.whiten(X))
+    evidence, tau, amp = _judged(tt, keep, X, y[keep], taus, model)
+    if noise is not None:
+        # and under the recording's one noise model, as the effects are (the smaller evidence stands): a
+        # random walk the load's 96 hats hid from the fine scales of a short record is no warm-up
+        evidence = min(evidence, _judged(tt, keep, X, y[keep], taus, noise)[0])
     yw = model.whiten(y[keep])
-    rw = yw - qw @ (qw.T @ yw)
-    gain, tau, amp, _ = _best_exponential(tt[keep], rw, taus, qw, whiten=model.whiten)
-    n, rss0 = len(rw), float(rw @ rw)
-    if not rss0 > gain:
-        return None
     warm = amp * (1.0 - np.exp(-tt / tau))
     fit_all = np.column_stack([X, warm[keep]])
     coef = np.linalg.lstsq(model.whiten(fit_all), yw, rcond=None)[0]
@@ -248,7 +267,6 @@ def drift_test(load: np.ndarray, y: np.ndarray, t: np.ndarray, sigma: float, fir
     a = int(np.flatnonzero(keep)[0])
     # held over the first loading, not extrapolated: the fitted shape says nothing of the drift before it
     beyond[:a] = beyond[a]
-    evidence = model.deflate(n * math.log(rss0 / (rss0 - gain)), beyond[keep]) - 2.0 * math.log(n)
     rest = y[keep] - fit_all @ coef
     innovations = model.whiten(rest)
     if evidence <= BIC_THRESHOLD or float(np.var(rest)) > DRIFT_LEAVES * variance \
@@ -256,11 +274,39 @@ def drift_test(load: np.ndarray, y: np.ndarray, t: np.ndarray, sigma: float, fir
         return None
     if float(np.ptp(beyond[keep])) < MIN_COMPONENT_SIGMAS * sigma:
         return None
-    slope = coef[X.shape[1] - 1] / (t[keep][-1] - t[keep][0])           # load_states' line in time
-    whole = coef[-1] * warm + slope * tt
-    # reported over the rows it was fitted on (no extrapolation over the first loading)
-    return Drift(beyond, whole - whole[a], tau, evidence, model.describe(),
-                 float(coef[-1] * amp * math.exp(-tt[a] / tau) / tau + slope), float(t[a]))
+    # found, its shape is taken out as two warm-ups (a heater's t^2 start is no one exponential) and the line
+    slope, drift = _two_warm_ups(tt, keep, X, model.whiten, yw, taus)
+    slope = slope / (t[keep][-1] - t[keep][0])                          # load_states' line in time
+    whole = drift + slope * tt
+    whole = whole - whole[a]
+    departure = float(np.ptp((drift - np.polyval(np.polyfit(tt[keep], drift[keep], 1), tt))[keep]))
+    # reported over the rows it was fitted on (no extrapolation over the first loading): taken out whole
+    return Drift(np.where(rows < a, 0.0, whole), whole, departure, tau, evidence, model.describe(),
+                 float(np.gradient(whole, tt)[a]), float(t[a]))
+
+
+def _two_warm_ups(tt: np.ndarray, keep: np.ndarray, X: np.ndarray, whiten, yw: np.ndarray, taus: np.ndarray):
+    """(coefficient of X's line in time, the drift on every row): the pair of warm-ups A_i (1 - exp(-t/tau_i))
+    fitted beside the load (X) on the whitened rows that leaves least."""
+    G = 1.0 - np.exp(-tt[:, None] / taus[None, :])
+    Xw = whiten(X)
+    qw, _ = np.linalg.qr(Xw)
+    P = whiten(G[keep])
+    P = P - qw @ (qw.T @ P)
+    rw = yw - qw @ (qw.T @ yw)
+    M, b = P.T @ P, P.T @ rw
+    best, pair = -math.inf, (0, 1)
+    for i in range(len(taus)):
+        for j in range(i + 1, len(taus)):
+            m = M[np.ix_([i, j], [i, j])]
+            if abs(np.linalg.det(m)) <= 1e-12 * m[0, 0] * m[1, 1]:
+                continue
+            c = np.linalg.solve(m, b[[i, j]])
+            if float(c @ b[[i, j]]) > best:                  # the gain in RSS of the pair
+                best, pair = float(c @ b[[i, j]]), (i, j)
+    cols = G[:, list(pair)]
+    coef = np.linalg.lstsq(np.column_stack([Xw, whiten(cols[keep])]), yw, rcond=None)[0]
+    return float(coef[X.shape[1] - 1]), cols @ coef[-2:]
 
 
 def find_drift(load: np.ndarray, y: np.ndarray, t: np.ndarray, sigma: float, first: int,
@@ -280,7 +326,7 @@ class FoundDrift:
 
 
 def find_thermal_drift(load: np.ndarray, y: np.ndarray, t: np.ndarray | None, first: int,
-                       unit: str = "rad") -> FoundDrift | None:
+                       unit: str = "rad", noise: NoiseModel | None = None) -> FoundDrift | None:
     """A thermal zero drift alone (decision 069: read on every verdict); without a time column the sample index
     is the clock (times then in samples)."""
     if len(y) < 50:
@@ -290,7 +336,7 @@ def find_thermal_drift(load: np.ndarray, y: np.ndarray, t: np.ndarray | None, fi
     sigma = _sigma(y)
     with threadpool_limits(limits=1):       # a (rows x 97) QR: BLAS threads only contend (decision 019)
         # read beside the creep under any hold (a hold's creep runs in time at a constant load, and is no drift)
-        drift = drift_test(load, find_hold_creep(load, y, clock, sigma, unit)[0], clock, sigma, first)
+        drift = drift_test(load, find_hold_creep(load, y, clock, sigma, unit)[0], clock, sigma, first, noise)
     if drift is None:
         return None
     said = drift.sentence(clock, unit)
