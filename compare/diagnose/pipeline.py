@@ -97,7 +97,7 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
     with threadpool_limits(limits=1):
         diag, arrays = _diagnose(rec, base, usable_workers() if workers is None else workers)
         drift_named = False
-        if (drift := _drift(rec, arrays["noise_model"])) is not None:
+        if (drift := _drift(rec)) is not None:
             # a thermal drift, which the catalogue bends its effects to (decision 069): taken out, the rows it
             # was read on (after the first loading) diagnosed again
             stage("a thermal drift taken out: diagnosing the rest again")
@@ -127,13 +127,12 @@ def _time_events(rec: Recording):
     return find_time_events(rec.load, rec.response, rec.time_s, first, rec.response_unit)
 
 
-def _drift(rec: Recording, noise=None):
-    """time_events.find_thermal_drift on the raw channels (decision 069), the first loading left out of its fit,
-    judged also under the recording's one noise model ``noise`` (read on the fitted rows)."""
+def _drift(rec: Recording):
+    """time_events.find_thermal_drift on the raw channels (decision 069), the first loading left out of its fit."""
     u = rec.load / (float(np.max(np.abs(rec.load))) or 1.0)
     segments = find_segments(u, reversal_threshold(u))
     first = segments[0][1] if len(segments) > 1 else 0
-    return find_thermal_drift(rec.load, rec.response, rec.time_s, first, rec.response_unit, noise)
+    return find_thermal_drift(rec.load, rec.response, rec.time_s, first, rec.response_unit)
 
 
 def _after(rec: Recording, drift) -> Recording:
@@ -216,7 +215,7 @@ def _diagnose(rec: Recording, base: Baseline, workers: int) -> tuple[Diagnosis, 
     diag = explained(noise, answer, reading, location)                             # 7
     after = answer.best if answer.verdict is not Verdict.AGREES else noise.base_fit
     arrays = {"load": fit_rec.load, "response": fit_rec.response, "baseline": noise.base_fit.model * ctx.Y,
-              "augmented": after.model * ctx.Y, "model_label": after.label, "noise_model": noise.judge.noise}
+              "augmented": after.model * ctx.Y, "model_label": after.label}
     return diag, arrays
 
 

@@ -17,11 +17,13 @@ a polynomial per loading direction, plus a line in time), so a loop or a stiffen
   |load| >= HOLD_LOAD), the response moves in time as a + A (1 - exp(-(t - t0)/tau)), A of the held load's sign
   (the twist creeps further the way the torque holds it), better than a constant by BIC_THRESHOLD; named with
   its time constant tau; the creep is taken out in the hold and its end value after it;
-- a thermal zero drift: the response drifts against TIME, not load: beside any function of the load per
-  loading direction (load_states), A (1 - exp(-t/tau)) (a warm-up; tau from DRIFT_TAU of the record) improves
-  BIC by more than BIC_THRESHOLD, departs from a line (the nuisance fit's drift) by at least
-  MIN_COMPONENT_SIGMAS white sigmas and leaves a residual within DRIFT_LEAVES x the white noise's variance. The
-  first loading is left out of its fit (a virgin curve is no drift).
+- a thermal zero drift (find_thermal_drift, read on EVERY recording, decision 069): the response drifts against
+  TIME, not load: beside any function of the load per loading direction (load_states) and a line in time, a
+  warm-up A (1 - exp(-t/tau)) (tau from DRIFT_TAU of the record) improves BIC by more than BIC_THRESHOLD under
+  the recording's noise (a fine-scale filter of what is left, deflated by the sensor's slow power), departs from a line by at least
+  MIN_COMPONENT_SIGMAS white sigmas, leaves a residual within DRIFT_LEAVES x the variance that noise implies and
+  Gaussian innovations (DRIFT_TAILS). The first loading and the creep under any hold are left out. Found, its
+  shape is taken out as two warm-ups and the line, from the end of the first loading.
 """
 from __future__ import annotations
 
@@ -34,7 +36,6 @@ from scipy.signal import lfilter
 
 from strainwave.compare.diagnose.judge import BIC_THRESHOLD
 from strainwave.compare.diagnose.noise import _TRIM_FACTOR, KEEP
-from strainwave.compare.diagnose.rows import stride
 from strainwave.compare.diagnose.structure import (MIN_COMPONENT_SIGMAS, NoiseModel, fine_scale_noise,
                                                    flicker_noise, slow_power_inflation)
 
@@ -231,14 +232,10 @@ def _judged(tt: np.ndarray, keep: np.ndarray, X: np.ndarray, y: np.ndarray, taus
     return model.deflate(n * math.log(rss0 / (rss0 - gain)), beyond) - 2.0 * math.log(n), tau, amp
 
 
-def drift_test(load: np.ndarray, y: np.ndarray, t: np.ndarray, sigma: float, first: int,
-               noise: NoiseModel | None = None) -> Drift | None:
-    """A warm-up in time beside any function of the load, judged as the effects are (decision 069); ``noise``:
-    the recording's one noise model on the fitted rows (rows.subsample's stride), where known."""
+def drift_test(load: np.ndarray, y: np.ndarray, t: np.ndarray, sigma: float, first: int) -> Drift | None:
+    """A warm-up in time beside any function of the load, judged as the effects are (decision 069)."""
     rows = np.arange(len(y))
-    step = max(1, len(y) // DRIFT_ROWS)
-    keep = (rows >= first) & (rows % step == 0)
-    noise = noise if step == stride(len(y)) else None           # read on the fitted rows: only on the same rows
+    keep = (rows >= first) & (rows % max(1, len(y) // DRIFT_ROWS) == 0)
     tt = t - t[0]
     span = float(tt[-1])
     if keep.sum() < 50 or not span > 0.0:
@@ -255,10 +252,6 @@ def drift_test(load: np.ndarray, y: np.ndarray, t: np.ndarray, sigma: float, fir
         return None
     model, variance = _noise_of(r - curve)
     evidence, tau, amp = _judged(tt, keep, X, y[keep], taus, model)
-    if noise is not None:
-        # and under the recording's one noise model, as the effects are (the smaller evidence stands): a
-        # random walk the load's 96 hats hid from the fine scales of a short record is no warm-up
-        evidence = min(evidence, _judged(tt, keep, X, y[keep], taus, noise)[0])
     yw = model.whiten(y[keep])
     warm = amp * (1.0 - np.exp(-tt / tau))
     fit_all = np.column_stack([X, warm[keep]])
@@ -326,7 +319,7 @@ class FoundDrift:
 
 
 def find_thermal_drift(load: np.ndarray, y: np.ndarray, t: np.ndarray | None, first: int,
-                       unit: str = "rad", noise: NoiseModel | None = None) -> FoundDrift | None:
+                       unit: str = "rad") -> FoundDrift | None:
     """A thermal zero drift alone (decision 069: read on every verdict); without a time column the sample index
     is the clock (times then in samples)."""
     if len(y) < 50:
@@ -336,7 +329,7 @@ def find_thermal_drift(load: np.ndarray, y: np.ndarray, t: np.ndarray | None, fi
     sigma = _sigma(y)
     with threadpool_limits(limits=1):       # a (rows x 97) QR: BLAS threads only contend (decision 019)
         # read beside the creep under any hold (a hold's creep runs in time at a constant load, and is no drift)
-        drift = drift_test(load, find_hold_creep(load, y, clock, sigma, unit)[0], clock, sigma, first, noise)
+        drift = drift_test(load, find_hold_creep(load, y, clock, sigma, unit)[0], clock, sigma, first)
     if drift is None:
         return None
     said = drift.sentence(clock, unit)
