@@ -4,7 +4,8 @@ The table has the columns size, ratio, T1_Nm, T2_Nm, K1_e3, K2_e3, K3_e3 (K in 1
 are comments; a blank cell is a number the catalogue does not give (its comparison is skipped). One set of
 design rules (analytic/catalogue_rules.MeshRules, decision 065) turns each row into a drive; the drive's
 curve (analytic/drive_curve), with the cup and its twist under the mesh zones in series (decision 067), is read
-by the catalogue reader of compare/diagnose.
+by the catalogue's own convention: K1/K2/K3 the secants of the loop's mean curve over the row's T1, T2 windows
+(decision 069), T1/T2 the knees of compare/diagnose's catalogue reader (its K kept beside in the JSON).
 """
 from __future__ import annotations
 
@@ -17,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from strainwave.analytic.catalogue_rules import RATIO_OF_LABEL, MeshRules, ratio_of_label
-from strainwave.analytic.drive_curve import DriveCurve, predict_curve
+from strainwave.analytic.drive_curve import DriveCurve, catalogue_secants, predict_curve
 from strainwave.errors import InputError
 
 __all__ = ["TableRow", "RowPrediction", "CataloguePrediction", "read_table", "predict_table", "GOALS"]
@@ -31,22 +32,20 @@ GOALS = {"K3_Nm_per_rad": 0.25, "K1_Nm_per_rad": 0.35, "T1_Nm": 0.35, "T2_Nm": 0
 TREND_GOAL = 0.25
 # what the closed-form mesh leaves out, by the number that misses and the side it misses on
 LEFT_OUT = {
-    ("K1_Nm_per_rad", "high"): "a compliance that grows with the module, not identified: after the cup's diaphragm "
-                                "and the cup's twist under the mesh zones (decision 067) the K3 miss at size 25 is "
-                                "~2.5e-8 rad/(N mm) at i = 30 and ~3e-9 at i = 100; the closed form's own tooth on "
-                                "its thin rim is already ~10x softer than the FE tooth on a held rim at i = 30, so "
-                                "it is not that, nor the rim's lift-off from the balls (~1 %); not measured: the "
-                                "circular spline's body, real i = 30 proportions; at low torque also the rim's "
-                                "support that stiffens with load",
+    ("K1_Nm_per_rad", "high"): "the low-torque compliance: with the fatigue rim (decision 069) K1 is 1.4-1.6x at i = 30 "
+                                "and 1.8-2.5x at i >= 50; the zero-backlash rack engages from zero torque and the "
+                                "balls' Hertz softening is the only low-torque term; not modelled: the rim's support "
+                                "that stiffens with load, profile and pitch errors that delay engagement",
     ("K1_Nm_per_rad", "low"): "the radial support is one linear foundation: the rim lifted off the bearing beyond "
                                "the wrap angle is pressed back onto the balls as the torque grows (a support that "
                                "stiffens with load), and real units' preload (kappa > 1) is not modelled",
-    ("K3_Nm_per_rad", "high"): "a compliance that grows with the module, not identified: after the cup's diaphragm "
-                                "and the cup's twist under the mesh zones (decision 067) the miss at size 25 is "
-                                "~2.5e-8 rad/(N mm) at i = 30 and ~3e-9 at i = 100; the closed form's own tooth on "
-                                "its thin rim is already ~10x softer than the FE tooth on a held rim at i = 30, so "
-                                "it is not that, nor the rim's lift-off from the balls (~1 %); not measured: the "
-                                "circular spline's body, real i = 30 proportions",
+    ("K3_Nm_per_rad", "high"): "a compliance 30-36 % of the catalogue's own at every ratio, not identified: with the "
+                                "fatigue rim (decision 069) the ratio trend is met and every row is 1.4-2.0x too "
+                                "stiff (size 25: 1.7e-8 / 7.6e-9 / 5.0e-9 rad/(N mm) missing at i = 30 / 50 / 100); "
+                                "ruled out: the tooth on its rim, coning, lift-off, the WG outer ring's ovalisation; "
+                                "not in the chain: the circular spline body's ovalisation under the two zones, as a "
+                                "free ring 1.5e-8 / 1.1e-8 (i = 30 / 100, FE), whose restraint by the housing is "
+                                "not modelled (decisions 067-069)",
     ("K3_Nm_per_rad", "low"): "load spreading over more teeth than the ideal rack engages (the wider, "
                                "conjugate S-tooth zone of real profiles)",
     ("T1_Nm", "low"): "the contact set grows smoothly from zero torque (zero backlash), so the reader's first knee "
@@ -71,10 +70,21 @@ class TableRow:
 
 @dataclass(frozen=True)
 class RowPrediction:
+    """A row's predicted curve. K1/K2/K3 are the catalogue's secants of the mean loop curve over the windows
+    0-T1, T1-T2, T2-amplitude (decision 069) at ``windows_Nm``; T1/T2 are the knee reader's; ``reader``'s K beside."""
     row: TableRow
     curve: DriveCurve
+    secants: dict = field(default_factory=dict)     # name -> N m/rad, the catalogue's convention
+    windows_Nm: tuple = ()                          # (T1, T2) the secants were taken over, and where they came from
+    windows_from: str = ""
 
     def predicted(self, name: str) -> float:
+        if name in self.secants:
+            return float(self.secants[name])
+        return float(getattr(self.curve, name))
+
+    def reader(self, name: str) -> float:
+        """The knee reader's number (compare/diagnose/catalogue_values.py on the same loop)."""
         return float(getattr(self.curve, name))
 
     def ratio_of(self, name: str) -> float | None:
@@ -202,6 +212,9 @@ class CataloguePrediction:
             for name in NAMES:
                 d[f"{name}_predicted"] = rp.predicted(name)
                 d[f"{name}_catalogue"] = rp.row.values.get(name)
+            for name in NAMES[:3]:
+                d[f"{name}_reader"] = rp.reader(name)
+            d["K_windows_Nm"], d["K_windows_from"] = list(rp.windows_Nm), rp.windows_from
             d.update({"lost_motion_arcmin_predicted": rp.curve.lost_motion_rad / _ARCMIN,
                       "hysteresis_arcmin_predicted": rp.curve.hysteresis_rad / _ARCMIN,
                       "ratcheting_torque_Nm_predicted": rp.curve.ratcheting_torque_Nm,
@@ -213,7 +226,8 @@ class CataloguePrediction:
                 "cup_zone_terms": [t.to_dict() for t in self.cup_zone.values()]}
 
     def summary(self) -> str:
-        lines = ["predicted / catalogue (design rules: decision 065; '-' a blank cell)",
+        lines = ["predicted / catalogue (design rules: decisions 065, 069 (fatigue rim); K1/K2/K3 the catalogue's secants over the row's "
+                 "T1, T2 windows, T1/T2 the reader's knees: decision 069; '-' a blank cell)",
                  f"{'size':>5} {'ratio':>5} " + " ".join(f"{n.split('_')[0]:>6}" for n in NAMES)]
         for rp in self.rows:
             cells = [rp.ratio_of(n) for n in NAMES]
@@ -243,6 +257,19 @@ class CataloguePrediction:
 _ARCMIN = math.pi / (180.0 * 60.0)
 
 
+def _with_secants(row: TableRow, curve: DriveCurve) -> RowPrediction:
+    """The row's K1/K2/K3 by the catalogue's convention: over the row's own T1, T2 (a blank one: the predicted
+    knee's), K3 up to the loop's amplitude; the reader's K where the windows do not fit in the loop."""
+    T1 = row.values.get("T1_Nm", curve.T1_Nm)
+    T2 = row.values.get("T2_Nm", curve.T2_Nm)
+    src = "catalogue" if {"T1_Nm", "T2_Nm"} <= set(row.values) else "catalogue where given, else predicted knees"
+    try:
+        sec = catalogue_secants(curve.loop_torque_Nm, curve.loop_twist_rad, T1, T2)
+    except ValueError:          # T2 at or beyond the rated torque: no K3 window on this loop
+        return RowPrediction(row, curve, {}, (T1, T2), "none: the windows do not fit the loop; the reader's K")
+    return RowPrediction(row, curve, sec, (T1, T2), src)
+
+
 def predict_table(path: Path, rules: MeshRules | None = None) -> CataloguePrediction:
     """Read ``path`` and predict every row (exit-2 InputError on a bad file). In series with each row's mesh:
     the cup (tube + diaphragm + hub) and the cup's extra twist under the mesh zones' load, measured by FE once
@@ -266,5 +293,5 @@ def predict_table(path: Path, rules: MeshRules | None = None) -> CataloguePredic
         d = rules.pitch_diameter_mm(row.size)
         series = rules.cup_flexibility_rad_per_Nmm(row.size) + (zone[row.ratio].at(d) if row.ratio in zone else 0.0)
         curve = predict_curve(design, series, rules.rated_torque_Nm(row.size), with_te=False)
-        preds.append(RowPrediction(row, curve))
+        preds.append(_with_secants(row, curve))
     return CataloguePrediction(preds, rules, time.process_time() - t0, cup_zone=zone)

@@ -6,13 +6,59 @@ Fixed before any comparison; no per-size or per-ratio factor. Every proportion i
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
+from enum import Enum
+from functools import lru_cache
 
 from strainwave.analytic.mesh_drive import MeshDesign, bearing_foundation
 from strainwave.analytic.mesh_kinematics import MeshGeometry
 from strainwave.analytic.wg_bearing import BallBearing
 
-__all__ = ["MeshRules", "RATIO_OF_LABEL", "ratio_of_label"]
+__all__ = ["MeshRules", "RATIO_OF_LABEL", "RimRule", "ratio_of_label", "fatigue_rim_mm"]
+
+
+class RimRule(str, Enum):
+    """How thick the rim under the teeth is (decision 069)."""
+    BLANK = "blank"          # rim_over_d d (i/100)^p: one flexspline blank per size (decisions 065-068)
+    MODULE = "module"        # rim_over_module m: the CJME 2021 benchmark's and the open twin's 2 m
+    FATIGUE = "fatigue"      # the thickest rim the flexspline steel's Goodman line allows at [n] (HDS 9534681)
+
+
+@lru_cache(maxsize=1)
+def _steel() -> tuple[float, float, float, float]:
+    """(sigma_-1, R_m, the tooth's notch K_delta K_sigma, [n]) of the project's flexspline steel and design
+    (defaults.toml [material], [ewg_drive]: seed 003's factors and permissible safety)."""
+    import warnings
+    from strainwave.params import load_params
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")     # the defaults' own E/G note, not this rule's business
+        p = load_params()
+    e = p.ewg_drive
+    return (p.material.fatigue_limit_MPa, p.material.ultimate_strength_MPa,
+            e.tooth_influence * e.stress_concentration, e.permissible_safety)
+
+
+def fatigue_rim_mm(d_mm: float, module_mm: float, w0_mm: float, E_MPa: float, torque_Nmm: float,
+                   steel: tuple[float, float, float, float] | None = None) -> float:
+    """The thickest rim under the teeth whose flexure at the open end passes the project's Goodman line
+    (decision 066: n = 1 / (K sigma_a / sigma_-1 + sigma_m / R_m)) at [n]: sigma_a = 1.5 E t w0 / R^2 (the n = 2
+    flexure, fully reversed as the wave passes), sigma_m = sqrt(3) T / (2 pi R^2 t) (the torque's shear, steady).
+    R is the neutral radius (root radius - t/2), so t is a fixed point."""
+    s_1, R_m, K, n = _steel() if steel is None else steel
+    t = 0.01 * d_mm
+    for _ in range(50):
+        R = 0.5 * d_mm - 1.25 * module_mm - 0.5 * t
+        a = K * 1.5 * E_MPa * w0_mm / (R * R * s_1)        # K sigma_a / sigma_-1 per mm of rim
+        b = math.sqrt(3.0) * torque_Nmm / (2.0 * math.pi * R * R * R_m)     # sigma_m / R_m times t
+        disc = 1.0 / n ** 2 - 4.0 * a * b
+        if disc < 0.0:
+            raise ValueError("no rim passes the Goodman line at this torque")
+        t_new = (1.0 / n + math.sqrt(disc)) / (2.0 * a)     # the larger root: the thickest rim allowed
+        if abs(t_new - t) < 1e-12 * d_mm:
+            return t_new
+        t = t_new
+    return t
 
 # ">50" rows hold for 80..160 (the CHA table's own footnote); 100, the middle of that band, is the rule
 RATIO_OF_LABEL = {">50": 100.0}
@@ -57,6 +103,10 @@ class MeshRules:
     ball_diameter_over_d: float = 9.525 / 160.0  # shipped WG bearing: D_w / d1 (3/8 in at d1 = 160)
     ball_count: int = 24                        # shipped WG bearing (similar bodies keep the count)
     rim_ratio_exponent: float = 0.0             # rim = rim_over_d d (i/100)^p: 0 one blank per size (decision 065)
+    # decision 069: the thickest rim the steel's Goodman line allows at [n] (HDS patent 9534681's sizing); the cup's
+    # wall (cup_flexibility_rad_per_Nmm) stays rim_over_d d: the rule sizes the toothed rim only
+    rim_rule: RimRule = RimRule.FATIGUE
+    rim_over_module: float = 2.0                # RimRule.MODULE: CJME 2021 benchmark delta_0 = 2 m
     # the cup's extra twist when the torque enters at the two mesh zones (decision 067): measured by FE per ratio at
     # this size on meshes of these elements around the quarter wall (finest first), scaled by similitude; None: left out
     cup_zone_reference_size: float = 25.0
@@ -88,7 +138,7 @@ class MeshRules:
         teeth = int(round(self.tooth_difference * ratio))
         m = d / teeth
         b = self.face_width_over_d * d
-        rim = self.rim_over_d * d * (ratio / 100.0) ** self.rim_ratio_exponent
+        rim = self.rim_mm(size, ratio)
         geom = MeshGeometry(teeth, m, self.kappa * m, self.pressure_angle_deg, self.addendum_coefficient,
                             self.backlash_over_d * d, rim, b, self.tooth_difference,
                             self.length_over_d * d, self.face_slices)
@@ -99,6 +149,17 @@ class MeshRules:
                                     self.lumped_foundation_N_per_mm2(self.E_MPa, b, d))
         return MeshDesign(geom, self.E_MPa, self.friction_coefficient, ring, k, self.K_G_per_d_N_per_mm2 * d,
                           balls, ref)
+
+    def rim_mm(self, size: float, ratio: float) -> float:
+        """The rim under the teeth by ``rim_rule``."""
+        d = self.pitch_diameter_mm(size)
+        m = d / int(round(self.tooth_difference * ratio))
+        rule = RimRule(self.rim_rule)
+        if rule is RimRule.MODULE:
+            return self.rim_over_module * m
+        if rule is RimRule.FATIGUE:
+            return fatigue_rim_mm(d, m, self.kappa * m, self.E_MPa, 1e3 * self.rated_torque_Nm(size))
+        return self.rim_over_d * d * (ratio / 100.0) ** self.rim_ratio_exponent
 
     def rated_torque_Nm(self, size: float) -> float:
         return 1e-3 * self.rated_torque_per_d3_MPa * self.pitch_diameter_mm(size) ** 3

@@ -182,8 +182,18 @@ def fe_mesh_load_beside(params, fea: dict, c: dict) -> dict:
     normal_mean = c["K_delta"] * fea["mean_MPa"] + 0.5 * root
     mean = math.copysign(math.sqrt(normal_mean ** 2 + 3.0 * c["shear_MPa"] ** 2), normal_mean)
     n = goodman(amp, mean, c["K_sigma"], flexspline_steel(params))
-    return {"peak_force_N": F, "closed_form_peak_force_N": c["mesh_peak_force_N"], "mesh_root_MPa": root,
-            "amplitude_MPa": amp, "mean_MPa": mean, "n": n, "source": fea.get("mesh_source", "FEA tooth-mesh")}
+    out = {"peak_force_N": F, "closed_form_peak_force_N": c["mesh_peak_force_N"], "mesh_root_MPa": root,
+           "amplitude_MPa": amp, "mean_MPa": mean, "n": n, "source": fea.get("mesh_source", "FEA tooth-mesh")}
+    if fea.get("mesh_root_fe_MPa") is not None:
+        # the FE's fillet peak is notched already; Goodman multiplies the amplitude by K_sigma (a fit for the wave's
+        # bending, not the tooth's), so it enters divided by K_sigma: the notch counted once, shown beside only
+        fe_root = float(fea["mesh_root_fe_MPa"]) / c["K_sigma"]
+        amp_fe = c["K_delta"] * fea["amplitude_MPa"] + 0.5 * fe_root
+        nm_fe = c["K_delta"] * fea["mean_MPa"] + 0.5 * fe_root
+        mean_fe = math.copysign(math.sqrt(nm_fe ** 2 + 3.0 * c["shear_MPa"] ** 2), nm_fe)
+        out |= {"fe_root_MPa": float(fea["mesh_root_fe_MPa"]),
+                "n_fe_root": goodman(amp_fe, mean_fe, c["K_sigma"], flexspline_steel(params))}
+    return out
 
 
 def band_edge_closed(params, fea: dict | None = None, advise: bool = False) -> FatigueFactor:

@@ -16,8 +16,8 @@ import numpy as np
 from strainwave.fea.mesh_contact import MeshPath, solve_torque_path, torque_history
 from strainwave.analytic.mesh_drive import MeshDesign, bearing_twist_rad, mesh_system
 
-__all__ = ["DriveCurve", "predict_curve", "read_catalogue_numbers", "transmission_error_rad",
-           "ratcheting_torque_Nm", "LOOP_STEPS_PER_LEG"]
+__all__ = ["DriveCurve", "predict_curve", "branch_twist_rad", "mean_twist_rad", "catalogue_secants",
+           "read_catalogue_numbers", "transmission_error_rad", "ratcheting_torque_Nm", "LOOP_STEPS_PER_LEG"]
 
 LOOP_STEPS_PER_LEG = 60          # torque steps from 0 to the rated torque (the reader needs >= 20 steady rows)
 ARCMIN = math.pi / (180.0 * 60.0)
@@ -45,19 +45,43 @@ class DriveCurve:
 
     def twist_rad(self, T_Nm, direction) -> np.ndarray:
         """The loop's loading (+1) or unloading (-1) branch at torque ``T_Nm`` (steady loop, after the peak)."""
-        T, th = self.loop_torque_Nm, self.loop_twist_rad
-        k0 = int(np.argmax(T))
-        T, th = T[k0:], th[k0:]
-        rate = np.sign(np.gradient(T))
-        T_in = np.asarray(T_Nm, float)
-        d = np.broadcast_to(np.sign(np.asarray(direction, float)), T_in.shape)
-        out = np.empty(T_in.shape)
-        for sgn in (1.0, -1.0):
-            on = rate == sgn
-            order = np.argsort(T[on], kind="stable")
-            sel = d == sgn if sgn > 0 else d <= 0
-            out[sel] = np.interp(T_in[sel], T[on][order], th[on][order])
-        return out
+        return branch_twist_rad(self.loop_torque_Nm, self.loop_twist_rad, T_Nm, direction)
+
+
+def branch_twist_rad(loop_T_Nm, loop_twist_rad, T_Nm, direction) -> np.ndarray:
+    """A loop's loading (+1) or unloading (-1) branch at torque ``T_Nm`` (the steady loop after the first peak)."""
+    T, th = np.asarray(loop_T_Nm, float), np.asarray(loop_twist_rad, float)
+    k0 = int(np.argmax(T))
+    T, th = T[k0:], th[k0:]
+    step = np.sign(np.diff(T))
+    T_in = np.asarray(T_Nm, float)
+    d = np.broadcast_to(np.sign(np.asarray(direction, float)), T_in.shape)
+    out = np.empty(T_in.shape)
+    for sgn in (1.0, -1.0):
+        # a reversal point ends one branch and starts the next: on both (the loop's tip is the curve's end)
+        on = np.concatenate([[False], step == sgn]) | np.concatenate([step == sgn, [False]])
+        order = np.argsort(T[on], kind="stable")
+        sel = d == sgn if sgn > 0 else d <= 0
+        out[sel] = np.interp(T_in[sel], T[on][order], th[on][order])
+    return out
+
+
+def mean_twist_rad(loop_T_Nm, loop_twist_rad, T_Nm) -> np.ndarray:
+    """The catalogue's curve: the mean of the steady loop's loading and unloading branches at ``T_Nm``."""
+    T_in = np.asarray(T_Nm, float)
+    return 0.5 * (branch_twist_rad(loop_T_Nm, loop_twist_rad, T_in, np.ones(T_in.shape))
+                  + branch_twist_rad(loop_T_Nm, loop_twist_rad, T_in, -np.ones(T_in.shape)))
+
+
+def catalogue_secants(loop_T_Nm, loop_twist_rad, T1_Nm: float, T2_Nm: float) -> dict:
+    """K1, K2, K3 (N m/rad) as the catalogue defines them (CHA manual 1018854 eq. 68.1-68.4, decision 069): the
+    secant slopes of the mean curve over 0-T1, T1-T2 and T2 to the loop's amplitude, at the given limit torques."""
+    A = float(np.max(loop_T_Nm))
+    if not 0.0 < T1_Nm < T2_Nm < A:
+        raise ValueError(f"the windows need 0 < T1 < T2 < amplitude: {T1_Nm:g}, {T2_Nm:g}, {A:g} N m")
+    phi = mean_twist_rad(loop_T_Nm, loop_twist_rad, np.array([0.0, T1_Nm, T2_Nm, A]))
+    return {"K1_Nm_per_rad": T1_Nm / (phi[1] - phi[0]), "K2_Nm_per_rad": (T2_Nm - T1_Nm) / (phi[2] - phi[1]),
+            "K3_Nm_per_rad": (A - T2_Nm) / (phi[3] - phi[2])}
 
 
 def _loop(design: MeshDesign, series_rad_per_Nmm: float, rated_Nm: float, psi_rad: float) -> tuple[np.ndarray, np.ndarray, MeshPath]:

@@ -100,14 +100,14 @@ def pairs_at(geo: MeshGeometry, psi_rad: float) -> dict:
     e = engagement(geo, psi_rad, min_depth_mm=MIN_DEPTH_OVER_M * geo.fs.module_mm)
     reach = REACH_OVER_M * geo.fs.module_mm
     out = {k: [] for k in ("side", "tooth", "cs_space", "fs_radius_mm", "cs_radius_mm", "clearance_mm",
-                           "lever_mm", "slide_mm_per_rad", "phi_rad")}
+                           "lever_mm", "slide_mm_per_rad", "phi_rad", "depth_mm")}
     slide = np.sqrt(np.maximum(e.cs_radius_mm ** 2 - e.lever_mm ** 2, 0.0))
     for side, gap in ((1, e.clearance_pos_mm), (-1, e.clearance_neg_mm)):
         on = (gap >= 0.0) & (gap < reach)
         for key, val in (("side", np.full(on.sum(), side)), ("tooth", e.tooth[on]), ("cs_space", e.cs_space[on]),
                          ("fs_radius_mm", e.contact_radius_mm[on]), ("cs_radius_mm", e.cs_radius_mm[on]),
                          ("clearance_mm", gap[on]), ("lever_mm", np.full(on.sum(), side * e.lever_mm)),
-                         ("slide_mm_per_rad", slide[on]), ("phi_rad", e.phi_rad[on])):
+                         ("slide_mm_per_rad", slide[on]), ("phi_rad", e.phi_rad[on]), ("depth_mm", e.depth_mm[on])):
             out[key].append(val)
     return {k: np.concatenate(v) for k, v in out.items()}
 
@@ -133,6 +133,8 @@ def study_loads(params, quick: bool = False) -> dict:
         "cs_radius_range_mm": (float(cs_r.min()), float(cs_r.max())),
         "major_fs_radius_mm": float(major.contact_radius_mm[i0]), "major_cs_radius_mm": float(major.cs_radius_mm[i0]),
         "angles": angles, "catalogue_curve": catalogue_curve_Nm(params),
+        # one WG lobe's radial stiffness (the parameter the closed forms and the wg-bearing check use): ratcheting
+        "wg_radial_stiffness_N_per_mm": params.wave_generator.uncracked_radial_stiffness_N_per_mm,
         "crack_depth_mm": params.flexspline_cup.root_crack_depth_mm,
         "slot_width_mm": params.crack_geometry.slot_width_mm,
         "crack_phi_rad": CRACK_PHI.tolist(),

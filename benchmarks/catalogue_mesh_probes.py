@@ -21,7 +21,7 @@ from dataclasses import replace
 import numpy as np
 
 from strainwave.analytic import mesh_compliance as mc
-from strainwave.analytic.catalogue_rules import MeshRules
+from strainwave.analytic.catalogue_rules import MeshRules, RimRule
 from strainwave.analytic.mesh_drive import pair_compliance_mm_per_N
 from strainwave.analytic.mesh_engagement import study_loads
 from strainwave.fea import tooth_mesh as tm
@@ -58,7 +58,7 @@ def fe_against_reduced(ratio: int) -> None:
                                 "gear": {"radial_deformation_mm": m}, "circular_spline": {"backlash_mm": 0.0}})
     mesh = study_loads(params)["mesh"]
     rated, hist = mesh["rated_torque_Nmm"], np.asarray(mesh["torque_history_Nmm"])
-    rules = MeshRules()
+    rules = MeshRules(rim_rule=RimRule.BLANK)
     design = rules.design(D_MM / rules.pitch_diameter_per_size_mm, ratio)
     bed = design.foundation_N_per_mm2
     design = replace(design, bearing_outer_ring_mm=1e-9, K_G_N_per_mm=1e12)     # the FE's support: the bed only
@@ -91,7 +91,7 @@ def fe_against_reduced(ratio: int) -> None:
 def coning(ratio: int, size: float = 25.0) -> None:
     k1, k3, t1, t2 = CATALOGUE_25[ratio]
     for n in (1, 2, 4, 8):
-        rules = replace(MeshRules(), face_slices=n)
+        rules = replace(MeshRules(rim_rule=RimRule.BLANK), face_slices=n)
         from strainwave.analytic.drive_curve import predict_curve
         c = predict_curve(rules.design(size, ratio), rules.cup_flexibility_rad_per_Nmm(size) + CUP_ZONE_25[ratio],
                           rules.rated_torque_Nm(size), with_te=False)

@@ -48,6 +48,8 @@ QUANTITIES = (
     ("crack_tooth_compliance_ratio", "1"), ("crack_te_peak_rad", "rad"),
     ("rigid_rim_peak_tooth_share", "1"), ("rigid_rim_teeth_in_contact", "1"), ("rigid_rim_twist_rated_rad", "rad"),
     ("engagement_edge_rated_rad", "rad"), ("engagement_edge_first_step_rad", "rad"),
+    ("ratcheting_torque_Nmm", "N*mm"), ("ratcheting_lift_rated_mm", "mm"), ("ratcheting_overlap_mm", "mm"),
+    ("root_stress_peak_tooth_MPa", "MPa"), ("root_stress_per_N_MPa", "MPa/N"), ("root_contact_radius_mm", "mm"),
 )
 SECTOR_H_RATIO = 0.5              # the sectors' element size over the rim's
 SOLID_DEPTH_OVER_M = 6.0          # the FS tooth's solid-body sector is held this deep below its root (ISO's body)
@@ -244,6 +246,52 @@ def engagement_edge(path, pairs: Mapping) -> dict:
     return edge
 
 
+def ratcheting_torque_Nmm(forces_N, pressure_angle_rad, phi_rad, depth_mm, K_G_N_per_mm: float,
+                          torque_Nmm: float) -> dict:
+    """The torque at which the loaded teeth climb out: each flank load's radial part F sin(alpha) pushes its WG
+    lobe in (the lobe's resultant along its axis over K_G, one lobe's radial stiffness); the lobe's approach delta
+    shrinks the wave w0 cos 2 phi, so pair k loses delta cos 2 phi_k of its radial overlap depth_k. With the contact
+    set of ``torque_Nmm`` held (loads linear in the torque), the teeth climb out where the overlap at the load's
+    centroid (load-weighted over the loaded pairs) is used up: T_r = T sum(F depth) / sum(F lift)."""
+    F = np.asarray(forces_N, float)
+    phi = np.asarray(phi_rad, float)
+    folded = 0.5 * np.angle(np.exp(2j * phi))              # angle from the own lobe's axis
+    lobe = np.round((phi - folded) / math.pi).astype(int) % 2
+    push = np.asarray([np.sum((F * np.sin(pressure_angle_rad) * np.cos(folded))[lobe == j]) for j in (0, 1)])
+    lift = push[lobe] / K_G_N_per_mm * np.cos(2.0 * folded)  # each pair's overlap lost at torque_Nmm
+    w = F / F.sum()
+    overlap, lost = float(w @ np.maximum(np.asarray(depth_mm, float), 0.0)), float(w @ lift)
+    return {"ratcheting_torque_Nmm": torque_Nmm * overlap / lost if lost > 0 else math.inf,
+            "ratcheting_lift_rated_mm": lost, "ratcheting_overlap_mm": overlap}
+
+
+def ratcheting(path, pairs: Mapping, mesh: Mapping) -> dict:
+    """The ratcheting torque from the headline angle's first loading at rated: the FE contact solve's flank loads,
+    their pressure angle at the CS contact radius (the involute's, cos alpha = r_b / r) and the kinematic overlap."""
+    k = int(np.argmax(path.torque_Nmm))
+    alpha = np.arccos(np.clip(np.abs(pairs["lever_mm"]) / pairs["cs_radius_mm"], -1.0, 1.0))
+    return ratcheting_torque_Nmm(path.forces_N[k], alpha, pairs["phi_rad"], pairs["depth_mm"],
+                                 mesh["wg_radial_stiffness_N_per_mm"], float(path.torque_Nmm[k]))
+
+
+def root_stress(params, mesh: Mapping, path, h_mm: float) -> dict:
+    """The most loaded tooth's root stress at rated (headline angle, first loading): the filleted sector of
+    fea/tooth_root_fe.py under that tooth's flank load, at its contact radius, on this mesh's size (so it has a GCI)."""
+    from strainwave.fea.tooth_root_fe import root_stress_per_N
+    from strainwave.geometry.mesh_geometry import mesh_geometry
+    geo = mesh_geometry(params)
+    m = params.material
+    k_peak = int(np.argmax(path.torque_Nmm))
+    F = path.forces_N[k_peak]
+    j = int(np.argmax(F))
+    pairs = mesh["angles"][0]
+    lame = Lame.from_young(m.youngs_modulus_MPa, m.poisson_ratio)
+    r = root_stress_per_N(geo.fs, geo.r_bore_mm, h_mm, lame, geo.face_width_mm, float(pairs["fs_radius_mm"][j]),
+                          int(pairs["side"][j]), BAND_OVER_M * geo.fs.module_mm)
+    return {"root_stress_peak_tooth_MPa": r["stress_MPa_per_N"] * float(F[j]),
+            "root_stress_per_N_MPa": r["stress_MPa_per_N"], "root_contact_radius_mm": float(pairs["fs_radius_mm"][j])}
+
+
 def crack_signature(infl: Mapping, mesh: Mapping) -> tuple[dict, np.ndarray]:
     """The root crack of tooth 0 (its +theta flank's root) as tooth 0 passes the loaded zone: the crack's added
     compliance (solid-body sector, cracked minus uncracked, same mesh size) on tooth 0's +flank pair; the
@@ -423,13 +471,17 @@ class ToothMesh(StudyVariant):
         crack, change = crack_signature(infl, self.mesh_inputs)
         rigid, rigid_inputs = rigid_rim(infl, self.mesh_inputs)
         values = (loop_values(paths, self.mesh_inputs["rated_torque_Nmm"]) | major_pair(infl, self.mesh_inputs) | crack
-                  | rigid | engagement_edge(paths[0], self.mesh_inputs["angles"][0]))
+                  | rigid | engagement_edge(paths[0], self.mesh_inputs["angles"][0])
+                  | ratcheting(paths[0], self.mesh_inputs["angles"][0], self.mesh_inputs)
+                  | root_stress(self.params, self.mesh_inputs, paths[0], refinement))
         t2 = time.perf_counter()
         quality = MeshQuality(facts["elements"], facts["nodes"], facts["dofs"], 2, float("nan"), float("nan"))
         # the rigid-rim solve's inputs are kept on every mesh (small): the check mesh.rigid_rim_sharing reads them
         fields = {"rigid_rim": rigid_inputs}
+        if k == 0:
+            fields["paths"] = paths          # small: the finest loop reaches meta (diagnose --baseline fea reads it)
         if keep_fields:
-            fields |= {"paths": paths, "rated_u": rated_field(infl, self.mesh_inputs, paths[0]),
+            fields |= {"rated_u": rated_field(infl, self.mesh_inputs, paths[0]),
                        "r_bore_mm": infl["r_bore_mm"], "crack_change": change}
         infl.pop("rim")
         return MeshSolve(refinement, values, quality,
@@ -474,14 +526,16 @@ class ToothMesh(StudyVariant):
         if "paths" not in f:
             return {"rigid_rim": f["rigid_rim"]}
         p = f["paths"][0]
-        return {"loop": {"torque_Nmm": p.torque_Nmm.tolist(), "twist_rad": p.twist_rad.tolist()},
-                "forces_at_rated_N": p.forces_N[int(np.argmax(p.torque_Nmm))].tolist(),
-                "pairs": {k: np.asarray(v).tolist() for k, v in self.mesh_inputs["angles"][0].items()},
-                "te_twist_at_rated_rad": [float(q.twist_rad[int(np.argmax(q.torque_Nmm))]) for q in f["paths"]],
-                "rigid_rim": f["rigid_rim"],
-                "crack": {"tooth_phi_rad": list(self.mesh_inputs["crack_phi_rad"]),
-                          "twist_change_at_rated_rad": np.asarray(f["crack_change"]).tolist(),
-                          "orders": crack_orders(self.mesh_inputs)}}
+        out = {"loop": {"torque_Nmm": p.torque_Nmm.tolist(), "twist_rad": p.twist_rad.tolist()},
+               "forces_at_rated_N": p.forces_N[int(np.argmax(p.torque_Nmm))].tolist(),
+               "pairs": {k: np.asarray(v).tolist() for k, v in self.mesh_inputs["angles"][0].items()},
+               "te_twist_at_rated_rad": [float(q.twist_rad[int(np.argmax(q.torque_Nmm))]) for q in f["paths"]],
+               "rigid_rim": f["rigid_rim"]}
+        if "crack_change" not in f:
+            return out
+        return out | {"crack": {"tooth_phi_rad": list(self.mesh_inputs["crack_phi_rad"]),
+                                "twist_change_at_rated_rad": np.asarray(f["crack_change"]).tolist(),
+                                "orders": crack_orders(self.mesh_inputs)}}
 
 
 def run(params, *, mesh_size_mm=None, order=2, crack_depth_mm=None, vtu=None, progress=None, quick=False,

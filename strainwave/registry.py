@@ -184,7 +184,15 @@ STUDIES: dict[str, Study] = {s.name: s for s in (
             ("pair_stiffness_internal_N_per_mm_um", "N/(mm*um)",
              "the cup's tooth (solid body) and the CS's tooth (its rim), per face width"),
             ("crack_tooth_compliance_ratio", "1", "cracked over uncracked FS tooth compliance (root crack, solid body)"),
-            ("crack_te_peak_rad", "rad", "largest twist change at rated torque as the cracked tooth passes the mesh"))),
+            ("crack_te_peak_rad", "rad", "largest twist change at rated torque as the cracked tooth passes the mesh"),
+            ("ratcheting_torque_Nmm", "N*mm", "the torque at which the loaded teeth's radial push, against one WG "
+             "lobe's K_G, uses up their radial overlap (fea/tooth_mesh.ratcheting_torque_Nmm)"),
+            ("ratcheting_lift_rated_mm", "mm", "the overlap the loaded pairs lose at rated (load-weighted)"),
+            ("ratcheting_overlap_mm", "mm", "the loaded pairs' radial overlap (load-weighted, kinematic)"),
+            ("root_stress_peak_tooth_MPa", "MPa", "peak max-principal stress on the most loaded FS tooth's root "
+             "fillets at rated (filleted sector, fea/tooth_root_fe.py)"),
+            ("root_stress_per_N_MPa", "MPa/N", "that peak per newton of its flank load"),
+            ("root_contact_radius_mm", "mm", "the most loaded tooth's FS contact radius (the load's radius)"))),
           load_inputs="strainwave.analytic.mesh_engagement:study_loads", vtu_fields=("displacement_mm", "von_mises_MPa")),
     # The tooth-root crack as a semi-elliptical surface crack in a block of the band wall, its own sweep of depths;
     # its quantities are named per state and depth (fea.surface_crack.delta_name).

@@ -26,6 +26,10 @@ def test_two_rows_with_a_blank_cell_and_a_label(tmp_path, capsys, monkeypatch):
         assert data["rows"][1][f"{name}_predicted"] > 0.0
         assert f"{name}_catalogue" in data["rows"][0]
     assert data["rows"][0]["K2_Nm_per_rad_catalogue"] is None           # the blank cell: no comparison
+    # decision 069: K over the row's own T1, T2 windows; the knee reader's K beside, its T1/T2 the predicted knees
+    assert data["rows"][1]["K_windows_Nm"] == [2.0, 6.9] and data["rows"][1]["K_windows_from"] == "catalogue"
+    assert data["rows"][1]["K3_Nm_per_rad_reader"] > 0.0
+    assert data["rows"][1]["K1_Nm_per_rad_predicted"] != data["rows"][1]["K1_Nm_per_rad_reader"]
     assert data["rows"][1]["K3_Nm_per_rad_catalogue"] == pytest.approx(7100.0)
     assert data["ratio_trend"][0]["catalogue"] == pytest.approx(7.1 / 3.4)
     assert [t["ratio"] for t in data["cup_zone_terms"]] == [30.0, 100.0]

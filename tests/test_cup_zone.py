@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from strainwave.analytic import torsion
-from strainwave.analytic.catalogue_rules import MeshRules
+from strainwave.analytic.catalogue_rules import MeshRules, RimRule
 from strainwave.fea import cup_zone_load as cz
 
 
@@ -16,7 +16,9 @@ def _zone(centre_rad: float, half_width_deg: float = 10.0, step_deg: float = 2.0
 
 @pytest.fixture(scope="module")
 def size14():
-    return MeshRules().design(14, 100)
+    # decision 067's drive (the blank rim 0.014 d): the fatigue rim of decision 069 is 2.2x thicker at i = 100, and
+    # at this file's 4.6x rated torque its contact zone spreads to 45 deg (9 deg at rated)
+    return MeshRules(rim_rule=RimRule.BLANK).design(14, 100)
 
 
 def test_the_uniform_shear_is_the_tube_of_the_closed_form(size14):

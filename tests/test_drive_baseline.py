@@ -1,9 +1,9 @@
-"""`diagnose --baseline fea` on a drive uses the tooth-mesh curve: a recording of that curve agrees; the same
-curve with twice the lost motion is explained by lost_motion (issue 48, item 6)."""
+"""`diagnose --baseline fea` on a drive uses the FE tooth-mesh study's curve: a recording of that curve agrees;
+the same curve with twice the lost motion is explained by lost_motion (issue 48, item 6)."""
 import numpy as np
 import pytest
 
-from strainwave.compare.diagnose.drive_baseline import predicted_drive_curve
+from strainwave.compare.diagnose.drive_baseline import fea_drive_curve, predicted_drive_curve
 from strainwave.compare.diagnose.pipeline import diagnose
 from strainwave.compare.diagnose.recording import RecordingKind, format_recording, parse_text
 from strainwave.params import load_params
@@ -45,16 +45,39 @@ def test_the_curve_is_taken_out_of_a_recording_of_it(params_and_curve):
     assert np.sqrt(np.mean(raw ** 2)) > 30.0 * noise
 
 
+@pytest.fixture(scope="module")
+def params_and_fe_curve():
+    params = load_params()
+    return (params, *fea_drive_curve(params))         # the FE study on quick meshes, ~13 CPU-s
+
+
 @pytest.mark.heavy
-def test_the_predicted_curve_agrees(params_and_curve):
-    params, curve = params_and_curve
+def test_the_fe_curve_is_a_real_drives_shape_and_its_own_baseline(params_and_fe_curve):
+    """The FE study's curve, not the closed form's: it stiffens (K1 < K3), flank friction dissipates (the loop
+    runs clockwise, its area positive), and diagnose's baseline is built from it with its GCI."""
+    from strainwave.compare.diagnose.drive_baseline import curve_baseline
+    params, curve, unc = params_and_fe_curve
+    assert "FE study tooth-mesh" in curve.source and 0.0 < unc < 0.05
+    assert curve.K1_Nm_per_rad < curve.K3_Nm_per_rad and curve.lost_motion_rad > 0.0
+    T, th = curve.loop_torque_Nm, curve.loop_twist_rad
+    k0 = int(np.argmax(T))
+    area = np.trapezoid(T[k0:], th[k0:])           # closed steady loop: the work T dphi done on the drive per cycle
+    assert area > 0.0
+    assert curve.K1_Nm_per_rad != pytest.approx(predicted_drive_curve(params).K1_Nm_per_rad, rel=0.05)
+    base, _ = curve_baseline(_recording(curve, 0.0), params, "fea")
+    assert "FE study tooth-mesh" in base.source
+
+
+@pytest.mark.heavy
+def test_the_predicted_curve_agrees(params_and_fe_curve):
+    params, curve, _ = params_and_fe_curve
     diag, _ = diagnose(_recording(curve, 0.0), params, "fea", workers=1)
     assert diag.verdict.value == "agrees", diag.summary()
 
 
 @pytest.mark.heavy
-def test_twice_the_lost_motion_is_explained_as_lost_motion(params_and_curve):
-    params, curve = params_and_curve
+def test_twice_the_lost_motion_is_explained_as_lost_motion(params_and_fe_curve):
+    params, curve, _ = params_and_fe_curve
     assert curve.lost_motion_rad > 0.0
     diag, _ = diagnose(_recording(curve, curve.lost_motion_rad), params, "fea", workers=1)
     assert diag.verdict.value == "explained", diag.summary()

@@ -120,6 +120,9 @@ def test_study_on_quick_meshes_obeys_first_principles():
     assert q["K3_Nmm_per_rad"] > q["K1_Nmm_per_rad"] > 0.0             # clearance closes: the mesh stiffens
     # the flank loads balance the rated torque: the peak tooth's share times the lever can't exceed it
     assert q["peak_tooth_load_N"] * geo.cs_space.base_radius_mm <= params.gear.rated_output_torque_Nmm
+    # ratcheting (decision 069-ratchet48): the teeth hold at rated, and the lift over K_G is what sets it
+    assert q["ratcheting_torque_Nmm"] > params.gear.rated_output_torque_Nmm
+    assert q["ratcheting_overlap_mm"] <= 2 * geo.w0_mm + 1e-9 and q["ratcheting_lift_rated_mm"] > 0.0
 
 
 @pytest.mark.parametrize("name", [None, "strainwave/data/second_gear.toml"])
@@ -155,3 +158,24 @@ def test_rim_on_a_bed_tends_to_the_held_bore_and_softens_on_the_balls():
     held, stiff, balls = tooth(None), tooth(5e8), tooth(5e3)
     assert abs(stiff / held - 1.0) < 0.01            # 5e8 N/mm^2: the bore as good as held
     assert balls > 1.3 * held                        # measured 2.5x on this rim (Z 60, m 2.67)
+
+
+def test_report_gear_line_gives_the_chain_over_the_catalogue_or_says_why_not():
+    from strainwave.compare.validate import mesh_chain_checks as mc
+
+    class Plan:
+        headline = {"cup": type("C", (), {"label": "cup"}), "shaft": type("C", (), {"label": "shaft"})}
+
+        def __init__(self, mesh):
+            self.mesh = mesh
+
+        def label_of(self, study):
+            return {"wg-bearing": "wg", "tooth-mesh": self.mesh}[study]
+
+    params = load_params(None)
+    line = mc.gear_line(_ChainBook(1.1583e10), Plan("mesh"), params)
+    k3 = 1.0 / (1 / 1.1583e10 + 4.9155e-10 + 2.41e-11)
+    ratio = k3 / mc.catalogue_power_law(params)[0]
+    assert f"K3 = {1e-3 * k3:.4g} N m/rad" in line and f"predicted / catalogue {ratio:.2f}" in line
+    assert "extrapolated" in line and ratio > 1.25           # the shipped gear is stiffer than a catalogue unit
+    assert "not evaluated (no tooth-mesh case)" in mc.gear_line(_ChainBook(1.1583e10), Plan(None), params)

@@ -79,7 +79,7 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
     stage(f"the {baseline} baseline")
     if baseline == "fea" and rec.specimen == "gear" and rec.baseline_stiffness is None and rec.unit is None:
         from strainwave.compare.diagnose.drive_baseline import curve_baseline
-        base, rec = curve_baseline(rec, params)      # the tooth-mesh drive curve (issue 48, item 6)
+        base, rec = curve_baseline(rec, params, "fea")   # the FE tooth-mesh study's drive curve (issue 48, item 6)
     else:
         base = analytic_baseline(rec, params) if baseline == "analytic" else fea_baseline(rec, params)
     if base.curve is not None:

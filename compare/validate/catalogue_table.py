@@ -1,7 +1,7 @@
 """The report's catalogue comparison: Harmonic Drive's CHA K3 beside the seed models for every size.
 
-A comparison, not a check: the models leave out tooth engagement and clearance, so the ratio says how
-much of a real drive's compliance they hold. The FEA-chain column comes from ``make bench``
+A comparison, not a check: the seed's models leave out tooth engagement and clearance, so the ratio says
+how much of a real drive's compliance they hold; this gear's chain with the teeth in mesh is one line beside. The FEA-chain column comes from ``make bench``
 (benchmarks/bench_catalogue.py), which meshes every size; validate stays cheap with the closed forms.
 """
 from __future__ import annotations
@@ -15,13 +15,15 @@ __all__ = ["catalogue_document", "CATALOGUE_COLUMNS", "catalogue_rows", "slope_l
 
 CATALOGUE_COLUMNS = ("size", "ratio", "d1 (mm)", "catalogue K3 (N m/rad)", "published K (N m/rad)",
                      "published / K3", "corrected K (N m/rad)", "corrected / K3")
-LEFT_OUT = ("The seed models hold the flexspline tube and the wave generator's radial stiffness only: tooth "
-            "engagement (teeth in mesh, tooth bending) and clearance are left out, which is the likely cause of "
-            "the model being stiffer than the catalogue, most at ratio 30 (fewer, larger teeth).")
+LEFT_OUT = ("The published and corrected columns are seed 000's forms: the flexspline tube and the wave "
+            "generator's radial stiffness only, without the teeth in mesh (tooth bending, clearance), which "
+            "strainwave's drive chain adds (below and `strainwave catalogue`); they are shown to say how much of "
+            "a real drive's compliance the seeds' model holds.")
 
 
-def catalogue_document(rules: catalogue.DesignRules = catalogue.DesignRules()) -> dict:
-    """Rows per catalogue size and ratio, and the log-log slope of K against size per ratio."""
+def catalogue_document(rules: catalogue.DesignRules = catalogue.DesignRules(), gear_line: str = "") -> dict:
+    """Rows per catalogue size and ratio, the log-log slope of K against size per ratio, and ``gear_line``:
+    this gear's drive chain with the teeth in mesh against the table (``mesh_chain_checks.gear_line``)."""
     rows = []
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")         # catalogue sizes sit outside seed 000's example ranges
@@ -36,7 +38,8 @@ def catalogue_document(rules: catalogue.DesignRules = catalogue.DesignRules()) -
         sizes = [r["size"] for r in sel]
         slopes[label] = {"catalogue": catalogue.log_slope(sizes, [r["K3_Nm_per_rad"] for r in sel]),
                          "corrected": catalogue.log_slope(sizes, [r["K_corrected_Nm_per_rad"] for r in sel])}
-    return {"rows": rows, "slopes": slopes, "rules": dict(rules.__dict__), "left_out": LEFT_OUT}
+    return {"rows": rows, "slopes": slopes, "rules": dict(rules.__dict__), "left_out": LEFT_OUT,
+            "gear_line": gear_line}
 
 
 def catalogue_rows(doc: dict) -> list[tuple[str, ...]]:

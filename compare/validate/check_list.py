@@ -18,6 +18,7 @@ from strainwave.compare.validate import (ring_checks, surface_crack_checks, tors
 from strainwave.compare.validate import tooth_mesh_checks
 from strainwave.compare.validate import mesh_closed_form_checks
 from strainwave.compare.validate import buckling_checks
+from strainwave.compare.validate import flank_hertz_checks
 from strainwave.compare.validate.checks import Check
 from strainwave.compare.validate.crack_checks import cup_crack, shaft_crack, shaft_range_note
 
@@ -140,6 +141,17 @@ def _surface_crack_record(ctx) -> dict:
     return surface_crack_checks.surface_crack_record(ctx.book, ctx.label(surface_crack_checks.STUDY), ctx.params)
 
 
+def _flank_hertz(ctx):
+    load, _ = flank_hertz_checks.rated_peak_line_load(ctx.book, ctx.label(flank_hertz_checks.STUDY), ctx.params)
+    return flank_hertz_checks.hertz_checks(ctx.params, rated_load_N_per_mm=load)
+
+
+def _flank_hertz_record(ctx) -> dict:
+    """The FE and Hertz at the tooth-mesh study's rated peak flank load (beside the checks, not asserted)."""
+    load, why = flank_hertz_checks.rated_peak_line_load(ctx.book, ctx.label(flank_hertz_checks.STUDY), ctx.params)
+    return flank_hertz_checks.rated_record(ctx.params, load, why)
+
+
 SHAFT, CUP, BEARING, RING = "shaft-torsion", "cup-torsion", "bearing-ring", "ring-compression"
 GCI = "GCI (Roache Fs 1.25 / 3 inside, added once)"
 ARC = f"{GCI} + the ring's arc-load and (delta/r_m)^2 allowances"
@@ -227,6 +239,12 @@ CHECKS: tuple[CheckSpec, ...] = (
     CheckSpec("cup.buckling_torque", "cup", _buckling,
               lambda params, at: buckling_checks.reference(params),
               f"{GCI} + Donnell's 1/n^2 + the Galerkin sum's truncation", record=_buckling_record),
+    # issue 48 item 3: Hertz at the flank, the real cup and spline teeth in plane-strain contact at a small load
+    CheckSpec(flank_hertz_checks.CHECK_P0, "mesh", _pick(_flank_hertz, flank_hertz_checks.CHECK_P0),
+              lambda params, at: flank_hertz_checks.reference(params, "p0"), flank_hertz_checks.TOLERANCE,
+              record=_flank_hertz_record),
+    CheckSpec(flank_hertz_checks.CHECK_B, "mesh", _pick(_flank_hertz, flank_hertz_checks.CHECK_B),
+              lambda params, at: flank_hertz_checks.reference(params, "b"), flank_hertz_checks.TOLERANCE),
 )
 
 REQUIRED_IDS = tuple(spec.id for spec in CHECKS)

@@ -114,8 +114,10 @@ def _fe_mesh_load(book, label) -> dict:
     q = _q(book, label, "peak_tooth_load_N")
     if q is None:
         return {}
+    root = _q(book, label, "root_stress_peak_tooth_MPa")
     return {"mesh_peak_force_N": q.value, "mesh_source": f"FEA {label}: the largest flank load at rated, "
-            f"{q.value:.4g} +- {q.uncertainty or 0.0:.2g} N (GCI)"}
+            f"{q.value:.4g} +- {q.uncertainty or 0.0:.2g} N (GCI)",
+            "mesh_root_fe_MPa": None if root is None else root.value}
 
 
 def design_factors_from_fea(params, book, labels: dict, stresses: dict, titles: dict, components,

@@ -58,6 +58,28 @@ def chain(book, labels: dict, wg_label: str, mesh_label: str | None, params) -> 
     return out, ""
 
 
+def gear_line(book, plan, params) -> str:
+    """The report's sentence on this gear's chain (teeth in mesh + cup + wave generator, FEA) against the CHA
+    power law of its ratio column; a comparison, not a check (the shipped gears are not catalogue designs)."""
+    from strainwave.compare.validate.wg_bearing_checks import STUDY as WG
+    labels = {c: case.label for c, case in plan.headline.items()}
+    c, why = chain(book, labels, plan.label_of(WG) or "", plan.label_of(STUDY), params)
+    ref, scatter, label, extrapolated = catalogue_power_law(params)
+    size = params.flexspline_cup.pitch_diameter_mm / 2.54
+    if c is None:
+        return f"This gear's drive with the teeth in mesh: not evaluated ({why})."
+    K, u = c["K3_chain_Nmm_per_rad"], c["K3_chain_rel_unc"]
+    return (f"This gear's drive with the teeth in mesh (FEA tooth-mesh K3 + cup + wave generator in series, the "
+            f"output shaft left out as in a catalogue unit): K3 = {1e-3 * K:.4g} N m/rad (+-{100 * u:.2g} %), "
+            f"K1 = {1e-3 * c['K1_chain_Nmm_per_rad']:.4g}; the CHA column {label}'s power law at size {size:.3g}"
+            f"{' (extrapolated beyond sizes 14-58)' if extrapolated else ''}: K3 {1e-3 * ref:.4g} N m/rad "
+            f"(scatter +-{100 * scatter:.2g} %), predicted / catalogue {K / ref:.2f}. Members (rad/(N mm)): mesh "
+            f"{c['lambda_mesh_K3_rad_per_Nmm']:.3g}, cup {c['lambda_cup_rad_per_Nmm']:.3g}, wave generator "
+            f"{c['lambda_H_rad_per_Nmm']:.3g}. This gear is not a catalogue design (its cup and teeth follow "
+            f"the seeds); the catalogue's own design rules are compared row by row with "
+            f"`strainwave catalogue TABLE.csv` (docs/tooth_mesh.md).")
+
+
 def catalogue_check(book, labels: dict, wg_label: str, mesh_label: str | None, params) -> Check:
     cid, quantity, unit = "gear.catalogue_stiffness", "drive K3: tooth mesh + cup + wave generator in series", \
         "N*mm/rad"

@@ -31,6 +31,7 @@ from strainwave.io_atomic import remove_stale_temps
 from strainwave.compare.validate.plan import make_plan
 from strainwave.compare.validate.report_html import write_html
 from strainwave.compare.validate.catalogue_table import catalogue_document
+from strainwave.compare.validate.mesh_chain_checks import gear_line
 from strainwave.compare.validate.report_pdf import chromium, print_pdf
 from strainwave.compare.validate.tables_csv import CSV_FILES, write_tables
 from strainwave.compare.validate.report_md import write_markdown
@@ -295,6 +296,20 @@ def _design(params, book, plan, stresses) -> tuple[dict, object]:
     return wg_cup, design_verdict(params, factors)
 
 
+def _ratcheting(params, book, plan) -> dict | None:
+    """The tooth-mesh FE's ratcheting torque beside the closed form's and the catalogue's (None without the study)."""
+    from strainwave.compare.validate.ratcheting import ratcheting_record
+    from strainwave.fea.tooth_mesh import STUDY as MESH_STUDY
+    return ratcheting_record(params, book, plan.label_of(MESH_STUDY))
+
+
+def _tooth_root(params, book, plan) -> dict | None:
+    """The tooth-mesh FE's root stress from the mesh load beside ISO 6336-3's (None without the study)."""
+    from strainwave.compare.validate.tooth_root_record import tooth_root_record
+    from strainwave.fea.tooth_mesh import STUDY as MESH_STUDY
+    return tooth_root_record(params, book, plan.label_of(MESH_STUDY))
+
+
 def _design_extras(params) -> dict:
     """The materials table and the wave generator bearing's ratings (Hertz p0, ISO 76, ISO 281 L10) beside the
     factors (analytic/design_factors.py)."""
@@ -348,7 +363,8 @@ def _results_document(params, quick, step, plan, book, outcomes, steps, timings,
         "designer": _designer_lines(summary),
         "designer_table": designer_table(summary),
         "design": {**design.to_dict(), **_design_extras(params),
-                   "buckling": check_set.records.get("cup.buckling_torque")},
+                   "buckling": check_set.records.get("cup.buckling_torque"), "ratcheting": _ratcheting(params, book, plan),
+                   "tooth_root_mesh": _tooth_root(params, book, plan)},
         "inputs": _inputs(plan, book, params),
         "stress_at_rated": {c: s.to_dict() for c, s in stresses.items()},
         "cup_wave_generator": wg_cup,
@@ -356,7 +372,7 @@ def _results_document(params, quick, step, plan, book, outcomes, steps, timings,
         "views": {c: v.to_dict() for c, v in made.views.items()},
         "gci_table": [r.to_dict() for r in gci_rows(book, ORDER)],
         "nafems": nafems,
-        "checks": checks, "audit": audit, "catalogue": catalogue_document(),
+        "checks": checks, "audit": audit, "catalogue": catalogue_document(gear_line=gear_line(book, plan, params)),
         "crack_sweeps": {k: r.to_dict() for k, r in check_set.sweeps.items()},
         "images": [i.to_dict() for i in images], "missing_images": [m.to_dict() for m in missing],
         "files": _files(out_dir, outcomes, steps),

@@ -186,6 +186,8 @@ def _appendix(doc: dict) -> list[str]:
         parts.append('<h2 id="catalogue">Catalogue drives (Harmonic Drive CHA K3)</h2>')
         parts.append(f"<p>{escape(CATALOGUE_INTRO)}</p>" + _table(CATALOGUE_COLUMNS, catalogue_rows(cat)))
         parts.append(f'<p>{escape(slope_line(cat))}</p><p class="notes">{escape(cat["left_out"])}</p>')
+        if cat.get("gear_line"):
+            parts.append(f"<p>{escape(cat['gear_line'])}</p>")
     parts += ['<h2 id="cases">FEA cases and timings</h2>', _table(rt.CASE_COLUMNS, [rt.case_row(c) for c in meta["cases"]]),
               "<p>Time per stage: " + escape(", ".join(f"{k} {v:.1f} s" for k, v in meta["timings_s"].items()))
               + "</p>"]

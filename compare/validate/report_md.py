@@ -114,6 +114,7 @@ def _md_appendices(doc: dict) -> list[str]:
         cat = doc["catalogue"]
         lines += ["## Catalogue drives (Harmonic Drive CHA K3)", "", CATALOGUE_INTRO, ""]
         lines += _table(CATALOGUE_COLUMNS, catalogue_rows(cat)) + ["", slope_line(cat), "", cat["left_out"], ""]
+        lines += [cat["gear_line"], ""] if cat.get("gear_line") else []
     meta = doc["metadata"]
     lines += ["## FEA cases and timings", ""]
     lines += _table(rt.CASE_COLUMNS, [rt.case_row(c) for c in meta["cases"]]) + [""]

@@ -92,6 +92,11 @@ def _closed_form_beside(fat: dict) -> str:
         text += (f"; with the tooth-mesh FE's flank load instead of the closed form's ({fe['source']}; closed form "
                  f"F0 {fe['closed_form_peak_force_N']:.4g} N) n would be {fe['n']:.3g}: not the verdict, since the FE "
                  "mesh is 1.2-2x stiffer than catalogue drives and how many teeth share the load is not settled")
+        if fe.get("n_fe_root") is not None:
+            text += (f"; with the FE's own root stress from that load ({fe['fe_root_MPa']:.4g} MPa at the filleted "
+                     f"root, notched: entered over K_sigma) n would be {fe['n_fe_root']:.3g}: beside, not the verdict "
+                     "(the factor's mesh term is a nominal stress under the wave's notch factor; the FE's is the "
+                     "tooth-bending fillet peak, a different notch)")
     return text
 
 
@@ -107,7 +112,14 @@ def design_notes(design: dict) -> list[str]:
     b = design.get("buckling")
     if b and b.get("fe_over_rated") is not None:
         out.append(buckling_line(b))
-    out.append("Not computed: the ratcheting torque (it needs the tooth-mesh study's radial separation under load)")
+    if design.get("ratcheting"):
+        from strainwave.compare.validate.ratcheting import ratcheting_line
+        out.append(ratcheting_line(design["ratcheting"]))
+    else:
+        out.append("Not computed: the ratcheting torque (no finite value from the tooth-mesh study: not run or failed)")
+    if design.get("tooth_root_mesh"):
+        from strainwave.compare.validate.tooth_root_record import tooth_root_line
+        out.append(tooth_root_line(design["tooth_root_mesh"]))
     return out
 
 
