@@ -97,15 +97,16 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
     with threadpool_limits(limits=1):
         diag, arrays = _diagnose(rec, base, usable_workers() if workers is None else workers)
         drift_named = False
-        if (drift := _drift(rec)) is not None:
+        # an unexplained recording keeps decision 067's reading (below): a re-clamped specimen read part-way
+        # as a drift was named beside "explained"
+        if diag.verdict is not Verdict.UNEXPLAINED and (drift := _drift(rec)) is not None:
             # a thermal drift, which the catalogue bends its effects to (decision 069): taken out, the rows it
             # was read on (after the first loading) diagnosed again
             stage("a thermal drift taken out: diagnosing the rest again")
             again, arrays_again = _diagnose(_after(rec, drift), base, usable_workers() if workers is None else workers)
-            # named where the rest is read at least as firmly: not unexplained, and not ambiguous where a named
-            # answer was not (a sensor's wander taken for a drift left a family-2 Preisach loop ambiguous)
-            firm = diag.verdict is Verdict.UNEXPLAINED or diag.ambiguous or not again.ambiguous
-            if again.verdict is not Verdict.UNEXPLAINED and firm:
+            # named where the rest is read at least as firmly: not unexplained, and not ambiguous where the
+            # first answer was not (a sensor's wander taken for a drift left a family-2 Preisach loop ambiguous)
+            if again.verdict is not Verdict.UNEXPLAINED and (diag.ambiguous or not again.ambiguous):
                 diag, arrays, events, drift_named = again, arrays_again, events + (drift.said,), True
         if not drift_named and diag.verdict is Verdict.UNEXPLAINED and (found := _time_events(rec)) is not None:
             # events in time the catalogue cannot draw: taken out, the rest diagnosed again; named where that
