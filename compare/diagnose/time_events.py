@@ -17,7 +17,8 @@ a polynomial per loading direction, plus a line in time), so a loop or a stiffen
   |load| >= HOLD_LOAD), the response moves in time as a + A (1 - exp(-(t - t0)/tau)), A of the held load's sign
   (the twist creeps further the way the torque holds it), better than a constant by BIC_THRESHOLD; named with
   its time constant tau; the creep is taken out in the hold and its end value after it;
-- a thermal zero drift (find_thermal_drift, read on EVERY recording, decision 069): the response drifts against
+- a thermal zero drift (find_thermal_drift, read also on explained and agreeing recordings, decision 069; an
+  unexplained one keeps decision 067's find_drift: white noise, one exponential): the response drifts against
   TIME, not load: beside any function of the load per loading direction (load_states) and a line in time, a
   warm-up A (1 - exp(-t/tau)) (tau from DRIFT_TAU of the record) improves BIC by more than BIC_THRESHOLD under
   the recording's noise (a fine-scale filter of what is left, deflated by the sensor's slow power), departs from a line by at least
