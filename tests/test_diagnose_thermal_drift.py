@@ -19,12 +19,20 @@ STEP = drive_rig.ENCODER_STEP_RAD
 
 def _warm_up(shape, x):
     return {"heater": np.where(x < 0.3, 0.5 * (x / 0.3) ** 2, 1.0 - 0.5 * np.exp(-(x - 0.3) / 0.15)),
+            "square_root": np.sqrt(x),
             "ramp_to_plateau": np.minimum(x / 0.5, 1.0),
             "exponential": 1.0 - np.exp(-x / 0.2), "none": 0.0 * x}[shape]
 
 
 @pytest.mark.heavy
-@pytest.mark.parametrize("shape", ["heater", "ramp_to_plateau", "exponential", "none"])
+# where the catalogue's first answer is "unexplained" the drift is read as decision 067 reads it (one exponential,
+# white noise, every row; no rate said): the ramp and the fast exponential land there (decision 069)
+FIRST_UNEXPLAINED = pytest.mark.xfail(strict=True, reason="first answer unexplained: decision 067's drift reading")
+
+
+@pytest.mark.parametrize("shape", ["heater", "square_root", "none",
+                                   pytest.param("ramp_to_plateau", marks=FIRST_UNEXPLAINED),
+                                   pytest.param("exponential", marks=FIRST_UNEXPLAINED)])
 def test_a_warm_up_on_a_cha20_rig_file_is_named_beside_the_drives_normal_model(tmp_path, shape):
     from strainwave.compare.diagnose.pipeline import diagnose_file
     t, T, phi = drive_rig.drive_test(CHA20, 37.5, T_rated=RATED_NM, n=3000, seed=1)
