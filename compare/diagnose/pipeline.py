@@ -99,10 +99,7 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
         drift_named = False
         # an unexplained recording keeps decision 067's reading (below): a re-clamped specimen read part-way
         # as a drift was named beside "explained"
-        # behind a sensor that wanders (a random walk in the recording's noise model) a slow departure is not
-        # told from the wander: no drift is read (a family-2 Preisach loop's sensor read as a warm-up)
-        if diag.verdict is not Verdict.UNEXPLAINED and not _wanders(arrays["noise_model"]) \
-                and (drift := _drift(rec)) is not None:
+        if diag.verdict is not Verdict.UNEXPLAINED and (drift := _drift(rec)) is not None:
             # a thermal drift, which the catalogue bends its effects to (decision 069): taken out, the rows it
             # was read on (after the first loading) diagnosed again
             stage("a thermal drift taken out: diagnosing the rest again")
@@ -130,10 +127,6 @@ def _time_events(rec: Recording):
     segments = find_segments(u, reversal_threshold(u))
     first = segments[0][1] if len(segments) > 1 else 0
     return find_time_events(rec.load, rec.response, rec.time_s, first, rec.response_unit)
-
-
-def _wanders(noise) -> bool:
-    return len(noise.b) == 2 and noise.b[1] == -1.0          # (1 - z) / (1 - theta z): a random walk plus white
 
 
 def _drift(rec: Recording):
@@ -224,7 +217,7 @@ def _diagnose(rec: Recording, base: Baseline, workers: int) -> tuple[Diagnosis, 
     diag = explained(noise, answer, reading, location)                             # 7
     after = answer.best if answer.verdict is not Verdict.AGREES else noise.base_fit
     arrays = {"load": fit_rec.load, "response": fit_rec.response, "baseline": noise.base_fit.model * ctx.Y,
-              "augmented": after.model * ctx.Y, "model_label": after.label, "noise_model": noise.judge.noise}
+              "augmented": after.model * ctx.Y, "model_label": after.label}
     return diag, arrays
 
 
