@@ -21,9 +21,9 @@ a polynomial per loading direction, plus a line in time), so a loop or a stiffen
   unexplained one keeps decision 067's find_drift: white noise, one exponential): the response drifts against
   TIME, not load: beside any function of the load per loading direction (load_states) and a line in time, a
   warm-up A (1 - exp(-t/tau)) (tau from DRIFT_TAU of the record) improves BIC by more than BIC_THRESHOLD under
-  the recording's noise (a fine-scale filter of what is left, deflated by the sensor's slow power), departs from a line by at least
-  MIN_COMPONENT_SIGMAS white sigmas, leaves a residual within DRIFT_LEAVES x the variance that noise implies and
-  Gaussian innovations (DRIFT_TAILS). The first loading and the creep under any hold are left out. Found, its
+  the recording's noise (a fine-scale filter of what is left, deflated by the sensor's slow power), departs
+  from a line by at least MIN_COMPONENT_SIGMAS white sigmas, leaves a residual within DRIFT_LEAVES x the
+  variance that noise implies and Gaussian innovations (DRIFT_TAILS). The first loading and the creep under any hold are left out. Found, its
   shape is taken out as two warm-ups and the line, from the end of the first loading.
 """
 from __future__ import annotations
@@ -182,7 +182,7 @@ class Drift:
     start_rate: float           # the drift's rate where the fit starts (response units per s)
     start_s: float              # where the fit starts: the end of the first loading (s)
 
-    def sentence(self, t: np.ndarray, unit: str, rows_after: bool = True) -> str:
+    def sentence(self, t: np.ndarray, unit: str) -> str:
         span = float(t[-1] - self.start_s)
         change = float(self.total[-1])
 
@@ -190,10 +190,10 @@ class Drift:
             return f"{x:.3g} {unit}" + (f" ({x * _ARCMIN_PER_RAD:.3g} arcmin)" if unit == "rad" else "")
         return (f"a thermal zero drift: the response drifts against time, not load, by {shown(change)} from "
                 f"{self.start_s:.4g} s to {float(t[-1]):.4g} s (mean rate {shown(change / span)}/s, "
-                f"{shown(self.start_rate)}/s at {self.start_s:.4g} s; time constant {self.tau:.3g} s), departing from a straight line by {shown(self.departure)} "
+                f"{shown(self.start_rate)}/s at {self.start_s:.4g} s; time constant {self.tau:.3g} s), "
+                f"departing from a straight line by {shown(self.departure)} "
                 f"(delta BIC {self.evidence:.3g} beside any function of the load per loading direction, "
-                f"{self.noise} noise); " + (f"taken out, the rows from {self.start_s:.4g} s diagnosed without it"
-                                            if rows_after else "taken out of the fit"))
+                f"{self.noise} noise); taken out, the rows from {self.start_s:.4g} s diagnosed without it")
 
 
 _ARCMIN_PER_RAD = 60.0 * 180.0 / math.pi
@@ -360,7 +360,9 @@ def find_thermal_drift(load: np.ndarray, y: np.ndarray, t: np.ndarray | None, fi
 
 
 def _in_samples(said: str) -> str:
-    return said.replace(" s ", " samples ").replace(" s;", " samples;").replace(" s)", " samples)").replace("/s", "/sample")
+    for a, b in ((" s ", " samples "), (" s;", " samples;"), (" s)", " samples)"), ("/s", "/sample")):
+        said = said.replace(a, b)
+    return said
 
 
 def find_time_events(load: np.ndarray, y: np.ndarray, t: np.ndarray | None, first: int,
@@ -381,4 +383,5 @@ def find_time_events(load: np.ndarray, y: np.ndarray, t: np.ndarray | None, firs
     return TimeEvents(y1, tuple(said)) if said else None
 
 
-__all__ = ["Drift", "FoundDrift", "TimeEvents", "drift_test", "find_drift", "find_thermal_drift", "find_hold_creep", "find_slips", "find_time_events"]
+__all__ = ["Drift", "FoundDrift", "TimeEvents", "drift_test", "find_drift", "find_hold_creep", "find_slips",
+           "find_thermal_drift", "find_time_events"]
