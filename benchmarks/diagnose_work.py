@@ -1,7 +1,7 @@
 """The work of one diagnosis in ONE process: CPU seconds (medians of repeats) and the deterministic counts of
 effect evaluations, trust-region fits and scipy's SVDs, for the speed benchmark's CHA recording.
 
-Run: OMP_NUM_THREADS=1 .venv/bin/python benchmarks/diagnose_work.py [--rows 10000] [--repeats 5] [--counts]
+Run: OMP_NUM_THREADS=1 .venv/bin/python benchmarks/diagnose_work.py [--rows 10000] [--repeats 5] [--counts] [--workers 2]
 CPU time does not depend on the other engineers' load as much as wall time does, the counts not at all; to
 compare two versions of the code, alternate their runs (each with its own checkout's interpreter).
 """
@@ -41,6 +41,9 @@ def main() -> None:
     ap.add_argument("--rows", type=int, default=10_000)
     ap.add_argument("--repeats", type=int, default=5)
     ap.add_argument("--counts", action="store_true", help="count the work instead of timing it")
+    ap.add_argument("--workers", type=int, default=1,
+                    help="2: the fits shared with a forked copy; the parent's CPU (the wall time where the copy has a "
+                         "core of its own) and the copies' CPU are timed apart")
     args = ap.parse_args()
     from strainwave.compare.diagnose.generators.cha import cha_recording, cha_rows
     from strainwave.compare.diagnose.pipeline import diagnose
@@ -56,12 +59,16 @@ def main() -> None:
         diag, _ = diagnose(parse_text(text), params, workers=1)
         print(f"{args.rows:,} rows: {dict(sorted(counts.items()))}; verdict {diag.verdict.value} {list(diag.named)}")
         return
-    cpu = []
+    cpu, copies = [], []
     for _ in range(args.repeats):
-        t = time.process_time()
-        diagnose(parse_text(text), params, workers=1)
+        t, c = time.process_time(), os.times()
+        diagnose(parse_text(text), params, workers=args.workers)
         cpu.append(time.process_time() - t)
-    print(f"{args.rows:,} rows, one process: median CPU {statistics.median(cpu):.2f} s of {args.repeats} "
+        after = os.times()            # a joined copy's CPU is counted among the children's
+        copies.append(after.children_user + after.children_system - c.children_user - c.children_system)
+    where = "one process" if args.workers == 1 else \
+        f"{args.workers} workers (copies' CPU median {statistics.median(copies):.2f} s)"
+    print(f"{args.rows:,} rows, {where}: median CPU {statistics.median(cpu):.2f} s of {args.repeats} "
           f"({', '.join(f'{x:.2f}' for x in cpu)}); load average {os.getloadavg()[0]:.2f}")
 
 

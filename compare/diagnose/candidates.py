@@ -200,7 +200,7 @@ def _triples(noise: Noise, pairs: list[Fit], specimen: str) -> list[Fit]:
         if key not in done:
             done.add(key)
             tasks.append(FitTask(tuple(p.effects[0] for p in parts), _triple_starts(parts, pairs), j.noise))
-    return [with_loop_prior(j.ctx, f) for f in fit_all(j.ctx, tasks, j.sigma, j.uncertainty, j.workers)]
+    return fit_all(j.ctx, tasks, j.sigma, j.uncertainty, j.workers, then=with_loop_prior)
 
 
 def _normal_models(noise: Noise, specimen: str) -> list[tuple[str, ...]]:
@@ -277,7 +277,7 @@ def _pairs(noise: Noise) -> list[Fit]:
         k = 2 if a0 is best_single else 1
         tasks += [FitTask(a.effects + b.effects, (np.concatenate([a.theta, b.theta]),), j.noise)
                   for a, b in itertools.product(pair_forms(by_id[a0.id], k), pair_forms(by_id[b0.id], k))]
-    pairs = [with_loop_prior(j.ctx, f) for f in fit_all(j.ctx, tasks, j.sigma, j.uncertainty, j.workers)]
+    pairs = fit_all(j.ctx, tasks, j.sigma, j.uncertainty, j.workers, then=with_loop_prior)
     if not pairs:
         return pairs
     # the best pair in every other combination of model forms: a loop law that loses as a single
@@ -286,10 +286,11 @@ def _pairs(noise: Noise) -> list[Fit]:
     forms = {e.id: [f for f in pairable if f.id == e.id] for e in top.effects}
     (_, fa), (_, fb) = forms.items()
     done = {tuple(e.label for e in p.effects) for p in pairs}
-    return pairs + [with_loop_prior(j.ctx, f) for f in fit_all(
+    return pairs + fit_all(
         j.ctx, [FitTask(x.effects + y.effects, (np.concatenate([x.theta, y.theta]),), j.noise)
                 for x, y in itertools.product(fa, fb)
-                if (x.effects[0].label, y.effects[0].label) not in done], j.sigma, j.uncertainty, j.workers)]
+                if (x.effects[0].label, y.effects[0].label) not in done], j.sigma, j.uncertainty, j.workers,
+        then=with_loop_prior)
 
 
 def _offset_pairs(noise: Noise) -> list[Fit]:

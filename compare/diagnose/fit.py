@@ -189,7 +189,7 @@ def fit_effects(ctx: Context, effects: tuple[Effect, ...], sigma: float, uncerta
         z = ctx.y - contribution(theta)
         beta = proj.solve(z)
         r = z - proj.A @ beta
-        return np.append(r, proj.lam * (beta[2] - 1.0))
+        return np.concatenate((r, [proj.lam * (beta[2] - 1.0)]))
 
     params = [p for e in effects for p in e.params]
     at_bound: tuple[str, ...] = ()

@@ -22,6 +22,7 @@ structures. Coloured noise is no structure: its wander costs what an AR process 
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from dataclasses import dataclass
 
@@ -344,14 +345,21 @@ _IMPULSE = 4000
 def _variogram(b: np.ndarray, a: np.ndarray, lags: np.ndarray) -> np.ndarray:
     """Semivariogram v(k) = Var(r_(t+k) - r_t)/2 of r = lfilter(a, b, e), unit innovations (also for a
     random walk, b = [1, -1], whose increments are stationary)."""
+    # memoised: the candidate grid's filters are the same for every recording (~80 x 16 impulse responses)
+    return np.array(_variogram_of(tuple(map(float, b)), tuple(map(float, a)), tuple(map(int, lags))))
+
+
+@functools.lru_cache(maxsize=1024)
+def _variogram_of(b: tuple[float, ...], a: tuple[float, ...], lags: tuple[int, ...]) -> tuple[float, ...]:
     from scipy.signal import lfilter
+    b, a = np.array(b), np.array(a)
     out = np.empty(len(lags))
     for i, k in enumerate(lags):
         x = np.zeros(_IMPULSE)
         x[0], x[k] = 1.0, -1.0
         g = lfilter(a, b, x)
         out[i] = 0.5 * float(g @ g)
-    return out
+    return tuple(out)
 
 
 def _fine_variogram(x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

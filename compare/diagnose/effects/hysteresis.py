@@ -77,14 +77,26 @@ def _dahl_state(ctx: Context, approach) -> np.ndarray:
     sample at every reversal, a spike in the residual at 100x the noise)."""
     z = np.empty_like(ctx.u)
     z_r = 0.0
-    for start, stop, d in ctx.segments:
-        seg = ctx.u[start:stop + 1]                  # with the next stretch's first sample, its own extreme
-        travel = np.maximum.accumulate(np.maximum(d * (seg - seg[0]), 0.0))
+    for (start, stop, d), travel in zip(ctx.segments, _travels(ctx)):
         x = approach(max(1.0 - d * z_r, 0.0), travel)
         zs = d * (1.0 - x)
         z[start:stop] = zs[:stop - start]
         z_r = zs[-1]
     return z
+
+
+def _travels(ctx: Context) -> list[np.ndarray]:
+    """The load's travel since each stretch began (its running extreme), with the next stretch's first sample,
+    the stretch's own extreme; the same for every law and parameter, so kept on the context."""
+    if "travels" not in ctx.cache:
+        out = []
+        for start, stop, d in ctx.segments:
+            seg = ctx.u[start:stop + 1]
+            travel = np.maximum.accumulate(np.maximum(d * (seg - seg[0]), 0.0))
+            travel.flags.writeable = False
+            out.append(travel)
+        ctx.cache["travels"] = out
+    return ctx.cache["travels"]
 
 
 def dahl_unit(ctx: Context, w: float) -> np.ndarray:
@@ -111,14 +123,28 @@ def bouc_wen_travel(n: float, q: float) -> tuple[np.ndarray, np.ndarray]:
     other way) to x, tabulated against g = -ln(1 - x), the log of the distance to saturation. Trapezoids in x up
     to 0, then in g, where the integrand (1 - x) / rate stays smooth while tau grows without bound towards
     saturation (x = 1 - 1e-12); g against tau is then near linear, so interpolating it is accurate."""
+    abs_x, dx, x_pos, one_minus_x, dg, g = _TRAVEL_GRID
+    rate_neg = 1.0 + q * abs_x ** n
+    f_pos = one_minus_x / (1.0 - x_pos ** n)
+    tau_neg = np.concatenate([[0.0], np.cumsum(0.5 * (1.0 / rate_neg[1:] + 1.0 / rate_neg[:-1]) * dx)])
+    tau_pos = tau_neg[-1] + np.concatenate([[0.0], np.cumsum(0.5 * (f_pos[1:] + f_pos[:-1]) * dg)])
+    return np.concatenate([tau_neg[:-1], tau_pos]), g
+
+
+def _travel_grid() -> tuple[np.ndarray, ...]:
+    """bouc_wen_travel's quadrature nodes, the same for every (n, q): |x| and its steps up to 0; x, 1 - x and the
+    steps of g beyond; g at every node."""
     x_neg = np.linspace(-1.0, 0.0, 801)
     g_pos = np.linspace(0.0, 12.0 * np.log(10.0), 4001)
     x_pos = -np.expm1(-g_pos)
-    rate_neg = 1.0 + q * np.abs(x_neg) ** n
-    f_pos = (1.0 - x_pos) / (1.0 - x_pos ** n)
-    tau_neg = np.concatenate([[0.0], np.cumsum(0.5 * (1.0 / rate_neg[1:] + 1.0 / rate_neg[:-1]) * np.diff(x_neg))])
-    tau_pos = tau_neg[-1] + np.concatenate([[0.0], np.cumsum(0.5 * (f_pos[1:] + f_pos[:-1]) * np.diff(g_pos))])
-    return np.concatenate([tau_neg[:-1], tau_pos]), np.concatenate([-np.log1p(-x_neg[:-1]), g_pos])
+    out = (np.abs(x_neg), np.diff(x_neg), x_pos, 1.0 - x_pos, np.diff(g_pos),
+           np.concatenate([-np.log1p(-x_neg[:-1]), g_pos]))
+    for a in out:
+        a.flags.writeable = False           # shared by every table (g is returned with each)
+    return out
+
+
+_TRAVEL_GRID = _travel_grid()
 
 
 def bouc_wen_unit(ctx: Context, w: float, n: float, q: float) -> np.ndarray:
@@ -189,12 +215,14 @@ def relay_states(u: np.ndarray, alpha: np.ndarray, beta: np.ndarray) -> np.ndarr
     # rows, which a Preisach fit and its loop reading pay 8 times)
     idx = np.arange(len(u), dtype=np.int32)
     levels = np.unique(np.concatenate([alpha, beta]))
-    last_up = np.maximum.accumulate(np.where(u[:, None] >= levels[None, :], idx[:, None], np.int32(-1)), axis=0)
-    last_dn = np.maximum.accumulate(np.where(u[:, None] <= levels[None, :], idx[:, None], np.int32(-1)), axis=0)
+    # levels x samples: each relay's gather is then one contiguous row (a third faster than gathering columns);
+    # the states are handed out transposed, the samples x relays array in the memory order it always had
+    last_up = np.maximum.accumulate(np.where(u[None, :] >= levels[:, None], idx[None, :], np.int32(-1)), axis=1)
+    last_dn = np.maximum.accumulate(np.where(u[None, :] <= levels[:, None], idx[None, :], np.int32(-1)), axis=1)
     ia, ib = np.searchsorted(levels, alpha), np.searchsorted(levels, beta)
-    up, dn = last_up[:, ia], last_dn[:, ib]
+    up, dn = last_up[ia], last_dn[ib]
     start = np.where(alpha + beta < 0.0, 1.0, -1.0)
-    return np.where(up > dn, 1.0, np.where(dn > up, -1.0, start[None, :]))
+    return np.where(up > dn, 1.0, np.where(dn > up, -1.0, start[:, None])).T
 
 
 def preisach_basis(ctx: Context, bias_nodes: tuple[float, ...] = PREISACH_BIAS_NODES,
@@ -237,9 +265,21 @@ def _preisach_bases(ctx: Context, resolutions) -> dict:
             for secant, b in bases.items()}
 
 
+def _last_state(ctx: Context, law: str, args: tuple, state: Callable[..., np.ndarray]) -> np.ndarray:
+    """``state(ctx, *args)``, the last one per law kept on the context: a step in the loop's amplitude alone (a
+    column of the optimiser's difference Jacobian) scales the same state (the answer bit for bit the same)."""
+    key = ("last_state", law)
+    hit = ctx.cache.get(key)
+    if hit is not None and hit[0] == args:
+        return hit[1]
+    z = state(ctx, *args)
+    ctx.cache[key] = (args, z)
+    return z
+
+
 def _dahl(ctx: Context, theta):
     # minus: z -> +1 on loading and friction makes the loading twist LOWER (dissipative loop)
-    return -theta[0] * dahl_unit(ctx, 10.0 ** theta[1])
+    return -theta[0] * _last_state(ctx, "dahl", (float(10.0 ** theta[1]),), dahl_unit)
 
 
 def _dahl_exponent_h(theta) -> float:
@@ -252,7 +292,8 @@ def _dahl_exponent_h(theta) -> float:
 
 
 def _dahl_exponent(ctx: Context, theta):
-    return -_dahl_exponent_h(theta) * dahl_exponent_unit(ctx, 10.0 ** theta[1], theta[2])
+    return -_dahl_exponent_h(theta) * _last_state(ctx, "dahl-exponent", (float(10.0 ** theta[1]), float(theta[2])),
+                                                  dahl_exponent_unit)
 
 
 def _report_dahl_exponent(ctx: Context, theta, s: float) -> dict:
@@ -287,7 +328,8 @@ def _bouc_wen_h(theta) -> float:
 
 
 def _bouc_wen(ctx: Context, theta):
-    return -_bouc_wen_h(theta) * bouc_wen_unit(ctx, 10.0 ** theta[1], theta[2], theta[3])
+    return -_bouc_wen_h(theta) * _last_state(ctx, "bouc-wen", (float(10.0 ** theta[1]), float(theta[2]),
+                                                               float(theta[3])), bouc_wen_unit)
 
 
 def _report_bouc_wen(ctx: Context, theta, s: float) -> dict:
