@@ -91,3 +91,73 @@ def test_creep_under_a_hold_is_named_with_a_time_constant_and_a_clean_hold_is_no
     # a drift during a hold that goes on the same way under the opposite torque is no creep
     _, drift = find_hold_creep(T, c * T + noise + 8 * sigma * np.sqrt(t / t[-1]), t, sigma, "rad")
     assert len(drift) <= 1
+
+
+# --- a thermal zero drift read beside every verdict (decision 069) -------------------------------------------
+
+def _ar1(n, phi, sigma, seed):
+    """AR(1) sensor noise (a drifting amplifier, not the detector's white model)."""
+    e = sigma * np.random.default_rng(seed).standard_normal(n)
+    out = np.zeros(n)
+    for k in range(1, n):
+        out[k] = phi * out[k - 1] + e[k]
+    return out
+
+
+def _warm_up(shape, x):
+    """Warm-ups of unit size on x = t / t_end, none of them the detector's one exponential."""
+    return {"square_root": np.sqrt(x),                                          # a surface-heated body
+            "ramp_to_plateau": np.minimum(x / 0.5, 1.0),                        # a heater's linear ramp, then steady
+            "heater": np.where(x < 0.3, 0.5 * (x / 0.3) ** 2, 1.0 - 0.5 * np.exp(-(x - 0.3) / 0.15)),
+            "exponential": 1.0 - np.exp(-x / 0.2)}[shape]
+
+
+def _said_drift(sentence):
+    return float(sentence.split("not load, by ")[1].split(" ")[0])
+
+
+@pytest.mark.parametrize("shape, ar1", [("square_root", False), ("ramp_to_plateau", False), ("heater", False),
+                                        ("exponential", True), ("square_root", True)])
+def test_a_warm_up_of_any_shape_is_a_thermal_drift_with_its_rate(drive, shape, ar1):
+    from strainwave.compare.diagnose.time_events import find_thermal_drift
+    t, T, phi = drive
+    # behind the AR(1) sensor (std 2.3 encoder steps, its wander slow) a warm-up of 80 steps; 40 behind white
+    warm = (80 if ar1 else 40) * STEP * _warm_up(shape, t / t[-1])
+    noise = _ar1(t.size, 0.9, STEP, 11) if ar1 else 0.0
+    found = find_thermal_drift(T, phi + noise + warm, t, 375)
+    assert found is not None and "thermal zero drift" in found.said and "mean rate" in found.said
+    # the drift it reports is the one over the rows it read (after the first loading): within 15 % behind white
+    # noise, 20 % behind the AR(1) sensor (whose own wander over the record is a tenth of the drift)
+    tolerance = 0.2 if ar1 else 0.15
+    assert _said_drift(found.said) == pytest.approx(warm[-1] - warm[375], rel=tolerance)
+    rate = float(found.said.split("mean rate ")[1].split(" ")[0])
+    assert rate == pytest.approx((warm[-1] - warm[375]) / (t[-1] - t[375]), rel=tolerance)
+    # what it takes out is the warm-up's departure from a line (the nuisance fit keeps the line)
+    kept = slice(375, None)
+    beyond = warm[kept] - np.polyval(np.polyfit(t[kept], warm[kept], 1), t[kept])
+    left = (phi + warm - found.curve)[kept] - phi[kept]
+    left = left - np.polyval(np.polyfit(t[kept], left, 1), t[kept])
+    assert np.std(left) < 0.35 * np.std(beyond)
+
+
+@pytest.mark.parametrize("case", ["clean", "ar1_alone", "straight_line", "stick_slip", "one_way_slip"])
+def test_no_thermal_drift_where_the_twist_does_not_drift_in_time_beyond_a_line(drive, case):
+    from strainwave.compare.diagnose.time_events import find_thermal_drift
+    t, T, phi = drive
+    extra = {"clean": lambda: 0.0, "ar1_alone": lambda: _ar1(t.size, 0.9, STEP, 12),
+             "straight_line": lambda: 40 * STEP * t / t[-1],           # the nuisance fit's own drift
+             "stick_slip": lambda: stick_slip_twist(T, 60 * STEP, 8000.0),
+             "one_way_slip": lambda: _walking_flange(T)[0]}[case]()
+    assert find_thermal_drift(T, phi + extra, t, 375) is None
+
+
+def test_creep_under_a_hold_is_no_thermal_drift():
+    from strainwave.compare.diagnose.time_events import find_thermal_drift
+    t, T = _held()
+    c, sigma = 1e-9, 2e-6
+    noise = sigma * np.random.default_rng(5).standard_normal(t.size)
+    held = np.abs(T) >= 1e6 - 1e-6
+    edges = np.flatnonzero(np.diff(held.astype(int)))
+    creep = log_creep(t, t[edges[0] + 1], t[edges[1]], 8 * sigma, 2.0) \
+        - log_creep(t, t[edges[2] + 1], t[edges[3]], 8 * sigma, 2.0)
+    assert find_thermal_drift(T, c * T + creep + noise, t, 150) is None

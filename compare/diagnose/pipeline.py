@@ -54,7 +54,7 @@ from strainwave.compare.diagnose.explain import explain
 from strainwave.compare.diagnose.judge import AMBIGUOUS_BIC, BIC_THRESHOLD, MIN_COMPONENT_SIGMAS
 from strainwave.compare.diagnose.locate import Located, locate, locate_effect
 from strainwave.compare.diagnose.mains import find_mains
-from strainwave.compare.diagnose.time_events import find_time_events
+from strainwave.compare.diagnose.time_events import find_thermal_drift, find_time_events
 from strainwave.compare.diagnose.parallel import usable_workers
 from strainwave.compare.diagnose.quantities import Reading, read_quantities
 from strainwave.compare.diagnose.recording import Recording, TestFlags, parse_recording
@@ -96,7 +96,19 @@ def diagnose(rec: Recording, params, baseline: str = "analytic",
     # Tiny (N x 4) linear-algebra calls: BLAS threads only add overhead (docs/decisions/019-diagnose-speed.md).
     with threadpool_limits(limits=1):
         diag, arrays = _diagnose(rec, base, usable_workers() if workers is None else workers)
-        if diag.verdict is Verdict.UNEXPLAINED and (found := _time_events(rec)) is not None:
+        drift_named = False
+        # an unexplained recording keeps decision 067's reading (below): a re-clamped specimen read part-way
+        # as a drift was named beside "explained"
+        if diag.verdict is not Verdict.UNEXPLAINED and (drift := _drift(rec)) is not None:
+            # a thermal drift, which the catalogue bends its effects to (decision 069): taken out, the rows it
+            # was read on (after the first loading) diagnosed again
+            stage("a thermal drift taken out: diagnosing the rest again")
+            again, arrays_again = _diagnose(_after(rec, drift), base, usable_workers() if workers is None else workers)
+            # named where the rest is read at least as firmly: not unexplained, and not ambiguous where the
+            # first answer was not (a sensor's wander taken for a drift left a family-2 Preisach loop ambiguous)
+            if again.verdict is not Verdict.UNEXPLAINED and (diag.ambiguous or not again.ambiguous):
+                diag, arrays, events, drift_named = again, arrays_again, events + (drift.said,), True
+        if not drift_named and diag.verdict is Verdict.UNEXPLAINED and (found := _time_events(rec)) is not None:
             # events in time the catalogue cannot draw: taken out, the rest diagnosed again; named where that
             # rest is explained or agrees (else they are not the story: a re-clamp, a rate-dependent loop
             # read part-way as a drift), the first answer standing
@@ -115,6 +127,22 @@ def _time_events(rec: Recording):
     segments = find_segments(u, reversal_threshold(u))
     first = segments[0][1] if len(segments) > 1 else 0
     return find_time_events(rec.load, rec.response, rec.time_s, first, rec.response_unit)
+
+
+def _drift(rec: Recording):
+    """time_events.find_thermal_drift on the raw channels (decision 069), the first loading left out of its fit."""
+    u = rec.load / (float(np.max(np.abs(rec.load))) or 1.0)
+    segments = find_segments(u, reversal_threshold(u))
+    first = segments[0][1] if len(segments) > 1 else 0
+    return find_thermal_drift(rec.load, rec.response, rec.time_s, first, rec.response_unit)
+
+
+def _after(rec: Recording, drift) -> Recording:
+    """The rows a drift was read on (after the first loading, where it is known), the drift taken out."""
+    keep = slice(drift.start_row, None)
+    return dataclasses.replace(rec, load=rec.load[keep], response=(rec.response - drift.curve)[keep],
+                               time_s=None if rec.time_s is None else rec.time_s[keep],
+                               extra={c: v[keep] for c, v in rec.extra.items()})
 
 
 def _without_events(rec: Recording, base: Baseline) -> tuple[Recording, tuple[str, ...]]:

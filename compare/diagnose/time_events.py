@@ -17,21 +17,28 @@ a polynomial per loading direction, plus a line in time), so a loop or a stiffen
   |load| >= HOLD_LOAD), the response moves in time as a + A (1 - exp(-(t - t0)/tau)), A of the held load's sign
   (the twist creeps further the way the torque holds it), better than a constant by BIC_THRESHOLD; named with
   its time constant tau; the creep is taken out in the hold and its end value after it;
-- a thermal zero drift: the response drifts against TIME, not load: beside any function of the load per
-  loading direction (load_states), A (1 - exp(-t/tau)) (a warm-up; tau from DRIFT_TAU of the record) improves
-  BIC by more than BIC_THRESHOLD, departs from a line (the nuisance fit's drift) by at least
-  MIN_COMPONENT_SIGMAS white sigmas and leaves a residual within DRIFT_LEAVES x the white noise's variance. The
-  first loading is left out of its fit (a virgin curve is no drift).
+- a thermal zero drift (find_thermal_drift, read also on explained and agreeing recordings, decision 069; an
+  unexplained one keeps decision 067's find_drift: white noise, one exponential): the response drifts against
+  TIME, not load: beside any function of the load per loading direction (load_states) and a line in time, a
+  warm-up A (1 - exp(-t/tau)) (tau from DRIFT_TAU of the record) improves BIC by more than BIC_THRESHOLD under
+  the recording's noise (a fine-scale filter of what is left, deflated by the sensor's slow power), departs
+  from a line by at least MIN_COMPONENT_SIGMAS white sigmas, leaves a residual within DRIFT_LEAVES x the
+  variance that noise implies and Gaussian innovations (DRIFT_TAILS). The first loading and the creep under any hold are left out. Found, its
+  shape is taken out as two warm-ups and the line, from the end of the first loading.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.signal import lfilter
 
 from strainwave.compare.diagnose.judge import BIC_THRESHOLD
-from strainwave.compare.diagnose.structure import MIN_COMPONENT_SIGMAS
+from strainwave.compare.diagnose.noise import _TRIM_FACTOR, KEEP
+from strainwave.compare.diagnose.structure import (MIN_COMPONENT_SIGMAS, NoiseModel, fine_scale_noise,
+                                                   flicker_noise, slow_power_inflation)
 
 SLIP_SIGMAS = 30.0          # a step this many robust sigmas of the sample-to-sample differences is no noise
 SLIP_SPAN = 3               # samples a slip may take
@@ -47,6 +54,9 @@ LOAD_KNOTS = 48             # knots per loading direction of the load model a dr
 DRIFT_LEAVES = 4.0          # a drift is the whole story beside the load: its residual's variance within this x
                             # the white noise's (else the load model misses something, e.g. a stick-slip stair,
                             # that a slow curve in time only partly follows)
+DRIFT_TAILS = 2.0           # ... and the innovations its noise filter leaves Gaussian: their variance within this
+                            # x their trimmed variance (a stair's steps, which a filter reads as red noise, are
+                            # spikes in them; Gaussian innovations give 1.0-1.15)
 
 
 @dataclass(frozen=True)
@@ -99,11 +109,13 @@ def _holds(load: np.ndarray) -> list[tuple[int, int]]:
     return out
 
 
-def _best_exponential(t: np.ndarray, r: np.ndarray, taus: np.ndarray, basis: np.ndarray):
-    """(gain in RSS, tau, amplitude, curve) of A (1 - exp(-t/tau)) beside ``basis`` (orthonormal columns)."""
+def _best_exponential(t: np.ndarray, r: np.ndarray, taus: np.ndarray, basis: np.ndarray, whiten=None):
+    """(gain in RSS, tau, amplitude, curve) of A (1 - exp(-t/tau)) beside ``basis`` (orthonormal columns);
+    ``whiten``: the noise filter ``r`` and ``basis`` were passed through."""
     best = (0.0, math.nan, 0.0, np.zeros_like(r))
     for tau in taus:
         g = 1.0 - np.exp(-t / tau)
+        g = g if whiten is None else whiten(g)
         g = g - basis @ (basis.T @ g)
         gg = float(g @ g)
         if gg <= 0.0:
@@ -157,9 +169,143 @@ def load_states(load: np.ndarray, t: np.ndarray) -> np.ndarray:
     return np.column_stack([cols, (t - t[0]) / (t[-1] - t[0])])
 
 
+@dataclass(frozen=True)
+class Drift:
+    """A thermal zero drift found beside the load (see the module doc)."""
+
+    curve: np.ndarray           # the drift (warm-ups and line) from the end of the first loading, 0 before it
+    total: np.ndarray           # the whole drift in time (warm-up plus line), every row, zero where the fit starts
+    departure: float            # its departure from a straight line over the rows read (peak to peak)
+    tau: float                  # time constant of the warm-up fitted (s, or samples without a time column)
+    evidence: float             # delta BIC under the recording's noise, deflated by its slow power
+    noise: str                  # the noise filter it was judged under
+    start_s: float              # where the fit starts: the end of the first loading (s)
+
+    def sentence(self, t: np.ndarray, unit: str) -> str:
+        span = float(t[-1] - self.start_s)
+        change = float(self.total[-1])
+
+        def shown(x: float) -> str:
+            return f"{x:.3g} {unit}" + (f" ({x * _ARCMIN_PER_RAD:.3g} arcmin)" if unit == "rad" else "")
+        return (f"a thermal zero drift: the response drifts against time, not load, by {shown(change)} from "
+                f"{self.start_s:.4g} s to {float(t[-1]):.4g} s (mean rate {shown(change / span)}/s; time constant "
+                f"{self.tau:.3g} s), "
+                f"departing from a straight line by {shown(self.departure)} "
+                f"(delta BIC {self.evidence:.3g} beside any function of the load per loading direction, "
+                f"{self.noise} noise); taken out, the rows from {self.start_s:.4g} s diagnosed without it")
+
+
+_ARCMIN_PER_RAD = 60.0 * 180.0 / math.pi
+
+
+def _noise_of(rest: np.ndarray) -> tuple[NoiseModel, float]:
+    """The recording's noise read from the fine scales of what the drift and the load leave (as
+    structure.reference_noise reads it), with its slow power; and the variance that filter implies."""
+    model = fine_scale_noise(rest)
+    model = dataclasses.replace(model, slow_inflation=slow_power_inflation(rest, model),
+                                flicker=flicker_noise(rest, model))
+    impulse = np.zeros(min(len(rest), 4000))
+    impulse[0] = 1.0
+    h = lfilter(model.a, model.b, impulse)          # r = lfilter(a, b, e): the filter's response to one innovation
+    return model, model.innovation_var * float(h @ h)
+
+
+def _trimmed_var(x: np.ndarray) -> float:
+    """Gaussian variance from the central KEEP of |x - median| (noise.py's trimming): spikes left out."""
+    a = np.abs(x - np.median(x))
+    kept = x[a <= np.quantile(a, KEEP)] - np.median(x)
+    return float(np.mean(kept ** 2)) / _TRIM_FACTOR
+
+
+def _judged(tt: np.ndarray, keep: np.ndarray, X: np.ndarray, y: np.ndarray, taus: np.ndarray, model: NoiseModel):
+    """(delta BIC deflated by the sensor's slow power, tau, amplitude) of the best warm-up beside the load X,
+    both scored on the rows whitened by ``model``."""
+    qw, _ = np.linalg.qr(model.whiten(X))
+    yw = model.whiten(y)
+    rw = yw - qw @ (qw.T @ yw)
+    gain, tau, amp, _ = _best_exponential(tt[keep], rw, taus, qw, whiten=model.whiten)
+    n, rss0 = len(rw), float(rw @ rw)
+    if not (rss0 > gain and math.isfinite(tau)):
+        return -math.inf, tau, amp
+    warm = amp * (1.0 - np.exp(-tt[keep] / tau))
+    beyond = warm - np.polyval(np.polyfit(tt[keep], warm, 1), tt[keep])
+    return model.deflate(n * math.log(rss0 / (rss0 - gain)), beyond) - 2.0 * math.log(n), tau, amp
+
+
+def drift_test(load: np.ndarray, y: np.ndarray, t: np.ndarray, sigma: float, first: int) -> Drift | None:
+    """A warm-up in time beside any function of the load, judged as the effects are (decision 069)."""
+    rows = np.arange(len(y))
+    keep = (rows >= first) & (rows % max(1, len(y) // DRIFT_ROWS) == 0)
+    tt = t - t[0]
+    span = float(tt[-1])
+    if keep.sum() < 50 or not span > 0.0:
+        return None
+    X = load_states(load[keep], t[keep])
+    q, _ = np.linalg.qr(X)
+    r = y[keep] - q @ (q.T @ y[keep])
+    taus = span * np.geomspace(DRIFT_TAU[0], DRIFT_TAU[1], N_TAU)
+    gain, tau, _, curve = _best_exponential(tt[keep], r, taus, q)
+    n, rss0 = int(keep.sum()), float(r @ r)
+    # not significant under white noise, it is not under a redder one (more slow power): the noise is not read
+    if not (math.isfinite(tau) and rss0 > gain) or n * math.log(rss0 / (rss0 - gain)) - 2.0 * math.log(n) \
+            <= BIC_THRESHOLD:
+        return None
+    model, variance = _noise_of(r - curve)
+    evidence, tau, amp = _judged(tt, keep, X, y[keep], taus, model)
+    yw = model.whiten(y[keep])
+    warm = amp * (1.0 - np.exp(-tt / tau))
+    fit_all = np.column_stack([X, warm[keep]])
+    coef = np.linalg.lstsq(model.whiten(fit_all), yw, rcond=None)[0]
+    beyond = warm - np.polyval(np.polyfit(tt[keep], warm[keep], 1), tt)
+    a = int(np.flatnonzero(keep)[0])
+    # held over the first loading, not extrapolated: the fitted shape says nothing of the drift before it
+    beyond[:a] = beyond[a]
+    rest = y[keep] - fit_all @ coef
+    innovations = model.whiten(rest)
+    if evidence <= BIC_THRESHOLD or float(np.var(rest)) > DRIFT_LEAVES * variance \
+            or float(np.var(innovations)) > DRIFT_TAILS * _trimmed_var(innovations):
+        return None
+    if float(np.ptp(beyond[keep])) < MIN_COMPONENT_SIGMAS * sigma:
+        return None
+    # found, its shape is taken out as two warm-ups (a heater's t^2 start is no one exponential) and the line
+    slope, drift = _two_warm_ups(tt, keep, X, model.whiten, yw, taus)
+    slope = slope / (t[keep][-1] - t[keep][0])                          # load_states' line in time
+    whole = drift + slope * tt
+    whole = whole - whole[a]
+    departure = float(np.ptp((drift - np.polyval(np.polyfit(tt[keep], drift[keep], 1), tt))[keep]))
+    # reported over the rows it was fitted on (no extrapolation over the first loading): taken out whole
+    # (its rate at the window's start is not said: the pair's slope there was off by 33-89 % on the tests)
+    return Drift(np.where(rows < a, 0.0, whole), whole, departure, tau, evidence, model.describe(), float(t[a]))
+
+
+def _two_warm_ups(tt: np.ndarray, keep: np.ndarray, X: np.ndarray, whiten, yw: np.ndarray, taus: np.ndarray):
+    """(coefficient of X's line in time, the drift on every row): the pair of warm-ups A_i (1 - exp(-t/tau_i))
+    fitted beside the load (X) on the whitened rows that leaves least."""
+    G = 1.0 - np.exp(-tt[:, None] / taus[None, :])
+    Xw = whiten(X)
+    qw, _ = np.linalg.qr(Xw)
+    P = whiten(G[keep])
+    P = P - qw @ (qw.T @ P)
+    rw = yw - qw @ (qw.T @ yw)
+    M, b = P.T @ P, P.T @ rw
+    best, pair = -math.inf, (0, 1)
+    for i in range(len(taus)):
+        for j in range(i + 1, len(taus)):
+            m = M[np.ix_([i, j], [i, j])]
+            if abs(np.linalg.det(m)) <= 1e-12 * m[0, 0] * m[1, 1]:
+                continue
+            c = np.linalg.solve(m, b[[i, j]])
+            if float(c @ b[[i, j]]) > best:                  # the gain in RSS of the pair
+                best, pair = float(c @ b[[i, j]]), (i, j)
+    cols = G[:, list(pair)]
+    coef = np.linalg.lstsq(np.column_stack([Xw, whiten(cols[keep])]), yw, rcond=None)[0]
+    return float(coef[X.shape[1] - 1]), cols @ coef[-2:]
+
+
 def find_drift(load: np.ndarray, y: np.ndarray, t: np.ndarray, sigma: float, first: int,
                unit: str) -> tuple[np.ndarray, str | None]:
-    """A thermal zero drift (see the module doc): (the response without it, a sentence) or (y, None)."""
+    """Decision 067's thermal drift, read where the catalogue left the recording unexplained (white noise, the
+    one exponential beyond a line taken out of every row): (the response without it, a sentence) or (y, None)."""
     # fitted on at most DRIFT_ROWS rows (a slow curve needs no more), taken out of every row
     rows = np.arange(len(y))
     keep = (rows >= first) & (rows % max(1, len(y) // DRIFT_ROWS) == 0)
@@ -186,6 +332,38 @@ def find_drift(load: np.ndarray, y: np.ndarray, t: np.ndarray, sigma: float, fir
                        f"straight line by {swing:.3g} {unit} (time constant {tau:.3g} s); taken out of the fit")
 
 
+@dataclass(frozen=True)
+class FoundDrift:
+    curve: np.ndarray           # what to take out of the response (every row)
+    said: str
+    start_row: int              # the first row it was read on (the end of the first loading)
+
+
+def find_thermal_drift(load: np.ndarray, y: np.ndarray, t: np.ndarray | None, first: int,
+                       unit: str = "rad") -> FoundDrift | None:
+    """A thermal zero drift alone (decision 069: read on every verdict); without a time column the sample index
+    is the clock (times then in samples)."""
+    if len(y) < 50:
+        return None
+    clock = np.arange(len(y), dtype=float) if t is None or not t[-1] > t[0] else t
+    from threadpoolctl import threadpool_limits
+    sigma = _sigma(y)
+    with threadpool_limits(limits=1):       # a (rows x 97) QR: BLAS threads only contend (decision 019)
+        # read beside the creep under any hold (a hold's creep runs in time at a constant load, and is no drift)
+        drift = drift_test(load, find_hold_creep(load, y, clock, sigma, unit)[0], clock, sigma, first)
+    if drift is None:
+        return None
+    said = drift.sentence(clock, unit)
+    start = int(np.searchsorted(clock, drift.start_s))
+    return FoundDrift(drift.curve, said if t is not None else _in_samples(said), start)
+
+
+def _in_samples(said: str) -> str:
+    for a, b in ((" s ", " samples "), (" s;", " samples;"), (" s)", " samples)"), ("/s", "/sample")):
+        said = said.replace(a, b)
+    return said
+
+
 def find_time_events(load: np.ndarray, y: np.ndarray, t: np.ndarray | None, first: int,
                      unit: str = "rad") -> TimeEvents | None:
     """Slips, creep under holds and a thermal drift (see the module doc), in that order; None if none. Without
@@ -200,8 +378,9 @@ def find_time_events(load: np.ndarray, y: np.ndarray, t: np.ndarray | None, firs
         y1, drift = find_drift(load, y1, clock, sigma, first, unit)
         said += [drift] if drift else []
     if t is None:
-        said = [s.replace(" s;", " samples;") for s in said]
+        said = [_in_samples(s) for s in said]
     return TimeEvents(y1, tuple(said)) if said else None
 
 
-__all__ = ["TimeEvents", "find_drift", "find_hold_creep", "find_slips", "find_time_events"]
+__all__ = ["Drift", "FoundDrift", "TimeEvents", "drift_test", "find_drift", "find_hold_creep", "find_slips",
+           "find_thermal_drift", "find_time_events"]
