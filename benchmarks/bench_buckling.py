@@ -6,26 +6,22 @@ validate meshes' GCI against the distance of the finer value from the closed for
 """
 from __future__ import annotations
 
-import os
+import sys
 import time
-import warnings
 from pathlib import Path
 
-GEARS = {"default": None, "second": str(Path(__file__).resolve().parents[1] / "strainwave/data/second_gear.toml")}
+sys.path.insert(0, str(Path(__file__).parent))
+from shipped_gears import shipped_params  # noqa: E402
+
 GOAL_CPU_S = 15.0
 
 
 def main() -> int:
-    from strainwave.api import load_params
     from strainwave.compare.validate import buckling_checks as bc
     from strainwave.fea.assembly import Lame
     from strainwave.fea.cup_buckling import buckling_torque
 
-    print(f"load average {' '.join(f'{v:.2f}' for v in os.getloadavg())}")
-    for gear, path in GEARS.items():
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            p = load_params(path)
+    for gear, p in shipped_params():
         t0 = time.process_time()
         check = bc.buckling_check(p)
         cpu = time.process_time() - t0

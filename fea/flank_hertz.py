@@ -23,6 +23,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from strainwave.fea.tooth_mesh_fe import gmsh_triangles
+
 __all__ = ["FlankPair", "ContactSolve", "BodyFlexibility", "flank_pair", "working_flank_mm", "surface_y", "initial_gap_mm",
            "body_flexibility", "hat_weights", "contact_lcp", "solve_contact"]
 
@@ -168,34 +170,6 @@ def _body_loop(pair: FlankPair, body: int, zone_x: np.ndarray, h_far: float):
     return (loop - p0) @ rot.T, mask, r_held, (-p0) @ rot.T
 
 
-def _gmsh_zone(loop: np.ndarray, mask: np.ndarray, size_fn) -> tuple[np.ndarray, np.ndarray]:
-    """P1 triangles of the polygon; the segments between two zone points keep no interior node."""
-    from strainwave.fea.session import mesh_in_child
-
-    def build(model):
-        import gmsh
-        pts = [model.geo.addPoint(float(x), float(y), 0.0) for x, y in loop]
-        n = len(pts)
-        lines = [model.geo.addLine(pts[i], pts[(i + 1) % n]) for i in range(n)]
-        model.geo.addPlaneSurface([model.geo.addCurveLoop(lines)])
-        model.geo.synchronize()
-        for i in range(n):
-            if mask[i] and mask[(i + 1) % n]:
-                model.mesh.setTransfiniteCurve(lines[i], 2)
-        for key in ("Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSizeFromPoints", "Mesh.MeshSizeFromCurvature"):
-            gmsh.option.setNumber(key, 0)
-        gmsh.option.setNumber("Mesh.Algorithm", 6)
-        model.mesh.setSizeCallback(lambda dim, tag, x, y, z, lc: size_fn(x, y))
-        model.mesh.generate(2)
-        tags, xyz, _ = model.mesh.getNodes()
-        _, _, conn = model.mesh.getElements(2)
-        idx = np.full(int(tags.max()) + 1, -1)
-        idx[tags.astype(int)] = np.arange(tags.size)
-        return xyz.reshape(-1, 3)[:, :2].T.copy(), idx[np.asarray(conn[0], int).reshape(-1, 3)].T.copy()
-
-    return mesh_in_child(build, what="gmsh (flank contact)")
-
-
 @dataclass(frozen=True)
 class BodyFlexibility:
     """One body's answer to the zone's hat pressures: A[k, j] = the work of hat k's load on hat j's displacement
@@ -216,7 +190,8 @@ def body_flexibility(pair: FlankPair, body: int, zone_x: np.ndarray, h_far: floa
     from strainwave.fea.solver import _direct
     loop, mask, r_held, centre = _body_loop(pair, body, zone_x, h_far)
     h_c, reach = float(zone_x[1] - zone_x[0]), float(np.abs(zone_x).max())
-    p, t = _gmsh_zone(loop, mask, lambda x, y: min(h_far, h_c + grade * max(0.0, math.hypot(x, y) - reach)))
+    p, t = gmsh_triangles([loop], lambda x, y: min(h_far, h_c + grade * max(0.0, math.hypot(x, y) - reach)), mask,
+                     what="gmsh (flank contact)")
     mesh = MeshTri(p, t)
     basis = scalar_basis(mesh, ElementTriP2(), intorder=4)
     K = elasticity_stiffness(basis, lame)

@@ -26,7 +26,7 @@ import scipy.sparse as sp
 
 from strainwave.fea.assembly import Lame, elasticity_stiffness, scalar_basis
 
-__all__ = ["RimSolve", "rim_model", "flank_loads", "compliance", "sector_model"]
+__all__ = ["RimSolve", "gmsh_triangles", "rim_model", "flank_loads", "compliance", "sector_model"]
 
 
 @dataclass
@@ -58,23 +58,29 @@ def _circle(r: float, h: float, a0: float = 0.0, a1: float = 2 * math.pi) -> np.
     return np.column_stack([r * np.cos(a), r * np.sin(a)])
 
 
-def _gmsh_tri(loops: list[np.ndarray], size_fn) -> tuple[np.ndarray, np.ndarray]:
+def gmsh_triangles(loops: list[np.ndarray], size_fn, bare: np.ndarray | None = None,
+              what: str = "gmsh (tooth-mesh rim)") -> tuple[np.ndarray, np.ndarray]:
     """P1 triangles of the region inside loops[0] and outside the others (gmsh, geo kernel: fast for the
-    thousands of segments of a 200-tooth outline), in a guarded child."""
+    thousands of segments of a 200-tooth outline), in a guarded child. ``bare``: a mask over loops[0]'s points;
+    a segment between two masked points keeps no interior node (a contact zone's own spacing)."""
     from strainwave.fea.session import mesh_in_child
 
     def build(model):
         import gmsh
-        curves = []
+        curves, first = [], []
         for loop in loops:
             pts = [model.geo.addPoint(float(x), float(y), 0.0) for x, y in loop]
             lines = [model.geo.addLine(pts[i], pts[(i + 1) % len(pts)]) for i in range(len(pts))]
+            first = first or lines
             curves.append(model.geo.addCurveLoop(lines))
         model.geo.addPlaneSurface(curves)
         model.geo.synchronize()
-        gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
-        gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
-        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
+        n = len(first)
+        for i in range(n) if bare is not None else ():
+            if bare[i] and bare[(i + 1) % n]:
+                model.mesh.setTransfiniteCurve(first[i], 2)
+        for key in ("Mesh.MeshSizeExtendFromBoundary", "Mesh.MeshSizeFromPoints", "Mesh.MeshSizeFromCurvature"):
+            gmsh.option.setNumber(key, 0)
         gmsh.option.setNumber("Mesh.Algorithm", 6)
         model.mesh.setSizeCallback(lambda dim, tag, x, y, z, lc: size_fn(x, y))
         model.mesh.generate(2)
@@ -84,7 +90,7 @@ def _gmsh_tri(loops: list[np.ndarray], size_fn) -> tuple[np.ndarray, np.ndarray]
         idx[tags.astype(int)] = np.arange(tags.size)
         return xyz.reshape(-1, 3)[:, :2].T.copy(), idx[np.asarray(conn[0], int).reshape(-1, 3)].T.copy()
 
-    return mesh_in_child(build, what="gmsh (tooth-mesh rim)")
+    return mesh_in_child(build, what=what)
 
 
 def _factorise(K: sp.spmatrix, T: sp.csr_matrix, fixed: np.ndarray):
@@ -138,7 +144,7 @@ def rim_model(spec, r_bore_mm: float, h_mm: float, lame: Lame, thickness_mm: flo
     t0 = time.perf_counter()
     outer = _outline(spec, n_flank=max(6, int(math.ceil(2.5 * spec.module_mm / h_mm))))
     bore = _circle(r_bore_mm, h_mm)
-    p, t = _gmsh_tri([outer, bore], lambda x, y: h_mm)
+    p, t = gmsh_triangles([outer, bore], lambda x, y: h_mm)
     t1 = time.perf_counter()
     mesh, basis, K = _assemble(p, t, lame, thickness_mm)
     locs = basis.doflocs
@@ -201,9 +207,9 @@ def sector_model(spec, r_held_mm: float, teeth_each_side: int, h_mm: float, lame
     grow = lambda x, y: h_mm + 0.5 * abs(math.hypot(x, y) - r_root)  # noqa: E731
     if tip is not None:                              # resolve the slot: h/8 at its tip (one ratio for all three meshes)
         near = lambda x, y: min(h_mm / 8 + 0.5 * math.hypot(x - tip[0], y - tip[1]), h_mm)  # noqa: E731
-        p, t = _gmsh_tri([loop], lambda x, y: min(grow(x, y), 8 * h_mm, near(x, y)))
+        p, t = gmsh_triangles([loop], lambda x, y: min(grow(x, y), 8 * h_mm, near(x, y)))
     else:
-        p, t = _gmsh_tri([loop], lambda x, y: min(grow(x, y), 8 * h_mm))
+        p, t = gmsh_triangles([loop], lambda x, y: min(grow(x, y), 8 * h_mm))
     t1 = time.perf_counter()
     mesh, basis, K = _assemble(p, t, lame, thickness_mm)
     r = np.hypot(*basis.doflocs)

@@ -97,7 +97,7 @@ def _model(spec, r_bore_mm: float, h_mm: float, lame, thickness_mm: float) -> tu
         # the loaded tooth finer too: its flank band's resultant and lever set the root's moment
         dt = max(0.0, math.hypot(x - spec.root_radius_mm, y) - reach)
         return min(h_mm, hf + 0.4 * d, ht + 0.4 * dt)
-    p, t = fe._gmsh_tri([outline], size)
+    p, t = fe.gmsh_triangles([outline], size)
     mesh, basis, K = fe._assemble(p, t, lame, thickness_mm)
     locs = basis.doflocs
     r, ang = np.hypot(*locs), np.arctan2(locs[1], locs[0])

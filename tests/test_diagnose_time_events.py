@@ -74,15 +74,20 @@ def _held(n=900):
     return np.linspace(0.0, 90.0, n), 1e6 * np.interp(s, np.arange(len(knots)), knots)
 
 
-def test_creep_under_a_hold_is_named_with_a_time_constant_and_a_clean_hold_is_not():
+def _held_creep():
+    """A torque held at +-T with logarithmic creep in each hold (no exponential assumed), kept after it."""
     t, T = _held()
     c, sigma = 1e-9, 2e-6
     noise = sigma * np.random.default_rng(5).standard_normal(t.size)
     held = np.abs(T) >= 1e6 - 1e-6
     edges = np.flatnonzero(np.diff(held.astype(int)))
-    # logarithmic creep in each hold the way the torque holds it, kept after (no exponential assumed)
     creep = log_creep(t, t[edges[0] + 1], t[edges[1]], 8 * sigma, 2.0) \
         - log_creep(t, t[edges[2] + 1], t[edges[3]], 8 * sigma, 2.0)
+    return t, T, c, sigma, noise, held, creep
+
+
+def test_creep_under_a_hold_is_named_with_a_time_constant_and_a_clean_hold_is_not():
+    t, T, c, sigma, noise, held, creep = _held_creep()
     y, said = find_hold_creep(T, c * T + creep + noise, t, sigma, "rad")
     assert len(said) == 2 and all("creep under a hold" in s and "time constant" in s for s in said)
     assert np.std((y - c * T - noise)[held]) < 0.3 * np.std(creep[held])
@@ -153,11 +158,5 @@ def test_no_thermal_drift_where_the_twist_does_not_drift_in_time_beyond_a_line(d
 
 def test_creep_under_a_hold_is_no_thermal_drift():
     from strainwave.compare.diagnose.time_events import find_thermal_drift
-    t, T = _held()
-    c, sigma = 1e-9, 2e-6
-    noise = sigma * np.random.default_rng(5).standard_normal(t.size)
-    held = np.abs(T) >= 1e6 - 1e-6
-    edges = np.flatnonzero(np.diff(held.astype(int)))
-    creep = log_creep(t, t[edges[0] + 1], t[edges[1]], 8 * sigma, 2.0) \
-        - log_creep(t, t[edges[2] + 1], t[edges[3]], 8 * sigma, 2.0)
+    t, T, c, sigma, noise, held, creep = _held_creep()
     assert find_thermal_drift(T, c * T + creep + noise, t, 150) is None
