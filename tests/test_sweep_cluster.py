@@ -120,7 +120,12 @@ def test_a_killed_worker_loses_no_point(tmp_path, monkeypatch):
     assert (outcome.n_points, outcome.n_ok, outcome.n_failed) == (8, 8, 0)
     lines = journal.read_text().split()
     diameters = [float(x) for x in lines[0::2]]
-    assert sorted(diameters) == [20.0 + 4.0 * i for i in range(8)]    # every point computed exactly once
+    assert sorted(set(diameters)) == [20.0 + 4.0 * i for i in range(8)]   # every point computed
+    # once each, except the one point the killed worker (one thread) may have finished but not yet cached when it
+    # died (the journal is written before the cache): redone once, by the other worker
+    redone = {d for d in diameters if diameters.count(d) > 1}
+    assert len(diameters) == 8 + len(redone) and len(redone) <= 1
+    assert all(len({pid for x, pid in zip(diameters, lines[1::2]) if x == d}) == 2 for d in redone)
     assert len(set(lines[1::2])) == 2                                  # ... by both workers, before and after the kill
     frame = pd.read_parquet(out / "sweep.parquet")
     exact = [32 * 200.0 / (math.pi * 8.0e4 * (D ** 4 - d ** 4)) for d in frame["output_shaft.inner_diameter_mm"]]
