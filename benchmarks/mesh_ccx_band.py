@@ -29,13 +29,42 @@ def band_vectors(problem: mj.Problem, module_mm: float) -> tuple[np.ndarray, np.
     """(f, g): strainwave's unit normal band loads of the pairs (columns, interleaved x/y dofs of the sector's
     P2 nodes) and the same bands as tangential tractions along +t (each column's resultant a unit +t)."""
     from strainwave.fea import tooth_mesh_fe as fe
+    from strainwave.fea.mesh_friction import turned_bands
     F, _ = fe.flank_loads(problem.model, problem.teeth, problem.radius_mm, 0.2 * module_mm, +1)
-    G = np.empty_like(F)
-    G[0::2], G[1::2] = F[1::2], -F[0::2]          # -rot90 per node: the traction p (-rot90 n_facet) . phi
-    t = np.column_stack([-problem.normal[:, 1], problem.normal[:, 0]])
-    res = np.stack([G[0::2].sum(0), G[1::2].sum(0)], axis=1)
-    G = G / np.einsum("ij,ij->i", res, t)[None, :]   # unit resultant along +t
-    return F, G
+    return F, turned_bands(F, _tangent(problem))
+
+
+def _tangent(problem: mj.Problem) -> np.ndarray:
+    return np.column_stack([-problem.normal[:, 1], problem.normal[:, 0]])
+
+
+def band_system(problem: mj.Problem, module_mm: float, *, friction: bool = True):
+    """strainwave's true-slip system of the problem: the band flexibility [[Cff, Cfg], [Cgf, Cgg]] of the
+    sector's FE, the levers and the punches' slide at their faces ((P + c n) x t per unit twist)."""
+    from strainwave.fea import tooth_mesh_fe as fe
+    from strainwave.fea.mesh_friction import BandSystem
+    F, G = band_vectors(problem, module_mm)
+    flex = fe.compliance(problem.model, np.column_stack([F, G]))
+    face = problem.point_mm + problem.clearance_mm[:, None] * problem.normal
+    t = _tangent(problem)
+    w = face[:, 0] * t[:, 1] - face[:, 1] * t[:, 0]
+    mu = problem.system.friction_coefficient if friction else 0.0
+    return BandSystem(problem.clearance_mm, flex, problem.system.lever_mm, w, mu)
+
+
+def strainwave_true_slip(problem: mj.Problem, module_mm: float, torque_Nmm: float, *, unload_to: float = 0.5,
+                         friction: bool = True, increments: int = 20) -> dict:
+    """strainwave's true-slip solve (fea/mesh_friction.py) to ``torque_Nmm`` and back down to ``unload_to`` of
+    it, in ``mj.strainwave_solve``'s form (``unloaded``: the second step)."""
+    import time
+    from strainwave.fea.mesh_friction import twists_for_torques
+    t0 = time.perf_counter()
+    system = band_system(problem, module_mm, friction=friction)
+    legs = twists_for_torques(system, [torque_Nmm, unload_to * torque_Nmm], increments)
+    dt = time.perf_counter() - t0
+    for r in legs:
+        r["teeth_in_contact"] = int((r["forces_N"] > 0).sum())
+    return legs[0] | {"unloaded": legs[1], "solve_s": dt}
 
 
 def _equations(out: list[str], rid: int, n: np.ndarray, t: np.ndarray, f: np.ndarray, g: np.ndarray) -> None:
@@ -76,7 +105,7 @@ def write_band_deck(path: Path, problem: mj.Problem, params, twist_rad, *, frict
     _nset(out, "NPUNCH", punch_nodes.ravel())
     _nset(out, "NREF", ref_nodes)
     F, G = band_vectors(problem, geo.fs.module_mm)
-    t = np.column_stack([-problem.normal[:, 1], problem.normal[:, 0]])
+    t = _tangent(problem)
     for k in range(n_pairs):
         _equations(out, int(ref_nodes[k]), problem.normal[k], t[k], F[:, k], G[:, k])
     mu = problem.system.friction_coefficient if friction else 0.0
