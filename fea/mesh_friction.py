@@ -165,9 +165,13 @@ def twists_for_torques(s: BandSystem, torques_Nmm, increments: int = 20, rtol: f
             return float(s.lever_mm @ trial.N - s.slide_mm_per_rad @ trial.Q), trial
 
         lo, hi = prev, prev + d * step
-        while d * (torque_at(hi)[0] - T) < 0.0:
+        for _ in range(60):
+            if d * (torque_at(hi)[0] - T) >= 0.0:
+                break
             lo, hi = hi, hi + d * step
             step *= 2.0
+        else:       # e.g. a torque of the sign no flank of the lobe can carry
+            raise ValueError(f"twists_for_torques: torque {T:.6g} N mm is not reached by any twist")
         for _ in range(200):
             mid = 0.5 * (lo + hi)
             if d * (torque_at(mid)[0] - T) < 0.0:
