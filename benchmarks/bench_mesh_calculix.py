@@ -47,7 +47,7 @@ def strainwave_once(params, h_mm: float) -> tuple[mj.Problem, dict, float]:
     the true-slip solve along 0 -> T -> T/2."""
     pairs = mj.pairs_for(params)                 # the kinematics are both codes' input: not timed
     t1 = time.perf_counter()
-    problem = mj.build(params, pairs, h_mm)
+    problem = mj.build(params, pairs, h_mm, on_involute=True)
     sw = mb.strainwave_true_slip(problem, params.flexspline_cup.module_mm, pairs["torque_Nmm"], unload_to=UNLOAD_TO)
     return problem, sw, time.perf_counter() - t1
 
@@ -102,18 +102,21 @@ def main(argv=None) -> int:
 
 def _extras(problem, params, sw: dict, ccx: str, threads: int) -> None:
     """Untimed, not goal lines: the study's torque-only friction against CalculiX's band contact at the study's
-    own twists (the friction model's part), and the geometric punch contact at the true-slip twists (the load
-    shape's part)."""
+    own twists (the friction model's part), and CalculiX's geometric contact (a flat punch seated on the facet at
+    the study's radius, decision 069-ccx48) against strainwave's true slip on that seat (the load shape's part)."""
     study = mj.strainwave_solve(problem, sw["torque_Nmm"], unload_to=UNLOAD_TO)
+    m = params.flexspline_cup.module_mm
+    seated = mj.build(params, mj.pairs_for(params), problem.model.h_mm)
+    sw_seat = mb.strainwave_true_slip(seated, m, sw["torque_Nmm"], unload_to=UNLOAD_TO)
     with tempfile.TemporaryDirectory(prefix="sw-mesh-ccx-") as tmp:
         band = mb.run_band(problem, params, [study["twist_rad"], study["unloaded"]["twist_rad"]], Path(tmp),
                            ccx=ccx, threads=threads)
-        geo = mj.run_calculix(problem, params, [sw["twist_rad"], sw["unloaded"]["twist_rad"]], Path(tmp) / "g",
-                              ccx=ccx, threads=threads)
+        geo = mj.run_calculix(seated, params, [sw_seat["twist_rad"], sw_seat["unloaded"]["twist_rad"]],
+                              Path(tmp) / "g", ccx=ccx, threads=threads)
     for name, refs, got in (("the study's torque-only friction (mesh_contact) vs CalculiX's band contact",
                              (study, study["unloaded"]), band["steps"]),
-                            ("true slip vs CalculiX's geometric contact (flat punch on the facets)",
-                             (sw, sw["unloaded"]), geo["steps"])):
+                            ("true slip vs CalculiX's geometric contact (flat punch on the facet)",
+                             (sw_seat, sw_seat["unloaded"]), geo["steps"])):
         rel = [mj.agreement(r, g)["peak_share_rel"] for r, g in zip(refs, got)]
         print(f"{name}: peak share {100 * rel[0]:+.2f} % first loading, {100 * rel[1]:+.2f} % after the "
               "reversal (not a goal line)", flush=True)

@@ -79,9 +79,28 @@ def _flank_point(model, tooth: int, radius_mm: float) -> tuple[np.ndarray, np.nd
     raise ValueError(f"tooth {tooth}: no +theta flank facet crosses r = {radius_mm:.5g} mm")
 
 
-def build(params, pairs: dict, h_mm: float, *, margin_teeth: int = 3) -> Problem:
+def _involute_point(spec, tooth: int, radius_mm: float) -> tuple[np.ndarray, np.ndarray]:
+    """The point of tooth ``tooth``'s +theta flank at ``radius_mm`` on the exact involute and its outward normal
+    (tangent to the base circle): a contact point that does not move with the mesh."""
+    from strainwave.geometry.involute import half_angle_rad
+    pitch = 2 * math.pi / spec.teeth
+
+    def at(r: float) -> np.ndarray:
+        a = tooth * pitch + float(half_angle_rad(spec, r))
+        return np.array([r * math.cos(a), r * math.sin(a)])
+
+    p, dr = at(radius_mm), 1e-4 * spec.module_mm
+    tan = at(radius_mm + dr) - at(radius_mm - dr)
+    n = np.array([tan[1], -tan[0]]) / math.hypot(*tan)
+    e_theta = np.array([-p[1], p[0]]) / radius_mm
+    return p, (n if n @ e_theta > 0 else -n)
+
+
+def build(params, pairs: dict, h_mm: float, *, margin_teeth: int = 3, on_involute: bool = False) -> Problem:
     """The sector holding the pairs' teeth (+ ``margin_teeth`` each side), its P2 mesh, and strainwave's
-    contact system: compliance F^T K^-1 F of the band loads, lever and slide of each punch."""
+    contact system: compliance F^T K^-1 F of the band loads, lever and slide of each punch. The contact point:
+    the midpoint of the flank facet at the study's radius (a flat punch's seat), or with ``on_involute`` the
+    exact involute point at that radius (the band problem: the same problem on every mesh)."""
     from strainwave.fea import tooth_mesh_fe as fe
     from strainwave.fea.assembly import Lame
     from strainwave.fea.mesh_contact import MeshSystem
@@ -94,9 +113,10 @@ def build(params, pairs: dict, h_mm: float, *, margin_teeth: int = 3) -> Problem
     teeth = pairs["tooth"] - centre                  # the sector is centred on tooth 0 at +x
     half = int(np.max(np.abs(teeth))) + margin_teeth
     model = fe.sector_model(geo.fs, geo.r_bore_mm, half, h_mm, lame, geo.face_width_mm)
-    flank = [_flank_point(model, int(j), float(r)) for j, r in zip(teeth, pairs["fs_radius_mm"])]
+    seat = (lambda j, r: _involute_point(geo.fs, j, r)) if on_involute else (lambda j, r: _flank_point(model, j, r))
+    flank = [seat(int(j), float(r)) for j, r in zip(teeth, pairs["fs_radius_mm"])]
     point, normal = np.array([p for p, _ in flank]), np.array([n for _, n in flank])
-    radius = np.hypot(point[:, 0], point[:, 1])      # the contact facet's midpoint: within half a facet of the study's
+    radius = np.hypot(point[:, 0], point[:, 1])      # a facet's midpoint: within half a facet of the study's
     band = 0.2 * geo.fs.module_mm                    # the study's band half-width (tooth_mesh.BAND_OVER_M)
     F, M = fe.flank_loads(model, teeth, radius, band, +1)
     C = fe.compliance(model, F)
@@ -286,10 +306,10 @@ def pairs_for(params) -> dict:
     return lobe_pairs(mesh) | {"torque_Nmm": lobe_torque_Nmm(mesh)}
 
 
-def problem_for(params, h_mm: float) -> tuple[Problem, dict]:
+def problem_for(params, h_mm: float, *, on_involute: bool = False) -> tuple[Problem, dict]:
     """The problem on the study's kinematics: (problem, the lobe's pairs)."""
     pairs = pairs_for(params)
-    return build(params, pairs, h_mm), pairs
+    return build(params, pairs, h_mm, on_involute=on_involute), pairs
 
 
 def run_calculix(problem: Problem, params, twist_rad, job_dir: Path, *, friction: bool = True,

@@ -124,7 +124,7 @@ def test_the_deck_is_the_problem(jobs, params, tmp_path):
 def band_solved(jobs, band, params, tmp_path_factory):
     _, mj = jobs
     m = params.flexspline_cup.module_mm
-    problem, pairs = mj.problem_for(params, H_OVER_M * m)
+    problem, pairs = mj.problem_for(params, H_OVER_M * m, on_involute=True)
     sw = band.strainwave_true_slip(problem, m, pairs["torque_Nmm"], unload_to=UNLOAD_TO)
     ccx = band.run_band(problem, params, [sw["twist_rad"], sw["unloaded"]["twist_rad"]],
                         tmp_path_factory.mktemp("mesh-ccx-band"))
@@ -174,7 +174,7 @@ def test_the_band_deck_is_strainwaves_band(jobs, band, params, tmp_path):
     t . u_R = g . u for any displacement u, so the node's contact force reaches the tooth as strainwave's load."""
     _, mj = jobs
     m = params.flexspline_cup.module_mm
-    problem = mj.build(params, mj.pairs_for(params), 0.6 * m)
+    problem = mj.build(params, mj.pairs_for(params), 0.6 * m, on_involute=True)
     info = band.write_band_deck(tmp_path / "b.inp", problem, params, 1e-4)
     lines = (tmp_path / "b.inp").read_text().splitlines()
     F, G = band.band_vectors(problem, m)
