@@ -144,12 +144,12 @@ def _steps(out: list[str], p: np.ndarray, punch_nodes: np.ndarray, twist_rad, in
 
 def run_band(problem: mj.Problem, params, twist_rad, job_dir: Path, *, friction: bool = True,
              penalty_N_per_mm: float = 1.0e10, stick_N_per_mm: float = 1.0e9, threads: int = 1,
-             ccx: str = "ccx") -> dict:
+             ccx: str = "ccx", increments: int = 20) -> dict:
     """Write the band deck, run ccx, read each step's flank loads (the punches' reactions)."""
     import calculix_job as cj
     job_dir.mkdir(parents=True, exist_ok=True)
     info = write_band_deck(job_dir / "mesh.inp", problem, params, twist_rad, friction=friction,
-                           penalty_N_per_mm=penalty_N_per_mm, stick_N_per_mm=stick_N_per_mm)
+                           penalty_N_per_mm=penalty_N_per_mm, stick_N_per_mm=stick_N_per_mm, increments=increments)
     run, _ = cj.run_ccx(job_dir / "mesh.inp", threads=threads, ccx=ccx)
     n = np.atleast_1d(twist_rad).size
     steps = [mj.read_punch_loads(job_dir / "mesh.dat", problem, info["punch_nodes"], info["punch_xy"], k + 1)
