@@ -15,7 +15,8 @@ BANDS = {"K1_Nm_per_rad": 0.35, "K2_Nm_per_rad": 0.35, "K3_Nm_per_rad": 0.25, "T
 _SHORT = {"K1_Nm_per_rad": "K1", "K2_Nm_per_rad": "K2", "K3_Nm_per_rad": "K3", "T1_Nm": "T1", "T2_Nm": "T2",
           "hysteresis": "hysteresis loss", "lost_motion": "lost motion"}
 PHRASES = {
-    ("K1_Nm_per_rad", "high"): "no engagement delay: pitch/profile errors (the zero-backlash rack engages from 0 N m)",
+    ("K1_Nm_per_rad", "high"): "compliance not modelled: circular spline body / housing (with it in series K1 came "
+                               "within on 19/21 rows, decision 069); no engagement delay: pitch/profile errors",
     ("K1_Nm_per_rad", "low"): "support one linear foundation: no rim support that stiffens with load, no WG preload",
     ("K2_Nm_per_rad", "high"): "compliance not modelled: circular spline body / housing; no engagement delay",
     ("K2_Nm_per_rad", "low"): "fewer teeth share the load than in a real S-tooth zone (not measured)",
