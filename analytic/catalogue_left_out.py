@@ -7,7 +7,7 @@ nothing measured it, the phrase says "not measured".
 """
 from __future__ import annotations
 
-__all__ = ["BANDS", "PHRASES", "row_left_out", "loss_lines", "left_out_lines"]
+__all__ = ["BANDS", "PHRASES", "PINCHED_NOTE", "row_left_out", "loss_note", "loss_lines", "left_out_lines"]
 
 # |predicted / catalogue - 1| beyond these is a miss: issue 48's goals; K2 has none there, so it takes K1's
 # band (said in the output) so that a K2 miss is named too
@@ -33,6 +33,9 @@ PHRASES = {
                                           "table); the catalogue's own K1 gives {k1:.2f}' over it too",
 }
 ARCMIN = 2.908882086657216e-4
+PINCHED_NOTE = ("hysteresis loss 0: flank friction here scales with the flank load, which is zero at 0 N m (the loop "
+                "pinches there; 'max width' is its widest point): within the bound, but the bound cannot test mu; left "
+                "out: friction with a load-free part (the WG's radial preload on teeth and balls)")
 
 
 def _goal_misses(rp) -> list[dict]:
@@ -94,12 +97,14 @@ def loss_lines(rows) -> list[str]:
                      f"{_bound(L.hysteresis_bound_arcmin):>5} {_flag(L.within('hysteresis')):>6} "
                      f"{L.lost_motion_arcmin:7.3f} {_bound(L.lost_motion_bound_arcmin):>5} "
                      f"{_flag(L.within('lost_motion')):>6} {L.loop_width_max_arcmin:9.3f} {L.bounds_from:>9}")
-    if any(rp.loss is not None and rp.loss.hysteresis_loss_arcmin < 1e-6 for rp in rows):
-        lines.append("  hysteresis loss 0: flank friction here scales with the flank load, which is zero at 0 N m "
-                     "(the loop pinches there; 'max width' is its widest point): within the bound, but the bound "
-                     "cannot test mu; left out: friction with a load-free part (the WG's radial preload on teeth "
-                     "and balls)")
-    return lines
+    note = loss_note(rows)
+    return lines + ([f"  {note}"] if note else [])
+
+
+def loss_note(rows) -> str | None:
+    """The note a zero hysteresis loss needs (a pinched loop meets any bound), or None."""
+    pinched = [rp for rp in rows if rp.loss is not None and abs(rp.loss.hysteresis_loss_arcmin) < 1e-6]
+    return PINCHED_NOTE if pinched else None
 
 
 def left_out_lines(rows) -> list[str]:

@@ -17,8 +17,8 @@ from pathlib import Path
 
 import numpy as np
 
-from strainwave.analytic.catalogue_left_out import left_out_lines, loss_lines, row_left_out
-from strainwave.analytic.catalogue_loss import LossReading, cha_bounds, read_loss
+from strainwave.analytic.catalogue_left_out import left_out_lines, loss_lines, loss_note, row_left_out
+from strainwave.analytic.catalogue_loss import CHA_BOUNDS_SOURCE, LossReading, cha_bounds, read_loss
 from strainwave.analytic.catalogue_rules import RATIO_OF_LABEL, MeshRules, ratio_of_label
 from strainwave.analytic.drive_curve import DriveCurve, catalogue_secants, predict_curve
 from strainwave.errors import InputError
@@ -232,7 +232,8 @@ class CataloguePrediction:
         return {"rows": rows, "log_slopes": self.slopes, "ratio_trend": self.trend(), "misses": self.misses(),
                 "goals": {**GOALS, "ratio_trend": TREND_GOAL}, "ratio_labels": RATIO_OF_LABEL,
                 "design_rules": {k: v for k, v in self.rules.__dict__.items()}, "cpu_s": self.cpu_s,
-                "cup_zone_terms": [t.to_dict() for t in self.cup_zone.values()]}
+                "cup_zone_terms": [t.to_dict() for t in self.cup_zone.values()],
+                "loss_source": CHA_BOUNDS_SOURCE, "loss_note": loss_note(self.rows)}
 
     def summary(self) -> str:
         lines = ["predicted / catalogue (design rules: decisions 065, 069 (fatigue rim); K1/K2/K3 the catalogue's secants over the row's "

@@ -124,7 +124,9 @@ def test_the_json_and_the_table_carry_the_loss_and_the_left_out(tmp_path, capsys
                      "14,30,2,6.9,1.9,2.4,3.4,0.5,0.2,5\n14,>50,2,6.9,4.7,6.1,7.1,,,\n")
     out = tmp_path / "o.json"
     assert main(["catalogue", str(table), "--json", str(out)]) == 0
-    a, b = json.loads(out.read_text())["rows"]
+    doc = json.loads(out.read_text())
+    a, b = doc["rows"]
+    assert doc["loss_note"] and "Table 54" in doc["loss_source"]    # the zero loss is said to be a pinched loop
     for row in (a, b):
         for key in ("hysteresis_loss_arcmin_predicted", "lost_motion_arcmin_predicted",
                     "hysteresis_loss_arcmin_catalogue", "lost_motion_arcmin_catalogue", "loop_width_max_arcmin"):
