@@ -18,7 +18,8 @@ PHRASES = {
     ("K1_Nm_per_rad", "high"): "compliance not modelled: circular spline body / housing (with it in series K1 came "
                                "within on 19/21 rows, decision 069); no engagement delay: pitch/profile errors",
     ("K1_Nm_per_rad", "low"): "support one linear foundation: no rim support that stiffens with load, no WG preload",
-    ("K2_Nm_per_rad", "high"): "compliance not modelled: circular spline body / housing; no engagement delay",
+    ("K2_Nm_per_rad", "high"): "compliance not modelled: circular spline body / housing (with it in series K2 came "
+                               "within +-35 % on 20/21 rows, decision 070)",
     ("K2_Nm_per_rad", "low"): "fewer teeth share the load than in a real S-tooth zone (not measured)",
     ("K3_Nm_per_rad", "high"): "compliance not modelled: circular spline body / housing (a free CS body is the "
                                "size of the miss, decision 069; its restraint by the housing not known)",
