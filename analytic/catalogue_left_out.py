@@ -7,6 +7,8 @@ nothing measured it, the phrase says "not measured".
 """
 from __future__ import annotations
 
+from strainwave.analytic.catalogue_loss import ARCMIN
+
 __all__ = ["BANDS", "PHRASES", "PINCHED_NOTE", "row_left_out", "loss_note", "loss_lines", "left_out_lines"]
 
 # |predicted / catalogue - 1| beyond these is a miss: issue 48's goals; K2 has none there, so it takes K1's
@@ -17,7 +19,8 @@ _SHORT = {"K1_Nm_per_rad": "K1", "K2_Nm_per_rad": "K2", "K3_Nm_per_rad": "K3", "
 PHRASES = {
     ("K1_Nm_per_rad", "high"): "compliance not modelled: circular spline body / housing (with it in series K1 came "
                                "within on 19/21 rows, decision 069); no engagement delay: pitch/profile errors",
-    ("K1_Nm_per_rad", "low"): "support one linear foundation: no rim support that stiffens with load, no WG preload",
+    ("K1_Nm_per_rad", "low"): "support one linear foundation: no rim support that stiffens with load, no WG preload "
+                              "(not measured)",
     ("K2_Nm_per_rad", "high"): "compliance not modelled: circular spline body / housing (with it in series K2 came "
                                "within +-35 % on 20/21 rows, decision 070)",
     ("K2_Nm_per_rad", "low"): "fewer teeth share the load than in a real S-tooth zone (not measured)",
@@ -25,15 +28,14 @@ PHRASES = {
                                "size of the miss, decision 069; its restraint by the housing not known)",
     ("K3_Nm_per_rad", "low"): "fewer teeth share the load than in a real S-tooth zone (not measured)",
     ("T1_Nm", "low"): "no engagement delay: pitch/profile errors (contact grows from 0 N m, the first knee early)",
-    ("T1_Nm", "high"): "the ideal rack's contact-set growth: its first knee later than the real profile's",
+    ("T1_Nm", "high"): "the ideal rack's contact-set growth: its first knee later than the real profile's (not measured)",
     ("T2_Nm", "low"): "the engagement zone ends early: the real S-tooth adds teeth to higher torque",
-    ("T2_Nm", "high"): "no clearance spread from manufacturing (profile and pitch errors)",
-    ("hysteresis", "high"): "flank friction dissipates more than the unit: mu above the unit's, or too much slip",
-    ("lost_motion", "high"): "low-torque twist too large: K1 too soft (no support stiffening, no WG preload)",
+    ("T2_Nm", "high"): "no clearance spread from manufacturing: profile and pitch errors (not measured)",
+    ("hysteresis", "high"): "flank friction dissipates more than the unit: mu above the unit's, or too much slip (not measured)",
+    ("lost_motion", "high"): "low-torque twist too large: K1 too soft, no support stiffening or WG preload (not measured)",
     ("lost_motion", "high, test torque"): "test torque: 4 % of the rules' rated torque (the unit's own is not in the "
                                           "table); the catalogue's own K1 gives {k1:.2f}' over it too",
 }
-ARCMIN = 2.908882086657216e-4
 PINCHED_NOTE = ("hysteresis loss 0: flank friction here scales with the flank load, which is zero at 0 N m (the loop "
                 "pinches there; 'max width' is its widest point): within the bound, but the bound cannot test mu; left "
                 "out: friction with a load-free part (the WG's radial preload on teeth and balls)")
