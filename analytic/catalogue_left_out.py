@@ -88,9 +88,10 @@ def _bound(b) -> str:
 def loss_lines(rows) -> list[str]:
     """The loss table: predicted hysteresis loss and lost motion against the bounds, per row."""
     lines = ["hysteresis loss (width at 0 N m of the +/-rated loop) and lost motion (end to end of a +/-4 % rated "
-             "loop), arcmin; bounds: the table's columns, else the CHA rule (decision 070-loss48)",
+             "loop), arcmin; T_N the rules' (* the table's); bounds: the table's columns, else the CHA's "
+             "(decision 070-loss48)",
              f"{'size':>5} {'ratio':>5} {'hyst':>7} {'bound':>5} {'':>6} {'lost m':>7} {'bound':>5} {'':>6} "
-             f"{'max width':>9} {'from':>9}"]
+             f"{'max width':>9} {'+-4 % T_N':>10} {'bounds':>9}"]
     for rp in rows:
         L = rp.loss
         if L is None:
@@ -99,7 +100,8 @@ def loss_lines(rows) -> list[str]:
         lines.append(f"{rp.row.size:5g} {rp.row.ratio_label:>5} {hyst:7.3f} "
                      f"{_bound(L.hysteresis_bound_arcmin):>5} {_flag(L.within('hysteresis')):>6} "
                      f"{L.lost_motion_arcmin:7.3f} {_bound(L.lost_motion_bound_arcmin):>5} "
-                     f"{_flag(L.within('lost_motion')):>6} {L.loop_width_max_arcmin:9.3f} {L.bounds_from:>9}")
+                     f"{_flag(L.within('lost_motion')):>6} {L.loop_width_max_arcmin:9.3f} "
+                     f"{L.lost_motion_torque_Nm:8.3g}{'*' if L.test_torque_from == 'table' else ' ':1} {L.bounds_from:>10}")
     note = loss_note(rows)
     return lines + ([f"  {note}"] if note else [])
 

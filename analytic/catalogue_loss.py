@@ -8,7 +8,7 @@ Definitions (docs/decisions/070-loss48-hysteresis-and-lost-motion.md, with the p
   torque of about +/-4 % of the rated torque"); the lost motion is the twist travelled between the two ends of
   that steady small loop, phi(+4 %) - phi(-4 %). On a loop cycled to +/-4 % the branches meet at its ends, so
   the end-to-end angle and the loop's centre-line angle at +/-4 % (the reading other makers state) are one number.
-Bounds: the CHA table's own (HD AG 1018854, 8/2018 V03, Table 54; ../shared/tooth-mesh-references.md section 1),
+Bounds: the CHA table's own (HD AG 1018854, 8/2018 V03 p. 54, Tables 54.1-54.2; ../shared/tooth-mesh-references.md 1),
 one rule for every size, keyed by the ratio (``cha_bounds``); a user's table may give its own per row.
 """
 from __future__ import annotations
@@ -28,8 +28,9 @@ __all__ = ["LOST_MOTION_FRACTION", "CHA_BOUNDS_SOURCE", "LossReading", "cha_boun
 ARCMIN = math.pi / (180.0 * 60.0)
 LOST_MOTION_FRACTION = 0.04          # of the rated torque: the lost-motion test's torque (HD glossary)
 SMALL_LOOP_STEPS = 20                # torque steps per leg of the +/-4 % loop (the path solve is exact at each)
-CHA_BOUNDS_SOURCE = ("CHA table (HD AG 1018854, 8/2018 V03, Table 54), every size: hysteresis loss < 3 arcmin at "
-                     "i = 30, < 1 arcmin at i >= 50; lost motion < 1 arcmin")
+CHA_BOUNDS_SOURCE = ("CHA accuracy table (HD AG 1018854, 8/2018 V03 p. 54 Tables 54.1-54.2; 12/2015 V01 p. 50 "
+                     "Tables 50.1-50.2), every size: hysteresis loss < 3 arcmin at i = 30, < 1 arcmin at i >= 50; "
+                     "lost motion < 1 arcmin")
 
 
 def cha_bounds(ratio: float) -> tuple[float, float]:
