@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from strainwave.analytic.catalogue_loss import ARCMIN
 
-__all__ = ["BANDS", "PHRASES", "PINCHED_NOTE", "row_left_out", "loss_note", "loss_lines", "left_out_lines"]
+__all__ = ["BANDS", "PHRASES", "MU_SOURCE", "PINCHED_NOTE", "row_left_out", "loss_note", "loss_lines", "left_out_lines"]
 
 # |predicted / catalogue - 1| beyond these is a miss: issue 48's goals; K2 has none there, so it takes K1's
 # band (said in the output) so that a K2 miss is named too
@@ -36,6 +36,8 @@ PHRASES = {
     ("lost_motion", "high, test torque"): "test torque: 4 % of the rules' rated torque (the unit's own is not in the "
                                           "table); the catalogue's own K1 gives {k1:.2f}' over it too",
 }
+MU_SOURCE = ("the rules' flank mu (MeshRules.friction_coefficient), the shipped gear's: the 0.05-0.12 band of "
+             "boundary-lubricated flanks (../shared/tooth-mesh-references.md section 4), not fitted to this table")
 PINCHED_NOTE = ("hysteresis loss 0: flank friction here scales with the flank load, which is zero at 0 N m (the loop "
                 "pinches there; 'max width' is its widest point): within the bound, but the bound cannot test mu; left "
                 "out: friction with a load-free part (the WG's radial preload on teeth and balls)")
@@ -85,11 +87,11 @@ def _bound(b) -> str:
     return "-" if b is None else f"<{b:g}"
 
 
-def loss_lines(rows) -> list[str]:
-    """The loss table: predicted hysteresis loss and lost motion against the bounds, per row."""
+def loss_lines(rows, mu: float | None = None) -> list[str]:
+    """The loss table: predicted hysteresis loss and lost motion against the bounds, per row (``mu`` said above)."""
     lines = ["hysteresis loss (width at 0 N m of the +/-rated loop) and lost motion (end to end of a +/-4 % rated "
              "loop), arcmin; T_N the rules' (* the table's); bounds: the table's columns, else the CHA's "
-             "(decision 070-loss48)",
+             "(decision 070-loss48)" + ("" if mu is None else f"; flank mu = {mu:g}: {MU_SOURCE}"),
              f"{'size':>5} {'ratio':>5} {'hyst':>7} {'bound':>5} {'':>6} {'lost m':>7} {'bound':>5} {'':>6} "
              f"{'max width':>9} {'+-4 % T_N':>10} {'bounds':>9}"]
     for rp in rows:

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from strainwave.analytic.catalogue_left_out import left_out_lines, loss_lines, loss_note, row_left_out
+from strainwave.analytic.catalogue_left_out import MU_SOURCE, left_out_lines, loss_lines, loss_note, row_left_out
 from strainwave.analytic.catalogue_loss import CHA_BOUNDS_SOURCE, LossReading, cha_bounds, read_loss
 from strainwave.analytic.catalogue_rules import RATIO_OF_LABEL, MeshRules, ratio_of_label
 from strainwave.analytic.drive_curve import DriveCurve, catalogue_secants, predict_curve
@@ -233,7 +233,8 @@ class CataloguePrediction:
                 "goals": {**GOALS, "ratio_trend": TREND_GOAL}, "ratio_labels": RATIO_OF_LABEL,
                 "design_rules": {k: v for k, v in self.rules.__dict__.items()}, "cpu_s": self.cpu_s,
                 "cup_zone_terms": [t.to_dict() for t in self.cup_zone.values()],
-                "loss_source": CHA_BOUNDS_SOURCE, "loss_note": loss_note(self.rows)}
+                "loss_source": CHA_BOUNDS_SOURCE, "loss_note": loss_note(self.rows),
+                "flank_mu": self.rules.friction_coefficient, "flank_mu_source": MU_SOURCE}
 
     def summary(self) -> str:
         lines = ["predicted / catalogue (design rules: decisions 065, 069 (fatigue rim); K1/K2/K3 the catalogue's secants over the row's "
@@ -255,7 +256,7 @@ class CataloguePrediction:
         for name, m in self.misses().items():
             lines.append(f"{name} outside +/-{GOALS[name]:.0%} on {len(m['rows'])} rows ({', '.join(m['rows'])}): "
                          f"left out: {'; '.join(m['left_out'])}")
-        lines += loss_lines(self.rows) + left_out_lines(self.rows)
+        lines += loss_lines(self.rows, self.rules.friction_coefficient) + left_out_lines(self.rows)
         for t in self.cup_zone.values():
             c = t.extra.convergence
             lines.append(f"cup under the mesh zones, ratio {t.ratio:g} (FE at d = {t.reference_d_mm:g} mm, scaled "

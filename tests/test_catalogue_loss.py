@@ -127,6 +127,7 @@ def test_the_json_and_the_table_carry_the_loss_and_the_left_out(tmp_path, capsys
     doc = json.loads(out.read_text())
     a, b = doc["rows"]
     assert doc["loss_note"] and "Tables 54.1" in doc["loss_source"]    # the zero loss is said to be a pinched loop
+    assert doc["flank_mu"] == 0.08 and "section 4" in doc["flank_mu_source"]
     for row in (a, b):
         for key in ("hysteresis_loss_arcmin_predicted", "lost_motion_arcmin_predicted",
                     "hysteresis_loss_arcmin_catalogue", "lost_motion_arcmin_catalogue", "loop_width_max_arcmin"):
@@ -139,4 +140,4 @@ def test_the_json_and_the_table_carry_the_loss_and_the_left_out(tmp_path, capsys
     assert a["lost_motion_within_bound"] is (a["lost_motion_arcmin_predicted"] < 0.2)
     assert any(m["quantity"] == "K3" for m in b["left_out"])
     text = capsys.readouterr().out
-    assert "lost m" in text and "left out, per row" in text and "14/>50: " in text
+    assert "lost m" in text and "left out, per row" in text and "14/>50: " in text and "flank mu = 0.08" in text
