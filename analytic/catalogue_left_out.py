@@ -28,11 +28,14 @@ PHRASES = {
                                "size of the miss, decision 069; its restraint by the housing not known)",
     ("K3_Nm_per_rad", "low"): "fewer teeth share the load than in a real S-tooth zone (not measured)",
     ("T1_Nm", "low"): "no engagement delay: pitch/profile errors (contact grows from 0 N m, the first knee early)",
-    ("T1_Nm", "high"): "the ideal rack's contact-set growth: its first knee later than the real profile's (not measured)",
+    ("T1_Nm", "high"): "the ideal rack's contact-set growth: its first knee later than the real profile's "
+                       "(not measured)",
     ("T2_Nm", "low"): "the engagement zone ends early: the real S-tooth adds teeth to higher torque",
     ("T2_Nm", "high"): "no clearance spread from manufacturing: profile and pitch errors (not measured)",
-    ("hysteresis", "high"): "flank friction dissipates more than the unit: mu above the unit's, or too much slip (not measured)",
-    ("lost_motion", "high"): "low-torque twist too large: K1 too soft, no support stiffening or WG preload (not measured)",
+    ("hysteresis", "high"): "flank friction dissipates more than the unit: mu above the unit's, or too much slip "
+                            "(not measured)",
+    ("lost_motion", "high"): "low-torque twist too large: K1 too soft, no support stiffening or WG preload "
+                             "(not measured)",
     ("lost_motion", "high, test torque"): "test torque: 4 % of the rules' rated torque (the unit's own is not in the "
                                           "table); the catalogue's own K1 gives {k1:.2f}' over it too",
 }
@@ -103,7 +106,8 @@ def loss_lines(rows, mu: float | None = None) -> list[str]:
                      f"{_bound(L.hysteresis_bound_arcmin):>5} {_flag(L.within('hysteresis')):>6} "
                      f"{L.lost_motion_arcmin:7.3f} {_bound(L.lost_motion_bound_arcmin):>5} "
                      f"{_flag(L.within('lost_motion')):>6} {L.loop_width_max_arcmin:9.3f} "
-                     f"{L.lost_motion_torque_Nm:8.3g}{'*' if L.test_torque_from == 'table' else ' ':1} {L.bounds_from:>10}")
+                     f"{L.lost_motion_torque_Nm:8.3g}{'*' if L.test_torque_from == 'table' else ' ':1} "
+                     f"{L.bounds_from:>10}")
     note = loss_note(rows)
     return lines + ([f"  {note}"] if note else [])
 

@@ -31,8 +31,8 @@ _COLUMN_OF = {"K1_Nm_per_rad": ("K1_e3", 1e3), "K2_Nm_per_rad": ("K2_e3", 1e3), 
               "T1_Nm": ("T1_Nm", 1.0), "T2_Nm": ("T2_Nm", 1.0)}
 # optional columns (decision 070-loss48): the row's own loss bounds (else the CHA rule) and rated torque (the
 # lost-motion test's 4 %; else the rules')
-_COLUMN_OF.update({"hysteresis_loss_arcmin": ("hysteresis_arcmin", 1.0), "lost_motion_arcmin": ("lost_motion_arcmin", 1.0),
-                   "rated_torque_Nm": ("rated_torque_Nm", 1.0)})
+_COLUMN_OF.update({"hysteresis_loss_arcmin": ("hysteresis_arcmin", 1.0),
+                   "lost_motion_arcmin": ("lost_motion_arcmin", 1.0), "rated_torque_Nm": ("rated_torque_Nm", 1.0)})
 # issue 48's goals, fixed before the comparison: |predicted/catalogue - 1| within these
 GOALS = {"K3_Nm_per_rad": 0.25, "K1_Nm_per_rad": 0.35, "T1_Nm": 0.35, "T2_Nm": 0.35}
 TREND_GOAL = 0.25
