@@ -141,3 +141,18 @@ def test_the_json_and_the_table_carry_the_loss_and_the_left_out(tmp_path, capsys
     assert any(m["quantity"] == "K3" for m in b["left_out"])
     text = capsys.readouterr().out
     assert "lost m" in text and "left out, per row" in text and "14/>50: " in text and "flank mu = 0.08" in text
+
+
+def test_a_clearance_shows_in_both_readings_by_its_free_play():
+    """A flank clearance is free play: it opens the loop at 0 N m, and the +/-4 % travel grows by at least as much
+    (the free play, plus fewer teeth engaged at low torque): the bounds test the rules' clearances."""
+    def read(backlash):
+        r = replace(MeshRules(cup_zone_elements=None), backlash_over_d=backlash)
+        d, A, s = r.design(14, 100), r.rated_torque_Nm(14), r.cup_flexibility_rad_per_Nmm(14)
+        c = predict_curve(d, s, A, with_te=False)
+        return read_loss(d, s, A, c.loop_torque_Nm, c.loop_twist_rad, cha_bounds(100.0), "rule")
+    tight, loose = read(0.0), read(4e-5)
+    d_loss = loose.hysteresis_loss_arcmin - tight.hysteresis_loss_arcmin
+    d_lm = loose.lost_motion_arcmin - tight.lost_motion_arcmin
+    assert tight.hysteresis_loss_arcmin == pytest.approx(0.0, abs=1e-9) and d_loss > 0.1
+    assert d_lm >= d_loss * (1.0 - 1e-6)
