@@ -32,10 +32,11 @@ PHRASES = {
                        "(not measured)",
     ("T2_Nm", "low"): "the engagement zone ends early: the real S-tooth adds teeth to higher torque",
     ("T2_Nm", "high"): "no clearance spread from manufacturing: profile and pitch errors (not measured)",
-    ("hysteresis", "high"): "flank friction dissipates more than the unit: mu above the unit's, or too much slip "
-                            "(not measured)",
+    ("hysteresis", "high"): "flank clearance: free play beyond the unit's (flank friction opens no loop at 0 N m "
+                            "here, decision 070)",
     ("lost_motion", "high"): "low-torque twist too large: K1 too soft, no support stiffening or WG preload "
                              "(not measured)",
+    ("lost_motion", "high, clearance"): "flank clearance: {play:.2f}' of free play at 0 N m (decision 070)",
     ("lost_motion", "high, test torque"): "test torque: 4 % of the rules' rated torque (the unit's own is not in the "
                                           "table); the catalogue's own K1 gives {k1:.2f}' over it too",
 }
@@ -69,11 +70,15 @@ def _loss_misses(rp) -> list[dict]:
         k1 = rp.row.values.get("K1_Nm_per_rad")
         # the catalogue's own low-torque line over the same +/-4 % span: over the bound too -> the torque, not K1
         k1_lm = None if k1 is None else 2.0 * loss.lost_motion_torque_Nm / k1 / ARCMIN
-        key = ("lost_motion", "high, test torque") if k1_lm is not None and k1_lm >= loss.lost_motion_bound_arcmin \
-            else ("lost_motion", "high")
+        if k1_lm is not None and k1_lm >= loss.lost_motion_bound_arcmin:
+            key = ("lost_motion", "high, test torque")
+        elif loss.hysteresis_loss_arcmin > 1e-6:          # a loop open at 0 N m is free play in this model
+            key = ("lost_motion", "high, clearance")
+        else:
+            key = ("lost_motion", "high")
         out.append({"quantity": _SHORT["lost_motion"], "side": "high", "predicted_arcmin": loss.lost_motion_arcmin,
                     "bound_arcmin": loss.lost_motion_bound_arcmin, "catalogue_K1_arcmin": k1_lm,
-                    "left_out": PHRASES[key].format(k1=k1_lm or 0.0)})
+                    "left_out": PHRASES[key].format(k1=k1_lm or 0.0, play=loss.hysteresis_loss_arcmin)})
     return out
 
 

@@ -101,6 +101,11 @@ def test_each_miss_gets_the_phrase_of_its_side():
     assert "test torque" in stiff[0]["left_out"] and stiff[0]["catalogue_K1_arcmin"] == pytest.approx(1.5)
     soft = row_left_out(_fake_row({}, _reading(1.2), {"K1_Nm_per_rad": 2.0 * 0.44 / (0.5 * ARCMIN)}))
     assert soft[0]["left_out"] == PHRASES[("lost_motion", "high")]
+    # a loop open at 0 N m is free play here: the clearance is named, with its angle
+    loose = LossReading(1.5, 1.2, 1.5, 0.0, 0.44, 1.0, 1.0, "rule")
+    named = row_left_out(_fake_row({}, loose, {"K1_Nm_per_rad": 2.0 * 0.44 / (0.5 * ARCMIN)}))
+    assert [m["quantity"] for m in named] == ["hysteresis loss", "lost motion"]
+    assert named[0]["left_out"] == PHRASES[("hysteresis", "high")] and "1.50' of free play" in named[1]["left_out"]
 
 
 @pytest.mark.parametrize("extra, cell, key", [
