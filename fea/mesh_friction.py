@@ -39,6 +39,8 @@ class BandSystem:
         n = len(self.clearance_mm)
         if self.flex_mm_per_N.shape != (2 * n, 2 * n) or len(self.lever_mm) != n or len(self.slide_mm_per_rad) != n:
             raise ValueError("BandSystem: clearance, flexibility, lever and slide must agree in size")
+        if np.any(np.asarray(self.clearance_mm) < 0.0):
+            raise ValueError("BandSystem: clearance_mm must be >= 0")
         if self.friction_coefficient < 0.0:
             raise ValueError("BandSystem: friction_coefficient must be >= 0")
 

@@ -91,5 +91,7 @@ def test_a_torque_no_flank_carries_is_refused():
 def test_bad_sizes_are_refused():
     with pytest.raises(ValueError, match="agree in size"):
         BandSystem(np.zeros(2), np.eye(3), np.ones(2), np.ones(2), 0.1)
+    with pytest.raises(ValueError, match="clearance_mm"):
+        BandSystem(-np.ones(1), np.eye(2), np.ones(1), np.ones(1), 0.1)
     with pytest.raises(ValueError, match="friction_coefficient"):
         BandSystem(np.zeros(1), np.eye(2), np.ones(1), np.ones(1), -0.1)
