@@ -28,9 +28,9 @@ EQ_DROP = 1e-12        # a band weight below this (relative to the largest) is n
 def band_vectors(problem: mj.Problem, module_mm: float) -> tuple[np.ndarray, np.ndarray]:
     """(f, g): strainwave's unit normal band loads of the pairs (columns, interleaved x/y dofs of the sector's
     P2 nodes) and the same bands as tangential tractions along +t (each column's resultant a unit +t)."""
-    from strainwave.fea import tooth_mesh_fe as fe
     from strainwave.fea.mesh_friction import turned_bands
-    F, _ = fe.flank_loads(problem.model, problem.teeth, problem.radius_mm, 0.2 * module_mm, +1)
+    side = problem.side if problem.side is not None else np.ones(problem.teeth.size, int)
+    F = mj.band_loads(problem.model, problem.teeth, problem.radius_mm, 0.2 * module_mm, side)
     return F, turned_bands(F, _tangent(problem))
 
 
@@ -65,6 +65,16 @@ def strainwave_true_slip(problem: mj.Problem, module_mm: float, torque_Nmm: floa
     for r in legs:
         r["teeth_in_contact"] = int((r["forces_N"] > 0).sum())
     return legs[0] | {"unloaded": legs[1], "solve_s": dt}
+
+
+def strainwave_true_slip_path(problem: mj.Problem, module_mm: float, torques_Nmm, *,
+                              increments: int = 20) -> list[dict]:
+    """strainwave's true-slip solve along a torque history (each leg ends at its torque), one record per leg."""
+    from strainwave.fea.mesh_friction import twists_for_torques
+    legs = twists_for_torques(band_system(problem, module_mm), torques_Nmm, increments)
+    for r in legs:
+        r["teeth_in_contact"] = int((r["forces_N"] > 0).sum())
+    return legs
 
 
 def _equations(out: list[str], rid: int, n: np.ndarray, t: np.ndarray, f: np.ndarray, g: np.ndarray) -> None:
