@@ -156,6 +156,7 @@ class CataloguePrediction:
     cpu_s: float
     slopes: dict = field(default_factory=dict)
     cup_zone: dict = field(default_factory=dict)     # ratio -> analytic.cup_zone.CupZoneTerm (FE, with GCI)
+    cs_body: dict = field(default_factory=dict)      # ratio -> analytic.cs_housing.CsBodyTerm (3D FE, with GCI)
 
     def __post_init__(self):
         self.slopes = {"size": self._slopes("size"), "ratio": self._slopes("ratio")}
@@ -223,7 +224,8 @@ class CataloguePrediction:
         return {"rows": rows, "log_slopes": self.slopes, "ratio_trend": self.trend(), "misses": self.misses(),
                 "goals": {**GOALS, "ratio_trend": TREND_GOAL}, "ratio_labels": RATIO_OF_LABEL,
                 "design_rules": {k: v for k, v in self.rules.__dict__.items()}, "cpu_s": self.cpu_s,
-                "cup_zone_terms": [t.to_dict() for t in self.cup_zone.values()]}
+                "cup_zone_terms": [t.to_dict() for t in self.cup_zone.values()],
+                "cs_body_terms": [{"ratio": r, **t.to_dict()} for r, t in self.cs_body.items()]}
 
     def summary(self) -> str:
         lines = ["predicted / catalogue (design rules: decisions 065, 069 (fatigue rim); K1/K2/K3 the catalogue's secants over the row's "
@@ -250,6 +252,10 @@ class CataloguePrediction:
             lines.append(f"cup under the mesh zones, ratio {t.ratio:g} (FE at d = {t.reference_d_mm:g} mm, scaled "
                          f"(d_ref/d)^3): +{t.extra.value:.3e} rad/(N mm), GCI {100 * c.gci_fine:.2g} %, over the "
                          f"uniform shear's {t.uniform.value:.3e} ({t.cpu_s:.1f} CPU-s)")
+        for r, t in self.cs_body.items():
+            lines.append(f"circular spline body, face {t.restraint} (decision 070), ratio {r:g} (3D FE at d = "
+                         f"{t.reference_d_mm:g} mm, scaled (d_ref/d)^3): +{t.twist.value:.3e} rad/(N mm), GCI "
+                         f"{100 * t.twist.convergence.gci_fine:.2g} % ({t.cpu_s:.1f} CPU-s)")
         lines.append(f"CPU {self.cpu_s:.1f} s for {len(self.rows)} rows")
         return "\n".join(lines)
 
@@ -282,16 +288,19 @@ def predict_table(path: Path, rules: MeshRules | None = None) -> CataloguePredic
         raise InputError("TABLE", str(path), f"a readable UTF-8 CSV file ({exc.__class__.__name__})") from None
     rows = read_table(text, str(path))
     t0 = time.process_time()
-    zone = {}
+    zone, body = {}, {}
     for ratio in sorted({row.ratio for row in rows}):
-        term = rules.cup_zone_term(ratio)
+        term, cs = rules.cup_zone_term(ratio), rules.cs_body_term(ratio)
         if term is not None:
             zone[ratio] = term
+        if cs is not None:
+            body[ratio] = cs
     preds = []
     for row in rows:
         design = rules.design(row.size, row.ratio)
         d = rules.pitch_diameter_mm(row.size)
         series = rules.cup_flexibility_rad_per_Nmm(row.size) + (zone[row.ratio].at(d) if row.ratio in zone else 0.0)
+        series += body[row.ratio].at(d, rules.E_MPa) if row.ratio in body else 0.0
         curve = predict_curve(design, series, rules.rated_torque_Nm(row.size), with_te=False)
         preds.append(_with_secants(row, curve))
-    return CataloguePrediction(preds, rules, time.process_time() - t0, cup_zone=zone)
+    return CataloguePrediction(preds, rules, time.process_time() - t0, cup_zone=zone, cs_body=body)
