@@ -253,7 +253,7 @@ class CataloguePrediction:
                          f"(d_ref/d)^3): +{t.extra.value:.3e} rad/(N mm), GCI {100 * c.gci_fine:.2g} %, over the "
                          f"uniform shear's {t.uniform.value:.3e} ({t.cpu_s:.1f} CPU-s)")
         for r, t in self.cs_body.items():
-            lines.append(f"circular spline body, face {t.restraint} (decision 070), ratio {r:g} (3D FE at d = "
+            lines.append(f"circular spline body, mounting {t.restraint} (decision 070), ratio {r:g} (3D FE at d = "
                          f"{t.reference_d_mm:g} mm, scaled (d_ref/d)^3): +{t.twist.value:.3e} rad/(N mm), GCI "
                          f"{100 * t.twist.convergence.gci_fine:.2g} % ({t.cpu_s:.1f} CPU-s)")
         lines.append(f"CPU {self.cpu_s:.1f} s for {len(self.rows)} rows")

@@ -1,0 +1,76 @@
+"""The circular spline body with its bolted face (fea/cs_housing_fe.py, analytic/cs_housing.py; decision 070):
+first principles on coarse lattices (a few CPU-s together)."""
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import pytest
+
+from strainwave.analytic.cs_ring import ring_mesh_twist_rad_per_Nmm
+from strainwave.fea.cs_housing_fe import BodyCase, Restraint, cs_housing_twist_rad_per_Nmm
+
+# a size-25-like body at i = 50: root 32.6 mm, outer 39.7 mm, 11.9 mm wide
+BODY = BodyCase(32.6, 39.7, 11.9, 31.75, 20.0, 2.1e5, Restraint.FACE)
+
+
+def twist(case, k=1):
+    out, _ = cs_housing_twist_rad_per_Nmm(case, k)
+    return out["tangential"] + out["radial"]
+
+
+def test_clamped_face_is_stiffer_than_a_band_than_bolts_than_the_free_ring():
+    """More restraint, less twist: the whole face clamped < a band of it < 8 bolt footprints < free in its plane."""
+    face = twist(BODY)
+    band = twist(replace(BODY, clamp_r=(0.5, 1.0)))
+    bolts = twist(replace(BODY, restraint=Restraint.BOLTS, n_bolts=8))
+    free = twist(replace(BODY, restraint=Restraint.FREE))
+    assert 0.0 < face < band < bolts < free
+    assert free > 10.0 * face                   # the housing takes most of the ovalisation away
+
+
+def test_similar_bodies_scale_as_one_over_E_d_cubed():
+    """Every length x 2 (loads per unit torque ~ 1/d): twist x 1/8; E halved: twist x 2."""
+    a = twist(BODY)
+    big = BodyCase(*(2.0 * x for x in (BODY.ri_mm, BODY.ro_mm, BODY.b_mm, BODY.r_p_mm)), 20.0, 2.1e5)
+    assert twist(big) == pytest.approx(a / 8.0, rel=1e-9)
+    assert twist(replace(BODY, E_MPa=1.05e5)) == pytest.approx(2.0 * a, rel=1e-9)
+
+
+def test_a_thicker_body_twists_less():
+    assert twist(replace(BODY, ro_mm=42.0)) < twist(BODY)
+    assert twist(replace(BODY, ro_mm=42.0, restraint=Restraint.FREE)) < twist(replace(BODY, restraint=Restraint.FREE))
+
+
+def test_the_free_thin_ring_meets_the_closed_form_radial_opening():
+    """A thin free ring (h / R = 0.05): the radial pair's opening within 5 % of Timoshenko's inextensible ring
+    (Roark's (pi/4 - 2/pi) P R^3 / EI), the tangential within 25 % (the load sits on the bore, h/2 off the
+    mid-surface; the plane FE reads 1.17x on the same ring, decision 069)."""
+    R, h, b = 40.0, 2.0, 10.0
+    case = BodyCase(R - 0.5 * h, R + 0.5 * h, b, R - 0.5 * h, 20.0, 2.1e5, Restraint.FREE)
+    out, _ = cs_housing_twist_rad_per_Nmm(case, 2)
+    tang, rad = ring_mesh_twist_rad_per_Nmm(R, 2.1e5 * b * h ** 3 / 12.0, R - 0.5 * h, 20.0)
+    # the FE bends like a plate strip (anticlastic curvature held): between E I and E I / (1 - nu^2)
+    assert 0.95 * (1 - 0.3 ** 2) * rad < out["radial"] < 1.05 * rad
+    assert 1.0 < out["tangential"] / tang < 1.25
+
+
+@pytest.mark.heavy
+def test_the_lattices_converge():
+    """Three lattices: the clamped twist rises monotonically (a stiffer coarse lattice) and the changes shrink."""
+    v = [twist(BODY, k) for k in (1, 2, 3)]
+    assert v[0] < v[1] < v[2]
+    assert abs(v[2] - v[1]) < 0.5 * abs(v[1] - v[0])
+
+
+def test_the_term_scales_from_its_reference_size():
+    from strainwave.analytic.cs_housing import CsBodyTerm
+    from strainwave.fea.result import Quantity
+
+    class C:
+        gci_fine = 0.0
+    q = Quantity("cs_body_twist_rad_per_Nmm", 1e-9, "rad/(N*mm)", C())
+    t = CsBodyTerm("face", 63.5, 2.1e5, q, q, q, 0.0)
+    assert t.at(127.0) == pytest.approx(1e-9 / 8.0)
+    assert t.at(63.5, 1.05e5) == pytest.approx(2e-9)
+    assert math.isclose(t.at(63.5), 1e-9)
