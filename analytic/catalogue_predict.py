@@ -43,9 +43,10 @@ LEFT_OUT = {
                                 "fatigue rim (decision 069) the ratio trend is met and every row is 1.4-2.0x too "
                                 "stiff (size 25: 1.7e-8 / 7.6e-9 / 5.0e-9 rad/(N mm) missing at i = 30 / 50 / 100); "
                                 "ruled out: the tooth on its rim, coning, lift-off, the WG outer ring's ovalisation; "
-                                "not in the chain: the circular spline body's ovalisation under the two zones, as a "
-                                "free ring 1.5e-8 / 1.1e-8 (i = 30 / 100, FE), whose restraint by the housing is "
-                                "not modelled (decisions 067-069)",
+                                "the circular spline body is in the chain with its face clamped to a rigid housing "
+                                "(3.4-3.5e-10 at size 25, 3D FE, decision 070); free in its plane it would add "
+                                "1.5e-8 / 1.1e-8 (i = 30 / 100), the size of the miss (K3 18/21); how much ovalisation a real housing and "
+                                "bolt joint allow (an elastic housing flange, the joint's slip) is not modelled",
     ("K3_Nm_per_rad", "low"): "load spreading over more teeth than the ideal rack engages (the wider, "
                                "conjugate S-tooth zone of real profiles)",
     ("T1_Nm", "low"): "the contact set grows smoothly from zero torque (zero backlash), so the reader's first knee "

@@ -33,7 +33,7 @@ def run(c, levels):
     for k in levels:
         t0 = time.process_time()
         r, n = cs_housing_twist_rad_per_Nmm(c, k)
-        out.append({"k": k, "dofs": n, "tangential": r["tangential"], "radial": r["radial"],
+        out.append({"k": k, "dofs": int(n), "tangential": r["tangential"], "radial": r["radial"],
                     "total": r["tangential"] + r["radial"], "cpu_s": time.process_time() - t0})
         print(json.dumps({"restraint": c.restraint.value, "clamp_r": c.clamp_r, "n_bolts": c.n_bolts, **out[-1]}),
               flush=True)

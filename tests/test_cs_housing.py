@@ -48,7 +48,7 @@ def test_the_free_thin_ring_meets_the_closed_form_radial_opening():
     mid-surface; the plane FE reads 1.17x on the same ring, decision 069)."""
     R, h, b = 40.0, 2.0, 10.0
     case = BodyCase(R - 0.5 * h, R + 0.5 * h, b, R - 0.5 * h, 20.0, 2.1e5, Restraint.FREE)
-    out, _ = cs_housing_twist_rad_per_Nmm(case, 2)
+    out, _ = cs_housing_twist_rad_per_Nmm(case, 1)
     tang, rad = ring_mesh_twist_rad_per_Nmm(R, 2.1e5 * b * h ** 3 / 12.0, R - 0.5 * h, 20.0)
     # the FE bends like a plate strip (anticlastic curvature held): between E I and E I / (1 - nu^2)
     assert 0.95 * (1 - 0.3 ** 2) * rad < out["radial"] < 1.05 * rad
@@ -74,3 +74,30 @@ def test_the_term_scales_from_its_reference_size():
     assert t.at(127.0) == pytest.approx(1e-9 / 8.0)
     assert t.at(63.5, 1.05e5) == pytest.approx(2e-9)
     assert math.isclose(t.at(63.5), 1e-9)
+
+
+def test_the_catalogue_puts_the_body_in_series_per_ratio(monkeypatch, tmp_path):
+    """Each row's series flexibility gains the body's term at its ratio, scaled to the row's size; the JSON says so."""
+    from strainwave.analytic import catalogue_predict as cp
+    from strainwave.analytic.catalogue_rules import MeshRules
+    from strainwave.analytic.cs_housing import CsBodyTerm
+    from strainwave.fea.result import Quantity
+
+    class C:
+        gci_fine, observed_order, h_mm, values = 0.04, 1.7, (1.0, 2.0, 3.0), (3e-10, 2.9e-10, 2.7e-10)
+    q = Quantity("cs_body_twist_rad_per_Nmm", 3e-10, "rad/(N*mm)", C())
+    term = CsBodyTerm("face", 63.5, 2.1e5, q, q, q, 0.0)
+    rules = MeshRules(cup_zone_elements=None)
+    monkeypatch.setattr(MeshRules, "cs_body_term", lambda self, ratio: term)
+    seen = []
+    real = cp.predict_curve
+    monkeypatch.setattr(cp, "predict_curve", lambda design, series, *a, **k: seen.append(series) or real(
+        design, series, *a, **k))
+    p = tmp_path / "t.csv"
+    p.write_text("size,ratio,T1_Nm,T2_Nm,K1_e3,K2_e3,K3_e3\n50,>50,108,382,250,400,440\n")
+    pred = cp.predict_table(p, rules)
+    d = rules.pitch_diameter_mm(50)
+    assert seen[0] == pytest.approx(rules.cup_flexibility_rad_per_Nmm(50) + 3e-10 * (63.5 / d) ** 3, rel=1e-12)
+    body = pred.to_dict()["cs_body_terms"][0]
+    assert body["ratio"] == 100.0 and body["restraint"] == "face" and body["twist_rad_per_Nmm"]["gci_fine"] == 0.04
+    assert "circular spline body, mounting face" in pred.summary()
