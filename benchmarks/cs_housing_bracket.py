@@ -4,6 +4,8 @@
 Run: .venv/bin/python benchmarks/cs_housing_bracket.py [terms|bolts|scaling|table RESTRAINT]
 - terms: the body's twist at size 25, i = 30 / 50 / 100, free / face / a band of the face / bolt footprints
 - bolts: 4, 8, 16 bolt footprints (radius 0.25 h, mid-body) at i = 30, three lattices
+- housing: the face bonded to a housing flange (the same annulus, 0.5 / 1 / 2 b thick, steel or aluminium),
+  clamped at its far face, at i = 30
 - scaling: the same body at size 25 and 50 (similitude: x 1/8) and E halved (x 2)
 - table RESTRAINT: `strainwave catalogue` on the CHA table with the body clamped ("face"), free ("free") or left out ("none")
 """
@@ -50,6 +52,11 @@ def main(what):
     elif what == "bolts":
         for n in (4, 8, 16):
             run(case(25, 30, restraint=Restraint.BOLTS, n_bolts=n), (1, 2, 3))
+    elif what == "housing":
+        b = case(25, 30).b_mm
+        for t in (0.5, 1.0, 2.0):
+            for E in (2.1e5, 7.0e4):
+                run(case(25, 30, restraint=Restraint.HOUSING, housing_mm=t * b, housing_E_MPa=E), (1, 2, 3))
     elif what == "scaling":
         a, b = run(case(25, 50), (2,))[0]["total"], run(case(50, 50), (2,))[0]["total"]
         c = run(case(25, 50, E_MPa=1.05e5), (2,))[0]["total"]

@@ -39,6 +39,8 @@ class Restraint(str, Enum):
     FREE = "free"           # held against rotation only (a shear reaction on the outer surface)
     FACE = "face"           # the mounting face (within clamp_r) clamped to a rigid housing
     BOLTS = "bolts"         # only the bolt heads' footprints on the mounting face clamped, the face free between
+    HOUSING = "housing"     # the face bonded to an elastic housing flange (the same annulus, housing_mm thick,
+                            # housing_E_MPa), whose far face is clamped
 
 
 @dataclass(frozen=True)
@@ -53,6 +55,8 @@ class BodyCase:
     clamp_r: tuple[float, float] = (0.0, 1.0)   # the clamped band on the face, as fractions of ro - ri from ri
     n_bolts: int = 16       # BOLTS: a multiple of 4, at (j + 1/2) 2 pi / n (the quarter's symmetry)
     footprint: float = 0.25  # BOLTS: the footprint's radius over ro - ri, centred mid-body
+    housing_mm: float = 0.0  # HOUSING: the flange's thickness (z from -housing_mm to 0)
+    housing_E_MPa: float = 2.1e5
 
 
 def levels(k: int) -> tuple[int, int, int]:
@@ -60,11 +64,16 @@ def levels(k: int) -> tuple[int, int, int]:
     return 18 * k, k, 2 * k
 
 
-def quarter_lattice(ri, ro, b, nt, nr, nz) -> MeshTet:
-    """The quarter body theta in [0, pi/2] as a Kuhn-split hexahedral lattice (straight-sided tetrahedra)."""
+def quarter_lattice(ri, ro, b, nt, nr, nz, housing_mm: float = 0.0) -> MeshTet:
+    """The quarter body theta in [0, pi/2] as a Kuhn-split hexahedral lattice (straight-sided tetrahedra); with
+    ``housing_mm`` the lattice continues below z = 0 at the same spacing (the housing flange)."""
     t = np.linspace(0.0, 0.5 * math.pi, nt + 1)
     r = np.linspace(ri, ro, nr + 1)
     z = np.linspace(0.0, b, nz + 1)
+    if housing_mm > 0.0:
+        nh = max(1, int(round(housing_mm / b * nz)))
+        z = np.concatenate([np.linspace(-housing_mm, 0.0, nh + 1)[:-1], z])
+        nz = len(z) - 1
     T, R, Z = np.meshgrid(t, r, z, indexing="ij")
     p = np.vstack([(R * np.cos(T)).ravel(), (R * np.sin(T)).ravel(), Z.ravel()])
     idx = np.arange(p.shape[1]).reshape(nt + 1, nr + 1, nz + 1)
@@ -93,7 +102,7 @@ def _loads(ib, m, case: BodyCase):
     @LinearForm
     def tang_in(v, w):
         th = np.arctan2(w.x[1], w.x[0])
-        return (np.sin(th) < s) * (-np.sin(th) * v[0] + np.cos(th) * v[1])
+        return (np.sin(th) < s) * (w.x[2] > -1e-9) * (-np.sin(th) * v[0] + np.cos(th) * v[1])
 
     @LinearForm
     def tang_out(v, w):
@@ -103,7 +112,7 @@ def _loads(ib, m, case: BodyCase):
     @LinearForm
     def rad_in(v, w):
         th = np.arctan2(w.x[1], w.x[0])
-        return (np.sin(th) < s) * (np.cos(th) * v[0] + np.sin(th) * v[1])
+        return (np.sin(th) < s) * (w.x[2] > -1e-9) * (np.cos(th) * v[0] + np.sin(th) * v[1])
 
     ux, uy, _ = ib.split_indices()
     x, y = ib.doflocs[0], ib.doflocs[1]
@@ -132,6 +141,9 @@ def _fixed(ib, case: BodyCase, load: str) -> np.ndarray:
         lo, hi = case.ri_mm + case.clamp_r[0] * h - eps, case.ri_mm + case.clamp_r[1] * h + eps
         face = (np.abs(z) < eps) & (r > lo) & (r < hi)
         parts += [ux[face[ux]], uy[face[uy]], uz[face[uz]]]
+    elif case.restraint is Restraint.HOUSING:
+        far = np.abs(z + case.housing_mm) < eps
+        parts += [ux[far[ux]], uy[far[uy]], uz[far[uz]]]
     elif case.restraint is Restraint.BOLTS:
         th = np.arctan2(y, x)
         c = 0.5 * (case.ri_mm + case.ro_mm)
@@ -151,10 +163,16 @@ def _fixed(ib, case: BodyCase, load: str) -> np.ndarray:
 def cs_housing_twist_rad_per_Nmm(case: BodyCase, k: int) -> tuple[dict, int]:
     """({"tangential", "radial"} output twist per N mm of output torque, dofs) on refinement level ``k``."""
     nt, nr, nz = levels(k)
-    m = quarter_lattice(case.ri_mm, case.ro_mm, case.b_mm, nt, nr, nz)
-    ib = Basis(m, ElementVector(ElementTetP2()))
+    housing = case.housing_mm if case.restraint is Restraint.HOUSING else 0.0
+    m = quarter_lattice(case.ri_mm, case.ro_mm, case.b_mm, nt, nr, nz, housing)
+    e = ElementVector(ElementTetP2())
+    ib = Basis(m, e)
     lam, mu = lame_parameters(case.E_MPa, NU)
     K = asm(linear_elasticity(lam, mu), ib).tocsr()
+    if housing > 0.0:               # the housing's elements at their own modulus
+        below = np.flatnonzero(m.p[2, m.t].mean(axis=0) < 0.0)
+        K = K + (case.housing_E_MPa / case.E_MPa - 1.0) * asm(linear_elasticity(lam, mu),
+                                                              Basis(m, e, elements=below)).tocsr()
     f_t, f_o, f_r = _loads(ib, m, case)
     loads = {"tangential": f_t - f_o if case.restraint is Restraint.FREE else f_t, "radial": f_r}
     out = {}

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from functools import lru_cache
 
 import pytest
 
@@ -14,6 +15,7 @@ from strainwave.fea.cs_housing_fe import BodyCase, Restraint, cs_housing_twist_r
 BODY = BodyCase(32.6, 39.7, 11.9, 31.75, 20.0, 2.1e5, Restraint.FACE)
 
 
+@lru_cache(maxsize=None)
 def twist(case, k=1):
     out, _ = cs_housing_twist_rad_per_Nmm(case, k)
     return out["tangential"] + out["radial"]
@@ -27,6 +29,16 @@ def test_clamped_face_is_stiffer_than_a_band_than_bolts_than_the_free_ring():
     free = twist(replace(BODY, restraint=Restraint.FREE))
     assert 0.0 < face < band < bolts < free
     assert free > 10.0 * face                   # the housing takes most of the ovalisation away
+
+
+def test_an_elastic_housing_flange_lies_between_the_rigid_clamp_and_the_free_ring():
+    """The face bonded to a housing flange clamped at its far face: a vanishing flange is the rigid clamp; a thicker
+    or softer flange lets the body twist more, still less than free."""
+    face, free = twist(BODY), twist(replace(BODY, restraint=Restraint.FREE))
+    flange = lambda t, E: twist(replace(BODY, restraint=Restraint.HOUSING, housing_mm=t, housing_E_MPa=E))  # noqa: E731
+    assert flange(1e-3, 2.1e5) == pytest.approx(face, rel=0.03)
+    steel, alu = flange(BODY.b_mm, 2.1e5), flange(BODY.b_mm, 7e4)
+    assert face < steel < alu < flange(2 * BODY.b_mm, 7e4) < free
 
 
 def test_similar_bodies_scale_as_one_over_E_d_cubed():
@@ -90,14 +102,21 @@ def test_the_catalogue_puts_the_body_in_series_per_ratio(monkeypatch, tmp_path):
     rules = MeshRules(cup_zone_elements=None)
     monkeypatch.setattr(MeshRules, "cs_body_term", lambda self, ratio: term)
     seen = []
-    real = cp.predict_curve
-    monkeypatch.setattr(cp, "predict_curve", lambda design, series, *a, **k: seen.append(series) or real(
-        design, series, *a, **k))
+
+    class Stop(Exception):
+        pass
+
+    def record(design, series, *a, **k):
+        seen.append(series)
+        raise Stop
+    monkeypatch.setattr(cp, "predict_curve", record)
     p = tmp_path / "t.csv"
     p.write_text("size,ratio,T1_Nm,T2_Nm,K1_e3,K2_e3,K3_e3\n50,>50,108,382,250,400,440\n")
-    pred = cp.predict_table(p, rules)
+    with pytest.raises(Stop):
+        cp.predict_table(p, rules)
     d = rules.pitch_diameter_mm(50)
     assert seen[0] == pytest.approx(rules.cup_flexibility_rad_per_Nmm(50) + 3e-10 * (63.5 / d) ** 3, rel=1e-12)
+    pred = cp.CataloguePrediction([], rules, 0.0, cs_body={100.0: term})
     body = pred.to_dict()["cs_body_terms"][0]
     assert body["ratio"] == 100.0 and body["restraint"] == "face" and body["twist_rad_per_Nmm"]["gci_fine"] == 0.04
     assert "circular spline body, mounting face" in pred.summary()
