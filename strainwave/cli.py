@@ -639,7 +639,9 @@ def _add_catalogue(add) -> None:
             "predict every row of a stiffness table (columns size, ratio, T1_Nm, T2_Nm, K1_e3, K2_e3, K3_e3) from the "
             "tooth-mesh model under one set of design rules; print predicted/catalogue and the log-slopes",
             material=False)
-    p.add_argument("table", metavar="TABLE.csv", help="the table (blank cells skipped; ratio '>50' means 100)")
+    p.add_argument("table", metavar="TABLE.csv", help="the table (blank cells skipped; ratio '>50' means 100; optional "
+                   "columns hysteresis_arcmin, lost_motion_arcmin (the row's bounds, else the CHA's) and "
+                   "rated_torque_Nm (the lost-motion test's 4 %%, else the rules'))")
 
 
 _COMMANDS = (_add_analytic, _add_params, _add_export_step, _add_solve, _add_validate, _add_compare, _add_diagnose,
