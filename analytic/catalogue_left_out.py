@@ -23,7 +23,7 @@ PHRASES = {
     ("K1_Nm_per_rad", "low"): "support one linear foundation: no rim support that stiffens with load, no WG preload "
                               "(not measured)",
     ("K2_Nm_per_rad", "high"): "compliance not modelled: the housing letting the circular spline ovalise (with the "
-                               "free body in series K2 came within +-35 % on 20/21 rows, decision 070)",
+                               "free body in series K2 came within +-35 % on 20/21 rows, decision 070-loss48)",
     ("K2_Nm_per_rad", "low"): "fewer teeth share the load than in a real S-tooth zone (not measured)",
     ("K3_Nm_per_rad", "high"): "compliance not modelled: the housing letting the circular spline ovalise (its body "
                                "is in series with the face clamped: 2 % of the miss; free it is the size of the miss; "

@@ -51,7 +51,8 @@ LEFT_OUT = {
                                 "ruled out: the tooth on its rim, coning, lift-off, the WG outer ring's ovalisation; "
                                 "the circular spline body is in the chain with its face clamped to a rigid housing "
                                 "(3.4-3.5e-10 at size 25, 3D FE, decision 070); free in its plane it would add "
-                                "1.5e-8 / 1.1e-8 (i = 30 / 100), the size of the miss (K3 18/21); how much ovalisation a real housing and "
+                                "1.5e-8 / 1.1e-8 (i = 30 / 100), the size of the miss (K3 18/21); how much "
+                                "ovalisation a real housing and "
                                 "bolt joint allow (an elastic housing flange, the joint's slip) is not modelled",
     ("K3_Nm_per_rad", "low"): "load spreading over more teeth than the ideal rack engages (the wider, "
                                "conjugate S-tooth zone of real profiles)",

@@ -36,7 +36,8 @@ def main(path, params_path=None):
     labels = {"cup": book.case("cup-"), "shaft": book.case("shaft-")}
     c = mc.catalogue_check(book, labels, "wg-bearing", "tooth-mesh", params)
     print(f"{c.id}: value {c.fea:.4g} {c.unit}, reference {c.analytic['corrected']:.4g}, "
-          f"ratio {c.fea / c.analytic['corrected']:.3f}, tolerance +-{100 * c.tolerance.relative:.3g} % ({c.tolerance.reason}), error {c.rel_error}, passed {c.passed}")
+          f"ratio {c.fea / c.analytic['corrected']:.3f}, tolerance +-{100 * c.tolerance.relative:.3g} % "
+          f"({c.tolerance.reason}), error {c.rel_error}, passed {c.passed}")
     print(f"note: {c.note}")
     print(mc.gear_line(book, type("P", (), {"headline": {k: type("C", (), {"label": v}) for k, v in labels.items()},
                                             "label_of": lambda self, s: {"wg-bearing": "wg-bearing",

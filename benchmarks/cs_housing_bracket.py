@@ -7,7 +7,8 @@ Run: .venv/bin/python benchmarks/cs_housing_bracket.py [terms|bolts|scaling|tabl
 - housing: the face bonded to a housing flange (the same annulus, 0.5 / 1 / 2 b thick, steel or aluminium),
   clamped at its far face, at i = 30
 - scaling: the same body at size 25 and 50 (similitude: x 1/8) and E halved (x 2)
-- table RESTRAINT: `strainwave catalogue` on the CHA table with the body clamped ("face"), free ("free") or left out ("none")
+- table RESTRAINT: `strainwave catalogue` on the CHA table with the body clamped ("face"), free ("free") or left
+  out ("none")
 """
 from __future__ import annotations
 

@@ -90,7 +90,8 @@ def gear_line(book, plan, params) -> str:
             f"{c['lambda_mesh_K3_rad_per_Nmm']:.3g}, cup {c['lambda_cup_rad_per_Nmm']:.3g}, wave generator "
             f"{c['lambda_H_rad_per_Nmm']:.3g}, circular spline body with its face clamped "
             f"{c['lambda_cs_body_rad_per_Nmm']:.3g} (free in its plane {c['lambda_cs_body_free_rad_per_Nmm']:.3g}: "
-            f"K3 {1e-3 * c['K3_free_body_Nmm_per_rad']:.4g}, {c['K3_free_body_Nmm_per_rad'] / ref:.2f}x; decision 070). This gear is not a catalogue design (its cup and teeth follow "
+            f"K3 {1e-3 * c['K3_free_body_Nmm_per_rad']:.4g}, {c['K3_free_body_Nmm_per_rad'] / ref:.2f}x; decision 070). "
+            f"This gear is not a catalogue design (its cup and teeth follow "
             f"the seeds); the catalogue's own design rules are compared row by row with "
             f"`strainwave catalogue TABLE.csv` (docs/tooth_mesh.md).")
 
@@ -109,7 +110,8 @@ def catalogue_check(book, labels: dict, wg_label: str, mesh_label: str | None, p
     note = (f"CHA column {label}, K3 at size {params.flexspline_cup.pitch_diameter_mm / 2.54:.3g}"
             f"{' (EXTRAPOLATED beyond sizes 14-58)' if extrapolated else ''}; members (rad/(N mm)): mesh "
             f"{c['lambda_mesh_K3_rad_per_Nmm']:.3g}, cup {c['lambda_cup_rad_per_Nmm']:.3g}, WG "
-            f"{c['lambda_H_rad_per_Nmm']:.3g}, CS body (face clamped) {c['lambda_cs_body_rad_per_Nmm']:.3g}; shaft {c['lambda_shaft_rad_per_Nmm']:.3g} (not in a catalogue unit); "
+            f"{c['lambda_H_rad_per_Nmm']:.3g}, CS body (face clamped) {c['lambda_cs_body_rad_per_Nmm']:.3g}; shaft "
+            f"{c['lambda_shaft_rad_per_Nmm']:.3g} (not in a catalogue unit); "
             f"chain K1 {c['K1_chain_Nmm_per_rad']:.3g} N mm/rad beside catalogue K1 "
             f"{catalogue_power_law(params, 'K1_Nm_per_rad')[0]:.3g} (recorded, not asserted)")
     return evaluate(Check(cid, quantity, unit, K, c["K3_chain_rel_unc"] * K, analytic, "corrected", tol, note=note,
