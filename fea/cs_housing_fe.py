@@ -58,6 +58,14 @@ class BodyCase:
     housing_mm: float = 0.0  # HOUSING: the flange's thickness (z from -housing_mm to 0)
     housing_E_MPa: float = 2.1e5
 
+    def __post_init__(self):
+        if not 0.0 < self.ri_mm < self.ro_mm:
+            raise ValueError(f"the body's root radius {self.ri_mm:g} mm must lie inside its outer radius {self.ro_mm:g}")
+        if self.restraint is Restraint.BOLTS and (self.n_bolts < 4 or self.n_bolts % 4):
+            raise ValueError(f"n_bolts = {self.n_bolts}: a multiple of 4 (the quarter model's symmetry)")
+        if self.restraint is Restraint.HOUSING and not self.housing_mm > 0.0:
+            raise ValueError(f"housing_mm = {self.housing_mm:g}: a flange thickness > 0")
+
 
 def levels(k: int) -> tuple[int, int, int]:
     """(n_theta on the quarter, n_r, n_z) of refinement level k: the patch edge lies on a lattice line (5 / k deg)."""

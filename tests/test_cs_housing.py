@@ -120,3 +120,12 @@ def test_the_catalogue_puts_the_body_in_series_per_ratio(monkeypatch, tmp_path):
     body = pred.to_dict()["cs_body_terms"][0]
     assert body["ratio"] == 100.0 and body["restraint"] == "face" and body["twist_rad_per_Nmm"]["gci_fine"] == 0.04
     assert "circular spline body, mounting face" in pred.summary()
+
+
+def test_a_body_that_cannot_be_built_is_refused():
+    with pytest.raises(ValueError, match="outer radius"):
+        BodyCase(40.0, 39.0, 10.0, 38.0, 20.0, 2.1e5)
+    with pytest.raises(ValueError, match="multiple of 4"):
+        replace(BODY, restraint=Restraint.BOLTS, n_bolts=6)
+    with pytest.raises(ValueError, match="flange thickness"):
+        replace(BODY, restraint=Restraint.HOUSING)
