@@ -22,9 +22,10 @@ from dataclasses import dataclass
 from enum import Enum
 
 import numpy as np
-import scipy.sparse.linalg as spla
 from skfem import Basis, ElementTetP2, ElementVector, FacetBasis, LinearForm, MeshTet, asm
 from skfem.models.elasticity import lame_parameters, linear_elasticity
+
+from strainwave.fea.solver import solve_elasticity
 
 __all__ = ["Restraint", "BodyCase", "quarter_lattice", "cs_housing_twist_rad_per_Nmm", "PATCH_DEG", "levels"]
 
@@ -186,9 +187,8 @@ def cs_housing_twist_rad_per_Nmm(case: BodyCase, k: int) -> tuple[dict, int]:
     out = {}
     for name, f in loads.items():
         D = _fixed(ib, case, name)
-        free = np.setdiff1d(np.arange(ib.N), D)
-        u = np.zeros(ib.N)
-        u[free] = spla.splu(K[free][:, free].tocsc(), permc_spec="COLAMD").solve(f[free])
+        u, _ = solve_elasticity(K, f, fixed_dofs=D, coords=ib.doflocs[:, ::3], dim=3, method="direct",
+                                study="cs-housing")
         work = 4.0 * float(f @ u)                           # four quarters
         if name == "radial":                                # mean opening at the patches, closed by a twist
             F_r = math.tan(math.radians(case.alpha_deg)) / (2.0 * case.r_p_mm)
