@@ -22,14 +22,14 @@ from dataclasses import dataclass
 from enum import Enum
 
 import numpy as np
-from skfem import Basis, ElementTetP2, ElementVector, FacetBasis, LinearForm, MeshTet, asm
+from skfem import Basis, ElementTetP2, ElementVector, FacetBasis, MeshTet, asm
 from skfem.models.elasticity import lame_parameters, linear_elasticity
 
+from strainwave.fea.cs_body_fe import PATCH_DEG, traction_forms
 from strainwave.fea.solver import solve_elasticity
 
 __all__ = ["Restraint", "BodyCase", "quarter_lattice", "cs_housing_twist_rad_per_Nmm", "PATCH_DEG", "levels"]
 
-PATCH_DEG = 5.0             # the plane model's patch (fea/cs_body_fe.py), so the free bounds compare like for like
 NU = 0.3
 # the six Kuhn tetrahedra of the unit cube (vertex bits: theta, r, z): all share the 0-7 diagonal, so the
 # split is conforming across every face of the lattice
@@ -107,21 +107,9 @@ def _loads(ib, m, case: BodyCase):
     inner = FacetBasis(m, e, facets=_facets_at_radius(m, case.ri_mm))
     outer = FacetBasis(m, e, facets=_facets_at_radius(m, case.ro_mm))
     s = math.sin(math.radians(PATCH_DEG))
-
-    @LinearForm
-    def tang_in(v, w):
-        th = np.arctan2(w.x[1], w.x[0])
-        return (np.sin(th) < s) * (w.x[2] > -1e-9) * (-np.sin(th) * v[0] + np.cos(th) * v[1])
-
-    @LinearForm
-    def tang_out(v, w):
-        th = np.arctan2(w.x[1], w.x[0])
-        return -np.sin(th) * v[0] + np.cos(th) * v[1]
-
-    @LinearForm
-    def rad_in(v, w):
-        th = np.arctan2(w.x[1], w.x[0])
-        return (np.sin(th) < s) * (w.x[2] > -1e-9) * (np.cos(th) * v[0] + np.sin(th) * v[1])
+    # the patch at theta 0 on the body's bore (not the housing flange's, z < 0)
+    tang_in, rad_in = traction_forms(lambda x: (np.abs(np.sin(np.arctan2(x[1], x[0]))) < s) * (x[2] > -1e-9))
+    tang_out, _ = traction_forms(lambda x: 1.0)
 
     ux, uy, _ = ib.split_indices()
     x, y = ib.doflocs[0], ib.doflocs[1]
