@@ -129,3 +129,18 @@ def test_a_body_that_cannot_be_built_is_refused():
         replace(BODY, restraint=Restraint.BOLTS, n_bolts=6)
     with pytest.raises(ValueError, match="flange thickness"):
         replace(BODY, restraint=Restraint.HOUSING)
+
+
+@pytest.mark.heavy
+def test_the_rules_term_has_its_gci_and_lies_inside_the_bracket():
+    """The catalogue's term at i = 30 (three lattices, ~10 CPU-s): resolved (GCI < 10 %), the clamped body below the
+    free one, and the free one within 5 % of decision 069's plane-stress FE (1.50e-8 at size 25)."""
+    from strainwave.analytic.catalogue_rules import MeshRules
+    from strainwave.analytic.cs_housing import cs_body_term
+    rules = MeshRules()
+    design, od = rules.design(25, 30), rules.cs_outer_over_d * rules.pitch_diameter_mm(25)
+    face, free = cs_body_term(design, od, "face"), cs_body_term(design, od, "free")
+    assert face.twist.convergence.gci_fine < 0.10 and free.twist.convergence.gci_fine < 0.10
+    assert 0.0 < face.twist.value < 0.05 * free.twist.value
+    assert free.twist.value == pytest.approx(1.50e-8, rel=0.05)
+    assert rules.cs_body_term(30).twist.value == face.twist.value
