@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from strainwave.analytic.catalogue_rules import RATIO_OF_LABEL, MeshRules, ratio_of_label
-from strainwave.analytic.drive_curve import DriveCurve, catalogue_secants, predict_curve
+from strainwave.analytic.drive_curve import DriveCurve, catalogue_secants, predict_curve, predict_mean_curve
 from strainwave.errors import InputError
 
 __all__ = ["TableRow", "RowPrediction", "CataloguePrediction", "read_table", "predict_table", "GOALS"]
@@ -205,6 +205,19 @@ class CataloguePrediction:
                              "left_out": [LEFT_OUT[(name, s)] for s in sorted(sides)]}
         return out
 
+    def deviation_note(self) -> str:
+        """Which tooth deviations the curves hold, and where ISO 1328-1's formulas are extrapolated."""
+        from strainwave.analytic.tooth_deviations import outside_iso_range
+        r = self.rules
+        if r.accuracy_grade is None:
+            return "tooth deviations: none (ideal teeth)"
+        out = [f"{rp.row.size:g}/{rp.row.ratio_label}" for rp in self.rows
+               if outside_iso_range(r.pitch_diameter_mm(rp.row.size) / int(round(r.tooth_difference * rp.row.ratio)),
+                                    int(round(r.tooth_difference * rp.row.ratio)))]
+        return (f"tooth deviations: ISO 1328-1:2013 class {r.accuracy_grade:g} on both gears, each row the mean of "
+                f"{r.deviation_units} units (decision 070-engage48); ISO's formulas extrapolated (m < 0.5 mm) on "
+                f"{len(out)} rows" + (f" ({', '.join(out)})" if out else ""))
+
     def to_dict(self) -> dict:
         rows = []
         for rp in self.rows:
@@ -223,7 +236,8 @@ class CataloguePrediction:
         return {"rows": rows, "log_slopes": self.slopes, "ratio_trend": self.trend(), "misses": self.misses(),
                 "goals": {**GOALS, "ratio_trend": TREND_GOAL}, "ratio_labels": RATIO_OF_LABEL,
                 "design_rules": {k: v for k, v in self.rules.__dict__.items()}, "cpu_s": self.cpu_s,
-                "cup_zone_terms": [t.to_dict() for t in self.cup_zone.values()]}
+                "cup_zone_terms": [t.to_dict() for t in self.cup_zone.values()],
+                "tooth_deviations": self.deviation_note()}
 
     def summary(self) -> str:
         lines = ["predicted / catalogue (design rules: decisions 065, 069 (fatigue rim); K1/K2/K3 the catalogue's secants over the row's "
@@ -250,6 +264,8 @@ class CataloguePrediction:
             lines.append(f"cup under the mesh zones, ratio {t.ratio:g} (FE at d = {t.reference_d_mm:g} mm, scaled "
                          f"(d_ref/d)^3): +{t.extra.value:.3e} rad/(N mm), GCI {100 * c.gci_fine:.2g} %, over the "
                          f"uniform shear's {t.uniform.value:.3e} ({t.cpu_s:.1f} CPU-s)")
+        if self.rules.accuracy_grade is not None:
+            lines.append(self.deviation_note())
         lines.append(f"CPU {self.cpu_s:.1f} s for {len(self.rows)} rows")
         return "\n".join(lines)
 
@@ -268,6 +284,15 @@ def _with_secants(row: TableRow, curve: DriveCurve) -> RowPrediction:
     except ValueError:          # T2 at or beyond the rated torque: no K3 window on this loop
         return RowPrediction(row, curve, {}, (T1, T2), "none: the windows do not fit the loop; the reader's K")
     return RowPrediction(row, curve, sec, (T1, T2), src)
+
+
+def _row_curve(rules: MeshRules, row: TableRow, series: float) -> DriveCurve:
+    """The row's curve: ideal teeth, or the mean of ``deviation_units`` units with the rules' tooth deviations."""
+    rated = rules.rated_torque_Nm(row.size)
+    if rules.accuracy_grade is None:
+        return predict_curve(rules.design(row.size, row.ratio), series, rated, with_te=False)
+    units = [rules.design(row.size, row.ratio, u) for u in range(rules.deviation_units)]
+    return predict_mean_curve(units, series, rated)
 
 
 def predict_table(path: Path, rules: MeshRules | None = None) -> CataloguePrediction:
@@ -289,9 +314,8 @@ def predict_table(path: Path, rules: MeshRules | None = None) -> CataloguePredic
             zone[ratio] = term
     preds = []
     for row in rows:
-        design = rules.design(row.size, row.ratio)
         d = rules.pitch_diameter_mm(row.size)
         series = rules.cup_flexibility_rad_per_Nmm(row.size) + (zone[row.ratio].at(d) if row.ratio in zone else 0.0)
-        curve = predict_curve(design, series, rules.rated_torque_Nm(row.size), with_te=False)
+        curve = _row_curve(rules, row, series)
         preds.append(_with_secants(row, curve))
     return CataloguePrediction(preds, rules, time.process_time() - t0, cup_zone=zone)

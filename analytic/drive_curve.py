@@ -17,7 +17,8 @@ from strainwave.fea.mesh_contact import MeshPath, solve_torque_path, torque_hist
 from strainwave.analytic.mesh_drive import MeshDesign, bearing_twist_rad, mesh_system
 
 __all__ = ["DriveCurve", "predict_curve", "branch_twist_rad", "mean_twist_rad", "catalogue_secants",
-           "read_catalogue_numbers", "transmission_error_rad", "ratcheting_torque_Nm", "LOOP_STEPS_PER_LEG"]
+           "read_catalogue_numbers", "transmission_error_rad", "ratcheting_torque_Nm", "LOOP_STEPS_PER_LEG",
+           "predict_mean_curve"]
 
 LOOP_STEPS_PER_LEG = 60          # torque steps from 0 to the rated torque (the reader needs >= 20 steady rows)
 ARCMIN = math.pi / (180.0 * 60.0)
@@ -160,3 +161,21 @@ def predict_curve(design: MeshDesign, series_rad_per_Nmm: float, rated_Nm: float
     return DriveCurve(v["K1"][0], v["K2"][0], v["K3"][0], v["T1"][0], v["T2"][0],
                       v["lost_motion_arcmin"][0] * ARCMIN, v["hysteresis_loss_arcmin"][0] * ARCMIN, rated_Nm,
                       T, tw, te[0], te[1], ratcheting_torque_Nm(design, psi_rad), path.contact.sum(axis=1))
+
+
+def predict_mean_curve(designs, series_rad_per_Nmm: float, rated_Nm: float, *, psi_rad: float = 0.0) -> DriveCurve:
+    """The mean curve of several units of one design (each with its own tooth deviations, decision 070-engage48):
+    their loops on the same torque history averaged twist by twist (the catalogue's values are averages of many
+    tests), read by the catalogue reader. No transmission error; the ratcheting torque of the first unit."""
+    designs = list(designs)
+    if not designs:
+        raise ValueError("predict_mean_curve needs at least one design")
+    loops = [_loop(d, series_rad_per_Nmm, rated_Nm, psi_rad) for d in designs]
+    T = loops[0][0]
+    tw = np.mean([lp[1] for lp in loops], axis=0)
+    teeth = np.mean([lp[2].contact.sum(axis=1) for lp in loops], axis=0)
+    v = read_catalogue_numbers(T, tw, rated_Nm)
+    return DriveCurve(v["K1"][0], v["K2"][0], v["K3"][0], v["T1"][0], v["T2"][0],
+                      v["lost_motion_arcmin"][0] * ARCMIN, v["hysteresis_loss_arcmin"][0] * ARCMIN, rated_Nm,
+                      T, tw, None, None, ratcheting_torque_Nm(designs[0], psi_rad), teeth,
+                      source=f"tooth-mesh closed form, mean of {len(designs)} units with tooth deviations")
