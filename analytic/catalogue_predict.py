@@ -12,7 +12,7 @@ from __future__ import annotations
 import csv
 import io
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -295,12 +295,15 @@ def _row_curve(rules: MeshRules, row: TableRow, series: float) -> DriveCurve:
     return predict_mean_curve(units, series, rated)
 
 
-def predict_table(path: Path, rules: MeshRules | None = None) -> CataloguePrediction:
+def predict_table(path: Path, rules: MeshRules | None = None,
+                  deviations: tuple[float, int] | None = None) -> CataloguePrediction:
     """Read ``path`` and predict every row (exit-2 InputError on a bad file). In series with each row's mesh:
     the cup (tube + diaphragm + hub) and the cup's extra twist under the mesh zones' load, measured by FE once
     per distinct ratio at the rules' reference size and scaled by similitude (decision 067)."""
     import time
     rules = MeshRules() if rules is None else rules
+    if deviations is not None:          # (ISO 1328-1 class, units averaged): decision 070-engage48
+        rules = replace(rules, accuracy_grade=float(deviations[0]), deviation_units=int(deviations[1]))
     try:
         text = Path(path).read_text("utf-8")
     except (OSError, UnicodeDecodeError) as exc:
