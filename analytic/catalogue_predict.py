@@ -33,9 +33,11 @@ TREND_GOAL = 0.25
 # what the closed-form mesh leaves out, by the number that misses and the side it misses on
 LEFT_OUT = {
     ("K1_Nm_per_rad", "high"): "the low-torque compliance: with the fatigue rim (decision 069) K1 is 1.4-1.6x at i = 30 "
-                                "and 1.8-2.5x at i >= 50; the zero-backlash rack engages from zero torque and the "
-                                "balls' Hertz softening is the only low-torque term; not modelled: the rim's support "
-                                "that stiffens with load, profile and pitch errors that delay engagement",
+                                "and 1.8-2.5x at i >= 50; the ideal teeth put up to ten pairs at zero gap, which "
+                                "engage at zero torque, and the balls' Hertz softening is the only low-torque term; "
+                                "the teeth's manufacturing deviations spread them (measured, decision 070-engage48: "
+                                "K1 16/21 at ISO 1328-1 class 5, 20/21 at class 7), but no source fixes the class "
+                                "(state it with --accuracy-grade)",
     ("K1_Nm_per_rad", "low"): "the radial support is one linear foundation: the rim lifted off the bearing beyond "
                                "the wrap angle is pressed back onto the balls as the torque grows (a support that "
                                "stiffens with load), and real units' preload (kappa > 1) is not modelled",
@@ -48,10 +50,15 @@ LEFT_OUT = {
                                 "not modelled (decisions 067-069)",
     ("K3_Nm_per_rad", "low"): "load spreading over more teeth than the ideal rack engages (the wider, "
                                "conjugate S-tooth zone of real profiles)",
-    ("T1_Nm", "low"): "the contact set grows smoothly from zero torque (zero backlash), so the reader's first knee "
-                      "lands early; the balls' Hertz softening near zero load adds to that",
+    ("T1_Nm", "low"): "the contact set grows from zero torque (zero backlash; at i = 100 ten pairs at zero gap), so the "
+                      "reader's first knee lands early: at i = 100 it is the balls' Hertz softening alone, at i = 30-50 "
+                      "the third and fourth pairs per lobe closing; manufacturing deviations raise it at i >= 50 and "
+                      "lower it at i = 30 (decision 070-engage48); a profile with graded clearances along the zone is "
+                      "not modelled",
     ("T1_Nm", "high"): "the ideal rack's contact-set growth: its first knee sits later than the real profile's",
-    ("T2_Nm", "low"): "the engagement zone's end: the real S-tooth keeps adding teeth to higher torque",
+    ("T2_Nm", "low"): "the engagement zone's end: the ideal rack's last pairs close by ~0.5 of rated, the real S-tooth "
+                      "keeps adding teeth to higher torque (manufacturing deviations lower T2 further, decision "
+                      "070-engage48)",
     ("T2_Nm", "high"): "clearance spread from manufacturing (profile and pitch errors)",
 }
 
