@@ -17,6 +17,8 @@ from pathlib import Path
 
 import numpy as np
 
+from strainwave.analytic.catalogue_left_out import MU_SOURCE, left_out_lines, loss_lines, loss_note, row_left_out
+from strainwave.analytic.catalogue_loss import CHA_BOUNDS_SOURCE, LossReading, cha_bounds, read_loss
 from strainwave.analytic.catalogue_rules import RATIO_OF_LABEL, MeshRules, ratio_of_label
 from strainwave.analytic.drive_curve import DriveCurve, catalogue_secants, predict_curve, predict_mean_curve
 from strainwave.errors import InputError
@@ -27,6 +29,10 @@ COLUMNS = ("size", "ratio", "T1_Nm", "T2_Nm", "K1_e3", "K2_e3", "K3_e3")
 NAMES = ("K1_Nm_per_rad", "K2_Nm_per_rad", "K3_Nm_per_rad", "T1_Nm", "T2_Nm")
 _COLUMN_OF = {"K1_Nm_per_rad": ("K1_e3", 1e3), "K2_Nm_per_rad": ("K2_e3", 1e3), "K3_Nm_per_rad": ("K3_e3", 1e3),
               "T1_Nm": ("T1_Nm", 1.0), "T2_Nm": ("T2_Nm", 1.0)}
+# optional columns (decision 070-loss48): the row's own loss bounds (else the CHA rule) and rated torque (the
+# lost-motion test's 4 %; else the rules')
+_COLUMN_OF.update({"hysteresis_loss_arcmin": ("hysteresis_arcmin", 1.0),
+                   "lost_motion_arcmin": ("lost_motion_arcmin", 1.0), "rated_torque_Nm": ("rated_torque_Nm", 1.0)})
 # issue 48's goals, fixed before the comparison: |predicted/catalogue - 1| within these
 GOALS = {"K3_Nm_per_rad": 0.25, "K1_Nm_per_rad": 0.35, "T1_Nm": 0.35, "T2_Nm": 0.35}
 TREND_GOAL = 0.25
@@ -84,6 +90,7 @@ class RowPrediction:
     secants: dict = field(default_factory=dict)     # name -> N m/rad, the catalogue's convention
     windows_Nm: tuple = ()                          # (T1, T2) the secants were taken over, and where they came from
     windows_from: str = ""
+    loss: LossReading | None = None                 # hysteresis loss and lost motion (decision 070-loss48)
 
     def predicted(self, name: str) -> float:
         if name in self.secants:
@@ -222,7 +229,7 @@ class CataloguePrediction:
                if outside_iso_range(r.pitch_diameter_mm(rp.row.size) / int(round(r.tooth_difference * rp.row.ratio)),
                                     int(round(r.tooth_difference * rp.row.ratio)))]
         return (f"tooth deviations: ISO 1328-1:2013 class {r.accuracy_grade:g} on both gears, each row the mean of "
-                f"{r.deviation_units} units (decision 070-engage48); ISO's formulas extrapolated (m < 0.5 mm) on "
+                f"{r.deviation_units} units (decision 070-engage48; the lost motion on unit 0's +/-4 % loop); ISO's formulas extrapolated (m < 0.5 mm) on "
                 f"{len(out)} rows" + (f" ({', '.join(out)})" if out else ""))
 
     def to_dict(self) -> dict:
@@ -235,15 +242,19 @@ class CataloguePrediction:
             for name in NAMES[:3]:
                 d[f"{name}_reader"] = rp.reader(name)
             d["K_windows_Nm"], d["K_windows_from"] = list(rp.windows_Nm), rp.windows_from
-            d.update({"lost_motion_arcmin_predicted": rp.curve.lost_motion_rad / _ARCMIN,
-                      "hysteresis_arcmin_predicted": rp.curve.hysteresis_rad / _ARCMIN,
+            d.update({"lost_motion_arcmin_reader": rp.curve.lost_motion_rad / _ARCMIN,
+                      "hysteresis_loss_arcmin_reader": rp.curve.hysteresis_rad / _ARCMIN,
                       "ratcheting_torque_Nm_predicted": rp.curve.ratcheting_torque_Nm,
                       "rated_torque_Nm": rp.curve.rated_torque_Nm})
+            d.update(rp.loss.to_dict() if rp.loss is not None else {})
+            d["left_out"] = row_left_out(rp)
             rows.append(d)
         return {"rows": rows, "log_slopes": self.slopes, "ratio_trend": self.trend(), "misses": self.misses(),
                 "goals": {**GOALS, "ratio_trend": TREND_GOAL}, "ratio_labels": RATIO_OF_LABEL,
                 "design_rules": {k: v for k, v in self.rules.__dict__.items()}, "cpu_s": self.cpu_s,
                 "cup_zone_terms": [t.to_dict() for t in self.cup_zone.values()],
+                "loss_source": CHA_BOUNDS_SOURCE, "loss_note": loss_note(self.rows),
+                "flank_mu": self.rules.friction_coefficient, "flank_mu_source": MU_SOURCE,
                 "tooth_deviations": self.deviation_note()}
 
     def summary(self) -> str:
@@ -266,6 +277,7 @@ class CataloguePrediction:
         for name, m in self.misses().items():
             lines.append(f"{name} outside +/-{GOALS[name]:.0%} on {len(m['rows'])} rows ({', '.join(m['rows'])}): "
                          f"left out: {'; '.join(m['left_out'])}")
+        lines += loss_lines(self.rows, self.rules.friction_coefficient) + left_out_lines(self.rows)
         for t in self.cup_zone.values():
             c = t.extra.convergence
             lines.append(f"cup under the mesh zones, ratio {t.ratio:g} (FE at d = {t.reference_d_mm:g} mm, scaled "
@@ -293,13 +305,28 @@ def _with_secants(row: TableRow, curve: DriveCurve) -> RowPrediction:
     return RowPrediction(row, curve, sec, (T1, T2), src)
 
 
-def _row_curve(rules: MeshRules, row: TableRow, series: float) -> DriveCurve:
-    """The row's curve: ideal teeth, or the mean of ``deviation_units`` units with the rules' tooth deviations."""
+def _row_curve(rules: MeshRules, row: TableRow, series: float):
+    """(the row's curve, the design its lost-motion loop is solved on): ideal teeth, or the mean of
+    ``deviation_units`` units with the rules' tooth deviations (the lost motion then on unit 0)."""
     rated = rules.rated_torque_Nm(row.size)
     if rules.accuracy_grade is None:
-        return predict_curve(rules.design(row.size, row.ratio), series, rated, with_te=False)
+        design = rules.design(row.size, row.ratio)
+        return predict_curve(design, series, rated, with_te=False), design
     units = [rules.design(row.size, row.ratio, u) for u in range(rules.deviation_units)]
-    return predict_mean_curve(units, series, rated)
+    return predict_mean_curve(units, series, rated), units[0]
+
+
+def _loss(row: TableRow, design, series: float, curve: DriveCurve) -> LossReading:
+    """The row's hysteresis loss (on its rated loop) and lost motion (a +/-4 % loop of the row's rated torque where
+    the table gives one, else the rules'), beside the row's bounds or the CHA rule's."""
+    rule = cha_bounds(row.ratio)
+    given = [row.values.get("hysteresis_loss_arcmin"), row.values.get("lost_motion_arcmin")]
+    bounds = tuple(g if g is not None else r for g, r in zip(given, rule))
+    src = "table" if all(g is not None for g in given) else ("CHA rule" if all(g is None for g in given)
+                                                               else "table+CHA")
+    rated = row.values.get("rated_torque_Nm", curve.rated_torque_Nm)
+    return read_loss(design, series, rated, curve.loop_torque_Nm, curve.loop_twist_rad, bounds, src,
+                     "table" if "rated_torque_Nm" in row.values else "rules (0.244 MPa d^3)")
 
 
 def predict_table(path: Path, rules: MeshRules | None = None,
@@ -326,6 +353,6 @@ def predict_table(path: Path, rules: MeshRules | None = None,
     for row in rows:
         d = rules.pitch_diameter_mm(row.size)
         series = rules.cup_flexibility_rad_per_Nmm(row.size) + (zone[row.ratio].at(d) if row.ratio in zone else 0.0)
-        curve = _row_curve(rules, row, series)
-        preds.append(_with_secants(row, curve))
+        curve, design = _row_curve(rules, row, series)
+        preds.append(replace(_with_secants(row, curve), loss=_loss(row, design, series, curve)))
     return CataloguePrediction(preds, rules, time.process_time() - t0, cup_zone=zone)

@@ -645,7 +645,9 @@ def _add_catalogue(add) -> None:
             "predict every row of a stiffness table (columns size, ratio, T1_Nm, T2_Nm, K1_e3, K2_e3, K3_e3) from the "
             "tooth-mesh model under one set of design rules; print predicted/catalogue and the log-slopes",
             material=False)
-    p.add_argument("table", metavar="TABLE.csv", help="the table (blank cells skipped; ratio '>50' means 100)")
+    p.add_argument("table", metavar="TABLE.csv", help="the table (blank cells skipped; ratio '>50' means 100; optional "
+                   "columns hysteresis_arcmin, lost_motion_arcmin (the row's bounds, else the CHA's) and "
+                   "rated_torque_Nm (the lost-motion test's 4 %%, else the rules'))")
     p.add_argument("--accuracy-grade", type=float, default=None, metavar="A",
                    help="the teeth's ISO 1328-1:2013 flank tolerance class (1..11): each row becomes the mean of "
                         "--deviation-units units with pitch and profile deviations drawn to it (default: ideal teeth)")
