@@ -18,8 +18,9 @@ _SHORT = {"K1_Nm_per_rad": "K1", "K2_Nm_per_rad": "K2", "K3_Nm_per_rad": "K3", "
           "hysteresis": "hysteresis loss", "lost_motion": "lost motion"}
 PHRASES = {
     ("K1_Nm_per_rad", "high"): "compliance not modelled: circular spline body / housing (with it in series K1 came "
-                               "within on 19/21 rows, decision 069); ideal teeth: pitch/profile errors would delay "
-                               "engagement (K1 16/21 at ISO 1328-1 class 5, decision 070-engage48; class unknown)",
+                               "within on 19/21 rows, decision 069); without a stated class the teeth are ideal: "
+                               "pitch/profile errors delay engagement (K1 16/21 at ISO 1328-1 class 5, decision "
+                               "070-engage48; HD's class unknown)",
     ("K1_Nm_per_rad", "low"): "support one linear foundation: no rim support that stiffens with load, no WG preload "
                               "(not measured)",
     ("K2_Nm_per_rad", "high"): "compliance not modelled: circular spline body / housing (with it in series K2 came "

@@ -20,7 +20,8 @@ import numpy as np
 from strainwave.analytic.catalogue_left_out import MU_SOURCE, left_out_lines, loss_lines, loss_note, row_left_out
 from strainwave.analytic.catalogue_loss import CHA_BOUNDS_SOURCE, LossReading, cha_bounds, read_loss
 from strainwave.analytic.catalogue_rules import RATIO_OF_LABEL, MeshRules, ratio_of_label
-from strainwave.analytic.drive_curve import DriveCurve, catalogue_secants, predict_curve, predict_mean_curve
+from strainwave.analytic.drive_curve import (DriveCurve, catalogue_secants, mean_curve, predict_curve,
+                                             ratcheting_torque_Nm, unit_curves)
 from strainwave.errors import InputError
 
 __all__ = ["TableRow", "RowPrediction", "CataloguePrediction", "read_table", "predict_table", "GOALS"]
@@ -91,6 +92,7 @@ class RowPrediction:
     windows_Nm: tuple = ()                          # (T1, T2) the secants were taken over, and where they came from
     windows_from: str = ""
     loss: LossReading | None = None                 # hysteresis loss and lost motion (decision 070-loss48)
+    unit_sd: dict = field(default_factory=dict)     # name -> sd of predicted/catalogue over the units (070-engage48)
 
     def predicted(self, name: str) -> float:
         if name in self.secants:
@@ -248,6 +250,7 @@ class CataloguePrediction:
                       "rated_torque_Nm": rp.curve.rated_torque_Nm})
             d.update(rp.loss.to_dict() if rp.loss is not None else {})
             d["left_out"] = row_left_out(rp)
+            d.update({f"{n}_unit_sd": v for n, v in rp.unit_sd.items()})
             rows.append(d)
         return {"rows": rows, "log_slopes": self.slopes, "ratio_trend": self.trend(), "misses": self.misses(),
                 "goals": {**GOALS, "ratio_trend": TREND_GOAL}, "ratio_labels": RATIO_OF_LABEL,
@@ -285,6 +288,10 @@ class CataloguePrediction:
                          f"uniform shear's {t.uniform.value:.3e} ({t.cpu_s:.1f} CPU-s)")
         if self.rules.accuracy_grade is not None:
             lines.append(self.deviation_note())
+            have = {n: [rp.unit_sd[n] for rp in self.rows if n in rp.unit_sd] for n in NAMES}
+            sd = {n: float(np.mean(v)) for n, v in have.items() if v}
+            lines.append("  one unit alone scatters about the mean by (sd of predicted/catalogue, mean over the rows) "
+                         + ", ".join(f"{n.split('_')[0]} {v:.2f}" for n, v in sd.items()))
         lines.append(f"CPU {self.cpu_s:.1f} s for {len(self.rows)} rows")
         return "\n".join(lines)
 
@@ -306,14 +313,18 @@ def _with_secants(row: TableRow, curve: DriveCurve) -> RowPrediction:
 
 
 def _row_curve(rules: MeshRules, row: TableRow, series: float):
-    """(the row's curve, the design its lost-motion loop is solved on): ideal teeth, or the mean of
-    ``deviation_units`` units with the rules' tooth deviations (the lost motion then on unit 0)."""
+    """(the row's curve, the design its lost-motion loop is solved on, name -> sd of predicted/catalogue over the
+    units): ideal teeth, or the mean of ``deviation_units`` units with the rules' tooth deviations (the lost motion
+    then on unit 0)."""
     rated = rules.rated_torque_Nm(row.size)
     if rules.accuracy_grade is None:
         design = rules.design(row.size, row.ratio)
-        return predict_curve(design, series, rated, with_te=False), design
-    units = [rules.design(row.size, row.ratio, u) for u in range(rules.deviation_units)]
-    return predict_mean_curve(units, series, rated), units[0]
+        return predict_curve(design, series, rated, with_te=False), design, {}
+    designs = [rules.design(row.size, row.ratio, u) for u in range(rules.deviation_units)]
+    units = unit_curves(designs, series, rated)
+    each = [_with_secants(row, u) for u in units]
+    sd = {n: float(np.std([e.ratio_of(n) for e in each])) for n in NAMES if row.values.get(n) is not None}
+    return mean_curve(units, ratcheting_torque_Nm(designs[0])), designs[0], sd
 
 
 def _loss(row: TableRow, design, series: float, curve: DriveCurve) -> LossReading:
@@ -353,6 +364,6 @@ def predict_table(path: Path, rules: MeshRules | None = None,
     for row in rows:
         d = rules.pitch_diameter_mm(row.size)
         series = rules.cup_flexibility_rad_per_Nmm(row.size) + (zone[row.ratio].at(d) if row.ratio in zone else 0.0)
-        curve, design = _row_curve(rules, row, series)
-        preds.append(replace(_with_secants(row, curve), loss=_loss(row, design, series, curve)))
+        curve, design, sd = _row_curve(rules, row, series)
+        preds.append(replace(_with_secants(row, curve), loss=_loss(row, design, series, curve), unit_sd=sd))
     return CataloguePrediction(preds, rules, time.process_time() - t0, cup_zone=zone)

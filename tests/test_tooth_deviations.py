@@ -113,4 +113,8 @@ def test_the_catalogue_command_reads_the_mean_of_the_units(tmp_path):
     worn = predict_table(table, _rules(6.0))
     assert "class 6" in worn.to_dict()["tooth_deviations"] and "extrapolated" in worn.summary()
     assert worn.rows[0].ratio_of("K1_Nm_per_rad") < ideal.rows[0].ratio_of("K1_Nm_per_rad")
-    assert worn.to_dict()["design_rules"]["accuracy_grade"] == 6.0
+    data = worn.to_dict()
+    assert data["design_rules"]["accuracy_grade"] == 6.0
+    # the spread of one unit about the mean is reported beside the mean; ideal teeth have none
+    assert data["rows"][0]["T1_Nm_unit_sd"] > 0.0 and "T1_Nm_unit_sd" not in ideal.to_dict()["rows"][0]
+    assert "one unit alone scatters" in worn.summary()
