@@ -143,7 +143,8 @@ def _deviations(g: MeshGeometry):
 
 def _with_deviations(gap: np.ndarray, offset: np.ndarray) -> np.ndarray:
     """The ideal gaps plus each pair's deviation, shifted so the tightest pair of this flank keeps the ideal mesh's
-    smallest gap (a zero-backlash unit is assembled to zero backlash whatever its deviations)."""
+    smallest gap (a zero-backlash unit is assembled to zero backlash whatever its deviations). The shift is taken at
+    the wave-generator angle asked for (the catalogue's one angle), not fixed per unit over a revolution."""
     raw = gap + offset
     return np.maximum(raw - raw.min() + gap.min(), 0.0)
 
