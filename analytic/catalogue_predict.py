@@ -64,8 +64,9 @@ LEFT_OUT = {
                       "not modelled",
     ("T1_Nm", "high"): "the ideal rack's contact-set growth: its first knee sits later than the real profile's",
     ("T2_Nm", "low"): "the engagement zone's end: the ideal rack's last pairs close by ~0.5 of rated, the real S-tooth "
-                      "keeps adding teeth to higher torque (manufacturing deviations lower T2 further, decision "
-                      "070-engage48)",
+                      "keeps adding teeth to higher torque (manufacturing deviations lower T2 further); the reader's "
+                      "knees also follow the loop's amplitude, which the catalogue does not state (cycled to 2 T2 "
+                      "every row's T2 is within +-35 %, decision 070-engage48)",
     ("T2_Nm", "high"): "clearance spread from manufacturing (profile and pitch errors)",
 }
 

@@ -5,8 +5,9 @@ deviation_units=N)` (the mean loop of N units, seeds 0..N-1, read by the catalog
 spread over the units (each unit's own curve read alone). The cup's twist under the mesh zones (FE) is computed once
 and shared by every class. Ideal teeth: class 'none'.
 
-Run: .venv/bin/python benchmarks/catalogue_deviation_probe.py [CLASSES] [UNITS] [--rows]
-     CLASSES comma-separated (default none,3,5,7), UNITS default 8; --rows prints every row.
+Run: .venv/bin/python benchmarks/catalogue_deviation_probe.py [CLASSES] [UNITS] [--rows] [--amplitude-over-T2=F]
+     CLASSES comma-separated (default none,3,5,7), UNITS default 8; --rows prints every row; --amplitude-over-T2=F
+     cycles each row to F x its catalogue T2 instead of the rules' rated torque (the knees move with it).
 """
 from __future__ import annotations
 
@@ -31,9 +32,9 @@ def _ratios(row, curve) -> np.ndarray:
     return np.array([rp.ratio_of(n) for n in NAMES])
 
 
-def row_result(rules: MeshRules, row, series: float) -> tuple[np.ndarray, np.ndarray]:
-    """(predicted/catalogue of the mean curve, of every unit alone (units x 5))."""
-    rated = rules.rated_torque_Nm(row.size)
+def row_result(rules: MeshRules, row, series: float, amplitude: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """(predicted/catalogue of the mean curve, of every unit alone (units x 5)); ``amplitude``: x the row's T2."""
+    rated = rules.rated_torque_Nm(row.size) if amplitude is None else amplitude * row.values["T2_Nm"]
     if rules.accuracy_grade is None:
         q = _ratios(row, predict_curve(rules.design(row.size, row.ratio), series, rated, with_te=False))
         return q, q[None, :]
@@ -55,7 +56,7 @@ def summary(grade, Q: np.ndarray, P: list, cpu: float) -> str:
     return " ".join(parts)
 
 
-def main(grades, units: int, show_rows: bool) -> None:
+def main(grades, units: int, show_rows: bool, amplitude: float | None = None) -> None:
     rows = read_table(TABLE.read_text())
     base = MeshRules(deviation_units=units)
     t0 = time.process_time()
@@ -67,7 +68,7 @@ def main(grades, units: int, show_rows: bool) -> None:
         Q, P = [], []
         for row in rows:
             series = rules.cup_flexibility_rad_per_Nmm(row.size) + zone[row.ratio].at(rules.pitch_diameter_mm(row.size))
-            q, per = row_result(rules, row, series)
+            q, per = row_result(rules, row, series, amplitude)
             Q.append(q)
             P.append(per)
             if show_rows:
@@ -80,4 +81,5 @@ def main(grades, units: int, show_rows: bool) -> None:
 if __name__ == "__main__":
     args = [a for a in sys.argv[1:] if not a.startswith("--")]
     classes = [None if g == "none" else float(g) for g in (args[0] if args else "none,3,5,7").split(",")]
-    main(classes, int(args[1]) if len(args) > 1 else 8, "--rows" in sys.argv)
+    amp = [float(a.split("=", 1)[1]) for a in sys.argv[1:] if a.startswith("--amplitude-over-T2=")]
+    main(classes, int(args[1]) if len(args) > 1 else 8, "--rows" in sys.argv, amp[0] if amp else None)
