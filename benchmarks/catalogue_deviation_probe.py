@@ -7,7 +7,8 @@ and shared by every class. Ideal teeth: class 'none'.
 
 Run: .venv/bin/python benchmarks/catalogue_deviation_probe.py [CLASSES] [UNITS] [--rows] [--amplitude-over-T2=F]
      CLASSES comma-separated (default none,3,5,7), UNITS default 8; --rows prints every row; --amplitude-over-T2=F
-     cycles each row to F x its catalogue T2 instead of the rules' rated torque (the knees move with it).
+     cycles each row to F x its catalogue T2 instead of the rules' rated torque (the knees move with it);
+     --cs-ring=F adds the circular spline body's free-ring twist x F in series (decision 069's probe term).
 """
 from __future__ import annotations
 
@@ -56,7 +57,7 @@ def summary(grade, Q: np.ndarray, P: list, cpu: float) -> str:
     return " ".join(parts)
 
 
-def main(grades, units: int, show_rows: bool, amplitude: float | None = None) -> None:
+def main(grades, units: int, show_rows: bool, amplitude: float | None = None, cs_ring: float = 0.0) -> None:
     rows = read_table(TABLE.read_text())
     base = MeshRules(deviation_units=units)
     t0 = time.process_time()
@@ -67,7 +68,11 @@ def main(grades, units: int, show_rows: bool, amplitude: float | None = None) ->
         t0 = time.process_time()
         Q, P = [], []
         for row in rows:
-            series = rules.cup_flexibility_rad_per_Nmm(row.size) + zone[row.ratio].at(rules.pitch_diameter_mm(row.size))
+            d = rules.pitch_diameter_mm(row.size)
+            series = rules.cup_flexibility_rad_per_Nmm(row.size) + zone[row.ratio].at(d)
+            if cs_ring:
+                from strainwave.analytic.cs_ring import cs_body_twist_rad_per_Nmm
+                series += cs_ring * cs_body_twist_rad_per_Nmm(rules.design(row.size, row.ratio), 1.25 * d)
             q, per = row_result(rules, row, series, amplitude)
             Q.append(q)
             P.append(per)
@@ -82,4 +87,6 @@ if __name__ == "__main__":
     args = [a for a in sys.argv[1:] if not a.startswith("--")]
     classes = [None if g == "none" else float(g) for g in (args[0] if args else "none,3,5,7").split(",")]
     amp = [float(a.split("=", 1)[1]) for a in sys.argv[1:] if a.startswith("--amplitude-over-T2=")]
-    main(classes, int(args[1]) if len(args) > 1 else 8, "--rows" in sys.argv, amp[0] if amp else None)
+    ring = [float(a.split("=", 1)[1]) for a in sys.argv[1:] if a.startswith("--cs-ring=")]
+    main(classes, int(args[1]) if len(args) > 1 else 8, "--rows" in sys.argv, amp[0] if amp else None,
+         ring[0] if ring else 0.0)
