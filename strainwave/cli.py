@@ -650,9 +650,9 @@ def _add_catalogue(add) -> None:
                    "rated_torque_Nm (the lost-motion test's 4 %%, else the rules'))")
     p.add_argument("--accuracy-grade", type=float, default=None, metavar="A",
                    help="the teeth's ISO 1328-1:2013 flank tolerance class (1..11): each row becomes the mean of "
-                        "--deviation-units units with pitch and profile deviations drawn to it (default: ideal teeth)")
+                        "--deviation-units units with pitch and profile deviations drawn to it; without it the teeth are ideal")
     p.add_argument("--deviation-units", type=int, default=8, metavar="N",
-                   help="units (seeds 0..N-1) averaged per row with --accuracy-grade (default 8)")
+                   help="units (seeds 0..N-1) averaged per row with --accuracy-grade (default: %(default)s)")
 
 
 _COMMANDS = (_add_analytic, _add_params, _add_export_step, _add_solve, _add_validate, _add_compare, _add_diagnose,
