@@ -19,7 +19,9 @@ _SHORT = {"K1_Nm_per_rad": "K1", "K2_Nm_per_rad": "K2", "K3_Nm_per_rad": "K3", "
 PHRASES = {
     ("K1_Nm_per_rad", "high"): "compliance not modelled: the housing letting the circular spline ovalise (its body "
                                "is in series face-clamped; free, K1 came within on 19/21 rows, decision "
-                               "070-cshousing48); no engagement delay: pitch/profile errors",
+                               "070-cshousing48); without a stated class the teeth are ideal: pitch/profile errors "
+                               "delay engagement (K1 16/21 at ISO 1328-1 class 5, decision 070-engage48; HD's class "
+                               "unknown)",
     ("K1_Nm_per_rad", "low"): "support one linear foundation: no rim support that stiffens with load, no WG preload "
                               "(not measured)",
     ("K2_Nm_per_rad", "high"): "compliance not modelled: the housing letting the circular spline ovalise (with the "
@@ -29,7 +31,8 @@ PHRASES = {
                                "is in series with the face clamped: 2 % of the miss; free it is the size of the miss; "
                                "bolts alone 5-18 %, decision 070-cshousing48)",
     ("K3_Nm_per_rad", "low"): "fewer teeth share the load than in a real S-tooth zone (not measured)",
-    ("T1_Nm", "low"): "no engagement delay: pitch/profile errors (contact grows from 0 N m, the first knee early)",
+    ("T1_Nm", "low"): "ideal teeth engage from 0 N m (i = 100: the knee is the balls' Hertz softening); pitch/profile "
+                      "errors raise it at i >= 50, not at 30 (decision 070-engage48)",
     ("T1_Nm", "high"): "the ideal rack's contact-set growth: its first knee later than the real profile's "
                        "(not measured)",
     ("T2_Nm", "low"): "the engagement zone ends early: the real S-tooth adds teeth to higher torque",
