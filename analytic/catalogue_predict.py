@@ -52,9 +52,11 @@ LEFT_OUT = {
                                 "fatigue rim (decision 069) the ratio trend is met and every row is 1.4-2.0x too "
                                 "stiff (size 25: 1.7e-8 / 7.6e-9 / 5.0e-9 rad/(N mm) missing at i = 30 / 50 / 100); "
                                 "ruled out: the tooth on its rim, coning, lift-off, the WG outer ring's ovalisation; "
-                                "not in the chain: the circular spline body's ovalisation under the two zones, as a "
-                                "free ring 1.5e-8 / 1.1e-8 (i = 30 / 100, FE), whose restraint by the housing is "
-                                "not modelled (decisions 067-069)",
+                                "the circular spline body is in the chain with its face clamped to a rigid housing "
+                                "(3.4-3.5e-10 at size 25, 3D FE, decision 070); free in its plane it would add "
+                                "1.5e-8 / 1.1e-8 (i = 30 / 100), the size of the miss (K3 18/21); how much "
+                                "ovalisation a real housing and "
+                                "bolt joint allow (an elastic housing flange, the joint's slip) is not modelled",
     ("K3_Nm_per_rad", "low"): "load spreading over more teeth than the ideal rack engages (the wider, "
                                "conjugate S-tooth zone of real profiles)",
     ("T1_Nm", "low"): "the contact set grows from zero torque (zero backlash; at i = 100 ten pairs at zero gap), so the "
@@ -173,6 +175,7 @@ class CataloguePrediction:
     cpu_s: float
     slopes: dict = field(default_factory=dict)
     cup_zone: dict = field(default_factory=dict)     # ratio -> analytic.cup_zone.CupZoneTerm (FE, with GCI)
+    cs_body: dict = field(default_factory=dict)      # ratio -> analytic.cs_housing.CsBodyTerm (3D FE, with GCI)
 
     def __post_init__(self):
         self.slopes = {"size": self._slopes("size"), "ratio": self._slopes("ratio")}
@@ -257,6 +260,7 @@ class CataloguePrediction:
                 "goals": {**GOALS, "ratio_trend": TREND_GOAL}, "ratio_labels": RATIO_OF_LABEL,
                 "design_rules": {k: v for k, v in self.rules.__dict__.items()}, "cpu_s": self.cpu_s,
                 "cup_zone_terms": [t.to_dict() for t in self.cup_zone.values()],
+                "cs_body_terms": [{"ratio": r, **t.to_dict()} for r, t in self.cs_body.items()],
                 "loss_source": CHA_BOUNDS_SOURCE, "loss_note": loss_note(self.rows),
                 "flank_mu": self.rules.friction_coefficient, "flank_mu_source": MU_SOURCE,
                 "tooth_deviations": self.deviation_note()}
@@ -287,6 +291,10 @@ class CataloguePrediction:
             lines.append(f"cup under the mesh zones, ratio {t.ratio:g} (FE at d = {t.reference_d_mm:g} mm, scaled "
                          f"(d_ref/d)^3): +{t.extra.value:.3e} rad/(N mm), GCI {100 * c.gci_fine:.2g} %, over the "
                          f"uniform shear's {t.uniform.value:.3e} ({t.cpu_s:.1f} CPU-s)")
+        for r, t in self.cs_body.items():
+            lines.append(f"circular spline body, mounting {t.restraint} (decision 070), ratio {r:g} (3D FE at d = "
+                         f"{t.reference_d_mm:g} mm, scaled (d_ref/d)^3): +{t.twist.value:.3e} rad/(N mm), GCI "
+                         f"{100 * t.twist.convergence.gci_fine:.2g} % ({t.cpu_s:.1f} CPU-s)")
         if self.rules.accuracy_grade is not None:
             lines.append(self.deviation_note())
             have = {n: [rp.unit_sd[n] for rp in self.rows if n in rp.unit_sd] for n in NAMES}
@@ -356,15 +364,18 @@ def predict_table(path: Path, rules: MeshRules | None = None,
         raise InputError("TABLE", str(path), f"a readable UTF-8 CSV file ({exc.__class__.__name__})") from None
     rows = read_table(text, str(path))
     t0 = time.process_time()
-    zone = {}
+    zone, body = {}, {}
     for ratio in sorted({row.ratio for row in rows}):
-        term = rules.cup_zone_term(ratio)
+        term, cs = rules.cup_zone_term(ratio), rules.cs_body_term(ratio)
         if term is not None:
             zone[ratio] = term
+        if cs is not None:
+            body[ratio] = cs
     preds = []
     for row in rows:
         d = rules.pitch_diameter_mm(row.size)
         series = rules.cup_flexibility_rad_per_Nmm(row.size) + (zone[row.ratio].at(d) if row.ratio in zone else 0.0)
+        series += body[row.ratio].at(d, rules.E_MPa) if row.ratio in body else 0.0
         curve, design, sd = _row_curve(rules, row, series)
         preds.append(replace(_with_secants(row, curve), loss=_loss(row, design, series, curve), unit_sd=sd))
-    return CataloguePrediction(preds, rules, time.process_time() - t0, cup_zone=zone)
+    return CataloguePrediction(preds, rules, time.process_time() - t0, cup_zone=zone, cs_body=body)

@@ -13,8 +13,10 @@ HEADER = "size,ratio,T1_Nm,T2_Nm,K1_e3,K2_e3,K3_e3\n"
 
 def test_two_rows_with_a_blank_cell_and_a_label(tmp_path, capsys, monkeypatch):
     from strainwave.analytic import catalogue_predict
-    # the cup-zone FE on coarse meshes: this test is the command's plumbing (tests/test_cup_zone.py holds the FE)
-    monkeypatch.setattr(catalogue_predict, "MeshRules", lambda: MeshRules(cup_zone_elements=(7, 5, 4)))
+    # the cup-zone FE on coarse meshes, the CS body left out: this test is the command's plumbing
+    # (tests/test_cup_zone.py and tests/test_cs_housing.py hold the FE)
+    monkeypatch.setattr(catalogue_predict, "MeshRules", lambda: MeshRules(cup_zone_elements=(7, 5, 4),
+                                                                          cs_body_restraint=None))
     table = tmp_path / "t.csv"
     table.write_text("# a comment\n" + HEADER + "14,30,2,6.9,1.9,,3.4\n14,>50,2,6.9,4.7,6.1,7.1\n")
     out = tmp_path / "o.json"
