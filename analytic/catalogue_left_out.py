@@ -17,17 +17,22 @@ BANDS = {"K1_Nm_per_rad": 0.35, "K2_Nm_per_rad": 0.35, "K3_Nm_per_rad": 0.25, "T
 _SHORT = {"K1_Nm_per_rad": "K1", "K2_Nm_per_rad": "K2", "K3_Nm_per_rad": "K3", "T1_Nm": "T1", "T2_Nm": "T2",
           "hysteresis": "hysteresis loss", "lost_motion": "lost motion"}
 PHRASES = {
-    ("K1_Nm_per_rad", "high"): "compliance not modelled: circular spline body / housing (with it in series K1 came "
-                               "within on 19/21 rows, decision 069); no engagement delay: pitch/profile errors",
+    ("K1_Nm_per_rad", "high"): "compliance not modelled: the housing letting the circular spline ovalise (its body "
+                               "is in series face-clamped; free, K1 came within on 19/21 rows, decision "
+                               "070-cshousing48); without a stated class the teeth are ideal: pitch/profile errors "
+                               "delay engagement (K1 16/21 at ISO 1328-1 class 5, decision 070-engage48; HD's class "
+                               "unknown)",
     ("K1_Nm_per_rad", "low"): "support one linear foundation: no rim support that stiffens with load, no WG preload "
                               "(not measured)",
-    ("K2_Nm_per_rad", "high"): "compliance not modelled: circular spline body / housing (with it in series K2 came "
-                               "within +-35 % on 20/21 rows, decision 070)",
+    ("K2_Nm_per_rad", "high"): "compliance not modelled: the housing letting the circular spline ovalise (with the "
+                               "free body in series K2 came within +-35 % on 20/21 rows, decision 070-loss48)",
     ("K2_Nm_per_rad", "low"): "fewer teeth share the load than in a real S-tooth zone (not measured)",
-    ("K3_Nm_per_rad", "high"): "compliance not modelled: circular spline body / housing (a free CS body is the "
-                               "size of the miss, decision 069; its restraint by the housing not known)",
+    ("K3_Nm_per_rad", "high"): "compliance not modelled: the housing letting the circular spline ovalise (its body "
+                               "is in series with the face clamped: 2 % of the miss; free it is the size of the miss; "
+                               "bolts alone 5-18 %, decision 070-cshousing48)",
     ("K3_Nm_per_rad", "low"): "fewer teeth share the load than in a real S-tooth zone (not measured)",
-    ("T1_Nm", "low"): "no engagement delay: pitch/profile errors (contact grows from 0 N m, the first knee early)",
+    ("T1_Nm", "low"): "ideal teeth engage from 0 N m (i = 100: the knee is the balls' Hertz softening); pitch/profile "
+                      "errors raise it at i >= 50, not at 30 (decision 070-engage48)",
     ("T1_Nm", "high"): "the ideal rack's contact-set growth: its first knee later than the real profile's "
                        "(not measured)",
     ("T2_Nm", "low"): "the engagement zone ends early: the real S-tooth adds teeth to higher torque",

@@ -20,7 +20,8 @@ import numpy as np
 from strainwave.analytic.catalogue_left_out import MU_SOURCE, left_out_lines, loss_lines, loss_note, row_left_out
 from strainwave.analytic.catalogue_loss import CHA_BOUNDS_SOURCE, LossReading, cha_bounds, read_loss
 from strainwave.analytic.catalogue_rules import RATIO_OF_LABEL, MeshRules, ratio_of_label
-from strainwave.analytic.drive_curve import DriveCurve, catalogue_secants, predict_curve
+from strainwave.analytic.drive_curve import (DriveCurve, catalogue_secants, mean_curve, predict_curve,
+                                             ratcheting_torque_Nm, unit_curves)
 from strainwave.errors import InputError
 
 __all__ = ["TableRow", "RowPrediction", "CataloguePrediction", "read_table", "predict_table", "GOALS"]
@@ -39,9 +40,11 @@ TREND_GOAL = 0.25
 # what the closed-form mesh leaves out, by the number that misses and the side it misses on
 LEFT_OUT = {
     ("K1_Nm_per_rad", "high"): "the low-torque compliance: with the fatigue rim (decision 069) K1 is 1.4-1.6x at i = 30 "
-                                "and 1.8-2.5x at i >= 50; the zero-backlash rack engages from zero torque and the "
-                                "balls' Hertz softening is the only low-torque term; not modelled: the rim's support "
-                                "that stiffens with load, profile and pitch errors that delay engagement",
+                                "and 1.8-2.5x at i >= 50; the ideal teeth put up to ten pairs at zero gap, which "
+                                "engage at zero torque, and the balls' Hertz softening is the only low-torque term; "
+                                "the teeth's manufacturing deviations spread them (measured, decision 070-engage48: "
+                                "K1 16/21 at ISO 1328-1 class 5, 20/21 at class 7), but no source fixes the class "
+                                "(state it with --accuracy-grade)",
     ("K1_Nm_per_rad", "low"): "the radial support is one linear foundation: the rim lifted off the bearing beyond "
                                "the wrap angle is pressed back onto the balls as the torque grows (a support that "
                                "stiffens with load), and real units' preload (kappa > 1) is not modelled",
@@ -49,15 +52,23 @@ LEFT_OUT = {
                                 "fatigue rim (decision 069) the ratio trend is met and every row is 1.4-2.0x too "
                                 "stiff (size 25: 1.7e-8 / 7.6e-9 / 5.0e-9 rad/(N mm) missing at i = 30 / 50 / 100); "
                                 "ruled out: the tooth on its rim, coning, lift-off, the WG outer ring's ovalisation; "
-                                "not in the chain: the circular spline body's ovalisation under the two zones, as a "
-                                "free ring 1.5e-8 / 1.1e-8 (i = 30 / 100, FE), whose restraint by the housing is "
-                                "not modelled (decisions 067-069)",
+                                "the circular spline body is in the chain with its face clamped to a rigid housing "
+                                "(3.4-3.5e-10 at size 25, 3D FE, decision 070); free in its plane it would add "
+                                "1.5e-8 / 1.1e-8 (i = 30 / 100), the size of the miss (K3 18/21); how much "
+                                "ovalisation a real housing and "
+                                "bolt joint allow (an elastic housing flange, the joint's slip) is not modelled",
     ("K3_Nm_per_rad", "low"): "load spreading over more teeth than the ideal rack engages (the wider, "
                                "conjugate S-tooth zone of real profiles)",
-    ("T1_Nm", "low"): "the contact set grows smoothly from zero torque (zero backlash), so the reader's first knee "
-                      "lands early; the balls' Hertz softening near zero load adds to that",
+    ("T1_Nm", "low"): "the contact set grows from zero torque (zero backlash; at i = 100 ten pairs at zero gap), so the "
+                      "reader's first knee lands early: at i = 100 it is the balls' Hertz softening alone, at i = 30-50 "
+                      "the third and fourth pairs per lobe closing; manufacturing deviations raise it at i >= 50 and "
+                      "lower it at i = 30 (decision 070-engage48); a profile with graded clearances along the zone is "
+                      "not modelled",
     ("T1_Nm", "high"): "the ideal rack's contact-set growth: its first knee sits later than the real profile's",
-    ("T2_Nm", "low"): "the engagement zone's end: the real S-tooth keeps adding teeth to higher torque",
+    ("T2_Nm", "low"): "the engagement zone's end: the ideal rack's last pairs close by ~0.5 of rated, the real S-tooth "
+                      "keeps adding teeth to higher torque (manufacturing deviations lower T2 further); the reader's "
+                      "knees also follow the loop's amplitude, which the catalogue does not state (cycled to 2 T2 "
+                      "every row's T2 is within +-35 %, decision 070-engage48)",
     ("T2_Nm", "high"): "clearance spread from manufacturing (profile and pitch errors)",
 }
 
@@ -84,6 +95,7 @@ class RowPrediction:
     windows_Nm: tuple = ()                          # (T1, T2) the secants were taken over, and where they came from
     windows_from: str = ""
     loss: LossReading | None = None                 # hysteresis loss and lost motion (decision 070-loss48)
+    unit_sd: dict = field(default_factory=dict)     # name -> sd of predicted/catalogue over the units (070-engage48)
 
     def predicted(self, name: str) -> float:
         if name in self.secants:
@@ -163,6 +175,7 @@ class CataloguePrediction:
     cpu_s: float
     slopes: dict = field(default_factory=dict)
     cup_zone: dict = field(default_factory=dict)     # ratio -> analytic.cup_zone.CupZoneTerm (FE, with GCI)
+    cs_body: dict = field(default_factory=dict)      # ratio -> analytic.cs_housing.CsBodyTerm (3D FE, with GCI)
 
     def __post_init__(self):
         self.slopes = {"size": self._slopes("size"), "ratio": self._slopes("ratio")}
@@ -212,6 +225,19 @@ class CataloguePrediction:
                              "left_out": [LEFT_OUT[(name, s)] for s in sorted(sides)]}
         return out
 
+    def deviation_note(self) -> str:
+        """Which tooth deviations the curves hold, and where ISO 1328-1's formulas are extrapolated."""
+        from strainwave.analytic.tooth_deviations import outside_iso_range
+        r = self.rules
+        if r.accuracy_grade is None:
+            return "tooth deviations: none (ideal teeth)"
+        out = [f"{rp.row.size:g}/{rp.row.ratio_label}" for rp in self.rows
+               if outside_iso_range(r.pitch_diameter_mm(rp.row.size) / int(round(r.tooth_difference * rp.row.ratio)),
+                                    int(round(r.tooth_difference * rp.row.ratio)))]
+        return (f"tooth deviations: ISO 1328-1:2013 class {r.accuracy_grade:g} on both gears, each row the mean of "
+                f"{r.deviation_units} units (decision 070-engage48; the lost motion on unit 0's +/-4 % loop); ISO's formulas extrapolated (m < 0.5 mm) on "
+                f"{len(out)} rows" + (f" ({', '.join(out)})" if out else ""))
+
     def to_dict(self) -> dict:
         rows = []
         for rp in self.rows:
@@ -228,13 +254,16 @@ class CataloguePrediction:
                       "rated_torque_Nm": rp.curve.rated_torque_Nm})
             d.update(rp.loss.to_dict() if rp.loss is not None else {})
             d["left_out"] = row_left_out(rp)
+            d.update({f"{n}_unit_sd": v for n, v in rp.unit_sd.items()})
             rows.append(d)
         return {"rows": rows, "log_slopes": self.slopes, "ratio_trend": self.trend(), "misses": self.misses(),
                 "goals": {**GOALS, "ratio_trend": TREND_GOAL}, "ratio_labels": RATIO_OF_LABEL,
                 "design_rules": {k: v for k, v in self.rules.__dict__.items()}, "cpu_s": self.cpu_s,
                 "cup_zone_terms": [t.to_dict() for t in self.cup_zone.values()],
+                "cs_body_terms": [{"ratio": r, **t.to_dict()} for r, t in self.cs_body.items()],
                 "loss_source": CHA_BOUNDS_SOURCE, "loss_note": loss_note(self.rows),
-                "flank_mu": self.rules.friction_coefficient, "flank_mu_source": MU_SOURCE}
+                "flank_mu": self.rules.friction_coefficient, "flank_mu_source": MU_SOURCE,
+                "tooth_deviations": self.deviation_note()}
 
     def summary(self) -> str:
         lines = ["predicted / catalogue (design rules: decisions 065, 069 (fatigue rim); K1/K2/K3 the catalogue's secants over the row's "
@@ -262,6 +291,16 @@ class CataloguePrediction:
             lines.append(f"cup under the mesh zones, ratio {t.ratio:g} (FE at d = {t.reference_d_mm:g} mm, scaled "
                          f"(d_ref/d)^3): +{t.extra.value:.3e} rad/(N mm), GCI {100 * c.gci_fine:.2g} %, over the "
                          f"uniform shear's {t.uniform.value:.3e} ({t.cpu_s:.1f} CPU-s)")
+        for r, t in self.cs_body.items():
+            lines.append(f"circular spline body, mounting {t.restraint} (decision 070), ratio {r:g} (3D FE at d = "
+                         f"{t.reference_d_mm:g} mm, scaled (d_ref/d)^3): +{t.twist.value:.3e} rad/(N mm), GCI "
+                         f"{100 * t.twist.convergence.gci_fine:.2g} % ({t.cpu_s:.1f} CPU-s)")
+        if self.rules.accuracy_grade is not None:
+            lines.append(self.deviation_note())
+            have = {n: [rp.unit_sd[n] for rp in self.rows if n in rp.unit_sd] for n in NAMES}
+            sd = {n: float(np.mean(v)) for n, v in have.items() if v}
+            lines.append("  one unit alone scatters about the mean by (sd of predicted/catalogue, mean over the rows) "
+                         + ", ".join(f"{n.split('_')[0]} {v:.2f}" for n, v in sd.items()))
         lines.append(f"CPU {self.cpu_s:.1f} s for {len(self.rows)} rows")
         return "\n".join(lines)
 
@@ -282,6 +321,21 @@ def _with_secants(row: TableRow, curve: DriveCurve) -> RowPrediction:
     return RowPrediction(row, curve, sec, (T1, T2), src)
 
 
+def _row_curve(rules: MeshRules, row: TableRow, series: float):
+    """(the row's curve, the design its lost-motion loop is solved on, name -> sd of predicted/catalogue over the
+    units): ideal teeth, or the mean of ``deviation_units`` units with the rules' tooth deviations (the lost motion
+    then on unit 0)."""
+    rated = rules.rated_torque_Nm(row.size)
+    if rules.accuracy_grade is None:
+        design = rules.design(row.size, row.ratio)
+        return predict_curve(design, series, rated, with_te=False), design, {}
+    designs = [rules.design(row.size, row.ratio, u) for u in range(rules.deviation_units)]
+    units = unit_curves(designs, series, rated)
+    each = [_with_secants(row, u) for u in units]
+    sd = {n: float(np.std([e.ratio_of(n) for e in each])) for n in NAMES if row.values.get(n) is not None}
+    return mean_curve(units, ratcheting_torque_Nm(designs[0])), designs[0], sd
+
+
 def _loss(row: TableRow, design, series: float, curve: DriveCurve) -> LossReading:
     """The row's hysteresis loss (on its rated loop) and lost motion (a +/-4 % loop of the row's rated torque where
     the table gives one, else the rules'), beside the row's bounds or the CHA rule's."""
@@ -295,28 +349,33 @@ def _loss(row: TableRow, design, series: float, curve: DriveCurve) -> LossReadin
                      "table" if "rated_torque_Nm" in row.values else "rules (0.244 MPa d^3)")
 
 
-def predict_table(path: Path, rules: MeshRules | None = None) -> CataloguePrediction:
+def predict_table(path: Path, rules: MeshRules | None = None,
+                  deviations: tuple[float, int] | None = None) -> CataloguePrediction:
     """Read ``path`` and predict every row (exit-2 InputError on a bad file). In series with each row's mesh:
     the cup (tube + diaphragm + hub) and the cup's extra twist under the mesh zones' load, measured by FE once
     per distinct ratio at the rules' reference size and scaled by similitude (decision 067)."""
     import time
     rules = MeshRules() if rules is None else rules
+    if deviations is not None:          # (ISO 1328-1 class, units averaged): decision 070-engage48
+        rules = replace(rules, accuracy_grade=float(deviations[0]), deviation_units=int(deviations[1]))
     try:
         text = Path(path).read_text("utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         raise InputError("TABLE", str(path), f"a readable UTF-8 CSV file ({exc.__class__.__name__})") from None
     rows = read_table(text, str(path))
     t0 = time.process_time()
-    zone = {}
+    zone, body = {}, {}
     for ratio in sorted({row.ratio for row in rows}):
-        term = rules.cup_zone_term(ratio)
+        term, cs = rules.cup_zone_term(ratio), rules.cs_body_term(ratio)
         if term is not None:
             zone[ratio] = term
+        if cs is not None:
+            body[ratio] = cs
     preds = []
     for row in rows:
-        design = rules.design(row.size, row.ratio)
         d = rules.pitch_diameter_mm(row.size)
         series = rules.cup_flexibility_rad_per_Nmm(row.size) + (zone[row.ratio].at(d) if row.ratio in zone else 0.0)
-        curve = predict_curve(design, series, rules.rated_torque_Nm(row.size), with_te=False)
-        preds.append(replace(_with_secants(row, curve), loss=_loss(row, design, series, curve)))
-    return CataloguePrediction(preds, rules, time.process_time() - t0, cup_zone=zone)
+        series += body[row.ratio].at(d, rules.E_MPa) if row.ratio in body else 0.0
+        curve, design, sd = _row_curve(rules, row, series)
+        preds.append(replace(_with_secants(row, curve), loss=_loss(row, design, series, curve), unit_sd=sd))
+    return CataloguePrediction(preds, rules, time.process_time() - t0, cup_zone=zone, cs_body=body)

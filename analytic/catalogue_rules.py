@@ -111,6 +111,15 @@ class MeshRules:
     # this size on meshes of these elements around the quarter wall (finest first), scaled by similitude; None: left out
     cup_zone_reference_size: float = 25.0
     cup_zone_elements: tuple[int, int, int] | None = (20, 14, 10)
+    # decision 070: the circular spline's body (teeth's root to cs_outer_over_d d) with its mounting face clamped to
+    # a rigid housing ("face": the stiff bound of any one-face mounting; "free": the soft bound), measured by 3D FE
+    # per ratio at cup_zone_reference_size and scaled by similitude; None: left out
+    cs_body_restraint: str | None = "face"
+    cs_outer_over_d: float = 200.0 / 160.0      # shipped circular spline: outer diameter / d1
+    # decision 070-engage48: the teeth's manufacturing deviations, ISO 1328-1:2013 tolerance class of both gears (None:
+    # ideal teeth); each row's curve is the mean over this many units (seeds 0..n-1), as the catalogue averages tests
+    accuracy_grade: float | None = None
+    deviation_units: int = 8
 
     def foundation_N_per_mm2(self, E_MPa: float, face_width_mm: float, d_mm: float) -> float:
         return (self.foundation_coefficient or 0.0) * E_MPa * face_width_mm / d_mm
@@ -132,8 +141,9 @@ class MeshRules:
     def pitch_diameter_mm(self, size: float) -> float:
         return self.pitch_diameter_per_size_mm * size
 
-    def design(self, size: float, ratio: float) -> MeshDesign:
-        """The drive of catalogue ``size`` at gear ratio ``ratio``: only the rules above."""
+    def design(self, size: float, ratio: float, unit: int | None = None) -> MeshDesign:
+        """The drive of catalogue ``size`` at gear ratio ``ratio``: only the rules above; ``unit``: the seed of one
+        unit's tooth deviations (with ``accuracy_grade``), None: ideal teeth."""
         d = self.pitch_diameter_mm(size)
         teeth = int(round(self.tooth_difference * ratio))
         m = d / teeth
@@ -141,7 +151,8 @@ class MeshRules:
         rim = self.rim_mm(size, ratio)
         geom = MeshGeometry(teeth, m, self.kappa * m, self.pressure_angle_deg, self.addendum_coefficient,
                             self.backlash_over_d * d, rim, b, self.tooth_difference,
-                            self.length_over_d * d, self.face_slices)
+                            self.length_over_d * d, self.face_slices,
+                            None if unit is None else self.accuracy_grade, 0 if unit is None else unit)
         ring, ball = self.outer_ring_over_d * d, self.ball_diameter_over_d * d
         # the ball set fills the envelope: under the cup's bore and the outer ring
         balls = BallBearing(ball, self.ball_count, d - 2.0 * (1.25 * m + rim) - 2.0 * ring - ball)
@@ -177,6 +188,16 @@ class MeshRules:
             d, t, self.length_over_d * d, self.shear_modulus_MPa, hub_radius_mm=HUB_RATIO * d,
             hub_bore_radius_mm=HUB_BORE_RATIO * d, hub_height_mm=BOSS_HEIGHT_WALLS * t, diaphragm_thickness_mm=t,
             band_length_mm=BAND_RATIO * d, diaphragm_z_mm=(BOSS_HEIGHT_WALLS - 0.5) * t).total
+
+    def cs_body_term(self, ratio: float):
+        """The circular spline body's twist term at this ratio (``analytic.cs_housing``), measured at
+        ``cup_zone_reference_size``; None when the rules leave it out."""
+        if self.cs_body_restraint is None:
+            return None
+        from strainwave.analytic.cs_housing import cs_body_term
+        size = self.cup_zone_reference_size
+        return cs_body_term(self.design(size, ratio), self.cs_outer_over_d * self.pitch_diameter_mm(size),
+                            self.cs_body_restraint)
 
     def cup_zone_term(self, ratio: float):
         """The cup's extra flexibility under the mesh zones' load at this ratio (``analytic.cup_zone``), measured

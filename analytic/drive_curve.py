@@ -17,7 +17,8 @@ from strainwave.fea.mesh_contact import MeshPath, solve_torque_path, torque_hist
 from strainwave.analytic.mesh_drive import MeshDesign, bearing_twist_rad, mesh_system
 
 __all__ = ["DriveCurve", "predict_curve", "branch_twist_rad", "mean_twist_rad", "catalogue_secants",
-           "read_catalogue_numbers", "transmission_error_rad", "ratcheting_torque_Nm", "LOOP_STEPS_PER_LEG"]
+           "read_catalogue_numbers", "transmission_error_rad", "ratcheting_torque_Nm", "LOOP_STEPS_PER_LEG",
+           "predict_mean_curve", "unit_curves", "mean_curve"]
 
 LOOP_STEPS_PER_LEG = 60          # torque steps from 0 to the rated torque (the reader needs >= 20 steady rows)
 ARCMIN = math.pi / (180.0 * 60.0)
@@ -160,3 +161,40 @@ def predict_curve(design: MeshDesign, series_rad_per_Nmm: float, rated_Nm: float
     return DriveCurve(v["K1"][0], v["K2"][0], v["K3"][0], v["T1"][0], v["T2"][0],
                       v["lost_motion_arcmin"][0] * ARCMIN, v["hysteresis_loss_arcmin"][0] * ARCMIN, rated_Nm,
                       T, tw, te[0], te[1], ratcheting_torque_Nm(design, psi_rad), path.contact.sum(axis=1))
+
+
+def unit_curves(designs, series_rad_per_Nmm: float, rated_Nm: float, *, psi_rad: float = 0.0) -> list[DriveCurve]:
+    """Each unit's curve alone (its loop read by the catalogue reader; no transmission error or ratcheting)."""
+    out = []
+    for d in designs:
+        T, tw, path = _loop(d, series_rad_per_Nmm, rated_Nm, psi_rad)
+        v = read_catalogue_numbers(T, tw, rated_Nm)
+        out.append(DriveCurve(v["K1"][0], v["K2"][0], v["K3"][0], v["T1"][0], v["T2"][0],
+                              v["lost_motion_arcmin"][0] * ARCMIN, v["hysteresis_loss_arcmin"][0] * ARCMIN, rated_Nm,
+                              T, tw, teeth_in_contact=path.contact.sum(axis=1), source="one unit"))
+    return out
+
+
+def mean_curve(units: list[DriveCurve], ratcheting_Nm: float = float("nan")) -> DriveCurve:
+    """The units' loops (same torque history) averaged twist by twist, read by the catalogue reader: the
+    catalogue's values are averages of many tests (decision 070-engage48)."""
+    if not units:
+        raise ValueError("mean_curve needs at least one unit")
+    T, rated = units[0].loop_torque_Nm, units[0].rated_torque_Nm
+    tw = np.mean([u.loop_twist_rad for u in units], axis=0)
+    teeth = np.mean([u.teeth_in_contact for u in units], axis=0)
+    v = read_catalogue_numbers(T, tw, rated)
+    return DriveCurve(v["K1"][0], v["K2"][0], v["K3"][0], v["T1"][0], v["T2"][0],
+                      v["lost_motion_arcmin"][0] * ARCMIN, v["hysteresis_loss_arcmin"][0] * ARCMIN, rated,
+                      T, tw, None, None, ratcheting_Nm, teeth,
+                      source=f"tooth-mesh closed form, mean of {len(units)} units with tooth deviations")
+
+
+def predict_mean_curve(designs, series_rad_per_Nmm: float, rated_Nm: float, *, psi_rad: float = 0.0) -> DriveCurve:
+    """The mean curve of several units of one design (each with its own tooth deviations, decision 070-engage48);
+    no transmission error; the ratcheting torque of the first unit."""
+    designs = list(designs)
+    if not designs:
+        raise ValueError("predict_mean_curve needs at least one design")
+    units = unit_curves(designs, series_rad_per_Nmm, rated_Nm, psi_rad=psi_rad)
+    return mean_curve(units, ratcheting_torque_Nm(designs[0], psi_rad))

@@ -47,6 +47,10 @@ class MeshGeometry:
     wave_number: int = 2
     cup_length_mm: float = 0.0     # diaphragm to rim; > 0 cones the flexure along the face (w ~ z), 0: a ring
     face_slices: int = 1           # the face width cut into this many slices, each with its own clearance
+    # manufacturing deviations (analytic/tooth_deviations, decision 070-engage48): ISO 1328-1 class, None: ideal teeth;
+    # the seed picks one unit
+    accuracy_grade: float | None = None
+    deviation_seed: int = 0
 
     @property
     def teeth_circular(self) -> int:
@@ -76,6 +80,7 @@ class TeethOnNeutralLine:
     depth_loss_mm: np.ndarray    # Delta_j = w0 - w_j
     overlap_mm: np.ndarray       # tip overlap: working depth - Delta_j
     radial_mm: np.ndarray        # w_j
+    space: np.ndarray | None = None   # the circular-spline tooth space each tooth's pitch point is in (0..Z_c-1)
 
 
 def coning_factors(g: MeshGeometry) -> np.ndarray:
@@ -108,7 +113,7 @@ def teeth_on_neutral_line(g: MeshGeometry, psi_rad: float, scale: float = 1.0) -
     offset = r_p * (ang - k * pitch_c)
     delta = g.w0_mm - w                          # depth lost against the full depth of the design section
     overlap = 2.0 * g.addendum_coefficient * g.module_mm - delta
-    return TeethOnNeutralLine(ang, offset, delta, overlap, w)
+    return TeethOnNeutralLine(ang, offset, delta, overlap, w, np.mod(k, zc).astype(int))
 
 
 def flank_clearances(g: MeshGeometry, teeth: TeethOnNeutralLine) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -116,13 +121,32 @@ def flank_clearances(g: MeshGeometry, teeth: TeethOnNeutralLine) -> tuple[np.nda
     pair whose tips overlap: the unloaded clearances of the mesh at this wave-generator angle."""
     alpha = np.radians(g.pressure_angle_deg)
     live = np.flatnonzero(teeth.overlap_mm > g.min_overlap_mm)
+    dev = _deviations(g)
     gaps, signs, index = [], [], []
     for sgn in (1.0, -1.0):
         circ = g.backlash_mm + teeth.depth_loss_mm[live] * np.tan(alpha) - sgn * teeth.offset_mm[live]
-        gaps.append(np.maximum(np.cos(alpha) * circ, 0.0))
+        gap = np.maximum(np.cos(alpha) * circ, 0.0)
+        if dev is not None and len(live):
+            gap = _with_deviations(gap, dev.flank_offset_mm(live, teeth.space[live], sgn) * np.cos(alpha))
+        gaps.append(gap)
         signs.append(np.full(len(live), sgn))
         index.append(live)
     return np.concatenate(gaps), np.concatenate(signs), np.concatenate(index)
+
+
+def _deviations(g: MeshGeometry):
+    if g.accuracy_grade is None:
+        return None
+    from strainwave.analytic.tooth_deviations import draw_deviations
+    return draw_deviations(g.teeth_flexspline, g.teeth_circular, g.module_mm, g.accuracy_grade, g.deviation_seed)
+
+
+def _with_deviations(gap: np.ndarray, offset: np.ndarray) -> np.ndarray:
+    """The ideal gaps plus each pair's deviation, shifted so the tightest pair of this flank keeps the ideal mesh's
+    smallest gap (a zero-backlash unit is assembled to zero backlash whatever its deviations). The shift is taken at
+    the wave-generator angle asked for (the catalogue's one angle), not fixed per unit over a revolution."""
+    raw = gap + offset
+    return np.maximum(raw - raw.min() + gap.min(), 0.0)
 
 
 def sliced_clearances(g: MeshGeometry, psi_rad: float):

@@ -12,7 +12,7 @@ import numpy as np
 from skfem import Basis, ElementTriP2, ElementVector, FacetBasis, LinearForm, MeshTri, asm, condense, solve
 from skfem.models.elasticity import lame_parameters, linear_elasticity
 
-__all__ = ["annulus", "cs_body_fe_twist_rad_per_Nmm", "PATCH_DEG"]
+__all__ = ["annulus", "cs_body_fe_twist_rad_per_Nmm", "traction_forms", "PATCH_DEG"]
 
 PATCH_DEG = 5.0
 
@@ -27,6 +27,20 @@ def annulus(ri, ro, nr, nt):
     c, d = idx[1:, np.r_[1:nt, 0]], idx[1:, :]
     tri = np.hstack([np.vstack([a.ravel(), b.ravel(), c.ravel()]), np.vstack([a.ravel(), c.ravel(), d.ravel()])])
     return MeshTri(p, tri)
+
+
+def traction_forms(mask):
+    """(unit tangential, unit radial) traction about the z axis times ``mask(x)``, as load forms (2D or 3D)."""
+    @LinearForm
+    def tangential(v, w):
+        th = np.arctan2(w.x[1], w.x[0])
+        return mask(w.x) * (-np.sin(th) * v[0] + np.cos(th) * v[1])
+
+    @LinearForm
+    def radial(v, w):
+        th = np.arctan2(w.x[1], w.x[0])
+        return mask(w.x) * (np.cos(th) * v[0] + np.sin(th) * v[1])
+    return tangential, radial
 
 
 def cs_body_fe_twist_rad_per_Nmm(ri, ro, E, b, r_p, alpha_deg, nr, nt):
@@ -45,20 +59,8 @@ def cs_body_fe_twist_rad_per_Nmm(ri, ro, E, b, r_p, alpha_deg, nr, nt):
         th = np.arctan2(x[1], x[0])
         return (np.abs(np.sin(th)) < math.sin(math.radians(PATCH_DEG))).astype(float)
 
-    @LinearForm
-    def tang_in(v, w):
-        th = np.arctan2(w.x[1], w.x[0])
-        return patch(w.x) * (-np.sin(th) * v[0] + np.cos(th) * v[1])
-
-    @LinearForm
-    def tang_out(v, w):
-        th = np.arctan2(w.x[1], w.x[0])
-        return -np.sin(th) * v[0] + np.cos(th) * v[1]
-
-    @LinearForm
-    def rad_in(v, w):
-        th = np.arctan2(w.x[1], w.x[0])
-        return patch(w.x) * (np.cos(th) * v[0] + np.sin(th) * v[1])
+    tang_in, rad_in = traction_forms(patch)
+    tang_out, _ = traction_forms(lambda x: 1.0)
 
     ux, uy = ib.split_indices()
     x, y = ib.doflocs[0], ib.doflocs[1]

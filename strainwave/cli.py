@@ -282,8 +282,14 @@ def _cmd_diagnose(args) -> int:
 def _cmd_catalogue(args) -> int:
     from strainwave.analytic.catalogue_predict import predict_table
     from strainwave.progress import ticking
+    if args.accuracy_grade is not None and not 1.0 <= args.accuracy_grade <= 11.0:
+        raise InputError("--accuracy-grade", args.accuracy_grade, "an ISO 1328-1:2013 flank tolerance class within 1..11")
+    if not 1 <= args.deviation_units <= 256:
+        raise InputError("--deviation-units", args.deviation_units, "an integer number of units within 1..256")
+    # decision 070-engage48: ideal teeth unless the user states the class the gears are made to
+    dev = None if args.accuracy_grade is None else (args.accuracy_grade, args.deviation_units)
     with ticking(f"catalogue {Path(args.table).name}: predicting every row", _progress):
-        prediction = predict_table(Path(args.table))
+        prediction = predict_table(Path(args.table), deviations=dev)
     _emit(args, prediction.summary(), prediction.to_dict)
     return 0
 
@@ -642,6 +648,11 @@ def _add_catalogue(add) -> None:
     p.add_argument("table", metavar="TABLE.csv", help="the table (blank cells skipped; ratio '>50' means 100; optional "
                    "columns hysteresis_arcmin, lost_motion_arcmin (the row's bounds, else the CHA's) and "
                    "rated_torque_Nm (the lost-motion test's 4 %%, else the rules'))")
+    p.add_argument("--accuracy-grade", type=float, default=None, metavar="A",
+                   help="the teeth's ISO 1328-1:2013 flank tolerance class (1..11): each row becomes the mean of "
+                        "--deviation-units units with pitch and profile deviations drawn to it; without it the teeth are ideal")
+    p.add_argument("--deviation-units", type=int, default=8, metavar="N",
+                   help="units (seeds 0..N-1) averaged per row with --accuracy-grade (default: %(default)s)")
 
 
 _COMMANDS = (_add_analytic, _add_params, _add_export_step, _add_solve, _add_validate, _add_compare, _add_diagnose,

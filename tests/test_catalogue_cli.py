@@ -13,8 +13,10 @@ HEADER = "size,ratio,T1_Nm,T2_Nm,K1_e3,K2_e3,K3_e3\n"
 
 def test_two_rows_with_a_blank_cell_and_a_label(tmp_path, capsys, monkeypatch):
     from strainwave.analytic import catalogue_predict
-    # the cup-zone FE on coarse meshes: this test is the command's plumbing (tests/test_cup_zone.py holds the FE)
-    monkeypatch.setattr(catalogue_predict, "MeshRules", lambda: MeshRules(cup_zone_elements=(7, 5, 4)))
+    # the cup-zone FE on coarse meshes, the CS body left out: this test is the command's plumbing
+    # (tests/test_cup_zone.py and tests/test_cs_housing.py hold the FE)
+    monkeypatch.setattr(catalogue_predict, "MeshRules", lambda: MeshRules(cup_zone_elements=(7, 5, 4),
+                                                                          cs_body_restraint=None))
     table = tmp_path / "t.csv"
     table.write_text("# a comment\n" + HEADER + "14,30,2,6.9,1.9,,3.4\n14,>50,2,6.9,4.7,6.1,7.1\n")
     out = tmp_path / "o.json"
@@ -65,3 +67,26 @@ def test_a_bad_table_exits_2_with_one_line(tmp_path, capsys, text, key):
 def test_read_table_names_the_line():
     with pytest.raises(InputError, match="line 3"):
         read_table(HEADER + "14,30,2,6.9,1.9,2.4,3.4\n14,30,2,x,1.9,2.4,3.4\n")
+
+
+@pytest.mark.parametrize("flags, key", [(["--accuracy-grade", "0.5"], "--accuracy-grade"),
+                                        (["--accuracy-grade", "12"], "--accuracy-grade"),
+                                        (["--accuracy-grade", "5", "--deviation-units", "0"], "--deviation-units")])
+def test_bad_deviation_flags_exit_2_naming_the_flag(tmp_path, capsys, flags, key):
+    table = tmp_path / "t.csv"
+    table.write_text(HEADER + "14,>50,2,6.9,4.7,6.1,7.1\n")
+    assert main(["catalogue", str(table), *flags]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and key in err[0]
+
+
+def test_the_accuracy_grade_reaches_the_rules(tmp_path, monkeypatch):
+    from strainwave.analytic import catalogue_predict
+    monkeypatch.setattr(catalogue_predict, "MeshRules", lambda: MeshRules(cup_zone_elements=None))
+    table = tmp_path / "t.csv"
+    table.write_text(HEADER + "14,>50,2,6.9,4.7,6.1,7.1\n")
+    out = tmp_path / "o.json"
+    assert main(["catalogue", str(table), "--accuracy-grade", "6", "--deviation-units", "3", "--json", str(out)]) == 0
+    data = json.loads(out.read_text())
+    assert data["design_rules"]["accuracy_grade"] == 6.0 and data["design_rules"]["deviation_units"] == 3
+    assert "class 6 on both gears, each row the mean of 3 units" in data["tooth_deviations"]

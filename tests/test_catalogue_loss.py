@@ -123,7 +123,8 @@ def test_a_bad_loss_column_exits_2_with_one_line(tmp_path, capsys, extra, cell, 
 
 def test_the_json_and_the_table_carry_the_loss_and_the_left_out(tmp_path, capsys, monkeypatch):
     from strainwave.analytic import catalogue_predict
-    monkeypatch.setattr(catalogue_predict, "MeshRules", lambda: MeshRules(cup_zone_elements=None))
+    monkeypatch.setattr(catalogue_predict, "MeshRules",
+                        lambda: MeshRules(cup_zone_elements=None, cs_body_restraint=None))
     table = tmp_path / "t.csv"
     table.write_text(f"{HEADER},hysteresis_arcmin,lost_motion_arcmin,rated_torque_Nm\n"
                      "14,30,2,6.9,1.9,2.4,3.4,0.5,0.2,5\n14,>50,2,6.9,4.7,6.1,7.1,,,\n")

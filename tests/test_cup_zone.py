@@ -67,7 +67,7 @@ def test_the_term_scales_by_similitude():
 def test_the_catalogue_adds_the_term_per_ratio_with_its_gci(monkeypatch):
     """The catalogue's series flexibility is the cup (tube + diaphragm + hub) plus the term scaled to the row."""
     from strainwave.analytic import catalogue_predict as cp
-    rules = MeshRules(cup_zone_elements=(7, 5, 4))
+    rules = MeshRules(cup_zone_elements=(7, 5, 4), cs_body_restraint=None)
     term = rules.cup_zone_term(100.0)
     assert term.extra.value > 0.0 and term.extra.convergence is not None
     assert term.at(2.0 * term.reference_d_mm) == pytest.approx(term.extra.value / 8.0)

@@ -45,17 +45,27 @@ def chain(book, labels: dict, wg_label: str, mesh_label: str | None, params) -> 
     lam_H = torsion.wave_generator_flexibility(g.force_coefficient, q["kg"].value, cup.pitch_diameter_mm,
                                                g.wave_number, g.radial_deformation_mm, g.gear_ratio)
     rel = lambda x: (x.uncertainty or 0.0) / abs(x.value)  # noqa: E731
-    rest = lam_H + q["cup"].value
+    body = cs_body(params, "face")   # the free bound (decision 070) is a benchmark's, not validate's: 5 CPU-s
+    lam_cs, u_cs = body.twist.value, body.twist.convergence.gci_fine
+    rest = lam_H + q["cup"].value + lam_cs
     out = {"lambda_H_rad_per_Nmm": lam_H, "lambda_cup_rad_per_Nmm": q["cup"].value,
-           "lambda_shaft_rad_per_Nmm": q["shaft"].value}
+           "lambda_shaft_rad_per_Nmm": q["shaft"].value, "lambda_cs_body_rad_per_Nmm": lam_cs}
     for k in ("K1", "K3"):
         lam_m = 1.0 / q[k].value
         total = lam_m + rest
         out[f"lambda_mesh_{k}_rad_per_Nmm"] = lam_m
         out[f"{k}_chain_Nmm_per_rad"] = 1.0 / total
-        out[f"{k}_chain_rel_unc"] = (lam_m * rel(q[k]) + lam_H * rel(q["kg"]) + q["cup"].value * rel(q["cup"])) / total
+        out[f"{k}_chain_rel_unc"] = (lam_m * rel(q[k]) + lam_H * rel(q["kg"]) + q["cup"].value * rel(q["cup"])
+                                     + lam_cs * u_cs) / total
         out[f"{k}_with_shaft_Nmm_per_rad"] = 1.0 / (total + q["shaft"].value)
     return out, ""
+
+
+def cs_body(params, restraint: str):
+    """This gear's circular spline body under the two mesh zones (analytic.cs_housing, decision 070): its
+    mounting face clamped to a rigid housing ("face", in the chain) or free in its plane ("free", the soft bound)."""
+    from strainwave.analytic.cs_housing import body_case_of_params, cs_body_term_of_case
+    return cs_body_term_of_case(body_case_of_params(params, restraint))
 
 
 def gear_line(book, plan, params) -> str:
@@ -69,13 +79,16 @@ def gear_line(book, plan, params) -> str:
     if c is None:
         return f"This gear's drive with the teeth in mesh: not evaluated ({why})."
     K, u = c["K3_chain_Nmm_per_rad"], c["K3_chain_rel_unc"]
-    return (f"This gear's drive with the teeth in mesh (FEA tooth-mesh K3 + cup + wave generator in series, the "
+    return (f"This gear's drive with the teeth in mesh (FEA tooth-mesh K3 + cup + wave generator + circular spline "
+            f"body in series, the "
             f"output shaft left out as in a catalogue unit): K3 = {1e-3 * K:.4g} N m/rad (+-{100 * u:.2g} %), "
             f"K1 = {1e-3 * c['K1_chain_Nmm_per_rad']:.4g}; the CHA column {label}'s power law at size {size:.3g}"
             f"{' (extrapolated beyond sizes 14-58)' if extrapolated else ''}: K3 {1e-3 * ref:.4g} N m/rad "
             f"(scatter +-{100 * scatter:.2g} %), predicted / catalogue {K / ref:.2f}. Members (rad/(N mm)): mesh "
             f"{c['lambda_mesh_K3_rad_per_Nmm']:.3g}, cup {c['lambda_cup_rad_per_Nmm']:.3g}, wave generator "
-            f"{c['lambda_H_rad_per_Nmm']:.3g}. This gear is not a catalogue design (its cup and teeth follow "
+            f"{c['lambda_H_rad_per_Nmm']:.3g}, circular spline body with its face clamped "
+            f"{c['lambda_cs_body_rad_per_Nmm']:.3g} (free in its plane it would be 20-45x that: decision 070). "
+            f"This gear is not a catalogue design (its cup and teeth follow "
             f"the seeds); the catalogue's own design rules are compared row by row with "
             f"`strainwave catalogue TABLE.csv` (docs/tooth_mesh.md).")
 
@@ -94,7 +107,8 @@ def catalogue_check(book, labels: dict, wg_label: str, mesh_label: str | None, p
     note = (f"CHA column {label}, K3 at size {params.flexspline_cup.pitch_diameter_mm / 2.54:.3g}"
             f"{' (EXTRAPOLATED beyond sizes 14-58)' if extrapolated else ''}; members (rad/(N mm)): mesh "
             f"{c['lambda_mesh_K3_rad_per_Nmm']:.3g}, cup {c['lambda_cup_rad_per_Nmm']:.3g}, WG "
-            f"{c['lambda_H_rad_per_Nmm']:.3g}; shaft {c['lambda_shaft_rad_per_Nmm']:.3g} (not in a catalogue unit); "
+            f"{c['lambda_H_rad_per_Nmm']:.3g}, CS body (face clamped) {c['lambda_cs_body_rad_per_Nmm']:.3g}; shaft "
+            f"{c['lambda_shaft_rad_per_Nmm']:.3g} (not in a catalogue unit); "
             f"chain K1 {c['K1_chain_Nmm_per_rad']:.3g} N mm/rad beside catalogue K1 "
             f"{catalogue_power_law(params, 'K1_Nm_per_rad')[0]:.3g} (recorded, not asserted)")
     return evaluate(Check(cid, quantity, unit, K, c["K3_chain_rel_unc"] * K, analytic, "corrected", tol, note=note,
