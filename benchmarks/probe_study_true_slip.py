@@ -1,0 +1,194 @@
+"""What the tooth-mesh STUDY's outputs become with friction on the true slip (decision 072-slip48).
+
+The study (fea/tooth_mesh.py) solves each WG angle with fea/mesh_contact.py: friction as a torque mu |slide| F
+along the rigid kinematic slide, no tangential load on the teeth. Here the same study's systems get their
+tangential band loads and Coulomb's law on the true relative slip (fea/mesh_friction.py), on the study's finest
+validate mesh, and every loop output is printed before (shipped) and after (true slip).
+
+The flexibility of the true-slip system, per WG angle, 2n x 2n [[Cff, Cfg], [Cgf, Cgg]]:
+- Cff: the study's own pair compliance (fs rim + CS teeth, tooth_mesh.pair_compliance), unchanged;
+- the FS rim's Cfg / Cgg: direct FE on the study's whole rim (the pairs' bands f and their turned twins g, each
+  balanced by the bore's shear, as tooth_mesh_fe.influence balances its loads), C = B^T K^-1 B;
+- the CS teeth's Cfg / Cgg: each pair's own CS tooth (the study's sector, tooth 0, at the pair's CS radius, the
+  flank the FS flank presses), its 2x2 self block; CS coupling of tangential loads between teeth is left out.
+- w (the counter-tooth's slide along the FS flank's tangent t = rot90(n) per unit twist) = P . n = +R sin(alpha):
+  the study's ``slide_mm_per_rad`` with its sign (both flanks: the FS flank's outward normal leans outward).
+
+    python benchmarks/probe_study_true_slip.py [PARAMS.toml] [--increments N] [--angles K]
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import sys
+import time
+
+import numpy as np
+
+
+def _balanced(rim, F: np.ndarray, r_bore_mm: float) -> np.ndarray:
+    """Loads balanced in moment by the bore's uniform shear (so B^T u is free of the rim's rigid rotation)."""
+    from strainwave.fea import tooth_mesh_fe as fe
+    x, y = rim.basis.doflocs
+    full = rim.T @ F                                   # u~ -> full dofs for the moment
+    M = (x * full[1::2] - y * full[0::2]).sum(0)
+    return F - fe.bore_shear(rim, r_bore_mm)[:, None] * M[None, :]
+
+
+def band_system(params, mesh: dict, infl: dict, pairs: dict, rim, sector):
+    """The study's system at one WG angle with the tangential blocks: a mesh_friction.BandSystem."""
+    from strainwave.fea import tooth_mesh as tm
+    from strainwave.fea import tooth_mesh_fe as fe
+    from strainwave.fea.mesh_friction import BandSystem
+    band = tm.BAND_OVER_M * mesh["module_mm"]
+    n = len(pairs["clearance_mm"])
+    Cff = tm.pair_compliance(infl, pairs, mesh["z_f"], mesh["z_c"])
+    # FS rim: direct, on the study's rim (its rotation T maps u~ loads; flank_loads returns u~ columns)
+    F, G = _fs_bands(rim, pairs, band)
+    Bfs = np.column_stack([_balanced(rim, F, infl["r_bore_mm"]), _balanced(rim, G, infl["r_bore_mm"])])
+    flex_fs = fe.compliance(rim, Bfs)
+    # CS: each pair's own tooth, the flank the FS flank presses (-side), self 2x2 blocks
+    flex = np.zeros((2 * n, 2 * n))
+    flex[:n, :n] = Cff
+    flex[:n, n:] = flex_fs[:n, n:]
+    flex[n:, :n] = flex_fs[n:, :n]
+    flex[n:, n:] = flex_fs[n:, n:]
+    for i in range(n):
+        Fc, Gc = _cs_bands(sector, float(pairs["cs_radius_mm"][i]), band, -int(pairs["side"][i]))
+        c2 = fe.compliance(sector, np.column_stack([Fc, Gc]))
+        flex[i, n + i] += c2[0, 1]
+        flex[n + i, i] += c2[1, 0]
+        flex[n + i, n + i] += c2[1, 1]
+    flex = 0.5 * (flex + flex.T)
+    return BandSystem(np.asarray(pairs["clearance_mm"], float), flex, np.asarray(pairs["lever_mm"], float),
+                      np.asarray(pairs["slide_mm_per_rad"], float), float(mesh["friction_coefficient"])), flex_fs
+
+
+def _fs_bands(rim, pairs: dict, band: float) -> tuple[np.ndarray, np.ndarray]:
+    from strainwave.fea import tooth_mesh_fe as fe
+    n = len(pairs["clearance_mm"])
+    F = np.zeros((rim.T.shape[1], n))
+    for s in (1, -1):
+        on = np.flatnonzero(pairs["side"] == s)
+        if on.size:
+            F[:, on] = fe.flank_loads(rim, pairs["tooth"][on], pairs["fs_radius_mm"][on], band, s)[0]
+    return F, _turn(rim, F)
+
+
+def _cs_bands(sector, r_mm: float, band: float, side: int) -> tuple[np.ndarray, np.ndarray]:
+    from strainwave.fea import tooth_mesh_fe as fe
+    F = fe.flank_loads(sector, np.array([0]), np.array([r_mm]), band, side)[0]
+    return F, _turn(sector, F)
+
+
+def _turn(model, F: np.ndarray) -> np.ndarray:
+    """The bands as tangential tractions along t = rot90(n), n the flank's outward normal (-resultant of F)."""
+    from strainwave.fea.mesh_friction import turned_bands
+    Tm = model.T
+    full = Tm @ F          # T is orthogonal (a rotation at each bore node, else the identity): u~ loads -> full
+    res = np.stack([full[0::2].sum(0), full[1::2].sum(0)], axis=1)
+    n = -res / np.hypot(res[:, 0], res[:, 1])[:, None]
+    t = np.column_stack([-n[:, 1], n[:, 0]])
+    return Tm.T @ turned_bands(full, t)
+
+
+def true_slip_path(system, history_Nmm: np.ndarray, increments: int):
+    """The study's torque history on the true-slip system: each history step a leg of ``increments`` increments
+    ending at its torque (false position), as a mesh_contact.MeshPath (work: trapezoids between the steps)."""
+    from strainwave.fea.mesh_contact import MeshPath
+    from strainwave.fea.mesh_friction import twists_for_torques
+    T = np.asarray(history_Nmm, float)
+    recs = twists_for_torques(system, T[1:], increments)            # T[0] = 0: the unloaded start
+    theta = np.concatenate([[0.0], [r["twist_rad"] for r in recs]])
+    F = np.vstack([np.zeros(len(system.clearance_mm))] + [r["forces_N"] for r in recs])
+    Tr = np.concatenate([[0.0], [r["torque_Nmm"] for r in recs]])
+    work = np.concatenate([[0.0], 0.5 * (Tr[1:] + Tr[:-1]) * np.diff(theta)])
+    return MeshPath(T, theta, F, F > 0.0, np.zeros(T.size, int), work)
+
+
+def _sector(params, h_mm: float):
+    """The study's CS sector on this mesh size (tooth_mesh.influences builds the same one)."""
+    from strainwave.fea import tooth_mesh as tm
+    from strainwave.fea import tooth_mesh_fe as fe
+    from strainwave.fea.assembly import Lame
+    from strainwave.geometry.mesh_geometry import mesh_geometry
+    geo = mesh_geometry(params)
+    m = params.material
+    lame = Lame.from_young(m.youngs_modulus_MPa, m.poisson_ratio)
+    depth = geo.cs_outer_radius_mm - geo.cs_tooth.root_radius_mm
+    wide = max(tm.CS_NEIGHBOURS + 2, int(math.ceil(2 * depth / (math.pi * geo.cs_tooth.module_mm))) + 2)
+    return fe.sector_model(geo.cs_tooth, geo.cs_outer_radius_mm, wide, tm.SECTOR_H_RATIO * h_mm, lame,
+                           geo.face_width_mm)
+
+
+KEYS = ("K1_Nmm_per_rad", "K2_Nmm_per_rad", "K3_Nmm_per_rad", "T1_Nmm", "T2_Nmm", "secant_stiffness_rated_Nmm_per_rad",
+        "lost_motion_arcmin", "friction_loss_per_cycle_Nmm", "transmission_error_pp_rad", "teeth_in_contact_rated",
+        "peak_tooth_share", "peak_tooth_load_N", "engagement_edge_rated_rad", "ratcheting_torque_Nmm")
+
+
+def readings(paths, mesh: dict) -> dict:
+    from strainwave.fea import tooth_mesh as tm
+    v = tm.loop_values(paths, mesh["rated_torque_Nmm"]) | tm.engagement_edge(paths[0], mesh["angles"][0])
+    v |= tm.ratcheting(paths[0], mesh["angles"][0], mesh)
+    k = int(np.argmax(paths[0].torque_Nmm))
+    v["shares_at_rated"] = (paths[0].forces_N[k] / paths[0].forces_N[k].sum()).tolist()
+    return v
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("params", nargs="?", default=None)
+    ap.add_argument("--increments", type=int, nargs="+", default=[1, 2])
+    ap.add_argument("--angles", type=int, default=None, help="only the first K WG angles (default: all)")
+    ap.add_argument("--json", default=None)
+    a = ap.parse_args(argv)
+    from strainwave.analytic.mesh_engagement import study_loads
+    from strainwave.fea import tooth_mesh as tm
+    from strainwave.fea.mesh_contact import solve_torque_path
+    from strainwave.params import load_params
+    params = load_params(a.params)
+    mesh = study_loads(params, quick=False)["mesh"]
+    if a.angles:
+        mesh["angles"] = mesh["angles"][:a.angles]
+    h = tm.refinements(params.flexspline_cup.module_mm, False)[0]
+    c0 = time.process_time()
+    infl, _ = tm.influences(params, mesh, h)
+    sector = _sector(params, h)
+    c1 = time.process_time()
+    history = np.asarray(mesh["torque_history_Nmm"])
+    shipped = [solve_torque_path(s, history) for s in tm.systems(infl, mesh)]
+    c2 = time.process_time()
+    out = {"gear": a.params or "default", "h_mm": h, "influence_cpu_s": c1 - c0, "load": os.getloadavg(),
+           "shipped": readings(shipped, mesh) | {"contact_cpu_s": c2 - c1}}
+    systems = [band_system(params, mesh, infl, p, infl["rim"], sector)[0] for p in mesh["angles"]]
+    c3 = time.process_time()
+    out["tangential_blocks_cpu_s"] = c3 - c2
+    for N in a.increments:
+        t0 = time.process_time()
+        paths = [true_slip_path(s, history, N) for s in systems]
+        out[f"true_slip_N{N}"] = readings(paths, mesh) | {"contact_cpu_s": time.process_time() - t0}
+    _print(out, a.increments)
+    if a.json:
+        with open(a.json, "w") as fh:
+            json.dump(out, fh, indent=1, default=float)
+    return 0
+
+
+def _print(out: dict, incs) -> None:
+    cols = ["shipped"] + [f"true_slip_N{N}" for N in incs]
+    print(f"# {out['gear']}  h = {out['h_mm']:.4g} mm  load {out['load'][0]:.2f}  "
+          f"influences {out['influence_cpu_s']:.1f} CPU-s, tangential blocks {out['tangential_blocks_cpu_s']:.1f} CPU-s")
+    print("| output | " + " | ".join(cols) + " | true slip / shipped - 1 |")
+    for k in KEYS + ("contact_cpu_s",):
+        vals = [out[c][k] for c in cols]
+        rel = vals[-1] / vals[0] - 1 if vals[0] else float("nan")
+        print(f"| {k} | " + " | ".join(f"{v:.6g}" for v in vals) + f" | {100 * rel:+.2f} % |")
+    print("shares at rated (headline angle): shipped " + " ".join(f"{x:.4f}" for x in out["shipped"]["shares_at_rated"]))
+    for c in cols[1:]:
+        print(f"  {c} " + " ".join(f"{x:.4f}" for x in out[c]["shares_at_rated"]))
+
+
+if __name__ == "__main__":
+    sys.exit(main())
