@@ -98,18 +98,36 @@ def _turn(model, F: np.ndarray) -> np.ndarray:
     return Tm.T @ turned_bands(full, t)
 
 
+ZERO_AIM = 1e-9          # of the amplitude: how far past a zero torque a leg aims (the dead band's far edge)
+
+
 def true_slip_path(system, history_Nmm: np.ndarray, increments: int):
     """The study's torque history on the true-slip system: each history step a leg of ``increments`` increments
-    ending at its torque (false position), as a mesh_contact.MeshPath (work: trapezoids between the steps)."""
+    ending at its torque (false position), as a mesh_contact.MeshPath (work: trapezoids between the legs' ends)."""
     from strainwave.fea.mesh_contact import MeshPath
     from strainwave.fea.mesh_friction import twists_for_torques
     T = np.asarray(history_Nmm, float)
-    recs = twists_for_torques(system, T[1:], increments)            # T[0] = 0: the unloaded start
+    # a zero torque inside the loop lies in the backlash's dead band (any twist there carries it): the study's tracker
+    # crosses the band to its far edge (where the other flanks touch). Both edges are solved (a hair either side of
+    # zero) so that the trapezoids see the band's zero torque; the far edge is the history's point
+    eps = ZERO_AIM * float(np.max(np.abs(T)))
+    targets, keep = [], []
+    for k in range(1, T.size):
+        if T[k] == 0.0:
+            targets.append(np.sign(T[k - 1]) * eps)
+            T_k = -np.sign(T[k - 1]) * eps
+        else:
+            T_k = T[k]
+        targets.append(T_k)
+        keep.append(len(targets))              # index in [0] + records
+    recs = twists_for_torques(system, targets, increments)            # T[0] = 0: the unloaded start
     theta = np.concatenate([[0.0], [r["twist_rad"] for r in recs]])
-    F = np.vstack([np.zeros(len(system.clearance_mm))] + [r["forces_N"] for r in recs])
     Tr = np.concatenate([[0.0], [r["torque_Nmm"] for r in recs]])
-    work = np.concatenate([[0.0], 0.5 * (Tr[1:] + Tr[:-1]) * np.diff(theta)])
-    return MeshPath(T, theta, F, F > 0.0, np.zeros(T.size, int), work)
+    work_all = np.concatenate([[0.0], 0.5 * (Tr[1:] + Tr[:-1]) * np.diff(theta)])
+    idx = np.array([0] + keep)
+    work = np.array([work_all[i0 + 1:i1 + 1].sum() for i0, i1 in zip(idx[:-1], idx[1:])])
+    F = np.vstack([np.zeros(len(system.clearance_mm))] + [recs[i - 1]["forces_N"] for i in keep])
+    return MeshPath(T, theta[idx], F, F > 0.0, np.zeros(T.size, int), np.concatenate([[0.0], work]))
 
 
 def _sector(params, h_mm: float):
