@@ -30,7 +30,8 @@ def test_frictionless_history_is_the_study_solvers(probe):
     s = _lobe(0.0)
     n = len(s.clearance_mm)
     history = torque_history(8e4, steps_per_leg=8)
-    got = probe.true_slip_path(s, history, 1)
+    got, Q = probe.true_slip_path(s, history, 1)
+    assert np.all(Q == 0.0)
     ref = solve_torque_path(MeshSystem(s.clearance_mm, s.flex_mm_per_N[:n, :n], s.lever_mm, s.slide_mm_per_rad,
                                        0.0, 80.0), history)
     # at the history's zero torques both stop at the dead band's far edge (where the other flanks touch)
@@ -41,8 +42,8 @@ def test_frictionless_history_is_the_study_solvers(probe):
 def test_true_slip_loop_dissipates_and_ends_on_its_torques(probe):
     """With friction the +T -> -T -> +T loop takes work (> 0); without, it is elastic (~0 against it)."""
     history = torque_history(8e4, steps_per_leg=10)
-    with_mu = probe.true_slip_path(_lobe(0.3), history, 2)
-    without = probe.true_slip_path(_lobe(0.0), history, 2)
+    with_mu = probe.true_slip_path(_lobe(0.3), history, 2)[0]
+    without = probe.true_slip_path(_lobe(0.0), history, 2)[0]
     n = len(history)
     assert with_mu.torque_Nmm.shape == (n,) and with_mu.forces_N.shape == (n, 6)
     w1, w0 = loop_area_Nmm_rad(with_mu), loop_area_Nmm_rad(without)
