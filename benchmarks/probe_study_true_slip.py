@@ -195,6 +195,8 @@ def main(argv=None) -> int:
     ap.add_argument("--increments", type=int, nargs="+", default=[1, 2])
     ap.add_argument("--angles", type=int, default=None, help="only the first K WG angles (default: all)")
     ap.add_argument("--json", default=None)
+    ap.add_argument("--steps-per-leg", type=int, default=None,
+                    help="the true-slip runs' history steps per leg (default: the study's own history)")
     a = ap.parse_args(argv)
     from strainwave.analytic.mesh_engagement import study_loads
     from strainwave.fea import tooth_mesh as tm
@@ -219,6 +221,10 @@ def main(argv=None) -> int:
     built = [band_system(mesh, infl, p, infl["rim"], sector, k) for p, k in zip(mesh["angles"], keeps)]
     c3 = time.process_time()
     out["tangential_blocks_cpu_s"] = c3 - c2
+    if a.steps_per_leg:           # a finer history for the true-slip runs: the loss's trapezoids checked
+        from strainwave.fea.mesh_contact import torque_history
+        history = torque_history(mesh["rated_torque_Nmm"], steps_per_leg=a.steps_per_leg)
+        out["true_slip_steps_per_leg"] = a.steps_per_leg
     for N in a.increments:
         t0 = time.process_time()
         paths, worst = [], float("inf")
