@@ -20,6 +20,7 @@ import numpy as np
 from strainwave.analytic.catalogue_left_out import MU_SOURCE, left_out_lines, loss_lines, loss_note, row_left_out
 from strainwave.analytic.catalogue_loss import CHA_BOUNDS_SOURCE, LossReading, cha_bounds, read_loss
 from strainwave.analytic.catalogue_rules import RATIO_OF_LABEL, MeshRules, ratio_of_label
+from strainwave.analytic.catalogue_similar import is_similar, reference_loop
 from strainwave.analytic.drive_curve import (DriveCurve, catalogue_secants, mean_curve, predict_curve,
                                              ratcheting_torque_Nm, unit_curves)
 from strainwave.errors import InputError
@@ -336,7 +337,7 @@ def _row_curve(rules: MeshRules, row: TableRow, series: float):
     return mean_curve(units, ratcheting_torque_Nm(designs[0])), designs[0], sd
 
 
-def _loss(row: TableRow, design, series: float, curve: DriveCurve) -> LossReading:
+def _loss(row: TableRow, design, series: float, curve: DriveCurve, small: tuple | None = None) -> LossReading:
     """The row's hysteresis loss (on its rated loop) and lost motion (a +/-4 % loop of the row's rated torque where
     the table gives one, else the rules'), beside the row's bounds or the CHA rule's."""
     rule = cha_bounds(row.ratio)
@@ -346,7 +347,8 @@ def _loss(row: TableRow, design, series: float, curve: DriveCurve) -> LossReadin
                                                                else "table+CHA")
     rated = row.values.get("rated_torque_Nm", curve.rated_torque_Nm)
     return read_loss(design, series, rated, curve.loop_torque_Nm, curve.loop_twist_rad, bounds, src,
-                     "table" if "rated_torque_Nm" in row.values else "rules (0.244 MPa d^3)")
+                     "table" if "rated_torque_Nm" in row.values else "rules (0.244 MPa d^3)",
+                     None if "rated_torque_Nm" in row.values else small)
 
 
 def predict_table(path: Path, rules: MeshRules | None = None,
@@ -371,11 +373,21 @@ def predict_table(path: Path, rules: MeshRules | None = None,
             zone[ratio] = term
         if cs is not None:
             body[ratio] = cs
+    def series_at(size: float, ratio: float) -> float:
+        d = rules.pitch_diameter_mm(size)
+        return (rules.cup_flexibility_rad_per_Nmm(size) + (zone[ratio].at(d) if ratio in zone else 0.0)
+                + (body[ratio].at(d, rules.E_MPa) if ratio in body else 0.0))
+
+    # similar drives (decision 071): one contact solve per ratio, scaled to every size
+    refs = ({r: reference_loop(rules, r, lambda s, r=r: series_at(s, r)) for r in sorted({row.ratio for row in rows})}
+            if is_similar(rules) else {})
     preds = []
     for row in rows:
-        d = rules.pitch_diameter_mm(row.size)
-        series = rules.cup_flexibility_rad_per_Nmm(row.size) + (zone[row.ratio].at(d) if row.ratio in zone else 0.0)
-        series += body[row.ratio].at(d, rules.E_MPa) if row.ratio in body else 0.0
-        curve, design, sd = _row_curve(rules, row, series)
-        preds.append(replace(_with_secants(row, curve), loss=_loss(row, design, series, curve), unit_sd=sd))
+        d, series = rules.pitch_diameter_mm(row.size), series_at(row.size, row.ratio)
+        if row.ratio in refs:
+            ref = refs[row.ratio]
+            curve, design, sd, small = ref.curve_at(d), rules.design(row.size, row.ratio), {}, ref.small_loop_at(d)
+        else:
+            (curve, design, sd), small = _row_curve(rules, row, series), None
+        preds.append(replace(_with_secants(row, curve), loss=_loss(row, design, series, curve, small), unit_sd=sd))
     return CataloguePrediction(preds, rules, time.process_time() - t0, cup_zone=zone, cs_body=body)
