@@ -1,6 +1,7 @@
 """Decision 071-coning48: the rules' drives at one ratio are similar, so one loop per ratio scaled by (d / d_ref)^3
 equals each size's own solve; and coning (face slices) softens the drive and converges in the slice count."""
 from dataclasses import replace
+from functools import lru_cache
 
 import numpy as np
 import pytest
@@ -9,6 +10,9 @@ import strainwave.analytic.catalogue_predict as cp
 from strainwave.analytic.catalogue_rules import MeshRules
 from strainwave.analytic.catalogue_similar import is_similar, reference_loop
 from strainwave.analytic.drive_curve import catalogue_secants, predict_curve
+from strainwave.analytic.mesh_drive import mesh_system
+from strainwave.fea.convergence import grid_convergence
+from strainwave.fea.mesh_contact import solve_torque_path
 
 # the FE series terms off: they scale by their own similitude (tested with them); the mesh is what is solved here
 RULES = replace(MeshRules(), cup_zone_elements=None, cs_body_restraint=None)
@@ -67,3 +71,28 @@ def test_tooth_deviations_are_not_similar():
     assert not is_similar(rules) and is_similar(RULES)
     with pytest.raises(ValueError):
         reference_loop(rules, 50.0, rules.cup_flexibility_rad_per_Nmm)
+
+
+@lru_cache(maxsize=None)
+def _first_loading(slices: int, ratio: float = 50.0) -> tuple[float, float]:
+    """(secant at the rated torque, secant over its upper third) of the mesh alone on its first loading, size 14."""
+    rules = replace(RULES, face_slices=slices)
+    T = 1e3 * rules.rated_torque_Nm(14.0) * np.linspace(0.0, 1.0, 13)
+    tw = solve_torque_path(mesh_system(rules.design(14.0, ratio))[0], T).twist_rad
+    return T[-1] / tw[-1], (T[-1] - T[8]) / (tw[-1] - tw[8])
+
+
+def test_coning_softens_the_mesh_at_the_rated_torque():
+    """The coned face (shallower towards the diaphragm: every slice's clearance at least the full depth's) twists
+    further at the rated torque than the face held at full depth (one slice)."""
+    full = _first_loading(1)[0]
+    for n in (2, 4, 8):
+        assert _first_loading(n)[0] < 0.99 * full     # ratio 50: 27-30 % softer (decision 071)
+
+
+def test_the_rated_secant_converges_in_the_slice_count():
+    """Decision 071's rule band (5 %, a fifth of K3's goal) on 2-4-8 slices, by the book; and the steps shrink."""
+    s = [_first_loading(n)[0] for n in (2, 4, 8)]
+    c = grid_convergence([1 / 2, 1 / 4, 1 / 8], s, formal_order=2.0)
+    assert c.gci_fine <= 0.05 and c.monotone
+    assert abs(s[2] / s[1] - 1.0) < abs(s[1] / s[0] - 1.0) or abs(s[2] / s[1] - 1.0) < 0.01
