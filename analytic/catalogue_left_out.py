@@ -129,14 +129,17 @@ def loss_note(rows) -> str | None:
 
 
 def left_out_lines(rows) -> list[str]:
-    """One line per row with a miss: each missed quantity, its side and the phrase."""
-    lines = [f"left out, per row (K2 takes K1's +/-{BANDS['K2_Nm_per_rad']:.0%}: issue 48 sets no K2 goal):"]
+    """One line per row with a miss (each missed quantity, its side, a note number) and, once, the notes: the same
+    phrase recurs on most rows, so it is printed once."""
+    notes: dict[str, int] = {}
+    lines = [f"left out, per row (K2 takes K1's +/-{BANDS['K2_Nm_per_rad']:.0%}: issue 48 sets no K2 goal; "
+             f"[n]: the note below):"]
     for rp in rows:
         parts = []
         for m in row_left_out(rp):
             how = (f"{m['predicted_over_catalogue']:.2f}x" if "predicted_over_catalogue" in m
                    else f"{m['predicted_arcmin']:.2f}' > {m['bound_arcmin']:g}'")
-            parts.append(f"{m['quantity']} {how}: {m['left_out']}")
+            parts.append(f"{m['quantity']} {how} [{notes.setdefault(m['left_out'], len(notes) + 1)}]")
         if parts:
-            lines.append(f"  {rp.row.size:g}/{rp.row.ratio_label}: " + "; ".join(parts))
-    return lines
+            lines.append(f"  {rp.row.size:g}/{rp.row.ratio_label}: " + ", ".join(parts))
+    return lines + [f"  [{k}] {text}" for text, k in notes.items()]

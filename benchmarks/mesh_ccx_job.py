@@ -44,19 +44,22 @@ class Problem:
     system: object             # mesh_contact.MeshSystem
     r_bore_mm: float
     setup_s: float
+    side: np.ndarray | None = None   # (n,) +1: the tooth's +theta flank (carries +T), -1: its -theta flank
 
 
-def lobe_pairs(mesh: dict, clearance_max_mm: float = CLEARANCE_MAX_MM) -> dict:
-    """The +theta-flank pairs of the headline angle's lobe about tooth 0 that are open by less than
-    ``clearance_max_mm``: sector tooth (signed offset from tooth 0), contact radius, clearance."""
+def lobe_pairs(mesh: dict, clearance_max_mm: float = CLEARANCE_MAX_MM, sides: tuple = (1,)) -> dict:
+    """The pairs of the headline angle's lobe about tooth 0 on the flanks ``sides`` (+1: +theta, carrying +T;
+    -1: -theta, carrying -T) that are open by less than ``clearance_max_mm``: sector tooth (signed offset from
+    tooth 0), contact radius, clearance, side; +theta pairs first, each side by tooth."""
     pr = mesh["angles"][0]
     z = int(mesh["z_f"])
     tooth = (np.asarray(pr["tooth"]) + z // 4) % z - z // 4        # signed, the lobe about tooth 0
-    keep = ((np.asarray(pr["side"]) == 1) & (np.abs(tooth) < z // 4)
+    side = np.asarray(pr["side"])
+    keep = (np.isin(side, sides) & (np.abs(tooth) < z // 4)
             & (np.asarray(pr["clearance_mm"]) < clearance_max_mm))
-    order = np.argsort(tooth[keep])
+    order = np.lexsort((tooth[keep], -side[keep]))
     return {"tooth": tooth[keep][order], "fs_radius_mm": np.asarray(pr["fs_radius_mm"])[keep][order],
-            "clearance_mm": np.asarray(pr["clearance_mm"])[keep][order],
+            "clearance_mm": np.asarray(pr["clearance_mm"])[keep][order], "side": side[keep][order],
             "friction_coefficient": float(mesh["friction_coefficient"]), "rim_radius_mm": float(mesh["rim_radius_mm"])}
 
 
@@ -79,9 +82,38 @@ def _flank_point(model, tooth: int, radius_mm: float) -> tuple[np.ndarray, np.nd
     raise ValueError(f"tooth {tooth}: no +theta flank facet crosses r = {radius_mm:.5g} mm")
 
 
-def build(params, pairs: dict, h_mm: float, *, margin_teeth: int = 3) -> Problem:
+def _involute_point(spec, tooth: int, radius_mm: float, side: int = 1) -> tuple[np.ndarray, np.ndarray]:
+    """The point of tooth ``tooth``'s flank ``side`` (+1: +theta) at ``radius_mm`` on the exact involute and its
+    outward normal (tangent to the base circle): a contact point that does not move with the mesh."""
+    from strainwave.geometry.involute import half_angle_rad
+    pitch = 2 * math.pi / spec.teeth
+
+    def at(r: float) -> np.ndarray:
+        a = tooth * pitch + side * float(half_angle_rad(spec, r))
+        return np.array([r * math.cos(a), r * math.sin(a)])
+
+    p, dr = at(radius_mm), 1e-4 * spec.module_mm
+    tan = at(radius_mm + dr) - at(radius_mm - dr)
+    n = np.array([tan[1], -tan[0]]) / math.hypot(*tan)
+    e_theta = np.array([-p[1], p[0]]) / radius_mm
+    return p, (n if side * (n @ e_theta) > 0 else -n)
+
+
+def band_loads(model, teeth: np.ndarray, radius_mm: np.ndarray, band_mm: float, side: np.ndarray) -> np.ndarray:
+    """strainwave's unit band loads (columns, in pair order) on each pair's flank ``side``."""
+    from strainwave.fea import tooth_mesh_fe as fe
+    F = np.zeros((2 * model.basis.N, teeth.size))
+    for sd in np.unique(side).tolist():
+        k = np.flatnonzero(side == sd)
+        F[:, k] = fe.flank_loads(model, teeth[k], radius_mm[k], band_mm, int(sd))[0]
+    return F
+
+
+def build(params, pairs: dict, h_mm: float, *, margin_teeth: int = 3, on_involute: bool = False) -> Problem:
     """The sector holding the pairs' teeth (+ ``margin_teeth`` each side), its P2 mesh, and strainwave's
-    contact system: compliance F^T K^-1 F of the band loads, lever and slide of each punch."""
+    contact system: compliance F^T K^-1 F of the band loads, lever and slide of each punch. The contact point:
+    the midpoint of the flank facet at the study's radius (a flat punch's seat), or with ``on_involute`` the
+    exact involute point at that radius (the band problem: the same problem on every mesh)."""
     from strainwave.fea import tooth_mesh_fe as fe
     from strainwave.fea.assembly import Lame
     from strainwave.fea.mesh_contact import MeshSystem
@@ -94,12 +126,16 @@ def build(params, pairs: dict, h_mm: float, *, margin_teeth: int = 3) -> Problem
     teeth = pairs["tooth"] - centre                  # the sector is centred on tooth 0 at +x
     half = int(np.max(np.abs(teeth))) + margin_teeth
     model = fe.sector_model(geo.fs, geo.r_bore_mm, half, h_mm, lame, geo.face_width_mm)
-    flank = [_flank_point(model, int(j), float(r)) for j, r in zip(teeth, pairs["fs_radius_mm"])]
+    side = np.asarray(pairs.get("side", np.ones(teeth.size, int)))
+    if not on_involute and np.any(side != 1):
+        raise ValueError("a facet seat is built for +theta flanks only; pass on_involute=True")
+    seat = (lambda j, r, sd: _involute_point(geo.fs, j, r, sd)) if on_involute else \
+        (lambda j, r, sd: _flank_point(model, j, r))
+    flank = [seat(int(j), float(r), int(sd)) for j, r, sd in zip(teeth, pairs["fs_radius_mm"], side)]
     point, normal = np.array([p for p, _ in flank]), np.array([n for _, n in flank])
-    radius = np.hypot(point[:, 0], point[:, 1])      # the contact facet's midpoint: within half a facet of the study's
+    radius = np.hypot(point[:, 0], point[:, 1])      # a facet's midpoint: within half a facet of the study's
     band = 0.2 * geo.fs.module_mm                    # the study's band half-width (tooth_mesh.BAND_OVER_M)
-    F, M = fe.flank_loads(model, teeth, radius, band, +1)
-    C = fe.compliance(model, F)
+    C = fe.compliance(model, band_loads(model, teeth, radius, band, side))
     # the punches turn by -theta: each gap closes at lever * theta, lever = (P x n)_z (the base radius)
     lever = point[:, 0] * normal[:, 1] - point[:, 1] * normal[:, 0]
     tangent = np.column_stack([-normal[:, 1], normal[:, 0]])
@@ -107,7 +143,7 @@ def build(params, pairs: dict, h_mm: float, *, margin_teeth: int = 3) -> Problem
     system = MeshSystem(np.asarray(pairs["clearance_mm"], float), C, lever, slide,
                         pairs["friction_coefficient"], pairs["rim_radius_mm"])
     return Problem(model, teeth, radius, system.clearance_mm, point, normal, system,
-                   geo.r_bore_mm, time.perf_counter() - t0)
+                   geo.r_bore_mm, time.perf_counter() - t0, side)
 
 
 def strainwave_solve(problem: Problem, torque_Nmm: float, *, friction: bool = True,
@@ -279,17 +315,17 @@ def lobe_torque_Nmm(mesh: dict) -> float:
     return 0.5 * float(mesh["rated_torque_Nmm"])
 
 
-def pairs_for(params) -> dict:
+def pairs_for(params, sides: tuple = (1,)) -> dict:
     """The lobe's pairs and torque from the study's kinematics (analytic/mesh_engagement.py's numbers)."""
     from strainwave.analytic.mesh_engagement import study_loads
     mesh = study_loads(params)["mesh"]
-    return lobe_pairs(mesh) | {"torque_Nmm": lobe_torque_Nmm(mesh)}
+    return lobe_pairs(mesh, sides=sides) | {"torque_Nmm": lobe_torque_Nmm(mesh)}
 
 
-def problem_for(params, h_mm: float) -> tuple[Problem, dict]:
+def problem_for(params, h_mm: float, *, on_involute: bool = False, sides: tuple = (1,)) -> tuple[Problem, dict]:
     """The problem on the study's kinematics: (problem, the lobe's pairs)."""
-    pairs = pairs_for(params)
-    return build(params, pairs, h_mm), pairs
+    pairs = pairs_for(params, sides)
+    return build(params, pairs, h_mm, on_involute=on_involute), pairs
 
 
 def run_calculix(problem: Problem, params, twist_rad, job_dir: Path, *, friction: bool = True,

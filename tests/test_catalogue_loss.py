@@ -162,3 +162,14 @@ def test_a_clearance_shows_in_both_readings_by_its_free_play():
     d_lm = loose.lost_motion_arcmin - tight.lost_motion_arcmin
     assert tight.hysteresis_loss_arcmin == pytest.approx(0.0, abs=1e-9) and d_loss > 0.1
     assert d_lm >= d_loss * (1.0 - 1e-6)
+
+
+def test_left_out_lines_print_each_phrase_once_and_number_it_on_every_row():
+    from strainwave.analytic.catalogue_left_out import left_out_lines
+    rows = [_fake_row({"K3_Nm_per_rad": 1.5, "T1_Nm": 0.5}), _fake_row({"K3_Nm_per_rad": 1.4}), _fake_row({})]
+    lines = left_out_lines(rows)
+    text = "\n".join(lines)
+    assert text.count(PHRASES[("K3_Nm_per_rad", "high")]) == 1 and text.count(PHRASES[("T1_Nm", "low")]) == 1
+    assert lines[1].strip() == "14/30: K3 1.50x [1], T1 0.50x [2]" and lines[2].strip() == "14/30: K3 1.40x [1]"
+    assert lines[3].startswith("  [1] compliance not modelled") and lines[4].startswith("  [2] ideal teeth")
+    assert len(lines) == 5      # the row with no miss has no line

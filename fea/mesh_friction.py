@@ -1,0 +1,203 @@
+"""Frictional contact of the teeth in mesh with the friction on the TRUE slip and its load on the teeth.
+
+``mesh_contact`` (the study's model) adds friction to the torque only: mu |slide| F along the rigid kinematic
+slide, no tangential load on the teeth. Here each flank pair carries a normal force N (strainwave's unit band
+load f, as in ``mesh_contact``) and a tangential force Q (the same band turned to the flank's tangent, g), both
+on the FE's flexibility, and Coulomb's law acts on the true relative slip of the flank against the counter-tooth:
+
+    gap   g_i = c_i - lever_i theta + (Cff N + Cfg Q)_i >= 0,  N_i >= 0,  g_i N_i = 0
+    slip  s_i = (Cgf N + Cgg Q)_i + w_i theta          (w_i: the counter-tooth's slide at the contact point)
+    stick ds_i = 0 with |Q_i| <= mu N_i;   slip  Q_i = -mu N_i sign(ds_i)
+    torque on the counter-teeth  T = sum lever_i N_i - w_i Q_i
+
+Coulomb's law is path dependent: the twist history is followed in increments (backward Euler on the slip, as an
+incremental FE code does), each solved exactly on its contact and stick sets by an active-set iteration.
+(decision 070-ccx2pct48)
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["BandSystem", "turned_bands", "solve_twist_path", "twists_for_torques"]
+
+MAX_SETS = 200      # active-set iterations per increment before giving up (a P-matrix problem needs few)
+
+
+@dataclass(frozen=True)
+class BandSystem:
+    """The flank pairs of one lobe (lengths mm, forces N)."""
+
+    clearance_mm: np.ndarray     # (n,) unloaded normal gap
+    flex_mm_per_N: np.ndarray    # (2n, 2n) [[Cff, Cfg], [Cgf, Cgg]]: band displacements per band load
+    lever_mm: np.ndarray         # (n,) the gap closes by lever * theta
+    slide_mm_per_rad: np.ndarray  # (n,) w: the counter-tooth's tangential motion per unit twist (+t)
+    friction_coefficient: float
+
+    def __post_init__(self):
+        n = len(self.clearance_mm)
+        if self.flex_mm_per_N.shape != (2 * n, 2 * n) or len(self.lever_mm) != n or len(self.slide_mm_per_rad) != n:
+            raise ValueError("BandSystem: clearance, flexibility, lever and slide must agree in size")
+        if np.any(np.asarray(self.clearance_mm) < 0.0):
+            raise ValueError("BandSystem: clearance_mm must be >= 0")
+        if self.friction_coefficient < 0.0:
+            raise ValueError("BandSystem: friction_coefficient must be >= 0")
+
+
+def turned_bands(F: np.ndarray, tangent: np.ndarray) -> np.ndarray:
+    """The band loads F (columns, interleaved x/y dofs) as tangential tractions: each nodal force turned by
+    -90 degrees (a pressure's p (-n) becomes p t on every facet), scaled to a unit resultant along ``tangent``."""
+    G = np.empty_like(F)
+    G[0::2], G[1::2] = F[1::2], -F[0::2]
+    res = np.stack([G[0::2].sum(0), G[1::2].sum(0)], axis=1)
+    return G / np.einsum("ij,ij->i", res, np.asarray(tangent))[None, :]
+
+
+@dataclass
+class _State:
+    contact: np.ndarray      # bool (n,)
+    stick: np.ndarray        # bool (n,)
+    sign: np.ndarray         # (n,) slip direction of a sliding pair
+    slip_mm: np.ndarray      # (n,) s at the end of the last increment
+    N: np.ndarray
+    Q: np.ndarray
+
+    def copy(self) -> "_State":
+        return _State(*(np.copy(v) for v in (self.contact, self.stick, self.sign, self.slip_mm, self.N, self.Q)))
+
+
+def _linear(s: BandSystem, st: _State, theta: float) -> tuple[np.ndarray, np.ndarray]:
+    """N and Q on the current contact and stick sets."""
+    n, mu = len(s.clearance_mm), s.friction_coefficient
+    A = np.flatnonzero(st.contact)
+    S = np.flatnonzero(st.contact & st.stick)
+    L = np.flatnonzero(st.contact & ~st.stick)
+    Cff, Cfg = s.flex_mm_per_N[:n, :n], s.flex_mm_per_N[:n, n:]
+    Cgf, Cgg = s.flex_mm_per_N[n:, :n], s.flex_mm_per_N[n:, n:]
+    slipQ = np.zeros(n)
+    slipQ[L] = -mu * st.sign[L]                      # Q_L = slipQ * N_L
+    a, k = A.size, S.size
+    M = np.zeros((a + k, a + k))
+    M[:a, :a] = Cff[np.ix_(A, A)] + Cfg[np.ix_(A, A)] * slipQ[A][None, :]
+    M[:a, a:] = Cfg[np.ix_(A, S)]
+    M[a:, :a] = Cgf[np.ix_(S, A)] + Cgg[np.ix_(S, A)] * slipQ[A][None, :]
+    M[a:, a:] = Cgg[np.ix_(S, S)]
+    rhs = np.concatenate([s.lever_mm[A] * theta - s.clearance_mm[A],
+                          st.slip_mm[S] - s.slide_mm_per_rad[S] * theta])
+    x = np.linalg.solve(M, rhs) if a else np.zeros(0)
+    N, Q = np.zeros(n), np.zeros(n)
+    N[A] = x[:a]
+    Q[S] = x[a:]
+    Q[L] = slipQ[L] * N[L]
+    return N, Q
+
+
+def _increment(s: BandSystem, st: _State, theta: float) -> None:
+    """Solve one increment to ``theta`` in place: contact, stick and slip sets consistent with Coulomb. One set
+    change per pass, the worst violation first (changing all at once can cycle between stick and slip)."""
+    n, mu = len(s.clearance_mm), s.friction_coefficient
+    g_tol = 1e-12 * max(float(np.max(np.abs(s.clearance_mm), initial=0.0)), 1e-9)
+    s_tol = 1e-10 * max(float(np.max(np.abs(s.slide_mm_per_rad))) * abs(theta), g_tol)
+    for _ in range(MAX_SETS):
+        N, Q = _linear(s, st, theta)
+        u = s.flex_mm_per_N @ np.concatenate([N, Q])
+        gap = s.clearance_mm - s.lever_mm * theta + u[:n]
+        slip = u[n:] + s.slide_mm_per_rad * theta
+        f_tol = 1e-10 * max(float(np.max(N, initial=0.0)), 1e-20)
+        stick, slide = st.contact & st.stick, st.contact & ~st.stick
+        worst = [(np.where(st.contact, -N, -np.inf) / f_tol, "open"),
+                 (np.where(~st.contact, -gap, -np.inf) / g_tol, "close"),
+                 (np.where(stick, np.abs(Q) - mu * N, -np.inf) / f_tol, "slide"),
+                 (np.where(slide, -(slip - st.slip_mm) * st.sign, -np.inf) / s_tol, "stick")]
+        viol = [(float(np.max(v)), int(np.argmax(v)), kind) for v, kind in worst if v.size]
+        size, i, kind = max(viol)
+        if size <= 1.0:
+            st.N, st.Q, st.slip_mm = N, Q, slip
+            return
+        if kind in ("open", "close"):
+            st.contact[i] = kind == "close"
+            st.stick[i] = mu > 0.0
+        elif kind == "slide":
+            st.stick[i], st.sign[i] = False, -np.sign(Q[i])
+        else:
+            st.stick[i] = True
+    raise RuntimeError(f"mesh_friction: no consistent contact/stick set at theta = {theta:.6g} rad")
+
+
+def _new_state(n: int, mu: float) -> _State:
+    return _State(np.zeros(n, bool), np.full(n, mu > 0.0), np.ones(n), np.zeros(n), np.zeros(n), np.zeros(n))
+
+
+def _leg(s: BandSystem, st: _State, theta0: float, theta1: float, increments: int) -> None:
+    for th in np.linspace(theta0, theta1, increments + 1)[1:]:
+        _increment(s, st, float(th))
+
+
+def _record(s: BandSystem, st: _State, theta: float) -> dict:
+    T = float(s.lever_mm @ st.N - s.slide_mm_per_rad @ st.Q)
+    return {"twist_rad": theta, "forces_N": st.N.copy(), "tangential_N": st.Q.copy(), "torque_Nmm": T,
+            "stick": st.contact & st.stick, "share": st.N / max(st.N.sum(), 1e-300)}
+
+
+def solve_twist_path(s: BandSystem, twists_rad, increments: int = 20) -> list[dict]:
+    """The state at the end of each leg of the twist history 0 -> twists[0] -> twists[1] ...; each leg in
+    ``increments`` equal increments."""
+    st, prev, out = _new_state(len(s.clearance_mm), s.friction_coefficient), 0.0, []
+    for th in np.atleast_1d(np.asarray(twists_rad, float)).tolist():
+        _leg(s, st, prev, th, increments)
+        out.append(_record(s, st, th))
+        prev = th
+    return out
+
+
+def _false_position(f, lo: float, f_lo: float, hi: float, f_hi: float, f_tol: float) -> float:
+    """A root of f in [lo, hi] (f_lo, f_hi of opposite signs) by the Illinois false position: T(theta) along a
+    leg is piecewise linear, so it lands in a few evaluations where bisection takes ~40."""
+    side = 0
+    for _ in range(200):
+        mid = hi - f_hi * (hi - lo) / (f_hi - f_lo)
+        f_mid = f(mid)
+        if abs(f_mid) <= f_tol or abs(hi - lo) <= 1e-14 * abs(hi):
+            return mid
+        if (f_mid > 0.0) == (f_hi > 0.0):
+            hi, f_hi = mid, f_mid
+            f_lo = 0.5 * f_lo if side == +1 else f_lo
+            side = +1
+        else:
+            lo, f_lo = mid, f_mid
+            f_hi = 0.5 * f_hi if side == -1 else f_hi
+            side = -1
+    return hi
+
+
+def twists_for_torques(s: BandSystem, torques_Nmm, increments: int = 20, rtol: float = 1e-10) -> list[dict]:
+    """The twist history whose legs end at the given torques (false position on each leg's end twist, the path
+    to it followed from the previous leg's state); returns ``solve_twist_path``'s records."""
+    st, prev, out = _new_state(len(s.clearance_mm), s.friction_coefficient), 0.0, []
+    lever = float(np.max(np.abs(s.lever_mm)))
+    for T in np.atleast_1d(np.asarray(torques_Nmm, float)).tolist():
+        T_now = out[-1]["torque_Nmm"] if out else 0.0
+        d = 1.0 if T > T_now else -1.0
+        step = max(abs(prev), float(np.min(s.clearance_mm)) / lever, 1e-9)
+
+        def torque_at(theta: float) -> tuple[float, _State]:
+            trial = st.copy()
+            _leg(s, trial, prev, theta, increments)
+            return float(s.lever_mm @ trial.N - s.slide_mm_per_rad @ trial.Q), trial
+
+        lo, hi = prev, prev + d * step
+        f_lo, f_hi = T_now - T, torque_at(hi)[0] - T
+        for _ in range(60):
+            if d * f_hi >= 0.0:
+                break
+            lo, f_lo, hi = hi, f_hi, hi + d * step
+            f_hi = torque_at(hi)[0] - T
+            step *= 2.0
+        else:       # e.g. a torque of the sign no flank of the lobe can carry
+            raise ValueError(f"twists_for_torques: torque {T:.6g} N mm is not reached by any twist")
+        hi = _false_position(lambda th: torque_at(th)[0] - T, lo, f_lo, hi, f_hi, rtol * abs(T))
+        _, st = torque_at(hi)
+        out.append(_record(s, st, hi))
+        prev = hi
+    return out
