@@ -52,7 +52,7 @@ LEFT_OUT = {
     ("K3_Nm_per_rad", "high"): "a compliance 30-36 % of the catalogue's own at every ratio, not identified: with the "
                                 "fatigue rim (decision 069) the ratio trend is met and every row is 1.4-2.0x too "
                                 "stiff (size 25: 1.7e-8 / 7.6e-9 / 5.0e-9 rad/(N mm) missing at i = 30 / 50 / 100); "
-                                "ruled out: the tooth on its rim, coning, lift-off, the WG outer ring's ovalisation; "
+                                "ruled out: the tooth on its rim, coning (it stiffens K3 at i = 30, decision 071), lift-off, the WG outer ring's ovalisation; "
                                 "the circular spline body is in the chain with its face clamped to a rigid housing "
                                 "(3.4-3.5e-10 at size 25, 3D FE, decision 070); free in its plane it would add "
                                 "1.5e-8 / 1.1e-8 (i = 30 / 100), the size of the miss (K3 18/21); how much "
