@@ -357,7 +357,6 @@ def predict_table(path: Path, rules: MeshRules | None = None,
     """Read ``path`` and predict every row (exit-2 InputError on a bad file). In series with each row's mesh:
     the cup (tube + diaphragm + hub) and the cup's extra twist under the mesh zones' load, measured by FE once
     per distinct ratio at the rules' reference size and scaled by similitude (decision 067)."""
-    import time
     rules = MeshRules() if rules is None else rules
     if deviations is not None:          # (ISO 1328-1 class, units averaged): decision 070-engage48
         rules = replace(rules, accuracy_grade=float(deviations[0]), deviation_units=int(deviations[1]))
@@ -366,6 +365,14 @@ def predict_table(path: Path, rules: MeshRules | None = None,
     except (OSError, UnicodeDecodeError) as exc:
         raise InputError("TABLE", str(path), f"a readable UTF-8 CSV file ({exc.__class__.__name__})") from None
     rows = read_table(text, str(path))
+    from threadpoolctl import threadpool_limits
+    with threadpool_limits(limits=1):       # small dense solves: BLAS threads only spin (decision 071)
+        return _predict_rows(rules, rows)
+
+
+def _predict_rows(rules: MeshRules, rows: list[TableRow]) -> CataloguePrediction:
+    """Every row's curve: the FE series terms once per ratio, the mesh once per ratio where the drives are similar."""
+    import time
     t0 = time.process_time()
     zone, body = {}, {}
     for ratio in sorted({row.ratio for row in rows}):
@@ -374,6 +381,7 @@ def predict_table(path: Path, rules: MeshRules | None = None,
             zone[ratio] = term
         if cs is not None:
             body[ratio] = cs
+
     def series_at(size: float, ratio: float) -> float:
         d = rules.pitch_diameter_mm(size)
         return (rules.cup_flexibility_rad_per_Nmm(size) + (zone[ratio].at(d) if ratio in zone else 0.0)
