@@ -43,7 +43,7 @@ PHRASES = {
                              "(not measured)",
     ("lost_motion", "high, clearance"): "flank clearance: {play:.2f}' of free play at 0 N m (decision 070)",
     ("lost_motion", "high, test torque"): "test torque: 4 % of the rules' rated torque (the unit's own is not in the "
-                                          "table); the catalogue's own K1 gives {k1:.2f}' over it too",
+                                          "table); the catalogue's own K1 over the same +-4 % is above the bound too (its angle on the row)",
 }
 MU_SOURCE = ("the rules' flank mu (MeshRules.friction_coefficient), the shipped gear's: the 0.05-0.12 band of "
              "boundary-lubricated flanks (../shared/tooth-mesh-references.md section 4), not fitted to this table")
@@ -139,6 +139,8 @@ def left_out_lines(rows) -> list[str]:
         for m in row_left_out(rp):
             how = (f"{m['predicted_over_catalogue']:.2f}x" if "predicted_over_catalogue" in m
                    else f"{m['predicted_arcmin']:.2f}' > {m['bound_arcmin']:g}'")
+            if m.get("catalogue_K1_arcmin") is not None and "test torque" in m["left_out"]:
+                how += f" (catalogue K1: {m['catalogue_K1_arcmin']:.2f}')"
             parts.append(f"{m['quantity']} {how} [{notes.setdefault(m['left_out'], len(notes) + 1)}]")
         if parts:
             lines.append(f"  {rp.row.size:g}/{rp.row.ratio_label}: " + ", ".join(parts))

@@ -121,11 +121,11 @@ class LossReading:
 
 def read_loss(design: MeshDesign, series_rad_per_Nmm: float, rated_Nm: float, loop_T_Nm, loop_twist_rad,
               bounds: tuple[float | None, float | None], bounds_from: str,
-              test_torque_from: str = "rules") -> LossReading:
+              test_torque_from: str = "rules", small: tuple | None = None) -> LossReading:
     """The hysteresis loss on the rated loop given, and the lost motion on a loop cycled at +/-4 % of ``rated_Nm``
-    (solved here on the same chain)."""
+    (solved here on the same chain, or ``small``: that loop already solved, e.g. scaled by similitude)."""
     T_lm = LOST_MOTION_FRACTION * rated_Nm
-    Ts, ths = small_loop(design, series_rad_per_Nmm, T_lm)
+    Ts, ths = small_loop(design, series_rad_per_Nmm, T_lm) if small is None else small
     w, at = loop_width_max_rad(loop_T_Nm, loop_twist_rad)
     return LossReading(hysteresis_loss_rad(loop_T_Nm, loop_twist_rad) / ARCMIN,
                        lost_motion_rad(Ts, ths, T_lm) / ARCMIN, w / ARCMIN, at, T_lm, bounds[0], bounds[1],

@@ -20,6 +20,7 @@ import numpy as np
 from strainwave.analytic.catalogue_left_out import MU_SOURCE, left_out_lines, loss_lines, loss_note, row_left_out
 from strainwave.analytic.catalogue_loss import CHA_BOUNDS_SOURCE, LossReading, cha_bounds, read_loss
 from strainwave.analytic.catalogue_rules import RATIO_OF_LABEL, MeshRules, ratio_of_label
+from strainwave.analytic.catalogue_similar import is_similar, reference_loop
 from strainwave.analytic.drive_curve import (DriveCurve, catalogue_secants, mean_curve, predict_curve,
                                              ratcheting_torque_Nm, unit_curves)
 from strainwave.errors import InputError
@@ -51,7 +52,8 @@ LEFT_OUT = {
     ("K3_Nm_per_rad", "high"): "a compliance 30-36 % of the catalogue's own at every ratio, not identified: with the "
                                 "fatigue rim (decision 069) the ratio trend is met and every row is 1.4-2.0x too "
                                 "stiff (size 25: 1.7e-8 / 7.6e-9 / 5.0e-9 rad/(N mm) missing at i = 30 / 50 / 100); "
-                                "ruled out: the tooth on its rim, coning, lift-off, the WG outer ring's ovalisation; "
+                                "ruled out: the tooth on its rim, coning (it stiffens K3 at i = 30, decision 071), "
+                                "lift-off, the WG outer ring's ovalisation; "
                                 "the circular spline body is in the chain with its face clamped to a rigid housing "
                                 "(3.4-3.5e-10 at size 25, 3D FE, decision 070); free in its plane it would add "
                                 "1.5e-8 / 1.1e-8 (i = 30 / 100), the size of the miss (K3 18/21); how much "
@@ -336,7 +338,7 @@ def _row_curve(rules: MeshRules, row: TableRow, series: float):
     return mean_curve(units, ratcheting_torque_Nm(designs[0])), designs[0], sd
 
 
-def _loss(row: TableRow, design, series: float, curve: DriveCurve) -> LossReading:
+def _loss(row: TableRow, design, series: float, curve: DriveCurve, small: tuple | None = None) -> LossReading:
     """The row's hysteresis loss (on its rated loop) and lost motion (a +/-4 % loop of the row's rated torque where
     the table gives one, else the rules'), beside the row's bounds or the CHA rule's."""
     rule = cha_bounds(row.ratio)
@@ -346,7 +348,8 @@ def _loss(row: TableRow, design, series: float, curve: DriveCurve) -> LossReadin
                                                                else "table+CHA")
     rated = row.values.get("rated_torque_Nm", curve.rated_torque_Nm)
     return read_loss(design, series, rated, curve.loop_torque_Nm, curve.loop_twist_rad, bounds, src,
-                     "table" if "rated_torque_Nm" in row.values else "rules (0.244 MPa d^3)")
+                     "table" if "rated_torque_Nm" in row.values else "rules (0.244 MPa d^3)",
+                     None if "rated_torque_Nm" in row.values else small)
 
 
 def predict_table(path: Path, rules: MeshRules | None = None,
@@ -354,7 +357,6 @@ def predict_table(path: Path, rules: MeshRules | None = None,
     """Read ``path`` and predict every row (exit-2 InputError on a bad file). In series with each row's mesh:
     the cup (tube + diaphragm + hub) and the cup's extra twist under the mesh zones' load, measured by FE once
     per distinct ratio at the rules' reference size and scaled by similitude (decision 067)."""
-    import time
     rules = MeshRules() if rules is None else rules
     if deviations is not None:          # (ISO 1328-1 class, units averaged): decision 070-engage48
         rules = replace(rules, accuracy_grade=float(deviations[0]), deviation_units=int(deviations[1]))
@@ -363,6 +365,14 @@ def predict_table(path: Path, rules: MeshRules | None = None,
     except (OSError, UnicodeDecodeError) as exc:
         raise InputError("TABLE", str(path), f"a readable UTF-8 CSV file ({exc.__class__.__name__})") from None
     rows = read_table(text, str(path))
+    from threadpoolctl import threadpool_limits
+    with threadpool_limits(limits=1):       # small dense solves: BLAS threads only spin (decision 071)
+        return _predict_rows(rules, rows)
+
+
+def _predict_rows(rules: MeshRules, rows: list[TableRow]) -> CataloguePrediction:
+    """Every row's curve: the FE series terms once per ratio, the mesh once per ratio where the drives are similar."""
+    import time
     t0 = time.process_time()
     zone, body = {}, {}
     for ratio in sorted({row.ratio for row in rows}):
@@ -371,11 +381,22 @@ def predict_table(path: Path, rules: MeshRules | None = None,
             zone[ratio] = term
         if cs is not None:
             body[ratio] = cs
+
+    def series_at(size: float, ratio: float) -> float:
+        d = rules.pitch_diameter_mm(size)
+        return (rules.cup_flexibility_rad_per_Nmm(size) + (zone[ratio].at(d) if ratio in zone else 0.0)
+                + (body[ratio].at(d, rules.E_MPa) if ratio in body else 0.0))
+
+    # similar drives (decision 071): one contact solve per ratio, scaled to every size
+    refs = ({r: reference_loop(rules, r, lambda s, r=r: series_at(s, r)) for r in sorted({row.ratio for row in rows})}
+            if is_similar(rules) else {})
     preds = []
     for row in rows:
-        d = rules.pitch_diameter_mm(row.size)
-        series = rules.cup_flexibility_rad_per_Nmm(row.size) + (zone[row.ratio].at(d) if row.ratio in zone else 0.0)
-        series += body[row.ratio].at(d, rules.E_MPa) if row.ratio in body else 0.0
-        curve, design, sd = _row_curve(rules, row, series)
-        preds.append(replace(_with_secants(row, curve), loss=_loss(row, design, series, curve), unit_sd=sd))
+        d, series = rules.pitch_diameter_mm(row.size), series_at(row.size, row.ratio)
+        if row.ratio in refs:
+            ref = refs[row.ratio]
+            curve, design, sd, small = ref.curve_at(d), rules.design(row.size, row.ratio), {}, ref.small_loop_at(d)
+        else:
+            (curve, design, sd), small = _row_curve(rules, row, series), None
+        preds.append(replace(_with_secants(row, curve), loss=_loss(row, design, series, curve, small), unit_sd=sd))
     return CataloguePrediction(preds, rules, time.process_time() - t0, cup_zone=zone, cs_body=body)

@@ -90,7 +90,7 @@ class MeshRules:
     outer_ring_over_d: float = 2.5 / 160.0      # shipped WG bearing's outer ring / d1
     K_G_per_d_N_per_mm2: float = 6.303e4 / 160.0    # seed 000's implied K_G0 at d1 = 160, similar bodies
     length_over_d: float = 1.0                  # seed 000 example: cup length / d1
-    face_slices: int = 1                        # coning slices: 1 (the slice count did not converge, decision 065)
+    face_slices: int = 1                        # coning slices: 1 (2-4-8 did not converge: decisions 065, 071)
     E_MPa: float = 2.1e5
     shear_modulus_MPa: float = 8.0e4
     friction_coefficient: float = 0.08          # shipped flank mu (0.05-0.12 band, references section 4)

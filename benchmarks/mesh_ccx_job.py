@@ -263,18 +263,22 @@ def write_deck(path: Path, problem: Problem, params, twist_rad, *, friction: boo
             "*SOLID SECTION, ELSET=EFS, MATERIAL=STEEL", f"{geo.face_width_mm:.13e}",
             "*SOLID SECTION, ELSET=EPUNCH, MATERIAL=STEEL", f"{geo.face_width_mm:.13e}",
             "*BOUNDARY", "NBORE,1,2,0."]
-    p = quads.reshape(-1, 2)
+    punch_steps(out, quads.reshape(-1, 2), punch_nodes, twist_rad, increments)
+    out.append("")
+    path.write_text("\n".join(out))
+    return {"punch_nodes": punch_nodes, "punch_xy": quads}
+
+
+def punch_steps(out: list[str], p: np.ndarray, punch_nodes: np.ndarray, twist_rad, increments: int) -> None:
+    """One *STEP per twist: the punches turned rigidly by -twist (linear kinematics, as strainwave's gap
+    = c - lever * theta)."""
     for theta in np.atleast_1d(np.asarray(twist_rad, float)).tolist():
         out += [f"*STEP, INC={50 * increments}", "*STATIC",
                 f"{1.0 / increments},1.0,{1e-4 / increments},{1.0 / increments}", "*BOUNDARY"]
-        # the punches turn rigidly by -twist (linear kinematics, as strainwave's gap = c - lever * theta)
         u = theta * np.column_stack([p[:, 1], -p[:, 0]])
         for nid, (ux, uy) in zip(punch_nodes.ravel().tolist(), u.tolist()):
             out += [f"{nid},1,1,{ux:.13e}", f"{nid},2,2,{uy:.13e}"]
         out += ["*NODE PRINT, NSET=NPUNCH", "RF", "*END STEP"]
-    out.append("")
-    path.write_text("\n".join(out))
-    return {"punch_nodes": punch_nodes, "punch_xy": quads}
 
 
 def read_punch_loads(dat: Path, problem: Problem, punch_nodes: np.ndarray, punch_xy: np.ndarray,

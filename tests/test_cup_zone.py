@@ -72,9 +72,9 @@ def test_the_catalogue_adds_the_term_per_ratio_with_its_gci(monkeypatch):
     assert term.extra.value > 0.0 and term.extra.convergence is not None
     assert term.at(2.0 * term.reference_d_mm) == pytest.approx(term.extra.value / 8.0)
     seen = []
-    real = cp.predict_curve
-    monkeypatch.setattr(cp, "predict_curve", lambda design, series, *a, **k: seen.append(series) or real(
-        design, series, *a, **k))
+    real = cp._loss         # each row's series (its curve may be a similar drive's, scaled: decision 071)
+    monkeypatch.setattr(cp, "_loss", lambda row, design, series, *a, **k: seen.append(series) or real(
+        row, design, series, *a, **k))
     monkeypatch.setattr(rules.__class__, "cup_zone_term", lambda self, ratio: term)
     import pathlib, tempfile
     with tempfile.TemporaryDirectory() as tmp:
