@@ -248,6 +248,8 @@ def _print(out: dict, incs) -> None:
     print(f"# {out['gear']}  h = {out['h_mm']:.4g} mm  load {out['load'][0]:.2f}  "
           f"influences {out['influence_cpu_s']:.1f} CPU-s, tangential blocks {out['tangential_blocks_cpu_s']:.1f} CPU-s")
     print("| output | " + " | ".join(cols) + " | true slip / shipped - 1 |")
+    # friction_loss_trapezoid_Nmm: trapezoids on the history's points alone, crossing the dead band in one step
+    # (not a result: it shows why the true-slip loss is read with both of the band's edges solved)
     for k in KEYS + ("contact_cpu_s",):
         vals = [out[c][k] for c in cols]
         rel = vals[-1] / vals[0] - 1 if vals[0] else float("nan")
