@@ -11,10 +11,14 @@ The flexibility of the true-slip system, per WG angle, 2n x 2n [[Cff, Cfg], [Cgf
   balanced by the bore's shear, as tooth_mesh_fe.influence balances its loads), C = B^T K^-1 B;
 - the CS teeth's Cfg / Cgg: each pair's own CS tooth (the study's sector, tooth 0, at the pair's CS radius, the
   flank the FS flank presses), its 2x2 self block; CS coupling of tangential loads between teeth is left out.
+- the pairs: those the shipped path loads anywhere or brings within KEEP_GAP of closing (cost: each kept pair's
+  bands go through the rim's factor); the left-out pairs' gaps are checked along the true-slip path and printed;
 - w (the counter-tooth's slide along the FS flank's tangent t = rot90(n) per unit twist) = P . n = +R sin(alpha):
   the study's ``slide_mm_per_rad`` with its sign (both flanks: the FS flank's outward normal leans outward).
 
-    python benchmarks/probe_study_true_slip.py [PARAMS.toml] [--increments N] [--angles K]
+    python benchmarks/probe_study_true_slip.py [PARAMS.toml] [--increments N ...] [--angles K] [--steps-per-leg S]
+
+Cost: ~85-220 CPU-s per gear (the tangential blocks by direct FE); decision 072-slip48 has its tables.
 """
 from __future__ import annotations
 
