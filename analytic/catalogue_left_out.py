@@ -43,7 +43,8 @@ PHRASES = {
                              "(not measured)",
     ("lost_motion", "high, clearance"): "flank clearance: {play:.2f}' of free play at 0 N m (decision 070)",
     ("lost_motion", "high, test torque"): "test torque: 4 % of the rules' rated torque (the unit's own is not in the "
-                                          "table); the catalogue's own K1 over the same +-4 % is above the bound too (its angle on the row)",
+                                          "table); the catalogue's own K1 over the same +-4 % is above the bound "
+                                          "too (its angle on the row)",
 }
 MU_SOURCE = ("the rules' flank mu (MeshRules.friction_coefficient), the shipped gear's: the 0.05-0.12 band of "
              "boundary-lubricated flanks (../shared/tooth-mesh-references.md section 4), not fitted to this table")
