@@ -31,6 +31,15 @@ def test_a_clean_second_order_series_is_asymptotic_for_p2_stresses_only():
     assert asymptotic_flags(p1) == ("p outside formal 1 +-10 %",) and p1.basis == "formal p = 1, Fs = 3"
 
 
+def test_a_refused_gci_is_flagged_with_its_own_reason():
+    from strainwave.fea.convergence import Convergence
+    same = Convergence.refusal(H, [2.0, 2.0, 2.0], "three identical values (2.0) ...")
+    step = Convergence.refusal(H, [1.0, 1.1, 1.3], "follows the torque step, not the mesh")
+    assert asymptotic_flags(same) == ("identical values: GCI refused",)
+    assert asymptotic_flags(step) == ("GCI refused: follows the torque step, not the mesh",)
+    assert math.isnan(step.gci_fine) and step.values == (1.0, 1.1, 1.3)
+
+
 @pytest.mark.parametrize("values, flag, order_used", [
     ([1.0, 1.02, 0.99], "non-monotone", 4.0),          # the differences change sign
     (_series(5.0, 0.3, 0.5), "p outside formal 4 +-10 %", 0.5),   # slower than formal: its own 0.5

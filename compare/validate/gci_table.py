@@ -37,7 +37,8 @@ def asymptotic_flags(c: Convergence) -> tuple[str, ...]:
     p = c.observed_order
     flags = []
     if c.refused:
-        return ("identical values: GCI refused",)
+        return ("identical values: GCI refused",) if c.refused.startswith("three identical") else \
+            (f"GCI refused: {c.refused}",)
     if not c.monotone:
         flags.append("non-monotone")
     elif math.isinf(p):
