@@ -189,6 +189,15 @@ def _legs(T: np.ndarray) -> tuple[slice, slice, slice]:
     return slice(0, k1 + 1), slice(k1, k2 + 1), slice(k2, None)
 
 
+def _on_leg(T: np.ndarray, y: np.ndarray, leg: slice, torques: np.ndarray) -> np.ndarray:
+    """``y`` at ``torques`` on one leg of the loop's knots (a leg is monotone in torque, so linear between knots)."""
+    t, v = T[leg], y[leg]
+    if t[-1] < t[0]:
+        t, v = t[::-1], v[::-1]
+    # round-off at a pivot must not break np.interp's order
+    return np.interp(torques, np.maximum.accumulate(t), v)
+
+
 def resampled_loop(path, steps_per_leg: int = READ_STEPS_PER_LEG) -> tuple[np.ndarray, np.ndarray]:
     """(torque, elastic twist) of the exact loop on ``steps_per_leg`` torques a leg: between knots the loop is
     linear, so the interpolation is exact and the reading does not depend on the solve's torque step."""
@@ -196,23 +205,18 @@ def resampled_loop(path, steps_per_leg: int = READ_STEPS_PER_LEG) -> tuple[np.nd
     T, th = exact_loop(path)
     y = elastic_twist(th, getattr(path, "dead_band_rad", (0.0, 0.0)))
     grid = torque_history(float(np.max(T)), steps_per_leg)
-    parts = []
-    for i, (lk, lg) in enumerate(zip(_legs(T), _legs(grid))):
-        t, v = T[lk], y[lk]
-        if t[-1] < t[0]:
-            t, v = t[::-1], v[::-1]
-        # a leg's knots rise in torque; round-off at a pivot must not break np.interp's order
-        parts.append(np.interp(grid[lg], np.maximum.accumulate(t), v)[(1 if i else 0):])
+    parts = [_on_leg(T, y, lk, grid[lg])[(1 if i else 0):] for i, (lk, lg) in enumerate(zip(_legs(T), _legs(grid)))]
     return grid, np.concatenate(parts)
 
 
-def _branch_twist(T: np.ndarray, th: np.ndarray, torque_Nmm: float, direction: int) -> float:
-    """The twist at ``torque_Nmm`` on the steady unloading (-1: +T -> -T) or reloading (+1: -T -> +T) branch."""
+def _branch_twist(path, torque_Nmm: float, direction: int) -> float:
+    """The twist at ``torque_Nmm`` (not 0) on the steady unloading (-1: +T -> -T) or reloading (+1: -T -> +T) branch
+    of the exact loop: read on the elastic twist (single-valued in torque), the band's edge on that side added back."""
+    T, th = exact_loop(path)
+    band = getattr(path, "dead_band_rad", (0.0, 0.0))
     _, down, up = _legs(T)
-    seg = down if direction < 0 else up
-    t, y = T[seg], th[seg]
-    order = np.argsort(t, kind="stable")
-    return float(np.interp(torque_Nmm, t[order], y[order]))
+    y = _on_leg(T, elastic_twist(th, band), down if direction < 0 else up, np.array([torque_Nmm]))[0]
+    return float(y + (band[1] if torque_Nmm > 0 else band[0]))
 
 
 def knee_values(path, rated_Nmm: float, steps_per_leg: int = READ_STEPS_PER_LEG) -> dict:
@@ -249,8 +253,7 @@ def loop_values(paths: list, rated_Nmm: float) -> dict:
     # hysteresis loss at zero torque is not reported: zero torque lies inside the backlash's dead band, where the
     # twist is undetermined (it read 0 and -0.99 arcmin on the two gears); friction's loss is its work per cycle
     lm = LOST_MOTION_FRACTION * rated_Nmm
-    Tx, thx = exact_loop(p)
-    v["lost_motion_arcmin"] = ARCMIN * (_branch_twist(Tx, thx, lm, -1) - _branch_twist(Tx, thx, -lm, +1))
+    v["lost_motion_arcmin"] = ARCMIN * (_branch_twist(p, lm, -1) - _branch_twist(p, -lm, +1))
     from strainwave.fea.mesh_contact import loop_area_Nmm_rad
     v["friction_loss"] = loop_area_Nmm_rad(p)       # the work flank friction takes per +/-rated cycle
     k_peak = int(np.argmax(T))
