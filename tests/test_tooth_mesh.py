@@ -202,4 +202,6 @@ def test_report_gear_line_gives_the_chain_over_the_catalogue_or_says_why_not(mon
     assert "circular spline body with its face clamped 2.18e-11 (free in its plane it would be 20-45x" in line
     assert f"K3 = {1e-3 * k3:.4g} N m/rad" in line and f"predicted / catalogue {ratio:.2f}" in line
     assert "extrapolated" in line and ratio > 1.25           # the shipped gear is stiffer than a catalogue unit
+    k1 = 1.0 / (1 / 3.085e8 + 4.9155e-10 + 2.41e-11 + CS_BODY["face"])   # the mesh's K1, dead band out (decision 073)
+    assert f"K1 = {1e-3 * k1:.4g} (" in line
     assert "not evaluated (no tooth-mesh case)" in mc.gear_line(_ChainBook(1.1583e10), Plan(None), params)
