@@ -251,7 +251,7 @@ def loop_values(paths: list, rated_Nmm: float) -> dict:
     p = paths[0]
     T, th = p.torque_Nmm, p.twist_rad
     v = knee_values(p, rated_Nmm)
-    # the lost motion read on the solved branches (the catalogue's definition; no fitted curve between). The
+    # the lost motion read on the exact loop's branches (the catalogue's definition; no fitted curve between). The
     # hysteresis loss at zero torque is not reported: zero torque lies inside the backlash's dead band, where the
     # twist is undetermined (it read 0 and -0.99 arcmin on the two gears); friction's loss is its work per cycle
     lm = LOST_MOTION_FRACTION * rated_Nmm

@@ -25,6 +25,12 @@ def _many_teeth(n=14, seed=5):
     return MeshSystem(rng.uniform(0.002, 0.02, n), C, lever, rng.uniform(0.0, 10.0, n), 0.08, 80.0)
 
 
+def _raw(path):
+    """The same path with no dead band: the reading sees the raw twist."""
+    from dataclasses import replace
+    return replace(path, dead_band_rad=(0.0, 0.0))
+
+
 def test_knots_lie_on_the_exact_path_and_make_it_independent_of_the_step():
     s = _many_teeth()
     coarse, fine = (solve_torque_path(s, torque_history(2e5, n)) for n in (6, 12))
@@ -52,14 +58,9 @@ def test_a_gapped_pair_of_springs_reads_its_own_knee_with_the_dead_band_out():
     assert v["T1"] == pytest.approx(T_knee, rel=1e-4)
     assert v["K3"] == pytest.approx(2 * k * lever ** 2, rel=1e-6)
     # the raw loop's reading spends its knee on the dead band: T1 sits at the reader's first torque sample
-    T, th = tm.resampled_loop(tm_raw(path), 200)
+    T, th = tm.resampled_loop(_raw(path), 200)
     raw = tm.read_knees(T, th, rated)
     assert raw["T1"] < 2.0 * rated / 200 and raw["K1"] < 0.1 * k * lever ** 2
-
-
-def tm_raw(path):
-    from dataclasses import replace
-    return replace(path, dead_band_rad=(0.0, 0.0))
 
 
 @pytest.mark.parametrize("factor", [0.8, 1.2])
