@@ -108,6 +108,20 @@ def _mode(phi: np.ndarray, a: int, harmonics: int) -> np.ndarray:
     return np.cos(2 * k * phi) if a <= harmonics else np.sin(2 * k * phi)
 
 
+def _held_many(tube, system, B: np.ndarray, active: np.ndarray) -> np.ndarray:
+    """``wg_band.held_solve`` of every column of B at once (held at 0): one dense factor of S's free block per
+    pass instead of one per load, the same refinement step."""
+    fs, on = system.faces, system.on_face
+    act = np.asarray(active, bool)[on]
+    f = tube.rot_t @ B
+    x = fs.held(f, fs.face_loads(f), act, 0.0)
+    res = f - fs.K @ x
+    res[fs.base] = 0.0
+    res[fs.face_z[act]] = 0.0
+    x += fs.held(res, fs.face_loads(res), act)
+    return tube.rot @ x
+
+
 def wall_modes(tube_geo, n_theta: int, lame: Lame, w0_mm: float, harmonics: int, contact: bool = True) -> dict:
     """The quarter wall on the cam (linear insertion's active set) under a tangential shear on the band's outer
     surface of each mode (force per radian of circumference = the mode): ``g`` the modes' work matrix over the whole
@@ -136,7 +150,7 @@ def wall_modes(tube_geo, n_theta: int, lame: Lame, w0_mm: float, harmonics: int,
                 q = _mode(phi, a, harmonics) * dA / (tube_geo.r_o_mm * tube_geo.band_mm)
                 for k in (0, 1):
                     B[:, col] += np.bincount(3 * dofs + k, (N * q * e_t[k]).sum(axis=2).ravel(), minlength=tube.dofs)
-            U = np.column_stack([wb.held_solve(tube, systems[sym], B[:, c], active, 0.0) for c in range(len(idx))])
+            U = _held_many(tube, systems[sym], B, active)
             g[np.ix_(list(idx), list(idx))] = 4.0 * B.T @ U       # the quarter holds a quarter of the work
         return {"g": 0.5 * (g + g.T), "held_fraction": float(active.sum()) / active.size, "dofs": tube.dofs}
     finally:
@@ -211,11 +225,13 @@ class AssembledMesh:
 
 
 def assemble_once(s: RatedSet, tube_geo, n_theta: int, lame: Lame, w0_mm: float, K_G_N_per_mm: float,
-                  face_width_mm: float, harmonics: int = HARMONICS, contact: bool = True) -> AssembledMesh:
-    """The assembly and its members on one wall mesh (the annulus's plane mesh, h = half the wall, resolves every
-    mode)."""
+                  face_width_mm: float, harmonics: int = HARMONICS, contact: bool = True,
+                  g2: np.ndarray | None = None) -> AssembledMesh:
+    """The assembly and its members on one wall mesh (``g2``: the annulus's modes, by default on a plane mesh of
+    half the wall, which resolves every mode)."""
     wall = wall_modes(tube_geo, n_theta, lame, w0_mm, harmonics, contact)
-    g2 = annulus_modes(tube_geo.r_i_mm, tube_geo.r_o_mm, face_width_mm, 0.5 * tube_geo.wall_mm, lame, harmonics)
+    if g2 is None:
+        g2 = annulus_modes(tube_geo.r_i_mm, tube_geo.r_o_mm, face_width_mm, 0.5 * tube_geo.wall_mm, lame, harmonics)
     t = -np.asarray(s.lever_mm) / tube_geo.r_o_mm
     Gwg = wg_flexibility(s, K_G_N_per_mm)
 
@@ -252,8 +268,9 @@ def assemble(meta: dict, params, K_G_N_per_mm: float, elements: tuple[int, int, 
     m = params.material
     lame = Lame.from_young(m.youngs_modulus_MPa, m.poisson_ratio)
     tube = wb.tube_geometry(params)
-    runs = [assemble_once(s, tube, n, lame, params.gear.radial_deformation_mm, K_G_N_per_mm, geo.face_width_mm)
-            for n in elements]
+    g2 = annulus_modes(tube.r_i_mm, tube.r_o_mm, geo.face_width_mm, 0.5 * tube.wall_mm, lame, HARMONICS)
+    runs = [assemble_once(s, tube, n, lame, params.gear.radial_deformation_mm, K_G_N_per_mm, geo.face_width_mm,
+                          g2=g2) for n in elements]
     h = [0.5 * math.pi * tube.r_m_mm / n for n in elements]
     K = converged_quantity("assembled_drive_stiffness_Nmm_per_rad", "N*mm/rad", h,
                            [r.K_assembled_Nmm_per_rad for r in runs])
