@@ -277,5 +277,7 @@ def assemble(meta: dict, params, K_G_N_per_mm: float, elements: tuple[int, int, 
     # the wall is in both the assembly and its chain: the comparison's mesh error is the ratio's
     ratio = converged_quantity("assembled_over_chain", "1", h, [r.K_assembled_Nmm_per_rad / r.K_chain_Nmm_per_rad
                                                                for r in runs])
-    return {"K": K, "ratio": ratio, "finest": runs[0], "runs": runs, "rated_set": s,
+    zone = converged_quantity("wall_zone_net_flexibility_rad_per_Nmm", "rad/(N*mm)", h,
+                              [r.lambda_zone_net for r in runs])
+    return {"K": K, "ratio": ratio, "zone": zone, "finest": runs[0], "runs": runs, "rated_set": s,
             "cpu_s": time.process_time() - t0}

@@ -135,7 +135,8 @@ def _record(scale_chain: float = 1.0) -> dict:
     h = [11.3, 15.5, 20.7]
     K = converged_quantity("assembled_drive_stiffness_Nmm_per_rad", "N*mm/rad", h, [2.662e9, 2.682e9, 2.690e9])
     ratio = converged_quantity("assembled_over_chain", "1", h, [1.00014, 1.00015, 1.00019])
-    return {"K": K, "ratio": ratio, "finest": m, "runs": [m], "rated_set": _set(6), "cpu_s": 3.0}
+    zone = converged_quantity("wall_zone_net_flexibility_rad_per_Nmm", "rad/(N*mm)", h, [1.63e-11, 1.35e-11, 1.24e-11])
+    return {"K": K, "ratio": ratio, "zone": zone, "finest": m, "runs": [m], "rated_set": _set(6), "cpu_s": 3.0}
 
 
 def test_the_check_fails_on_a_perturbed_reference(monkeypatch):
@@ -149,3 +150,25 @@ def test_the_check_fails_on_a_perturbed_reference(monkeypatch):
         assert c.passed is passes, (scale, c.rel_error, c.tolerance)
     assert "assembled / previous" in c.note and c.tolerance.relative < 0.02
     assert not dc.drive_check(book, None, "wg-bearing", params).passed
+
+
+def test_the_gear_chain_takes_the_assemblys_wave_generator_and_zone_term(monkeypatch):
+    """decision 073: with an assembly, the validate chain's wave generator is the lobes' and the wall's zone term
+    joins it in series; without one it keeps seed 000's lambda_H and says why."""
+    import sys
+    from strainwave.api import load_params
+    from strainwave.compare.validate import drive_assembled_checks as dc
+    from strainwave.compare.validate import mesh_chain_checks as mc
+    sys.path.insert(0, str(__import__("pathlib").Path(__file__).parent))
+    from test_tooth_mesh import CS_BODY, _ChainBook, _cs_body
+    _cs_body(monkeypatch, mc)
+    params = load_params(None)
+    labels = {"cup": "cup", "shaft": "shaft"}
+    old, why = mc.chain(_ChainBook(1.1583e10), labels, "wg", "mesh", params)
+    assert "seed 000's lambda_H" in old["wave_generator_form"] and old["lambda_zone_rad_per_Nmm"] == 0.0
+    rec = _record()
+    monkeypatch.setattr(dc, "assembled", lambda *a, **k: (rec, ""))
+    new, _ = mc.chain(_ChainBook(1.1583e10), labels, "wg", "mesh", params)
+    lam = 1 / 1.1583e10 + 4.9155e-10 + CS_BODY["face"] + rec["finest"].lambda_wg_lobes + rec["zone"].value
+    assert new["K3_chain_Nmm_per_rad"] == pytest.approx(1.0 / lam, rel=1e-12)
+    assert new["wave_generator_form"] == "lobes (decision 073)"

@@ -24,15 +24,21 @@ CHECK = "gear.drive_assembled"
 STUDY = "tooth-mesh"
 
 
+_LAST: list = []      # (the tooth-mesh result it was built from, K_G, the assembly): the gear line reads it too
+
+
 def assembled(book, mesh_label: str | None, wg_label: str, params, memo: dict | None = None) -> tuple[dict | None, str]:
-    """The assembly of this gear from the book (memoised per run: the gear line reads it too), or None and why."""
+    """The assembly of this gear from the book (once per run: the check and the gear line share it), or None and
+    why."""
     from strainwave.fea import drive_assembled as da
     if memo is not None and "drive_assembled" in memo:
         return memo["drive_assembled"]
     out: tuple[dict | None, str]
     kg, why = book.quantity(wg_label, "radial_stiffness_N_per_mm") if wg_label else (None, "no wg-bearing case")
-    result = None if mesh_label is None else book.result(mesh_label)
+    result = None if mesh_label is None or not hasattr(book, "result") else book.result(mesh_label)
     meta = None if result is None else result.meta
+    if _LAST and _LAST[0][0] is result and result is not None and kg is not None and _LAST[0][1] == kg.value:
+        return _LAST[0][2]
     if mesh_label is None:
         out = None, f"no {STUDY} case"
     elif kg is None:
@@ -46,6 +52,8 @@ def assembled(book, mesh_label: str | None, wg_label: str, params, memo: dict | 
             out = None, str(exc)
     if memo is not None:
         memo["drive_assembled"] = out
+    if result is not None and kg is not None:
+        _LAST[:] = [(result, kg.value, out)]
     return out
 
 
