@@ -172,3 +172,28 @@ def test_the_gear_chain_takes_the_assemblys_wave_generator_and_zone_term(monkeyp
     lam = 1 / 1.1583e10 + 4.9155e-10 + CS_BODY["face"] + rec["finest"].lambda_wg_lobes + rec["zone"].value
     assert new["K3_chain_Nmm_per_rad"] == pytest.approx(1.0 / lam, rel=1e-12)
     assert new["wave_generator_form"] == "lobes (decision 073)"
+
+
+@pytest.mark.heavy
+def test_the_default_gears_assembly_end_to_end():
+    """The study's quick finest rim on the default gear, its rated set, the three walls (about 15 CPU-s): the
+    assembly is stiffer than the chain of its members (complementary energy: the load share may only improve) but
+    by little; the wall's zones add compliance on the cam; seed 000's lambda_H is not the lobes'."""
+    from strainwave.analytic.mesh_engagement import study_loads
+    from strainwave.api import load_params
+    from strainwave.compare.validate.drive_assembled_checks import seed_lambda_H
+    from strainwave.fea import tooth_mesh as tm
+    from strainwave.fea.mesh_contact import solve_torque_path
+    params = load_params(None)
+    mesh = study_loads(params, quick=True)["mesh"]
+    infl, _ = tm.influences(params, mesh, tm.refinements(params.flexspline_cup.module_mm, True)[0])
+    path = solve_torque_path(tm.systems(infl, mesh)[0], np.asarray(mesh["torque_history_Nmm"]))
+    k = int(np.argmax(path.torque_Nmm))
+    meta = {"pairs": mesh["angles"][0], "forces_at_rated_N": path.forces_N[k].tolist(),
+            "rated_compliance": tm.rated_compliance(infl, mesh, path)}
+    a = da.assemble(meta, params, 1.993e5)
+    for r in a["runs"]:
+        assert 1.0 <= r.K_assembled_Nmm_per_rad / r.K_chain_Nmm_per_rad < 1.01
+        assert r.lambda_zone_net > 0.0 and r.lambda_zone_gross > r.lambda_zone_net
+    f = a["finest"]
+    assert seed_lambda_H(params, 1.993e5) > 1.5 * f.lambda_wg_lobes
