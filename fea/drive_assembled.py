@@ -14,8 +14,9 @@ Members, each the project's own FE (nothing fitted):
 - the wave generator: each lobe a radial spring K_G (the wg-bearing FE's), pushed by its teeth's radial loads
   along its axis; a pair loses sin(alpha) cos(phi) of its lobe's travel along its line of action.
 
-A pair and its twin on the other lobe (phi + pi) are loaded alike at rated (the dual wave): one generalized force
-each, so the quarter wall (even / odd split about phi = 0, as ``fea/cup_zone_load``) holds every load exactly.
+Every pair loaded at rated is its own force (both lobes; an odd tooth count puts them half a pitch apart). The
+quarter wall (even / odd split about phi = 0, as ``fea/cup_zone_load``) holds the period-pi part of their loads; the
+part unlike on the two lobes (odd harmonics, nil for an even tooth count) stays with the plane rim in C.
 The twist is the circular spline's against the wall's held end: K = L^T (C + G_3D - G_2D + G_WG)^-1 L.
 """
 from __future__ import annotations
@@ -28,51 +29,37 @@ import numpy as np
 from strainwave.fea.assembly import Lame
 
 __all__ = ["RatedSet", "rated_set", "generalized", "mode_map", "wall_modes", "annulus_modes", "wg_flexibility",
-           "stiffness", "AssembledMesh", "assemble_once"]
+           "stiffness", "lobe_of", "AssembledMesh", "assemble_once", "assemble"]
 
 
 @dataclass(frozen=True)
 class RatedSet:
-    """The pairs in contact at rated on one lobe (their twins on the other are alike), as generalized forces."""
+    """The flank pairs in contact at rated (both lobes), each with its own normal force."""
 
     phi_rad: np.ndarray          # FS tooth angle from the major axis
     side: np.ndarray             # flank side (+1 / -1)
     lever_mm: np.ndarray         # signed lever (base radius) of the normal force about the axis
     alpha_rad: np.ndarray        # pressure angle at the CS contact radius
-    compliance_mm_per_N: np.ndarray   # generalized C (a pair and its twin), (n, n)
-    forces_N: np.ndarray         # the study's flank loads at rated (one of each twin)
+    compliance_mm_per_N: np.ndarray   # the study's C on these pairs, (n, n)
+    forces_N: np.ndarray         # the study's flank loads at rated
 
 
 def rated_set(meta: dict) -> RatedSet:
-    """The tooth-mesh study's rated contact set (its record ``meta``: pairs, forces at rated, and
-    ``rated_compliance``), folded onto its twins: pair j's twin is the pair of the same side at phi + pi (the dual
-    wave's other lobe). Raises ValueError if the set is not alike on the two lobes."""
+    """The tooth-mesh study's rated contact set from its record ``meta`` (pairs, forces at rated and
+    ``rated_compliance``: the set's indices and C)."""
     rec = meta["rated_compliance"]
     on = np.asarray(rec["index"], int)
     C = np.asarray(rec["compliance_mm_per_N"], float)
     pairs = {k: np.asarray(v)[on] for k, v in meta["pairs"].items()}
+    lever = pairs["lever_mm"].astype(float)
+    alpha = np.arccos(np.clip(np.abs(lever) / pairs["cs_radius_mm"].astype(float), -1.0, 1.0))
     F = np.asarray(meta["forces_at_rated_N"], float)[on]
-    folded = np.mod(pairs["phi_rad"] + 0.5 * math.pi, math.pi) - 0.5 * math.pi
-    first, twin = [], []
-    for j in range(on.size):
-        if j in twin:
-            continue
-        mate = [k for k in range(on.size) if k != j and pairs["side"][k] == pairs["side"][j]
-                and abs(folded[k] - folded[j]) < 1e-9 and k not in first]
-        if len(mate) != 1 or abs(F[mate[0]] - F[j]) > 1e-6 * F.max():
-            raise ValueError("drive-assembled: the rated contact set is not alike on the two lobes")
-        first.append(j)
-        twin.append(mate[0])
-    a, b = np.array(first), np.array(twin)
-    Cg = C[np.ix_(a, a)] + C[np.ix_(a, b)] + C[np.ix_(b, a)] + C[np.ix_(b, b)]
-    lever = pairs["lever_mm"][a].astype(float)
-    alpha = np.arccos(np.clip(np.abs(lever) / pairs["cs_radius_mm"][a].astype(float), -1.0, 1.0))
-    return RatedSet(folded[a], pairs["side"][a], lever, alpha, 0.5 * (Cg + Cg.T), F[a])
+    return RatedSet(pairs["phi_rad"].astype(float), pairs["side"], lever, alpha, 0.5 * (C + C.T), F)
 
 
 def generalized(C: np.ndarray, lever_mm: np.ndarray) -> float:
-    """K = L^T C^-1 L (N mm/rad) of generalized forces on a pair and its twin (L = 2 lever: both lobes)."""
-    L = 2.0 * np.asarray(lever_mm, float)
+    """K = L^T C^-1 L (N mm/rad): the pairs' twist stiffness when each pair closes by its lever times the twist."""
+    L = np.asarray(lever_mm, float)
     return float(L @ np.linalg.solve(C, L))
 
 
@@ -81,24 +68,32 @@ def stiffness(s: RatedSet, G3: np.ndarray, G2: np.ndarray, Gwg: np.ndarray) -> f
     return generalized(s.compliance_mm_per_N + G3 - G2 + Gwg, s.lever_mm)
 
 
+def lobe_of(phi_rad: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(the lobe, 0 or 1, each angle belongs to; the angle from that lobe's axis)."""
+    phi = np.asarray(phi_rad, float)
+    folded = np.mod(phi + 0.5 * math.pi, math.pi) - 0.5 * math.pi
+    return np.round((phi - folded) / math.pi).astype(int) % 2, folded
+
+
 def wg_flexibility(s: RatedSet, K_G_N_per_mm: float) -> np.ndarray:
-    """Generalized flexibility of the two lobes as radial springs K_G: a lobe travels its teeth's inward radial
-    resultant along its axis over K_G; pair j loses sin(alpha_j) cos(phi_j) of that travel along its line of action.
-    A generalized force loads both lobes once: 2 a_j a_k / K_G."""
-    a = np.sin(s.alpha_rad) * np.cos(s.phi_rad)
-    return 2.0 * np.outer(a, a) / K_G_N_per_mm
+    """The two lobes as radial springs K_G: a lobe travels its teeth's inward radial resultant along its axis over
+    K_G; pair j loses sin(alpha_j) cos(phi_j) of its own lobe's travel along its line of action."""
+    lobe, folded = lobe_of(s.phi_rad)
+    a = np.sin(s.alpha_rad) * np.cos(folded)
+    return np.where(lobe[:, None] == lobe[None, :], np.outer(a, a), 0.0) / K_G_N_per_mm
 
 
 def mode_map(phi_rad: np.ndarray, tangential_N: np.ndarray, harmonics: int) -> np.ndarray:
-    """P (modes, pairs): the Fourier coefficients (period pi: 1, cos 2k phi, sin 2k phi, k = 1..K) of the tangential
-    force per radian that a generalized force puts on the wall (its tangential part at both lobes), with Lanczos'
-    sigma factors (no Gibbs ringing); the modes' order is [1, cos 2phi, .., cos 2K phi, sin 2phi, .., sin 2K phi]."""
+    """P (modes, pairs): the Fourier coefficients, period pi (1, cos 2k phi, sin 2k phi, k = 1..K), of the
+    tangential force per radian a pair's unit normal force puts on the wall, with Lanczos' sigma factors (no Gibbs
+    ringing); the modes' order is [1, cos 2phi, .., cos 2K phi, sin 2phi, .., sin 2K phi]. The odd harmonics (a
+    load unlike on the two lobes) are left to the plane rim in C: the quarter wall holds period pi only."""
     k = np.arange(1, harmonics + 1)
     sigma = np.sinc(k / (harmonics + 1.0))
     t = np.asarray(tangential_N, float)
     a = 2.0 * np.asarray(phi_rad, float)[None, :] * k[:, None]                       # 2 k phi
-    c = (2.0 / math.pi) * sigma[:, None] * t[None, :]
-    return np.vstack([t[None, :] / math.pi, c * np.cos(a), c * np.sin(a)])
+    c = sigma[:, None] * t[None, :] / math.pi
+    return np.vstack([t[None, :] / (2.0 * math.pi), c * np.cos(a), c * np.sin(a)])
 
 
 def _mode(phi: np.ndarray, a: int, harmonics: int) -> np.ndarray:
@@ -237,7 +232,7 @@ def assemble_once(s: RatedSet, tube_geo, n_theta: int, lame: Lame, w0_mm: float,
 
     # the members are loaded as the teeth alone share the load (the tangent of C on the rated set): the chain's
     # own distribution, so the assembly's coupled solve can only be stiffer (complementary energy)
-    L = 2.0 * np.asarray(s.lever_mm, float)
+    L = np.asarray(s.lever_mm, float)
     f = np.linalg.solve(s.compliance_mm_per_N, L)
     T = float(L @ f)
     work = lambda G: float(f @ G @ f) / T ** 2       # noqa: E731

@@ -84,7 +84,7 @@ def drive_check(book, mesh_label: str | None, wg_label: str, params, memo: dict 
         "the members' own mesh error (the teeth's K3 GCI on their share, K_G's on the lobes')": members})
     old = 1.0 / (f.lambda_teeth + f.lambda_wall_uniform + seed_lambda_H(params, a["K_G"].value))
     note = (f"members in series (rad/(N mm)), each loaded by the teeth's own share: teeth (tooth-mesh C on "
-            f"{len(a['rated_set'].phi_rad)} pair(s) a lobe) {f.lambda_teeth:.4g}, wall uniform "
+            f"{len(a['rated_set'].phi_rad)} pairs at rated) {f.lambda_teeth:.4g}, wall uniform "
             f"{f.lambda_wall_uniform:.4g}, wall's zone extra net of the plane rim {f.lambda_zone_net:.4g} (gross "
             f"{f.lambda_zone_gross:.4g}, decision 067's cup-zone form), WG lobes (K_G {a['K_G'].value:.4g} N/mm) "
             f"{f.lambda_wg_lobes:.4g}; cam holds {100 * f.held_fraction:.3g} % of the band's bore; the previous chain "
