@@ -154,8 +154,8 @@ def test_the_check_fails_on_a_perturbed_reference(monkeypatch):
 
 
 def test_the_gear_chain_takes_the_assemblys_wave_generator_and_zone_term(monkeypatch):
-    """decision 073: with an assembly, the validate chain's wave generator is the lobes' and the wall's zone term
-    joins it in series; without one it keeps seed 000's lambda_H and says why."""
+    """decision 073-assembled48: with an assembly, the validate chain's wave generator is the lobes' and the wall's
+    zone term joins it in series; without one it keeps seed 000's lambda_H and says why."""
     import sys
     from strainwave.api import load_params
     from strainwave.compare.validate import drive_assembled_checks as dc
@@ -172,7 +172,7 @@ def test_the_gear_chain_takes_the_assemblys_wave_generator_and_zone_term(monkeyp
     new, _ = mc.chain(_ChainBook(1.1583e10), labels, "wg", "mesh", params)
     lam = 1 / 1.1583e10 + 4.9155e-10 + CS_BODY["face"] + rec["finest"].lambda_wg_lobes + rec["zone"].value
     assert new["K3_chain_Nmm_per_rad"] == pytest.approx(1.0 / lam, rel=1e-12)
-    assert new["wave_generator_form"] == "lobes (decision 073)"
+    assert new["wave_generator_form"] == "lobes (decision 073-assembled48)"
 
 
 @pytest.mark.heavy

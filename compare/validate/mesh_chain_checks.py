@@ -47,13 +47,13 @@ def chain(book, labels: dict, wg_label: str, mesh_label: str | None, params) -> 
     rel = lambda x: (x.uncertainty or 0.0) / abs(x.value)  # noqa: E731
     body = cs_body(params, "face")   # the free bound (decision 070) is a benchmark's, not validate's: 5 CPU-s
     lam_cs, u_cs = body.twist.value, body.twist.convergence.gci_fine
-    # decision 073: the assembly's wave generator (its lobes as springs K_G) replaces seed 000's lambda_H, and the
-    # wall's extra under the teeth's zones (net of the plane rim the study holds) joins the chain
+    # decision 073-assembled48: the assembly's wave generator (its lobes as springs K_G) replaces seed 000's
+    # lambda_H, and the wall's extra under the teeth's zones (net of the plane rim the study holds) joins the chain
     from strainwave.compare.validate.drive_assembled_checks import assembled
     a, why_a = assembled(book, mesh_label, wg_label, params)
     zone, u_zone, wg_form = 0.0, 0.0, f"seed 000's lambda_H (no assembly: {why_a})"
     if a is not None:
-        lam_H, zone, wg_form = a["finest"].lambda_wg_lobes, a["zone"].value, "lobes (decision 073)"
+        lam_H, zone, wg_form = a["finest"].lambda_wg_lobes, a["zone"].value, "lobes (decision 073-assembled48)"
         u_zone = abs(a["zone"].uncertainty or 0.0)
     rest = lam_H + q["cup"].value + lam_cs + zone
     out = {"lambda_H_rad_per_Nmm": lam_H, "lambda_cup_rad_per_Nmm": q["cup"].value,
@@ -119,7 +119,8 @@ def catalogue_check(book, labels: dict, wg_label: str, mesh_label: str | None, p
     note = (f"CHA column {label}, K3 at size {params.flexspline_cup.pitch_diameter_mm / 2.54:.3g}"
             f"{' (EXTRAPOLATED beyond sizes 14-58)' if extrapolated else ''}; members (rad/(N mm)): mesh "
             f"{c['lambda_mesh_K3_rad_per_Nmm']:.3g}, cup {c['lambda_cup_rad_per_Nmm']:.3g}, wall's zones "
-            f"{c['lambda_zone_rad_per_Nmm']:.3g}, WG {c['lambda_H_rad_per_Nmm']:.3g} ({c['wave_generator_form']}), CS body (face clamped) {c['lambda_cs_body_rad_per_Nmm']:.3g}; shaft "
+            f"{c['lambda_zone_rad_per_Nmm']:.3g}, WG {c['lambda_H_rad_per_Nmm']:.3g} ({c['wave_generator_form']}), "
+            f"CS body (face clamped) {c['lambda_cs_body_rad_per_Nmm']:.3g}; shaft "
             f"{c['lambda_shaft_rad_per_Nmm']:.3g} (not in a catalogue unit); "
             f"chain K1 {c['K1_chain_Nmm_per_rad']:.3g} N mm/rad beside catalogue K1 "
             f"{catalogue_power_law(params, 'K1_Nm_per_rad')[0]:.3g} (recorded, not asserted; "
