@@ -54,5 +54,126 @@ def main(argv):
     print(f"CPU {time.process_time() - t0:.1f} s")
 
 
-if __name__ == "__main__":
+if __name__ == "__main__" and not sys.argv[1:]:
     main(sys.argv[1:])
+
+
+# ---- the candidates of decision 073 ----------------------------------------------------------------------------
+
+def cam_ring_fe_twist(R_o, R_i, E, b, r_p, alpha_deg, wrap_deg, nr, nt):
+    """The WG cam (with its inner ring bonded on) as a plane-stress annulus R_i..R_o, loaded by the two lobes'
+    radial loads F_r = T tan(alpha) / (2 r_p) (inward pressure over +-wrap_deg at the major axes), bore free:
+    the output twist per N mm its squeeze gives (mean radial give under the lobe x tan(alpha) / r_p), by work."""
+    import math
+    from skfem import Basis, ElementTriP2, ElementVector, FacetBasis, asm, condense, solve
+    from skfem.models.elasticity import lame_parameters, linear_elasticity
+    from strainwave.fea.cs_body_fe import annulus, traction_forms
+    m = annulus(R_i, R_o, nr, nt)
+    e = ElementVector(ElementTriP2())
+    ib = Basis(m, e)
+    lam, mu = lame_parameters(E, 0.3)
+    lam = 2.0 * lam * mu / (lam + 2.0 * mu)
+    K = b * asm(linear_elasticity(lam, mu), ib)
+    tol = 0.5 * (R_o - R_i) / nr
+    outer = FacetBasis(m, e, facets=m.facets_satisfying(lambda x: np.hypot(x[0], x[1]) > R_o - tol))
+    s = math.sin(math.radians(wrap_deg))
+    _, rad = traction_forms(lambda x: (np.abs(np.sin(np.arctan2(x[1], x[0]))) < s).astype(float))
+    fr = asm(rad, outer)
+    ux, uy = ib.split_indices()
+    x, y = ib.doflocs[0], ib.doflocs[1]
+    radial = np.zeros(ib.N)
+    radial[ux], radial[uy] = x[ux] / np.hypot(x[ux], y[ux]), y[uy] / np.hypot(x[uy], y[uy])
+    F_r = math.tan(math.radians(alpha_deg)) / (2.0 * r_p)
+    f = -fr / (fr @ radial) * 2.0 * F_r                     # inward, F_r per lobe
+    pA = np.argmin(np.hypot(m.p[0], m.p[1] - R_o))          # statically determinate: the minor axis's nodes
+    pB = np.argmin(np.hypot(m.p[0], m.p[1] + R_o))
+    D = np.array([ib.nodal_dofs[0][pA], ib.nodal_dofs[1][pA], ib.nodal_dofs[0][pB]])
+    u = solve(*condense(K, f, D=D))
+    return float(f @ u) / (2.0 * F_r) * math.tan(math.radians(alpha_deg)) / r_p, ib.N
+
+
+def cam_envelope(rules, size, ratio):
+    """(outer radius of cam + inner ring, pitch radius) from the rules' envelope: the cup's bore less the outer ring,
+    the balls and an inner ring as thick as the shipped one (3.0 / 160 d)."""
+    d = rules.pitch_diameter_mm(size)
+    g = rules.design(size, ratio).geometry
+    bore = 0.5 * d - 1.25 * g.module_mm - g.rim_thickness_mm
+    R_race = bore - rules.outer_ring_over_d * d - rules.ball_diameter_over_d * d
+    return R_race, g.pitch_radius_mm, g.face_width_mm
+
+
+def pair_factor_window(rules, ratio, factor):
+    """The K3-window compliance with every flank pair's own compliance x factor (plane strain / stress / 3D)."""
+    from strainwave.analytic import mesh_drive
+    size = rules.cup_zone_reference_size
+    d = rules.pitch_diameter_mm(size)
+    series = (rules.cup_flexibility_rad_per_Nmm(size) + rules.cup_zone_term(ratio).at(d)
+              + rules.cs_body_term(ratio).at(d, rules.E_MPa))
+    orig = mesh_drive.pair_compliance_mm_per_N
+    mesh_drive.pair_compliance_mm_per_N = lambda design: factor * orig(design)
+    try:
+        return window_compliance(rules.design(size, ratio), series, rules.rated_torque_Nm(size))
+    finally:
+        mesh_drive.pair_compliance_mm_per_N = orig
+
+
+def candidates(rules: MeshRules, ratio: float) -> dict:
+    import math
+    from strainwave.analytic import mesh_compliance as mc
+    from strainwave.analytic.mesh_drive import pair_compliance_mm_per_N
+    size = rules.cup_zone_reference_size
+    d, E = rules.pitch_diameter_mm(size), rules.E_MPa
+    out = {}
+    # (b) the cam: solid (bore 0.02 R) and hollow (bore 0.5 / 0.7 R: a hollow-shaft unit; unsourced), lobes spread
+    # over +-15 deg (the wrap) and +-5 deg; three polar lattices for the GCI
+    R_o, r_p, b = cam_envelope(rules, size, ratio)
+    for frac in (0.02, 0.5, 0.7):
+        for wrap in (15.0, 5.0):
+            vals = [cam_ring_fe_twist(R_o, frac * R_o, E, b, r_p, 20.0, wrap, k * (4 if frac > 0.1 else 8),
+                                      k * 72)[0] for k in (1, 2, 4)]
+            out[f"cam bore {frac:g} R wrap {wrap:g}"] = vals
+    # (c) the FS boss's bolted joint: interface tangential stiffness per area k_t (unsourced) over the hub annulus
+    from strainwave.geometry.flexspline_cup import HUB_BORE_RATIO, HUB_RATIO
+    J = 0.5 * math.pi * ((HUB_RATIO * d) ** 4 - (HUB_BORE_RATIO * d) ** 4)
+    for kt in (1e3, 1e4, 1e5):
+        out[f"boss joint k_t {kt:g} N/mm3"] = 1.0 / (kt * J)
+    # (d) the pair's own compliance x 0.91 / x 1.10 (plane strain / plane stress, decision 064's spread)
+    base = pair_factor_window(rules, ratio, 1.0)
+    for f in (0.91, 1.10):
+        out[f"pairs x {f:g}"] = pair_factor_window(rules, ratio, f) - base
+    dd = rules.design(size, ratio)
+    g = dd.geometry
+    c = mc.iso6336_single_pair_stiffness_N_per_mm_um(g.teeth_flexspline, None, alpha_deg=g.pressure_angle_deg)
+    out["pair ISO part / pair"] = mc.tooth_pair_compliance_mm_per_N(c, g.face_width_mm) / pair_compliance_mm_per_N(dd)
+    return out
+
+
+def main_candidates():
+    rules = MeshRules()
+    t0 = time.process_time()
+    for ratio in (30.0, 50.0, 100.0):
+        for k, v in candidates(rules, ratio).items():
+            print(f"ratio {ratio:g}: {k}: {v}")
+    print(f"CPU {time.process_time() - t0:.1f} s")
+
+
+if __name__ == "__main__" and sys.argv[1:] == ["candidates"]:
+    main_candidates()
+
+
+def main_sourced():
+    """(a): the rules' drive with one printed proportion changed at a time: the CJME 2021 ring flexspline's face
+    width b/d = 10/60 (one research unit), and a cup length L = lambda R_m at the web calculator's lambda 0.4 / 0.8."""
+    base = MeshRules()
+    t0 = time.process_time()
+    for label, rules in (("b/d 10/60", replace(base, face_width_over_d=10.0 / 60.0)),
+                         ("L 0.2 d", replace(base, length_over_d=0.2)), ("L 0.4 d", replace(base, length_over_d=0.4))):
+        for ratio in (30.0, 50.0, 100.0):
+            b = budget(rules, ratio)
+            print(f"{label} ratio {ratio:g}: full {b['full']:.3e} miss {b['miss']:.3e} cup {b['cup series']:.3e} "
+                  f"zone {b['cup zone']:.3e}")
+    print(f"CPU {time.process_time() - t0:.1f} s")
+
+
+if __name__ == "__main__" and sys.argv[1:] == ["sourced"]:
+    main_sourced()
