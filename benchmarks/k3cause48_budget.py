@@ -177,3 +177,104 @@ def main_sourced():
 
 if __name__ == "__main__" and sys.argv[1:] == ["sourced"]:
     main_sourced()
+
+
+def main_mesh_split():
+    """Where the mesh's own K3-window compliance sits: the rim + outer ring's bending (EI x 1e6), and the pairs
+    (x 1e-6), one at a time, at size 25."""
+    from strainwave.analytic import mesh_drive
+    from strainwave.analytic.mesh_drive import MeshDesign
+    rules = MeshRules()
+    size = rules.cup_zone_reference_size
+    rated = rules.rated_torque_Nm(size)
+    orig_I, orig_pair = MeshDesign.rim_I_mm4, mesh_drive.pair_compliance_mm_per_N
+    for ratio in (30.0, 50.0, 100.0):
+        design = rules.design(size, ratio)
+        base = window_compliance(design, 0.0, rated)
+        try:
+            MeshDesign.rim_I_mm4 = property(lambda self: 1e6 * orig_I.fget(self))
+            rigid_rim = window_compliance(design, 0.0, rated)
+        finally:
+            MeshDesign.rim_I_mm4 = orig_I
+        try:
+            mesh_drive.pair_compliance_mm_per_N = lambda d: 1e-6 * orig_pair(d)
+            rigid_pairs = window_compliance(design, 0.0, rated)
+        finally:
+            mesh_drive.pair_compliance_mm_per_N = orig_pair
+        print(f"ratio {ratio:g}: mesh {base:.3e}; rim bending {base - rigid_rim:.3e}; pairs {base - rigid_pairs:.3e}")
+
+
+if __name__ == "__main__" and sys.argv[1:] == ["mesh-split"]:
+    main_mesh_split()
+
+
+def preloaded_path(system, torque_Nmm, c0):
+    """``fea.mesh_contact.solve_torque_path`` started from a preloaded state: clearances ``c0`` (negative where the
+    teeth interfere at zero torque); the initial contact set is the LCP's at theta = 0 (pairs with F <= 0 dropped,
+    pairs whose gap closes added, until both hold)."""
+    from strainwave.fea.mesh_contact import MeshPath, _Tracker
+    tr = _Tracker(system)
+    tr.c = np.asarray(c0, float)        # MeshSystem refuses negative gaps; the tracker itself does not need them >= 0
+    A = c0 < 0.0
+    for _ in range(200):
+        tr.active = A.copy()
+        a, _b = tr.linear()
+        gap = c0 + tr.C @ a
+        drop = A & (a <= 0.0)
+        add = ~A & (gap < 0.0)
+        if not drop.any() and not add.any():
+            break
+        A = (A & ~drop) | add
+    else:
+        raise RuntimeError("the preload's contact set did not settle")
+    T = np.asarray(torque_Nmm, float)
+    theta, forces, work = np.zeros(len(T)), np.zeros((len(T), len(c0))), np.zeros(len(T))
+    for k, Tk in enumerate(T):
+        tr.work = 0.0
+        up, down = tr.torque(tr.theta, 1.0), tr.torque(tr.theta, -1.0)
+        if Tk > up:
+            tr.move_to(Tk, 1.0)
+        elif Tk < down:
+            tr.move_to(Tk, -1.0)
+        theta[k], forces[k], work[k] = tr.theta, tr.forces(), tr.work
+    return MeshPath(T, theta, forces, forces > 0.0, np.zeros(len(T), int), work), int(A.sum())
+
+
+def main_preload():
+    """(e): the teeth preloaded at the major axis by a radial over-deflection dw (the wave's amplitude w0 + dw):
+    every flank's gap falls by dw cos(2 phi) sin(alpha); dw / m = 0 / 0.02 / 0.05 / 0.1 (unsourced: a bracket)."""
+    import math
+    from strainwave.analytic.catalogue_loss import hysteresis_loss_rad
+    from strainwave.analytic.drive_curve import LOOP_STEPS_PER_LEG, catalogue_secants
+    from strainwave.analytic.mesh_drive import bearing_twist_rad, mesh_system
+    from strainwave.analytic.mesh_kinematics import sliced_clearances
+    from strainwave.fea.mesh_contact import torque_history
+    rules = MeshRules()
+    size = rules.cup_zone_reference_size
+    d, rated = rules.pitch_diameter_mm(size), rules.rated_torque_Nm(size)
+    cat = {30: (10e3, 13e3, 21e3), 50: (25e3, 34e3, 44e3), 100: (31e3, 50e3, 57e3)}
+    t0 = time.process_time()
+    for ratio in (30.0, 50.0, 100.0):
+        design = rules.design(size, ratio)
+        g = design.geometry
+        series = (rules.cup_flexibility_rad_per_Nmm(size) + rules.cup_zone_term(ratio).at(d)
+                  + rules.cs_body_term(ratio).at(d, rules.E_MPa))
+        system, tooth = mesh_system(design)
+        _, _, _, _, angles = sliced_clearances(g, 0.0)
+        angles = np.asarray(angles)[tooth]
+        T = torque_history(1e3 * rated, LOOP_STEPS_PER_LEG)
+        for dw in (0.0, 0.02, 0.05, 0.1):
+            c0 = np.asarray(system.clearance_mm) - dw * g.module_mm * np.cos(2.0 * np.asarray(angles)) * math.sin(
+                math.radians(g.pressure_angle_deg))
+            path, n0 = preloaded_path(system, T, c0)
+            tw = path.twist_rad + T * series + bearing_twist_rad(design, T)
+            sec = catalogue_secants(1e-3 * T, tw, 14.0, 48.0)
+            k1, _, k3 = cat[int(ratio)]
+            print(f"ratio {ratio:g} dw {dw:g} m: pairs preloaded {n0}; K1 {sec['K1_Nm_per_rad'] / k1:.2f} "
+                  f"K3 {sec['K3_Nm_per_rad'] / k3:.2f} of the catalogue; hysteresis at 0 N m "
+                  f"{hysteresis_loss_rad(1e-3 * T, tw) * 180 * 60 / math.pi:.3f} arcmin")
+    print(f"CPU {time.process_time() - t0:.1f} s")
+
+
+if __name__ == "__main__" and sys.argv[1:] == ["preload"]:
+    main_preload()
