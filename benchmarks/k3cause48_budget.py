@@ -278,3 +278,32 @@ def main_preload():
 
 if __name__ == "__main__" and sys.argv[1:] == ["preload"]:
     main_preload()
+
+
+def main_kappa():
+    """A sensitivity, not a candidate for adoption (no source gives kappa): the wave's amplitude w0 = kappa m at
+    kappa 0.8 / 1.25, and at 1.25 split into its two routes (the fatigue rim sized for kappa 1.25 with the kappa-1
+    kinematics, and the kappa-1.25 kinematics on the kappa-1 rim)."""
+    from dataclasses import dataclass
+
+    @dataclass(frozen=True)
+    class RimOf(MeshRules):
+        rim_kappa: float = 1.0
+
+        def rim_mm(self, size, ratio):
+            return replace(MeshRules(), kappa=self.rim_kappa).rim_mm(size, ratio)
+
+    cases = (("kappa 0.8", replace(MeshRules(), kappa=0.8)), ("kappa 1.25", replace(MeshRules(), kappa=1.25)),
+             ("kappa 1 kinematics, kappa-1.25 rim", RimOf(kappa=1.0, rim_kappa=1.25)),
+             ("kappa 1.25 kinematics, kappa-1 rim", RimOf(kappa=1.25, rim_kappa=1.0)))
+    t0 = time.process_time()
+    for label, rules in cases:
+        for ratio in (30.0, 50.0, 100.0):
+            b = budget(rules, ratio)
+            print(f"{label} ratio {ratio:g}: rim {rules.rim_mm(25, ratio):.3f} mm; K3 window compliance "
+                  f"{b['full']:.3e}; predicted K3 / catalogue {b['catalogue'] / b['full']:.2f}")
+    print(f"CPU {time.process_time() - t0:.1f} s")
+
+
+if __name__ == "__main__" and sys.argv[1:] == ["kappa"]:
+    main_kappa()
