@@ -1,8 +1,8 @@
 """Decision 073 (k3cause48): the catalogue chain's compliance budget over the K3 window at size 25.
 
 For each ratio: the K3-window compliance (phi(A) - phi(T2)) / (A - T2) of the full chain, and what each member
-contributes (the member stiffened 1e6x, the difference), against what the CHA row needs. Run:
-    .venv/bin/python benchmarks/k3cause48_budget.py
+contributes (the member stiffened 1e6x, the difference), against what the CHA row needs; then the candidates.
+Run: .venv/bin/python benchmarks/k3cause48_budget.py [candidates | sourced | mesh-split | preload | kappa]
 """
 from __future__ import annotations
 
@@ -53,9 +53,6 @@ def main(argv):
         print(f"ratio {ratio:g}: " + "; ".join(f"{k} {v:.3e}" for k, v in b.items()))
     print(f"CPU {time.process_time() - t0:.1f} s")
 
-
-if __name__ == "__main__" and not sys.argv[1:]:
-    main(sys.argv[1:])
 
 
 # ---- the candidates of decision 073 ----------------------------------------------------------------------------
@@ -157,26 +154,20 @@ def main_candidates():
     print(f"CPU {time.process_time() - t0:.1f} s")
 
 
-if __name__ == "__main__" and sys.argv[1:] == ["candidates"]:
-    main_candidates()
-
 
 def main_sourced():
     """(a): the rules' drive with one printed proportion changed at a time: the CJME 2021 ring flexspline's face
-    width b/d = 10/60 (one research unit), and a cup length L = lambda R_m at the web calculator's lambda 0.4 / 0.8."""
+    width b/d = 10/60 (one research unit), and a cup length L = lambda R_m at the web calculator's lambda 0.8 (0.4: the shell's closed form only)."""
     base = MeshRules()
     t0 = time.process_time()
     for label, rules in (("b/d 10/60", replace(base, face_width_over_d=10.0 / 60.0)),
-                         ("L 0.2 d", replace(base, length_over_d=0.2)), ("L 0.4 d", replace(base, length_over_d=0.4))):
+                         ("L 0.4 d", replace(base, length_over_d=0.4))):   # L 0.2 d: fea/wg_band stops (decision 073)
         for ratio in (30.0, 50.0, 100.0):
             b = budget(rules, ratio)
             print(f"{label} ratio {ratio:g}: full {b['full']:.3e} miss {b['miss']:.3e} cup {b['cup series']:.3e} "
                   f"zone {b['cup zone']:.3e}")
     print(f"CPU {time.process_time() - t0:.1f} s")
 
-
-if __name__ == "__main__" and sys.argv[1:] == ["sourced"]:
-    main_sourced()
 
 
 def main_mesh_split():
@@ -203,9 +194,6 @@ def main_mesh_split():
             mesh_drive.pair_compliance_mm_per_N = orig_pair
         print(f"ratio {ratio:g}: mesh {base:.3e}; rim bending {base - rigid_rim:.3e}; pairs {base - rigid_pairs:.3e}")
 
-
-if __name__ == "__main__" and sys.argv[1:] == ["mesh-split"]:
-    main_mesh_split()
 
 
 def preloaded_path(system, torque_Nmm, c0):
@@ -276,9 +264,6 @@ def main_preload():
     print(f"CPU {time.process_time() - t0:.1f} s")
 
 
-if __name__ == "__main__" and sys.argv[1:] == ["preload"]:
-    main_preload()
-
 
 def main_kappa():
     """A sensitivity, not a candidate for adoption (no source gives kappa): the wave's amplitude w0 = kappa m at
@@ -305,5 +290,12 @@ def main_kappa():
     print(f"CPU {time.process_time() - t0:.1f} s")
 
 
-if __name__ == "__main__" and sys.argv[1:] == ["kappa"]:
-    main_kappa()
+MODES = {"": lambda: main([]), "candidates": main_candidates, "sourced": main_sourced, "mesh-split": main_mesh_split,
+         "preload": main_preload, "kappa": main_kappa}
+
+if __name__ == "__main__":
+    mode = " ".join(sys.argv[1:])
+    if mode not in MODES:
+        print(f"k3cause48_budget: mode {mode!r} is not one of {sorted(MODES)}", file=sys.stderr)
+        sys.exit(2)
+    MODES[mode]()
