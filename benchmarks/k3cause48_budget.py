@@ -290,8 +290,43 @@ def main_kappa():
     print(f"CPU {time.process_time() - t0:.1f} s")
 
 
+def main_joint_table():
+    """The CHA table at the ends of candidate c's bracket (the FS boss's bolted joint, interface tangential stiffness
+    k_t = 1e3 / 1e4 N/mm^3 over the hub annulus, 1 / (k_t pi/2 (r_o^4 - r_i^4)): it scales as 1 / d^4, not d^3)."""
+    import math
+    from pathlib import Path
+    from strainwave.analytic.catalogue_predict import GOALS, predict_table
+    from strainwave.geometry.flexspline_cup import HUB_BORE_RATIO, HUB_RATIO
+
+    class WithJoint(MeshRules):
+        def cup_flexibility_rad_per_Nmm(self, size):
+            d = self.pitch_diameter_mm(size)
+            J = 0.5 * math.pi * ((HUB_RATIO * d) ** 4 - (HUB_BORE_RATIO * d) ** 4)
+            return MeshRules.cup_flexibility_rad_per_Nmm(self, size) + 1.0 / (self.k_t * J)
+
+    table = Path(__file__).resolve().parents[2] / "shared" / "data" / "cha_torsional_stiffness.csv"
+    table = table if table.exists() else Path("/work/shared/data/cha_torsional_stiffness.csv")
+    from strainwave.analytic import catalogue_predict
+    similar = catalogue_predict.is_similar
+    catalogue_predict.is_similar = lambda rules: False      # the joint is not similar (1 / d^4): solve every row
+    try:
+        preds = {}
+        for kt in (1e3, 1e4):
+            rules = WithJoint()
+            object.__setattr__(rules, "k_t", kt)
+            preds[kt] = predict_table(table, rules)
+    finally:
+        catalogue_predict.is_similar = similar
+    for kt, pred in preds.items():
+        counts = {n: sum(1 for rp in pred.rows if rp.ratio_of(n) is not None and abs(rp.ratio_of(n) - 1) <= g)
+                  for n, g in GOALS.items()}
+        k3 = [rp.ratio_of("K3_Nm_per_rad") for rp in pred.rows]
+        print(f"k_t {kt:g} N/mm3: within goal {counts} of {len(pred.rows)}; K3 {min(k3):.2f}-{max(k3):.2f}; "
+              f"trend {[round(t['ratio'], 2) for t in pred.trend()]}; CPU {pred.cpu_s:.1f} s")
+
+
 MODES = {"": lambda: main([]), "candidates": main_candidates, "sourced": main_sourced, "mesh-split": main_mesh_split,
-         "preload": main_preload, "kappa": main_kappa}
+         "preload": main_preload, "kappa": main_kappa, "joint-table": main_joint_table}
 
 if __name__ == "__main__":
     mode = " ".join(sys.argv[1:])
