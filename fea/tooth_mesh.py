@@ -333,6 +333,14 @@ def crack_signature(infl: Mapping, mesh: Mapping) -> tuple[dict, np.ndarray]:
             "crack_te_peak_rad": float(change.max())}, change
 
 
+def rated_compliance(infl: Mapping, mesh: Mapping, path) -> dict:
+    """The pair compliance of the headline angle's pairs loaded at rated (first loading), with their indices: the
+    drive-assembled check's teeth member (fea/drive_assembled.py), small enough for the record."""
+    C = pair_compliance(infl, mesh["angles"][0], mesh["z_f"], mesh["z_c"])
+    on = np.flatnonzero(path.forces_N[int(np.argmax(path.torque_Nmm))] > 0.0)
+    return {"index": on.tolist(), "compliance_mm_per_N": C[np.ix_(on, on)].tolist()}
+
+
 def crack_orders(mesh: Mapping) -> dict:
     """How often the cracked tooth passes an engagement zone: the WG's lobes sweep the FS at (1 + dZ/Z_f) of
     the WG's speed relative to it, twice per relative turn (dual wave)."""
@@ -491,6 +499,7 @@ class ToothMesh(StudyVariant):
         fields = {"rigid_rim": rigid_inputs}
         if k == 0:
             fields["paths"] = paths          # small: the finest loop reaches meta (diagnose --baseline fea reads it)
+            fields["rated_compliance"] = rated_compliance(infl, self.mesh_inputs, paths[0])
         if keep_fields:
             fields |= {"rated_u": rated_field(infl, self.mesh_inputs, paths[0]),
                        "r_bore_mm": infl["r_bore_mm"], "crack_change": change}
@@ -546,7 +555,7 @@ class ToothMesh(StudyVariant):
                "forces_at_rated_N": p.forces_N[int(np.argmax(p.torque_Nmm))].tolist(),
                "pairs": {k: np.asarray(v).tolist() for k, v in self.mesh_inputs["angles"][0].items()},
                "te_twist_at_rated_rad": [float(q.twist_rad[int(np.argmax(q.torque_Nmm))]) for q in f["paths"]],
-               "rigid_rim": f["rigid_rim"]}
+               "rigid_rim": f["rigid_rim"], "rated_compliance": f.get("rated_compliance")}
         if "crack_change" not in f:
             return out
         return out | {"crack": {"tooth_phi_rad": list(self.mesh_inputs["crack_phi_rad"]),
