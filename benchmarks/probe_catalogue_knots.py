@@ -1,6 +1,7 @@
 """The catalogue's readings against the loop's torque step and the reader's grid (decision 074).
 
-Usage: python benchmarks/probe_catalogue_knots.py TABLE.csv [--steps 60,120,240] [--grid 400,800] [--out FILE]
+Usage: python benchmarks/probe_catalogue_knots.py TABLE.csv [--steps 60,120,240] [--grid 400,800] [--grade A]
+       [--old] [--out FILE]      (--old: the reading before decision 074, on the solve's own steps)
 
 The FE series terms (cup zone, circular spline body) do not depend on the loop's step: solved once per ratio and
 reused; each (step, grid) pair then predicts every row, and the readings are written as JSON
@@ -23,14 +24,25 @@ NAMES = tuple(f"{n}_predicted" for n in cp.NAMES) + ("K1_Nm_per_rad_reader", "K2
                     "lost_motion_arcmin_predicted", "loop_width_max_arcmin")
 
 
+def _old_reading() -> None:
+    """The catalogue's paths with the exact loop switched off (the reading on the solve's own steps)."""
+    from strainwave.analytic import catalogue_similar as cs
+    for mod, name in ((cs, "predict_curve"), (cp, "predict_curve"), (cp, "unit_curves")):
+        f = getattr(dc, name)
+        setattr(mod, name, lambda *args, _f=f, **kw: _f(*args, **{**kw, "exact": False}))
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("table")
     ap.add_argument("--steps", default="60,120,240")
     ap.add_argument("--grid", default="400")
     ap.add_argument("--grade", type=float, default=None, help="ISO 1328-1 class (tooth deviations, 4 units)")
+    ap.add_argument("--old", action="store_true", help="read the solve's own steps (before decision 074)")
     ap.add_argument("--out", default=None)
     a = ap.parse_args()
+    if a.old:
+        _old_reading()
     rules = MeshRules()
     if a.grade is not None:
         from dataclasses import replace
