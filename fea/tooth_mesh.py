@@ -26,7 +26,7 @@ import numpy as np
 from strainwave.fea.assembly import Lame
 from strainwave.fea.convergence import Convergence
 # the exact loop on the reader's fixed torque grid: one implementation, shared with the catalogue's curve
-from strainwave.fea.mesh_loop import READ_STEPS_PER_LEG, elastic_twist, exact_loop, resampled_loop  # noqa: F401
+from strainwave.fea.mesh_loop import READ_STEPS_PER_LEG, resampled_loop
 from strainwave.fea.mesh_loop import branch_twist as _branch_twist
 from strainwave.fea.result import Load, MeshQuality, Quantity, StudyResult, Support
 from strainwave.fea.skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, check_variant, run_variant
