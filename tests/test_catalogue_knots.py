@@ -69,3 +69,24 @@ def test_the_exact_loop_is_the_solve_at_the_grid_torques():
     # and the comparison can fail: the loop without the balls' Hertz twist is off by more than 1 %
     no_balls = direct - bearing_twist_rad(d, grid)
     assert np.max(np.abs(curve.loop_twist_rad - no_balls)) > 1e-2 * np.max(np.abs(direct))
+
+
+def test_a_drive_with_backlash_reads_its_knees_with_the_dead_band_out():
+    """Decision 073's definition on the exact loop: the shipped gear has backlash, so the raw loop's first knee is
+    the dead band's vertical (T1 at the first grid samples); with the band out T1 is a knee of the teeth, and the
+    band stays in the lost motion."""
+    import warnings
+    from strainwave.analytic.mesh_drive import design_from_params
+    from strainwave.compare.diagnose.drive_baseline import drive_series_flexibility_rad_per_Nmm
+    from strainwave.params import load_params
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        p = load_params()
+    A = 1e-3 * p.gear.rated_output_torque_Nmm
+    c = dc.predict_curve(design_from_params(p), drive_series_flexibility_rad_per_Nmm(p), A, with_te=False, exact=True)
+    lo, hi = c.dead_band_rad
+    assert lo < 0.0 < hi
+    raw = dc.read_catalogue_numbers(c.loop_torque_Nm, c.loop_twist_rad, A)
+    step = A / dc.READ_STEPS_PER_LEG
+    assert raw["T1"][0] < 2.0 * step < 0.02 * A < c.T1_Nm and c.K1_Nm_per_rad > 5.0 * raw["K1"][0]
+    assert c.lost_motion_rad > hi - lo
