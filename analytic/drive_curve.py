@@ -4,7 +4,9 @@ transmission error and ratcheting torque.
 The output twist of a drive with its wave generator locked is the mesh's twist (mesh_contact on the
 system of mesh_drive) plus the twist of the parts in series with it (the cup's tube; the output shaft where
 the drive has one), each linear: theta = theta_mesh(T) + T lambda_series. The catalogue's numbers are read
-from the simulated loop by the same reader a recording goes through (compare/diagnose/catalogue_values.py).
+from the simulated loop by the same reader a recording goes through (compare/diagnose/catalogue_values.py);
+the catalogue's paths (``exact=True``) read the mesh's exact loop on a fixed torque grid, so their numbers do not
+depend on the solve's torque step (decision 074).
 """
 from __future__ import annotations
 
