@@ -31,12 +31,15 @@ def drive_series_flexibility_rad_per_Nmm(params) -> float:
     return cup_series_model(params, G).total + shaft
 
 
-def predicted_drive_curve(params):
-    """The drive's predicted curve at its rated torque (about 0.2 CPU-s)."""
+def predicted_drive_curve(params, *, exact: bool = True):
+    """The drive's predicted curve at its rated torque (about 0.3 CPU-s). ``exact``: the mesh's exact loop on the
+    fixed reading grid, the knees read with the backlash's dead band out (decision 075); False: the solve's steps."""
     from strainwave.analytic.drive_curve import predict_curve
     from strainwave.analytic.mesh_drive import design_from_params
-    return predict_curve(design_from_params(params), drive_series_flexibility_rad_per_Nmm(params),
-                         1e-3 * params.gear.rated_output_torque_Nmm, with_te=False)
+    from threadpoolctl import threadpool_limits
+    with threadpool_limits(limits=1):       # the reader's small dense solves: BLAS threads only spin (decision 071)
+        return predict_curve(design_from_params(params), drive_series_flexibility_rad_per_Nmm(params),
+                             1e-3 * params.gear.rated_output_torque_Nmm, with_te=False, exact=exact)
 
 
 def fea_drive_curve(params):
