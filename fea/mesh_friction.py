@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["BandSystem", "turned_bands", "solve_twist_path", "twists_for_torques"]
+__all__ = ["BandSystem", "turned_bands", "solve_twist_path", "twists_for_torques", "torque_path"]
 
 MAX_SETS = 200      # active-set iterations per increment before giving up (a P-matrix problem needs few)
 
@@ -67,8 +67,10 @@ class _State:
         return _State(*(np.copy(v) for v in (self.contact, self.stick, self.sign, self.slip_mm, self.N, self.Q)))
 
 
-def _linear(s: BandSystem, st: _State, theta: float) -> tuple[np.ndarray, np.ndarray]:
-    """N and Q on the current contact and stick sets."""
+def _linear(s: BandSystem, st: _State, theta: float,
+            torque: float | None = None) -> tuple[np.ndarray, np.ndarray, float]:
+    """N, Q and the twist on the current contact and stick sets: at the twist ``theta``, or, given ``torque``, at
+    the twist that carries it (the twist one more unknown, the torque one more row)."""
     n, mu = len(s.clearance_mm), s.friction_coefficient
     A = np.flatnonzero(st.contact)
     S = np.flatnonzero(st.contact & st.stick)
@@ -78,29 +80,39 @@ def _linear(s: BandSystem, st: _State, theta: float) -> tuple[np.ndarray, np.nda
     slipQ = np.zeros(n)
     slipQ[L] = -mu * st.sign[L]                      # Q_L = slipQ * N_L
     a, k = A.size, S.size
-    M = np.zeros((a + k, a + k))
+    t = 0 if torque is None or not a else 1
+    M = np.zeros((a + k + t, a + k + t))
     M[:a, :a] = Cff[np.ix_(A, A)] + Cfg[np.ix_(A, A)] * slipQ[A][None, :]
-    M[:a, a:] = Cfg[np.ix_(A, S)]
-    M[a:, :a] = Cgf[np.ix_(S, A)] + Cgg[np.ix_(S, A)] * slipQ[A][None, :]
-    M[a:, a:] = Cgg[np.ix_(S, S)]
-    rhs = np.concatenate([s.lever_mm[A] * theta - s.clearance_mm[A],
-                          st.slip_mm[S] - s.slide_mm_per_rad[S] * theta])
+    M[:a, a:a + k] = Cfg[np.ix_(A, S)]
+    M[a:a + k, :a] = Cgf[np.ix_(S, A)] + Cgg[np.ix_(S, A)] * slipQ[A][None, :]
+    M[a:a + k, a:a + k] = Cgg[np.ix_(S, S)]
+    if t:       # the twist moved to the left: gap rows - lever theta, stick rows + w theta; the torque's row
+        M[:a, -1], M[a:a + k, -1] = -s.lever_mm[A], s.slide_mm_per_rad[S]
+        M[-1, :a] = s.lever_mm[A] - s.slide_mm_per_rad[A] * slipQ[A]
+        M[-1, a:a + k] = -s.slide_mm_per_rad[S]
+        rhs = np.concatenate([-s.clearance_mm[A], st.slip_mm[S], [torque]])
+    else:
+        rhs = np.concatenate([s.lever_mm[A] * theta - s.clearance_mm[A],
+                              st.slip_mm[S] - s.slide_mm_per_rad[S] * theta])
     x = np.linalg.solve(M, rhs) if a else np.zeros(0)
     N, Q = np.zeros(n), np.zeros(n)
     N[A] = x[:a]
-    Q[S] = x[a:]
+    Q[S] = x[a:a + k]
     Q[L] = slipQ[L] * N[L]
-    return N, Q
+    return N, Q, float(x[-1]) if t else theta
 
 
-def _increment(s: BandSystem, st: _State, theta: float) -> None:
-    """Solve one increment to ``theta`` in place: contact, stick and slip sets consistent with Coulomb. One set
-    change per pass, the worst violation first (changing all at once can cycle between stick and slip)."""
+def _increment(s: BandSystem, st: _State, theta: float, torque: float | None = None) -> float:
+    """Solve one increment to ``theta`` (or to the twist that carries ``torque``; ``theta`` then the guess) in
+    place: contact, stick and slip sets consistent with Coulomb; returns the twist. One set change per pass, the
+    worst violation first (changing all at once can cycle between stick and slip)."""
     n, mu = len(s.clearance_mm), s.friction_coefficient
     g_tol = 1e-12 * max(float(np.max(np.abs(s.clearance_mm), initial=0.0)), 1e-9)
-    s_tol = 1e-10 * max(float(np.max(np.abs(s.slide_mm_per_rad))) * abs(theta), g_tol)
     for _ in range(MAX_SETS):
-        N, Q = _linear(s, st, theta)
+        if torque is not None and not st.contact.any():
+            _first_to_close(s, st, torque)
+        N, Q, theta = _linear(s, st, theta, torque)
+        s_tol = 1e-10 * max(float(np.max(np.abs(s.slide_mm_per_rad))) * abs(theta), g_tol)
         u = s.flex_mm_per_N @ np.concatenate([N, Q])
         gap = s.clearance_mm - s.lever_mm * theta + u[:n]
         slip = u[n:] + s.slide_mm_per_rad * theta
@@ -114,7 +126,7 @@ def _increment(s: BandSystem, st: _State, theta: float) -> None:
         size, i, kind = max(viol)
         if size <= 1.0:
             st.N, st.Q, st.slip_mm = N, Q, slip
-            return
+            return theta
         if kind in ("open", "close"):
             st.contact[i] = kind == "close"
             st.stick[i] = mu > 0.0
@@ -123,6 +135,16 @@ def _increment(s: BandSystem, st: _State, theta: float) -> None:
         else:
             st.stick[i] = True
     raise RuntimeError(f"mesh_friction: no consistent contact/stick set at theta = {theta:.6g} rad")
+
+
+def _first_to_close(s: BandSystem, st: _State, torque: float) -> None:
+    """No flank touches and a torque is asked for: the flank whose gap closes first as the twist moves toward the
+    torque's sign carries it (unloaded, the gaps are c - lever theta)."""
+    can = np.flatnonzero(np.sign(s.lever_mm) == np.sign(torque))
+    if torque == 0.0 or can.size == 0:
+        raise ValueError(f"mesh_friction: torque {torque:.6g} N mm is not carried by any flank")
+    i = can[np.argmin(s.clearance_mm[can] / np.abs(s.lever_mm[can]))]
+    st.contact[i], st.stick[i] = True, s.friction_coefficient > 0.0
 
 
 def _new_state(n: int, mu: float) -> _State:
@@ -201,3 +223,48 @@ def twists_for_torques(s: BandSystem, torques_Nmm, increments: int = 20, rtol: f
         out.append(_record(s, st, hi))
         prev = hi
     return out
+
+
+ZERO_AIM = 1e-9     # of the history's amplitude: a zero torque inside the loop is aimed at a hair either side of 0
+
+
+def _targets(torques: np.ndarray, increments: int) -> tuple[np.ndarray, np.ndarray]:
+    """The increments' torques (each history step in ``increments`` equal torque increments) and the index of each
+    history point among them. A zero torque after a load lies in the backlash's dead band (any twist in it carries
+    0): both its edges are solved, a hair either side of 0, and the far edge (the other flanks touch) is the
+    history's point, where fea/mesh_contact's tracker lands too."""
+    eps = ZERO_AIM * float(np.max(np.abs(torques), initial=0.0))
+    out, idx = [], [-1]
+    for k in range(1, torques.size):
+        sub = list(np.linspace(torques[k - 1], torques[k], increments + 1)[1:])
+        if torques[k] == 0.0 and torques[k - 1] != 0.0:
+            sub[-1:] = [np.sign(torques[k - 1]) * eps, -np.sign(torques[k - 1]) * eps]
+        out += sub
+        idx.append(len(out) - 1)
+    return np.asarray(out), np.asarray(idx)
+
+
+def torque_path(s: BandSystem, torques_Nmm, increments: int = 1):
+    """The history of torques (starting unloaded at 0), each step in ``increments`` equal TORQUE increments, each
+    increment solved with its torque prescribed from the previous converged state (the twist an unknown of the
+    increment's linear system): one solve a increment where ``twists_for_torques`` re-runs a leg per trial of its
+    false position. On the same increments it is the same discretisation (tests/test_mesh_friction.py). Returns a
+    fea/mesh_contact.MeshPath (work: trapezoids over the increments, exact where T is linear between them) and the
+    tangential forces (m, n)."""
+    from strainwave.fea.mesh_contact import MeshPath
+    T = np.asarray(torques_Nmm, float)
+    n = len(s.clearance_mm)
+    targets, idx = _targets(T, increments)
+    st, theta = _new_state(n, s.friction_coefficient), 0.0
+    th, Tr = np.zeros(targets.size + 1), np.zeros(targets.size + 1)
+    N, Q = np.zeros((T.size, n)), np.zeros((T.size, n))
+    rec = {int(j): i for i, j in enumerate(idx)}
+    for j, Tj in enumerate(targets):
+        theta = _increment(s, st, theta, float(Tj))
+        th[j + 1], Tr[j + 1] = theta, float(s.lever_mm @ st.N - s.slide_mm_per_rad @ st.Q)
+        if j in rec:
+            N[rec[j]], Q[rec[j]] = st.N, st.Q
+    seg = 0.5 * (Tr[1:] + Tr[:-1]) * np.diff(th)
+    cum = np.concatenate([[0.0], np.cumsum(seg)])
+    work = np.diff(cum[idx + 1], prepend=0.0)
+    return MeshPath(T, th[idx + 1], N, N > 0.0, np.zeros(T.size, int), work), Q

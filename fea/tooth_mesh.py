@@ -110,6 +110,38 @@ def pair_compliance(infl: Mapping, pairs: Mapping, z_f: int, z_c: int) -> np.nda
     return 0.5 * (C + C.T)
 
 
+MIRROR_SIGN = np.array([1.0, -1.0])   # a -1 flank's (normal, tangential) band is the mirrored +1 one's times these
+
+
+def pair_flexibility(infl: Mapping, pairs: Mapping, z_f: int, z_c: int) -> np.ndarray:
+    """(2n, 2n) band flexibility [[Cff, Cfg], [Cgf, Cgg]] of the flank pairs (FS rim + CS teeth, in series), in
+    pair_compliance's order: the normal band N (pressure) and the tangential Q (along t = rot90(n) of the FS flank;
+    the CS flank gets -Q t_FS = Q t_CS, so both bodies add). Tooth 0's blocks by translation symmetry; a -1 pair's
+    by the mirror, where t changes sign (MIRROR_SIGN); the CS coupling keeps CS_NEIGHBOURS teeth, as the normal
+    one (decision 073-slipstudy48). Cff is pair_compliance's."""
+    side, tooth, space = pairs["side"], pairs["tooth"], pairs["cs_space"]
+    n = side.size
+    Wf = _interp_weights(infl["fs_radii"], pairs["fs_radius_mm"])
+    Wc = _interp_weights(infl["cs_radii"], pairs["cs_radius_mm"])
+    same = side[:, None] == side[None, :]
+    mirror = side[:, None] < 0                      # row j loaded: a -1 load is the mirrored +1 load
+    dd = np.where(mirror, tooth[:, None] - tooth[None, :], tooth[None, :] - tooth[:, None]) % z_f
+    dc = np.where(mirror, space[:, None] - space[None, :], space[None, :] - space[:, None])
+    dc = (dc + z_c // 2) % z_c - z_c // 2
+    near = same & (np.abs(dc) <= CS_NEIGHBOURS)
+    flex = np.zeros((2 * n, 2 * n))
+    for x in (0, 1):
+        for y in (0, 1):
+            sign = np.where(mirror, MIRROR_SIGN[x] * MIRROR_SIGN[y], 1.0)
+            block = np.where(same[..., None, None], infl["fs_t_same"][x, y][dd], infl["fs_t_other"][x, y][dd])
+            C = np.einsum("ja,kb,jkab->jk", Wf, Wf, block)
+            cs = infl["cs_t"][x, y][np.clip(dc + CS_NEIGHBOURS, 0, 2 * CS_NEIGHBOURS)]
+            C = C + np.where(near, np.einsum("ja,kb,jkab->jk", Wc, Wc, cs), 0.0)
+            # C[j, k]: reading y at k per load x at j; flexibility rows are readings
+            flex[y * n:(y + 1) * n, x * n:(x + 1) * n] += (sign * C).T
+    return 0.5 * (flex + flex.T)
+
+
 def influences(params, mesh: Mapping, h_mm: float, *, plane_stress: bool = False,
                bed_N_per_mm2: float | None = None) -> tuple[dict, dict]:
     """The FS rim's and the CS sector's flank influences on one mesh size, and the mesh facts (``bed_N_per_mm2``:
@@ -123,8 +155,9 @@ def influences(params, mesh: Mapping, h_mm: float, *, plane_stress: bool = False
     fs_r, cs_r = radii_grids(mesh)
     rim = fe.rim_model(geo.fs, geo.r_bore_mm, h_mm, lame, geo.face_width_mm, bed_N_per_mm2)
     offs = np.arange(geo.z_f)
-    same = fe.influence(rim, geo.fs.root_radius_mm, fs_r, band, +1, offs, geo.r_bore_mm)
-    other = fe.influence(rim, geo.fs.root_radius_mm, fs_r, band, -1, offs, geo.r_bore_mm)
+    # tooth 0's +1 flank loaded by the pressure band and its turned twin, read on both flanks of every tooth
+    rim_t = fe.influence_blocks(rim, geo.fs.root_radius_mm, fs_r, band, +1, (1, -1), offs, geo.r_bore_mm)
+    same, other = rim_t[1][0, 0], rim_t[-1][0, 0]
     hs = SECTOR_H_RATIO * h_mm        # a sector holds a few teeth: finer costs little and keeps its GCI small
     # as wide as twice its depth: a narrow sector with free sides is a column, far softer than the CS ring
     # (4 teeth a side were 26 % softer than 20 on the default gear)
@@ -132,8 +165,9 @@ def influences(params, mesh: Mapping, h_mm: float, *, plane_stress: bool = False
     wide = max(CS_NEIGHBOURS + 2, int(math.ceil(2 * depth / (math.pi * geo.cs_tooth.module_mm))) + 2)
     sector = fe.sector_model(geo.cs_tooth, geo.cs_outer_radius_mm, wide, hs, lame, geo.face_width_mm)
     # the FS's +1 flank presses the CS tooth's -1 flank
-    cs = fe.influence(sector, geo.cs_tooth.root_radius_mm, cs_r, band, -1,
-                      np.arange(-CS_NEIGHBOURS, CS_NEIGHBOURS + 1), None)
+    cs_t = fe.influence_blocks(sector, geo.cs_tooth.root_radius_mm, cs_r, band, -1, (-1,),
+                               np.arange(-CS_NEIGHBOURS, CS_NEIGHBOURS + 1), None)[-1]
+    cs = cs_t[0, 0]
     solid = fe.sector_model(geo.fs, geo.fs.root_radius_mm - SOLID_DEPTH_OVER_M * geo.fs.module_mm, 2, hs, lame,
                             geo.face_width_mm)
     fs_solid = fe.influence(solid, geo.fs.root_radius_mm, fs_r, band, +1, np.array([0]), None)
@@ -143,7 +177,8 @@ def influences(params, mesh: Mapping, h_mm: float, *, plane_stress: bool = False
     facts = {"elements": int(rim.mesh.t.shape[1] + sector.mesh.t.shape[1]),
              "nodes": int(rim.basis.N + sector.basis.N), "dofs": int(2 * (rim.basis.N + sector.basis.N))}
     timings = {k: rim.timings_s[k] + sector.timings_s[k] for k in rim.timings_s}
-    return {"fs_same": same, "fs_other": other, "cs": cs, "fs_solid": fs_solid, "fs_radii": fs_r, "cs_radii": cs_r,
+    return {"fs_same": same, "fs_other": other, "cs": cs, "fs_t_same": rim_t[1], "fs_t_other": rim_t[-1], "cs_t": cs_t,
+            "fs_solid": fs_solid, "fs_radii": fs_r, "cs_radii": cs_r,
             "face_width_mm": geo.face_width_mm, "rim": rim, "r_bore_mm": geo.r_bore_mm,
             "crack_delta": fs_cracked[0] - fs_solid[0]}, facts | timings
 
