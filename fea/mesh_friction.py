@@ -193,37 +193,42 @@ def _false_position(f, lo: float, f_lo: float, hi: float, f_hi: float, f_tol: fl
     return hi
 
 
+def _leg_to_torque(s: BandSystem, st: _State, prev: float, T_now: float, T: float, increments: int,
+                   rtol: float) -> tuple[float, _State]:
+    """The leg from the state ``st`` at twist ``prev`` (torque ``T_now``) whose end twist carries ``T`` (false
+    position on the end twist, the leg's increments re-run from ``st`` per trial): (end twist, end state)."""
+    lever = float(np.max(np.abs(s.lever_mm)))
+    d = 1.0 if T > T_now else -1.0
+    step = max(abs(prev), float(np.min(s.clearance_mm)) / lever, 1e-9)
+
+    def torque_at(theta: float) -> tuple[float, _State]:
+        trial = st.copy()
+        _leg(s, trial, prev, theta, increments)
+        return float(s.lever_mm @ trial.N - s.slide_mm_per_rad @ trial.Q), trial
+
+    lo, hi = prev, prev + d * step
+    f_lo, f_hi = T_now - T, torque_at(hi)[0] - T
+    for _ in range(60):
+        if d * f_hi >= 0.0:
+            break
+        lo, f_lo, hi = hi, f_hi, hi + d * step
+        f_hi = torque_at(hi)[0] - T
+        step *= 2.0
+    else:       # e.g. a torque of the sign no flank of the lobe can carry
+        raise ValueError(f"twists_for_torques: torque {T:.6g} N mm is not reached by any twist")
+    hi = _false_position(lambda th: torque_at(th)[0] - T, lo, f_lo, hi, f_hi, rtol * abs(T))
+    return hi, torque_at(hi)[1]
+
+
 def twists_for_torques(s: BandSystem, torques_Nmm, increments: int = 20, rtol: float = 1e-10) -> list[dict]:
     """The twist history whose legs end at the given torques (false position on each leg's end twist, the path
     to it followed from the previous leg's state); returns ``solve_twist_path``'s records."""
     st, prev, out = _new_state(len(s.clearance_mm), s.friction_coefficient), 0.0, []
-    lever = float(np.max(np.abs(s.lever_mm)))
     for T in np.atleast_1d(np.asarray(torques_Nmm, float)).tolist():
         T_now = out[-1]["torque_Nmm"] if out else 0.0
-        d = 1.0 if T > T_now else -1.0
-        step = max(abs(prev), float(np.min(s.clearance_mm)) / lever, 1e-9)
-
-        def torque_at(theta: float) -> tuple[float, _State]:
-            trial = st.copy()
-            _leg(s, trial, prev, theta, increments)
-            return float(s.lever_mm @ trial.N - s.slide_mm_per_rad @ trial.Q), trial
-
-        lo, hi = prev, prev + d * step
-        f_lo, f_hi = T_now - T, torque_at(hi)[0] - T
-        for _ in range(60):
-            if d * f_hi >= 0.0:
-                break
-            lo, f_lo, hi = hi, f_hi, hi + d * step
-            f_hi = torque_at(hi)[0] - T
-            step *= 2.0
-        else:       # e.g. a torque of the sign no flank of the lobe can carry
-            raise ValueError(f"twists_for_torques: torque {T:.6g} N mm is not reached by any twist")
-        hi = _false_position(lambda th: torque_at(th)[0] - T, lo, f_lo, hi, f_hi, rtol * abs(T))
-        _, st = torque_at(hi)
-        out.append(_record(s, st, hi))
-        prev = hi
+        prev, st = _leg_to_torque(s, st, prev, T_now, T, increments, rtol)
+        out.append(_record(s, st, prev))
     return out
-
 
 ZERO_AIM = 1e-9     # of the history's amplitude: a zero torque inside the loop is aimed at a hair either side of 0
 
@@ -260,7 +265,11 @@ def torque_path(s: BandSystem, torques_Nmm, increments: int = 1):
     N, Q = np.zeros((T.size, n)), np.zeros((T.size, n))
     rec = {int(j): i for i, j in enumerate(idx)}
     for j, Tj in enumerate(targets):
-        theta = _increment(s, st, theta, float(Tj))
+        try:
+            trial = st.copy()
+            theta, st = _increment(s, trial, theta, float(Tj)), trial
+        except RuntimeError:    # the torque-driven sets cycled: the twist-driven increment, its end by false position
+            theta, st = _leg_to_torque(s, st, th[j], Tr[j], float(Tj), 1, 1e-12)
         th[j + 1], Tr[j + 1] = theta, float(s.lever_mm @ st.N - s.slide_mm_per_rad @ st.Q)
         if j in rec:
             N[rec[j]], Q[rec[j]] = st.N, st.Q

@@ -194,6 +194,16 @@ def systems(infl: Mapping, mesh: Mapping) -> list:
     return out
 
 
+def band_systems(infl: Mapping, mesh: Mapping) -> list:
+    """One fea/mesh_friction.BandSystem per wave-generator angle: the pairs' 2 x 2 band flexibility (normal and
+    tangential, pair_flexibility) for Coulomb's law on the true slip; the counter-tooth's slide along the FS flank's
+    t = rot90(n) is the engagement's ``slide_mm_per_rad`` with its sign (decision 072-slip48)."""
+    from strainwave.fea.mesh_friction import BandSystem
+    return [BandSystem(np.asarray(p["clearance_mm"], float), pair_flexibility(infl, p, mesh["z_f"], mesh["z_c"]),
+                       np.asarray(p["lever_mm"], float), np.asarray(p["slide_mm_per_rad"], float),
+                       float(mesh["friction_coefficient"])) for p in mesh["angles"]]
+
+
 ARCMIN = 60.0 * 180.0 / math.pi
 LOST_MOTION_FRACTION = 0.04       # Harmonic Drive's lost-motion torque, of the rated (catalogue_values.py)
 
