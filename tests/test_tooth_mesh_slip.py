@@ -109,7 +109,7 @@ def test_torque_path_dissipates_and_refuses_an_uncarried_torque(mu):
         assert T[hist != 0] == pytest.approx(hist[hist != 0], rel=1e-9)
         assert loop_area_Nmm_rad(path) > 1e-3
         frictionless = BandSystem(s.clearance_mm, s.flex_mm_per_N, s.lever_mm, 10 * s.slide_mm_per_rad, 0.0)
-        assert loop_area_Nmm_rad(torque_path(frictionless, hist, 4)[0]) == pytest.approx(0.0, abs=1e-9)
+        assert abs(loop_area_Nmm_rad(torque_path(frictionless, hist, 4)[0])) < 1e-5   # trapezoids at set changes
     one_side = BandSystem(s.clearance_mm, s.flex_mm_per_N, np.abs(s.lever_mm), s.slide_mm_per_rad, mu)
     with pytest.raises(ValueError, match="not carried"):
         torque_path(one_side, [0.0, -1e3])
