@@ -57,6 +57,9 @@ QUANTITIES = (
 STEP_LIMITED = ("K1_Nmm_per_rad", "K2_Nmm_per_rad", "T1_Nmm", "T2_Nmm")
 STEP_LIMITED_WHY = ("follows the torque step, not the mesh: the loop's dead band at 0 N m puts the first knee at the "
                     "first step (decision 072)")
+# friction on the true slip (fea/mesh_friction.torque_path): torque increments per history step, the smallest N
+# whose readings move <= 0.5 % from N to 2N (decision 073-slipstudy48: N 4 -> 8 moved friction's work +0.31 %)
+INCREMENTS = 4
 SECTOR_H_RATIO = 0.5              # the sectors' element size over the rim's
 SOLID_DEPTH_OVER_M = 6.0          # the FS tooth's solid-body sector is held this deep below its root (ISO's body)
 
@@ -110,6 +113,12 @@ def pair_compliance(infl: Mapping, pairs: Mapping, z_f: int, z_c: int) -> np.nda
     return 0.5 * (C + C.T)
 
 
+def _contract(W: np.ndarray, table: np.ndarray, idx: np.ndarray) -> np.ndarray:
+    """C[j, k] = W[j] . table[idx[j, k]] . W[k] (table (D, na, na), W (n, na)), without the (n, n, na, na) gather."""
+    A = np.einsum("ja,dab->djb", W, table)
+    return np.einsum("jkb,kb->jk", A[idx, np.arange(W.shape[0])[:, None], :], W)
+
+
 MIRROR_SIGN = np.array([1.0, -1.0])   # a -1 flank's (normal, tangential) band is the mirrored +1 one's times these
 
 
@@ -129,14 +138,13 @@ def pair_flexibility(infl: Mapping, pairs: Mapping, z_f: int, z_c: int) -> np.nd
     dc = np.where(mirror, space[:, None] - space[None, :], space[None, :] - space[:, None])
     dc = (dc + z_c // 2) % z_c - z_c // 2
     near = same & (np.abs(dc) <= CS_NEIGHBOURS)
+    kc = np.clip(dc + CS_NEIGHBOURS, 0, 2 * CS_NEIGHBOURS)
     flex = np.zeros((2 * n, 2 * n))
     for x in (0, 1):
         for y in (0, 1):
             sign = np.where(mirror, MIRROR_SIGN[x] * MIRROR_SIGN[y], 1.0)
-            block = np.where(same[..., None, None], infl["fs_t_same"][x, y][dd], infl["fs_t_other"][x, y][dd])
-            C = np.einsum("ja,kb,jkab->jk", Wf, Wf, block)
-            cs = infl["cs_t"][x, y][np.clip(dc + CS_NEIGHBOURS, 0, 2 * CS_NEIGHBOURS)]
-            C = C + np.where(near, np.einsum("ja,kb,jkab->jk", Wc, Wc, cs), 0.0)
+            C = np.where(same, _contract(Wf, infl["fs_t_same"][x, y], dd), _contract(Wf, infl["fs_t_other"][x, y], dd))
+            C = C + np.where(near, _contract(Wc, infl["cs_t"][x, y], kc), 0.0)
             # C[j, k]: reading y at k per load x at j; flexibility rows are readings
             flex[y * n:(y + 1) * n, x * n:(x + 1) * n] += (sign * C).T
     return 0.5 * (flex + flex.T)
@@ -516,9 +524,10 @@ class ToothMesh(StudyVariant):
         t0 = time.perf_counter()
         infl, facts = influences(self.params, self.mesh_inputs, refinement)
         t1 = time.perf_counter()
-        from strainwave.fea.mesh_contact import solve_torque_path
+        from strainwave.fea.mesh_friction import torque_path
         history = np.asarray(self.mesh_inputs["torque_history_Nmm"])
-        paths = [solve_torque_path(s, history) for s in systems(infl, self.mesh_inputs)]
+        # Coulomb on the true slip with the flanks' tangential loads (decision 073-slipstudy48)
+        paths = [torque_path(s, history, INCREMENTS)[0] for s in band_systems(infl, self.mesh_inputs)]
         crack, change = crack_signature(infl, self.mesh_inputs)
         rigid, rigid_inputs = rigid_rim(infl, self.mesh_inputs)
         values = (loop_values(paths, self.mesh_inputs["rated_torque_Nmm"]) | major_pair(infl, self.mesh_inputs) | crack
