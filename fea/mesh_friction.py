@@ -75,17 +75,15 @@ def _linear(s: BandSystem, st: _State, theta: float,
     A = np.flatnonzero(st.contact)
     S = np.flatnonzero(st.contact & st.stick)
     L = np.flatnonzero(st.contact & ~st.stick)
-    Cff, Cfg = s.flex_mm_per_N[:n, :n], s.flex_mm_per_N[:n, n:]
-    Cgf, Cgg = s.flex_mm_per_N[n:, :n], s.flex_mm_per_N[n:, n:]
     slipQ = np.zeros(n)
     slipQ[L] = -mu * st.sign[L]                      # Q_L = slipQ * N_L
     a, k = A.size, S.size
     t = 0 if torque is None or not a else 1
     M = np.zeros((a + k + t, a + k + t))
-    M[:a, :a] = Cff[np.ix_(A, A)] + Cfg[np.ix_(A, A)] * slipQ[A][None, :]
-    M[:a, a:a + k] = Cfg[np.ix_(A, S)]
-    M[a:a + k, :a] = Cgf[np.ix_(S, A)] + Cgg[np.ix_(S, A)] * slipQ[A][None, :]
-    M[a:a + k, a:a + k] = Cgg[np.ix_(S, S)]
+    rows = np.concatenate([A, n + S])                # the gap rows of A, the stick rows of S
+    sub = s.flex_mm_per_N[np.ix_(rows, np.concatenate([A, n + S, n + A]))]
+    M[:a + k, :a + k] = sub[:, :a + k]
+    M[:a + k, :a] += sub[:, a + k:] * slipQ[A][None, :]
     if t:       # the twist moved to the left: gap rows - lever theta, stick rows + w theta; the torque's row
         M[:a, -1], M[a:a + k, -1] = -s.lever_mm[A], s.slide_mm_per_rad[S]
         M[-1, :a] = s.lever_mm[A] - s.slide_mm_per_rad[A] * slipQ[A]

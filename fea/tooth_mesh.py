@@ -405,10 +405,13 @@ def major_pair(infl: Mapping, mesh: Mapping) -> dict:
             "pair_compliance_major_mm_per_N": c_fs + c_cs, "fs_coupling_next_ratio": nxt / c_fs}
 
 
-def rated_field(infl: Mapping, mesh: Mapping, path) -> tuple:
-    """(mesh, vertex displacement (Nv, 2)) of the FS rim under the headline angle's flank loads at rated torque."""
+def rated_field(infl: Mapping, mesh: Mapping, path, tangential_N: np.ndarray | None = None) -> tuple:
+    """(mesh, vertex displacement (Nv, 2)) of the FS rim under the headline angle's flank loads at rated torque (the
+    normal bands and, given the path's tangential forces (m, n), their turned twins)."""
     rim, pairs = infl["rim"], mesh["angles"][0]
-    F = path.forces_N[int(np.argmax(path.torque_Nmm))]
+    k = int(np.argmax(path.torque_Nmm))
+    F = path.forces_N[k]
+    Q = np.zeros_like(F) if tangential_N is None else np.asarray(tangential_N)[k]
     band = BAND_OVER_M * mesh["module_mm"]
     total = np.zeros(rim.T.shape[0])
     shear = fe.bore_shear(rim, infl["r_bore_mm"])
@@ -416,7 +419,9 @@ def rated_field(infl: Mapping, mesh: Mapping, path) -> tuple:
         on = (pairs["side"] == side) & (F > 0)
         if on.any():
             L, M = fe.flank_loads(rim, pairs["tooth"][on], pairs["fs_radius_mm"][on], band, side)
+            G = fe.turned(rim, L)
             total += (L - shear[:, None] * M[None, :]) @ F[on]
+            total += (G - shear[:, None] * fe.load_moments(rim, G)[None, :]) @ Q[on]
     u = rim.T @ fe.displacements(rim, total[:, None])[:, 0]
     nv = rim.mesh.p.shape[1]
     return rim.mesh, np.column_stack([u[0:2 * nv:2], u[1:2 * nv:2]]), vertex_von_mises(rim, u)
@@ -527,7 +532,8 @@ class ToothMesh(StudyVariant):
         from strainwave.fea.mesh_friction import torque_path
         history = np.asarray(self.mesh_inputs["torque_history_Nmm"])
         # Coulomb on the true slip with the flanks' tangential loads (decision 073-slipstudy48)
-        paths = [torque_path(s, history, INCREMENTS)[0] for s in band_systems(infl, self.mesh_inputs)]
+        solved = [torque_path(s, history, INCREMENTS) for s in band_systems(infl, self.mesh_inputs)]
+        paths = [p for p, _ in solved]
         crack, change = crack_signature(infl, self.mesh_inputs)
         rigid, rigid_inputs = rigid_rim(infl, self.mesh_inputs)
         values = (loop_values(paths, self.mesh_inputs["rated_torque_Nmm"]) | major_pair(infl, self.mesh_inputs) | crack
@@ -541,7 +547,7 @@ class ToothMesh(StudyVariant):
         if k == 0:
             fields["paths"] = paths          # small: the finest loop reaches meta (diagnose --baseline fea reads it)
         if keep_fields:
-            fields |= {"rated_u": rated_field(infl, self.mesh_inputs, paths[0]),
+            fields |= {"rated_u": rated_field(infl, self.mesh_inputs, paths[0], solved[0][1]),
                        "r_bore_mm": infl["r_bore_mm"], "crack_change": change}
         infl.pop("rim")
         return MeshSolve(refinement, values, quality,

@@ -356,7 +356,8 @@ def turned(model: RimSolve, F: np.ndarray) -> np.ndarray:
     return model.T.T @ turned_bands(full, np.column_stack([-n[:, 1], n[:, 0]]))
 
 
-def _moments(model: RimSolve, F: np.ndarray) -> np.ndarray:
+def load_moments(model: RimSolve, F: np.ndarray) -> np.ndarray:
+    """Each load column's moment about the axis (N mm per N)."""
     x, y = model.basis.doflocs
     full = model.T @ F
     return (x[:, None] * full[1::2] - y[:, None] * full[0::2]).sum(0)
@@ -406,7 +407,7 @@ def influence_blocks(model: RimSolve, root_mm: float, radii_mm: np.ndarray, band
     rot = np.zeros(L.shape[1])
     if r_bore_mm is not None:
         shear = bore_shear(model, r_bore_mm)
-        L = L - shear[:, None] * np.concatenate([M, _moments(model, G)])[None, :]
+        L = L - shear[:, None] * np.concatenate([M, load_moments(model, G)])[None, :]
     U = displacements(model, L)
     if r_bore_mm is not None:
         rot = shear @ U

@@ -38,7 +38,7 @@ def small_rim():
     M = np.concatenate([c[1] for c in cols])
     G = fe.turned(rim, F)
     shear = fe.bore_shear(rim, geo.r_bore_mm)
-    B = np.hstack([F - shear[:, None] * M[None, :], G - shear[:, None] * fe._moments(rim, G)[None, :]])
+    B = np.hstack([F - shear[:, None] * M[None, :], G - shear[:, None] * fe.load_moments(rim, G)[None, :]])
     direct = B.T @ fe.displacements(rim, B)
     return tm.pair_flexibility(infl, pairs, geo.z_f, geo.z_c), 0.5 * (direct + direct.T), pairs
 
