@@ -113,3 +113,18 @@ def test_torque_path_dissipates_and_refuses_an_uncarried_torque(mu):
     one_side = BandSystem(s.clearance_mm, s.flex_mm_per_N, np.abs(s.lever_mm), s.slide_mm_per_rad, mu)
     with pytest.raises(ValueError, match="not carried"):
         torque_path(one_side, [0.0, -1e3])
+
+
+def test_frictionless_torque_path_is_the_study_lcp_path():
+    """mu = 0 (no tangential load): torque_path and fea/mesh_contact's exact parametric LCP path are one answer on
+    the study's history, the zero torques at the dead band's far edge in both."""
+    from strainwave.fea.mesh_contact import MeshSystem, solve_torque_path, torque_history
+    s = _lobes(0.0, 5)
+    n = len(s.clearance_mm)
+    history = torque_history(6e4, steps_per_leg=8)
+    got, Q = torque_path(s, history, 1)
+    assert np.all(Q == 0.0)
+    ref = solve_torque_path(MeshSystem(s.clearance_mm, s.flex_mm_per_N[:n, :n], s.lever_mm, s.slide_mm_per_rad,
+                                       0.0, 80.0), history)
+    assert got.twist_rad == pytest.approx(ref.twist_rad, rel=1e-7, abs=1e-7 * np.abs(ref.twist_rad).max())
+    assert got.forces_N == pytest.approx(ref.forces_N, rel=1e-7, abs=1e-8 * ref.forces_N.max())
