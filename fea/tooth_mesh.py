@@ -5,9 +5,9 @@ circular spline's teeth (fea/tooth_mesh_fe.py) give the flank influence of tooth
 of contact radii; the teeth are alike, so tooth j on tooth k is the influence of k - j. At each
 wave-generator angle the kinematic engagement (analytic/mesh_engagement.py, passed in as numbers by the
 registry's ``load_inputs``) names the flank pairs, their contact radii, unloaded clearances, levers and
-slides; the compliance of those pairs (FS rim + CS teeth, in series along the line of action) and the
-frictional contact solve along 0 -> +T -> -T -> +T (fea/mesh_contact.py, the agreed solver, not a
-closed form) give the loop. Every reported number is that chain on one mesh, so each carries its GCI.
+slides; the 2 x 2 band flexibility of those pairs (normal and tangential; FS rim + CS teeth, in series) and the
+frictional contact solve along 0 -> +T -> -T -> +T with Coulomb on the true slip (fea/mesh_friction.py,
+decision 073-slipstudy48; not a closed form) give the loop. Every reported number is that chain on one mesh, so each carries its GCI.
 
 Read from the loop with compare/diagnose/catalogue_values.py's rules (the same as a recording):
 K1, K2, K3, T1, T2, lost motion at +/-4 % rated, flank friction's work per cycle. Also: the transmission error (the twist
