@@ -56,7 +56,8 @@ def main(argv=None) -> int:
         paths = [torque_path(s, history, N)[0] for s in bands]
         out[f"N{N}"] = readings(paths, mesh) | {"contact_cpu_s": time.process_time() - t0}
     cols = ["shipped"] + [f"N{N}" for N in a.increments]
-    print(f"# {out['gear']}  h = {h:.4g} mm  load {out['load'][0]:.2f}; band systems {out['band_systems_cpu_s']:.2f} CPU-s")
+    print(f"# {out['gear']}  h = {h:.4g} mm  load {out['load'][0]:.2f}; "
+          f"band systems {out['band_systems_cpu_s']:.2f} CPU-s")
     print("| output | " + " | ".join(cols) + " | last / shipped - 1 |")
     for k in KEYS + ("contact_cpu_s",):
         vals = [out[c][k] for c in cols]

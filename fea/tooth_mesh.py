@@ -7,7 +7,8 @@ wave-generator angle the kinematic engagement (analytic/mesh_engagement.py, pass
 registry's ``load_inputs``) names the flank pairs, their contact radii, unloaded clearances, levers and
 slides; the 2 x 2 band flexibility of those pairs (normal and tangential; FS rim + CS teeth, in series) and the
 frictional contact solve along 0 -> +T -> -T -> +T with Coulomb on the true slip (fea/mesh_friction.py,
-decision 073-slipstudy48; not a closed form) give the loop. Every reported number is that chain on one mesh, so each carries its GCI.
+decision 073-slipstudy48; not a closed form) give the loop. Every reported number is that chain on one mesh,
+so each carries its GCI.
 
 Read from the loop with compare/diagnose/catalogue_values.py's rules (the same as a recording):
 K1, K2, K3, T1, T2, lost motion at +/-4 % rated, flank friction's work per cycle. Also: the transmission error (the twist
@@ -143,7 +144,8 @@ def pair_flexibility(infl: Mapping, pairs: Mapping, z_f: int, z_c: int) -> np.nd
     for x in (0, 1):
         for y in (0, 1):
             sign = np.where(mirror, MIRROR_SIGN[x] * MIRROR_SIGN[y], 1.0)
-            C = np.where(same, _contract(Wf, infl["fs_t_same"][x, y], dd), _contract(Wf, infl["fs_t_other"][x, y], dd))
+            C = np.where(same, _contract(Wf, infl["fs_t_same"][x, y], dd),
+                         _contract(Wf, infl["fs_t_other"][x, y], dd))
             C = C + np.where(near, _contract(Wc, infl["cs_t"][x, y], kc), 0.0)
             # C[j, k]: reading y at k per load x at j; flexibility rows are readings
             flex[y * n:(y + 1) * n, x * n:(x + 1) * n] += (sign * C).T
@@ -185,7 +187,8 @@ def influences(params, mesh: Mapping, h_mm: float, *, plane_stress: bool = False
     facts = {"elements": int(rim.mesh.t.shape[1] + sector.mesh.t.shape[1]),
              "nodes": int(rim.basis.N + sector.basis.N), "dofs": int(2 * (rim.basis.N + sector.basis.N))}
     timings = {k: rim.timings_s[k] + sector.timings_s[k] for k in rim.timings_s}
-    return {"fs_same": same, "fs_other": other, "cs": cs, "fs_t_same": rim_t[1], "fs_t_other": rim_t[-1], "cs_t": cs_t,
+    return {"fs_same": same, "fs_other": other, "cs": cs, "fs_t_same": rim_t[1], "fs_t_other": rim_t[-1],
+            "cs_t": cs_t,
             "fs_solid": fs_solid, "fs_radii": fs_r, "cs_radii": cs_r,
             "face_width_mm": geo.face_width_mm, "rim": rim, "r_bore_mm": geo.r_bore_mm,
             "crack_delta": fs_cracked[0] - fs_solid[0]}, facts | timings

@@ -23,7 +23,8 @@ def small_rim():
     rim = fe.rim_model(geo.fs, geo.r_bore_mm, 0.8 * m, Lame.from_young(2.1e5, 0.3), geo.face_width_mm)
     radii = geo.fs.root_radius_mm + m * np.array([0.9, 1.3, 1.7])
     band = 0.2 * m
-    blocks = fe.influence_blocks(rim, geo.fs.root_radius_mm, radii, band, +1, (1, -1), np.arange(geo.z_f), geo.r_bore_mm)
+    blocks = fe.influence_blocks(rim, geo.fs.root_radius_mm, radii, band, +1, (1, -1), np.arange(geo.z_f),
+                                 geo.r_bore_mm)
     # pairs on both flanks, near and far teeth, on the grid's radii (no interpolation between them)
     pairs = {"side": np.array([1, 1, 1, -1, -1, -1]), "tooth": np.array([0, 1, 7, 0, 3, 58]),
              "cs_space": np.zeros(6, int), "fs_radius_mm": radii[[0, 2, 1, 1, 0, 2]],
