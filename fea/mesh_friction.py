@@ -237,13 +237,18 @@ def _targets(torques: np.ndarray, increments: int) -> tuple[np.ndarray, np.ndarr
     0): both its edges are solved, a hair either side of 0, and the far edge (the other flanks touch) is the
     history's point, where fea/mesh_contact's tracker lands too."""
     eps = ZERO_AIM * float(np.max(np.abs(torques), initial=0.0))
-    out, idx = [], [-1]
-    for k in range(1, torques.size):
-        sub = list(np.linspace(torques[k - 1], torques[k], increments + 1)[1:])
-        if torques[k] == 0.0 and torques[k - 1] != 0.0:
-            sub[-1:] = [np.sign(torques[k - 1]) * eps, -np.sign(torques[k - 1]) * eps]
+    out, idx, prev = [], [], 0.0              # the path starts unloaded at 0 (a first point of 0 is that start)
+    for Tk in np.asarray(torques, float).tolist():
+        Tk = 0.0 if abs(Tk) <= 1e-12 * eps / ZERO_AIM else Tk     # a history's round-off zero is its zero
+        if not out and Tk == 0.0:
+            idx.append(-1)
+            continue
+        sub = list(np.linspace(prev, Tk, increments + 1)[1:])
+        if Tk == 0.0 and prev != 0.0:
+            sub[-1:] = [np.sign(prev) * eps, -np.sign(prev) * eps]
         out += sub
         idx.append(len(out) - 1)
+        prev = Tk
     return np.asarray(out), np.asarray(idx)
 
 
@@ -263,6 +268,11 @@ def torque_path(s: BandSystem, torques_Nmm, increments: int = 1):
     N, Q = np.zeros((T.size, n)), np.zeros((T.size, n))
     rec = {int(j): i for i, j in enumerate(idx)}
     for j, Tj in enumerate(targets):
+        if Tj == 0.0:           # a zero torque held (the dead band's far edge reached before): nothing moves
+            th[j + 1], Tr[j + 1] = theta, Tr[j]
+            if j in rec:
+                N[rec[j]], Q[rec[j]] = st.N, st.Q
+            continue
         try:
             trial = st.copy()
             theta, st = _increment(s, trial, theta, float(Tj)), trial

@@ -129,3 +129,14 @@ def test_frictionless_torque_path_is_the_study_lcp_path():
                                        0.0, 80.0), history)
     assert got.twist_rad == pytest.approx(ref.twist_rad, rel=1e-7, abs=1e-7 * np.abs(ref.twist_rad).max())
     assert got.forces_N == pytest.approx(ref.forces_N, rel=1e-7, abs=1e-8 * ref.forces_N.max())
+
+
+def test_torque_path_starts_unloaded_and_reads_a_round_off_zero_as_zero():
+    """A history that does not begin at 0 is solved from the unloaded state; a zero torque written as 1e-13 of the
+    amplitude lands where an exact zero does (the dead band's far edge)."""
+    s = _lobes(0.3, 2)
+    ref, _ = torque_path(s, [0.0, 3e4, 6e4, 0.0, -3e4], 2)
+    got, _ = torque_path(s, [3e4, 6e4, 6e4 * 1e-13, -3e4], 2)
+    assert got.twist_rad == pytest.approx(ref.twist_rad[1:], rel=1e-9)
+    assert got.forces_N == pytest.approx(ref.forces_N[1:], rel=1e-9, abs=1e-9 * ref.forces_N.max())
+    assert ref.twist_rad[3] * ref.twist_rad[2] < 0.0          # past the dead band: the other flanks touch
