@@ -256,7 +256,7 @@ def torque_path(s: BandSystem, torques_Nmm, increments: int = 1):
     """The history of torques (starting unloaded at 0), each step in ``increments`` equal TORQUE increments, each
     increment solved with its torque prescribed from the previous converged state (the twist an unknown of the
     increment's linear system): one solve a increment where ``twists_for_torques`` re-runs a leg per trial of its
-    false position. On the same increments it is the same discretisation (tests/test_mesh_friction.py). Returns a
+    false position. On the same increments it is the same discretisation (tests/test_tooth_mesh_slip.py). Returns a
     fea/mesh_contact.MeshPath (work: trapezoids over the increments, exact where T is linear between them) and the
     tangential forces (m, n)."""
     from strainwave.fea.mesh_contact import MeshPath
