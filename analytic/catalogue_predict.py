@@ -58,7 +58,11 @@ LEFT_OUT = {
                                 "(3.4-3.5e-10 at size 25, 3D FE, decision 070); free in its plane it would add "
                                 "1.5e-8 / 1.1e-8 (i = 30 / 100), the size of the miss (K3 18/21); how much "
                                 "ovalisation a real housing and "
-                                "bolt joint allow (an elastic housing flange, the joint's slip) is not modelled",
+                                "bolt joint allow (an elastic housing flange, the joint's slip) is not modelled; "
+                                "decision 073: the WG cam and inner ring (0.03-2.2e-9 for a solid to a 0.8 R bore: no "
+                                "more than the seed's K_G already held), face width, plane strain/stress and a tooth "
+                                "preload do not supply it; a ratio-independent 7.3-10.5e-9 at size 25 would, e.g. "
+                                "the flexspline boss's bolted joint, whose interface stiffness no source gives",
     ("K3_Nm_per_rad", "low"): "load spreading over more teeth than the ideal rack engages (the wider, "
                                "conjugate S-tooth zone of real profiles)",
     ("T1_Nm", "low"): "the contact set grows from zero torque (zero backlash; at i = 100 ten pairs at zero gap), so the "

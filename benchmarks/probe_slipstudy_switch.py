@@ -3,7 +3,7 @@ torque-only friction (fea/mesh_contact.py, shipped) and on the true slip (tooth_
 flexibility by translation symmetry; fea/mesh_friction.torque_path, N torque increments per history step), on the
 study's finest validate mesh, all WG angles; the contact solve's CPU beside each.
 
-    python benchmarks/probe_slipstudy_switch.py [PARAMS.toml] [--increments 1 2 4] [--json FILE]
+    python benchmarks/probe_slipstudy_switch.py [PARAMS.toml] [--increments 1 2 4] [--steps-per-leg S] [--json FILE]
 """
 from __future__ import annotations
 
@@ -33,6 +33,7 @@ def main(argv=None) -> int:
     ap.add_argument("params", nargs="?", default=None)
     ap.add_argument("--increments", type=int, nargs="+", default=[1, 2, 4])
     ap.add_argument("--json", default=None)
+    ap.add_argument("--steps-per-leg", type=int, default=None, help="the history's steps a leg (default: the study's)")
     a = ap.parse_args(argv)
     from strainwave.analytic.mesh_engagement import study_loads
     from strainwave.fea import tooth_mesh as tm
@@ -44,6 +45,9 @@ def main(argv=None) -> int:
     h = tm.refinements(params.flexspline_cup.module_mm, False)[0]
     infl, _ = tm.influences(params, mesh, h)
     history = np.asarray(mesh["torque_history_Nmm"])
+    if a.steps_per_leg:
+        from strainwave.fea.mesh_contact import torque_history
+        history = torque_history(float(mesh["rated_torque_Nmm"]), a.steps_per_leg)
     c0 = time.process_time()
     shipped = [solve_torque_path(s, history) for s in tm.systems(infl, mesh)]
     c1 = time.process_time()

@@ -24,7 +24,7 @@ import numpy as np
 from scipy.optimize import nnls
 
 __all__ = ["MeshSystem", "MeshPath", "solve_torque_path", "normal_forces", "torque_history",
-           "loop_area_Nmm_rad"]
+           "loop_area_Nmm_rad", "dead_band"]
 
 TOL = 1e-12          # relative: a gap or force this small (on its scale) is zero
 
@@ -60,6 +60,11 @@ class MeshPath:
     contact: np.ndarray        # (m, n) bool, the pair carries load
     iterations: np.ndarray     # (m,) contact-set changes (pivots) taken to reach each step
     work_Nmm: np.ndarray       # (m,) the integral of T d(theta) from the previous step (exact on the path)
+    # (k, 2) torque and twist of the exact piecewise-linear loop: every history step, every contact-set change
+    # (pivot) and every stick-to-slip onset, in path order (None: only the steps are known)
+    knots: np.ndarray | None = None
+    # (theta-, theta+) the backlash's dead band: the twist at which the first flank of each side touches unloaded
+    dead_band_rad: tuple[float, float] = (0.0, 0.0)
 
     def gaps_mm(self, system: MeshSystem) -> np.ndarray:
         """(m, n) the gaps g = c - lever theta + C F (>= 0 to round-off)."""
@@ -94,6 +99,7 @@ class _Tracker:
         self.theta = 0.0
         self.active = np.zeros(len(self.c), dtype=bool)     # unloaded: zero gaps close as the twist moves
         self.work = 0.0
+        self.knots = [(0.0, 0.0)]          # (torque, twist) where the loop's slope changes
 
     def linear(self):
         """F = a + b theta on the active set (zero elsewhere)."""
@@ -151,6 +157,7 @@ class _Tracker:
             self.work += (alpha + 0.5 * beta * (t0 + self.theta)) * (self.theta - t0)
             if need <= step:
                 return pivots
+            self.knots.append((alpha + beta * self.theta, self.theta))   # exact: the set changes here
             self.active[idx] = not self.active[idx]
             pivots += 1
         self._reset(d)                # degenerate cycling: take the set from NNLS just past theta
@@ -172,13 +179,26 @@ def solve_torque_path(system: MeshSystem, torque_Nmm: np.ndarray) -> MeshPath:
     for k, Tk in enumerate(T):
         tr.work = 0.0
         up, down = tr.torque(tr.theta, 1.0), tr.torque(tr.theta, -1.0)
-        if Tk > up:                  # slides forward
+        if Tk > up:                  # slides forward (from the torque where the stick ends)
+            tr.knots.append((up, tr.theta))
             pivots[k] = tr.move_to(Tk, 1.0)
         elif Tk < down:              # slides back
+            tr.knots.append((down, tr.theta))
             pivots[k] = tr.move_to(Tk, -1.0)
         # else: friction holds the flanks (stick), theta unchanged
         theta[k], forces[k], work[k] = tr.theta, tr.forces(), tr.work
-    return MeshPath(T, theta, forces, forces > 0.0, pivots, work)
+        tr.knots.append((float(Tk), tr.theta))
+    return MeshPath(T, theta, forces, forces > 0.0, pivots, work, np.asarray(tr.knots, float), dead_band(system))
+
+
+def dead_band(system: MeshSystem) -> tuple[float, float]:
+    """(theta-, theta+): the unloaded twists at which the first flank of each side touches (its gap c - lever theta
+    reaches 0); 0 on a side with no flank."""
+    c, lever = np.asarray(system.clearance_mm, float), np.asarray(system.lever_mm, float)
+    pos, neg = lever > 0.0, lever < 0.0
+    hi = float(np.min(c[pos] / lever[pos])) if pos.any() else 0.0
+    lo = float(np.max(c[neg] / lever[neg])) if neg.any() else 0.0
+    return lo, hi
 
 
 def loop_area_Nmm_rad(path: MeshPath) -> float:

@@ -259,7 +259,7 @@ def torque_path(s: BandSystem, torques_Nmm, increments: int = 1):
     false position. On the same increments it is the same discretisation (tests/test_tooth_mesh_slip.py). Returns a
     fea/mesh_contact.MeshPath (work: trapezoids over the increments, exact where T is linear between them) and the
     tangential forces (m, n)."""
-    from strainwave.fea.mesh_contact import MeshPath
+    from strainwave.fea.mesh_contact import MeshPath, dead_band
     T = np.asarray(torques_Nmm, float)
     n = len(s.clearance_mm)
     targets, idx = _targets(T, increments)
@@ -284,4 +284,7 @@ def torque_path(s: BandSystem, torques_Nmm, increments: int = 1):
     seg = 0.5 * (Tr[1:] + Tr[:-1]) * np.diff(th)
     cum = np.concatenate([[0.0], np.cumsum(seg)])
     work = np.diff(cum[idx + 1], prepend=0.0)
-    return MeshPath(T, th[idx + 1], N, N > 0.0, np.zeros(T.size, int), work), Q
+    # the loop's knots for fea/tooth_mesh's reader (decision 073-stepconv48): every increment's end in path order,
+    # linear between them to the increments' resolution; the dead band from the same geometry as mesh_contact's
+    knots = np.column_stack([Tr, th])
+    return MeshPath(T, th[idx + 1], N, N > 0.0, np.zeros(T.size, int), work, knots, dead_band(s)), Q

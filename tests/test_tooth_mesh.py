@@ -134,10 +134,12 @@ def test_study_on_quick_meshes_obeys_first_principles():
     dead = 2 * geo.backlash_mm / geo.cs_space.pitch_radius_mm * 60 * 180 / math.pi
     assert q["lost_motion_arcmin"] > 0.5 * dead
     assert q["K3_Nmm_per_rad"] > q["K1_Nmm_per_rad"] > 0.0             # clearance closes: the mesh stiffens
-    # the knees follow the torque step, not the mesh (decision 072): values kept, no GCI claimed for them
-    for name in ("K1_Nmm_per_rad", "K2_Nmm_per_rad", "T1_Nmm", "T2_Nmm"):
-        assert r.quantities[name].uncertainty is None and "torque step" in r.quantities[name].convergence.refused
-    assert r.quantities["K3_Nmm_per_rad"].uncertainty > 0.0
+    # the knees on the exact loop with the dead band out (decision 073) carry the mesh's GCI; T1 alone is refused:
+    # it moves with the reader's own torque grid by more than the rule's 0.5 %
+    for name in ("K1_Nmm_per_rad", "K2_Nmm_per_rad", "K3_Nmm_per_rad", "T2_Nmm"):
+        assert r.quantities[name].uncertainty > 0.0 and not r.quantities[name].convergence.refused
+    assert r.quantities["T1_Nmm"].uncertainty is None and "torque grid" in r.quantities["T1_Nmm"].convergence.refused
+    assert q["T2_Nmm"] > q["T1_Nmm"] > 0.0
     # the flank loads balance the rated torque: the peak tooth's share times the lever can't exceed it
     assert q["peak_tooth_load_N"] * geo.cs_space.base_radius_mm <= params.gear.rated_output_torque_Nmm
     # ratcheting (decision 069-ratchet48): the teeth hold at rated, and the lift over K_G is what sets it
@@ -200,4 +202,6 @@ def test_report_gear_line_gives_the_chain_over_the_catalogue_or_says_why_not(mon
     assert "circular spline body with its face clamped 2.18e-11 (free in its plane it would be 20-45x" in line
     assert f"K3 = {1e-3 * k3:.4g} N m/rad" in line and f"predicted / catalogue {ratio:.2f}" in line
     assert "extrapolated" in line and ratio > 1.25           # the shipped gear is stiffer than a catalogue unit
+    k1 = 1.0 / (1 / 3.085e8 + 4.9155e-10 + 2.41e-11 + CS_BODY["face"])   # the mesh's K1, dead band out (decision 073)
+    assert f"K1 = {1e-3 * k1:.4g} (" in line
     assert "not evaluated (no tooth-mesh case)" in mc.gear_line(_ChainBook(1.1583e10), Plan(None), params)

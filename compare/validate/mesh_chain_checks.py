@@ -82,8 +82,9 @@ def gear_line(book, plan, params) -> str:
     return (f"This gear's drive with the teeth in mesh (FEA tooth-mesh K3 + cup + wave generator + circular spline "
             f"body in series, the "
             f"output shaft left out as in a catalogue unit): K3 = {1e-3 * K:.4g} N m/rad (+-{100 * u:.2g} %), "
-            f"K1 not given (the study's loop has the backlash's dead band at 0 N m: its K1 and T1 follow the "
-            f"torque step, decision 072); the CHA column {label}'s power law at size {size:.3g}"
+            f"K1 = {1e-3 * c['K1_chain_Nmm_per_rad']:.4g} (+-{100 * c['K1_chain_rel_unc']:.2g} %; the mesh's K1 "
+            f"with the backlash's dead band taken out, decision 073); the CHA column {label}'s power law at size "
+            f"{size:.3g}"
             f"{' (extrapolated beyond sizes 14-58)' if extrapolated else ''}: K3 {1e-3 * ref:.4g} N m/rad "
             f"(scatter +-{100 * scatter:.2g} %), predicted / catalogue {K / ref:.2f}. Members (rad/(N mm)): mesh "
             f"{c['lambda_mesh_K3_rad_per_Nmm']:.3g}, cup {c['lambda_cup_rad_per_Nmm']:.3g}, wave generator "
@@ -112,6 +113,6 @@ def catalogue_check(book, labels: dict, wg_label: str, mesh_label: str | None, p
             f"{c['lambda_shaft_rad_per_Nmm']:.3g} (not in a catalogue unit); "
             f"chain K1 {c['K1_chain_Nmm_per_rad']:.3g} N mm/rad beside catalogue K1 "
             f"{catalogue_power_law(params, 'K1_Nm_per_rad')[0]:.3g} (recorded, not asserted; "
-            f"the study's K1 follows its torque step, decision 072)")
+            f"the study's K1 with the backlash's dead band taken out, decision 073)")
     return evaluate(Check(cid, quantity, unit, K, c["K3_chain_rel_unc"] * K, analytic, "corrected", tol, note=note,
                           sources={"fea": "FEA tooth-mesh + cup-torsion + wg-bearing", "analytic": "CHA table"}))
