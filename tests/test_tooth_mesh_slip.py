@@ -140,3 +140,24 @@ def test_torque_path_starts_unloaded_and_reads_a_round_off_zero_as_zero():
     assert got.twist_rad == pytest.approx(ref.twist_rad[1:], rel=1e-9)
     assert got.forces_N == pytest.approx(ref.forces_N[1:], rel=1e-9, abs=1e-9 * ref.forces_N.max())
     assert ref.twist_rad[3] * ref.twist_rad[2] < 0.0          # past the dead band: the other flanks touch
+
+
+def test_torque_path_carries_what_the_knee_reader_needs():
+    """Two gapped springs a side, frictionless: the true-slip path's knots (its increments) and dead band give the
+    knees mesh_contact's exact loop gives (the second spring's knee between two increments: 1 %); without its knots
+    the reading would fall back to the history's steps."""
+    from strainwave.fea import tooth_mesh as tm
+    from strainwave.fea.mesh_contact import solve_torque_path, torque_history
+    k, lever, c, g = 1e4, 50.0, 0.01, 0.004
+    rated = 4.0 * k * lever * g
+    clear, levers = np.array([c, c + g, c, c + g]), np.array([lever, lever, -lever, -lever])
+    from strainwave.fea.mesh_contact import MeshSystem
+    exact = solve_torque_path(MeshSystem(clear, np.eye(4) / k, levers, np.full(4, 5.0), 0.0, 80.0),
+                              torque_history(rated, 10))
+    flex = np.block([[np.eye(4) / k, np.zeros((4, 4))], [np.zeros((4, 4)), np.eye(4) / k]])
+    path, _ = torque_path(BandSystem(clear, flex, levers, np.full(4, 5.0), 0.0), torque_history(rated, 10), 4)
+    assert path.dead_band_rad == exact.dead_band_rad and path.knots.shape[0] > 4 * path.torque_Nmm.size - 8
+    got, ref = tm.knee_values(path, rated), tm.knee_values(exact, rated)
+    for name in ("K1", "K2", "K3", "T1", "T2"):
+        assert got[name] == pytest.approx(ref[name], rel=0.01), name
+    assert got["K1"] == pytest.approx(k * lever ** 2, rel=1e-6)
