@@ -334,9 +334,9 @@ def _row_curve(rules: MeshRules, row: TableRow, series: float):
     rated = rules.rated_torque_Nm(row.size)
     if rules.accuracy_grade is None:
         design = rules.design(row.size, row.ratio)
-        return predict_curve(design, series, rated, with_te=False), design, {}
+        return predict_curve(design, series, rated, with_te=False, exact=True), design, {}
     designs = [rules.design(row.size, row.ratio, u) for u in range(rules.deviation_units)]
-    units = unit_curves(designs, series, rated)
+    units = unit_curves(designs, series, rated, exact=True)        # the exact loop (decision 074)
     each = [_with_secants(row, u) for u in units]
     sd = {n: float(np.std([e.ratio_of(n) for e in each])) for n in NAMES if row.values.get(n) is not None}
     return mean_curve(units, ratcheting_torque_Nm(designs[0])), designs[0], sd

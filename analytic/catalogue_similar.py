@@ -17,7 +17,7 @@ import numpy as np
 
 from strainwave.analytic.catalogue_loss import LOST_MOTION_FRACTION, small_loop
 from strainwave.analytic.catalogue_rules import MeshRules
-from strainwave.analytic.drive_curve import ARCMIN, DriveCurve, predict_curve, read_catalogue_numbers
+from strainwave.analytic.drive_curve import DriveCurve, curve_from_loop, predict_curve
 
 __all__ = ["SimilarLoop", "is_similar", "reference_loop"]
 
@@ -47,11 +47,9 @@ class SimilarLoop:
         s, c = self.scale(d_mm), self.curve
         T, tw = s * c.loop_torque_Nm, c.loop_twist_rad
         rated = s * c.rated_torque_Nm
-        v = read_catalogue_numbers(T, tw, rated)
-        return DriveCurve(v["K1"][0], v["K2"][0], v["K3"][0], v["T1"][0], v["T2"][0],
-                          v["lost_motion_arcmin"][0] * ARCMIN, v["hysteresis_loss_arcmin"][0] * ARCMIN, rated,
-                          T, tw, None, None, s * c.ratcheting_torque_Nm, c.teeth_in_contact,
-                          source=f"{c.source}; scaled by similitude from d = {self.d_ref_mm:g} mm (decision 071)")
+        return curve_from_loop(T, tw, rated, dead_band_rad=c.dead_band_rad,
+                               ratcheting_torque_Nm=s * c.ratcheting_torque_Nm, teeth_in_contact=c.teeth_in_contact,
+                               source=f"{c.source}; scaled by similitude from d = {self.d_ref_mm:g} mm (decision 071)")
 
     def small_loop_at(self, d_mm: float) -> tuple[np.ndarray, np.ndarray]:
         """The +/-4 % loop of the similar drive (at the rules' rated torque)."""
@@ -68,6 +66,6 @@ def reference_loop(rules: MeshRules, ratio: float, series_rad_per_Nmm_at) -> Sim
     size = rules.cup_zone_reference_size
     design, series = rules.design(size, ratio), series_rad_per_Nmm_at(size)
     rated = rules.rated_torque_Nm(size)
-    curve = predict_curve(design, series, rated, with_te=False)
+    curve = predict_curve(design, series, rated, with_te=False, exact=True)      # the exact loop (decision 074)
     Ts, ths = small_loop(design, series, LOST_MOTION_FRACTION * rated)
     return SimilarLoop(ratio, rules.pitch_diameter_mm(size), curve, Ts, ths, time.process_time() - t0)

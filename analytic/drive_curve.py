@@ -4,7 +4,9 @@ transmission error and ratcheting torque.
 The output twist of a drive with its wave generator locked is the mesh's twist (mesh_contact on the
 system of mesh_drive) plus the twist of the parts in series with it (the cup's tube; the output shaft where
 the drive has one), each linear: theta = theta_mesh(T) + T lambda_series. The catalogue's numbers are read
-from the simulated loop by the same reader a recording goes through (compare/diagnose/catalogue_values.py).
+from the simulated loop by the same reader a recording goes through (compare/diagnose/catalogue_values.py);
+the catalogue's paths (``exact=True``) read the mesh's exact loop on a fixed torque grid, so their numbers do not
+depend on the solve's torque step (decision 074).
 """
 from __future__ import annotations
 
@@ -13,14 +15,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from strainwave.fea import mesh_loop
 from strainwave.fea.mesh_contact import MeshPath, solve_torque_path, torque_history
 from strainwave.analytic.mesh_drive import MeshDesign, bearing_twist_rad, mesh_system
 
 __all__ = ["DriveCurve", "predict_curve", "branch_twist_rad", "mean_twist_rad", "catalogue_secants",
            "read_catalogue_numbers", "transmission_error_rad", "ratcheting_torque_Nm", "LOOP_STEPS_PER_LEG",
-           "predict_mean_curve", "unit_curves", "mean_curve"]
+           "predict_mean_curve", "unit_curves", "mean_curve", "curve_from_loop", "READ_STEPS_PER_LEG"]
 
 LOOP_STEPS_PER_LEG = 60          # torque steps from 0 to the rated torque (the reader needs >= 20 steady rows)
+# the exact loop's fixed reading grid, a leg (decision 074: the study's, so neither reading follows the solve's step)
+READ_STEPS_PER_LEG = mesh_loop.READ_STEPS_PER_LEG
 ARCMIN = math.pi / (180.0 * 60.0)
 
 
@@ -41,8 +46,9 @@ class DriveCurve:
     te_angle_rad: np.ndarray = None          # wave-generator angles of the transmission error
     te_rad: np.ndarray = None                # output twist at the rated torque minus its mean, per angle
     ratcheting_torque_Nm: float = float("nan")
-    teeth_in_contact: np.ndarray = None      # pairs in contact along the loop
+    teeth_in_contact: np.ndarray = None      # pairs in contact at the solve's torque steps (path order)
     source: str = "tooth-mesh closed form (analytic/drive_curve.py)"
+    dead_band_rad: tuple = (0.0, 0.0)        # the mesh's backlash band (theta-, theta+), out of the knees (decision 073)
 
     def twist_rad(self, T_Nm, direction) -> np.ndarray:
         """The loop's loading (+1) or unloading (-1) branch at torque ``T_Nm`` (steady loop, after the peak)."""
@@ -85,15 +91,30 @@ def catalogue_secants(loop_T_Nm, loop_twist_rad, T1_Nm: float, T2_Nm: float) -> 
             "K3_Nm_per_rad": (A - T2_Nm) / (phi[3] - phi[2])}
 
 
-def _loop(design: MeshDesign, series_rad_per_Nmm: float, rated_Nm: float, psi_rad: float) -> tuple[np.ndarray, np.ndarray, MeshPath]:
+def _loop(design: MeshDesign, series_rad_per_Nmm: float, rated_Nm: float, psi_rad: float,
+          exact: bool = False) -> tuple[np.ndarray, np.ndarray, MeshPath]:
+    """(torque N m, twist rad, the mesh's path) of the loop 0 -> +rated -> -rated -> +rated. ``exact``: the mesh's
+    exact piecewise-linear loop (its knots) sampled on ``READ_STEPS_PER_LEG`` torques a leg, the series members and
+    the balls' twist (functions of the torque alone) added there: the loop no longer depends on the solve's step
+    (decision 074); else the solve's own ``LOOP_STEPS_PER_LEG`` steps."""
     system, _ = mesh_system(design, psi_rad)
     T = torque_history(1e3 * rated_Nm, LOOP_STEPS_PER_LEG)
     path = solve_torque_path(system, T)
-    return 1e-3 * T, path.twist_rad + T * series_rad_per_Nmm + bearing_twist_rad(design, T), path
+    tw = path.twist_rad
+    if exact:
+        T, tw = mesh_loop.resample(*mesh_loop.exact_loop(path), READ_STEPS_PER_LEG)
+    return 1e-3 * T, tw + T * series_rad_per_Nmm + bearing_twist_rad(design, T), path
 
 
-def read_catalogue_numbers(T_Nm: np.ndarray, twist_rad: np.ndarray, rated_Nm: float) -> dict:
-    """name -> (value, se, unit) read from a loop by compare/diagnose/catalogue_values (K in N m/rad)."""
+def read_catalogue_numbers(T_Nm: np.ndarray, twist_rad: np.ndarray, rated_Nm: float,
+                           dead_band_rad: tuple = (0.0, 0.0)) -> dict:
+    """name -> (value, se, unit) read from a loop by compare/diagnose/catalogue_values (K in N m/rad); with a
+    backlash band the knees K1-K3, T1, T2 are read on the twist with the band taken out (decision 073), the rest
+    on the raw twist."""
+    if tuple(dead_band_rad) != (0.0, 0.0):
+        knees = read_catalogue_numbers(T_Nm, mesh_loop.elastic_twist(twist_rad, dead_band_rad), rated_Nm)
+        return {**read_catalogue_numbers(T_Nm, twist_rad, rated_Nm),
+                **{k: knees[k] for k in ("K1", "K2", "K3", "T1", "T2")}}
     from strainwave.compare.diagnose.catalogue_values import catalogue_values
     from strainwave.compare.diagnose.context import find_segments, reversal_threshold
     from strainwave.compare.diagnose.effects.base import Context
@@ -151,50 +172,60 @@ def ratcheting_torque_Nm(design: MeshDesign, psi_rad: float = 0.0) -> float:
     return 1e-3 * overlap / lift_per_Nmm if lift_per_Nmm > 0 else float("inf")
 
 
-def predict_curve(design: MeshDesign, series_rad_per_Nmm: float, rated_Nm: float, *, psi_rad: float = 0.0,
-                  with_te: bool = True) -> DriveCurve:
-    """The drive's curve: the loop 0 -> +rated -> -rated -> +rated at wave-generator angle ``psi_rad`` read by
-    the catalogue reader, the transmission error over a revolution and the ratcheting torque."""
-    T, tw, path = _loop(design, series_rad_per_Nmm, rated_Nm, psi_rad)
-    v = read_catalogue_numbers(T, tw, rated_Nm)
-    te = transmission_error_rad(design, series_rad_per_Nmm, rated_Nm) if with_te else (None, None)
+def curve_from_loop(T_Nm: np.ndarray, twist_rad: np.ndarray, rated_Nm: float, *, dead_band_rad: tuple = (0.0, 0.0),
+                    **fields) -> DriveCurve:
+    """A loop read by the catalogue reader into a DriveCurve (``fields``: the DriveCurve's optional fields)."""
+    v = read_catalogue_numbers(T_Nm, twist_rad, rated_Nm, dead_band_rad)
     return DriveCurve(v["K1"][0], v["K2"][0], v["K3"][0], v["T1"][0], v["T2"][0],
                       v["lost_motion_arcmin"][0] * ARCMIN, v["hysteresis_loss_arcmin"][0] * ARCMIN, rated_Nm,
-                      T, tw, te[0], te[1], ratcheting_torque_Nm(design, psi_rad), path.contact.sum(axis=1))
+                      T_Nm, twist_rad, dead_band_rad=tuple(dead_band_rad), **fields)
 
 
-def unit_curves(designs, series_rad_per_Nmm: float, rated_Nm: float, *, psi_rad: float = 0.0) -> list[DriveCurve]:
+def predict_curve(design: MeshDesign, series_rad_per_Nmm: float, rated_Nm: float, *, psi_rad: float = 0.0,
+                  with_te: bool = True, exact: bool = False) -> DriveCurve:
+    """The drive's curve: the loop 0 -> +rated -> -rated -> +rated at wave-generator angle ``psi_rad`` read by
+    the catalogue reader, the transmission error over a revolution and the ratcheting torque. ``exact``: the
+    loop is the exact one on the fixed reading grid (decision 074; the catalogue's), else the solve's steps."""
+    T, tw, path = _loop(design, series_rad_per_Nmm, rated_Nm, psi_rad, exact)
+    te = transmission_error_rad(design, series_rad_per_Nmm, rated_Nm) if with_te else (None, None)
+    return curve_from_loop(T, tw, rated_Nm, dead_band_rad=path.dead_band_rad if exact else (0.0, 0.0),
+                           te_angle_rad=te[0], te_rad=te[1],
+                           ratcheting_torque_Nm=ratcheting_torque_Nm(design, psi_rad),
+                           teeth_in_contact=path.contact.sum(axis=1))
+
+
+def unit_curves(designs, series_rad_per_Nmm: float, rated_Nm: float, *, psi_rad: float = 0.0,
+                exact: bool = False) -> list[DriveCurve]:
     """Each unit's curve alone (its loop read by the catalogue reader; no transmission error or ratcheting)."""
     out = []
     for d in designs:
-        T, tw, path = _loop(d, series_rad_per_Nmm, rated_Nm, psi_rad)
-        v = read_catalogue_numbers(T, tw, rated_Nm)
-        out.append(DriveCurve(v["K1"][0], v["K2"][0], v["K3"][0], v["T1"][0], v["T2"][0],
-                              v["lost_motion_arcmin"][0] * ARCMIN, v["hysteresis_loss_arcmin"][0] * ARCMIN, rated_Nm,
-                              T, tw, teeth_in_contact=path.contact.sum(axis=1), source="one unit"))
+        T, tw, path = _loop(d, series_rad_per_Nmm, rated_Nm, psi_rad, exact)
+        out.append(curve_from_loop(T, tw, rated_Nm, dead_band_rad=path.dead_band_rad if exact else (0.0, 0.0),
+                                   teeth_in_contact=path.contact.sum(axis=1), source="one unit"))
     return out
 
 
 def mean_curve(units: list[DriveCurve], ratcheting_Nm: float = float("nan")) -> DriveCurve:
     """The units' loops (same torque history) averaged twist by twist, read by the catalogue reader: the
-    catalogue's values are averages of many tests (decision 070-engage48)."""
+    catalogue's values are averages of many tests (decision 070-engage48). The backlash band: the units'
+    narrowest on each side (zero on every unit the catalogue's rules make)."""
     if not units:
         raise ValueError("mean_curve needs at least one unit")
     T, rated = units[0].loop_torque_Nm, units[0].rated_torque_Nm
     tw = np.mean([u.loop_twist_rad for u in units], axis=0)
     teeth = np.mean([u.teeth_in_contact for u in units], axis=0)
-    v = read_catalogue_numbers(T, tw, rated)
-    return DriveCurve(v["K1"][0], v["K2"][0], v["K3"][0], v["T1"][0], v["T2"][0],
-                      v["lost_motion_arcmin"][0] * ARCMIN, v["hysteresis_loss_arcmin"][0] * ARCMIN, rated,
-                      T, tw, None, None, ratcheting_Nm, teeth,
-                      source=f"tooth-mesh closed form, mean of {len(units)} units with tooth deviations")
+    band = (max(u.dead_band_rad[0] for u in units), min(u.dead_band_rad[1] for u in units))
+    return curve_from_loop(T, tw, rated, dead_band_rad=band, ratcheting_torque_Nm=ratcheting_Nm,
+                           teeth_in_contact=teeth,
+                           source=f"tooth-mesh closed form, mean of {len(units)} units with tooth deviations")
 
 
-def predict_mean_curve(designs, series_rad_per_Nmm: float, rated_Nm: float, *, psi_rad: float = 0.0) -> DriveCurve:
+def predict_mean_curve(designs, series_rad_per_Nmm: float, rated_Nm: float, *, psi_rad: float = 0.0,
+                       exact: bool = False) -> DriveCurve:
     """The mean curve of several units of one design (each with its own tooth deviations, decision 070-engage48);
     no transmission error; the ratcheting torque of the first unit."""
     designs = list(designs)
     if not designs:
         raise ValueError("predict_mean_curve needs at least one design")
-    units = unit_curves(designs, series_rad_per_Nmm, rated_Nm, psi_rad=psi_rad)
+    units = unit_curves(designs, series_rad_per_Nmm, rated_Nm, psi_rad=psi_rad, exact=exact)
     return mean_curve(units, ratcheting_torque_Nm(designs[0], psi_rad))

@@ -26,6 +26,9 @@ import numpy as np
 
 from strainwave.fea.assembly import Lame
 from strainwave.fea.convergence import Convergence
+# the exact loop on the reader's fixed torque grid: one implementation, shared with the catalogue's curve
+from strainwave.fea.mesh_loop import READ_STEPS_PER_LEG, resampled_loop
+from strainwave.fea.mesh_loop import branch_twist as _branch_twist
 from strainwave.fea.result import Load, MeshQuality, Quantity, StudyResult, Support
 from strainwave.fea.skeleton import MeshSolve, Series, SeriesPlan, StudyVariant, check_variant, run_variant
 from strainwave.fea.study_facts import TORQUE_RATED
@@ -220,61 +223,6 @@ ARCMIN = 60.0 * 180.0 / math.pi
 LOST_MOTION_FRACTION = 0.04       # Harmonic Drive's lost-motion torque, of the rated (catalogue_values.py)
 
 
-READ_STEPS_PER_LEG = 400         # the reader's fixed torque grid on the exact loop (decision 073)
-
-
-def exact_loop(path) -> tuple[np.ndarray, np.ndarray]:
-    """(torque, twist) at the knots of the exact piecewise-linear loop (the history's steps if none were recorded)."""
-    knots = getattr(path, "knots", None)
-    if knots is None:
-        return np.asarray(path.torque_Nmm, float), np.asarray(path.twist_rad, float)
-    return knots[:, 0], knots[:, 1]
-
-
-def elastic_twist(theta: np.ndarray, dead_band_rad: tuple[float, float]) -> np.ndarray:
-    """The twist measured from the backlash's edge on its own side: theta - clip(theta, theta-, theta+) (decision
-    073: the catalogue's curve has no dead band; the backlash is lost motion, reported apart)."""
-    lo, hi = dead_band_rad
-    return np.asarray(theta, float) - np.clip(theta, lo, hi)
-
-
-def _legs(T: np.ndarray) -> tuple[slice, slice, slice]:
-    """0 -> +T, +T -> -T, -T -> +T as index ranges sharing their end points."""
-    k1 = int(np.argmax(T))
-    k2 = k1 + int(np.argmin(T[k1:]))
-    return slice(0, k1 + 1), slice(k1, k2 + 1), slice(k2, None)
-
-
-def _on_leg(T: np.ndarray, y: np.ndarray, leg: slice, torques: np.ndarray) -> np.ndarray:
-    """``y`` at ``torques`` on one leg of the loop's knots (a leg is monotone in torque, so linear between knots)."""
-    t, v = T[leg], y[leg]
-    if t[-1] < t[0]:
-        t, v = t[::-1], v[::-1]
-    # round-off at a pivot must not break np.interp's order
-    return np.interp(torques, np.maximum.accumulate(t), v)
-
-
-def resampled_loop(path, steps_per_leg: int = READ_STEPS_PER_LEG) -> tuple[np.ndarray, np.ndarray]:
-    """(torque, elastic twist) of the exact loop on ``steps_per_leg`` torques a leg: between knots the loop is
-    linear, so the interpolation is exact and the reading does not depend on the solve's torque step."""
-    from strainwave.fea.mesh_contact import torque_history
-    T, th = exact_loop(path)
-    y = elastic_twist(th, getattr(path, "dead_band_rad", (0.0, 0.0)))
-    grid = torque_history(float(np.max(T)), steps_per_leg)
-    parts = [_on_leg(T, y, lk, grid[lg])[(1 if i else 0):] for i, (lk, lg) in enumerate(zip(_legs(T), _legs(grid)))]
-    return grid, np.concatenate(parts)
-
-
-def _branch_twist(path, torque_Nmm: float, direction: int) -> float:
-    """The twist at ``torque_Nmm`` (not 0) on the steady unloading (-1: +T -> -T) or reloading (+1: -T -> +T) branch
-    of the exact loop: read on the elastic twist (single-valued in torque), the band's edge on that side added back."""
-    T, th = exact_loop(path)
-    band = getattr(path, "dead_band_rad", (0.0, 0.0))
-    _, down, up = _legs(T)
-    y = _on_leg(T, elastic_twist(th, band), down if direction < 0 else up, np.array([torque_Nmm]))[0]
-    return float(y + (band[1] if torque_Nmm > 0 else band[0]))
-
-
 def knee_values(path, rated_Nmm: float, steps_per_leg: int = READ_STEPS_PER_LEG) -> dict:
     """K1, K2, K3, T1, T2 by the catalogue's reader on the exact loop with the dead band taken out (decision 073)."""
     from threadpoolctl import threadpool_limits
@@ -439,6 +387,14 @@ def crack_signature(infl: Mapping, mesh: Mapping) -> tuple[dict, np.ndarray]:
     base = float(wf @ infl["fs_solid"][0] @ wf)
     return {"crack_tooth_compliance_ratio": (base + float(wf @ infl["crack_delta"] @ wf)) / base,
             "crack_te_peak_rad": float(change.max())}, change
+
+
+def rated_compliance(infl: Mapping, mesh: Mapping, path) -> dict:
+    """The pair compliance of the headline angle's pairs loaded at rated (first loading), with their indices: the
+    drive-assembled check's teeth member (fea/drive_assembled.py), small enough for the record."""
+    C = pair_compliance(infl, mesh["angles"][0], mesh["z_f"], mesh["z_c"])
+    on = np.flatnonzero(path.forces_N[int(np.argmax(path.torque_Nmm))] > 0.0)
+    return {"index": on.tolist(), "compliance_mm_per_N": C[np.ix_(on, on)].tolist()}
 
 
 def crack_orders(mesh: Mapping) -> dict:
@@ -606,6 +562,7 @@ class ToothMesh(StudyVariant):
         fields = {"rigid_rim": rigid_inputs}
         if k == 0:
             fields["paths"] = paths          # small: the finest loop reaches meta (diagnose --baseline fea reads it)
+            fields["rated_compliance"] = rated_compliance(infl, self.mesh_inputs, paths[0])
         if keep_fields:
             fields |= {"rated_u": rated_field(infl, self.mesh_inputs, paths[0], solved[0][1]),
                        "r_bore_mm": infl["r_bore_mm"], "crack_change": change}
@@ -661,7 +618,7 @@ class ToothMesh(StudyVariant):
                "forces_at_rated_N": p.forces_N[int(np.argmax(p.torque_Nmm))].tolist(),
                "pairs": {k: np.asarray(v).tolist() for k, v in self.mesh_inputs["angles"][0].items()},
                "te_twist_at_rated_rad": [float(q.twist_rad[int(np.argmax(q.torque_Nmm))]) for q in f["paths"]],
-               "rigid_rim": f["rigid_rim"]}
+               "rigid_rim": f["rigid_rim"], "rated_compliance": f.get("rated_compliance")}
         if "crack_change" not in f:
             return out
         return out | {"crack": {"tooth_phi_rad": list(self.mesh_inputs["crack_phi_rad"]),

@@ -335,6 +335,9 @@ DELIBERATE_REMOVALS: dict[str, str] = {
                                  "cup.surface_crack_closure_angle",
     "cup.surface_crack_minor": "issue 50 (decision 067-crack50b): a shut share that is 1 by construction once the crack "
                                "shuts whole; cup.surface_crack_closure_angle checks when it does",
+    "gear.stiffness": "issue 48 item 4 (decision 073-assembled48): the sum of members each checked elsewhere (it could "
+                      "not fail); replaced by gear.drive_assembled, the drive assembled (teeth + cup wall + wave "
+                      "generator) against the chain of the same members in series",
     "bearing.radial_compliance": "ring (issue 13): passed vacuously (ring FEA 31x below 1/K_G0 back-computed from "
                                  "the seed's table); now information: analytic checks entry and audit 13 (K_G0 "
                                  "= 0.139 of one ball's Hertz contacts at the seed's ellipse)",

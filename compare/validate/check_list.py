@@ -19,6 +19,7 @@ from strainwave.compare.validate import tooth_mesh_checks
 from strainwave.compare.validate import mesh_closed_form_checks
 from strainwave.compare.validate import buckling_checks
 from strainwave.compare.validate import flank_hertz_checks
+from strainwave.compare.validate import drive_assembled_checks
 from strainwave.compare.validate.checks import Check
 from strainwave.compare.validate.crack_checks import cup_crack, shaft_crack, shaft_range_note
 
@@ -204,11 +205,12 @@ CHECKS: tuple[CheckSpec, ...] = (
     CheckSpec("ring.stress_concentration", "ring", _pick(_ring, "ring.stress_concentration"),
               summary_reference("ring.stress_concentration"), f"{GCI} + the tooth-factor fit",
               ((RING, "stress_concentration"),), (RING, "stress_concentration")),
-    CheckSpec("gear.stiffness", "gear",
-              lambda ctx: wg_bearing_checks.gear_stiffness(
-                  ctx.book, {c: case.label for c, case in ctx.plan.headline.items()},
-                  ctx.label(wg_bearing_checks.STUDY) or "", ctx.s000, ctx.params),
-              None, "the series sum's GCIs + the seed's K_G0 gap"),
+    # issue 48 item 4 (decision 073-assembled48): replaces gear.stiffness (a sum of members checked elsewhere)
+    CheckSpec(drive_assembled_checks.CHECK, "gear",
+              lambda ctx: drive_assembled_checks.drive_check(
+                  ctx.book, ctx.label(drive_assembled_checks.STUDY), ctx.label(wg_bearing_checks.STUDY) or "",
+                  ctx.params, ctx.memo),
+              None, f"{GCI} + the Fourier truncation of the teeth's load on the wall"),
     CheckSpec("cup.wg_bending_major", "cup", _pick(_wg_cup, "cup.wg_bending_major"),
               lambda params, at: wg_cup_checks.references(params, "major"), f"{GCI} + curved beam + edge zones",
               ((wg_cup_checks.STUDY, "prescribed_linear_bending_major_MPa"),)),

@@ -47,15 +47,24 @@ def chain(book, labels: dict, wg_label: str, mesh_label: str | None, params) -> 
     rel = lambda x: (x.uncertainty or 0.0) / abs(x.value)  # noqa: E731
     body = cs_body(params, "face")   # the free bound (decision 070) is a benchmark's, not validate's: 5 CPU-s
     lam_cs, u_cs = body.twist.value, body.twist.convergence.gci_fine
-    rest = lam_H + q["cup"].value + lam_cs
+    # decision 073-assembled48: the assembly's wave generator (its lobes as springs K_G) replaces seed 000's
+    # lambda_H, and the wall's extra under the teeth's zones (net of the plane rim the study holds) joins the chain
+    from strainwave.compare.validate.drive_assembled_checks import assembled
+    a, why_a = assembled(book, mesh_label, wg_label, params)
+    zone, u_zone, wg_form = 0.0, 0.0, f"seed 000's lambda_H (no assembly: {why_a})"
+    if a is not None:
+        lam_H, zone, wg_form = a["finest"].lambda_wg_lobes, a["zone"].value, "lobes (decision 073-assembled48)"
+        u_zone = abs(a["zone"].uncertainty or 0.0)
+    rest = lam_H + q["cup"].value + lam_cs + zone
     out = {"lambda_H_rad_per_Nmm": lam_H, "lambda_cup_rad_per_Nmm": q["cup"].value,
-           "lambda_shaft_rad_per_Nmm": q["shaft"].value, "lambda_cs_body_rad_per_Nmm": lam_cs}
+           "lambda_shaft_rad_per_Nmm": q["shaft"].value, "lambda_cs_body_rad_per_Nmm": lam_cs,
+           "lambda_zone_rad_per_Nmm": zone, "wave_generator_form": wg_form}
     for k in ("K1", "K3"):
         lam_m = 1.0 / q[k].value
         total = lam_m + rest
         out[f"lambda_mesh_{k}_rad_per_Nmm"] = lam_m
         out[f"{k}_chain_Nmm_per_rad"] = 1.0 / total
-        out[f"{k}_chain_rel_unc"] = (lam_m * rel(q[k]) + lam_H * rel(q["kg"]) + q["cup"].value * rel(q["cup"])
+        out[f"{k}_chain_rel_unc"] = (lam_m * rel(q[k]) + lam_H * rel(q["kg"]) + q["cup"].value * rel(q["cup"]) + u_zone
                                      + lam_cs * u_cs) / total
         out[f"{k}_with_shaft_Nmm_per_rad"] = 1.0 / (total + q["shaft"].value)
     return out, ""
@@ -87,8 +96,9 @@ def gear_line(book, plan, params) -> str:
             f"{size:.3g}"
             f"{' (extrapolated beyond sizes 14-58)' if extrapolated else ''}: K3 {1e-3 * ref:.4g} N m/rad "
             f"(scatter +-{100 * scatter:.2g} %), predicted / catalogue {K / ref:.2f}. Members (rad/(N mm)): mesh "
-            f"{c['lambda_mesh_K3_rad_per_Nmm']:.3g}, cup {c['lambda_cup_rad_per_Nmm']:.3g}, wave generator "
-            f"{c['lambda_H_rad_per_Nmm']:.3g}, circular spline body with its face clamped "
+            f"{c['lambda_mesh_K3_rad_per_Nmm']:.3g}, cup {c['lambda_cup_rad_per_Nmm']:.3g}, the cup's wall under the "
+            f"teeth's zones {c['lambda_zone_rad_per_Nmm']:.3g}, wave generator {c['lambda_H_rad_per_Nmm']:.3g} "
+            f"({c['wave_generator_form']}), circular spline body with its face clamped "
             f"{c['lambda_cs_body_rad_per_Nmm']:.3g} (free in its plane it would be 20-45x that: decision 070). "
             f"This gear is not a catalogue design (its cup and teeth follow "
             f"the seeds); the catalogue's own design rules are compared row by row with "
@@ -108,8 +118,9 @@ def catalogue_check(book, labels: dict, wg_label: str, mesh_label: str | None, p
         f"the CHA table's scatter about its power law in size (rms, column {label})": scatter})
     note = (f"CHA column {label}, K3 at size {params.flexspline_cup.pitch_diameter_mm / 2.54:.3g}"
             f"{' (EXTRAPOLATED beyond sizes 14-58)' if extrapolated else ''}; members (rad/(N mm)): mesh "
-            f"{c['lambda_mesh_K3_rad_per_Nmm']:.3g}, cup {c['lambda_cup_rad_per_Nmm']:.3g}, WG "
-            f"{c['lambda_H_rad_per_Nmm']:.3g}, CS body (face clamped) {c['lambda_cs_body_rad_per_Nmm']:.3g}; shaft "
+            f"{c['lambda_mesh_K3_rad_per_Nmm']:.3g}, cup {c['lambda_cup_rad_per_Nmm']:.3g}, wall's zones "
+            f"{c['lambda_zone_rad_per_Nmm']:.3g}, WG {c['lambda_H_rad_per_Nmm']:.3g} ({c['wave_generator_form']}), "
+            f"CS body (face clamped) {c['lambda_cs_body_rad_per_Nmm']:.3g}; shaft "
             f"{c['lambda_shaft_rad_per_Nmm']:.3g} (not in a catalogue unit); "
             f"chain K1 {c['K1_chain_Nmm_per_rad']:.3g} N mm/rad beside catalogue K1 "
             f"{catalogue_power_law(params, 'K1_Nm_per_rad')[0]:.3g} (recorded, not asserted; "
