@@ -266,10 +266,10 @@ def zone_members(g3: np.ndarray, g2: np.ndarray, phi_rad, lever_mm, forces_N, r_
 
 
 def zone_terms(tube_geo, n_theta: int, lame: Lame, w0_mm: float, phi_rad, lever_mm, forces_N, face_width_mm: float,
-               g2: np.ndarray | None = None, harmonics: int = HARMONICS) -> dict:
+               g2: np.ndarray | None = None, harmonics: int = HARMONICS, contact: bool = True) -> dict:
     """The wall's members (``zone_members``) under given flank loads on one wall mesh, with the cam's held fraction:
     the catalogue chain's cup-zone term from its reduced mesh model's loads (decision 075-catzone48)."""
-    wall = wall_modes(tube_geo, n_theta, lame, w0_mm, harmonics)
+    wall = wall_modes(tube_geo, n_theta, lame, w0_mm, harmonics, contact)
     if g2 is None:
         g2 = annulus_modes(tube_geo.r_i_mm, tube_geo.r_o_mm, face_width_mm, 0.5 * tube_geo.wall_mm, lame, harmonics)
     uniform, gross, net = zone_members(wall["g"], g2, phi_rad, lever_mm, forces_N, tube_geo.r_o_mm)
