@@ -78,3 +78,12 @@ def test_a_parameter_file_with_a_cup_shorter_than_its_band_is_refused():
         p.with_value("flexspline_cup.length_mm", 39.0)      # band 32 mm + 3.5 walls of 2.24 mm = 39.84 mm
     assert err.value.key == "flexspline_cup.length_mm" and "must be > 39.84 mm" in str(err.value)
     assert p.with_value("flexspline_cup.length_mm", 40.0).flexspline_cup.length_mm == 40.0
+
+
+def test_validate_with_a_cup_shorter_than_its_band_exits_2_with_one_line(tmp_path, capsys):
+    from strainwave.cli import main
+    f = tmp_path / "short.toml"
+    f.write_text("[flexspline_cup]\nlength_mm = 39\n")
+    assert main(["validate", "--params", str(f), "--quick", "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "flexspline_cup.length_mm = 39" in err and "39.84 mm" in err
