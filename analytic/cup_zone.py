@@ -26,17 +26,9 @@ __all__ = ["teeth_tangential_loads", "teeth_rated_loads", "CupZoneTerm", "cup_zo
 
 def teeth_tangential_loads(design, torque_Nmm: float) -> tuple[np.ndarray, np.ndarray]:
     """(angle of each loaded flank pair's tooth, its tangential load F cos(alpha) N) of the mesh model at
-    ``torque_Nmm`` (wave-generator angle 0; first loading)."""
-    from strainwave.analytic.mesh_drive import mesh_system
-    from strainwave.analytic.mesh_kinematics import teeth_on_neutral_line
-    from strainwave.fea.mesh_contact import solve_torque_path
-    g = design.geometry
-    system, tooth = mesh_system(design, 0.0)
-    F = solve_torque_path(system, np.linspace(0.0, torque_Nmm, 11)).forces_N[-1]
-    on = F > 0.0
-    angles = teeth_on_neutral_line(g, 0.0).angle_rad[tooth]
-    # a reverse flank (negative lever) pushes the other way round
-    return angles[on], (np.sign(system.lever_mm) * F * math.cos(math.radians(g.pressure_angle_deg)))[on]
+    ``torque_Nmm`` (wave-generator angle 0; first loading); a reverse flank (negative lever) pushes the other way."""
+    phi, lever, F = teeth_rated_loads(design, torque_Nmm)
+    return phi, np.sign(lever) * F * math.cos(math.radians(design.geometry.pressure_angle_deg))
 
 
 def teeth_rated_loads(design, torque_Nmm: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
