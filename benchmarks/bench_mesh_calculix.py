@@ -59,6 +59,8 @@ def main(argv=None) -> int:
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--ccx-threads", type=int, default=1)
     ap.add_argument("--no-extras", action="store_true", help="skip the two untimed modelling comparisons")
+    ap.add_argument("--study", action="store_true",
+                    help="instead: the study's own friction solve (torque_path, its steps) against CalculiX, once")
     ap.add_argument("--full-loop", action="store_true",
                     help="instead: both flanks of the lobe along 0 -> +T -> -T -> +T, once, untimed")
     a = ap.parse_args(argv)
@@ -72,6 +74,8 @@ def main(argv=None) -> int:
     h = a.h_over_m * params.flexspline_cup.module_mm
     if a.full_loop:
         return full_loop(params, h, ccx, a.ccx_threads)
+    if a.study:
+        return study_line(params, h, ccx, a.ccx_threads)
     print(f"tooth-mesh band contact, strainwave vs CalculiX, h = {h:.3f} mm, load average {load_average()}", flush=True)
     sw_t, ccx_t, first = [], [], None
     with tempfile.TemporaryDirectory(prefix="sw-mesh-ccx-") as tmp:
@@ -119,6 +123,30 @@ def full_loop(params, h_mm: float, ccx: str, threads: int) -> int:
     verdicts = [_report(problem, problem.model.basis.N, r, g, lb) for r, g, lb in zip(legs, res["steps"], labels)]
     for label, ag in verdicts:
         print(f"peak tooth share, both flanks, {label}: strainwave {ag['peak_share_strainwave']:.4f}, CalculiX "
+              f"{ag['peak_share_calculix']:.4f} ({100 * ag['peak_share_rel']:+.3f} %, goal within "
+              f"{100 * mj.PEAK_SHARE_REL_TOL:.0f} %), teeth in contact {ag['teeth_in_contact'][0]} / "
+              f"{ag['teeth_in_contact'][1]}: {'PASS' if ag['passes'] else 'MISS'}")
+    return 0
+
+
+def study_line(params, h_mm: float, ccx: str, threads: int) -> int:
+    """The tooth-mesh STUDY's model on the problem (decision 073-slipstudy48): its friction on the true slip solved
+    as the study solves it (fea/mesh_friction.torque_path, 40 torque steps to the lobe's rated, 20 back down to
+    half, tooth_mesh.INCREMENTS increments a step); CalculiX runs the study's twists. Once, untimed."""
+    problem, pairs = mj.problem_for(params, h_mm, on_involute=True)
+    t0 = time.process_time()
+    study = mb.strainwave_study_path(problem, params.flexspline_cup.module_mm, pairs["torque_Nmm"], unload_to=UNLOAD_TO)
+    print(f"the study's model (true slip, torque_path) on the band problem, h = {h_mm:.3f} mm: "
+          f"{time.process_time() - t0:.2f} CPU-s; load average {load_average()}", flush=True)
+    with tempfile.TemporaryDirectory(prefix="sw-mesh-ccx-") as tmp:
+        res = mb.run_band(problem, params, [study["twist_rad"], study["unloaded"]["twist_rad"]], Path(tmp),
+                          ccx=ccx, threads=threads)
+    print(f"  CalculiX {res['wall_s']:.1f} s (load {load_average()})")
+    labels = ("first loading to rated", f"after the reversal, down to {UNLOAD_TO:g} x rated")
+    verdicts = [_report(problem, problem.model.basis.N, r, g, lb)
+                for r, g, lb in zip((study, study["unloaded"]), res["steps"], labels)]
+    for label, ag in verdicts:
+        print(f"peak tooth share, the study's model, {label}: strainwave {ag['peak_share_strainwave']:.4f}, CalculiX "
               f"{ag['peak_share_calculix']:.4f} ({100 * ag['peak_share_rel']:+.3f} %, goal within "
               f"{100 * mj.PEAK_SHARE_REL_TOL:.0f} %), teeth in contact {ag['teeth_in_contact'][0]} / "
               f"{ag['teeth_in_contact'][1]}: {'PASS' if ag['passes'] else 'MISS'}")

@@ -67,6 +67,27 @@ def strainwave_true_slip(problem: mj.Problem, module_mm: float, torque_Nmm: floa
     return legs[0] | {"unloaded": legs[1], "solve_s": dt}
 
 
+def strainwave_study_path(problem: mj.Problem, module_mm: float, torque_Nmm: float, *, unload_to: float = 0.5,
+                          steps_per_leg: int = 40, increments: int | None = None) -> dict:
+    """The tooth-mesh STUDY's own friction solve on the problem (decision 073-slipstudy48): fea/mesh_friction's
+    torque_path with the study's torque steps (``steps_per_leg`` steps to ``torque_Nmm``, the same steps back down
+    to ``unload_to`` of it) and its increments per step (fea/tooth_mesh.INCREMENTS), in ``strainwave_true_slip``'s
+    form."""
+    from strainwave.fea import tooth_mesh as tm
+    from strainwave.fea.mesh_friction import torque_path
+    system = band_system(problem, module_mm)
+    down = int(round(steps_per_leg * (1.0 - unload_to)))
+    hist = np.concatenate([np.linspace(0.0, torque_Nmm, steps_per_leg + 1),
+                           np.linspace(torque_Nmm, unload_to * torque_Nmm, down + 1)[1:]])
+    path, Q = torque_path(system, hist, tm.INCREMENTS if increments is None else increments)
+    legs = []
+    for k in (steps_per_leg, hist.size - 1):
+        N = path.forces_N[k]
+        legs.append({"twist_rad": float(path.twist_rad[k]), "torque_Nmm": float(hist[k]), "forces_N": N,
+                     "tangential_N": Q[k], "share": N / N.sum(), "teeth_in_contact": int((N > 0).sum())})
+    return legs[0] | {"unloaded": legs[1]}
+
+
 def strainwave_true_slip_path(problem: mj.Problem, module_mm: float, torques_Nmm, *,
                               increments: int = 20) -> list[dict]:
     """strainwave's true-slip solve along a torque history (each leg ends at its torque), one record per leg."""

@@ -18,6 +18,9 @@ The flexibility of the true-slip system, per WG angle, 2n x 2n [[Cff, Cfg], [Cgf
 
     python benchmarks/probe_study_true_slip.py [PARAMS.toml] [--increments N ...] [--angles K] [--steps-per-leg S]
 
+Since decision 073-slipstudy48 the study itself solves the true slip (its blocks by translation symmetry, within
+1 % of this probe's direct FE); this probe stays as decision 072's record.
+
 Cost: ~85-220 CPU-s per gear (the tangential blocks by direct FE); decision 072-slip48 has its tables.
 """
 from __future__ import annotations

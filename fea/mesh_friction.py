@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["BandSystem", "turned_bands", "solve_twist_path", "twists_for_torques"]
+__all__ = ["BandSystem", "turned_bands", "solve_twist_path", "twists_for_torques", "torque_path"]
 
 MAX_SETS = 200      # active-set iterations per increment before giving up (a P-matrix problem needs few)
 
@@ -67,40 +67,50 @@ class _State:
         return _State(*(np.copy(v) for v in (self.contact, self.stick, self.sign, self.slip_mm, self.N, self.Q)))
 
 
-def _linear(s: BandSystem, st: _State, theta: float) -> tuple[np.ndarray, np.ndarray]:
-    """N and Q on the current contact and stick sets."""
+def _linear(s: BandSystem, st: _State, theta: float,
+            torque: float | None = None) -> tuple[np.ndarray, np.ndarray, float]:
+    """N, Q and the twist on the current contact and stick sets: at the twist ``theta``, or, given ``torque``, at
+    the twist that carries it (the twist one more unknown, the torque one more row)."""
     n, mu = len(s.clearance_mm), s.friction_coefficient
     A = np.flatnonzero(st.contact)
     S = np.flatnonzero(st.contact & st.stick)
     L = np.flatnonzero(st.contact & ~st.stick)
-    Cff, Cfg = s.flex_mm_per_N[:n, :n], s.flex_mm_per_N[:n, n:]
-    Cgf, Cgg = s.flex_mm_per_N[n:, :n], s.flex_mm_per_N[n:, n:]
     slipQ = np.zeros(n)
     slipQ[L] = -mu * st.sign[L]                      # Q_L = slipQ * N_L
     a, k = A.size, S.size
-    M = np.zeros((a + k, a + k))
-    M[:a, :a] = Cff[np.ix_(A, A)] + Cfg[np.ix_(A, A)] * slipQ[A][None, :]
-    M[:a, a:] = Cfg[np.ix_(A, S)]
-    M[a:, :a] = Cgf[np.ix_(S, A)] + Cgg[np.ix_(S, A)] * slipQ[A][None, :]
-    M[a:, a:] = Cgg[np.ix_(S, S)]
-    rhs = np.concatenate([s.lever_mm[A] * theta - s.clearance_mm[A],
-                          st.slip_mm[S] - s.slide_mm_per_rad[S] * theta])
+    t = 0 if torque is None or not a else 1
+    M = np.zeros((a + k + t, a + k + t))
+    rows = np.concatenate([A, n + S])                # the gap rows of A, the stick rows of S
+    sub = s.flex_mm_per_N[np.ix_(rows, np.concatenate([A, n + S, n + A]))]
+    M[:a + k, :a + k] = sub[:, :a + k]
+    M[:a + k, :a] += sub[:, a + k:] * slipQ[A][None, :]
+    if t:       # the twist moved to the left: gap rows - lever theta, stick rows + w theta; the torque's row
+        M[:a, -1], M[a:a + k, -1] = -s.lever_mm[A], s.slide_mm_per_rad[S]
+        M[-1, :a] = s.lever_mm[A] - s.slide_mm_per_rad[A] * slipQ[A]
+        M[-1, a:a + k] = -s.slide_mm_per_rad[S]
+        rhs = np.concatenate([-s.clearance_mm[A], st.slip_mm[S], [torque]])
+    else:
+        rhs = np.concatenate([s.lever_mm[A] * theta - s.clearance_mm[A],
+                              st.slip_mm[S] - s.slide_mm_per_rad[S] * theta])
     x = np.linalg.solve(M, rhs) if a else np.zeros(0)
     N, Q = np.zeros(n), np.zeros(n)
     N[A] = x[:a]
-    Q[S] = x[a:]
+    Q[S] = x[a:a + k]
     Q[L] = slipQ[L] * N[L]
-    return N, Q
+    return N, Q, float(x[-1]) if t else theta
 
 
-def _increment(s: BandSystem, st: _State, theta: float) -> None:
-    """Solve one increment to ``theta`` in place: contact, stick and slip sets consistent with Coulomb. One set
-    change per pass, the worst violation first (changing all at once can cycle between stick and slip)."""
+def _increment(s: BandSystem, st: _State, theta: float, torque: float | None = None) -> float:
+    """Solve one increment to ``theta`` (or to the twist that carries ``torque``; ``theta`` then the guess) in
+    place: contact, stick and slip sets consistent with Coulomb; returns the twist. One set change per pass, the
+    worst violation first (changing all at once can cycle between stick and slip)."""
     n, mu = len(s.clearance_mm), s.friction_coefficient
     g_tol = 1e-12 * max(float(np.max(np.abs(s.clearance_mm), initial=0.0)), 1e-9)
-    s_tol = 1e-10 * max(float(np.max(np.abs(s.slide_mm_per_rad))) * abs(theta), g_tol)
     for _ in range(MAX_SETS):
-        N, Q = _linear(s, st, theta)
+        if torque is not None and not st.contact.any():
+            _first_to_close(s, st, torque)
+        N, Q, theta = _linear(s, st, theta, torque)
+        s_tol = 1e-10 * max(float(np.max(np.abs(s.slide_mm_per_rad))) * abs(theta), g_tol)
         u = s.flex_mm_per_N @ np.concatenate([N, Q])
         gap = s.clearance_mm - s.lever_mm * theta + u[:n]
         slip = u[n:] + s.slide_mm_per_rad * theta
@@ -114,7 +124,7 @@ def _increment(s: BandSystem, st: _State, theta: float) -> None:
         size, i, kind = max(viol)
         if size <= 1.0:
             st.N, st.Q, st.slip_mm = N, Q, slip
-            return
+            return theta
         if kind in ("open", "close"):
             st.contact[i] = kind == "close"
             st.stick[i] = mu > 0.0
@@ -123,6 +133,16 @@ def _increment(s: BandSystem, st: _State, theta: float) -> None:
         else:
             st.stick[i] = True
     raise RuntimeError(f"mesh_friction: no consistent contact/stick set at theta = {theta:.6g} rad")
+
+
+def _first_to_close(s: BandSystem, st: _State, torque: float) -> None:
+    """No flank touches and a torque is asked for: the flank whose gap closes first as the twist moves toward the
+    torque's sign carries it (unloaded, the gaps are c - lever theta)."""
+    can = np.flatnonzero(np.sign(s.lever_mm) == np.sign(torque))
+    if torque == 0.0 or can.size == 0:
+        raise ValueError(f"mesh_friction: torque {torque:.6g} N mm is not carried by any flank")
+    i = can[np.argmin(s.clearance_mm[can] / np.abs(s.lever_mm[can]))]
+    st.contact[i], st.stick[i] = True, s.friction_coefficient > 0.0
 
 
 def _new_state(n: int, mu: float) -> _State:
@@ -171,33 +191,100 @@ def _false_position(f, lo: float, f_lo: float, hi: float, f_hi: float, f_tol: fl
     return hi
 
 
+def _leg_to_torque(s: BandSystem, st: _State, prev: float, T_now: float, T: float, increments: int,
+                   rtol: float) -> tuple[float, _State]:
+    """The leg from the state ``st`` at twist ``prev`` (torque ``T_now``) whose end twist carries ``T`` (false
+    position on the end twist, the leg's increments re-run from ``st`` per trial): (end twist, end state)."""
+    lever = float(np.max(np.abs(s.lever_mm)))
+    d = 1.0 if T > T_now else -1.0
+    step = max(abs(prev), float(np.min(s.clearance_mm)) / lever, 1e-9)
+
+    def torque_at(theta: float) -> tuple[float, _State]:
+        trial = st.copy()
+        _leg(s, trial, prev, theta, increments)
+        return float(s.lever_mm @ trial.N - s.slide_mm_per_rad @ trial.Q), trial
+
+    lo, hi = prev, prev + d * step
+    f_lo, f_hi = T_now - T, torque_at(hi)[0] - T
+    for _ in range(60):
+        if d * f_hi >= 0.0:
+            break
+        lo, f_lo, hi = hi, f_hi, hi + d * step
+        f_hi = torque_at(hi)[0] - T
+        step *= 2.0
+    else:       # e.g. a torque of the sign no flank of the lobe can carry
+        raise ValueError(f"twists_for_torques: torque {T:.6g} N mm is not reached by any twist")
+    hi = _false_position(lambda th: torque_at(th)[0] - T, lo, f_lo, hi, f_hi, rtol * abs(T))
+    return hi, torque_at(hi)[1]
+
+
 def twists_for_torques(s: BandSystem, torques_Nmm, increments: int = 20, rtol: float = 1e-10) -> list[dict]:
     """The twist history whose legs end at the given torques (false position on each leg's end twist, the path
     to it followed from the previous leg's state); returns ``solve_twist_path``'s records."""
     st, prev, out = _new_state(len(s.clearance_mm), s.friction_coefficient), 0.0, []
-    lever = float(np.max(np.abs(s.lever_mm)))
     for T in np.atleast_1d(np.asarray(torques_Nmm, float)).tolist():
         T_now = out[-1]["torque_Nmm"] if out else 0.0
-        d = 1.0 if T > T_now else -1.0
-        step = max(abs(prev), float(np.min(s.clearance_mm)) / lever, 1e-9)
-
-        def torque_at(theta: float) -> tuple[float, _State]:
-            trial = st.copy()
-            _leg(s, trial, prev, theta, increments)
-            return float(s.lever_mm @ trial.N - s.slide_mm_per_rad @ trial.Q), trial
-
-        lo, hi = prev, prev + d * step
-        f_lo, f_hi = T_now - T, torque_at(hi)[0] - T
-        for _ in range(60):
-            if d * f_hi >= 0.0:
-                break
-            lo, f_lo, hi = hi, f_hi, hi + d * step
-            f_hi = torque_at(hi)[0] - T
-            step *= 2.0
-        else:       # e.g. a torque of the sign no flank of the lobe can carry
-            raise ValueError(f"twists_for_torques: torque {T:.6g} N mm is not reached by any twist")
-        hi = _false_position(lambda th: torque_at(th)[0] - T, lo, f_lo, hi, f_hi, rtol * abs(T))
-        _, st = torque_at(hi)
-        out.append(_record(s, st, hi))
-        prev = hi
+        prev, st = _leg_to_torque(s, st, prev, T_now, T, increments, rtol)
+        out.append(_record(s, st, prev))
     return out
+
+ZERO_AIM = 1e-9     # of the history's amplitude: a zero torque inside the loop is aimed at a hair either side of 0
+
+
+def _targets(torques: np.ndarray, increments: int) -> tuple[np.ndarray, np.ndarray]:
+    """The increments' torques (each history step in ``increments`` equal torque increments) and the index of each
+    history point among them. A zero torque after a load lies in the backlash's dead band (any twist in it carries
+    0): both its edges are solved, a hair either side of 0, and the far edge (the other flanks touch) is the
+    history's point, where fea/mesh_contact's tracker lands too."""
+    eps = ZERO_AIM * float(np.max(np.abs(torques), initial=0.0))
+    out, idx, prev = [], [], 0.0              # the path starts unloaded at 0 (a first point of 0 is that start)
+    for Tk in np.asarray(torques, float).tolist():
+        Tk = 0.0 if abs(Tk) <= 1e-12 * eps / ZERO_AIM else Tk     # a history's round-off zero is its zero
+        if not out and Tk == 0.0:
+            idx.append(-1)
+            continue
+        sub = list(np.linspace(prev, Tk, increments + 1)[1:])
+        if Tk == 0.0 and prev != 0.0:
+            sub[-1:] = [np.sign(prev) * eps, -np.sign(prev) * eps]
+        out += sub
+        idx.append(len(out) - 1)
+        prev = Tk
+    return np.asarray(out), np.asarray(idx)
+
+
+def torque_path(s: BandSystem, torques_Nmm, increments: int = 1):
+    """The history of torques (starting unloaded at 0), each step in ``increments`` equal TORQUE increments, each
+    increment solved with its torque prescribed from the previous converged state (the twist an unknown of the
+    increment's linear system): one solve a increment where ``twists_for_torques`` re-runs a leg per trial of its
+    false position. On the same increments it is the same discretisation (tests/test_tooth_mesh_slip.py). Returns a
+    fea/mesh_contact.MeshPath (work: trapezoids over the increments, exact where T is linear between them) and the
+    tangential forces (m, n)."""
+    from strainwave.fea.mesh_contact import MeshPath, dead_band
+    T = np.asarray(torques_Nmm, float)
+    n = len(s.clearance_mm)
+    targets, idx = _targets(T, increments)
+    st, theta = _new_state(n, s.friction_coefficient), 0.0
+    th, Tr = np.zeros(targets.size + 1), np.zeros(targets.size + 1)
+    N, Q = np.zeros((T.size, n)), np.zeros((T.size, n))
+    rec = {int(j): i for i, j in enumerate(idx)}
+    for j, Tj in enumerate(targets):
+        if Tj == 0.0:           # a zero torque held (the dead band's far edge reached before): nothing moves
+            th[j + 1], Tr[j + 1] = theta, Tr[j]
+            if j in rec:
+                N[rec[j]], Q[rec[j]] = st.N, st.Q
+            continue
+        try:
+            trial = st.copy()
+            theta, st = _increment(s, trial, theta, float(Tj)), trial
+        except RuntimeError:    # the torque-driven sets cycled: the twist-driven increment, its end by false position
+            theta, st = _leg_to_torque(s, st, th[j], Tr[j], float(Tj), 1, 1e-12)
+        th[j + 1], Tr[j + 1] = theta, float(s.lever_mm @ st.N - s.slide_mm_per_rad @ st.Q)
+        if j in rec:
+            N[rec[j]], Q[rec[j]] = st.N, st.Q
+    seg = 0.5 * (Tr[1:] + Tr[:-1]) * np.diff(th)
+    cum = np.concatenate([[0.0], np.cumsum(seg)])
+    work = np.diff(cum[idx + 1], prepend=0.0)
+    # the loop's knots for fea/tooth_mesh's reader (decision 073-stepconv48): every increment's end in path order,
+    # linear between them to the increments' resolution; the dead band from the same geometry as mesh_contact's
+    knots = np.column_stack([Tr, th])
+    return MeshPath(T, th[idx + 1], N, N > 0.0, np.zeros(T.size, int), work, knots, dead_band(s)), Q

@@ -5,9 +5,10 @@ circular spline's teeth (fea/tooth_mesh_fe.py) give the flank influence of tooth
 of contact radii; the teeth are alike, so tooth j on tooth k is the influence of k - j. At each
 wave-generator angle the kinematic engagement (analytic/mesh_engagement.py, passed in as numbers by the
 registry's ``load_inputs``) names the flank pairs, their contact radii, unloaded clearances, levers and
-slides; the compliance of those pairs (FS rim + CS teeth, in series along the line of action) and the
-frictional contact solve along 0 -> +T -> -T -> +T (fea/mesh_contact.py, the agreed solver, not a
-closed form) give the loop. Every reported number is that chain on one mesh, so each carries its GCI.
+slides; the 2 x 2 band flexibility of those pairs (normal and tangential; FS rim + CS teeth, in series) and the
+frictional contact solve along 0 -> +T -> -T -> +T with Coulomb on the true slip (fea/mesh_friction.py,
+decision 073-slipstudy48; not a closed form) give the loop. Every reported number is that chain on one mesh,
+so each carries its GCI.
 
 Read from the loop with compare/diagnose/catalogue_values.py's rules (the same as a recording):
 K1, K2, K3, T1, T2, lost motion at +/-4 % rated, flank friction's work per cycle. Also: the transmission error (the twist
@@ -61,6 +62,9 @@ QUANTITIES = (
 STEP_LIMITED = ("T1_Nmm",)
 STEP_LIMITED_WHY = ("the reader's T1 moves 0.4-0.7 % with its own torque grid (200 / 400 / 800 a leg on the exact "
                     "loop), over the 0.5 % fixed before (decision 073)")
+# friction on the true slip (fea/mesh_friction.torque_path): torque increments per history step, the smallest N
+# whose readings move <= 0.5 % from N to 2N (decision 073-slipstudy48: N 4 -> 8 moved friction's work +0.31 %)
+INCREMENTS = 4
 SECTOR_H_RATIO = 0.5              # the sectors' element size over the rim's
 SOLID_DEPTH_OVER_M = 6.0          # the FS tooth's solid-body sector is held this deep below its root (ISO's body)
 
@@ -114,6 +118,44 @@ def pair_compliance(infl: Mapping, pairs: Mapping, z_f: int, z_c: int) -> np.nda
     return 0.5 * (C + C.T)
 
 
+def _contract(W: np.ndarray, table: np.ndarray, idx: np.ndarray) -> np.ndarray:
+    """C[j, k] = W[j] . table[idx[j, k]] . W[k] (table (D, na, na), W (n, na)), without the (n, n, na, na) gather."""
+    A = np.einsum("ja,dab->djb", W, table)
+    return np.einsum("jkb,kb->jk", A[idx, np.arange(W.shape[0])[:, None], :], W)
+
+
+MIRROR_SIGN = np.array([1.0, -1.0])   # a -1 flank's (normal, tangential) band is the mirrored +1 one's times these
+
+
+def pair_flexibility(infl: Mapping, pairs: Mapping, z_f: int, z_c: int) -> np.ndarray:
+    """(2n, 2n) band flexibility [[Cff, Cfg], [Cgf, Cgg]] of the flank pairs (FS rim + CS teeth, in series), in
+    pair_compliance's order: the normal band N (pressure) and the tangential Q (along t = rot90(n) of the FS flank;
+    the CS flank gets -Q t_FS = Q t_CS, so both bodies add). Tooth 0's blocks by translation symmetry; a -1 pair's
+    by the mirror, where t changes sign (MIRROR_SIGN); the CS coupling keeps CS_NEIGHBOURS teeth, as the normal
+    one (decision 073-slipstudy48). Cff is pair_compliance's."""
+    side, tooth, space = pairs["side"], pairs["tooth"], pairs["cs_space"]
+    n = side.size
+    Wf = _interp_weights(infl["fs_radii"], pairs["fs_radius_mm"])
+    Wc = _interp_weights(infl["cs_radii"], pairs["cs_radius_mm"])
+    same = side[:, None] == side[None, :]
+    mirror = side[:, None] < 0                      # row j loaded: a -1 load is the mirrored +1 load
+    dd = np.where(mirror, tooth[:, None] - tooth[None, :], tooth[None, :] - tooth[:, None]) % z_f
+    dc = np.where(mirror, space[:, None] - space[None, :], space[None, :] - space[:, None])
+    dc = (dc + z_c // 2) % z_c - z_c // 2
+    near = same & (np.abs(dc) <= CS_NEIGHBOURS)
+    kc = np.clip(dc + CS_NEIGHBOURS, 0, 2 * CS_NEIGHBOURS)
+    flex = np.zeros((2 * n, 2 * n))
+    for x in (0, 1):
+        for y in (0, 1):
+            sign = np.where(mirror, MIRROR_SIGN[x] * MIRROR_SIGN[y], 1.0)
+            C = np.where(same, _contract(Wf, infl["fs_t_same"][x, y], dd),
+                         _contract(Wf, infl["fs_t_other"][x, y], dd))
+            C = C + np.where(near, _contract(Wc, infl["cs_t"][x, y], kc), 0.0)
+            # C[j, k]: reading y at k per load x at j; flexibility rows are readings
+            flex[y * n:(y + 1) * n, x * n:(x + 1) * n] += (sign * C).T
+    return 0.5 * (flex + flex.T)
+
+
 def influences(params, mesh: Mapping, h_mm: float, *, plane_stress: bool = False,
                bed_N_per_mm2: float | None = None) -> tuple[dict, dict]:
     """The FS rim's and the CS sector's flank influences on one mesh size, and the mesh facts (``bed_N_per_mm2``:
@@ -127,8 +169,9 @@ def influences(params, mesh: Mapping, h_mm: float, *, plane_stress: bool = False
     fs_r, cs_r = radii_grids(mesh)
     rim = fe.rim_model(geo.fs, geo.r_bore_mm, h_mm, lame, geo.face_width_mm, bed_N_per_mm2)
     offs = np.arange(geo.z_f)
-    same = fe.influence(rim, geo.fs.root_radius_mm, fs_r, band, +1, offs, geo.r_bore_mm)
-    other = fe.influence(rim, geo.fs.root_radius_mm, fs_r, band, -1, offs, geo.r_bore_mm)
+    # tooth 0's +1 flank loaded by the pressure band and its turned twin, read on both flanks of every tooth
+    rim_t = fe.influence_blocks(rim, geo.fs.root_radius_mm, fs_r, band, +1, (1, -1), offs, geo.r_bore_mm)
+    same, other = rim_t[1][0, 0], rim_t[-1][0, 0]
     hs = SECTOR_H_RATIO * h_mm        # a sector holds a few teeth: finer costs little and keeps its GCI small
     # as wide as twice its depth: a narrow sector with free sides is a column, far softer than the CS ring
     # (4 teeth a side were 26 % softer than 20 on the default gear)
@@ -136,8 +179,9 @@ def influences(params, mesh: Mapping, h_mm: float, *, plane_stress: bool = False
     wide = max(CS_NEIGHBOURS + 2, int(math.ceil(2 * depth / (math.pi * geo.cs_tooth.module_mm))) + 2)
     sector = fe.sector_model(geo.cs_tooth, geo.cs_outer_radius_mm, wide, hs, lame, geo.face_width_mm)
     # the FS's +1 flank presses the CS tooth's -1 flank
-    cs = fe.influence(sector, geo.cs_tooth.root_radius_mm, cs_r, band, -1,
-                      np.arange(-CS_NEIGHBOURS, CS_NEIGHBOURS + 1), None)
+    cs_t = fe.influence_blocks(sector, geo.cs_tooth.root_radius_mm, cs_r, band, -1, (-1,),
+                               np.arange(-CS_NEIGHBOURS, CS_NEIGHBOURS + 1), None)[-1]
+    cs = cs_t[0, 0]
     solid = fe.sector_model(geo.fs, geo.fs.root_radius_mm - SOLID_DEPTH_OVER_M * geo.fs.module_mm, 2, hs, lame,
                             geo.face_width_mm)
     fs_solid = fe.influence(solid, geo.fs.root_radius_mm, fs_r, band, +1, np.array([0]), None)
@@ -147,7 +191,9 @@ def influences(params, mesh: Mapping, h_mm: float, *, plane_stress: bool = False
     facts = {"elements": int(rim.mesh.t.shape[1] + sector.mesh.t.shape[1]),
              "nodes": int(rim.basis.N + sector.basis.N), "dofs": int(2 * (rim.basis.N + sector.basis.N))}
     timings = {k: rim.timings_s[k] + sector.timings_s[k] for k in rim.timings_s}
-    return {"fs_same": same, "fs_other": other, "cs": cs, "fs_solid": fs_solid, "fs_radii": fs_r, "cs_radii": cs_r,
+    return {"fs_same": same, "fs_other": other, "cs": cs, "fs_t_same": rim_t[1], "fs_t_other": rim_t[-1],
+            "cs_t": cs_t,
+            "fs_solid": fs_solid, "fs_radii": fs_r, "cs_radii": cs_r,
             "face_width_mm": geo.face_width_mm, "rim": rim, "r_bore_mm": geo.r_bore_mm,
             "crack_delta": fs_cracked[0] - fs_solid[0]}, facts | timings
 
@@ -161,6 +207,16 @@ def systems(infl: Mapping, mesh: Mapping) -> list:
         out.append(MeshSystem(pairs["clearance_mm"], C, pairs["lever_mm"], pairs["slide_mm_per_rad"],
                               mesh["friction_coefficient"], mesh["rim_radius_mm"]))
     return out
+
+
+def band_systems(infl: Mapping, mesh: Mapping) -> list:
+    """One fea/mesh_friction.BandSystem per wave-generator angle: the pairs' 2 x 2 band flexibility (normal and
+    tangential, pair_flexibility) for Coulomb's law on the true slip; the counter-tooth's slide along the FS flank's
+    t = rot90(n) is the engagement's ``slide_mm_per_rad`` with its sign (decision 072-slip48)."""
+    from strainwave.fea.mesh_friction import BandSystem
+    return [BandSystem(np.asarray(p["clearance_mm"], float), pair_flexibility(infl, p, mesh["z_f"], mesh["z_c"]),
+                       np.asarray(p["lever_mm"], float), np.asarray(p["slide_mm_per_rad"], float),
+                       float(mesh["friction_coefficient"])) for p in mesh["angles"]]
 
 
 ARCMIN = 60.0 * 180.0 / math.pi
@@ -365,10 +421,13 @@ def major_pair(infl: Mapping, mesh: Mapping) -> dict:
             "pair_compliance_major_mm_per_N": c_fs + c_cs, "fs_coupling_next_ratio": nxt / c_fs}
 
 
-def rated_field(infl: Mapping, mesh: Mapping, path) -> tuple:
-    """(mesh, vertex displacement (Nv, 2)) of the FS rim under the headline angle's flank loads at rated torque."""
+def rated_field(infl: Mapping, mesh: Mapping, path, tangential_N: np.ndarray | None = None) -> tuple:
+    """(mesh, vertex displacement (Nv, 2)) of the FS rim under the headline angle's flank loads at rated torque (the
+    normal bands and, given the path's tangential forces (m, n), their turned twins)."""
     rim, pairs = infl["rim"], mesh["angles"][0]
-    F = path.forces_N[int(np.argmax(path.torque_Nmm))]
+    k = int(np.argmax(path.torque_Nmm))
+    F = path.forces_N[k]
+    Q = np.zeros_like(F) if tangential_N is None else np.asarray(tangential_N)[k]
     band = BAND_OVER_M * mesh["module_mm"]
     total = np.zeros(rim.T.shape[0])
     shear = fe.bore_shear(rim, infl["r_bore_mm"])
@@ -376,7 +435,9 @@ def rated_field(infl: Mapping, mesh: Mapping, path) -> tuple:
         on = (pairs["side"] == side) & (F > 0)
         if on.any():
             L, M = fe.flank_loads(rim, pairs["tooth"][on], pairs["fs_radius_mm"][on], band, side)
+            G = fe.turned(rim, L)
             total += (L - shear[:, None] * M[None, :]) @ F[on]
+            total += (G - shear[:, None] * fe.load_moments(rim, G)[None, :]) @ Q[on]
     u = rim.T @ fe.displacements(rim, total[:, None])[:, 0]
     nv = rim.mesh.p.shape[1]
     return rim.mesh, np.column_stack([u[0:2 * nv:2], u[1:2 * nv:2]]), vertex_von_mises(rim, u)
@@ -484,9 +545,11 @@ class ToothMesh(StudyVariant):
         t0 = time.perf_counter()
         infl, facts = influences(self.params, self.mesh_inputs, refinement)
         t1 = time.perf_counter()
-        from strainwave.fea.mesh_contact import solve_torque_path
+        from strainwave.fea.mesh_friction import torque_path
         history = np.asarray(self.mesh_inputs["torque_history_Nmm"])
-        paths = [solve_torque_path(s, history) for s in systems(infl, self.mesh_inputs)]
+        # Coulomb on the true slip with the flanks' tangential loads (decision 073-slipstudy48)
+        solved = [torque_path(s, history, INCREMENTS) for s in band_systems(infl, self.mesh_inputs)]
+        paths = [p for p, _ in solved]
         crack, change = crack_signature(infl, self.mesh_inputs)
         rigid, rigid_inputs = rigid_rim(infl, self.mesh_inputs)
         values = (loop_values(paths, self.mesh_inputs["rated_torque_Nmm"]) | major_pair(infl, self.mesh_inputs) | crack
@@ -501,7 +564,7 @@ class ToothMesh(StudyVariant):
             fields["paths"] = paths          # small: the finest loop reaches meta (diagnose --baseline fea reads it)
             fields["rated_compliance"] = rated_compliance(infl, self.mesh_inputs, paths[0])
         if keep_fields:
-            fields |= {"rated_u": rated_field(infl, self.mesh_inputs, paths[0]),
+            fields |= {"rated_u": rated_field(infl, self.mesh_inputs, paths[0], solved[0][1]),
                        "r_bore_mm": infl["r_bore_mm"], "crack_change": change}
         infl.pop("rim")
         return MeshSolve(refinement, values, quality,

@@ -344,3 +344,72 @@ def influence(model: RimSolve, root_mm: float, radii_mm: np.ndarray, band_mm: fl
             rot = 0.0 if shear is None else float(shear @ U[:, a])
             out[:, a, b] = (disp - mom * rot) / norm
     return out
+
+
+def turned(model: RimSolve, F: np.ndarray) -> np.ndarray:
+    """Pressure bands F (u~ columns) as tangential tractions along t = rot90(n), n the flank's outward normal (the
+    minus resultant of F), each with a unit resultant along t (fea/mesh_friction.turned_bands)."""
+    from strainwave.fea.mesh_friction import turned_bands
+    full = model.T @ F          # T is a rotation at each bore node, else the identity: u~ loads -> full
+    res = np.stack([full[0::2].sum(0), full[1::2].sum(0)], axis=1)
+    n = -res / np.hypot(res[:, 0], res[:, 1])[:, None]
+    return model.T.T @ turned_bands(full, np.column_stack([-n[:, 1], n[:, 0]]))
+
+
+def load_moments(model: RimSolve, F: np.ndarray) -> np.ndarray:
+    """Each load column's moment about the axis (N mm per N)."""
+    x, y = model.basis.doflocs
+    full = model.T @ F
+    return (x[:, None] * full[1::2] - y[:, None] * full[0::2]).sum(0)
+
+
+def _read_blocks(model: RimSolve, Uc: np.ndarray, rot: np.ndarray, root_mm: float, radii_mm: np.ndarray,
+                 band_mm: float, side: int, offsets: np.ndarray) -> np.ndarray:
+    """c[x, y, d, a, b]: the band reading of kind y (0: normal into the tooth, 1: along t = rot90(n)) on flank
+    ``side`` of tooth ``offsets[d]`` at radius b, per unit load column x * na + a of ``Uc`` (full dofs)."""
+    from skfem import ElementVector, FacetBasis
+    na = radii_mm.size
+    facets, tooth = _flank_facets(model, side, root_mm)
+    want = np.asarray(offsets) % model.teeth
+    pick = np.isin(tooth, want)
+    facets, tooth = facets[pick], tooth[pick]
+    fb = FacetBasis(model.mesh, ElementVector(model.basis.elem), facets=facets, intorder=6)
+    x = fb.global_coordinates().value
+    n = fb.normals.value
+    dx = fb.dx * model.thickness_mm
+    r = np.hypot(x[0], x[1])
+    slot = np.array([list(want).index(t) for t in tooth])
+    dirs = (-n, np.stack([-n[1], n[0]]))
+    u = [fb.interpolate(Uc[:, c]).value for c in range(Uc.shape[1])]          # (2, nf, nq) each
+    out = np.zeros((2, 2, want.size, na, na))
+    for b, rb in enumerate(radii_mm):
+        p = np.maximum(0.0, 1.0 - ((r - rb) / band_mm) ** 2) * dx
+        for y, e in enumerate(dirs):
+            fx, fy = (np.bincount(slot, (e[i] * p).sum(1), want.size) for i in (0, 1))
+            mom = np.bincount(slot, ((x[0] * e[1] - x[1] * e[0]) * p).sum(1), want.size)
+            norm = np.hypot(fx, fy)
+            for c, uc in enumerate(u):
+                disp = np.bincount(slot, ((uc * e).sum(0) * p).sum(1), want.size)
+                out[c // na, y, :, c % na, b] = (disp - mom * rot[c]) / norm
+    return out
+
+
+def influence_blocks(model: RimSolve, root_mm: float, radii_mm: np.ndarray, band_mm: float, side: int,
+                     read_sides: tuple, offsets: np.ndarray, r_bore_mm: float | None) -> dict:
+    """{read side: c[x, y, d, a, b]} (mm/N): tooth 0's flank ``side`` loaded at radius a by a unit band of kind x
+    (0: the pressure band, ``influence``'s load; 1: the same band turned to the flank's tangent t = rot90(n)), read
+    on flank ``read side`` of tooth ``offsets[d]`` at radius b as kind y. As ``influence`` (whose numbers are
+    c[0, 0] on the loaded side): each load balanced by the bore's shear, readings relative to the bore's rotation;
+    tooth j on tooth k is c[..., k - j, ...] by the teeth's translation symmetry (decision 073-slipstudy48)."""
+    F, M = flank_loads(model, np.zeros(radii_mm.size, int), radii_mm, band_mm, side)
+    G = turned(model, F)
+    L = np.hstack([F, G])
+    rot = np.zeros(L.shape[1])
+    if r_bore_mm is not None:
+        shear = bore_shear(model, r_bore_mm)
+        L = L - shear[:, None] * np.concatenate([M, load_moments(model, G)])[None, :]
+    U = displacements(model, L)
+    if r_bore_mm is not None:
+        rot = shear @ U
+    Uc = model.T @ U
+    return {s: _read_blocks(model, Uc, rot, root_mm, radii_mm, band_mm, s, offsets) for s in read_sides}

@@ -233,3 +233,29 @@ def test_the_minus_T_leg_agrees_and_a_perturbed_reference_fails(jobs, band, loop
     T = pairs["torque_Nmm"]
     bad = band.strainwave_true_slip_path(bad_problem, params.flexspline_cup.module_mm, [T, -T, T])
     assert not mj.agreement(bad[1], ccx["steps"][1], BAND_REL)["passes"]
+
+
+@pytest.fixture(scope="module")
+def study_solved(jobs, band, params, tmp_path_factory):
+    """The tooth-mesh STUDY's own friction solve on the band problem (decision 073-slipstudy48: mesh_friction's
+    torque_path, the study's 40 torque steps and increments), CalculiX run at its twists."""
+    _, mj = jobs
+    m = params.flexspline_cup.module_mm
+    problem, pairs = mj.problem_for(params, H_OVER_M * m, on_involute=True)
+    sw = band.strainwave_study_path(problem, m, pairs["torque_Nmm"], unload_to=UNLOAD_TO)
+    ccx = band.run_band(problem, params, [sw["twist_rad"], sw["unloaded"]["twist_rad"]],
+                        tmp_path_factory.mktemp("mesh-ccx-study"))
+    return problem, pairs, sw, ccx
+
+
+@pytest.mark.heavy
+@pytest.mark.parametrize("step", [0, 1], ids=["first-loading", "after-reversal"])
+def test_the_study_solve_carries_calculix_tooth_shares(jobs, study_solved, step):
+    """Issue 48 item 8 for the study's own solve: its peak share within 2 % of CalculiX's on the same band problem,
+    the same most-loaded tooth."""
+    _, mj = jobs
+    problem, pairs, sw, ccx = study_solved
+    ref, got = (sw, sw["unloaded"])[step], ccx["steps"][step]
+    ag = mj.agreement(ref, got, BAND_REL)
+    assert abs(ag["peak_share_rel"]) <= BAND_REL and ag["passes"], ag
+    assert np.argmax(ref["share"]) == np.argmax(got["share"])
