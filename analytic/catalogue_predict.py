@@ -298,7 +298,8 @@ class CataloguePrediction:
             lines.append(f"cup under the mesh zones, ratio {t.ratio:g} (FE at d = {t.reference_d_mm:g} mm, scaled "
                          f"(d_ref/d)^3): +{t.extra.value:.3e} rad/(N mm) net of the plane rim the mesh model holds "
                          f"(gross {t.gross.value if t.gross else float('nan'):.3e}, decision 075), GCI "
-                         f"{100 * c.gci_fine:.2g} %, over the uniform shear's {t.uniform.value:.3e} ({t.cpu_s:.1f} CPU-s)")
+                         f"{100 * c.gci_fine:.2g} %, over the uniform shear's {t.uniform.value:.3e} "
+                         f"({t.cpu_s:.1f} CPU-s)")
         for r, t in self.cs_body.items():
             lines.append(f"circular spline body, mounting {t.restraint} (decision 070), ratio {r:g} (3D FE at d = "
                          f"{t.reference_d_mm:g} mm, scaled (d_ref/d)^3): +{t.twist.value:.3e} rad/(N mm), GCI "

@@ -43,7 +43,8 @@ class TubeGeometry:
     def __post_init__(self):
         # the band's bore is the cam's; a band reaching the held end would hold the same points twice (no such cup)
         if self.band_start_mm <= self.z_end_mm:
-            raise InputError("cup length_mm", round(self.length_mm, 6), shortest_cup_message(self.z_end_mm, self.band_mm))
+            raise InputError("cup length_mm", round(self.length_mm, 6),
+                             shortest_cup_message(self.z_end_mm, self.band_mm))
 
     @property
     def r_m_mm(self) -> float:
