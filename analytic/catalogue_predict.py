@@ -49,9 +49,10 @@ LEFT_OUT = {
     ("K1_Nm_per_rad", "low"): "the radial support is one linear foundation: the rim lifted off the bearing beyond "
                                "the wrap angle is pressed back onto the balls as the torque grows (a support that "
                                "stiffens with load), and real units' preload (kappa > 1) is not modelled",
-    ("K3_Nm_per_rad", "high"): "a compliance 30-36 % of the catalogue's own at every ratio, not identified: with the "
-                                "fatigue rim (decision 069) the ratio trend is met and every row is 1.4-2.0x too "
-                                "stiff (size 25: 1.7e-8 / 7.6e-9 / 5.0e-9 rad/(N mm) missing at i = 30 / 50 / 100); "
+    ("K3_Nm_per_rad", "high"): "a compliance 32-39 % of the catalogue's own at every ratio, not identified: with the "
+                                "fatigue rim (decision 069) the ratio trend is met and every row is 1.5-2.1x too "
+                                "stiff (size 25: 1.9e-8 / 8.6e-9 / 5.5e-9 rad/(N mm) missing at i = 30 / 50 / 100; "
+                                "the cup-zone term net of the plane rim the mesh model holds, decision 075); "
                                 "ruled out: the tooth on its rim, coning (it stiffens K3 at i = 30, decision 071), "
                                 "lift-off, the WG outer ring's ovalisation; "
                                 "the circular spline body is in the chain with its face clamped to a rigid housing "
@@ -61,7 +62,7 @@ LEFT_OUT = {
                                 "bolt joint allow (an elastic housing flange, the joint's slip) is not modelled; "
                                 "decision 073: the WG cam and inner ring (0.03-2.2e-9 for a solid to a 0.8 R bore: no "
                                 "more than the seed's K_G already held), face width, plane strain/stress and a tooth "
-                                "preload do not supply it; a ratio-independent 7.3-10.5e-9 at size 25 would, e.g. "
+                                "preload do not supply it; a ratio-independent 9.3-11.3e-9 at size 25 would, e.g. "
                                 "the flexspline boss's bolted joint, whose interface stiffness no source gives",
     ("K3_Nm_per_rad", "low"): "load spreading over more teeth than the ideal rack engages (the wider, "
                                "conjugate S-tooth zone of real profiles)",
@@ -295,8 +296,10 @@ class CataloguePrediction:
         for t in self.cup_zone.values():
             c = t.extra.convergence
             lines.append(f"cup under the mesh zones, ratio {t.ratio:g} (FE at d = {t.reference_d_mm:g} mm, scaled "
-                         f"(d_ref/d)^3): +{t.extra.value:.3e} rad/(N mm), GCI {100 * c.gci_fine:.2g} %, over the "
-                         f"uniform shear's {t.uniform.value:.3e} ({t.cpu_s:.1f} CPU-s)")
+                         f"(d_ref/d)^3): +{t.extra.value:.3e} rad/(N mm) net of the plane rim the mesh model holds "
+                         f"(gross {t.gross.value if t.gross else float('nan'):.3e}, decision 075), GCI "
+                         f"{100 * c.gci_fine:.2g} %, over the uniform shear's {t.uniform.value:.3e} "
+                         f"({t.cpu_s:.1f} CPU-s)")
         for r, t in self.cs_body.items():
             lines.append(f"circular spline body, mounting {t.restraint} (decision 070), ratio {r:g} (3D FE at d = "
                          f"{t.reference_d_mm:g} mm, scaled (d_ref/d)^3): +{t.twist.value:.3e} rad/(N mm), GCI "

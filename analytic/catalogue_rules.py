@@ -189,6 +189,19 @@ class MeshRules:
             hub_bore_radius_mm=HUB_BORE_RATIO * d, hub_height_mm=BOSS_HEIGHT_WALLS * t, diaphragm_thickness_mm=t,
             band_length_mm=BAND_RATIO * d, diaphragm_z_mm=(BOSS_HEIGHT_WALLS - 0.5) * t).total
 
+    def check_cup_length(self, size: float, ratio: float) -> None:
+        """Refuse a cup whose tooth band (face_width_over_d) reaches the diaphragm's mid-plane, 3.5 rims from the
+        closed end (the cup-zone FE's tube): exit 2 naming length_over_d and the shortest length allowed."""
+        from strainwave.errors import InputError
+        from strainwave.geometry.flexspline_cup import BOSS_HEIGHT_WALLS
+        d = self.pitch_diameter_mm(size)
+        need = self.face_width_over_d + (BOSS_HEIGHT_WALLS - 0.5) * self.rim_mm(size, ratio) / d
+        if self.length_over_d <= need:
+            raise InputError("length_over_d", self.length_over_d,
+                             f"must be > {need:.4g} at ratio {ratio:g}: face_width_over_d {self.face_width_over_d:.4g} "
+                             f"+ 3.5 rims of {self.rim_mm(size, ratio) / d:.4g} d (the tooth band must start above "
+                             f"the diaphragm's mid-plane)")
+
     def cs_body_term(self, ratio: float):
         """The circular spline body's twist term at this ratio (``analytic.cs_housing``), measured at
         ``cup_zone_reference_size``; None when the rules leave it out."""
@@ -206,5 +219,6 @@ class MeshRules:
             return None
         from strainwave.analytic.cup_zone import cup_zone_term
         size = self.cup_zone_reference_size
+        self.check_cup_length(size, ratio)
         return cup_zone_term(self.design(size, ratio), 1e3 * self.rated_torque_Nm(size), self.cup_zone_elements,
                              ratio)

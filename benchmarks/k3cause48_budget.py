@@ -161,7 +161,7 @@ def main_sourced():
     base = MeshRules()
     t0 = time.process_time()
     for label, rules in (("b/d 10/60", replace(base, face_width_over_d=10.0 / 60.0)),
-                         ("L 0.4 d", replace(base, length_over_d=0.4))):   # L 0.2 d: fea/wg_band stops (decision 073)
+                         ("L 0.4 d", replace(base, length_over_d=0.4))):   # L 0.2 d: refused (decision 075)
         for ratio in (30.0, 50.0, 100.0):
             b = budget(rules, ratio)
             print(f"{label} ratio {ratio:g}: full {b['full']:.3e} miss {b['miss']:.3e} cup {b['cup series']:.3e} "

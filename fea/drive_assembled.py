@@ -29,7 +29,7 @@ import numpy as np
 from strainwave.fea.assembly import Lame
 
 __all__ = ["RatedSet", "rated_set", "generalized", "mode_map", "wall_modes", "annulus_modes", "wg_flexibility",
-           "stiffness", "lobe_of", "AssembledMesh", "assemble_once", "assemble"]
+           "stiffness", "lobe_of", "AssembledMesh", "assemble_once", "assemble", "zone_members", "zone_terms"]
 
 
 @dataclass(frozen=True)
@@ -236,7 +236,6 @@ def assemble_once(s: RatedSet, tube_geo, n_theta: int, lame: Lame, w0_mm: float,
     f = np.linalg.solve(s.compliance_mm_per_N, L)
     T = float(L @ f)
     work = lambda G: float(f @ G @ f) / T ** 2       # noqa: E731
-    uniform = float(wall["g"][0, 0]) / (2.0 * math.pi * tube_geo.r_o_mm) ** 2
     lam_teeth = 1.0 / generalized(s.compliance_mm_per_N, s.lever_mm)
 
     def K_of(k: int) -> tuple[float, float, np.ndarray, np.ndarray]:
@@ -244,10 +243,37 @@ def assemble_once(s: RatedSet, tube_geo, n_theta: int, lame: Lame, w0_mm: float,
         G3, G2 = P.T @ _subset(wall["g"], harmonics, k) @ P, P.T @ _subset(g2, harmonics, k) @ P
         return stiffness(s, G3, G2, Gwg), 1.0 / (lam_teeth + work(G3 - G2) + work(Gwg)), G3, G2
 
-    K, _, G3, G2 = K_of(harmonics)
+    K = K_of(harmonics)[0]
     K_half, chain_half = K_of(harmonics // 2)[:2]
-    return AssembledMesh(n_theta, K, K_half, chain_half, lam_teeth, uniform, work(G3 - G2) - uniform,
-                         work(G3) - uniform, work(Gwg), wall["held_fraction"], wall["dofs"])
+    uniform, gross, net = zone_members(wall["g"], g2, s.phi_rad, s.lever_mm, f, tube_geo.r_o_mm)
+    return AssembledMesh(n_theta, K, K_half, chain_half, lam_teeth, uniform, net, gross, work(Gwg),
+                         wall["held_fraction"], wall["dofs"])
+
+
+def zone_members(g3: np.ndarray, g2: np.ndarray, phi_rad, lever_mm, forces_N, r_o_mm: float) -> tuple[float, ...]:
+    """(uniform, gross, net) work-conjugate flexibilities (rad/(N mm)) of the wall under flank pair forces
+    ``forces_N``: the wall under a uniform band shear; its extra under the pairs' load (decision 067's cup-zone term);
+    that extra net of the plane annulus under the same load, which a mesh model's rim already holds (decisions
+    073-assembled48 and 075-catzone48: the validate chain and the catalogue chain both add only ``net``)."""
+    harmonics = (len(g3) - 1) // 2
+    L, f = np.asarray(lever_mm, float), np.asarray(forces_N, float)
+    P = mode_map(phi_rad, -L / r_o_mm, harmonics)
+    load = P @ f                                    # the load's modes (force per radian on the wall's outer circle)
+    T = float(L @ f)
+    uniform = float(g3[0, 0]) / (2.0 * math.pi * r_o_mm) ** 2
+    gross = float(load @ g3 @ load) / T ** 2 - uniform
+    return uniform, gross, gross - float(load @ g2 @ load) / T ** 2
+
+
+def zone_terms(tube_geo, n_theta: int, lame: Lame, w0_mm: float, phi_rad, lever_mm, forces_N, face_width_mm: float,
+               g2: np.ndarray | None = None, harmonics: int = HARMONICS, contact: bool = True) -> dict:
+    """The wall's members (``zone_members``) under given flank loads on one wall mesh, with the cam's held fraction:
+    the catalogue chain's cup-zone term from its reduced mesh model's loads (decision 075-catzone48)."""
+    wall = wall_modes(tube_geo, n_theta, lame, w0_mm, harmonics, contact)
+    if g2 is None:
+        g2 = annulus_modes(tube_geo.r_i_mm, tube_geo.r_o_mm, face_width_mm, 0.5 * tube_geo.wall_mm, lame, harmonics)
+    uniform, gross, net = zone_members(wall["g"], g2, phi_rad, lever_mm, forces_N, tube_geo.r_o_mm)
+    return {"uniform": uniform, "gross": gross, "net": net, "held_fraction": wall["held_fraction"]}
 
 
 def assemble(meta: dict, params, K_G_N_per_mm: float, elements: tuple[int, int, int] = WALL_ELEMENTS) -> dict:

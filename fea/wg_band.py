@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from strainwave.errors import StageError
+from strainwave.errors import InputError, StageError
 from strainwave.fea.assembly import Lame
 
 STUDY = "cup-wave-generator"
@@ -40,6 +40,12 @@ class TubeGeometry:
     length_mm: float           # the open rim
     band_mm: float             # tooth band width, ending at the rim
 
+    def __post_init__(self):
+        # the band's bore is the cam's; a band reaching the held end would hold the same points twice (no such cup)
+        if self.band_start_mm <= self.z_end_mm:
+            raise InputError("cup length_mm", round(self.length_mm, 6),
+                             shortest_cup_message(self.z_end_mm, self.band_mm))
+
     @property
     def r_m_mm(self) -> float:
         return 0.5 * (self.r_i_mm + self.r_o_mm)
@@ -51,6 +57,12 @@ class TubeGeometry:
     @property
     def band_start_mm(self) -> float:
         return self.length_mm - self.band_mm
+
+
+def shortest_cup_message(z_end_mm: float, band_mm: float) -> str:
+    """What a cup's length must exceed: the tooth band at the open end starts above the diaphragm's mid-plane."""
+    return (f"must be > {z_end_mm + band_mm:.4g} mm: the tooth band ({band_mm:.4g} mm at the open end) must start "
+            f"above the diaphragm's mid-plane ({z_end_mm:.4g} mm from the closed end)")
 
 
 def tube_geometry(params) -> TubeGeometry:

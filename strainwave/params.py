@@ -154,6 +154,11 @@ class FlexsplineCup:
                        "flexspline_cup.wall_thickness_mm", self.wall_thickness_mm)
         if self.teeth < 4:
             raise InputError("flexspline_cup.teeth", self.teeth, "must be an integer >= 4")
+        from strainwave.geometry.flexspline_cup import BAND_RATIO, BOSS_HEIGHT_WALLS
+        band, z_end = BAND_RATIO * self.pitch_diameter_mm, (BOSS_HEIGHT_WALLS - 0.5) * self.wall_thickness_mm
+        if self.length_mm <= band + z_end:   # the tooth band would run into the diaphragm (fea/wg_band's tube)
+            from strainwave.fea.wg_band import shortest_cup_message
+            raise InputError("flexspline_cup.length_mm", self.length_mm, shortest_cup_message(z_end, band))
         if self.module_mm * 2.35 >= self.pitch_diameter_mm / 2 - self.wall_thickness_mm:
             raise InputError("flexspline_cup.module_mm", self.module_mm,
                              "teeth taller than the cup radius: need 2.35 module < d1/2 - delta")
