@@ -47,8 +47,8 @@ def _secant(T: np.ndarray, twist: np.ndarray, lo: float, hi: float) -> float:
 
 def drive_chain(params, *, exact: bool = True) -> DriveChain:
     """The shipped drive's chain at its rated torque. ``exact``: the mesh's exact loop on the fixed reading grid,
-    its knees read with the backlash's dead band out (decisions 073-075), so no reading follows the solve's step;
-    False: the solve's own steps (the reading before decision 075, kept for the comparison)."""
+    its knees read with the backlash's dead band out (decisions 073, 074, 076-exactdrive48), so no reading follows the solve's step;
+    False: the solve's own steps (the reading before decision 076, kept for the comparison)."""
     from strainwave.compare.diagnose.drive_baseline import drive_series_flexibility_rad_per_Nmm
     from strainwave.analytic import torsion as tor
     from strainwave.analytic.seed000 import cup_series_model

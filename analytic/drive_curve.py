@@ -6,7 +6,7 @@ system of mesh_drive) plus the twist of the parts in series with it (the cup's t
 the drive has one), each linear: theta = theta_mesh(T) + T lambda_series. The catalogue's numbers are read
 from the simulated loop by the same reader a recording goes through (compare/diagnose/catalogue_values.py);
 the catalogue's paths, the shipped gear's chain and diagnose's drive curve (``exact=True``) read the mesh's exact
-loop on a fixed torque grid, so their numbers do not depend on the solve's torque step (decisions 074, 075).
+loop on a fixed torque grid, so their numbers do not depend on the solve's torque step (decisions 074, 076).
 """
 from __future__ import annotations
 

@@ -1,10 +1,10 @@
-"""The shipped gear's analytic drive chain against the solve's torque step, before and after decision 075.
+"""The shipped gear's analytic drive chain against the solve's torque step, before and after decision 076.
 
 Usage: python benchmarks/probe_chain_steps.py [PARAMS ...] [--steps 30,60,120] [--fea 20,40]
 
 For each gear (default: the defaults and strainwave/data/second_gear.toml) and each base step a leg
 (``drive_curve.LOOP_STEPS_PER_LEG``), prints the chain's readings read the old way (the solve's own steps) and on
-the exact loop (decision 075), with the CPU-s of each chain and the load. ``--fea``: the same for
+the exact loop (decision 076), with the CPU-s of each chain and the load. ``--fea``: the same for
 `diagnose --baseline fea`'s curve (the FE tooth-mesh study on its quick meshes, its torque history at each given
 number of steps a leg; one study run per gear and step, ~13 CPU-s each).
 """

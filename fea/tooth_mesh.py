@@ -619,7 +619,7 @@ class ToothMesh(StudyVariant):
                "pairs": {k: np.asarray(v).tolist() for k, v in self.mesh_inputs["angles"][0].items()},
                "te_twist_at_rated_rad": [float(q.twist_rad[int(np.argmax(q.torque_Nmm))]) for q in f["paths"]],
                "rigid_rim": f["rigid_rim"], "rated_compliance": f.get("rated_compliance"),
-               # the exact loop (decision 073) for diagnose's drive curve (decision 075)
+               # the exact loop (decision 073) for diagnose's drive curve (decision 076)
                "loop_knots": np.asarray(p.knots).tolist() if p.knots is not None else None,
                "dead_band_rad": [float(b) for b in p.dead_band_rad]}
         if "crack_change" not in f:

@@ -102,7 +102,7 @@ def _meta(steps_per_leg: int) -> dict:
 
 
 def test_the_study_loop_does_not_follow_the_studys_step():
-    """Decision 075: `diagnose --baseline fea` reads the study's exact loop (its knots on the fixed grid, knees
+    """Decision 076: `diagnose --baseline fea` reads the study's exact loop (its knots on the fixed grid, knees
     past the backlash band): 20 or 40 steps a leg read the same knees; the history's own steps (what a study
     without knots falls back to) moved T1 by 32 % and K1 by 21 % on the FE study from 20 to 40."""
     from strainwave.analytic.drive_curve import read_catalogue_numbers

@@ -39,7 +39,7 @@ def _moved(params, monkeypatch, exact: bool) -> dict:
 
 @pytest.mark.parametrize("gear", ["defaults", "second_gear.toml"])
 def test_the_chain_does_not_follow_the_base_step(gear, monkeypatch):
-    """Decision 075: on the mesh's exact loop no reading moves when the solve's step is halved (measured <= 4e-9;
+    """Decision 076: on the mesh's exact loop no reading moves when the solve's step is halved (measured <= 4e-9;
     the bar leaves room for the reader's knee search, ~1e-8). The old reading, on the solve's own steps, moved T1
     by 50 % and K1 by 38-42 % from 60 to 30 steps a leg: the bar can fail."""
     from pathlib import Path

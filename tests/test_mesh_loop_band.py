@@ -1,5 +1,5 @@
 """A loop with backlash crosses its band at 0 N m: a reading grid point there keeps the twist the drive arrives
-with (decision 075), whatever round-off the solve leaves on the band's knots."""
+with (decision 076), whatever round-off the solve leaves on the band's knots."""
 import numpy as np
 import pytest
 

@@ -35,7 +35,7 @@ def drive_series_flexibility_rad_per_Nmm(params) -> float:
 
 def predicted_drive_curve(params, *, exact: bool = True):
     """The drive's predicted curve at its rated torque (about 0.3 CPU-s). ``exact``: the mesh's exact loop on the
-    fixed reading grid, the knees read with the backlash's dead band out (decision 075); False: the solve's steps."""
+    fixed reading grid, the knees read with the backlash's dead band out (decision 076); False: the solve's steps."""
     from strainwave.analytic.drive_curve import predict_curve
     from strainwave.analytic.mesh_drive import design_from_params
     with threadpool_limits(limits=1):       # the reader's small dense solves: BLAS threads only spin (decision 071)
@@ -76,7 +76,7 @@ def fea_drive_curve(params, *, exact: bool = True, result=None):
 
 def study_loop(meta: dict, exact: bool = True) -> tuple[np.ndarray, np.ndarray, tuple]:
     """(torque N mm, mesh twist rad, backlash band) of the tooth-mesh study's headline loop: its exact loop (the
-    solver's knots) on the fixed reading grid, so no reading follows the study's torque step (decision 075); the
+    solver's knots) on the fixed reading grid, so no reading follows the study's torque step (decision 076); the
     history's own steps, raw twist, where the study gave no knots or ``exact`` is False (the reading before)."""
     from strainwave.fea import mesh_loop
     knots = meta.get("loop_knots")
