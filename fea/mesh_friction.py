@@ -295,8 +295,11 @@ def _exact_increment(s: BandSystem, st: _State, theta: float, T0: float, T1: flo
     returns the twist at T1 (decision 077-slipknots48)."""
     stuck = 0
     for _ in range(MAX_SETS):
-        if not st.contact.any():
+        if not st.contact.any():        # unloaded: the first flank closes at the band's edge, its slip held from there
             _first_to_close(s, st, T1)
+            i = int(np.flatnonzero(st.contact)[0])
+            st.N, st.Q = np.zeros_like(st.N), np.zeros_like(st.Q)
+            st.slip_mm = s.slide_mm_per_rad * (s.clearance_mm[i] / s.lever_mm[i])
         if stuck > 2 * len(st.contact):     # the one-at-a-time changes cycle at a point: a hair of backward Euler
             try:
                 theta = _increment(s, st, theta, T0 + NUDGE * (T1 - T0))
