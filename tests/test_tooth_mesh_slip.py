@@ -195,3 +195,18 @@ def test_exact_frictionless_knots_are_the_lcp_knots():
     a, b = (resample(p.knots[:, 0], p.knots[:, 1], 200)[1] for p in (got, ref))
     assert np.max(np.abs(a - b)) <= 1e-7 * np.abs(b).max()
     assert got.knots.shape[0] > 3 * 5 + 2              # the set changes are knots of their own
+
+
+def test_a_flank_closing_at_the_band_edge_sticks_from_there():
+    """One flank, friction ample for its stick ratio: it closes at the band's edge with N = Q = 0 and sticks from
+    there, so Q / N is the stick solution's constant ratio at every load (holding its slip from twist 0 instead
+    would load it tangentially at N = 0 and make it slip)."""
+    C = 1e-7 * np.array([[2.0, 0.6], [0.6, 1.5]])
+    s = BandSystem(np.array([1e-3]), C, np.array([75.0]), np.array([20.0]), 2.0)
+    path, Q = torque_path(s, [0.0, 2e4, 4e4, 6e4], 1)
+    ratio = Q[1:, 0] / path.forces_N[1:, 0]
+    # stick: dslip = Cgf dN + Cgg dQ + w dtheta = 0 and dgap = Cff dN + Cfg dQ - lever dtheta = 0
+    w, lev = 20.0, 75.0
+    expected = -(C[1, 0] + w * C[0, 0] / lev) / (C[1, 1] + w * C[0, 1] / lev)
+    assert ratio == pytest.approx(np.full(3, expected), rel=1e-9)
+    assert path.twist_rad[1] > 1e-3 / 75.0
