@@ -1,8 +1,9 @@
 """The tooth-mesh study's true-slip loop against the history's step, before and after decision 077-slipknots48.
 
 Builds the headline angle's band systems on the study's finest validate mesh (cached with --cache), solves
-`mesh_friction.torque_path` on 40 and 80 history steps a leg with `tooth_mesh.INCREMENTS` increments a step, each
-with the increments' ends as knots (before: ``exact=False``) and with every state change split out (after), and
+`mesh_friction.torque_path` on 40 and 80 history steps a leg: before, 4 increments a step (decision
+073-slipstudy48) with the increments' ends as knots (``exact=False``); after, every state change split out on
+`tooth_mesh.INCREMENTS` increments a step (decision 077); and
 prints the study's readings (K1, K2, K3, T1, T2, lost motion, friction's work per cycle), the CPU-s and the load.
 
     python benchmarks/probe_slipknots.py [PARAMS] [--cache DIR]
@@ -49,7 +50,7 @@ def table(params_file: str | None, cache: Path | None) -> None:
     for exact in (False, True):
         for steps in (40, 80):
             t0 = time.process_time()
-            path = torque_path(bands, torque_history(rated, steps), tm.INCREMENTS, exact=exact)[0]
+            path = torque_path(bands, torque_history(rated, steps), tm.INCREMENTS if exact else 4, exact=exact)[0]
             cpu = time.process_time() - t0
             v = tm.loop_values([path], rated)
             rows[exact, steps] = v
