@@ -360,7 +360,9 @@ def torque_path(s: BandSystem, torques_Nmm, increments: int = 1, exact: bool = T
         T0 = knots[-1][0]
         if Tj != 0.0:           # a zero torque held (the dead band's far edge reached before): nothing moves
             theta, st = _step(s, st, theta, T0, float(Tj), knots, exact)
-            knots.append((float(s.lever_mm @ st.N - s.slide_mm_per_rad @ st.Q), theta))
+            # the increment carries Tj (its torque row): recorded as asked, so the loop's peak is the history's and
+            # the reader's grid (from the peak) keeps its exact 0 N m (decision 077)
+            knots.append((float(Tj), theta))
         at[j + 1] = len(knots) - 1
         if j in rec:
             N[rec[j]], Q[rec[j]] = st.N, st.Q
