@@ -93,3 +93,18 @@ def test_couple_kernel_is_symmetric_positive_definite_on_a_tooth_row():
     Kmat = mc.rim_moment_green_rad_per_Nmm(pts[:, None] - pts[None, :], E, I, K)
     assert np.allclose(Kmat, Kmat.T)
     assert np.min(np.linalg.eigvalsh(Kmat)) > 0.0
+
+
+def test_free_play_is_the_loss_at_zero_torque_whichever_edge_the_path_holds_there():
+    """A loop with a dead band (lo, hi) and no friction: the path's exact zeros sit at the band's far edge (decision
+    072's convention); the loss read with the band is its width, read without it the far edges give minus that."""
+    from strainwave.analytic.catalogue_loss import hysteresis_loss_rad
+    from strainwave.fea.mesh_contact import torque_history
+    lo, hi, k = -3e-5, 5e-5, 1e4
+    T = torque_history(10.0, 8)
+    j = np.arange(len(T))
+    down = (j >= np.argmax(T)) & (j <= np.argmin(T))
+    far = np.where(down, lo, hi)        # at T = 0: unloading ends at lo, reloading at hi
+    tw = T / k + np.where(T > 0, hi, np.where(T < 0, lo, far))
+    assert hysteresis_loss_rad(T, tw, (lo, hi)) == pytest.approx(hi - lo, rel=1e-12)
+    assert hysteresis_loss_rad(T, tw) == pytest.approx(lo - hi, rel=1e-12)
