@@ -45,8 +45,10 @@ def _secant(T: np.ndarray, twist: np.ndarray, lo: float, hi: float) -> float:
     return float(np.polyfit(T[:k0 + 1][sel], twist[:k0 + 1][sel], 1)[0])
 
 
-def drive_chain(params) -> DriveChain:
-    """The shipped drive's chain at its rated torque."""
+def drive_chain(params, *, exact: bool = True) -> DriveChain:
+    """The shipped drive's chain at its rated torque. ``exact``: the mesh's exact loop on the fixed reading grid,
+    its knees read with the backlash's dead band out (decisions 073, 074, 076-exactdrive48), so no reading follows the solve's step;
+    False: the solve's own steps (the reading before decision 076, kept for the comparison)."""
     from strainwave.compare.diagnose.drive_baseline import drive_series_flexibility_rad_per_Nmm
     from strainwave.analytic import torsion as tor
     from strainwave.analytic.seed000 import cup_series_model
@@ -57,8 +59,11 @@ def drive_chain(params) -> DriveChain:
     cup = cup_series_model(params, G).total
     rated = 1e-3 * params.gear.rated_output_torque_Nmm
     design = design_from_params(params)
-    mesh_only = predict_curve(design, 0.0, rated, with_te=False)
-    curve = predict_curve(design, drive_series_flexibility_rad_per_Nmm(params), rated, with_te=False)
+    from threadpoolctl import threadpool_limits
+    with threadpool_limits(limits=1):       # the reader's small dense solves: BLAS threads only spin (decision 071)
+        mesh_only = predict_curve(design, 0.0, rated, with_te=False, exact=exact)
+        curve = predict_curve(design, drive_series_flexibility_rad_per_Nmm(params), rated, with_te=False,
+                              exact=exact)
     T, tw = 1e3 * mesh_only.loop_torque_Nm, mesh_only.loop_twist_rad
     k3 = _secant(T, tw, 1e3 * mesh_only.T2_Nm, 1e3 * rated)
     k1 = _secant(T, tw, 0.02 * 1e3 * rated, 1e3 * max(mesh_only.T1_Nm, 0.1 * rated))

@@ -5,8 +5,8 @@ The output twist of a drive with its wave generator locked is the mesh's twist (
 system of mesh_drive) plus the twist of the parts in series with it (the cup's tube; the output shaft where
 the drive has one), each linear: theta = theta_mesh(T) + T lambda_series. The catalogue's numbers are read
 from the simulated loop by the same reader a recording goes through (compare/diagnose/catalogue_values.py);
-the catalogue's paths (``exact=True``) read the mesh's exact loop on a fixed torque grid, so their numbers do not
-depend on the solve's torque step (decision 074).
+the catalogue's paths, the shipped gear's chain and diagnose's drive curve (``exact=True``) read the mesh's exact
+loop on a fixed torque grid, so their numbers do not depend on the solve's torque step (decisions 074, 076).
 """
 from __future__ import annotations
 

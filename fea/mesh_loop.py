@@ -40,11 +40,21 @@ def legs(T: np.ndarray) -> tuple[slice, slice, slice]:
 
 def on_leg(T: np.ndarray, y: np.ndarray, leg: slice, torques: np.ndarray) -> np.ndarray:
     """``y`` at ``torques`` on one leg of the loop's knots (a leg is monotone in torque, so linear between knots)."""
-    t, v = T[leg], y[leg]
-    if t[-1] < t[0]:
+    t, v = np.asarray(T[leg], float), np.asarray(y[leg], float)
+    # the backlash band is crossed at zero torque; the solve leaves its knots at 1e-11..1e-7 N mm of round-off
+    t = np.where(np.abs(t) <= 1e-9 * float(np.max(np.abs(t))), 0.0, t)
+    falling = t[-1] < t[0]
+    if falling:
         t, v = t[::-1], v[::-1]
     # round-off at a pivot must not break np.interp's order
-    return np.interp(torques, np.maximum.accumulate(t), v)
+    t = np.maximum.accumulate(t)
+    torques = np.asarray(torques, float)
+    out = np.interp(torques, t, v)
+    # on a vertical segment (the band at 0 N m) the drive keeps the twist it arrives with: nothing pushes it across
+    i = np.searchsorted(t, torques, side="right") - 1 if falling else np.searchsorted(t, torques, side="left")
+    i = np.clip(i, 0, t.size - 1)
+    jump = (t[i] == torques) & (np.searchsorted(t, torques, "right") - np.searchsorted(t, torques, "left") > 1)
+    return np.where(jump, v[i], out)
 
 
 def resample(T: np.ndarray, y: np.ndarray, steps_per_leg: int = READ_STEPS_PER_LEG) -> tuple[np.ndarray, np.ndarray]:

@@ -618,7 +618,10 @@ class ToothMesh(StudyVariant):
                "forces_at_rated_N": p.forces_N[int(np.argmax(p.torque_Nmm))].tolist(),
                "pairs": {k: np.asarray(v).tolist() for k, v in self.mesh_inputs["angles"][0].items()},
                "te_twist_at_rated_rad": [float(q.twist_rad[int(np.argmax(q.torque_Nmm))]) for q in f["paths"]],
-               "rigid_rim": f["rigid_rim"], "rated_compliance": f.get("rated_compliance")}
+               "rigid_rim": f["rigid_rim"], "rated_compliance": f.get("rated_compliance"),
+               # the exact loop (decision 073) for diagnose's drive curve (decision 076)
+               "loop_knots": np.asarray(p.knots).tolist() if p.knots is not None else None,
+               "dead_band_rad": [float(b) for b in p.dead_band_rad]}
         if "crack_change" not in f:
             return out
         return out | {"crack": {"tooth_phi_rad": list(self.mesh_inputs["crack_phi_rad"]),

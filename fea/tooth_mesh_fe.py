@@ -306,6 +306,20 @@ def _flank_facets(model: RimSolve, side: int, root_mm: float):
     return bf[keep], which[keep]
 
 
+def _flank_quadrature(model: RimSolve, side: int, root_mm: float, offsets: np.ndarray):
+    """(basis, points x, outward normals n, dx, radius r, slot, want) on flank ``side`` of teeth ``offsets``: the
+    quadrature every band reading integrates over (slot: each facet's index in ``want``)."""
+    from skfem import ElementVector, FacetBasis
+    facets, tooth = _flank_facets(model, side, root_mm)
+    want = np.asarray(offsets) % model.teeth
+    pick = np.isin(tooth, want)
+    facets, tooth = facets[pick], tooth[pick]
+    fb = FacetBasis(model.mesh, ElementVector(model.basis.elem), facets=facets, intorder=6)
+    x = fb.global_coordinates().value
+    slot = np.searchsorted(want, tooth) if np.all(np.diff(want) > 0) else np.array([list(want).index(t) for t in tooth])
+    return fb, x, fb.normals.value, fb.dx * model.thickness_mm, np.hypot(x[0], x[1]), slot, want
+
+
 def influence(model: RimSolve, root_mm: float, radii_mm: np.ndarray, band_mm: float, side: int,
               offsets: np.ndarray, r_bore_mm: float | None) -> np.ndarray:
     """c[d, a, b] (mm/N): flank displacement (along the flank normal, into tooth ``offsets[d]``, at radius
@@ -313,7 +327,6 @@ def influence(model: RimSolve, root_mm: float, radii_mm: np.ndarray, band_mm: fl
     is balanced by the bore's uniform shear and the displacement is relative to the bore's mean rotation (the
     rotation's work on a self-equilibrated pair of loads); the teeth are all alike, so tooth j on tooth k is
     c[k - j] (the mesh is not periodic: the difference is a discretisation error the GCI sees)."""
-    from skfem import ElementVector, FacetBasis
     F, M = flank_loads(model, np.zeros(radii_mm.size, int), radii_mm, band_mm, side)
     shear = None
     if r_bore_mm is not None:
@@ -321,16 +334,7 @@ def influence(model: RimSolve, root_mm: float, radii_mm: np.ndarray, band_mm: fl
         F = F - shear[:, None] * M[None, :]
     U = displacements(model, F)
     Uc = model.T @ U
-    facets, tooth = _flank_facets(model, side, root_mm)
-    want = np.asarray(offsets) % model.teeth
-    pick = np.isin(tooth, want)
-    facets, tooth = facets[pick], tooth[pick]
-    fb = FacetBasis(model.mesh, ElementVector(model.basis.elem), facets=facets, intorder=6)
-    x = fb.global_coordinates().value
-    n = fb.normals.value
-    dx = fb.dx * model.thickness_mm
-    r = np.hypot(x[0], x[1])
-    slot = np.searchsorted(want, tooth) if np.all(np.diff(want) > 0) else np.array([list(want).index(t) for t in tooth])
+    fb, x, n, dx, r, slot, want = _flank_quadrature(model, side, root_mm, offsets)
     out = np.zeros((want.size, radii_mm.size, radii_mm.size))
     normal_u = [-(fb.interpolate(Uc[:, a]).value * n).sum(0) for a in range(radii_mm.size)]   # (nf, nq) each
     for b, rb in enumerate(radii_mm):
@@ -367,18 +371,8 @@ def _read_blocks(model: RimSolve, Uc: np.ndarray, rot: np.ndarray, root_mm: floa
                  band_mm: float, side: int, offsets: np.ndarray) -> np.ndarray:
     """c[x, y, d, a, b]: the band reading of kind y (0: normal into the tooth, 1: along t = rot90(n)) on flank
     ``side`` of tooth ``offsets[d]`` at radius b, per unit load column x * na + a of ``Uc`` (full dofs)."""
-    from skfem import ElementVector, FacetBasis
     na = radii_mm.size
-    facets, tooth = _flank_facets(model, side, root_mm)
-    want = np.asarray(offsets) % model.teeth
-    pick = np.isin(tooth, want)
-    facets, tooth = facets[pick], tooth[pick]
-    fb = FacetBasis(model.mesh, ElementVector(model.basis.elem), facets=facets, intorder=6)
-    x = fb.global_coordinates().value
-    n = fb.normals.value
-    dx = fb.dx * model.thickness_mm
-    r = np.hypot(x[0], x[1])
-    slot = np.array([list(want).index(t) for t in tooth])
+    fb, x, n, dx, r, slot, want = _flank_quadrature(model, side, root_mm, offsets)
     dirs = (-n, np.stack([-n[1], n[0]]))
     u = [fb.interpolate(Uc[:, c]).value for c in range(Uc.shape[1])]          # (2, nf, nq) each
     out = np.zeros((2, 2, want.size, na, na))

@@ -88,3 +88,35 @@ def test_twice_the_lost_motion_is_explained_as_lost_motion(params_and_fe_curve):
     diag, _ = diagnose(_recording(curve, curve.lost_motion_rad), params, "fea", workers=1)
     assert diag.verdict.value == "explained", diag.summary()
     assert diag.summary().split("verdict: explained (")[1].startswith("lost_motion")
+
+
+def _meta(steps_per_leg: int) -> dict:
+    """A study-shaped meta (the headline loop, its knots and band) from the closed-form mesh's contact path."""
+    from strainwave.analytic.mesh_drive import design_from_params, mesh_system
+    from strainwave.fea.mesh_contact import solve_torque_path, torque_history
+    params = load_params()
+    path = solve_torque_path(mesh_system(design_from_params(params), 0.0)[0],
+                             torque_history(params.gear.rated_output_torque_Nmm, steps_per_leg))
+    return {"loop": {"torque_Nmm": path.torque_Nmm.tolist(), "twist_rad": path.twist_rad.tolist()},
+            "loop_knots": path.knots.tolist(), "dead_band_rad": list(path.dead_band_rad)}
+
+
+def test_the_study_loop_does_not_follow_the_studys_step():
+    """Decision 076: `diagnose --baseline fea` reads the study's exact loop (its knots on the fixed grid, knees
+    past the backlash band): 20 or 40 steps a leg read the same knees; the history's own steps (what a study
+    without knots falls back to) moved T1 by 32 % and K1 by 21 % on the FE study from 20 to 40."""
+    from strainwave.analytic.drive_curve import read_catalogue_numbers
+    from strainwave.compare.diagnose.drive_baseline import study_loop
+    rated = 1e-3 * load_params().gear.rated_output_torque_Nmm
+    coarse, fine = _meta(20), _meta(40)
+
+    def knees(meta, exact):
+        T, th, band = study_loop(meta, exact)
+        v = read_catalogue_numbers(1e-3 * T, th, rated, band)
+        return np.array([v[k][0] for k in ("K1", "K2", "K3", "T1", "T2")])
+
+    assert knees(coarse, True) == pytest.approx(knees(fine, True), rel=1e-6)
+    without = {"loop": fine["loop"]}                       # an older study's meta: no knots, the steps as before
+    assert study_loop(without)[2] == (0.0, 0.0) and len(study_loop(without)[0]) == len(fine["loop"]["torque_Nmm"])
+    moved = np.abs(knees(coarse, False) / knees(fine, False) - 1.0)
+    assert moved[3] > 0.3                                  # T1 on the steps follows the step: the bar above can fail
