@@ -49,7 +49,7 @@ def hysteresis_loss_rad(loop_T_Nm, loop_twist_rad, dead_band_rad: tuple = (0.0, 
     """The steady loop's width at zero torque: unloading branch (after +A) minus loading branch (after -A).
     With free play (the mesh's dead band theta- .. theta+) the unloading branch reaches 0 N m at theta+ and the
     loading one at theta-, but a path's exact zero torque sits at either edge (decision 072's far edge, or a
-    round-off tie; decision 076): the width is read with the band taken out and its width added once."""
+    round-off tie; decision 077-hetenyi48): the width is read with the band taken out and its width added once."""
     T = np.asarray(loop_T_Nm, float)
     _steady(T)
     lo, hi = dead_band_rad

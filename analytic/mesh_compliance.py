@@ -12,7 +12,7 @@ Three springs, each a named pure function so the FE study can replace one and co
    x = s' - s, beta = (k / (4 E I))^(1/4), k the bearing's radial foundation modulus per unit length;
    the flank's tangential component F cos(alpha), applied h above the neutral line, is a moment F cos(alpha) h
    that turns the rim by beta^3/k e^{-beta|x|} (cos beta|x| - sin beta|x|) per unit moment (Hetenyi's C function;
-   decision 076) and tilts the teeth it carries
+   decision 077-hetenyi48) and tilts the teeth it carries
    (the radial-moment cross terms, odd in x, are left out: they cancel over a zone symmetric about a tooth);
 3. the wave generator as one radial spring per lobe (its cam and inner ring), K_G.
 
@@ -63,7 +63,7 @@ def rim_moment_green_rad_per_Nmm(arc_mm: np.ndarray, E_MPa: float, I_mm4: float,
     """Rotation of the rim at arc distance ``arc_mm`` from a unit moment on the same beam on an elastic
     foundation (Hetenyi 1946, C function): beta^3/k e^{-beta|x|} (cos beta|x| - sin beta|x|), the slope of the
     couple's deflection beta^2/k e^{-beta|x|} sin(beta x) and minus the second derivative of the force's Green's
-    function (decision 076); it integrates to zero (a couple on an infinite beam turns no rigid body)."""
+    function (decision 077-hetenyi48); it integrates to zero (a couple on an infinite beam turns no rigid body)."""
     beta = (k_N_per_mm2 / (4.0 * E_MPa * I_mm4)) ** 0.25
     x = np.abs(arc_mm)
     return beta ** 3 / k_N_per_mm2 * np.exp(-beta * x) * (np.cos(beta * x) - np.sin(beta * x))

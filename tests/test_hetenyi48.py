@@ -1,4 +1,4 @@
-"""The rim's Hetenyi kernels against a beam on a Winkler foundation solved by finite differences (decision 076).
+"""The rim's Hetenyi kernels against a beam on a Winkler foundation solved by finite differences (decision 077-hetenyi48).
 
 The reference is E I y'''' + k y = q discretised on a long beam, with a point force and a couple (two opposite
 forces one step either side of the origin): no Hetenyi formula enters it, so it settles signs and factors."""
