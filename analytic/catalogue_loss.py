@@ -20,7 +20,8 @@ import numpy as np
 
 from strainwave.analytic.drive_curve import branch_twist_rad, mean_twist_rad
 from strainwave.analytic.mesh_drive import MeshDesign, bearing_twist_rad, mesh_system
-from strainwave.fea.mesh_contact import solve_torque_path, torque_history
+from strainwave.fea.mesh_contact import dead_band, solve_torque_path, torque_history
+from strainwave.fea.mesh_loop import elastic_twist
 
 __all__ = ["LOST_MOTION_FRACTION", "CHA_BOUNDS_SOURCE", "LossReading", "cha_bounds", "hysteresis_loss_rad",
            "lost_motion_rad", "loop_width_max_rad", "small_loop", "read_loss"]
@@ -44,14 +45,19 @@ def _steady(T: np.ndarray) -> None:
         raise ValueError("the loop needs a reversal through zero torque (0 -> +A -> -A -> +A)")
 
 
-def hysteresis_loss_rad(loop_T_Nm, loop_twist_rad) -> float:
-    """The steady loop's width at zero torque: unloading branch (after +A) minus loading branch (after -A)."""
+def hysteresis_loss_rad(loop_T_Nm, loop_twist_rad, dead_band_rad: tuple = (0.0, 0.0)) -> float:
+    """The steady loop's width at zero torque: unloading branch (after +A) minus loading branch (after -A).
+    With free play (the mesh's dead band theta- .. theta+) the unloading branch reaches 0 N m at theta+ and the
+    loading one at theta-, but a path's exact zero torque sits at either edge (decision 072's far edge, or a
+    round-off tie; decision 077-hetenyi48): the width is read with the band taken out and its width added once."""
     T = np.asarray(loop_T_Nm, float)
     _steady(T)
+    lo, hi = dead_band_rad
+    th = elastic_twist(loop_twist_rad, dead_band_rad)
     zero = np.zeros(1)
-    down = branch_twist_rad(T, loop_twist_rad, zero, -np.ones(1))[0]
-    up = branch_twist_rad(T, loop_twist_rad, zero, np.ones(1))[0]
-    return float(down - up)
+    down = branch_twist_rad(T, th, zero, -np.ones(1))[0]
+    up = branch_twist_rad(T, th, zero, np.ones(1))[0]
+    return float(down - up + (hi - lo))
 
 
 def lost_motion_rad(loop_T_Nm, loop_twist_rad, test_torque_Nm: float) -> float:
@@ -127,6 +133,7 @@ def read_loss(design: MeshDesign, series_rad_per_Nmm: float, rated_Nm: float, lo
     T_lm = LOST_MOTION_FRACTION * rated_Nm
     Ts, ths = small_loop(design, series_rad_per_Nmm, T_lm) if small is None else small
     w, at = loop_width_max_rad(loop_T_Nm, loop_twist_rad)
-    return LossReading(hysteresis_loss_rad(loop_T_Nm, loop_twist_rad) / ARCMIN,
+    band = dead_band(mesh_system(design)[0])
+    return LossReading(hysteresis_loss_rad(loop_T_Nm, loop_twist_rad, band) / ARCMIN,
                        lost_motion_rad(Ts, ths, T_lm) / ARCMIN, w / ARCMIN, at, T_lm, bounds[0], bounds[1],
                        bounds_from, float(np.max(loop_T_Nm)), test_torque_from)

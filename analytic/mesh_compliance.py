@@ -11,7 +11,8 @@ Three springs, each a named pure function so the FE study can replace one and co
    (Hetenyi): a radial load P at s deflects the rim at s' by P beta/(2 k) e^{-beta|x|} (cos beta x + sin beta|x|),
    x = s' - s, beta = (k / (4 E I))^(1/4), k the bearing's radial foundation modulus per unit length;
    the flank's tangential component F cos(alpha), applied h above the neutral line, is a moment F cos(alpha) h
-   that turns the rim by beta^3/k e^{-beta|x|} cos(beta x) per unit moment and tilts the teeth it carries
+   that turns the rim by beta^3/k e^{-beta|x|} (cos beta|x| - sin beta|x|) per unit moment (Hetenyi's C function;
+   decision 077-hetenyi48) and tilts the teeth it carries
    (the radial-moment cross terms, odd in x, are left out: they cancel over a zone symmetric about a tooth);
 3. the wave generator as one radial spring per lobe (its cam and inner ring), K_G.
 
@@ -60,10 +61,12 @@ def rim_on_foundation_green_mm_per_N(arc_mm: np.ndarray, E_MPa: float, I_mm4: fl
 def rim_moment_green_rad_per_Nmm(arc_mm: np.ndarray, E_MPa: float, I_mm4: float,
                                  k_N_per_mm2: float) -> np.ndarray:
     """Rotation of the rim at arc distance ``arc_mm`` from a unit moment on the same beam on an elastic
-    foundation (Hetenyi 1946): beta^3/k e^{-beta|x|} cos(beta x)."""
+    foundation (Hetenyi 1946, C function): beta^3/k e^{-beta|x|} (cos beta|x| - sin beta|x|), the slope of the
+    couple's deflection beta^2/k e^{-beta|x|} sin(beta x) and minus the second derivative of the force's Green's
+    function (decision 077-hetenyi48); it integrates to zero (a couple on an infinite beam turns no rigid body)."""
     beta = (k_N_per_mm2 / (4.0 * E_MPa * I_mm4)) ** 0.25
     x = np.abs(arc_mm)
-    return beta ** 3 / k_N_per_mm2 * np.exp(-beta * x) * np.cos(beta * x)
+    return beta ** 3 / k_N_per_mm2 * np.exp(-beta * x) * (np.cos(beta * x) - np.sin(beta * x))
 
 
 def thin_rim_tilt_compliance_mm_per_N(height_mm: float, pitch_mm: float, rim_mm: float, face_width_mm: float,

@@ -2,8 +2,9 @@
 
 For the rules' size-25 drives at i = 30 / 50 / 100, under the mesh model's own flank loads at the rated torque:
 the 3D wall's extra over the uniform shear (gross, decision 067's term), the plane annulus's extra (the rim's plane
-body), and the reduced model's rim-rotation term on the same loads, with the kernel as shipped (Hetenyi's D) and
-with Hetenyi's rotation under a couple (C), each also net of a uniform load on every tooth.
+body), and the reduced model's rim-rotation term on the same loads, with the kernel shipped until decision 077
+(Hetenyi's D) and with Hetenyi's rotation under a couple (C, shipped since 077), each also net of a uniform load on
+every tooth.
 Usage: python benchmarks/probe_catzone48.py [ELEMENTS_ROUND_THE_QUARTER=10]   (~6 CPU-s at 10)
 """
 import math
