@@ -12,7 +12,9 @@ on the FE's flexibility, and Coulomb's law acts on the true relative slip of the
 
 Coulomb's law is path dependent: the twist history is followed in increments (backward Euler on the slip, as an
 incremental FE code does), each solved exactly on its contact and stick sets by an active-set iteration.
-(decision 070-ccx2pct48)
+(decision 070-ccx2pct48). ``torque_path`` splits each increment at every state change, located exactly (the
+response is linear in the torque on fixed sets), so its path and loop do not depend on the step (decision
+077-slipknots48).
 """
 from __future__ import annotations
 
@@ -301,10 +303,12 @@ def _exact_increment(s: BandSystem, st: _State, theta: float, T0: float, T1: flo
             st.N, st.Q = np.zeros_like(st.N), np.zeros_like(st.Q)
             st.slip_mm = s.slide_mm_per_rad * (s.clearance_mm[i] / s.lever_mm[i])
         if stuck > 2 * len(st.contact):     # the one-at-a-time changes cycle at a point: a hair of backward Euler
+            trial = st.copy()
             try:
-                theta = _increment(s, st, theta, T0 + NUDGE * (T1 - T0))
+                theta = _increment(s, trial, theta, T0 + NUDGE * (T1 - T0))
             except RuntimeError:            # no torque-driven rate solution (a flank that can neither stick nor slip)
                 return _twist_driven_rest(s, st, theta, T0, T1)
+            vars(st).update(vars(trial))
             T0, stuck = T0 + NUDGE * (T1 - T0), 0
             knots.append((T0, theta))
         x0, x1 = _response(s, st, T0), _response(s, st, T1)
