@@ -12,7 +12,9 @@ on the FE's flexibility, and Coulomb's law acts on the true relative slip of the
 
 Coulomb's law is path dependent: the twist history is followed in increments (backward Euler on the slip, as an
 incremental FE code does), each solved exactly on its contact and stick sets by an active-set iteration.
-(decision 070-ccx2pct48)
+(decision 070-ccx2pct48). ``torque_path`` splits each increment at every state change, located exactly (the
+response is linear in the torque on fixed sets), so its path and loop do not depend on the step (decision
+077-slipknots48).
 """
 from __future__ import annotations
 
@@ -23,6 +25,9 @@ import numpy as np
 __all__ = ["BandSystem", "turned_bands", "solve_twist_path", "twists_for_torques", "torque_path"]
 
 MAX_SETS = 200      # active-set iterations per increment before giving up (a P-matrix problem needs few)
+# of an increment: where changing one flank's state at a time cycles at a point (the rate problem wants several
+# at once), the exact path steps this far by backward Euler, whose end sets are consistent (decision 077)
+NUDGE = 1e-7
 
 
 @dataclass(frozen=True)
@@ -252,39 +257,135 @@ def _targets(torques: np.ndarray, increments: int) -> tuple[np.ndarray, np.ndarr
     return np.asarray(out), np.asarray(idx)
 
 
-def torque_path(s: BandSystem, torques_Nmm, increments: int = 1):
+def _response(s: BandSystem, st: _State, torque: float) -> tuple:
+    """(N, Q, twist, gap, slip) on the current sets at ``torque`` (stick flanks held at ``st.slip_mm``): affine in
+    the torque while the sets hold."""
+    n = len(s.clearance_mm)
+    N, Q, theta = _linear(s, st, 0.0, torque)
+    u = s.flex_mm_per_N @ np.concatenate([N, Q])
+    return N, Q, theta, s.clearance_mm - s.lever_mm * theta + u[:n], u[n:] + s.slide_mm_per_rad * theta
+
+
+def _first_event(s: BandSystem, st: _State, x0: tuple, x1: tuple) -> tuple[float, int, str]:
+    """(ratio along x0 -> x1 of the first state change, its flank, its kind): each condition is linear in the
+    ratio on fixed sets, so its crossing is the linear step's own ratio (a condition already on its edge and
+    leaving it changes at 0)."""
+    mu = s.friction_coefficient
+    (N0, Q0, th0, g0, _), (N1, Q1, th1, g1, s1) = x0, x1
+    f_tol = 1e-10 * max(float(np.max(np.abs(N0), initial=0.0)), float(np.max(np.abs(N1), initial=0.0)), 1e-20)
+    g_tol = 1e-12 * max(float(np.max(np.abs(s.clearance_mm), initial=0.0)), 1e-9)
+    s_tol = 1e-10 * max(float(np.max(np.abs(s.slide_mm_per_rad))) * max(abs(th0), abs(th1)), g_tol)
+    c = st.contact
+    stick, slide = c & st.stick, c & ~st.stick
+    conds = [(c, N0, N1 - N0, f_tol, "open"), (~c, g0, g1 - g0, g_tol, "close"),
+             (stick, mu * N0 - Q0, mu * (N1 - N0) - (Q1 - Q0), f_tol, "slide"),
+             (stick, mu * N0 + Q0, mu * (N1 - N0) + (Q1 - Q0), f_tol, "slide"),
+             (slide, np.zeros_like(N0), (s1 - st.slip_mm) * st.sign, s_tol, "stick")]
+    best = (np.inf, 0.0, -1, "")
+    for mask, f0, df, tol, kind in conds:
+        for i in np.flatnonzero(mask & (df < -tol)):
+            r = 0.0 if f0[i] <= tol else f0[i] / -df[i]
+            key = (r, df[i] / tol)            # the earliest; at a tie the fastest to leave
+            if key < best[:2]:
+                best = (r, df[i] / tol, int(i), kind)
+    return best[0], best[2], best[3]
+
+
+def _exact_increment(s: BandSystem, st: _State, theta: float, T0: float, T1: float, knots: list) -> float:
+    """The increment T0 -> T1 split at every state change (a flank closing or opening, a stick flank reaching the
+    cone, a sliding flank stopping), each located by the linear step's ratio and recorded as a knot; in place,
+    returns the twist at T1 (decision 077-slipknots48)."""
+    stuck = 0
+    for _ in range(MAX_SETS):
+        if not st.contact.any():        # unloaded: the first flank closes at the band's edge, its slip held from there
+            _first_to_close(s, st, T1)
+            i = int(np.flatnonzero(st.contact)[0])
+            st.N, st.Q = np.zeros_like(st.N), np.zeros_like(st.Q)
+            st.slip_mm = s.slide_mm_per_rad * (s.clearance_mm[i] / s.lever_mm[i])
+        if stuck > 2 * len(st.contact):     # the one-at-a-time changes cycle at a point: a hair of backward Euler
+            trial = st.copy()
+            try:
+                theta = _increment(s, trial, theta, T0 + NUDGE * (T1 - T0))
+            except RuntimeError:            # no torque-driven rate solution (a flank that can neither stick nor slip)
+                return _twist_driven_rest(s, st, theta, T0, T1)
+            vars(st).update(vars(trial))
+            T0, stuck = T0 + NUDGE * (T1 - T0), 0
+            knots.append((T0, theta))
+        x0, x1 = _response(s, st, T0), _response(s, st, T1)
+        if abs(x0[2] - theta) > 1e-12 * max(abs(theta), abs(x0[2]), 1e-12):   # the dead band crossed at 0 N m
+            theta = x0[2]
+            knots.append((T0, theta))
+        r, i, kind = _first_event(s, st, x0, x1)
+        if r >= 1.0:
+            st.N, st.Q, st.slip_mm = x1[0], x1[1], x1[4]
+            return x1[2]
+        stuck = stuck + 1 if r == 0.0 else 0
+        if r > 0.0:
+            x = [a + r * (b - a) for a, b in zip(x0, x1)]
+            st.N, st.Q, st.slip_mm, theta = x[0], x[1], x[4], float(x[2])
+            T0 = T0 + r * (T1 - T0)
+            knots.append((T0, theta))
+        if kind in ("open", "close"):
+            st.contact[i] = kind == "close"
+            st.stick[i] = s.friction_coefficient > 0.0
+            T0 = 0.0 if not st.contact.any() else T0       # no flank carries: the torque is 0 exactly
+        elif kind == "slide":
+            st.stick[i], st.sign[i] = False, -np.sign(st.Q[i]) if st.Q[i] != 0.0 else -np.sign(x1[1][i] - x0[1][i])
+        else:
+            st.stick[i] = True
+    return _twist_driven_rest(s, st, theta, T0, T1)
+
+
+def _twist_driven_rest(s: BandSystem, st: _State, theta: float, T0: float, T1: float) -> float:
+    """The rest of an increment from an event where the torque-driven rate problem has no answer (friction's
+    softening): one twist-driven backward-Euler increment, its end by false position; in place (decision 077)."""
+    theta, end = _leg_to_torque(s, st, theta, T0, T1, 1, 1e-12)
+    st.contact, st.stick, st.sign, st.slip_mm, st.N, st.Q = end.contact, end.stick, end.sign, end.slip_mm, end.N, end.Q
+    return theta
+
+
+def torque_path(s: BandSystem, torques_Nmm, increments: int = 1, exact: bool = True):
     """The history of torques (starting unloaded at 0), each step in ``increments`` equal TORQUE increments, each
     increment solved with its torque prescribed from the previous converged state (the twist an unknown of the
-    increment's linear system): one solve a increment where ``twists_for_torques`` re-runs a leg per trial of its
-    false position. On the same increments it is the same discretisation (tests/test_tooth_mesh_slip.py). Returns a
-    fea/mesh_contact.MeshPath (work: trapezoids over the increments, exact where T is linear between them) and the
-    tangential forces (m, n)."""
+    increment's linear system). ``exact`` (the default): each increment is split at every state change, located
+    by the linear step's own ratio (decision 077-slipknots48), so the path is the rate-independent Coulomb path
+    whatever the increments and its knots are the loop's exact corners; else each increment is one backward-Euler
+    step (its sets from its end), ``twists_for_torques`` on the same increments (tests/test_tooth_mesh_slip.py).
+    Returns a fea/mesh_contact.MeshPath (work: trapezoids between the knots) and the tangential forces (m, n)."""
     from strainwave.fea.mesh_contact import MeshPath, dead_band
     T = np.asarray(torques_Nmm, float)
     n = len(s.clearance_mm)
     targets, idx = _targets(T, increments)
     st, theta = _new_state(n, s.friction_coefficient), 0.0
-    th, Tr = np.zeros(targets.size + 1), np.zeros(targets.size + 1)
+    knots, at = [(0.0, 0.0)], np.zeros(targets.size + 1, int)
     N, Q = np.zeros((T.size, n)), np.zeros((T.size, n))
     rec = {int(j): i for i, j in enumerate(idx)}
     for j, Tj in enumerate(targets):
-        if Tj == 0.0:           # a zero torque held (the dead band's far edge reached before): nothing moves
-            th[j + 1], Tr[j + 1] = theta, Tr[j]
-            if j in rec:
-                N[rec[j]], Q[rec[j]] = st.N, st.Q
-            continue
-        try:
-            trial = st.copy()
-            theta, st = _increment(s, trial, theta, float(Tj)), trial
-        except RuntimeError:    # the torque-driven sets cycled: the twist-driven increment, its end by false position
-            theta, st = _leg_to_torque(s, st, th[j], Tr[j], float(Tj), 1, 1e-12)
-        th[j + 1], Tr[j + 1] = theta, float(s.lever_mm @ st.N - s.slide_mm_per_rad @ st.Q)
+        T0 = knots[-1][0]
+        if Tj != 0.0:           # a zero torque held (the dead band's far edge reached before): nothing moves
+            theta, st = _step(s, st, theta, T0, float(Tj), knots, exact)
+            # the increment carries Tj (its torque row): recorded as asked, so the loop's peak is the history's and
+            # the reader's grid (from the peak) keeps its exact 0 N m (decision 077)
+            knots.append((float(Tj), theta))
+        at[j + 1] = len(knots) - 1
         if j in rec:
             N[rec[j]], Q[rec[j]] = st.N, st.Q
-    seg = 0.5 * (Tr[1:] + Tr[:-1]) * np.diff(th)
-    cum = np.concatenate([[0.0], np.cumsum(seg)])
-    work = np.diff(cum[idx + 1], prepend=0.0)
-    # the loop's knots for fea/tooth_mesh's reader (decision 073-stepconv48): every increment's end in path order,
-    # linear between them to the increments' resolution; the dead band from the same geometry as mesh_contact's
-    knots = np.column_stack([Tr, th])
-    return MeshPath(T, th[idx + 1], N, N > 0.0, np.zeros(T.size, int), work, knots, dead_band(s)), Q
+    kn = np.asarray(knots, float)
+    # the loop's knots for fea/tooth_mesh's reader (decision 073-stepconv48): linear between them
+    cum = np.concatenate([[0.0], np.cumsum(0.5 * (kn[1:, 0] + kn[:-1, 0]) * np.diff(kn[:, 1]))])
+    work = np.diff(cum[at[idx + 1]], prepend=0.0)
+    return MeshPath(T, kn[at[idx + 1], 1], N, N > 0.0, np.zeros(T.size, int), work, kn, dead_band(s)), Q
+
+
+def _step(s: BandSystem, st: _State, theta: float, T0: float, T1: float, knots: list,
+          exact: bool) -> tuple[float, _State]:
+    """One torque increment T0 -> T1 from ``st`` at ``theta``: (twist, state) at T1; the twist-driven increment,
+    its end by false position, where the torque-driven sets cycle."""
+    trial, k = st.copy(), len(knots)
+    try:
+        if exact:
+            return _exact_increment(s, trial, theta, T0, T1, knots), trial
+        return _increment(s, trial, theta, T1), trial
+    except RuntimeError:
+        del knots[k:]           # the events found before the sets cycled are dropped with the trial
+        return _leg_to_torque(s, st, theta, T0, T1, 1, 1e-12)

@@ -80,7 +80,7 @@ def test_torque_path_is_the_twist_driven_path_on_the_same_increments(mu, seed):
     its torque; torque_path lands on every torque."""
     s = _lobes(mu, seed)
     hist = np.concatenate([np.linspace(0, 6e4, 5), np.linspace(6e4, -6e4, 9)[1:], np.linspace(-6e4, 6e4, 9)[1:]])
-    path, Q = torque_path(s, hist, 2)
+    path, Q = torque_path(s, hist, 2, exact=False)
     targets, idx = _targets(hist, 2)
     recs = twists_for_torques(s, targets, increments=1, rtol=1e-13)
     th = np.array([0.0] + [r["twist_rad"] for r in recs])[idx + 1]
@@ -161,3 +161,52 @@ def test_torque_path_carries_what_the_knee_reader_needs():
     for name in ("K1", "K2", "K3", "T1", "T2"):
         assert got[name] == pytest.approx(ref[name], rel=0.01), name
     assert got["K1"] == pytest.approx(k * lever ** 2, rel=1e-6)
+
+
+@pytest.mark.parametrize("mu, seed", [(0.1, 4), (0.3, 2), (0.05, 0)])
+def test_exact_torque_path_does_not_depend_on_the_step(mu, seed):
+    """Decision 077-slipknots48: every state change split out at its own ratio, the rate-independent Coulomb path
+    is one curve: the loop's knots at 20 and 40 steps a leg (and 4 increments a step) read the same twists on a
+    fixed torque grid to 1e-6 of the loop's twist, and friction's work per cycle is > 0 and the same."""
+    from strainwave.fea.mesh_contact import loop_area_Nmm_rad, torque_history
+    from strainwave.fea.mesh_loop import resample
+    s = _lobes(mu, seed)
+    s = BandSystem(s.clearance_mm, s.flex_mm_per_N, s.lever_mm, 10 * s.slide_mm_per_rad, mu)
+    paths = [torque_path(s, torque_history(6e4, k), inc)[0] for k, inc in ((20, 1), (40, 1), (20, 4))]
+    reads = [resample(p.knots[:, 0], p.knots[:, 1], 200)[1] for p in paths]
+    scale = np.abs(reads[0]).max()
+    for r in reads[1:]:
+        assert np.max(np.abs(r - reads[0])) <= 1e-6 * scale
+    areas = [loop_area_Nmm_rad(p) for p in paths]
+    assert areas[0] > 1e-3
+    assert areas[1:] == pytest.approx([areas[0]] * 2, rel=1e-6)
+
+
+def test_exact_frictionless_knots_are_the_lcp_knots():
+    """mu = 0: the exact torque path's loop is fea/mesh_contact's exact parametric LCP loop on a fixed grid, at a
+    coarse step (5 a leg) where the increments' ends alone would cut its corners."""
+    from strainwave.fea.mesh_contact import MeshSystem, solve_torque_path, torque_history
+    from strainwave.fea.mesh_loop import resample
+    s = _lobes(0.0, 3)
+    n = len(s.clearance_mm)
+    got = torque_path(s, torque_history(6e4, 5), 1)[0]
+    ref = solve_torque_path(MeshSystem(s.clearance_mm, s.flex_mm_per_N[:n, :n], s.lever_mm, s.slide_mm_per_rad,
+                                       0.0, 80.0), torque_history(6e4, 40))
+    a, b = (resample(p.knots[:, 0], p.knots[:, 1], 200)[1] for p in (got, ref))
+    assert np.max(np.abs(a - b)) <= 1e-7 * np.abs(b).max()
+    assert got.knots.shape[0] > 3 * 5 + 2              # the set changes are knots of their own
+
+
+def test_a_flank_closing_at_the_band_edge_sticks_from_there():
+    """One flank, friction ample for its stick ratio: it closes at the band's edge with N = Q = 0 and sticks from
+    there, so Q / N is the stick solution's constant ratio at every load (holding its slip from twist 0 instead
+    would load it tangentially at N = 0 and make it slip)."""
+    C = 1e-7 * np.array([[2.0, 0.6], [0.6, 1.5]])
+    s = BandSystem(np.array([1e-3]), C, np.array([75.0]), np.array([20.0]), 2.0)
+    path, Q = torque_path(s, [0.0, 2e4, 4e4, 6e4], 1)
+    ratio = Q[1:, 0] / path.forces_N[1:, 0]
+    # stick: dslip = Cgf dN + Cgg dQ + w dtheta = 0 and dgap = Cff dN + Cfg dQ - lever dtheta = 0
+    w, lev = 20.0, 75.0
+    expected = -(C[1, 0] + w * C[0, 0] / lev) / (C[1, 1] + w * C[0, 1] / lev)
+    assert ratio == pytest.approx(np.full(3, expected), rel=1e-9)
+    assert path.twist_rad[1] > 1e-3 / 75.0
