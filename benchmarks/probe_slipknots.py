@@ -1,9 +1,9 @@
-"""The tooth-mesh study's true-slip loop against the history's step, before and after decision 077-slipknots48.
+"""The tooth-mesh study's true-slip loop against the history's step, before and after decision 078-slipknots48.
 
 Builds the headline angle's band systems on the study's finest validate mesh (cached with --cache), solves
 `mesh_friction.torque_path` on 40 and 80 history steps a leg: before, 4 increments a step (decision
 073-slipstudy48) with the increments' ends as knots (``exact=False``); after, every state change split out on
-`tooth_mesh.INCREMENTS` increments a step (decision 077); and
+`tooth_mesh.INCREMENTS` increments a step (decision 078); and
 prints the study's readings (K1, K2, K3, T1, T2, lost motion, friction's work per cycle), the CPU-s and the load.
 
     python benchmarks/probe_slipknots.py [PARAMS] [--cache DIR]

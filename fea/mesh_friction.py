@@ -14,7 +14,7 @@ Coulomb's law is path dependent: the twist history is followed in increments (ba
 incremental FE code does), each solved exactly on its contact and stick sets by an active-set iteration.
 (decision 070-ccx2pct48). ``torque_path`` splits each increment at every state change, located exactly (the
 response is linear in the torque on fixed sets), so its path and loop do not depend on the step (decision
-077-slipknots48).
+078-slipknots48).
 """
 from __future__ import annotations
 
@@ -26,7 +26,7 @@ __all__ = ["BandSystem", "turned_bands", "solve_twist_path", "twists_for_torques
 
 MAX_SETS = 200      # active-set iterations per increment before giving up (a P-matrix problem needs few)
 # of an increment: where changing one flank's state at a time cycles at a point (the rate problem wants several
-# at once), the exact path steps this far by backward Euler, whose end sets are consistent (decision 077)
+# at once), the exact path steps this far by backward Euler, whose end sets are consistent (decision 078)
 NUDGE = 1e-7
 
 
@@ -294,7 +294,7 @@ def _first_event(s: BandSystem, st: _State, x0: tuple, x1: tuple) -> tuple[float
 def _exact_increment(s: BandSystem, st: _State, theta: float, T0: float, T1: float, knots: list) -> float:
     """The increment T0 -> T1 split at every state change (a flank closing or opening, a stick flank reaching the
     cone, a sliding flank stopping), each located by the linear step's ratio and recorded as a knot; in place,
-    returns the twist at T1 (decision 077-slipknots48)."""
+    returns the twist at T1 (decision 078-slipknots48)."""
     stuck = 0
     for _ in range(MAX_SETS):
         if not st.contact.any():        # unloaded: the first flank closes at the band's edge, its slip held from there
@@ -338,7 +338,7 @@ def _exact_increment(s: BandSystem, st: _State, theta: float, T0: float, T1: flo
 
 def _twist_driven_rest(s: BandSystem, st: _State, theta: float, T0: float, T1: float) -> float:
     """The rest of an increment from an event where the torque-driven rate problem has no answer (friction's
-    softening): one twist-driven backward-Euler increment, its end by false position; in place (decision 077)."""
+    softening): one twist-driven backward-Euler increment, its end by false position; in place (decision 078)."""
     theta, end = _leg_to_torque(s, st, theta, T0, T1, 1, 1e-12)
     st.contact, st.stick, st.sign, st.slip_mm, st.N, st.Q = end.contact, end.stick, end.sign, end.slip_mm, end.N, end.Q
     return theta
@@ -348,7 +348,7 @@ def torque_path(s: BandSystem, torques_Nmm, increments: int = 1, exact: bool = T
     """The history of torques (starting unloaded at 0), each step in ``increments`` equal TORQUE increments, each
     increment solved with its torque prescribed from the previous converged state (the twist an unknown of the
     increment's linear system). ``exact`` (the default): each increment is split at every state change, located
-    by the linear step's own ratio (decision 077-slipknots48), so the path is the rate-independent Coulomb path
+    by the linear step's own ratio (decision 078-slipknots48), so the path is the rate-independent Coulomb path
     whatever the increments and its knots are the loop's exact corners; else each increment is one backward-Euler
     step (its sets from its end), ``twists_for_torques`` on the same increments (tests/test_tooth_mesh_slip.py).
     Returns a fea/mesh_contact.MeshPath (work: trapezoids between the knots) and the tangential forces (m, n)."""
@@ -365,7 +365,7 @@ def torque_path(s: BandSystem, torques_Nmm, increments: int = 1, exact: bool = T
         if Tj != 0.0:           # a zero torque held (the dead band's far edge reached before): nothing moves
             theta, st = _step(s, st, theta, T0, float(Tj), knots, exact)
             # the increment carries Tj (its torque row): recorded as asked, so the loop's peak is the history's and
-            # the reader's grid (from the peak) keeps its exact 0 N m (decision 077)
+            # the reader's grid (from the peak) keeps its exact 0 N m (decision 078)
             knots.append((float(Tj), theta))
         at[j + 1] = len(knots) - 1
         if j in rec:

@@ -63,7 +63,7 @@ STEP_LIMITED = ("T1_Nmm",)
 STEP_LIMITED_WHY = ("the reader's T1 moves 0.4-0.7 % with its own torque grid (200 / 400 / 800 a leg on the exact "
                     "loop), over the 0.5 % fixed before (decision 073)")
 # friction on the true slip (fea/mesh_friction.torque_path): torque increments per history step. The path is
-# split at every state change (decision 077-slipknots48), so it does not depend on them: 1 reads the knees and
+# split at every state change (decision 078-slipknots48), so it does not depend on them: 1 reads the knees and
 # friction's work as 4 does to 1.5e-9 at 40 % of the cost (4 was needed when the knots were the increments' ends)
 INCREMENTS = 1
 SECTOR_H_RATIO = 0.5              # the sectors' element size over the rim's

@@ -165,7 +165,7 @@ def test_torque_path_carries_what_the_knee_reader_needs():
 
 @pytest.mark.parametrize("mu, seed", [(0.1, 4), (0.3, 2), (0.05, 0)])
 def test_exact_torque_path_does_not_depend_on_the_step(mu, seed):
-    """Decision 077-slipknots48: every state change split out at its own ratio, the rate-independent Coulomb path
+    """Decision 078-slipknots48: every state change split out at its own ratio, the rate-independent Coulomb path
     is one curve: the loop's knots at 20 and 40 steps a leg (and 4 increments a step) read the same twists on a
     fixed torque grid to 1e-6 of the loop's twist, and friction's work per cycle is > 0 and the same."""
     from strainwave.fea.mesh_contact import loop_area_Nmm_rad, torque_history
