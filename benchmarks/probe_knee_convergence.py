@@ -20,9 +20,10 @@ import numpy as np
 KEYS = ("K1", "K2", "K3", "T1", "T2")
 
 
-def headline_system(params_file: str | None, cache: Path | None):
-    """The study's headline-angle MeshSystem and rated torque on the finest validate mesh (cached: ~10 CPU-s)."""
-    f = cache / f"system_{Path(params_file).stem if params_file else 'default'}.pkl" if cache else None
+def headline(params_file: str | None, cache: Path | None, kind: str = "system"):
+    """The study's headline-angle contact system (``kind``: "system", the torque-only MeshSystem, or "bands", the
+    true-slip BandSystem) and the rated torque, on the finest validate mesh (cached: ~10 CPU-s)."""
+    f = cache / f"{kind}_{Path(params_file).stem if params_file else 'default'}.pkl" if cache else None
     if f is not None and f.exists():
         return pickle.loads(f.read_bytes())
     from strainwave.analytic.mesh_engagement import study_loads
@@ -32,7 +33,8 @@ def headline_system(params_file: str | None, cache: Path | None):
     mesh = study_loads(params, quick=False)["mesh"]
     mesh["angles"] = mesh["angles"][:1]
     infl, _ = tm.influences(params, mesh, tm.refinements(params.flexspline_cup.module_mm, False)[0])
-    out = (tm.systems(infl, mesh)[0], float(mesh["rated_torque_Nmm"]))
+    build = tm.systems if kind == "system" else tm.band_systems
+    out = (build(infl, mesh)[0], float(mesh["rated_torque_Nmm"]))
     if f is not None:
         f.write_bytes(pickle.dumps(out))
     return out
@@ -41,7 +43,7 @@ def headline_system(params_file: str | None, cache: Path | None):
 def table(params_file: str | None, cache: Path | None) -> None:
     from strainwave.fea import tooth_mesh as tm
     from strainwave.fea.mesh_contact import solve_torque_path, torque_history
-    system, rated = headline_system(params_file, cache)
+    system, rated = headline(params_file, cache)
     print(f"# {params_file or 'default'}  rated {rated:.6g} N mm  dead band {system and tm_band(system)} rad  "
           f"load {os.getloadavg()[0]:.2f}")
     print("| reading | steps a leg | grid a leg | " + " | ".join(KEYS) + " | CPU-s |")

@@ -12,9 +12,11 @@ from __future__ import annotations
 
 import argparse
 import os
-import pickle
+import sys
 import time
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).parent))   # the sibling probe's system builder
 
 KEYS = ("K1_Nmm_per_rad", "K2_Nmm_per_rad", "K3_Nmm_per_rad", "T1_Nmm", "T2_Nmm", "lost_motion_arcmin",
         "friction_loss_per_cycle_Nmm")
@@ -22,20 +24,8 @@ KEYS = ("K1_Nmm_per_rad", "K2_Nmm_per_rad", "K3_Nmm_per_rad", "T1_Nmm", "T2_Nmm"
 
 def headline_bands(params_file: str | None, cache: Path | None):
     """The headline angle's BandSystem and rated torque on the finest validate mesh (cached)."""
-    f = cache / f"bands_{Path(params_file).stem if params_file else 'default'}.pkl" if cache else None
-    if f is not None and f.exists():
-        return pickle.loads(f.read_bytes())
-    from strainwave.analytic.mesh_engagement import study_loads
-    from strainwave.fea import tooth_mesh as tm
-    from strainwave.params import load_params
-    params = load_params(params_file)
-    mesh = study_loads(params, quick=False)["mesh"]
-    mesh["angles"] = mesh["angles"][:1]
-    infl, _ = tm.influences(params, mesh, tm.refinements(params.flexspline_cup.module_mm, False)[0])
-    out = (tm.band_systems(infl, mesh)[0], float(mesh["rated_torque_Nmm"]))
-    if f is not None:
-        f.write_bytes(pickle.dumps(out))
-    return out
+    from probe_knee_convergence import headline
+    return headline(params_file, cache, "bands")
 
 
 def table(params_file: str | None, cache: Path | None) -> None:
